@@ -1,0 +1,47 @@
+// Chooses the description loader by file extension and reads files whole.
+
+#include "generator/description/load_robot.hpp"
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "generator/description/mdh_yaml_loader.hpp"
+#include "generator/description/urdf_loader.hpp"
+
+namespace modelgen::gen {
+
+std::string read_source_file(const std::string& path) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) {
+    throw InputError({path}, "is a directory, not a robot description");
+  }
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError({path}, "cannot open the file (does it exist and is it readable?)");
+  std::ostringstream bytes;
+  bytes << in.rdbuf();
+  if (in.bad()) throw InputError({path}, "error while reading the file");
+  return bytes.str();
+}
+
+RobotModel load_robot(const std::string& path, const LoadOptions& options) {
+  const std::string extension = std::filesystem::path(path).extension().string();
+  if (extension == ".yaml" || extension == ".yml") {
+    if (!options.base_link.empty() || !options.tip_link.empty()) {
+      throw InputError({path}, "--base and --tip apply to URDF descriptions only");
+    }
+    RobotModel model = load_mdh_yaml(path, read_source_file(path));
+    if (!options.name.empty()) {
+      check_robot_name(options.name, {path});
+      model.name = options.name;
+    }
+    return model;
+  }
+  if (extension == ".urdf" || extension == ".xml") {
+    return load_urdf(path, read_source_file(path), options);
+  }
+  throw InputError({path}, "unknown description format '" + extension +
+                               "': expected .yaml/.yml (modified DH) or .urdf");
+}
+
+}  // namespace modelgen::gen

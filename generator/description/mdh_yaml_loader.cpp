@@ -1,0 +1,482 @@
+// Reads the YAML description (modified DH table, drive chain, friction options, a-priori
+// values) with yaml-cpp, checking every key and value and reporting positions from yaml-cpp's
+// marks. Frame j from frame a(j): Rot_x(alpha) Trans_x(d) Rot_z(theta) Trans_z(r) (DESIGN.md).
+
+#include "generator/description/mdh_yaml_loader.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+#include <sstream>
+
+#include <Eigen/LU>
+#include <yaml-cpp/yaml.h>
+
+namespace modelgen::gen {
+
+namespace {
+
+class YamlReader {
+ public:
+  explicit YamlReader(const std::string& path) : path_(path) {}
+
+  SourceLocation at(const YAML::Node& node) const {
+    const YAML::Mark mark = node.Mark();
+    if (mark.is_null()) return {path_};
+    return {path_, mark.line + 1, mark.column + 1};
+  }
+
+  [[noreturn]] void fail(const YAML::Node& node, const std::string& message) const {
+    throw InputError(at(node), message);
+  }
+
+  // Rejects keys outside `allowed` (suggesting the closest) and duplicate keys.
+  void check_keys(const YAML::Node& map, const std::vector<std::string>& allowed,
+                  const std::string& context) const {
+    if (!map.IsMap()) fail(map, context + " must be a mapping of keys to values");
+    std::set<std::string> seen;
+    for (const auto& entry : map) {
+      const std::string key = entry.first.Scalar();
+      if (std::find(allowed.begin(), allowed.end(), key) == allowed.end()) {
+        std::string valid;
+        for (const std::string& a : allowed) valid += (valid.empty() ? "" : ", ") + a;
+        fail(entry.first, "unknown key '" + key + "' in " + context + did_you_mean(key, allowed) +
+                              "; valid keys: " + valid);
+      }
+      if (!seen.insert(key).second) fail(entry.first, "duplicate key '" + key + "' in " + context);
+    }
+  }
+
+  YAML::Node require(const YAML::Node& map, const std::string& key,
+                     const std::string& context) const {
+    YAML::Node value = map[key];
+    if (!value) fail(map, "missing field '" + key + "' in " + context);
+    return value;
+  }
+
+  double number(const YAML::Node& node, const std::string& field) const {
+    if (!node.IsScalar()) fail(node, "'" + field + "' must be a number");
+    std::istringstream in(node.Scalar());
+    in.imbue(std::locale::classic());
+    double value = 0;
+    in >> value;
+    if (in.fail() || !in.eof() || !std::isfinite(value)) {
+      fail(node, "'" + field + "' must be a number, got '" + node.Scalar() + "'");
+    }
+    return value;
+  }
+
+  double positive(const YAML::Node& node, const std::string& field) const {
+    const double value = number(node, field);
+    if (value <= 0) fail(node, "'" + field + "' must be positive, got " + node.Scalar());
+    return value;
+  }
+
+  long integer(const YAML::Node& node, const std::string& field) const {
+    const double value = number(node, field);
+    if (value != std::floor(value) || std::abs(value) > 1e9) {
+      fail(node, "'" + field + "' must be an integer, got '" + node.Scalar() + "'");
+    }
+    return static_cast<long>(value);
+  }
+
+  bool boolean(const YAML::Node& node, const std::string& field) const {
+    if (node.IsScalar()) {
+      const std::string& s = node.Scalar();
+      if (s == "true" || s == "True" || s == "yes") return true;
+      if (s == "false" || s == "False" || s == "no") return false;
+    }
+    fail(node, "'" + field + "' must be true or false");
+  }
+
+  std::string text(const YAML::Node& node, const std::string& field) const {
+    if (!node.IsScalar() || node.Scalar().empty()) fail(node, "'" + field + "' must be a string");
+    return node.Scalar();
+  }
+
+  Angle angle(const YAML::Node& node, const std::string& field) const {
+    if (!node.IsScalar()) fail(node, "'" + field + "' must be an angle");
+    auto parsed = parse_angle(node.Scalar());
+    if (!parsed) {
+      fail(node, "'" + field + "' must be an angle in radians: a number or an expression of pi "
+                               "such as pi/2, -pi/2, 3*pi/4; got '" + node.Scalar() + "'");
+    }
+    return *parsed;
+  }
+
+  std::vector<double> numbers(const YAML::Node& node, const std::string& field,
+                              std::size_t expected) const {
+    if (!node.IsSequence() || node.size() != expected) {
+      fail(node, "'" + field + "' must be a list of " + std::to_string(expected) + " numbers");
+    }
+    std::vector<double> out;
+    for (const auto& item : node) out.push_back(number(item, field));
+    return out;
+  }
+
+  const std::string& path() const { return path_; }
+
+ private:
+  std::string path_;
+};
+
+Eigen::Matrix3d rot_x(const Angle& a) {
+  Eigen::Matrix3d R;
+  R << 1, 0, 0, 0, a.cos(), -a.sin(), 0, a.sin(), a.cos();
+  return R;
+}
+
+Eigen::Matrix3d rot_z(const Angle& a) {
+  Eigen::Matrix3d R;
+  R << a.cos(), -a.sin(), 0, a.sin(), a.cos(), 0, 0, 0, 1;
+  return R;
+}
+
+// Rot_x(alpha) Trans_x(d) Rot_z(theta) Trans_z(r) as a Frame (Khalil & Kleinfinger).
+Frame mdh_frame(const MdhParameters& mdh) {
+  const Eigen::Matrix3d Rx = rot_x(mdh.alpha);
+  const Eigen::Matrix3d R = Rx * rot_z(mdh.theta);
+  const Eigen::Vector3d t = Eigen::Vector3d(mdh.d, 0, 0) + R * Eigen::Vector3d(0, 0, mdh.r);
+  Frame f;
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 3; ++c) f.rotation[3 * r + c] = R(r, c);
+    f.translation[r] = t[r];
+  }
+  return f;
+}
+
+struct RawJoint {
+  JointDescription description;
+  JointType type = JointType::kRevolute;
+  int antecedent = 0;  // 0 = base, 1-based link number otherwise
+  bool has_ant = false;
+  YAML::Node ant_node;
+};
+
+class MdhYamlLoader {
+ public:
+  MdhYamlLoader(const std::string& path) : in_(path) {}
+
+  RobotModel load(const std::string& text) {
+    YAML::Node root;
+    try {
+      root = YAML::Load(text);
+    } catch (const YAML::ParserException& e) {
+      throw InputError({in_.path(), e.mark.line + 1, e.mark.column + 1},
+                       "YAML syntax error: " + e.msg);
+    }
+    if (!root || root.IsNull()) throw InputError({in_.path()}, "the file is empty");
+    in_.check_keys(root,
+                   {"name", "gravity", "joints", "drives", "friction", "rotor_inertia", "payload",
+                    "known"},
+                   "the robot description");
+    model_.source_file = in_.path();
+    model_.format = DescriptionFormat::kMdhYaml;
+    const YAML::Node name = in_.require(root, "name", "the robot description");
+    model_.name = in_.text(name, "name");
+    check_robot_name(model_.name, in_.at(name));
+    if (root["gravity"]) {
+      const auto g = in_.numbers(root["gravity"], "gravity", 3);
+      model_.tree.gravity = {g[0], g[1], g[2]};
+    }
+    read_joints(in_.require(root, "joints", "the robot description"));
+    if (root["friction"]) read_friction(root["friction"]);
+    if (root["rotor_inertia"]) model_.rotor_inertia = in_.boolean(root["rotor_inertia"], "rotor_inertia");
+    build_standard_parameters(model_);
+    read_drives(root["drives"]);
+    if (root["payload"]) read_payload(root["payload"]);
+    if (root["known"]) read_known(root["known"]);
+    validate(model_.tree);
+    return std::move(model_);
+  }
+
+ private:
+  void read_joints(const YAML::Node& list) {
+    if (!list.IsSequence() || list.size() == 0) {
+      in_.fail(list, "'joints' must be a non-empty list of modified DH rows");
+    }
+    std::vector<RawJoint> raw;
+    std::set<std::string> names;
+    for (std::size_t i = 0; i < list.size(); ++i) {
+      const YAML::Node row = list[i];
+      const int j = static_cast<int>(i) + 1;
+      const std::string context = "joint " + std::to_string(j);
+      in_.check_keys(row, {"name", "type", "ant", "alpha", "d", "theta", "r", "limits"}, context);
+      RawJoint joint;
+      joint.description.where = in_.at(row);
+      joint.description.name = row["name"] ? in_.text(row["name"], "name") : "L" + std::to_string(j);
+      if (!names.insert(joint.description.name).second) {
+        in_.fail(row["name"], "joint name '" + joint.description.name + "' is used twice");
+      }
+      const YAML::Node type = in_.require(row, "type", context);
+      const std::string type_text = in_.text(type, "type");
+      if (type_text == "revolute") {
+        joint.type = JointType::kRevolute;
+      } else if (type_text == "prismatic") {
+        joint.type = JointType::kPrismatic;
+      } else if (type_text == "fixed") {
+        joint.type = JointType::kFixed;
+      } else {
+        in_.fail(type, "unknown joint type '" + type_text + "'" +
+                           did_you_mean(type_text, {"revolute", "prismatic", "fixed"}) +
+                           "; valid types: revolute, prismatic, fixed");
+      }
+      MdhParameters mdh;
+      mdh.alpha = in_.angle(in_.require(row, "alpha", context), "alpha");
+      mdh.d = in_.number(in_.require(row, "d", context), "d");
+      mdh.theta = in_.angle(in_.require(row, "theta", context), "theta");
+      mdh.r = in_.number(in_.require(row, "r", context), "r");
+      joint.description.mdh = mdh;
+      joint.antecedent = j - 1;
+      if (row["ant"]) {
+        joint.has_ant = true;
+        joint.ant_node = row["ant"];
+      }
+      if (row["limits"]) joint.description.limits = read_limits(row["limits"], joint.type, context);
+      raw.push_back(std::move(joint));
+    }
+    resolve_antecedents(raw);
+    int dof = 0;
+    for (RawJoint& joint : raw) {
+      Body body;
+      body.name = joint.description.name;
+      body.parent = joint.antecedent - 1;
+      body.type = joint.type;
+      body.dof_index = joint.type == JointType::kFixed ? -1 : dof++;
+      body.fixed = mdh_frame(*joint.description.mdh);
+      body.axis = {0, 0, 1};
+      model_.tree.bodies.push_back(body);
+      model_.joints.push_back(std::move(joint.description));
+    }
+    model_.tree.dof = dof;
+    if (dof == 0) in_.fail(list, "the robot has no moving joint (all joints are 'fixed')");
+  }
+
+  // `ant` is a link number (0 = base) or a link name; Khalil's numbering needs a(j) < j.
+  void resolve_antecedents(std::vector<RawJoint>& raw) {
+    const int n = static_cast<int>(raw.size());
+    std::vector<std::string> names;
+    for (const RawJoint& joint : raw) names.push_back(joint.description.name);
+    for (int j = 1; j <= n; ++j) {
+      RawJoint& joint = raw[j - 1];
+      if (!joint.has_ant) continue;
+      const YAML::Node& node = joint.ant_node;
+      int ant = -1;
+      if (node.IsScalar() && !node.Scalar().empty() &&
+          node.Scalar().find_first_not_of("+-0123456789") == std::string::npos) {
+        ant = static_cast<int>(in_.integer(node, "ant"));
+      } else if (node.IsScalar()) {
+        auto found = std::find(names.begin(), names.end(), node.Scalar());
+        if (found == names.end()) {
+          in_.fail(node, "antecedent '" + node.Scalar() + "' of joint " + std::to_string(j) +
+                             " is not a link name" + did_you_mean(node.Scalar(), names));
+        }
+        ant = static_cast<int>(found - names.begin()) + 1;
+      } else {
+        in_.fail(node, "'ant' must be a link number (0 for the base) or a link name");
+      }
+      if (ant < 0 || ant > n) {
+        in_.fail(node, "antecedent " + std::to_string(ant) + " of joint " + std::to_string(j) +
+                           " does not exist (links are numbered 1.." + std::to_string(n) +
+                           ", 0 is the base)");
+      }
+      joint.antecedent = ant;
+    }
+    for (int j = 1; j <= n; ++j) {
+      const RawJoint& joint = raw[j - 1];
+      if (joint.antecedent < j) continue;
+      // Follow the antecedents from j: either they come back to j (a cycle) or the numbering is
+      // simply not Khalil's (a(j) < j); say which.
+      std::string chain = std::to_string(j);
+      int k = joint.antecedent;
+      for (int steps = 0; steps <= n && k != 0; ++steps) {
+        chain += " -> " + std::to_string(k);
+        if (k == j) {
+          in_.fail(joint.ant_node, "antecedents form a cycle: " + chain +
+                                       "; a robot description must be a tree rooted at the base");
+        }
+        k = raw[k - 1].antecedent;
+      }
+      in_.fail(joint.ant_node,
+               "antecedent " + std::to_string(joint.antecedent) + " of joint " +
+                   std::to_string(j) +
+                   " comes after it; number the links so that a(j) < j (Khalil-Kleinfinger)");
+    }
+  }
+
+  JointLimits read_limits(const YAML::Node& node, JointType type, const std::string& context) {
+    in_.check_keys(node, {"q", "dq", "ddq", "effort"}, "limits of " + context);
+    JointLimits limits;
+    if (node["q"]) {
+      if (type == JointType::kFixed) in_.fail(node["q"], "a fixed joint has no position limits");
+      const auto q = in_.numbers(node["q"], "q", 2);
+      if (!(q[0] < q[1])) in_.fail(node["q"], "position limits must be [lower, upper] with lower < upper");
+      limits.q_lower = q[0];
+      limits.q_upper = q[1];
+    }
+    if (node["dq"]) limits.dq = in_.positive(node["dq"], "dq");
+    if (node["ddq"]) limits.ddq = in_.positive(node["ddq"], "ddq");
+    if (node["effort"]) limits.effort = in_.positive(node["effort"], "effort");
+    return limits;
+  }
+
+  void read_friction(const YAML::Node& node) {
+    in_.check_keys(node, {"viscous", "coulomb", "offset", "asymmetric"}, "friction");
+    if (node["viscous"]) model_.friction.viscous = in_.boolean(node["viscous"], "viscous");
+    if (node["coulomb"]) model_.friction.coulomb = in_.boolean(node["coulomb"], "coulomb");
+    if (node["offset"]) model_.friction.offset = in_.boolean(node["offset"], "offset");
+    if (node["asymmetric"]) model_.friction.asymmetric = in_.boolean(node["asymmetric"], "asymmetric");
+  }
+
+  // 1-based link number of a moving joint -> 0-based dof index.
+  int dof_of_link(const YAML::Node& node, long link) {
+    if (link < 1 || link > static_cast<long>(model_.tree.bodies.size())) {
+      in_.fail(node, "joint " + std::to_string(link) + " does not exist");
+    }
+    const Body& body = model_.tree.bodies[link - 1];
+    if (body.type == JointType::kFixed) {
+      in_.fail(node, "joint " + std::to_string(link) + " ('" + body.name + "') is fixed and has no drive");
+    }
+    return body.dof_index;
+  }
+
+  Eigen::MatrixXd matrix(const YAML::Node& node, const std::string& field) {
+    if (!node.IsSequence() || node.size() == 0) {
+      in_.fail(node, "'" + field + "' must be a square matrix written as a list of rows");
+    }
+    const std::size_t rows = node.size();
+    Eigen::MatrixXd m(rows, rows);
+    for (std::size_t r = 0; r < rows; ++r) {
+      const YAML::Node row = node[r];
+      if (!row.IsSequence()) in_.fail(row, "row " + std::to_string(r + 1) + " of '" + field + "' must be a list of numbers");
+      if (row.size() != rows) {
+        in_.fail(row, "'" + field + "' is not square: it has " + std::to_string(rows) +
+                          " rows but row " + std::to_string(r + 1) + " has " +
+                          std::to_string(row.size()) + " entries");
+      }
+      for (std::size_t c = 0; c < rows; ++c) m(r, c) = in_.number(row[c], field);
+    }
+    return m;
+  }
+
+  void read_drives(const YAML::Node& node) {
+    DriveChain& drives = model_.drives;
+    const int n = model_.dof();
+    drives.motor_from_joint = Eigen::MatrixXd::Identity(n, n);
+    if (!node) return;
+    in_.check_keys(node, {"ratio", "coupling"}, "drives");
+    if (node["ratio"]) {
+      drives.ratio = in_.numbers(node["ratio"], "ratio", n);
+      for (std::size_t i = 0; i < drives.ratio.size(); ++i) {
+        if (drives.ratio[i] == 0) in_.fail(node["ratio"][i], "a gear ratio cannot be zero");
+      }
+    }
+    std::vector<double> ratio = drives.ratio.empty() ? std::vector<double>(n, 1.0) : drives.ratio;
+    for (int i = 0; i < n; ++i) drives.motor_from_joint(i, i) = ratio[i];
+    if (!node["coupling"]) return;
+
+    const YAML::Node coupling = node["coupling"];
+    in_.check_keys(coupling, {"joint_from_motor", "motor_from_joint", "joints"}, "coupling");
+    const bool swevers = static_cast<bool>(coupling["joint_from_motor"]);
+    const bool gautier = static_cast<bool>(coupling["motor_from_joint"]);
+    if (swevers == gautier) {
+      in_.fail(coupling, "coupling needs exactly one of 'joint_from_motor' (Swevers eq. 9: "
+                         "q_joint = V q_motor) and 'motor_from_joint' (Gautier eq. 25)");
+    }
+    drives.coupling_form = swevers ? "joint_from_motor" : "motor_from_joint";
+    const YAML::Node matrix_node = coupling[drives.coupling_form];
+    const Eigen::MatrixXd block = matrix(matrix_node, drives.coupling_form);
+    drives.coupling_as_written = block;
+    if (coupling["joints"]) {
+      const YAML::Node joints = coupling["joints"];
+      if (!joints.IsSequence()) in_.fail(joints, "'joints' must be a list of joint numbers");
+      for (const auto& j : joints) drives.coupled_joints.push_back(dof_of_link(j, in_.integer(j, "joints")));
+      if (std::set<int>(drives.coupled_joints.begin(), drives.coupled_joints.end()).size() !=
+          drives.coupled_joints.size()) {
+        in_.fail(joints, "'joints' lists a joint twice");
+      }
+    } else {
+      for (int i = 0; i < n; ++i) drives.coupled_joints.push_back(i);
+    }
+    if (block.rows() != static_cast<Eigen::Index>(drives.coupled_joints.size())) {
+      in_.fail(matrix_node, "'" + drives.coupling_form + "' is " + std::to_string(block.rows()) +
+                                "x" + std::to_string(block.rows()) + " but must be " +
+                                std::to_string(drives.coupled_joints.size()) + "x" +
+                                std::to_string(drives.coupled_joints.size()) +
+                                (coupling["joints"] ? " (one row per joint in 'joints')"
+                                                    : " (one row per moving joint; or list the "
+                                                      "coupled joints in 'joints')"));
+    }
+    Eigen::FullPivLU<Eigen::MatrixXd> lu(block);
+    lu.setThreshold(1e-9);
+    if (!lu.isInvertible()) {
+      in_.fail(matrix_node, "'" + drives.coupling_form + "' is singular (rank " +
+                                std::to_string(lu.rank()) + " of " + std::to_string(block.rows()) +
+                                "): motor and joint positions would not determine each other");
+    }
+    const std::vector<int>& idx = drives.coupled_joints;
+    const Eigen::Index m = block.rows();
+    if (gautier) {
+      // Gautier & Briot eq. 25: the matrix already carries the gear ratios on its diagonal.
+      for (Eigen::Index r = 0; r < m; ++r) {
+        const int i = idx[r];
+        if (!drives.ratio.empty() && std::abs(block(r, r) - drives.ratio[i]) > 1e-12 * std::abs(block(r, r))) {
+          in_.fail(matrix_node, "diagonal entry " + std::to_string(r + 1) + " of motor_from_joint (" +
+                                    std::to_string(block(r, r)) + ") disagrees with the gear ratio of joint " +
+                                    std::to_string(i + 1) + " (" + std::to_string(drives.ratio[i]) + ")");
+        }
+        for (Eigen::Index c = 0; c < m; ++c) drives.motor_from_joint(i, idx[c]) = block(r, c);
+      }
+    } else {
+      // Swevers eq. 9: q_joint = V (q_motor / ratio), so q_motor = diag(ratio) V^-1 q_joint.
+      const Eigen::MatrixXd inverse = lu.inverse();
+      for (Eigen::Index r = 0; r < m; ++r) {
+        for (Eigen::Index c = 0; c < m; ++c) {
+          drives.motor_from_joint(idx[r], idx[c]) = ratio[idx[r]] * inverse(r, c);
+        }
+      }
+    }
+  }
+
+  void read_payload(const YAML::Node& node) {
+    in_.check_keys(node, {"link"}, "payload");
+    const YAML::Node link = in_.require(node, "link", "payload");
+    const long j = in_.integer(link, "link");
+    if (j < 1 || j > static_cast<long>(model_.tree.bodies.size())) {
+      in_.fail(link, "payload link " + std::to_string(j) + " does not exist (links are 1.." +
+                         std::to_string(model_.tree.bodies.size()) + ")");
+    }
+    model_.payload_body = static_cast<int>(j) - 1;
+  }
+
+  void read_known(const YAML::Node& node) {
+    if (!node.IsMap()) in_.fail(node, "'known' must map standard parameter names to values");
+    const std::vector<std::string> names = model_.param_names();
+    for (const auto& entry : node) {
+      const std::string key = entry.first.Scalar();
+      const int k = model_.param_index(key);
+      if (k < 0) {
+        in_.fail(entry.first, "'" + key + "' in 'known' is not a standard parameter of this robot" +
+                                  did_you_mean(key, names) + "; run 'modelgen describe' to list them");
+      }
+      if (model_.known_values[k]) in_.fail(entry.first, "'" + key + "' is given twice in 'known'");
+      model_.known_values[k] = in_.number(entry.second, key);
+    }
+  }
+
+  YamlReader in_;
+  RobotModel model_;
+};
+
+}  // namespace
+
+RobotModel load_mdh_yaml(const std::string& path, const std::string& text) {
+  try {
+    return MdhYamlLoader(path).load(text);
+  } catch (const YAML::Exception& e) {
+    // A yaml-cpp error the checks above did not anticipate: still report it with a position.
+    throw InputError({path, e.mark.line + 1, e.mark.column + 1}, e.msg);
+  }
+}
+
+}  // namespace modelgen::gen

@@ -1,0 +1,16 @@
+// Loads a robot described by a Khalil-Kleinfinger modified DH table in YAML (format in
+// README.md) into a RobotModel.
+#pragma once
+
+#include <string>
+
+#include "generator/description/robot_model.hpp"
+
+namespace modelgen::gen {
+
+/// Parses `text` read from `path` (the path is only used in messages). Throws InputError with
+/// file, line and column for syntax errors, unknown keys (with the closest valid key), wrong
+/// types, missing fields, bad coupling matrices and antecedent cycles.
+RobotModel load_mdh_yaml(const std::string& path, const std::string& text);
+
+}  // namespace modelgen::gen

@@ -1,0 +1,124 @@
+// The validated robot description: joints as the user wrote them (MDH parameters or URDF
+// transforms, limits, where in the file), the RigidBodyTree the dynamics compute on, the drive
+// chain (gear ratios, motor/joint coupling), the friction options and a-priori parameter values.
+#pragma once
+
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "generator/description/diagnostics.hpp"
+#include "modelgen/rigid_body_tree.hpp"
+
+namespace modelgen::gen {
+
+/// An angle as written: its value, and when it was written as a rational multiple of pi
+/// ("-pi/2", "3*pi/4") that fraction, so symbolic code can use exact sines and cosines.
+struct Angle {
+  double value = 0;  ///< radians
+  bool is_pi_fraction = false;
+  long numerator = 0;    ///< value = pi * numerator / denominator when is_pi_fraction
+  long denominator = 1;  ///< > 0, fraction in lowest terms
+  std::string text;      ///< as written, for messages and the describe table
+
+  static Angle from_radians(double radians);
+  static Angle pi_fraction(long numerator, long denominator, std::string text);
+
+  /// cos and sin, exact (0, +-1) for multiples of pi/2 written as fractions of pi.
+  double cos() const;
+  double sin() const;
+};
+
+/// Parses a number or a simple expression of pi: "0.5", "-pi/2", "3*pi/4", "pi", "2 * pi / 3".
+/// Returns nullopt if the text is none of these.
+std::optional<Angle> parse_angle(std::string_view text);
+
+/// Khalil-Kleinfinger modified DH parameters of one frame (for a revolute joint theta is the
+/// offset added to q; for a prismatic one r is).
+struct MdhParameters {
+  Angle alpha;
+  double d = 0;
+  Angle theta;
+  double r = 0;
+};
+
+struct JointLimits {
+  std::optional<double> q_lower, q_upper;  ///< rad or m
+  std::optional<double> dq;                ///< max |velocity|
+  std::optional<double> ddq;               ///< max |acceleration|
+  std::optional<double> effort;            ///< max |torque|, N m or N
+};
+
+/// One joint/link as described; index-aligned with RigidBodyTree::bodies.
+struct JointDescription {
+  std::string name;
+  std::string parent_link;             ///< URDF only: the parent link's name
+  std::optional<MdhParameters> mdh;    ///< set for MDH descriptions
+  JointLimits limits;
+  SourceLocation where;
+};
+
+/// How motor and joint quantities relate. Stored in one canonical form, K = motor_from_joint
+/// (dq_motor = K dq_joint, Gautier & Briot eq. 25; tau_joint = K^T tau_motor by power balance).
+/// The Swevers form (eq. 9: q_G = V q_M with q_M the motor angles divided by the gear ratios)
+/// converts as K = diag(ratio) V^-1.
+struct DriveChain {
+  std::vector<double> ratio;        ///< gear ratio per moving joint; empty when not given
+  std::string coupling_form;        ///< "joint_from_motor", "motor_from_joint" or empty
+  Eigen::MatrixXd coupling_as_written;  ///< the matrix the user gave (block of coupled joints)
+  std::vector<int> coupled_joints;  ///< 0-based dof indices the written block acts on
+  Eigen::MatrixXd motor_from_joint; ///< dof x dof; identity scaled by ratio when no coupling
+
+  bool has_coupling() const { return !coupling_form.empty(); }
+};
+
+struct FrictionOptions {
+  bool viscous = true;
+  bool coulomb = true;
+  bool offset = true;
+  bool asymmetric = false;  ///< Bona & Curatella eq. 2: separate coefficients per direction
+};
+
+enum class DescriptionFormat { kMdhYaml, kUrdf };
+
+struct RobotModel {
+  std::string name;         ///< C++ identifier: namespace of generated code
+  std::string source_file;  ///< as given on the command line
+  DescriptionFormat format = DescriptionFormat::kMdhYaml;
+  std::vector<JointDescription> joints;  ///< one per tree.bodies entry
+  RigidBodyTree tree;
+  DriveChain drives;
+  FrictionOptions friction;
+  bool rotor_inertia = true;
+  int payload_body = -1;  ///< index into tree.bodies, -1 when not given
+  /// A-priori values of standard parameters (YAML `known`, or URDF inertials), by
+  /// tree.params index.
+  std::vector<std::optional<double>> known_values;
+
+  int dof() const { return tree.dof; }
+  /// Index of the standard parameter with this name, or -1.
+  int param_index(std::string_view param_name) const;
+  std::vector<std::string> param_names() const;
+};
+
+/// Fills tree.params from the bodies and the friction/rotor options: per body j (1-based
+/// suffix), XXj XYj XZj YYj YZj ZZj MXj MYj MZj Mj, then for moving joints Iaj, Fvj, Fcj (or
+/// Fvpj Fvnj Fcpj Fcnj when asymmetric), OFFj as enabled. Resets known_values to all-unknown.
+void build_standard_parameters(RobotModel& model);
+
+/// Throws InputError at `where` unless `name` can be a C++ namespace for generated code:
+/// an identifier, not a keyword, not "internal" or "gen".
+void check_robot_name(const std::string& name, const SourceLocation& where);
+
+/// Standard parameters of a body from its mass, centre of mass c (in the body frame) and inertia
+/// about the centre of mass expressed in a frame rotated by R_inertial (row-major) from the body
+/// frame: rotation then the parallel-axis theorem, J_O = R I_c R^T + m (|c|^2 1 - c c^T).
+/// Returns XX XY XZ YY YZ ZZ MX MY MZ M.
+std::array<double, 10> standard_from_inertial(double mass, const std::array<double, 3>& com,
+                                              const std::array<double, 9>& R_inertial,
+                                              const std::array<double, 6>& I_com);
+
+}  // namespace modelgen::gen

@@ -1,0 +1,93 @@
+// modelgen command line: parses arguments, runs one command, prints diagnostics, sets the exit
+// code (0 success, 1 bad input, 2 bad usage, 3 internal error).
+
+#include <cstring>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include "generator/description/describe.hpp"
+#include "generator/description/load_robot.hpp"
+#include "generator/version.hpp"
+
+namespace {
+
+constexpr const char* kUsage =
+    "usage: modelgen describe ROBOT [--base LINK] [--tip LINK] [--name NAME]\n"
+    "       modelgen --version | --help\n"
+    "\n"
+    "ROBOT is a modified-DH description (.yaml) or a URDF (.urdf).\n"
+    "  describe      print the parsed model: joints, drive chain, standard parameters\n"
+    "  --base LINK   URDF: link to use as the fixed base (default: the URDF root)\n"
+    "  --tip LINK    URDF: keep only the chain from the base to this link\n"
+    "  --name NAME   robot name (C++ namespace of generated code; default: from the file)\n";
+
+struct UsageError {
+  std::string message;
+};
+
+struct Arguments {
+  std::string command;
+  std::string robot;
+  modelgen::gen::LoadOptions load;
+};
+
+Arguments parse(int argc, char** argv) {
+  Arguments args;
+  std::vector<std::string> positional;
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    auto value = [&](const char* flag) {
+      if (i + 1 >= argc) throw UsageError{std::string(flag) + " needs a value"};
+      return std::string(argv[++i]);
+    };
+    if (arg == "--base") {
+      args.load.base_link = value("--base");
+    } else if (arg == "--tip") {
+      args.load.tip_link = value("--tip");
+    } else if (arg == "--name") {
+      args.load.name = value("--name");
+    } else if (arg.size() > 1 && arg[0] == '-') {
+      throw UsageError{"unknown option '" + arg + "'"};
+    } else {
+      positional.push_back(arg);
+    }
+  }
+  if (positional.empty()) throw UsageError{"no command given"};
+  args.command = positional[0];
+  if (args.command != "describe") {
+    throw UsageError{"unknown command '" + args.command + "'"};
+  }
+  if (positional.size() != 2) throw UsageError{"describe takes exactly one ROBOT file"};
+  args.robot = positional[1];
+  return args;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc == 2 && (std::strcmp(argv[1], "--help") == 0 || std::strcmp(argv[1], "-h") == 0)) {
+    std::cout << kUsage;
+    return 0;
+  }
+  if (argc == 2 && std::strcmp(argv[1], "--version") == 0) {
+    std::cout << "modelgen " << modelgen::gen::kVersion << "\n";
+    return 0;
+  }
+  try {
+    const Arguments args = parse(argc, argv);
+    const modelgen::gen::RobotModel model = modelgen::gen::load_robot(args.robot, args.load);
+    std::cout << modelgen::gen::describe(model);
+    return 0;
+  } catch (const UsageError& e) {
+    std::cerr << "modelgen: " << e.message << "\n\n" << kUsage;
+    return 2;
+  } catch (const modelgen::gen::InputError& e) {
+    std::cerr << e.what() << "\n";
+    return 1;
+  } catch (const std::exception& e) {
+    std::cerr << "modelgen: internal error: " << e.what()
+              << "\nThis is a bug in modelgen; please report it with the input file.\n";
+    return 3;
+  }
+}

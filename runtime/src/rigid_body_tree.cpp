@@ -1,0 +1,106 @@
+// Invariant checks on RigidBodyTree: everything downstream (reference dynamics, symbolic
+// derivation, code emission) may then assume a well-formed tree.
+
+#include "modelgen/rigid_body_tree.hpp"
+
+#include <cmath>
+#include <set>
+#include <stdexcept>
+#include <string>
+
+namespace modelgen {
+
+const char* param_kind_stem(ParamKind kind) {
+  switch (kind) {
+    case ParamKind::kXX: return "XX";
+    case ParamKind::kXY: return "XY";
+    case ParamKind::kXZ: return "XZ";
+    case ParamKind::kYY: return "YY";
+    case ParamKind::kYZ: return "YZ";
+    case ParamKind::kZZ: return "ZZ";
+    case ParamKind::kMX: return "MX";
+    case ParamKind::kMY: return "MY";
+    case ParamKind::kMZ: return "MZ";
+    case ParamKind::kM: return "M";
+    case ParamKind::kIa: return "Ia";
+    case ParamKind::kFv: return "Fv";
+    case ParamKind::kFc: return "Fc";
+    case ParamKind::kOff: return "OFF";
+    case ParamKind::kFvPos: return "Fvp";
+    case ParamKind::kFvNeg: return "Fvn";
+    case ParamKind::kFcPos: return "Fcp";
+    case ParamKind::kFcNeg: return "Fcn";
+  }
+  return "?";
+}
+
+namespace {
+
+bool is_drive_param(ParamKind kind) {
+  return kind == ParamKind::kIa || kind == ParamKind::kFv || kind == ParamKind::kFc ||
+         kind == ParamKind::kOff || kind == ParamKind::kFvPos || kind == ParamKind::kFvNeg ||
+         kind == ParamKind::kFcPos || kind == ParamKind::kFcNeg;
+}
+
+void check_rotation(const Body& body) {
+  const auto& r = body.fixed.rotation;
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j) {
+      double dot = 0;
+      for (int k = 0; k < 3; ++k) dot += r[3 * k + i] * r[3 * k + j];
+      if (std::abs(dot - (i == j ? 1.0 : 0.0)) > 1e-9) {
+        throw std::invalid_argument("body '" + body.name + "': fixed rotation is not orthonormal");
+      }
+    }
+  }
+}
+
+}  // namespace
+
+void validate(const RigidBodyTree& tree) {
+  std::vector<int> dof_owner(tree.dof, -1);
+  for (std::size_t j = 0; j < tree.bodies.size(); ++j) {
+    const Body& body = tree.bodies[j];
+    if (body.parent < -1 || body.parent >= static_cast<int>(j)) {
+      throw std::invalid_argument("body '" + body.name + "': parent index " +
+                                  std::to_string(body.parent) + " must come before the body");
+    }
+    check_rotation(body);
+    if (body.type == JointType::kFixed) {
+      if (body.dof_index != -1) {
+        throw std::invalid_argument("body '" + body.name + "': fixed joint with a dof index");
+      }
+      continue;
+    }
+    const double norm = std::sqrt(body.axis[0] * body.axis[0] + body.axis[1] * body.axis[1] +
+                                  body.axis[2] * body.axis[2]);
+    if (std::abs(norm - 1.0) > 1e-9) {
+      throw std::invalid_argument("body '" + body.name + "': joint axis is not a unit vector");
+    }
+    if (body.dof_index < 0 || body.dof_index >= tree.dof || dof_owner[body.dof_index] != -1) {
+      throw std::invalid_argument("body '" + body.name + "': dof index " +
+                                  std::to_string(body.dof_index) + " is out of range or reused");
+    }
+    dof_owner[body.dof_index] = static_cast<int>(j);
+  }
+  for (int i = 0; i < tree.dof; ++i) {
+    if (dof_owner[i] == -1) {
+      throw std::invalid_argument("dof index " + std::to_string(i) + " has no joint");
+    }
+  }
+  std::set<std::string> names;
+  for (const StandardParam& param : tree.params) {
+    if (param.body < 0 || param.body >= static_cast<int>(tree.bodies.size())) {
+      throw std::invalid_argument("parameter '" + param.name + "' is on no body");
+    }
+    if (!names.insert(param.name).second) {
+      throw std::invalid_argument("parameter '" + param.name + "' appears twice");
+    }
+    if (is_drive_param(param.kind) && tree.bodies[param.body].type == JointType::kFixed) {
+      throw std::invalid_argument("parameter '" + param.name + "' is a drive parameter on fixed body '" +
+                                  tree.bodies[param.body].name + "'");
+    }
+  }
+}
+
+}  // namespace modelgen
