@@ -57,7 +57,11 @@ std::string optional_number(const std::optional<double>& v) {
 
 std::string limits_text(const JointLimits& limits) {
   if (!limits.q_lower) return "-";
-  return "[" + format_number(*limits.q_lower) + ", " + format_number(*limits.q_upper) + "]";
+  std::string out = "[";
+  out += format_number(*limits.q_lower);
+  out += ", ";
+  out += format_number(*limits.q_upper);
+  return out + "]";
 }
 
 std::string vector_text(const double* v, int n) {

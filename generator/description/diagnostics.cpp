@@ -10,8 +10,13 @@ namespace modelgen::gen {
 std::string SourceLocation::to_string() const {
   std::string out = file.empty() ? "<input>" : file;
   if (line > 0) {
-    out += ":" + std::to_string(line);
-    if (column > 0) out += ":" + std::to_string(column);
+    // Appended piecewise: GCC 12 warns falsely (-Wrestrict) on ":" + std::to_string(...).
+    out += ':';
+    out += std::to_string(line);
+    if (column > 0) {
+      out += ':';
+      out += std::to_string(column);
+    }
   }
   return out;
 }

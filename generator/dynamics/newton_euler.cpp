@@ -1,0 +1,315 @@
+// Symbolic Newton-Euler: the numeric recursion of runtime/src/reference_dynamics.cpp written
+// over the expression DAG, so constant geometry (exact zeros and ones of quarter-turn MDH
+// angles) folds away while the equations are built.
+
+#include "generator/dynamics/newton_euler.hpp"
+
+#include <array>
+#include <string>
+
+namespace modelgen::gen {
+
+namespace {
+
+using V3 = std::array<ExprId, 3>;
+using M3 = std::array<ExprId, 9>;  // row-major
+
+class VectorAlgebra {
+ public:
+  explicit VectorAlgebra(ExprGraph& g) : g_(g) {}
+
+  V3 zero() const { return {g_.zero(), g_.zero(), g_.zero()}; }
+  V3 vector(const std::array<double, 3>& v) {
+    return {g_.constant(v[0]), g_.constant(v[1]), g_.constant(v[2])};
+  }
+  M3 matrix(const std::array<double, 9>& m) {
+    M3 out;
+    for (int i = 0; i < 9; ++i) out[i] = g_.constant(m[i]);
+    return out;
+  }
+  V3 add(const V3& a, const V3& b) {
+    return {g_.add(a[0], b[0]), g_.add(a[1], b[1]), g_.add(a[2], b[2])};
+  }
+  V3 scale(ExprId s, const V3& a) { return {g_.mul(s, a[0]), g_.mul(s, a[1]), g_.mul(s, a[2])}; }
+  ExprId dot(const V3& a, const V3& b) {
+    return g_.add({g_.mul(a[0], b[0]), g_.mul(a[1], b[1]), g_.mul(a[2], b[2])});
+  }
+  V3 cross(const V3& a, const V3& b) {
+    return {g_.sub(g_.mul(a[1], b[2]), g_.mul(a[2], b[1])),
+            g_.sub(g_.mul(a[2], b[0]), g_.mul(a[0], b[2])),
+            g_.sub(g_.mul(a[0], b[1]), g_.mul(a[1], b[0]))};
+  }
+  V3 mul(const M3& m, const V3& v) {
+    V3 out;
+    for (int r = 0; r < 3; ++r) {
+      out[r] = g_.add({g_.mul(m[3 * r], v[0]), g_.mul(m[3 * r + 1], v[1]), g_.mul(m[3 * r + 2], v[2])});
+    }
+    return out;
+  }
+  V3 mul_transposed(const M3& m, const V3& v) {
+    V3 out;
+    for (int c = 0; c < 3; ++c) {
+      out[c] = g_.add({g_.mul(m[c], v[0]), g_.mul(m[3 + c], v[1]), g_.mul(m[6 + c], v[2])});
+    }
+    return out;
+  }
+  M3 mul(const M3& a, const M3& b) {
+    M3 out;
+    for (int r = 0; r < 3; ++r) {
+      for (int c = 0; c < 3; ++c) {
+        out[3 * r + c] = g_.add({g_.mul(a[3 * r], b[c]), g_.mul(a[3 * r + 1], b[3 + c]),
+                                 g_.mul(a[3 * r + 2], b[6 + c])});
+      }
+    }
+    return out;
+  }
+  // Symmetric 3x3 (tensor entries xx, xy, xz, yy, yz, zz) times v.
+  V3 symmetric_mul(const std::array<ExprId, 6>& J, const V3& v) {
+    return {g_.add({g_.mul(J[0], v[0]), g_.mul(J[1], v[1]), g_.mul(J[2], v[2])}),
+            g_.add({g_.mul(J[1], v[0]), g_.mul(J[3], v[1]), g_.mul(J[4], v[2])}),
+            g_.add({g_.mul(J[2], v[0]), g_.mul(J[4], v[1]), g_.mul(J[5], v[2])})};
+  }
+
+ private:
+  ExprGraph& g_;
+};
+
+// Pose of frame j in its antecedent and the motion of every frame, in that frame.
+struct SymbolicMotion {
+  std::vector<M3> R;  // antecedent <- body
+  std::vector<V3> p;  // body origin in the antecedent frame
+  std::vector<V3> w, dw, dv;
+};
+
+// Rotation by q about the constant unit axis u (Rodrigues): c 1 + s [u]x + (1 - c) u u^T.
+M3 axis_rotation(ExprGraph& g, const std::array<double, 3>& u, ExprId s, ExprId c) {
+  const ExprId one_minus_c = g.sub(g.one(), c);
+  M3 R;
+  const double skew[9] = {0, -u[2], u[1], u[2], 0, -u[0], -u[1], u[0], 0};
+  for (int r = 0; r < 3; ++r) {
+    for (int k = 0; k < 3; ++k) {
+      R[3 * r + k] = g.add({r == k ? c : g.zero(), g.mul(g.constant(skew[3 * r + k]), s),
+                            g.mul(g.constant(u[r] * u[k]), one_minus_c)});
+    }
+  }
+  return R;
+}
+
+SymbolicMotion forward_recursion(ExprGraph& g, const RigidBodyTree& tree, const SymbolicInputs& in) {
+  VectorAlgebra va(g);
+  const std::size_t n = tree.bodies.size();
+  SymbolicMotion m;
+  m.R.resize(n);
+  m.p.resize(n);
+  m.w.resize(n);
+  m.dw.resize(n);
+  m.dv.resize(n);
+  // Gravity as an upward acceleration of the base (dv0 = -g).
+  const V3 base_dv = va.vector({-tree.gravity[0], -tree.gravity[1], -tree.gravity[2]});
+  for (std::size_t j = 0; j < n; ++j) {
+    const Body& body = tree.bodies[j];
+    const M3 Rf = va.matrix(body.fixed.rotation);
+    const V3 tf = va.vector(body.fixed.translation);
+    const V3 u = va.vector(body.axis);
+    const int i = body.dof_index;
+    switch (body.type) {
+      case JointType::kRevolute:
+        m.R[j] = va.mul(Rf, axis_rotation(g, body.axis, in.sin_q[i], in.cos_q[i]));
+        m.p[j] = tf;
+        break;
+      case JointType::kPrismatic:
+        m.R[j] = Rf;
+        m.p[j] = va.add(tf, va.mul(Rf, va.scale(in.q[i], u)));
+        break;
+      case JointType::kFixed:
+        m.R[j] = Rf;
+        m.p[j] = tf;
+        break;
+    }
+    V3 wa = va.zero(), dwa = va.zero(), dva = base_dv;
+    if (body.parent >= 0) {
+      wa = m.w[body.parent];
+      dwa = m.dw[body.parent];
+      dva = m.dv[body.parent];
+    }
+    const V3& p = m.p[j];
+    const V3 w_in = va.mul_transposed(m.R[j], wa);
+    m.w[j] = w_in;
+    m.dw[j] = va.mul_transposed(m.R[j], dwa);
+    m.dv[j] = va.mul_transposed(m.R[j], va.add(dva, va.add(va.cross(dwa, p), va.cross(wa, va.cross(wa, p)))));
+    if (body.type == JointType::kRevolute) {
+      const V3 dq_u = va.scale(in.dq[i], u);
+      m.w[j] = va.add(m.w[j], dq_u);
+      m.dw[j] = va.add(m.dw[j], va.add(va.scale(in.ddq[i], u), va.cross(w_in, dq_u)));
+    } else if (body.type == JointType::kPrismatic) {
+      const V3 dq_u = va.scale(in.dq[i], u);
+      m.dv[j] = va.add(m.dv[j], va.add(va.scale(in.ddq[i], u),
+                                       va.scale(g.constant(2.0), va.cross(m.w[j], dq_u))));
+    }
+  }
+  return m;
+}
+
+// Torque contribution of a joint's drive parameter (inertia, friction, offset).
+ExprId drive_column(ExprGraph& g, ParamKind kind, int i, const SymbolicInputs& in) {
+  switch (kind) {
+    case ParamKind::kIa: return in.ddq[i];
+    case ParamKind::kFv: return in.dq[i];
+    case ParamKind::kFc: return in.sign_dq[i];
+    case ParamKind::kOff: return g.one();
+    case ParamKind::kFvPos: return g.mul(in.positive_dq[i], in.dq[i]);
+    case ParamKind::kFvNeg: return g.mul(in.negative_dq[i], in.dq[i]);
+    case ParamKind::kFcPos: return in.positive_dq[i];
+    case ParamKind::kFcNeg: return g.neg(in.negative_dq[i]);
+    default: return g.zero();
+  }
+}
+
+bool is_inertial(ParamKind kind) {
+  return kind == ParamKind::kXX || kind == ParamKind::kXY || kind == ParamKind::kXZ ||
+         kind == ParamKind::kYY || kind == ParamKind::kYZ || kind == ParamKind::kZZ ||
+         kind == ParamKind::kMX || kind == ParamKind::kMY || kind == ParamKind::kMZ ||
+         kind == ParamKind::kM;
+}
+
+}  // namespace
+
+SymbolicInputs make_symbolic_inputs(ExprGraph& g, const RigidBodyTree& tree) {
+  SymbolicInputs in;
+  for (int i = 0; i < tree.dof; ++i) {
+    const std::string k = std::to_string(i);
+    const std::string j = std::to_string(i + 1);
+    in.q.push_back(g.symbol({"q[" + k + "]", SymbolKind::kInput, ""}));
+    in.dq.push_back(g.symbol({"dq[" + k + "]", SymbolKind::kInput, ""}));
+    in.ddq.push_back(g.symbol({"ddq[" + k + "]", SymbolKind::kInput, ""}));
+    in.sin_q.push_back(g.symbol({"s" + j, SymbolKind::kSin, "q[" + k + "]"}));
+    in.cos_q.push_back(g.symbol({"c" + j, SymbolKind::kCos, "q[" + k + "]"}));
+    in.sign_dq.push_back(g.symbol({"sg" + j, SymbolKind::kSign, "dq[" + k + "]"}));
+    in.positive_dq.push_back(g.symbol({"pos" + j, SymbolKind::kPositive, "dq[" + k + "]"}));
+    in.negative_dq.push_back(g.symbol({"neg" + j, SymbolKind::kNegative, "dq[" + k + "]"}));
+  }
+  for (std::size_t k = 0; k < tree.params.size(); ++k) {
+    in.p.push_back(g.symbol({"p[" + std::to_string(k) + "]", SymbolKind::kInput, ""}));
+  }
+  return in;
+}
+
+std::vector<ExprId> derive_standard_regressor(ExprGraph& g, const RigidBodyTree& tree,
+                                              const SymbolicInputs& in) {
+  VectorAlgebra va(g);
+  const SymbolicMotion m = forward_recursion(g, tree, in);
+  const std::size_t num_params = tree.params.size();
+  std::vector<ExprId> W(tree.dof * num_params, g.zero());
+  const V3 ex = va.vector({1, 0, 0}), ey = va.vector({0, 1, 0}), ez = va.vector({0, 0, 1});
+  for (std::size_t k = 0; k < num_params; ++k) {
+    const StandardParam& param = tree.params[k];
+    const Body& owner = tree.bodies[param.body];
+    if (!is_inertial(param.kind)) {
+      W[owner.dof_index * num_params + k] = drive_column(g, param.kind, owner.dof_index, in);
+      continue;
+    }
+    // Wrench on the body about its origin per unit of this parameter (the Newton-Euler
+    // equations F = M dv + dw x MS + w x (w x MS), N = J dw + w x (J w) + MS x dv).
+    const V3& w = m.w[param.body];
+    const V3& dw = m.dw[param.body];
+    const V3& dv = m.dv[param.body];
+    V3 f = va.zero(), nm = va.zero();
+    auto inertia = [&](int a, int b) {  // J = e_a e_b^T + e_b e_a^T (or e_a e_a^T)
+      std::array<ExprId, 6> J;
+      J.fill(g.zero());
+      const int index[3][3] = {{0, 1, 2}, {1, 3, 4}, {2, 4, 5}};
+      J[index[a][b]] = g.one();
+      nm = va.add(va.symmetric_mul(J, dw), va.cross(w, va.symmetric_mul(J, w)));
+    };
+    auto first_moment = [&](const V3& e) {
+      f = va.add(va.cross(dw, e), va.cross(w, va.cross(w, e)));
+      nm = va.cross(e, dv);
+    };
+    switch (param.kind) {
+      case ParamKind::kXX: inertia(0, 0); break;
+      case ParamKind::kXY: inertia(0, 1); break;
+      case ParamKind::kXZ: inertia(0, 2); break;
+      case ParamKind::kYY: inertia(1, 1); break;
+      case ParamKind::kYZ: inertia(1, 2); break;
+      case ParamKind::kZZ: inertia(2, 2); break;
+      case ParamKind::kMX: first_moment(ex); break;
+      case ParamKind::kMY: first_moment(ey); break;
+      case ParamKind::kMZ: first_moment(ez); break;
+      case ParamKind::kM: f = dv; break;
+      default: break;
+    }
+    // Carry the wrench down to the base; each moving joint on the way takes its component.
+    for (int b = param.body; b >= 0; b = tree.bodies[b].parent) {
+      const Body& body = tree.bodies[b];
+      if (body.type != JointType::kFixed) {
+        const V3 u = va.vector(body.axis);
+        W[body.dof_index * num_params + k] =
+            va.dot(body.type == JointType::kRevolute ? nm : f, u);
+      }
+      if (body.parent >= 0) {
+        const V3 f_parent = va.mul(m.R[b], f);
+        nm = va.add(va.mul(m.R[b], nm), va.cross(m.p[b], f_parent));
+        f = f_parent;
+      }
+    }
+  }
+  return W;
+}
+
+std::vector<ExprId> derive_inverse_dynamics(ExprGraph& g, const RigidBodyTree& tree,
+                                            const SymbolicInputs& in) {
+  VectorAlgebra va(g);
+  const SymbolicMotion m = forward_recursion(g, tree, in);
+  const std::size_t n = tree.bodies.size();
+  std::vector<std::array<ExprId, 6>> J(n);
+  std::vector<V3> MS(n, va.zero());
+  std::vector<ExprId> M(n, g.zero());
+  std::vector<ExprId> drive(tree.dof, g.zero());
+  for (auto& j : J) j.fill(g.zero());
+  for (std::size_t k = 0; k < tree.params.size(); ++k) {
+    const StandardParam& param = tree.params[k];
+    const ExprId p = in.p[k];
+    const int b = param.body;
+    switch (param.kind) {
+      case ParamKind::kXX: J[b][0] = g.add(J[b][0], p); break;
+      case ParamKind::kXY: J[b][1] = g.add(J[b][1], p); break;
+      case ParamKind::kXZ: J[b][2] = g.add(J[b][2], p); break;
+      case ParamKind::kYY: J[b][3] = g.add(J[b][3], p); break;
+      case ParamKind::kYZ: J[b][4] = g.add(J[b][4], p); break;
+      case ParamKind::kZZ: J[b][5] = g.add(J[b][5], p); break;
+      case ParamKind::kMX: MS[b][0] = g.add(MS[b][0], p); break;
+      case ParamKind::kMY: MS[b][1] = g.add(MS[b][1], p); break;
+      case ParamKind::kMZ: MS[b][2] = g.add(MS[b][2], p); break;
+      case ParamKind::kM: M[b] = g.add(M[b], p); break;
+      default: {
+        const int i = tree.bodies[b].dof_index;
+        drive[i] = g.add(drive[i], g.mul(drive_column(g, param.kind, i, in), p));
+      }
+    }
+  }
+  std::vector<V3> f(n), nm(n);
+  for (std::size_t j = 0; j < n; ++j) {
+    const V3& w = m.w[j];
+    const V3& dw = m.dw[j];
+    f[j] = va.add(va.scale(M[j], m.dv[j]), va.add(va.cross(dw, MS[j]), va.cross(w, va.cross(w, MS[j]))));
+    nm[j] = va.add(va.symmetric_mul(J[j], dw),
+                   va.add(va.cross(w, va.symmetric_mul(J[j], w)), va.cross(MS[j], m.dv[j])));
+  }
+  std::vector<ExprId> tau(tree.dof, g.zero());
+  for (std::size_t j = n; j-- > 0;) {
+    const Body& body = tree.bodies[j];
+    if (body.type != JointType::kFixed) {
+      const V3 u = va.vector(body.axis);
+      tau[body.dof_index] =
+          g.add(va.dot(body.type == JointType::kRevolute ? nm[j] : f[j], u), drive[body.dof_index]);
+    }
+    if (body.parent >= 0) {
+      const V3 f_parent = va.mul(m.R[j], f[j]);
+      f[body.parent] = va.add(f[body.parent], f_parent);
+      nm[body.parent] = va.add(nm[body.parent], va.add(va.mul(m.R[j], nm[j]), va.cross(m.p[j], f_parent)));
+    }
+  }
+  return tau;
+}
+
+}  // namespace modelgen::gen

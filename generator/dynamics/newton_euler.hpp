@@ -1,0 +1,36 @@
+// Symbolic Newton-Euler on the RigidBodyTree (Khalil-Kleinfinger formulation: inertia about the
+// frame origin and first moments MS keep every force linear in the standard parameters).
+// Forward recursion of velocities and accelerations, backward recursion of wrenches; the
+// standard regressor falls out column by column (Gautier & Briot eq. 2-4).
+#pragma once
+
+#include <vector>
+
+#include "generator/symbolic/expr.hpp"
+#include "modelgen/rigid_body_tree.hpp"
+
+namespace modelgen::gen {
+
+/// The leaves of the generated functions: inputs by array index, and sin/cos/sign of the joint
+/// variables named after the 1-based joint number (s1, c1, sg1, ...).
+struct SymbolicInputs {
+  std::vector<ExprId> q, dq, ddq;      ///< per dof
+  std::vector<ExprId> sin_q, cos_q;    ///< per dof (revolute joints use them)
+  std::vector<ExprId> sign_dq;         ///< sign(dq), 0 at rest
+  std::vector<ExprId> positive_dq;     ///< 1 if dq > 0
+  std::vector<ExprId> negative_dq;     ///< 1 if dq < 0
+  std::vector<ExprId> p;               ///< standard parameters p[k]
+};
+
+SymbolicInputs make_symbolic_inputs(ExprGraph& graph, const RigidBodyTree& tree);
+
+/// The standard regressor W, row-major dof x params: tau = W p (Gautier & Briot eq. 2).
+std::vector<ExprId> derive_standard_regressor(ExprGraph& graph, const RigidBodyTree& tree,
+                                              const SymbolicInputs& in);
+
+/// Joint torques tau(q, dq, ddq, p), one per dof, by the recursive Newton-Euler with the
+/// standard parameters as symbols.
+std::vector<ExprId> derive_inverse_dynamics(ExprGraph& graph, const RigidBodyTree& tree,
+                                            const SymbolicInputs& in);
+
+}  // namespace modelgen::gen

@@ -1,0 +1,182 @@
+// Construction rules of the expression DAG: every builder returns the canonical node for its
+// value, so structurally equal subexpressions get the same id.
+
+#include "generator/symbolic/expr.hpp"
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <map>
+#include <stdexcept>
+
+namespace modelgen::gen {
+
+bool ExprGraph::Key::operator==(const Key& other) const {
+  return op == other.op && std::bit_cast<std::uint64_t>(value) ==
+                               std::bit_cast<std::uint64_t>(other.value) &&
+         symbol == other.symbol && args == other.args;
+}
+
+std::size_t ExprGraph::KeyHash::operator()(const Key& key) const {
+  std::uint64_t h = 1469598103934665603ull ^ static_cast<std::uint64_t>(key.op);
+  auto mix = [&h](std::uint64_t v) {
+    h ^= v + 0x9e3779b97f4a7c15ull + (h << 6) + (h >> 2);
+  };
+  mix(std::bit_cast<std::uint64_t>(key.value));
+  mix(key.symbol);
+  for (ExprId a : key.args) mix(a);
+  return static_cast<std::size_t>(h);
+}
+
+ExprGraph::ExprGraph() {
+  zero_ = constant(0.0);
+  one_ = constant(1.0);
+}
+
+ExprId ExprGraph::intern(Node node) {
+  Key key{node.op, node.value, node.symbol, node.args};
+  auto found = index_.find(key);
+  if (found != index_.end()) return found->second;
+  const ExprId id = static_cast<ExprId>(nodes_.size());
+  nodes_.push_back(std::move(node));
+  index_.emplace(std::move(key), id);
+  return id;
+}
+
+ExprId ExprGraph::constant(double value) {
+  if (!std::isfinite(value)) throw std::logic_error("ExprGraph: non-finite constant");
+  Node node;
+  node.op = Op::kConstant;
+  node.value = value == 0.0 ? 0.0 : value;  // one zero: -0 folds into +0
+  return intern(std::move(node));
+}
+
+ExprId ExprGraph::symbol(const Symbol& symbol) {
+  auto found = symbol_index_.find(symbol.name);
+  if (found != symbol_index_.end()) return found->second;
+  Node node;
+  node.op = Op::kSymbol;
+  node.symbol = static_cast<std::uint32_t>(symbols_.size());
+  symbols_.push_back(symbol);
+  const ExprId id = intern(std::move(node));
+  symbol_index_.emplace(symbol.name, id);
+  return id;
+}
+
+std::pair<double, ExprId> ExprGraph::split_coefficient(ExprId id) {
+  const Node& n = nodes_[id];
+  if (n.op != Op::kMul || nodes_[n.args[0]].op != Op::kConstant) return {1.0, id};
+  const double coefficient = nodes_[n.args[0]].value;
+  if (n.args.size() == 2) return {coefficient, n.args[1]};
+  Node rest;
+  rest.op = Op::kMul;
+  rest.args.assign(n.args.begin() + 1, n.args.end());
+  return {coefficient, intern(std::move(rest))};
+}
+
+ExprId ExprGraph::add(ExprId a, ExprId b) { return add(std::vector<ExprId>{a, b}); }
+
+ExprId ExprGraph::sub(ExprId a, ExprId b) { return add(a, neg(b)); }
+
+ExprId ExprGraph::neg(ExprId a) { return mul(constant(-1.0), a); }
+
+ExprId ExprGraph::add(std::vector<ExprId> terms) {
+  // Flatten nested sums, then collect like terms: coefficient per term without its constant.
+  std::vector<ExprId> flat;
+  for (ExprId t : terms) {
+    const Node& n = nodes_[t];
+    if (n.op == Op::kAdd) {
+      flat.insert(flat.end(), n.args.begin(), n.args.end());
+    } else {
+      flat.push_back(t);
+    }
+  }
+  double constant_sum = 0;
+  std::map<ExprId, double> coefficients;  // ordered by id: deterministic
+  for (ExprId t : flat) {
+    if (nodes_[t].op == Op::kConstant) {
+      constant_sum += nodes_[t].value;
+      continue;
+    }
+    const auto [c, base] = split_coefficient(t);
+    coefficients[base] += c;
+  }
+  std::vector<ExprId> args;
+  for (const auto& [base, c] : coefficients) {
+    if (c == 0.0) continue;
+    args.push_back(c == 1.0 ? base : mul(constant(c), base));
+  }
+  if (constant_sum != 0.0) args.push_back(constant(constant_sum));
+  if (args.empty()) return zero_;
+  if (args.size() == 1) return args[0];
+  std::sort(args.begin(), args.end());
+  Node node;
+  node.op = Op::kAdd;
+  node.args = std::move(args);
+  return intern(std::move(node));
+}
+
+ExprId ExprGraph::mul(ExprId a, ExprId b) { return mul(std::vector<ExprId>{a, b}); }
+
+ExprId ExprGraph::mul(std::vector<ExprId> factors) {
+  double coefficient = 1.0;
+  std::vector<ExprId> rest;
+  for (ExprId f : factors) {
+    const Node& n = nodes_[f];
+    if (n.op == Op::kConstant) {
+      coefficient *= n.value;
+    } else if (n.op == Op::kMul) {
+      for (ExprId g : n.args) {
+        if (nodes_[g].op == Op::kConstant) {
+          coefficient *= nodes_[g].value;
+        } else {
+          rest.push_back(g);
+        }
+      }
+    } else {
+      rest.push_back(f);
+    }
+  }
+  if (coefficient == 0.0) return zero_;
+  if (rest.empty()) return constant(coefficient);
+  if (coefficient != 1.0 && rest.size() == 1 && nodes_[rest[0]].op == Op::kAdd) {
+    // Distribute a constant over a sum so that like terms can meet: 2 (a + b) -> 2a + 2b.
+    std::vector<ExprId> terms;
+    for (ExprId t : nodes_[rest[0]].args) terms.push_back(mul(constant(coefficient), t));
+    return add(std::move(terms));
+  }
+  std::sort(rest.begin(), rest.end());
+  if (coefficient == 1.0 && rest.size() == 1) return rest[0];
+  Node node;
+  node.op = Op::kMul;
+  if (coefficient != 1.0) node.args.push_back(constant(coefficient));
+  node.args.insert(node.args.end(), rest.begin(), rest.end());
+  return intern(std::move(node));
+}
+
+std::vector<double> ExprGraph::evaluate(const std::function<double(const Symbol&)>& leaf) const {
+  std::vector<double> value(nodes_.size());
+  // Children are interned before their parents, so one pass in id order suffices.
+  for (ExprId i = 0; i < nodes_.size(); ++i) {
+    const Node& n = nodes_[i];
+    switch (n.op) {
+      case Op::kConstant: value[i] = n.value; break;
+      case Op::kSymbol: value[i] = leaf(symbols_[n.symbol]); break;
+      case Op::kAdd: {
+        double s = 0;
+        for (ExprId a : n.args) s += value[a];
+        value[i] = s;
+        break;
+      }
+      case Op::kMul: {
+        double p = 1;
+        for (ExprId a : n.args) p *= value[a];
+        value[i] = p;
+        break;
+      }
+    }
+  }
+  return value;
+}
+
+}  // namespace modelgen::gen

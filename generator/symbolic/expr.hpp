@@ -1,0 +1,102 @@
+// Expression DAG for the symbolic models: hash-consed nodes (one node per distinct
+// subexpression, so shared subexpressions are shared by construction), constants folded,
+// neutral and absorbing elements removed, commutative operands in a canonical order, and like
+// terms collected. Node ids are given in creation order, so every order derived from them is a
+// function of the input only (never of pointer values or hash seeds).
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+namespace modelgen::gen {
+
+using ExprId = std::uint32_t;
+
+enum class Op : std::uint8_t {
+  kConstant,
+  kSymbol,
+  kAdd,  // n-ary sum, args sorted by id, no constant zero, no nested sums
+  kMul,  // n-ary product, at most one constant (first), no 0 or 1 constants, no nested products
+};
+
+/// What a leaf stands for. The statement writer defines derived leaves (sin, cos, sign of a
+/// joint variable) once at the top of a function body.
+enum class SymbolKind : std::uint8_t {
+  kInput,     ///< an array element read directly: q[i], dq[i], ddq[i], p[k]
+  kSin,       ///< sin(input)
+  kCos,       ///< cos(input)
+  kSign,      ///< sign(input), 0 at 0
+  kPositive,  ///< 1 if input > 0 else 0
+  kNegative,  ///< 1 if input < 0 else 0
+};
+
+struct Symbol {
+  std::string name;   ///< C++ text of the leaf: "q[0]" for inputs, "s1", "c1", "sg1" for derived
+  SymbolKind kind = SymbolKind::kInput;
+  std::string input;  ///< for derived symbols: the input they are computed from, e.g. "q[0]"
+};
+
+struct Node {
+  Op op = Op::kConstant;
+  double value = 0;          ///< kConstant
+  std::uint32_t symbol = 0;  ///< kSymbol: index into ExprGraph::symbols()
+  std::vector<ExprId> args;  ///< kAdd, kMul
+};
+
+class ExprGraph {
+ public:
+  ExprGraph();
+
+  ExprId constant(double value);
+  ExprId zero() const { return zero_; }
+  ExprId one() const { return one_; }
+  /// The leaf for `symbol`; the same name always gives the same node.
+  ExprId symbol(const Symbol& symbol);
+
+  ExprId add(ExprId a, ExprId b);
+  ExprId add(std::vector<ExprId> terms);
+  ExprId sub(ExprId a, ExprId b);
+  ExprId neg(ExprId a);
+  ExprId mul(ExprId a, ExprId b);
+  ExprId mul(std::vector<ExprId> factors);
+
+  const Node& node(ExprId id) const { return nodes_[id]; }
+  const std::vector<Symbol>& symbols() const { return symbols_; }
+  std::size_t size() const { return nodes_.size(); }
+
+  bool is_constant(ExprId id) const { return nodes_[id].op == Op::kConstant; }
+  bool is_zero(ExprId id) const { return id == zero_; }
+  double constant_value(ExprId id) const { return nodes_[id].value; }
+
+  /// Numeric value of every node, indexed by ExprId, with each symbol's value given by `leaf`
+  /// (for tests and numeric checks of derivations).
+  std::vector<double> evaluate(const std::function<double(const Symbol&)>& leaf) const;
+
+ private:
+  struct Key {
+    Op op;
+    double value;
+    std::uint32_t symbol;
+    std::vector<ExprId> args;
+    bool operator==(const Key& other) const;
+  };
+  struct KeyHash {
+    std::size_t operator()(const Key& key) const;
+  };
+
+  ExprId intern(Node node);
+  // Splits a term into its constant coefficient and the rest (1 for a constant).
+  std::pair<double, ExprId> split_coefficient(ExprId id);
+
+  std::vector<Node> nodes_;
+  std::vector<Symbol> symbols_;
+  std::unordered_map<Key, ExprId, KeyHash> index_;
+  std::unordered_map<std::string, ExprId> symbol_index_;
+  ExprId zero_ = 0;
+  ExprId one_ = 0;
+};
+
+}  // namespace modelgen::gen
