@@ -14,7 +14,9 @@ namespace modelgen::gen {
 Angle Angle::from_radians(double radians) {
   Angle a;
   a.value = radians;
-  a.text = std::to_string(radians);
+  char buffer[32];
+  const auto result = std::to_chars(buffer, buffer + sizeof buffer, radians);
+  a.text.assign(buffer, result.ptr);
   return a;
 }
 
@@ -28,7 +30,8 @@ Angle Angle::pi_fraction(long numerator, long denominator, std::string text) {
   a.is_pi_fraction = true;
   a.numerator = g ? numerator / g : 0;
   a.denominator = g ? denominator / g : 1;
-  a.value = std::numbers::pi * static_cast<double>(a.numerator) / static_cast<double>(a.denominator);
+  a.value =
+      std::numbers::pi * static_cast<double>(a.numerator) / static_cast<double>(a.denominator);
   a.text = std::move(text);
   return a;
 }
@@ -219,8 +222,8 @@ std::array<double, 10> standard_from_inertial(double mass, const std::array<doub
   const Eigen::Vector3d c(com[0], com[1], com[2]);
   // Rotate into the body frame, then move from the centre of mass to the frame origin
   // (parallel-axis theorem in tensor form).
-  const Eigen::Matrix3d J =
-      R * Ic * R.transpose() + mass * (c.squaredNorm() * Eigen::Matrix3d::Identity() - c * c.transpose());
+  const Eigen::Matrix3d J = R * Ic * R.transpose() +
+                            mass * (c.squaredNorm() * Eigen::Matrix3d::Identity() - c * c.transpose());
   return {J(0, 0), J(0, 1), J(0, 2), J(1, 1), J(1, 2), J(2, 2),
           mass * c.x(), mass * c.y(), mass * c.z(), mass};
 }

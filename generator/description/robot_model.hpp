@@ -3,9 +3,10 @@
 // chain (gear ratios, motor/joint coupling), the friction options and a-priori parameter values.
 #pragma once
 
-#include <map>
+#include <array>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <Eigen/Core>

@@ -53,6 +53,11 @@ void check_rotation(const Body& body) {
       }
     }
   }
+  const double det = r[0] * (r[4] * r[8] - r[5] * r[7]) - r[1] * (r[3] * r[8] - r[5] * r[6]) +
+                     r[2] * (r[3] * r[7] - r[4] * r[6]);
+  if (det < 0) {
+    throw std::invalid_argument("body '" + body.name + "': fixed rotation is a reflection");
+  }
 }
 
 }  // namespace
@@ -97,7 +102,8 @@ void validate(const RigidBodyTree& tree) {
       throw std::invalid_argument("parameter '" + param.name + "' appears twice");
     }
     if (is_drive_param(param.kind) && tree.bodies[param.body].type == JointType::kFixed) {
-      throw std::invalid_argument("parameter '" + param.name + "' is a drive parameter on fixed body '" +
+      throw std::invalid_argument("parameter '" + param.name +
+                                  "' is a drive parameter on fixed body '" +
                                   tree.bodies[param.body].name + "'");
     }
   }
