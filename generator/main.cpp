@@ -8,15 +8,19 @@
 
 #include "generator/description/describe.hpp"
 #include "generator/description/load_robot.hpp"
+#include "generator/generate.hpp"
 #include "generator/version.hpp"
 
 namespace {
 
 constexpr const char* kUsage =
-    "usage: modelgen describe ROBOT [--base LINK] [--tip LINK] [--name NAME]\n"
+    "usage: modelgen ROBOT -o DIR [--base LINK] [--tip LINK] [--name NAME]\n"
+    "       modelgen describe ROBOT [--base LINK] [--tip LINK] [--name NAME]\n"
     "       modelgen --version | --help\n"
     "\n"
     "ROBOT is a modified-DH description (.yaml) or a URDF (.urdf).\n"
+    "  -o DIR        generate STEM.hpp, STEM.cpp and STEM.json into DIR (STEM: ROBOT's file\n"
+    "                name without extension); all three are replaced together or not at all\n"
     "  describe      print the parsed model: joints, drive chain, standard parameters\n"
     "  --base LINK   URDF: link to use as the fixed base (default: the URDF root)\n"
     "  --tip LINK    URDF: keep only the chain from the base to this link\n"
@@ -27,8 +31,9 @@ struct UsageError {
 };
 
 struct Arguments {
-  std::string command;
+  std::string command;  // "describe" or "generate"
   std::string robot;
+  std::string output_dir;
   modelgen::gen::LoadOptions load;
 };
 
@@ -47,19 +52,26 @@ Arguments parse(int argc, char** argv) {
       args.load.tip_link = value("--tip");
     } else if (arg == "--name") {
       args.load.name = value("--name");
+    } else if (arg == "-o" || arg == "--output") {
+      args.output_dir = value("-o");
     } else if (arg.size() > 1 && arg[0] == '-') {
       throw UsageError{"unknown option '" + arg + "'"};
     } else {
       positional.push_back(arg);
     }
   }
-  if (positional.empty()) throw UsageError{"no command given"};
-  args.command = positional[0];
-  if (args.command != "describe") {
-    throw UsageError{"unknown command '" + args.command + "'"};
+  if (positional.empty()) throw UsageError{"no robot description given"};
+  if (positional[0] == "describe") {
+    if (positional.size() != 2) throw UsageError{"describe takes exactly one ROBOT file"};
+    if (!args.output_dir.empty()) throw UsageError{"describe writes no files; drop -o"};
+    args.command = "describe";
+    args.robot = positional[1];
+    return args;
   }
-  if (positional.size() != 2) throw UsageError{"describe takes exactly one ROBOT file"};
-  args.robot = positional[1];
+  if (positional.size() != 1) throw UsageError{"give exactly one ROBOT file"};
+  if (args.output_dir.empty()) throw UsageError{"no output directory: add -o DIR"};
+  args.command = "generate";
+  args.robot = positional[0];
   return args;
 }
 
@@ -76,8 +88,11 @@ int main(int argc, char** argv) {
   }
   try {
     const Arguments args = parse(argc, argv);
-    const modelgen::gen::RobotModel model = modelgen::gen::load_robot(args.robot, args.load);
-    std::cout << modelgen::gen::describe(model);
+    if (args.command == "describe") {
+      std::cout << modelgen::gen::describe(modelgen::gen::load_robot(args.robot, args.load));
+    } else {
+      modelgen::gen::generate_from_file(args.robot, args.load).files.write_to(args.output_dir);
+    }
     return 0;
   } catch (const UsageError& e) {
     std::cerr << "modelgen: " << e.message << "\n\n" << kUsage;

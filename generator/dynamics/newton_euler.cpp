@@ -30,6 +30,8 @@ class VectorAlgebra {
   V3 add(const V3& a, const V3& b) {
     return {g_.add(a[0], b[0]), g_.add(a[1], b[1]), g_.add(a[2], b[2])};
   }
+  // Each component as an atom computed once (a customized Newton-Euler intermediate variable).
+  V3 share(const V3& a) { return {g_.share(a[0]), g_.share(a[1]), g_.share(a[2])}; }
   V3 scale(ExprId s, const V3& a) { return {g_.mul(s, a[0]), g_.mul(s, a[1]), g_.mul(s, a[2])}; }
   ExprId dot(const V3& a, const V3& b) {
     return g_.add({g_.mul(a[0], b[0]), g_.mul(a[1], b[1]), g_.mul(a[2], b[2])});
@@ -146,6 +148,9 @@ SymbolicMotion forward_recursion(ExprGraph& g, const RigidBodyTree& tree, const 
       m.dv[j] = va.add(m.dv[j], va.add(va.scale(in.ddq[i], u),
                                        va.scale(g.constant(2.0), va.cross(m.w[j], dq_u))));
     }
+    m.w[j] = va.share(m.w[j]);
+    m.dw[j] = va.share(m.dw[j]);
+    m.dv[j] = va.share(m.dv[j]);
   }
   return m;
 }
@@ -247,8 +252,8 @@ std::vector<ExprId> derive_standard_regressor(ExprGraph& g, const RigidBodyTree&
             va.dot(body.type == JointType::kRevolute ? nm : f, u);
       }
       if (body.parent >= 0) {
-        const V3 f_parent = va.mul(m.R[b], f);
-        nm = va.add(va.mul(m.R[b], nm), va.cross(m.p[b], f_parent));
+        const V3 f_parent = va.share(va.mul(m.R[b], va.share(f)));
+        nm = va.share(va.add(va.mul(m.R[b], va.share(nm)), va.cross(m.p[b], f_parent)));
         f = f_parent;
       }
     }
@@ -291,9 +296,10 @@ std::vector<ExprId> derive_inverse_dynamics(ExprGraph& g, const RigidBodyTree& t
   for (std::size_t j = 0; j < n; ++j) {
     const V3& w = m.w[j];
     const V3& dw = m.dw[j];
-    f[j] = va.add(va.scale(M[j], m.dv[j]), va.add(va.cross(dw, MS[j]), va.cross(w, va.cross(w, MS[j]))));
+    f[j] = va.add(va.scale(M[j], m.dv[j]),
+                  va.add(va.cross(dw, MS[j]), va.cross(w, va.share(va.cross(w, MS[j])))));
     nm[j] = va.add(va.symmetric_mul(J[j], dw),
-                   va.add(va.cross(w, va.symmetric_mul(J[j], w)), va.cross(MS[j], m.dv[j])));
+                   va.add(va.cross(w, va.share(va.symmetric_mul(J[j], w))), va.cross(MS[j], m.dv[j])));
   }
   std::vector<ExprId> tau(tree.dof, g.zero());
   for (std::size_t j = n; j-- > 0;) {
@@ -304,9 +310,11 @@ std::vector<ExprId> derive_inverse_dynamics(ExprGraph& g, const RigidBodyTree& t
           g.add(va.dot(body.type == JointType::kRevolute ? nm[j] : f[j], u), drive[body.dof_index]);
     }
     if (body.parent >= 0) {
-      const V3 f_parent = va.mul(m.R[j], f[j]);
+      // The wrench this body exerts on its antecedent, in the antecedent's frame.
+      const V3 f_parent = va.share(va.mul(m.R[j], va.share(f[j])));
+      const V3 n_parent = va.share(va.add(va.mul(m.R[j], va.share(nm[j])), va.cross(m.p[j], f_parent)));
       f[body.parent] = va.add(f[body.parent], f_parent);
-      nm[body.parent] = va.add(nm[body.parent], va.add(va.mul(m.R[j], nm[j]), va.cross(m.p[j], f_parent)));
+      nm[body.parent] = va.add(nm[body.parent], n_parent);
     }
   }
   return tau;

@@ -154,6 +154,19 @@ ExprId ExprGraph::mul(std::vector<ExprId> factors) {
   return intern(std::move(node));
 }
 
+ExprId ExprGraph::share(ExprId e) {
+  const Node& n = nodes_[e];
+  if (n.op == Op::kConstant || n.op == Op::kSymbol || n.op == Op::kShare) return e;
+  if (n.op == Op::kMul && n.args.size() == 2 && nodes_[n.args[0]].op == Op::kConstant &&
+      (nodes_[n.args[1]].op == Op::kSymbol || nodes_[n.args[1]].op == Op::kShare)) {
+    return e;  // a constant multiple of an atom costs one multiplication where it is used
+  }
+  Node node;
+  node.op = Op::kShare;
+  node.args = {e};
+  return intern(std::move(node));
+}
+
 std::vector<double> ExprGraph::evaluate(const std::function<double(const Symbol&)>& leaf) const {
   std::vector<double> value(nodes_.size());
   // Children are interned before their parents, so one pass in id order suffices.
@@ -174,6 +187,7 @@ std::vector<double> ExprGraph::evaluate(const std::function<double(const Symbol&
         value[i] = p;
         break;
       }
+      case Op::kShare: value[i] = value[n.args[0]]; break;
     }
   }
   return value;

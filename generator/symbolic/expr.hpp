@@ -20,6 +20,7 @@ enum class Op : std::uint8_t {
   kSymbol,
   kAdd,  // n-ary sum, args sorted by id, no constant zero, no nested sums
   kMul,  // n-ary product, at most one constant (first), no 0 or 1 constants, no nested products
+  kShare,  // one arg: an intermediate result kept whole, an atom to sums and products
 };
 
 /// What a leaf stands for. The statement writer defines derived leaves (sin, cos, sign of a
@@ -62,6 +63,12 @@ class ExprGraph {
   ExprId neg(ExprId a);
   ExprId mul(ExprId a, ExprId b);
   ExprId mul(std::vector<ExprId> factors);
+
+  /// `e` as an atom: sums and products that use it do not flatten into it, so it is computed
+  /// once and shared, as the intermediate variables of a customized Newton-Euler model
+  /// (Khalil & Kleinfinger). Constants, symbols and constant multiples of symbols stay as they
+  /// are.
+  ExprId share(ExprId e);
 
   const Node& node(ExprId id) const { return nodes_[id]; }
   const std::vector<Symbol>& symbols() const { return symbols_; }

@@ -1,0 +1,248 @@
+// Scheduling and printing of straight-line code. A node becomes a temporary when more than one
+// parent (or output) uses it; single-use nodes are printed inline in their parent. Temporaries
+// are numbered in emission order, which is a depth-first walk of the outputs in output order
+// and of each node's arguments in id order: a function of the input only.
+
+#include "generator/emit/statement_writer.hpp"
+
+#include <cmath>
+
+#include "generator/emit/printer.hpp"
+
+namespace modelgen::gen {
+
+namespace {
+
+std::string render_line(const char* template_name,
+                        const std::vector<std::pair<const char*, std::string>>& values) {
+  Printer printer(embedded_template(template_name));
+  for (const auto& [name, value] : values) printer.set(name, value);
+  std::string text = printer.render();
+  if (!text.empty() && text.back() == '\n') text.pop_back();
+  return text;
+}
+
+class StatementWriter {
+ public:
+  StatementWriter(const ExprGraph& graph, Scalar scalar)
+      : g_(graph),
+        scalar_(scalar),
+        uses_(graph.size(), 0),
+        name_(graph.size()),
+        prepared_(graph.size(), false),
+        symbol_used_(graph.symbols().size(), false) {}
+
+  FunctionBody write(const std::vector<FunctionOutput>& outputs) {
+    count_uses(outputs);
+    std::vector<std::string> body;
+    for (const FunctionOutput& out : outputs) {
+      prepare(out.value, body);
+      const std::string value = expression(out.value, Context::kTop);
+      if (out.comment.empty()) {
+        body.push_back(render_line("statements/output", {{"target", out.target}, {"value", value}}));
+      } else {
+        body.push_back(render_line("statements/output_named",
+                                   {{"target", out.target}, {"value", value}, {"comment", out.comment}}));
+      }
+    }
+    FunctionBody result;
+    declare_symbols(result.lines);
+    result.lines.insert(result.lines.end(), body.begin(), body.end());
+    result.counts = counts_;
+    return result;
+  }
+
+ private:
+  enum class Context { kTop, kFactor };
+
+  bool is_operation(ExprId id) const {
+    const Op op = g_.node(id).op;
+    return op == Op::kAdd || op == Op::kMul || op == Op::kShare;
+  }
+
+  // A shared intermediate used once is printed as its expression.
+  ExprId resolve(ExprId id) const {
+    while (g_.node(id).op == Op::kShare && name_[id].empty()) id = g_.node(id).args[0];
+    return id;
+  }
+
+  void count_uses(const std::vector<FunctionOutput>& outputs) {
+    std::vector<bool> visited(g_.size(), false);
+    std::vector<ExprId> stack;
+    for (const FunctionOutput& out : outputs) {
+      ++uses_[out.value];
+      stack.push_back(out.value);
+    }
+    while (!stack.empty()) {
+      const ExprId id = stack.back();
+      stack.pop_back();
+      if (visited[id]) continue;
+      visited[id] = true;
+      for (ExprId arg : g_.node(id).args) {
+        ++uses_[arg];
+        stack.push_back(arg);
+      }
+    }
+  }
+
+  // Emits the temporaries `id` depends on (and `id` itself if it is one), children first.
+  void prepare(ExprId id, std::vector<std::string>& body) {
+    if (prepared_[id]) return;
+    prepared_[id] = true;
+    const Node& n = g_.node(id);
+    if (n.op == Op::kSymbol) {
+      symbol_used_[n.symbol] = true;
+      return;
+    }
+    if (!is_operation(id)) return;
+    for (ExprId arg : n.args) prepare(arg, body);
+    if (n.op == Op::kShare && !name_[n.args[0]].empty()) {
+      name_[id] = name_[n.args[0]];  // already a temporary: no copy
+      return;
+    }
+    if (uses_[id] >= 2) {
+      const std::string value = expression(id, Context::kTop);
+      name_[id] = "t" + std::to_string(temporaries_++);
+      body.push_back(render_line("statements/temporary",
+                                 {{"scalar", scalar_name(scalar_)}, {"name", name_[id]}, {"value", value}}));
+    }
+  }
+
+  void declare_symbols(std::vector<std::string>& lines) {
+    const std::string zero = format_literal(0.0, scalar_), one = format_literal(1.0, scalar_);
+    for (std::size_t s = 0; s < g_.symbols().size(); ++s) {
+      if (!symbol_used_[s]) continue;
+      const Symbol& symbol = g_.symbols()[s];
+      const char* tmpl = nullptr;
+      switch (symbol.kind) {
+        case SymbolKind::kInput: continue;
+        case SymbolKind::kSin: tmpl = "statements/sin"; ++counts_.trig; break;
+        case SymbolKind::kCos: tmpl = "statements/cos"; ++counts_.trig; break;
+        case SymbolKind::kSign: tmpl = "statements/sign"; break;
+        case SymbolKind::kPositive: tmpl = "statements/positive"; break;
+        case SymbolKind::kNegative: tmpl = "statements/negative"; break;
+      }
+      std::vector<std::pair<const char*, std::string>> values = {
+          {"scalar", scalar_name(scalar_)}, {"name", symbol.name}, {"input", symbol.input}};
+      if (symbol.kind != SymbolKind::kSin && symbol.kind != SymbolKind::kCos) {
+        values.push_back({"zero", zero});
+        values.push_back({"one", one});
+      }
+      lines.push_back(render_line(tmpl, values));
+    }
+  }
+
+  // A term's sign for printing sums as "a - b": negative constants and products with a
+  // negative constant coefficient print as subtractions of their absolute value.
+  bool is_negative(ExprId id) const {
+    id = resolve(id);
+    const Node& n = g_.node(id);
+    if (n.op == Op::kConstant) return n.value < 0;
+    return n.op == Op::kMul && name_[id].empty() && g_.is_constant(n.args[0]) &&
+           g_.constant_value(n.args[0]) < 0;
+  }
+
+  std::string product(const Node& n, double coefficient) {
+    std::string out;
+    std::size_t first = g_.is_constant(n.args[0]) ? 1 : 0;
+    if (coefficient != 1.0) {
+      out = format_literal(coefficient, scalar_);
+      ++counts_.mul;
+    }
+    for (std::size_t i = first; i < n.args.size(); ++i) {
+      if (!out.empty()) {
+        out += " * ";
+        if (i > first) ++counts_.mul;
+      }
+      out += expression(n.args[i], Context::kFactor);
+    }
+    return out;
+  }
+
+  // Prints |id| for a negative term.
+  std::string absolute(ExprId id) {
+    id = resolve(id);
+    const Node& n = g_.node(id);
+    if (n.op == Op::kConstant) return format_literal(-n.value, scalar_);
+    return product(n, -g_.constant_value(n.args[0]));
+  }
+
+  // Appends the terms of a sum to `out`, negated when `negate`. Sums reached through inline
+  // shared intermediates are spliced in (a + (b - c) prints as a + b - c), and so are negated
+  // ones (a - (b - c) prints as a - b + c): same operations, no parentheses, no negations.
+  void append_terms(ExprId id, bool negate, std::string& out, bool& first) {
+    id = resolve(id);
+    const Node& n = g_.node(id);
+    if (name_[id].empty() && n.op == Op::kAdd) {
+      for (ExprId term : n.args) append_terms(term, negate, out, first);
+      return;
+    }
+    if (name_[id].empty() && n.op == Op::kMul && n.args.size() == 2 && g_.is_constant(n.args[0]) &&
+        g_.constant_value(n.args[0]) == -1.0) {
+      const ExprId inner = resolve(n.args[1]);
+      if (name_[inner].empty() && g_.node(inner).op == Op::kAdd) {
+        append_terms(inner, !negate, out, first);
+        return;
+      }
+    }
+    const bool negative_term = is_negative(id);
+    const std::string text = negative_term ? absolute(id) : expression(id, Context::kTop);
+    const bool subtract = negative_term != negate;
+    if (first) {
+      if (subtract) ++counts_.add;  // negation
+      out += subtract ? "-" + text : text;
+    } else {
+      ++counts_.add;
+      out += (subtract ? " - " : " + ") + text;
+    }
+    first = false;
+  }
+
+  std::string expression(ExprId id, Context context) {
+    if (!name_[id].empty()) return name_[id];
+    id = resolve(id);
+    if (!name_[id].empty()) return name_[id];
+    const Node& n = g_.node(id);
+    switch (n.op) {
+      case Op::kConstant: {
+        const std::string literal = format_literal(n.value, scalar_);
+        return n.value < 0 && context == Context::kFactor ? "(" + literal + ")" : literal;
+      }
+      case Op::kSymbol: return g_.symbols()[n.symbol].name;
+      case Op::kMul: {
+        if (is_negative(id)) {
+          ++counts_.add;  // negation
+          const std::string magnitude = absolute(id);
+          return context == Context::kFactor ? "(-" + magnitude + ")" : "-" + magnitude;
+        }
+        return product(n, g_.is_constant(n.args[0]) ? g_.constant_value(n.args[0]) : 1.0);
+      }
+      case Op::kAdd: {
+        std::string out;
+        bool first = true;
+        append_terms(id, false, out, first);
+        return context == Context::kFactor ? "(" + out + ")" : out;
+      }
+      case Op::kShare: break;  // resolved above
+    }
+    return "";
+  }
+
+  const ExprGraph& g_;
+  Scalar scalar_;
+  std::vector<int> uses_;
+  std::vector<std::string> name_;
+  std::vector<bool> prepared_;
+  std::vector<bool> symbol_used_;
+  int temporaries_ = 0;
+  OpCounts counts_;
+};
+
+}  // namespace
+
+FunctionBody write_statements(const ExprGraph& graph, const std::vector<FunctionOutput>& outputs,
+                              Scalar scalar) {
+  return StatementWriter(graph, scalar).write(outputs);
+}
+
+}  // namespace modelgen::gen

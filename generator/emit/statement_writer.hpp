@@ -1,0 +1,35 @@
+// Turns the DAG nodes a generated function needs into straight-line statements: derived leaves
+// (sin, cos, sign of joint variables) first, then one temporary per shared subexpression in
+// a deterministic topological order, then the outputs. Operation counts are taken from exactly
+// the text written.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "generator/emit/number_format.hpp"
+#include "generator/symbolic/expr.hpp"
+
+namespace modelgen::gen {
+
+struct OpCounts {
+  long mul = 0;   ///< multiplications
+  long add = 0;   ///< additions, subtractions and negations
+  long trig = 0;  ///< sin and cos calls
+};
+
+struct FunctionOutput {
+  std::string target;   ///< e.g. "W[14]"
+  ExprId value = 0;
+  std::string comment;  ///< written after the first statement of each column, may be empty
+};
+
+struct FunctionBody {
+  std::vector<std::string> lines;
+  OpCounts counts;
+};
+
+FunctionBody write_statements(const ExprGraph& graph, const std::vector<FunctionOutput>& outputs,
+                              Scalar scalar);
+
+}  // namespace modelgen::gen

@@ -1,0 +1,29 @@
+// Description file -> generated files, as the command line and the tests run it.
+
+#include "generator/generate.hpp"
+
+#include <filesystem>
+
+namespace modelgen::gen {
+
+std::string normalized_command(const std::string& robot_path, const LoadOptions& options) {
+  std::string command =
+      "modelgen " + std::filesystem::path(robot_path).filename().string() + " -o <dir>";
+  if (!options.name.empty()) command += " --name " + options.name;
+  if (!options.base_link.empty()) command += " --base " + options.base_link;
+  if (!options.tip_link.empty()) command += " --tip " + options.tip_link;
+  return command;
+}
+
+GeneratedModel generate_from_file(const std::string& robot_path, const LoadOptions& options) {
+  const RobotModel model = load_robot(robot_path, options);
+  const std::filesystem::path path(robot_path);
+  GenerationInput input;
+  input.stem = path.stem().string();
+  input.input_name = path.filename().string();
+  input.input_bytes = read_source_file(robot_path);
+  input.command_line = normalized_command(robot_path, options);
+  return emit_model(model, input);
+}
+
+}  // namespace modelgen::gen

@@ -1,0 +1,20 @@
+// One call from a description file to the generated files in memory: what `modelgen ROBOT -o
+// DIR` does before writing, shared with the tests that regenerate generated/ in-process.
+#pragma once
+
+#include <string>
+
+#include "generator/description/load_robot.hpp"
+#include "generator/emit/model_emitter.hpp"
+
+namespace modelgen::gen {
+
+/// Loads `robot_path` and emits its model. The output file stem is the description's file name
+/// without extension; the banner's command line is normalized (file name only, options that
+/// change the output in a fixed order). Throws InputError for a bad description.
+GeneratedModel generate_from_file(const std::string& robot_path, const LoadOptions& options);
+
+/// "modelgen kr150.yaml -o <dir>" plus --name/--base/--tip when given, in that order.
+std::string normalized_command(const std::string& robot_path, const LoadOptions& options);
+
+}  // namespace modelgen::gen
