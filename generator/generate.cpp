@@ -6,23 +6,33 @@
 
 namespace modelgen::gen {
 
-std::string normalized_command(const std::string& robot_path, const LoadOptions& options) {
+std::string normalized_command(const std::string& robot_path, const LoadOptions& options,
+                               const std::string& scalar) {
   std::string command =
       "modelgen " + std::filesystem::path(robot_path).filename().string() + " -o <dir>";
   if (!options.name.empty()) command += " --name " + options.name;
   if (!options.base_link.empty()) command += " --base " + options.base_link;
   if (!options.tip_link.empty()) command += " --tip " + options.tip_link;
+  if (scalar != "both") command += " --scalar " + scalar;
   return command;
 }
 
-GeneratedModel generate_from_file(const std::string& robot_path, const LoadOptions& options) {
+GeneratedModel generate_from_file(const std::string& robot_path, const LoadOptions& options,
+                                  const std::string& scalar) {
+  GenerationInput input;
+  if (scalar == "double") {
+    input.scalars = {Scalar::kDouble};
+  } else if (scalar == "float") {
+    input.scalars = {Scalar::kFloat};
+  } else if (scalar != "both") {
+    throw InputError({}, "--scalar must be double, float or both, not '" + scalar + "'");
+  }
   const RobotModel model = load_robot(robot_path, options);
   const std::filesystem::path path(robot_path);
-  GenerationInput input;
   input.stem = path.stem().string();
   input.input_name = path.filename().string();
   input.input_bytes = read_source_file(robot_path);
-  input.command_line = normalized_command(robot_path, options);
+  input.command_line = normalized_command(robot_path, options, scalar);
   return emit_model(model, input);
 }
 

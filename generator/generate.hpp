@@ -12,9 +12,13 @@ namespace modelgen::gen {
 /// Loads `robot_path` and emits its model. The output file stem is the description's file name
 /// without extension; the banner's command line is normalized (file name only, options that
 /// change the output in a fixed order). Throws InputError for a bad description.
-GeneratedModel generate_from_file(const std::string& robot_path, const LoadOptions& options);
+/// `scalar` is "both" (double and float entry points), "double" or "float".
+GeneratedModel generate_from_file(const std::string& robot_path, const LoadOptions& options,
+                                  const std::string& scalar = "both");
 
-/// "modelgen kr150.yaml -o <dir>" plus --name/--base/--tip when given, in that order.
-std::string normalized_command(const std::string& robot_path, const LoadOptions& options);
+/// "modelgen kr150.yaml -o <dir>" plus --name/--base/--tip/--scalar when not the default, in
+/// that order.
+std::string normalized_command(const std::string& robot_path, const LoadOptions& options,
+                               const std::string& scalar = "both");
 
 }  // namespace modelgen::gen

@@ -14,13 +14,15 @@
 namespace {
 
 constexpr const char* kUsage =
-    "usage: modelgen ROBOT -o DIR [--base LINK] [--tip LINK] [--name NAME]\n"
+    "usage: modelgen ROBOT -o DIR [--scalar double|float|both] [--base LINK] [--tip LINK]\n"
+    "                [--name NAME]\n"
     "       modelgen describe ROBOT [--base LINK] [--tip LINK] [--name NAME]\n"
     "       modelgen --version | --help\n"
     "\n"
     "ROBOT is a modified-DH description (.yaml) or a URDF (.urdf).\n"
     "  -o DIR        generate STEM.hpp, STEM.cpp and STEM.json into DIR (STEM: ROBOT's file\n"
     "                name without extension); all three are replaced together or not at all\n"
+    "  --scalar T    entry points for double, float or both (default both)\n"
     "  describe      print the parsed model: joints, drive chain, standard parameters\n"
     "  --base LINK   URDF: link to use as the fixed base (default: the URDF root)\n"
     "  --tip LINK    URDF: keep only the chain from the base to this link\n"
@@ -34,6 +36,7 @@ struct Arguments {
   std::string command;  // "describe" or "generate"
   std::string robot;
   std::string output_dir;
+  std::string scalar = "both";
   modelgen::gen::LoadOptions load;
 };
 
@@ -52,6 +55,11 @@ Arguments parse(int argc, char** argv) {
       args.load.tip_link = value("--tip");
     } else if (arg == "--name") {
       args.load.name = value("--name");
+    } else if (arg == "--scalar") {
+      args.scalar = value("--scalar");
+      if (args.scalar != "double" && args.scalar != "float" && args.scalar != "both") {
+        throw UsageError{"--scalar must be double, float or both, not '" + args.scalar + "'"};
+      }
     } else if (arg == "-o" || arg == "--output") {
       args.output_dir = value("-o");
     } else if (arg.size() > 1 && arg[0] == '-') {
@@ -91,7 +99,7 @@ int main(int argc, char** argv) {
     if (args.command == "describe") {
       std::cout << modelgen::gen::describe(modelgen::gen::load_robot(args.robot, args.load));
     } else {
-      modelgen::gen::generate_from_file(args.robot, args.load).files.write_to(args.output_dir);
+      modelgen::gen::generate_from_file(args.robot, args.load, args.scalar).files.write_to(args.output_dir);
     }
     return 0;
   } catch (const UsageError& e) {

@@ -22,7 +22,7 @@ struct FunctionSpec {
 
 struct EmittedFunction {
   const FunctionSpec* spec;
-  FunctionBody body[2];  // double, float
+  std::vector<FunctionBody> body;  // one per GenerationInput::scalars entry
 };
 
 std::string signature(const std::string& name, Scalar scalar) {
@@ -113,8 +113,10 @@ GeneratedModel emit_model(const RobotModel& model, const GenerationInput& input)
   std::vector<EmittedFunction> functions;
   GeneratedModel result;
   for (const FunctionSpec& spec : specs) {
-    EmittedFunction f{&spec, {write_statements(graph, spec.outputs, Scalar::kDouble),
-                              write_statements(graph, spec.outputs, Scalar::kFloat)}};
+    EmittedFunction f{&spec, {}};
+    for (Scalar scalar : input.scalars) {
+      f.body.push_back(write_statements(graph, spec.outputs, scalar));
+    }
     result.functions.push_back({spec.name, f.body[0].counts});
     functions.push_back(std::move(f));
   }
@@ -172,9 +174,9 @@ GeneratedModel emit_model(const RobotModel& model, const GenerationInput& input)
                        for (std::size_t i = 0; i < functions.size(); ++i) {
                          if (i > 0) out.blank();
                          const std::string& name = functions[i].spec->name;
-                         for (Scalar scalar : {Scalar::kDouble, Scalar::kFloat}) {
-                           std::string text = signature(name, scalar);
-                           if (scalar == Scalar::kFloat) text = undocumented(text);
+                         for (std::size_t s = 0; s < input.scalars.size(); ++s) {
+                           std::string text = signature(name, input.scalars[s]);
+                           if (s > 0) text = undocumented(text);  // documented once
                            const std::string declaration =
                                strip_newline(Printer(embedded_template("function_declaration"))
                                                  .set("signature", text)
@@ -213,8 +215,8 @@ GeneratedModel emit_model(const RobotModel& model, const GenerationInput& input)
                      [&](CodeWriter& out) {
                        bool first = true;
                        for (const EmittedFunction& f : functions) {
-                         for (int s = 0; s < 2; ++s) {
-                           const Scalar scalar = s == 0 ? Scalar::kDouble : Scalar::kFloat;
+                         for (std::size_t s = 0; s < input.scalars.size(); ++s) {
+                           const Scalar scalar = input.scalars[s];
                            if (!first) out.blank();
                            first = false;
                            const FunctionBody& body = f.body[s];

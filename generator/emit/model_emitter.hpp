@@ -17,6 +17,8 @@ struct GenerationInput {
   std::string input_name;    ///< description file name without directories: "kr150.yaml"
   std::string input_bytes;   ///< the description exactly as read (hashed)
   std::string command_line;  ///< normalized: only options that change the output, fixed order
+  /// Scalar types to emit entry points for, in this order (double first when both).
+  std::vector<Scalar> scalars = {Scalar::kDouble, Scalar::kFloat};
 };
 
 /// Operation counts of one generated function (double and float bodies are the same code).

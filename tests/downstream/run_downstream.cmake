@@ -1,0 +1,23 @@
+# Installs this build into a scratch prefix, configures and builds tests/downstream against it
+# (find_package(modelgen) + modelgen_generate), runs the consumer and checks what it prints.
+# Run by CTest: cmake -DBUILD_DIR=... -DSOURCE_DIR=... -DWORK_DIR=... -P run_downstream.cmake
+file(REMOVE_RECURSE ${WORK_DIR})
+function(run)
+  execute_process(COMMAND ${ARGV} RESULT_VARIABLE result OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(NOT result EQUAL 0)
+    message(FATAL_ERROR "failed: ${ARGV}\n${out}\n${err}")
+  endif()
+  set(last_output "${out}" PARENT_SCOPE)
+endfunction()
+run(${CMAKE_COMMAND} --install ${BUILD_DIR} --prefix ${WORK_DIR}/prefix)
+run(${CMAKE_COMMAND} -S ${SOURCE_DIR}/tests/downstream -B ${WORK_DIR}/build
+    -DCMAKE_PREFIX_PATH=${WORK_DIR}/prefix -DCMAKE_BUILD_TYPE=Release)
+run(${CMAKE_COMMAND} --build ${WORK_DIR}/build)
+run(${WORK_DIR}/build/controller)
+# At q = 0 link 2 points along the base x axis and its joint axis z2 is the base y axis. A unit
+# first moment along x under gravity (0, 0, -9.81) has moment (x, 0, 0) x (0, 0, -g) = (0, g, 0)
+# about the joint: +9.81 N m about z2, so holding it takes tau2 = -9.81 N m.
+if(NOT last_output MATCHES "^MX2 -9\\.810000")
+  message(FATAL_ERROR "unexpected consumer output: '${last_output}'")
+endif()
+message(STATUS "downstream consumer printed: ${last_output}")
