@@ -4,8 +4,8 @@
 // The generated code belongs to the owner of the robot description.
 //
 // Function                          mul    add  sin/cos
-// idim_regressor_standard          1899   1445       12
-// inverse_dynamics_standard         719    645       12
+// idim_regressor_standard          1899   1321       12
+// inverse_dynamics_standard         719    629       12
 #include "franka_panda.hpp"
 
 #include <cmath>

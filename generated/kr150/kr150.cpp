@@ -4,8 +4,8 @@
 // The generated code belongs to the owner of the robot description.
 //
 // Function                          mul    add  sin/cos
-// idim_regressor_standard           936    762       10
-// inverse_dynamics_standard         466    422       10
+// idim_regressor_standard           936    710       10
+// inverse_dynamics_standard         466    418       10
 #include "kr150.hpp"
 
 #include <cmath>

@@ -4,8 +4,8 @@
 // The generated code belongs to the owner of the robot description.
 //
 // Function                          mul    add  sin/cos
-// idim_regressor_standard          1181    865       12
-// inverse_dynamics_standard         484    444       12
+// idim_regressor_standard          1181    831       12
+// inverse_dynamics_standard         484    441       12
 #ifndef MODELGEN_IIWA14_HPP_
 #define MODELGEN_IIWA14_HPP_
 

@@ -4,8 +4,8 @@
 // The generated code belongs to the owner of the robot description.
 //
 // Function                          mul    add  sin/cos
-// idim_regressor_standard           852    772       10
-// inverse_dynamics_standard         433    368       10
+// idim_regressor_standard           852    752       10
+// inverse_dynamics_standard         433    362       10
 #include "kuka_kr150_2.hpp"
 
 #include <cmath>

@@ -4,8 +4,8 @@
 // The generated code belongs to the owner of the robot description.
 //
 // Function                          mul    add  sin/cos
-// idim_regressor_standard           852    772       10
-// inverse_dynamics_standard         433    368       10
+// idim_regressor_standard           852    752       10
+// inverse_dynamics_standard         433    362       10
 #ifndef MODELGEN_KUKA_KR150_2_HPP_
 #define MODELGEN_KUKA_KR150_2_HPP_
 

@@ -4,8 +4,8 @@
 // The generated code belongs to the owner of the robot description.
 //
 // Function                          mul    add  sin/cos
-// idim_regressor_standard           811    638       10
-// inverse_dynamics_standard         438    408       10
+// idim_regressor_standard           811    607       10
+// inverse_dynamics_standard         438    406       10
 #ifndef MODELGEN_TX40_HPP_
 #define MODELGEN_TX40_HPP_
 

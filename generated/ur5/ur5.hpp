@@ -4,8 +4,8 @@
 // The generated code belongs to the owner of the robot description.
 //
 // Function                          mul    add  sin/cos
-// idim_regressor_standard           963    850       10
-// inverse_dynamics_standard         434    392       10
+// idim_regressor_standard           963    798       10
+// inverse_dynamics_standard         434    390       10
 #ifndef MODELGEN_UR5_HPP_
 #define MODELGEN_UR5_HPP_
 

@@ -4,6 +4,8 @@
 #include "generator/emit/number_format.hpp"
 
 #include <charconv>
+#include <cmath>
+#include <string>
 #include <stdexcept>
 
 namespace modelgen::gen {
@@ -14,6 +16,9 @@ std::string format_literal(double value, Scalar scalar) {
   char buffer[64];
   std::to_chars_result result;
   if (scalar == Scalar::kFloat) {
+    if (!std::isfinite(static_cast<float>(value))) {
+      throw std::logic_error("format_literal: " + std::to_string(value) + " does not fit a float");
+    }
     result = std::to_chars(buffer, buffer + sizeof buffer, static_cast<float>(value));
   } else {
     result = std::to_chars(buffer, buffer + sizeof buffer, value);

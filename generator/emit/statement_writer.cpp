@@ -132,16 +132,6 @@ class StatementWriter {
     }
   }
 
-  // A term's sign for printing sums as "a - b": negative constants and products with a
-  // negative constant coefficient print as subtractions of their absolute value.
-  bool is_negative(ExprId id) const {
-    id = resolve(id);
-    const Node& n = g_.node(id);
-    if (n.op == Op::kConstant) return n.value < 0;
-    return n.op == Op::kMul && name_[id].empty() && g_.is_constant(n.args[0]) &&
-           g_.constant_value(n.args[0]) < 0;
-  }
-
   std::string product(const Node& n, double coefficient) {
     std::string out;
     std::size_t first = g_.is_constant(n.args[0]) ? 1 : 0;
@@ -159,17 +149,16 @@ class StatementWriter {
     return out;
   }
 
-  // Prints |id| for a negative term.
-  std::string absolute(ExprId id) {
-    id = resolve(id);
-    const Node& n = g_.node(id);
-    if (n.op == Op::kConstant) return format_literal(-n.value, scalar_);
-    return product(n, -g_.constant_value(n.args[0]));
+  // The constant coefficient of a product (1 when it has none).
+  double coefficient(const Node& n) const {
+    return n.op == Op::kMul && g_.is_constant(n.args[0]) ? g_.constant_value(n.args[0]) : 1.0;
   }
 
   // Appends the terms of a sum to `out`, negated when `negate`. Sums reached through inline
   // shared intermediates are spliced in (a + (b - c) prints as a + b - c), and so are negated
   // ones (a - (b - c) prints as a - b + c): same operations, no parentheses, no negations.
+  // Counting: each " + " or " - " is one addition; a leading "-" is a negation (one addition)
+  // unless it is the sign of a numeric literal ("-2.0", "-0.5 * x"), which costs nothing.
   void append_terms(ExprId id, bool negate, std::string& out, bool& first) {
     id = resolve(id);
     const Node& n = g_.node(id);
@@ -177,23 +166,36 @@ class StatementWriter {
       for (ExprId term : n.args) append_terms(term, negate, out, first);
       return;
     }
-    if (name_[id].empty() && n.op == Op::kMul && n.args.size() == 2 && g_.is_constant(n.args[0]) &&
-        g_.constant_value(n.args[0]) == -1.0) {
+    const bool inline_node = name_[id].empty();
+    if (inline_node && n.op == Op::kMul && n.args.size() == 2 && coefficient(n) == -1.0) {
       const ExprId inner = resolve(n.args[1]);
       if (name_[inner].empty() && g_.node(inner).op == Op::kAdd) {
         append_terms(inner, !negate, out, first);
         return;
       }
     }
-    const bool negative_term = is_negative(id);
-    const std::string text = negative_term ? absolute(id) : expression(id, Context::kTop);
-    const bool subtract = negative_term != negate;
+    // Split the term into a sign and a magnitude text.
+    bool negative = negate;
+    std::string magnitude;
+    bool literal_sign = false;  // the leading sign can be folded into a numeric literal
+    if (inline_node && n.op == Op::kConstant) {
+      negative = (n.value < 0) != negate;
+      magnitude = format_literal(std::abs(n.value), scalar_);
+      literal_sign = true;
+    } else if (inline_node && n.op == Op::kMul && g_.is_constant(n.args[0])) {
+      const double c = coefficient(n);
+      negative = (c < 0) != negate;
+      magnitude = product(n, std::abs(c));
+      literal_sign = std::abs(c) != 1.0;
+    } else {
+      magnitude = expression(id, Context::kTop);
+    }
     if (first) {
-      if (subtract) ++counts_.add;  // negation
-      out += subtract ? "-" + text : text;
+      if (negative && !literal_sign) ++counts_.add;  // negation
+      out += negative ? "-" + magnitude : magnitude;
     } else {
       ++counts_.add;
-      out += (subtract ? " - " : " + ") + text;
+      out += (negative ? " - " : " + ") + magnitude;
     }
     first = false;
   }
@@ -210,12 +212,14 @@ class StatementWriter {
       }
       case Op::kSymbol: return g_.symbols()[n.symbol].name;
       case Op::kMul: {
-        if (is_negative(id)) {
+        const double c = coefficient(n);
+        if (c == -1.0) {
           ++counts_.add;  // negation
-          const std::string magnitude = absolute(id);
+          const std::string magnitude = product(n, 1.0);
           return context == Context::kFactor ? "(-" + magnitude + ")" : "-" + magnitude;
         }
-        return product(n, g_.is_constant(n.args[0]) ? g_.constant_value(n.args[0]) : 1.0);
+        const std::string text = product(n, c);  // a negative coefficient is a literal's sign
+        return c < 0 && context == Context::kFactor ? "(" + text + ")" : text;
       }
       case Op::kAdd: {
         std::string out;
