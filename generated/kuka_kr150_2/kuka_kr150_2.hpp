@@ -6,6 +6,9 @@
 // Function                          mul    add  sin/cos
 // idim_regressor_standard           852    752       10
 // inverse_dynamics_standard         433    362       10
+// base_from_standard                 37     75        0
+// idim_regressor                    614    561       10
+// inverse_dynamics                  379    318       10
 #ifndef MODELGEN_KUKA_KR150_2_HPP_
 #define MODELGEN_KUKA_KR150_2_HPP_
 
@@ -19,8 +22,14 @@ constexpr int kDof = 6;
 // Standard dynamic parameters (Gautier & Briot eq. 3): the length of p, the columns of W.
 constexpr int kStandardParams = 84;
 
+// Base (identifiable) parameters: the length of beta, the columns of the base regressor.
+constexpr int kBaseParams = 58;
+
 // Names of the standard parameters in the order of p: "XX1", "XY1", ... as in DESIGN.md.
 extern const char* const kStandardParamNames[kStandardParams];
+// Names of the base parameters in the order of beta: "ZZ1R", "XX2R", ... (suffix R: the
+// parameter absorbs others; the relations are base_from_standard and the manifest).
+extern const char* const kBaseParamNames[kBaseParams];
 
 // Standard regressor of the inverse dynamic identification model (Gautier & Briot eq. 2):
 // tau = W * p. Inputs q, dq, ddq: kDof joint positions (rad or m), velocities and accelerations.
@@ -37,6 +46,27 @@ void inverse_dynamics_standard(const double* q, const double* dq, const double* 
                                const double* p, double* tau);
 void inverse_dynamics_standard(const float* q, const float* dq, const float* ddq,
                                const float* p, float* tau);
+
+// The base parameters from the standard ones: the regrouping relations beta = K * p_standard.
+// Input p_standard: kStandardParams values in the order of kStandardParamNames.
+// Output beta: kBaseParams values in the order of kBaseParamNames.
+void base_from_standard(const double* p_standard, double* beta);
+void base_from_standard(const float* p_standard, float* beta);
+
+// Regressor of the inverse dynamic identification model on the base parameters (Gautier &
+// Briot eq. 4-6): tau = W * beta. Inputs q, dq, ddq: kDof joint positions (rad or m),
+// velocities and accelerations. Output W: kDof x kBaseParams, row-major:
+// W[i * kBaseParams + k] is the torque of joint i per unit of kBaseParamNames[k].
+void idim_regressor(const double* q, const double* dq, const double* ddq, double* W);
+void idim_regressor(const float* q, const float* dq, const float* ddq, float* W);
+
+// Inverse dynamics on the base parameters (customized Newton-Euler with the regrouped
+// parameters): joint torques tau (kDof) for q, dq, ddq (kDof each) and beta (kBaseParams, in the
+// order of kBaseParamNames; base_from_standard computes it from standard parameters).
+void inverse_dynamics(const double* q, const double* dq, const double* ddq,
+                      const double* beta, double* tau);
+void inverse_dynamics(const float* q, const float* dq, const float* ddq,
+                      const float* beta, float* tau);
 
 }  // namespace kuka_kr150_2
 }  // namespace modelgen

@@ -3,8 +3,10 @@
 
 #include "generator/emit/model_emitter.hpp"
 
+#include <algorithm>
 #include <cctype>
 
+#include "generator/dynamics/base_parameters.hpp"
 #include "generator/dynamics/newton_euler.hpp"
 #include "generator/emit/printer.hpp"
 #include "generator/output/sha256.hpp"
@@ -58,6 +60,23 @@ std::string json_string(const std::string& text) {
   return out + "\"";
 }
 
+// A JSON number that reads back as the same double ("1.0", "0.05185").
+std::string json_number(double value) { return format_literal(value, Scalar::kDouble); }
+
+// Quoted names, comma-terminated, wrapped before 92 columns.
+void write_name_list(const std::vector<std::string>& names, CodeWriter& out) {
+  std::string line;
+  for (const std::string& name : names) {
+    const std::string item = json_string(name) + ",";
+    if (!line.empty() && line.size() + 1 + item.size() > 92) {
+      out.line(line);
+      line.clear();
+    }
+    line += (line.empty() ? "" : " ") + item;
+  }
+  if (!line.empty()) out.line(line);
+}
+
 std::string pad_left(const std::string& text, std::size_t width) {
   return text.size() >= width ? text : std::string(width - text.size(), ' ') + text;
 }
@@ -86,11 +105,14 @@ GeneratedModel emit_model(const RobotModel& model, const GenerationInput& input)
   const int dof = tree.dof;
   const int num_params = static_cast<int>(tree.params.size());
 
+  const BaseParameterSet base = derive_base_parameters(tree);
+  const int num_base = static_cast<int>(base.params.size());
+
   ExprGraph graph;
   const SymbolicInputs symbols = make_symbolic_inputs(graph, tree);
   std::vector<FunctionSpec> specs;
+  const std::vector<ExprId> W = derive_standard_regressor(graph, tree, symbols);
   {
-    const std::vector<ExprId> W = derive_standard_regressor(graph, tree, symbols);
     FunctionSpec spec{"idim_regressor_standard", {}, {"q", "dq", "ddq"}};
     for (int i = 0; i < dof; ++i) {
       for (int k = 0; k < num_params; ++k) {
@@ -102,6 +124,48 @@ GeneratedModel emit_model(const RobotModel& model, const GenerationInput& input)
     specs.push_back(std::move(spec));
   }
   {
+    // The base regressor is the standard one restricted to the independent columns.
+    FunctionSpec spec{"idim_regressor", {}, {"q", "dq", "ddq"}};
+    for (int i = 0; i < dof; ++i) {
+      for (int b = 0; b < num_base; ++b) {
+        spec.outputs.push_back({"W[" + std::to_string(i * num_base + b) + "]",
+                                W[i * num_params + base.params[b].standard_index],
+                                i == 0 ? base.params[b].name : std::string()});
+      }
+    }
+    specs.push_back(std::move(spec));
+  }
+  {
+    // Newton-Euler with each base parameter in place of the standard one it is built on and
+    // the absorbed parameters at zero: tau = W_std p = W_base beta (Gautier & Briot eq. 4).
+    SymbolicInputs base_symbols = symbols;
+    std::fill(base_symbols.p.begin(), base_symbols.p.end(), graph.zero());
+    for (int b = 0; b < num_base; ++b) {
+      base_symbols.p[base.params[b].standard_index] =
+          graph.symbol({"beta[" + std::to_string(b) + "]", SymbolKind::kInput, ""});
+    }
+    const std::vector<ExprId> tau = derive_inverse_dynamics(graph, tree, base_symbols);
+    FunctionSpec spec{"inverse_dynamics", {}, {"q", "dq", "ddq", "beta"}};
+    for (int i = 0; i < dof; ++i) {
+      spec.outputs.push_back({"tau[" + std::to_string(i) + "]", tau[i], ""});
+    }
+    specs.push_back(std::move(spec));
+  }
+  {
+    FunctionSpec spec{"base_from_standard", {}, {"p_standard"}};
+    for (int b = 0; b < num_base; ++b) {
+      std::vector<ExprId> terms;
+      for (const auto& [k, coefficient] : base.params[b].relation) {
+        terms.push_back(graph.mul(
+            graph.constant(coefficient),
+            graph.symbol({"p_standard[" + std::to_string(k) + "]", SymbolKind::kInput, ""})));
+      }
+      spec.outputs.push_back({"beta[" + std::to_string(b) + "]", graph.add(terms),
+                              base.params[b].name});
+    }
+    specs.push_back(std::move(spec));
+  }
+  {
     const std::vector<ExprId> tau = derive_inverse_dynamics(graph, tree, symbols);
     FunctionSpec spec{"inverse_dynamics_standard", {}, {"q", "dq", "ddq", "p"}};
     for (int i = 0; i < dof; ++i) {
@@ -109,6 +173,15 @@ GeneratedModel emit_model(const RobotModel& model, const GenerationInput& input)
     }
     specs.push_back(std::move(spec));
   }
+
+  // Order of appearance in the generated files: standard-parameter functions, the
+  // regrouping, then the base-parameter functions.
+  const std::vector<std::string> order = {"idim_regressor_standard", "inverse_dynamics_standard",
+                                          "base_from_standard", "idim_regressor",
+                                          "inverse_dynamics"};
+  std::stable_sort(specs.begin(), specs.end(), [&order](const FunctionSpec& a, const FunctionSpec& b) {
+    return std::find(order.begin(), order.end(), a.name) < std::find(order.begin(), order.end(), b.name);
+  });
 
   std::vector<EmittedFunction> functions;
   GeneratedModel result;
@@ -159,6 +232,10 @@ GeneratedModel emit_model(const RobotModel& model, const GenerationInput& input)
   for (char c : model.name) guard += static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
   guard += "_HPP_";
 
+  std::vector<std::string> standard_names, base_names;
+  for (const StandardParam& p : tree.params) standard_names.push_back(p.name);
+  for (const BaseParameter& b : base.params) base_names.push_back(b.name);
+
   const std::string header_name = input.stem + ".hpp";
   const std::string source_name = input.stem + ".cpp";
   const std::string header =
@@ -169,6 +246,7 @@ GeneratedModel emit_model(const RobotModel& model, const GenerationInput& input)
           .set("format_version", kFormatVersion)
           .set("dof", dof)
           .set("standard_param_count", num_params)
+          .set("base_param_count", num_base)
           .set_block("declarations",
                      [&](CodeWriter& out) {
                        for (std::size_t i = 0; i < functions.size(); ++i) {
@@ -199,18 +277,9 @@ GeneratedModel emit_model(const RobotModel& model, const GenerationInput& input)
           .set("header", header_name)
           .set("robot", model.name)
           .set_block("standard_param_names",
-                     [&](CodeWriter& out) {
-                       std::string line;
-                       for (int k = 0; k < num_params; ++k) {
-                         const std::string item = json_string(tree.params[k].name) + ",";
-                         if (!line.empty() && line.size() + 1 + item.size() > 92) {
-                           out.line(line);
-                           line.clear();
-                         }
-                         line += (line.empty() ? "" : " ") + item;
-                       }
-                       if (!line.empty()) out.line(line);
-                     })
+                     [&](CodeWriter& out) { write_name_list(standard_names, out); })
+          .set_block("base_param_names",
+                     [&](CodeWriter& out) { write_name_list(base_names, out); })
           .set_block("definitions",
                      [&](CodeWriter& out) {
                        bool first = true;
@@ -264,6 +333,20 @@ GeneratedModel emit_model(const RobotModel& model, const GenerationInput& input)
                      [&](CodeWriter& out) {
                        for (int k = 0; k < num_params; ++k) {
                          out.line(json_string(tree.params[k].name) + (k + 1 < num_params ? "," : ""));
+                       }
+                     })
+          .set_block("base_parameters",
+                     [&](CodeWriter& out) {
+                       for (int b = 0; b < num_base; ++b) {
+                         std::string relation;
+                         for (const auto& [k, coefficient] : base.params[b].relation) {
+                           relation += (relation.empty() ? "" : ", ") +
+                                       json_string(tree.params[k].name) + ": " +
+                                       json_number(coefficient);
+                         }
+                         out.line("{\"name\": " + json_string(base.params[b].name) +
+                                  ", \"relation\": {" + relation + "}}" +
+                                  (b + 1 < num_base ? "," : ""));
                        }
                      })
           .set_block("functions",

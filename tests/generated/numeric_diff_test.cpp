@@ -69,6 +69,33 @@ TEST_F(GeneratedModel, EqualsNumericReferenceOnRandomStates) {
   EXPECT_LT(worst_tau, 1e-10);
 }
 
+TEST_F(GeneratedModel, BaseParameterFunctionsEqualTheStandardModel) {
+  const int n = model::kDof, np = model::kStandardParams, nb = model::kBaseParams;
+  ASSERT_LE(nb, np);
+  test::Random random(31);
+  std::vector<double> beta(nb), W_base(n * nb), tau(n);
+  double worst = 0;
+  for (int s = 0; s < kStates; ++s) {
+    const Eigen::VectorXd q = random.vector(n, -3.2, 3.2), dq = random.vector(n, -3, 3),
+                          ddq = random.vector(n, -10, 10);
+    const Eigen::VectorXd p = test::random_physical_parameters(description_.tree, random);
+    model::base_from_standard(p.data(), beta.data());
+    model::inverse_dynamics(q.data(), dq.data(), ddq.data(), beta.data(), tau.data());
+    model::idim_regressor(q.data(), dq.data(), ddq.data(), W_base.data());
+    // The base model reproduces the reference torques of the standard parameters.
+    const Eigen::VectorXd expected = reference_.inverse_dynamics(q, dq, ddq, p);
+    const Eigen::Map<const Eigen::VectorXd> tau_base(tau.data(), n);
+    worst = std::max(worst, test::relative_error(tau_base, expected, 1.0));
+    const Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>
+        W(W_base.data(), n, nb);
+    const Eigen::VectorXd W_beta = W * Eigen::Map<const Eigen::VectorXd>(beta.data(), nb);
+    EXPECT_LT(test::relative_error(W_beta, expected, 1.0), 1e-10);
+  }
+  std::cout << "[ GENERATED] " << MODELGEN_ROBOT_DESCRIPTION << ": " << nb << " base parameters, "
+            << "worst relative difference of the base inverse dynamics " << worst << "\n";
+  EXPECT_LT(worst, 1e-10);
+}
+
 TEST_F(GeneratedModel, EqualsKdlOnSerialRobots) {
   if (!test::is_serial(description_.tree)) GTEST_SKIP() << "a tree: KDL's chain solver does not apply";
   const int n = model::kDof;
