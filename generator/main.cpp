@@ -8,6 +8,7 @@
 
 #include "generator/description/describe.hpp"
 #include "generator/description/load_robot.hpp"
+#include "generator/dynamics/base_report.hpp"
 #include "generator/generate.hpp"
 #include "generator/version.hpp"
 
@@ -17,6 +18,7 @@ constexpr const char* kUsage =
     "usage: modelgen ROBOT -o DIR [--scalar double|float|both] [--base LINK] [--tip LINK]\n"
     "                [--name NAME]\n"
     "       modelgen describe ROBOT [--base LINK] [--tip LINK] [--name NAME]\n"
+    "       modelgen base ROBOT [--base LINK] [--tip LINK] [--name NAME]\n"
     "       modelgen --version | --help\n"
     "\n"
     "ROBOT is a modified-DH description (.yaml) or a URDF (.urdf).\n"
@@ -24,6 +26,7 @@ constexpr const char* kUsage =
     "                name without extension); all three are replaced together or not at all\n"
     "  --scalar T    entry points for double, float or both (default both)\n"
     "  describe      print the parsed model: joints, drive chain, standard parameters\n"
+    "  base          print the base parameters and their regrouping relations\n"
     "  --base LINK   URDF: link to use as the fixed base (default: the URDF root)\n"
     "  --tip LINK    URDF: keep only the chain from the base to this link\n"
     "  --name NAME   robot name (C++ namespace of generated code; default: from the file)\n";
@@ -33,7 +36,7 @@ struct UsageError {
 };
 
 struct Arguments {
-  std::string command;  // "describe" or "generate"
+  std::string command;  // "describe", "base" or "generate"
   std::string robot;
   std::string output_dir;
   std::string scalar = "both";
@@ -69,10 +72,10 @@ Arguments parse(int argc, char** argv) {
     }
   }
   if (positional.empty()) throw UsageError{"no robot description given"};
-  if (positional[0] == "describe") {
-    if (positional.size() != 2) throw UsageError{"describe takes exactly one ROBOT file"};
-    if (!args.output_dir.empty()) throw UsageError{"describe writes no files; drop -o"};
-    args.command = "describe";
+  if (positional[0] == "describe" || positional[0] == "base") {
+    args.command = positional[0];
+    if (positional.size() != 2) throw UsageError{args.command + " takes exactly one ROBOT file"};
+    if (!args.output_dir.empty()) throw UsageError{args.command + " writes no files; drop -o"};
     args.robot = positional[1];
     return args;
   }
@@ -98,6 +101,10 @@ int main(int argc, char** argv) {
     const Arguments args = parse(argc, argv);
     if (args.command == "describe") {
       std::cout << modelgen::gen::describe(modelgen::gen::load_robot(args.robot, args.load));
+    } else if (args.command == "base") {
+      const modelgen::gen::RobotModel model = modelgen::gen::load_robot(args.robot, args.load);
+      std::cout << modelgen::gen::describe_base_parameters(
+          model, modelgen::gen::derive_base_parameters(model.tree));
     } else {
       modelgen::gen::generate_from_file(args.robot, args.load, args.scalar).files.write_to(args.output_dir);
     }

@@ -86,6 +86,16 @@ TEST(ModelgenCli, FloatOnlyGeneration) {
   EXPECT_NE(header.find("// Regenerate: modelgen tx40.yaml -o <dir> --scalar float"), std::string::npos);
 }
 
+TEST(ModelgenCli, BasePrintsRegroupingRelations) {
+  const CliRun run = modelgen("base '" + test::source_path("robots/tx40.yaml") + "'");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  // Khalil's rule for the TX-40 (Table I): ZZ1R absorbs Ia1, YY2, YY3, 2 r3 MZ3 = 0.07 MZ3 and
+  // (d3^2 + r3^2) = 0.05185 times the masses beyond link 2.
+  EXPECT_NE(run.out.find("ZZ1R = ZZ1 + Ia1 + YY2 + YY3 + 0.07 MZ3 + 0.05185 M3"), std::string::npos)
+      << run.out;
+  EXPECT_NE(run.out.find("58 of 94"), std::string::npos) << run.out;
+}
+
 TEST(ModelgenCli, UsageErrorsExitTwo) {
   const std::string robot = "'" + test::source_path("robots/tx40.yaml") + "'";
   for (const std::string& arguments :
