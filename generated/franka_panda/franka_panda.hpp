@@ -3,12 +3,17 @@
 // Input SHA-256: 63792d2679f22c4e41cda2c4d9d903644e628970ad0656b9eec8485113941555
 // The generated code belongs to the owner of the robot description.
 //
-// Function                          mul    add  sin/cos
-// idim_regressor_standard          1899   1321       12
-// inverse_dynamics_standard         719    629       12
-// base_from_standard                 56    105        0
-// idim_regressor                   1380    981       12
-// inverse_dynamics                  609    536       12
+// Function                              mul    add  sin/cos
+// idim_regressor_standard              1899   1322       12
+// inverse_dynamics_standard             714    573       12
+// joint_sincos                            0      0       18
+// idim_regressor_standard_sincos       1899   1322        0
+// inverse_dynamics_standard_sincos      714    573        0
+// base_from_standard                     56    105        0
+// idim_regressor                       1377    981       12
+// inverse_dynamics                      604    480       12
+// idim_regressor_sincos                1377    981        0
+// inverse_dynamics_sincos               604    480        0
 #ifndef MODELGEN_PANDA_HPP_
 #define MODELGEN_PANDA_HPP_
 
@@ -47,6 +52,28 @@ void inverse_dynamics_standard(const double* q, const double* dq, const double* 
 void inverse_dynamics_standard(const float* q, const float* dq, const float* ddq,
                                const float* p, float* tau);
 
+// sin and cos of every joint variable, for the *_sincos entry points: a caller evaluating
+// several functions at one state pays for the trigonometry once. Input q: kDof joint
+// positions; outputs sin_q, cos_q: kDof values each (also for prismatic joints, unused there).
+void joint_sincos(const double* q, double* sin_q, double* cos_q);
+void joint_sincos(const float* q, float* sin_q, float* cos_q);
+
+// idim_regressor_standard with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
+// computing them; identical results.
+void idim_regressor_standard_sincos(const double* q, const double* sin_q, const double* cos_q,
+                                    const double* dq, const double* ddq, double* W);
+void idim_regressor_standard_sincos(const float* q, const float* sin_q, const float* cos_q,
+                                    const float* dq, const float* ddq, float* W);
+
+// inverse_dynamics_standard with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
+// computing them; identical results.
+void inverse_dynamics_standard_sincos(const double* q, const double* sin_q,
+                                      const double* cos_q, const double* dq,
+                                      const double* ddq, const double* p, double* tau);
+void inverse_dynamics_standard_sincos(const float* q, const float* sin_q,
+                                      const float* cos_q, const float* dq,
+                                      const float* ddq, const float* p, float* tau);
+
 // The base parameters from the standard ones: the regrouping relations beta = K * p_standard.
 // Input p_standard: kStandardParams values in the order of kStandardParamNames.
 // Output beta: kBaseParams values in the order of kBaseParamNames.
@@ -67,6 +94,22 @@ void inverse_dynamics(const double* q, const double* dq, const double* ddq,
                       const double* beta, double* tau);
 void inverse_dynamics(const float* q, const float* dq, const float* ddq,
                       const float* beta, float* tau);
+
+// idim_regressor with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of computing
+// them; identical results.
+void idim_regressor_sincos(const double* q, const double* sin_q, const double* cos_q,
+                           const double* dq, const double* ddq, double* W);
+void idim_regressor_sincos(const float* q, const float* sin_q, const float* cos_q,
+                           const float* dq, const float* ddq, float* W);
+
+// inverse_dynamics with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of computing
+// them; identical results.
+void inverse_dynamics_sincos(const double* q, const double* sin_q, const double* cos_q,
+                             const double* dq, const double* ddq, const double* beta,
+                             double* tau);
+void inverse_dynamics_sincos(const float* q, const float* sin_q, const float* cos_q,
+                             const float* dq, const float* ddq, const float* beta,
+                             float* tau);
 
 }  // namespace panda
 }  // namespace modelgen

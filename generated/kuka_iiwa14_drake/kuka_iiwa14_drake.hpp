@@ -3,12 +3,17 @@
 // Input SHA-256: e9f934b402dc71dcd3de1f216272250ece58e755e59c0d64b48121c2bc8b1f6f
 // The generated code belongs to the owner of the robot description.
 //
-// Function                          mul    add  sin/cos
-// idim_regressor_standard          1181    831       12
-// inverse_dynamics_standard         484    441       12
-// base_from_standard                 23     59        0
-// idim_regressor                    838    609       12
-// inverse_dynamics                  422    391       12
+// Function                              mul    add  sin/cos
+// idim_regressor_standard              1181    831       12
+// inverse_dynamics_standard             484    397       12
+// joint_sincos                            0      0       14
+// idim_regressor_standard_sincos       1181    831        0
+// inverse_dynamics_standard_sincos      484    397        0
+// base_from_standard                     23     59        0
+// idim_regressor                        838    609       12
+// inverse_dynamics                      422    347       12
+// idim_regressor_sincos                 838    609        0
+// inverse_dynamics_sincos               422    347        0
 #ifndef MODELGEN_IIWA14_HPP_
 #define MODELGEN_IIWA14_HPP_
 
@@ -47,6 +52,28 @@ void inverse_dynamics_standard(const double* q, const double* dq, const double* 
 void inverse_dynamics_standard(const float* q, const float* dq, const float* ddq,
                                const float* p, float* tau);
 
+// sin and cos of every joint variable, for the *_sincos entry points: a caller evaluating
+// several functions at one state pays for the trigonometry once. Input q: kDof joint
+// positions; outputs sin_q, cos_q: kDof values each (also for prismatic joints, unused there).
+void joint_sincos(const double* q, double* sin_q, double* cos_q);
+void joint_sincos(const float* q, float* sin_q, float* cos_q);
+
+// idim_regressor_standard with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
+// computing them; identical results.
+void idim_regressor_standard_sincos(const double* q, const double* sin_q, const double* cos_q,
+                                    const double* dq, const double* ddq, double* W);
+void idim_regressor_standard_sincos(const float* q, const float* sin_q, const float* cos_q,
+                                    const float* dq, const float* ddq, float* W);
+
+// inverse_dynamics_standard with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
+// computing them; identical results.
+void inverse_dynamics_standard_sincos(const double* q, const double* sin_q,
+                                      const double* cos_q, const double* dq,
+                                      const double* ddq, const double* p, double* tau);
+void inverse_dynamics_standard_sincos(const float* q, const float* sin_q,
+                                      const float* cos_q, const float* dq,
+                                      const float* ddq, const float* p, float* tau);
+
 // The base parameters from the standard ones: the regrouping relations beta = K * p_standard.
 // Input p_standard: kStandardParams values in the order of kStandardParamNames.
 // Output beta: kBaseParams values in the order of kBaseParamNames.
@@ -67,6 +94,22 @@ void inverse_dynamics(const double* q, const double* dq, const double* ddq,
                       const double* beta, double* tau);
 void inverse_dynamics(const float* q, const float* dq, const float* ddq,
                       const float* beta, float* tau);
+
+// idim_regressor with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of computing
+// them; identical results.
+void idim_regressor_sincos(const double* q, const double* sin_q, const double* cos_q,
+                           const double* dq, const double* ddq, double* W);
+void idim_regressor_sincos(const float* q, const float* sin_q, const float* cos_q,
+                           const float* dq, const float* ddq, float* W);
+
+// inverse_dynamics with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of computing
+// them; identical results.
+void inverse_dynamics_sincos(const double* q, const double* sin_q, const double* cos_q,
+                             const double* dq, const double* ddq, const double* beta,
+                             double* tau);
+void inverse_dynamics_sincos(const float* q, const float* sin_q, const float* cos_q,
+                             const float* dq, const float* ddq, const float* beta,
+                             float* tau);
 
 }  // namespace iiwa14
 }  // namespace modelgen

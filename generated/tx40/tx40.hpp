@@ -3,12 +3,17 @@
 // Input SHA-256: 3de1aa178d9d3b48580bbf173da63f50296442fdc1cd631793cf6dfe00ea895d
 // The generated code belongs to the owner of the robot description.
 //
-// Function                          mul    add  sin/cos
-// idim_regressor_standard           811    607       10
-// inverse_dynamics_standard         438    406       10
-// base_from_standard                 32     70        0
-// idim_regressor                    593    452       10
-// inverse_dynamics                  335    317       10
+// Function                              mul    add  sin/cos
+// idim_regressor_standard               811    607       10
+// inverse_dynamics_standard             438    369       10
+// joint_sincos                            0      0       12
+// idim_regressor_standard_sincos        811    607        0
+// inverse_dynamics_standard_sincos      438    369        0
+// base_from_standard                     32     70        0
+// idim_regressor                        593    452       10
+// inverse_dynamics                      335    281       10
+// idim_regressor_sincos                 593    452        0
+// inverse_dynamics_sincos               335    281        0
 #ifndef MODELGEN_TX40_HPP_
 #define MODELGEN_TX40_HPP_
 
@@ -47,6 +52,28 @@ void inverse_dynamics_standard(const double* q, const double* dq, const double* 
 void inverse_dynamics_standard(const float* q, const float* dq, const float* ddq,
                                const float* p, float* tau);
 
+// sin and cos of every joint variable, for the *_sincos entry points: a caller evaluating
+// several functions at one state pays for the trigonometry once. Input q: kDof joint
+// positions; outputs sin_q, cos_q: kDof values each (also for prismatic joints, unused there).
+void joint_sincos(const double* q, double* sin_q, double* cos_q);
+void joint_sincos(const float* q, float* sin_q, float* cos_q);
+
+// idim_regressor_standard with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
+// computing them; identical results.
+void idim_regressor_standard_sincos(const double* q, const double* sin_q, const double* cos_q,
+                                    const double* dq, const double* ddq, double* W);
+void idim_regressor_standard_sincos(const float* q, const float* sin_q, const float* cos_q,
+                                    const float* dq, const float* ddq, float* W);
+
+// inverse_dynamics_standard with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
+// computing them; identical results.
+void inverse_dynamics_standard_sincos(const double* q, const double* sin_q,
+                                      const double* cos_q, const double* dq,
+                                      const double* ddq, const double* p, double* tau);
+void inverse_dynamics_standard_sincos(const float* q, const float* sin_q,
+                                      const float* cos_q, const float* dq,
+                                      const float* ddq, const float* p, float* tau);
+
 // The base parameters from the standard ones: the regrouping relations beta = K * p_standard.
 // Input p_standard: kStandardParams values in the order of kStandardParamNames.
 // Output beta: kBaseParams values in the order of kBaseParamNames.
@@ -67,6 +94,22 @@ void inverse_dynamics(const double* q, const double* dq, const double* ddq,
                       const double* beta, double* tau);
 void inverse_dynamics(const float* q, const float* dq, const float* ddq,
                       const float* beta, float* tau);
+
+// idim_regressor with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of computing
+// them; identical results.
+void idim_regressor_sincos(const double* q, const double* sin_q, const double* cos_q,
+                           const double* dq, const double* ddq, double* W);
+void idim_regressor_sincos(const float* q, const float* sin_q, const float* cos_q,
+                           const float* dq, const float* ddq, float* W);
+
+// inverse_dynamics with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of computing
+// them; identical results.
+void inverse_dynamics_sincos(const double* q, const double* sin_q, const double* cos_q,
+                             const double* dq, const double* ddq, const double* beta,
+                             double* tau);
+void inverse_dynamics_sincos(const float* q, const float* sin_q, const float* cos_q,
+                             const float* dq, const float* ddq, const float* beta,
+                             float* tau);
 
 }  // namespace tx40
 }  // namespace modelgen

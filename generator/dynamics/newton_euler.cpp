@@ -246,14 +246,17 @@ std::vector<ExprId> derive_standard_regressor(ExprGraph& g, const RigidBodyTree&
     // Carry the wrench down to the base; each moving joint on the way takes its component.
     for (int b = param.body; b >= 0; b = tree.bodies[b].parent) {
       const Body& body = tree.bodies[b];
+      // The joint torque and the antecedent's wrench both read this wrench: compute it once.
+      f = va.share(f);
+      nm = va.share(nm);
       if (body.type != JointType::kFixed) {
         const V3 u = va.vector(body.axis);
         W[body.dof_index * num_params + k] =
             va.dot(body.type == JointType::kRevolute ? nm : f, u);
       }
       if (body.parent >= 0) {
-        const V3 f_parent = va.share(va.mul(m.R[b], va.share(f)));
-        nm = va.share(va.add(va.mul(m.R[b], va.share(nm)), va.cross(m.p[b], f_parent)));
+        const V3 f_parent = va.share(va.mul(m.R[b], f));
+        nm = va.add(va.mul(m.R[b], nm), va.cross(m.p[b], f_parent));
         f = f_parent;
       }
     }
@@ -304,6 +307,9 @@ std::vector<ExprId> derive_inverse_dynamics(ExprGraph& g, const RigidBodyTree& t
   std::vector<ExprId> tau(tree.dof, g.zero());
   for (std::size_t j = n; j-- > 0;) {
     const Body& body = tree.bodies[j];
+    // The joint torque and the antecedent's wrench both read this wrench: compute it once.
+    f[j] = va.share(f[j]);
+    nm[j] = va.share(nm[j]);
     if (body.type != JointType::kFixed) {
       const V3 u = va.vector(body.axis);
       tau[body.dof_index] =
@@ -311,8 +317,8 @@ std::vector<ExprId> derive_inverse_dynamics(ExprGraph& g, const RigidBodyTree& t
     }
     if (body.parent >= 0) {
       // The wrench this body exerts on its antecedent, in the antecedent's frame.
-      const V3 f_parent = va.share(va.mul(m.R[j], va.share(f[j])));
-      const V3 n_parent = va.share(va.add(va.mul(m.R[j], va.share(nm[j])), va.cross(m.p[j], f_parent)));
+      const V3 f_parent = va.share(va.mul(m.R[j], f[j]));
+      const V3 n_parent = va.add(va.mul(m.R[j], nm[j]), va.cross(m.p[j], f_parent));
       f[body.parent] = va.add(f[body.parent], f_parent);
       nm[body.parent] = va.add(nm[body.parent], n_parent);
     }

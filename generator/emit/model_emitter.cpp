@@ -20,6 +20,7 @@ struct FunctionSpec {
   std::string name;  // also the name of its signature template in templates/functions/
   std::vector<FunctionOutput> outputs;
   std::vector<std::string> parameters;  // the input arrays, for unused-parameter checks
+  TrigSource trig = TrigSource::kCompute;
 };
 
 struct EmittedFunction {
@@ -174,11 +175,31 @@ GeneratedModel emit_model(const RobotModel& model, const GenerationInput& input)
     specs.push_back(std::move(spec));
   }
 
+  {
+    FunctionSpec spec{"joint_sincos", {}, {"q"}};
+    for (int i = 0; i < dof; ++i) {
+      spec.outputs.push_back({"sin_q[" + std::to_string(i) + "]", symbols.sin_q[i], ""});
+      spec.outputs.push_back({"cos_q[" + std::to_string(i) + "]", symbols.cos_q[i], ""});
+    }
+    specs.push_back(std::move(spec));
+  }
+  // Variants reading sin/cos from the caller (joint_sincos), for several functions per state.
+  for (std::size_t i = 0, count = specs.size(); i < count; ++i) {
+    if (specs[i].name == "joint_sincos" || specs[i].name == "base_from_standard") continue;
+    FunctionSpec variant = specs[i];
+    variant.name += "_sincos";
+    variant.parameters.push_back("sin_q");
+    variant.parameters.push_back("cos_q");
+    variant.trig = TrigSource::kGiven;
+    specs.push_back(std::move(variant));
+  }
+
   // Order of appearance in the generated files: standard-parameter functions, the
   // regrouping, then the base-parameter functions.
-  const std::vector<std::string> order = {"idim_regressor_standard", "inverse_dynamics_standard",
-                                          "base_from_standard", "idim_regressor",
-                                          "inverse_dynamics"};
+  const std::vector<std::string> order = {
+      "idim_regressor_standard", "inverse_dynamics_standard", "joint_sincos",
+      "idim_regressor_standard_sincos", "inverse_dynamics_standard_sincos", "base_from_standard",
+      "idim_regressor", "inverse_dynamics", "idim_regressor_sincos", "inverse_dynamics_sincos"};
   std::stable_sort(specs.begin(), specs.end(), [&order](const FunctionSpec& a, const FunctionSpec& b) {
     return std::find(order.begin(), order.end(), a.name) < std::find(order.begin(), order.end(), b.name);
   });
@@ -188,7 +209,7 @@ GeneratedModel emit_model(const RobotModel& model, const GenerationInput& input)
   for (const FunctionSpec& spec : specs) {
     EmittedFunction f{&spec, {}};
     for (Scalar scalar : input.scalars) {
-      f.body.push_back(write_statements(graph, spec.outputs, scalar));
+      f.body.push_back(write_statements(graph, spec.outputs, scalar, spec.trig));
     }
     result.functions.push_back({spec.name, f.body[0].counts});
     functions.push_back(std::move(f));
@@ -207,7 +228,7 @@ GeneratedModel emit_model(const RobotModel& model, const GenerationInput& input)
                      auto row = [&](const std::string& name, const std::string& mul,
                                     const std::string& add, const std::string& trig) {
                        std::string text = Printer(embedded_template("banner_row"))
-                                              .set("function", pad_right(name, 30))
+                                              .set("function", pad_right(name, 34))
                                               .set("mul", pad_left(mul, 7))
                                               .set("add", pad_left(add, 7))
                                               .set("trig", pad_left(trig, 9))

@@ -24,9 +24,10 @@ std::string render_line(const char* template_name,
 
 class StatementWriter {
  public:
-  StatementWriter(const ExprGraph& graph, Scalar scalar)
+  StatementWriter(const ExprGraph& graph, Scalar scalar, TrigSource trig)
       : g_(graph),
         scalar_(scalar),
+        trig_(trig),
         uses_(graph.size(), 0),
         name_(graph.size()),
         prepared_(graph.size(), false),
@@ -122,9 +123,17 @@ class StatementWriter {
         case SymbolKind::kPositive: tmpl = "statements/positive"; break;
         case SymbolKind::kNegative: tmpl = "statements/negative"; break;
       }
+      const bool trig = symbol.kind == SymbolKind::kSin || symbol.kind == SymbolKind::kCos;
+      std::string input = symbol.input;
+      if (trig && trig_ == TrigSource::kGiven) {
+        // q[i] -> sin_q[i] or cos_q[i], read instead of computed.
+        --counts_.trig;
+        tmpl = "statements/trig_given";
+        input = (symbol.kind == SymbolKind::kSin ? "sin_" : "cos_") + input;
+      }
       std::vector<std::pair<const char*, std::string>> values = {
-          {"scalar", scalar_name(scalar_)}, {"name", symbol.name}, {"input", symbol.input}};
-      if (symbol.kind != SymbolKind::kSin && symbol.kind != SymbolKind::kCos) {
+          {"scalar", scalar_name(scalar_)}, {"name", symbol.name}, {"input", input}};
+      if (!trig) {
         values.push_back({"zero", zero});
         values.push_back({"one", one});
       }
@@ -234,6 +243,7 @@ class StatementWriter {
 
   const ExprGraph& g_;
   Scalar scalar_;
+  TrigSource trig_;
   std::vector<int> uses_;
   std::vector<std::string> name_;
   std::vector<bool> prepared_;
@@ -245,8 +255,8 @@ class StatementWriter {
 }  // namespace
 
 FunctionBody write_statements(const ExprGraph& graph, const std::vector<FunctionOutput>& outputs,
-                              Scalar scalar) {
-  return StatementWriter(graph, scalar).write(outputs);
+                              Scalar scalar, TrigSource trig) {
+  return StatementWriter(graph, scalar, trig).write(outputs);
 }
 
 }  // namespace modelgen::gen

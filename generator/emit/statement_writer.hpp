@@ -29,7 +29,11 @@ struct FunctionBody {
   OpCounts counts;
 };
 
+/// Where sin and cos of the joint variables come from: computed in the body (std::sin,
+/// std::cos), or read from the caller's arrays sin_q[i] and cos_q[i].
+enum class TrigSource { kCompute, kGiven };
+
 FunctionBody write_statements(const ExprGraph& graph, const std::vector<FunctionOutput>& outputs,
-                              Scalar scalar);
+                              Scalar scalar, TrigSource trig = TrigSource::kCompute);
 
 }  // namespace modelgen::gen

@@ -96,6 +96,40 @@ TEST_F(GeneratedModel, BaseParameterFunctionsEqualTheStandardModel) {
   EXPECT_LT(worst, 1e-10);
 }
 
+TEST_F(GeneratedModel, SincosVariantsEqualThePlainFunctions) {
+  const int n = model::kDof, np = model::kStandardParams, nb = model::kBaseParams;
+  test::Random random(5);
+  std::vector<double> s(n), c(n), beta(nb);
+  std::vector<double> W1(n * np), W2(n * np), Wb1(n * nb), Wb2(n * nb);
+  std::vector<double> t1(n), t2(n), tb1(n), tb2(n);
+  for (int state = 0; state < 1000; ++state) {
+    const Eigen::VectorXd q = random.vector(n, -3.2, 3.2), dq = random.vector(n, -3, 3),
+                          ddq = random.vector(n, -10, 10);
+    const Eigen::VectorXd p = test::random_physical_parameters(description_.tree, random);
+    model::joint_sincos(q.data(), s.data(), c.data());
+    for (int i = 0; i < n; ++i) {
+      EXPECT_EQ(s[i], std::sin(q[i]));
+      EXPECT_EQ(c[i], std::cos(q[i]));
+    }
+    model::base_from_standard(p.data(), beta.data());
+    model::idim_regressor_standard(q.data(), dq.data(), ddq.data(), W1.data());
+    model::idim_regressor_standard_sincos(q.data(), s.data(), c.data(), dq.data(), ddq.data(), W2.data());
+    model::inverse_dynamics_standard(q.data(), dq.data(), ddq.data(), p.data(), t1.data());
+    model::inverse_dynamics_standard_sincos(q.data(), s.data(), c.data(), dq.data(), ddq.data(),
+                                            p.data(), t2.data());
+    model::idim_regressor(q.data(), dq.data(), ddq.data(), Wb1.data());
+    model::idim_regressor_sincos(q.data(), s.data(), c.data(), dq.data(), ddq.data(), Wb2.data());
+    model::inverse_dynamics(q.data(), dq.data(), ddq.data(), beta.data(), tb1.data());
+    model::inverse_dynamics_sincos(q.data(), s.data(), c.data(), dq.data(), ddq.data(), beta.data(),
+                                   tb2.data());
+    // Same statements on the same values: the same doubles.
+    EXPECT_EQ(W1, W2);
+    EXPECT_EQ(t1, t2);
+    EXPECT_EQ(Wb1, Wb2);
+    EXPECT_EQ(tb1, tb2);
+  }
+}
+
 TEST_F(GeneratedModel, EqualsKdlOnSerialRobots) {
   if (!test::is_serial(description_.tree)) GTEST_SKIP() << "a tree: KDL's chain solver does not apply";
   const int n = model::kDof;
