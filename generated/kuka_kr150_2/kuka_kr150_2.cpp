@@ -44,22 +44,22 @@ const char* const kBaseParamNames[kBaseParams] = {
 // Output W: kDof x kStandardParams, row-major: W[i * kStandardParams + k] is the torque of joint
 // i per unit of parameter kStandardParamNames[k]. Every entry is written.
 void idim_regressor_standard(const double* q, const double* dq, const double* ddq, double* W) {
-  const double sg1 = dq[0] > 0.0 ? 1.0 : (dq[0] < 0.0 ? -1.0 : 0.0);
+  const double sg1 = static_cast<double>((dq[0] > 0.0) - (dq[0] < 0.0));
   const double s2 = std::sin(q[1]);
   const double c2 = std::cos(q[1]);
-  const double sg2 = dq[1] > 0.0 ? 1.0 : (dq[1] < 0.0 ? -1.0 : 0.0);
+  const double sg2 = static_cast<double>((dq[1] > 0.0) - (dq[1] < 0.0));
   const double s3 = std::sin(q[2]);
   const double c3 = std::cos(q[2]);
-  const double sg3 = dq[2] > 0.0 ? 1.0 : (dq[2] < 0.0 ? -1.0 : 0.0);
+  const double sg3 = static_cast<double>((dq[2] > 0.0) - (dq[2] < 0.0));
   const double s4 = std::sin(q[3]);
   const double c4 = std::cos(q[3]);
-  const double sg4 = dq[3] > 0.0 ? 1.0 : (dq[3] < 0.0 ? -1.0 : 0.0);
+  const double sg4 = static_cast<double>((dq[3] > 0.0) - (dq[3] < 0.0));
   const double s5 = std::sin(q[4]);
   const double c5 = std::cos(q[4]);
-  const double sg5 = dq[4] > 0.0 ? 1.0 : (dq[4] < 0.0 ? -1.0 : 0.0);
+  const double sg5 = static_cast<double>((dq[4] > 0.0) - (dq[4] < 0.0));
   const double s6 = std::sin(q[5]);
   const double c6 = std::cos(q[5]);
-  const double sg6 = dq[5] > 0.0 ? 1.0 : (dq[5] < 0.0 ? -1.0 : 0.0);
+  const double sg6 = static_cast<double>((dq[5] > 0.0) - (dq[5] < 0.0));
   W[0] = 0.0;  // XX1
   W[1] = 0.0;  // XY1
   W[2] = 0.0;  // XZ1
@@ -899,22 +899,22 @@ void idim_regressor_standard(const double* q, const double* dq, const double* dd
 // Output W: kDof x kStandardParams, row-major: W[i * kStandardParams + k] is the torque of joint
 // i per unit of parameter kStandardParamNames[k]. Every entry is written.
 void idim_regressor_standard(const float* q, const float* dq, const float* ddq, float* W) {
-  const float sg1 = dq[0] > 0.0f ? 1.0f : (dq[0] < 0.0f ? -1.0f : 0.0f);
+  const float sg1 = static_cast<float>((dq[0] > 0.0f) - (dq[0] < 0.0f));
   const float s2 = std::sin(q[1]);
   const float c2 = std::cos(q[1]);
-  const float sg2 = dq[1] > 0.0f ? 1.0f : (dq[1] < 0.0f ? -1.0f : 0.0f);
+  const float sg2 = static_cast<float>((dq[1] > 0.0f) - (dq[1] < 0.0f));
   const float s3 = std::sin(q[2]);
   const float c3 = std::cos(q[2]);
-  const float sg3 = dq[2] > 0.0f ? 1.0f : (dq[2] < 0.0f ? -1.0f : 0.0f);
+  const float sg3 = static_cast<float>((dq[2] > 0.0f) - (dq[2] < 0.0f));
   const float s4 = std::sin(q[3]);
   const float c4 = std::cos(q[3]);
-  const float sg4 = dq[3] > 0.0f ? 1.0f : (dq[3] < 0.0f ? -1.0f : 0.0f);
+  const float sg4 = static_cast<float>((dq[3] > 0.0f) - (dq[3] < 0.0f));
   const float s5 = std::sin(q[4]);
   const float c5 = std::cos(q[4]);
-  const float sg5 = dq[4] > 0.0f ? 1.0f : (dq[4] < 0.0f ? -1.0f : 0.0f);
+  const float sg5 = static_cast<float>((dq[4] > 0.0f) - (dq[4] < 0.0f));
   const float s6 = std::sin(q[5]);
   const float c6 = std::cos(q[5]);
-  const float sg6 = dq[5] > 0.0f ? 1.0f : (dq[5] < 0.0f ? -1.0f : 0.0f);
+  const float sg6 = static_cast<float>((dq[5] > 0.0f) - (dq[5] < 0.0f));
   W[0] = 0.0f;  // XX1
   W[1] = 0.0f;  // XY1
   W[2] = 0.0f;  // XZ1
@@ -1755,22 +1755,22 @@ void idim_regressor_standard(const float* q, const float* dq, const float* ddq, 
 // inertia, friction and offsets as the description enables them.
 void inverse_dynamics_standard(const double* q, const double* dq, const double* ddq,
                                const double* p, double* tau) {
-  const double sg1 = dq[0] > 0.0 ? 1.0 : (dq[0] < 0.0 ? -1.0 : 0.0);
+  const double sg1 = static_cast<double>((dq[0] > 0.0) - (dq[0] < 0.0));
   const double s2 = std::sin(q[1]);
   const double c2 = std::cos(q[1]);
-  const double sg2 = dq[1] > 0.0 ? 1.0 : (dq[1] < 0.0 ? -1.0 : 0.0);
+  const double sg2 = static_cast<double>((dq[1] > 0.0) - (dq[1] < 0.0));
   const double s3 = std::sin(q[2]);
   const double c3 = std::cos(q[2]);
-  const double sg3 = dq[2] > 0.0 ? 1.0 : (dq[2] < 0.0 ? -1.0 : 0.0);
+  const double sg3 = static_cast<double>((dq[2] > 0.0) - (dq[2] < 0.0));
   const double s4 = std::sin(q[3]);
   const double c4 = std::cos(q[3]);
-  const double sg4 = dq[3] > 0.0 ? 1.0 : (dq[3] < 0.0 ? -1.0 : 0.0);
+  const double sg4 = static_cast<double>((dq[3] > 0.0) - (dq[3] < 0.0));
   const double s5 = std::sin(q[4]);
   const double c5 = std::cos(q[4]);
-  const double sg5 = dq[4] > 0.0 ? 1.0 : (dq[4] < 0.0 ? -1.0 : 0.0);
+  const double sg5 = static_cast<double>((dq[4] > 0.0) - (dq[4] < 0.0));
   const double s6 = std::sin(q[5]);
   const double c6 = std::cos(q[5]);
-  const double sg6 = dq[5] > 0.0 ? 1.0 : (dq[5] < 0.0 ? -1.0 : 0.0);
+  const double sg6 = static_cast<double>((dq[5] > 0.0) - (dq[5] < 0.0));
   const double t0 = -dq[0] * c2;
   const double t1 = dq[0] * s2;
   const double t2 = -ddq[0] * c2 + dq[0] * dq[1] * s2;
@@ -1887,22 +1887,22 @@ void inverse_dynamics_standard(const double* q, const double* dq, const double* 
 // inertia, friction and offsets as the description enables them.
 void inverse_dynamics_standard(const float* q, const float* dq, const float* ddq,
                                const float* p, float* tau) {
-  const float sg1 = dq[0] > 0.0f ? 1.0f : (dq[0] < 0.0f ? -1.0f : 0.0f);
+  const float sg1 = static_cast<float>((dq[0] > 0.0f) - (dq[0] < 0.0f));
   const float s2 = std::sin(q[1]);
   const float c2 = std::cos(q[1]);
-  const float sg2 = dq[1] > 0.0f ? 1.0f : (dq[1] < 0.0f ? -1.0f : 0.0f);
+  const float sg2 = static_cast<float>((dq[1] > 0.0f) - (dq[1] < 0.0f));
   const float s3 = std::sin(q[2]);
   const float c3 = std::cos(q[2]);
-  const float sg3 = dq[2] > 0.0f ? 1.0f : (dq[2] < 0.0f ? -1.0f : 0.0f);
+  const float sg3 = static_cast<float>((dq[2] > 0.0f) - (dq[2] < 0.0f));
   const float s4 = std::sin(q[3]);
   const float c4 = std::cos(q[3]);
-  const float sg4 = dq[3] > 0.0f ? 1.0f : (dq[3] < 0.0f ? -1.0f : 0.0f);
+  const float sg4 = static_cast<float>((dq[3] > 0.0f) - (dq[3] < 0.0f));
   const float s5 = std::sin(q[4]);
   const float c5 = std::cos(q[4]);
-  const float sg5 = dq[4] > 0.0f ? 1.0f : (dq[4] < 0.0f ? -1.0f : 0.0f);
+  const float sg5 = static_cast<float>((dq[4] > 0.0f) - (dq[4] < 0.0f));
   const float s6 = std::sin(q[5]);
   const float c6 = std::cos(q[5]);
-  const float sg6 = dq[5] > 0.0f ? 1.0f : (dq[5] < 0.0f ? -1.0f : 0.0f);
+  const float sg6 = static_cast<float>((dq[5] > 0.0f) - (dq[5] < 0.0f));
   const float t0 = -dq[0] * c2;
   const float t1 = dq[0] * s2;
   const float t2 = -ddq[0] * c2 + dq[0] * dq[1] * s2;
@@ -2078,22 +2078,22 @@ void joint_sincos(const float* q, float* sin_q, float* cos_q) {
 void idim_regressor_standard_sincos(const double* q, const double* sin_q, const double* cos_q,
                                     const double* dq, const double* ddq, double* W) {
   static_cast<void>(q);
-  const double sg1 = dq[0] > 0.0 ? 1.0 : (dq[0] < 0.0 ? -1.0 : 0.0);
+  const double sg1 = static_cast<double>((dq[0] > 0.0) - (dq[0] < 0.0));
   const double s2 = sin_q[1];
   const double c2 = cos_q[1];
-  const double sg2 = dq[1] > 0.0 ? 1.0 : (dq[1] < 0.0 ? -1.0 : 0.0);
+  const double sg2 = static_cast<double>((dq[1] > 0.0) - (dq[1] < 0.0));
   const double s3 = sin_q[2];
   const double c3 = cos_q[2];
-  const double sg3 = dq[2] > 0.0 ? 1.0 : (dq[2] < 0.0 ? -1.0 : 0.0);
+  const double sg3 = static_cast<double>((dq[2] > 0.0) - (dq[2] < 0.0));
   const double s4 = sin_q[3];
   const double c4 = cos_q[3];
-  const double sg4 = dq[3] > 0.0 ? 1.0 : (dq[3] < 0.0 ? -1.0 : 0.0);
+  const double sg4 = static_cast<double>((dq[3] > 0.0) - (dq[3] < 0.0));
   const double s5 = sin_q[4];
   const double c5 = cos_q[4];
-  const double sg5 = dq[4] > 0.0 ? 1.0 : (dq[4] < 0.0 ? -1.0 : 0.0);
+  const double sg5 = static_cast<double>((dq[4] > 0.0) - (dq[4] < 0.0));
   const double s6 = sin_q[5];
   const double c6 = cos_q[5];
-  const double sg6 = dq[5] > 0.0 ? 1.0 : (dq[5] < 0.0 ? -1.0 : 0.0);
+  const double sg6 = static_cast<double>((dq[5] > 0.0) - (dq[5] < 0.0));
   W[0] = 0.0;  // XX1
   W[1] = 0.0;  // XY1
   W[2] = 0.0;  // XZ1
@@ -2933,22 +2933,22 @@ void idim_regressor_standard_sincos(const double* q, const double* sin_q, const 
 void idim_regressor_standard_sincos(const float* q, const float* sin_q, const float* cos_q,
                                     const float* dq, const float* ddq, float* W) {
   static_cast<void>(q);
-  const float sg1 = dq[0] > 0.0f ? 1.0f : (dq[0] < 0.0f ? -1.0f : 0.0f);
+  const float sg1 = static_cast<float>((dq[0] > 0.0f) - (dq[0] < 0.0f));
   const float s2 = sin_q[1];
   const float c2 = cos_q[1];
-  const float sg2 = dq[1] > 0.0f ? 1.0f : (dq[1] < 0.0f ? -1.0f : 0.0f);
+  const float sg2 = static_cast<float>((dq[1] > 0.0f) - (dq[1] < 0.0f));
   const float s3 = sin_q[2];
   const float c3 = cos_q[2];
-  const float sg3 = dq[2] > 0.0f ? 1.0f : (dq[2] < 0.0f ? -1.0f : 0.0f);
+  const float sg3 = static_cast<float>((dq[2] > 0.0f) - (dq[2] < 0.0f));
   const float s4 = sin_q[3];
   const float c4 = cos_q[3];
-  const float sg4 = dq[3] > 0.0f ? 1.0f : (dq[3] < 0.0f ? -1.0f : 0.0f);
+  const float sg4 = static_cast<float>((dq[3] > 0.0f) - (dq[3] < 0.0f));
   const float s5 = sin_q[4];
   const float c5 = cos_q[4];
-  const float sg5 = dq[4] > 0.0f ? 1.0f : (dq[4] < 0.0f ? -1.0f : 0.0f);
+  const float sg5 = static_cast<float>((dq[4] > 0.0f) - (dq[4] < 0.0f));
   const float s6 = sin_q[5];
   const float c6 = cos_q[5];
-  const float sg6 = dq[5] > 0.0f ? 1.0f : (dq[5] < 0.0f ? -1.0f : 0.0f);
+  const float sg6 = static_cast<float>((dq[5] > 0.0f) - (dq[5] < 0.0f));
   W[0] = 0.0f;  // XX1
   W[1] = 0.0f;  // XY1
   W[2] = 0.0f;  // XZ1
@@ -3789,22 +3789,22 @@ void inverse_dynamics_standard_sincos(const double* q, const double* sin_q,
                                       const double* cos_q, const double* dq,
                                       const double* ddq, const double* p, double* tau) {
   static_cast<void>(q);
-  const double sg1 = dq[0] > 0.0 ? 1.0 : (dq[0] < 0.0 ? -1.0 : 0.0);
+  const double sg1 = static_cast<double>((dq[0] > 0.0) - (dq[0] < 0.0));
   const double s2 = sin_q[1];
   const double c2 = cos_q[1];
-  const double sg2 = dq[1] > 0.0 ? 1.0 : (dq[1] < 0.0 ? -1.0 : 0.0);
+  const double sg2 = static_cast<double>((dq[1] > 0.0) - (dq[1] < 0.0));
   const double s3 = sin_q[2];
   const double c3 = cos_q[2];
-  const double sg3 = dq[2] > 0.0 ? 1.0 : (dq[2] < 0.0 ? -1.0 : 0.0);
+  const double sg3 = static_cast<double>((dq[2] > 0.0) - (dq[2] < 0.0));
   const double s4 = sin_q[3];
   const double c4 = cos_q[3];
-  const double sg4 = dq[3] > 0.0 ? 1.0 : (dq[3] < 0.0 ? -1.0 : 0.0);
+  const double sg4 = static_cast<double>((dq[3] > 0.0) - (dq[3] < 0.0));
   const double s5 = sin_q[4];
   const double c5 = cos_q[4];
-  const double sg5 = dq[4] > 0.0 ? 1.0 : (dq[4] < 0.0 ? -1.0 : 0.0);
+  const double sg5 = static_cast<double>((dq[4] > 0.0) - (dq[4] < 0.0));
   const double s6 = sin_q[5];
   const double c6 = cos_q[5];
-  const double sg6 = dq[5] > 0.0 ? 1.0 : (dq[5] < 0.0 ? -1.0 : 0.0);
+  const double sg6 = static_cast<double>((dq[5] > 0.0) - (dq[5] < 0.0));
   const double t0 = -dq[0] * c2;
   const double t1 = dq[0] * s2;
   const double t2 = -ddq[0] * c2 + dq[0] * dq[1] * s2;
@@ -3921,22 +3921,22 @@ void inverse_dynamics_standard_sincos(const float* q, const float* sin_q,
                                       const float* cos_q, const float* dq,
                                       const float* ddq, const float* p, float* tau) {
   static_cast<void>(q);
-  const float sg1 = dq[0] > 0.0f ? 1.0f : (dq[0] < 0.0f ? -1.0f : 0.0f);
+  const float sg1 = static_cast<float>((dq[0] > 0.0f) - (dq[0] < 0.0f));
   const float s2 = sin_q[1];
   const float c2 = cos_q[1];
-  const float sg2 = dq[1] > 0.0f ? 1.0f : (dq[1] < 0.0f ? -1.0f : 0.0f);
+  const float sg2 = static_cast<float>((dq[1] > 0.0f) - (dq[1] < 0.0f));
   const float s3 = sin_q[2];
   const float c3 = cos_q[2];
-  const float sg3 = dq[2] > 0.0f ? 1.0f : (dq[2] < 0.0f ? -1.0f : 0.0f);
+  const float sg3 = static_cast<float>((dq[2] > 0.0f) - (dq[2] < 0.0f));
   const float s4 = sin_q[3];
   const float c4 = cos_q[3];
-  const float sg4 = dq[3] > 0.0f ? 1.0f : (dq[3] < 0.0f ? -1.0f : 0.0f);
+  const float sg4 = static_cast<float>((dq[3] > 0.0f) - (dq[3] < 0.0f));
   const float s5 = sin_q[4];
   const float c5 = cos_q[4];
-  const float sg5 = dq[4] > 0.0f ? 1.0f : (dq[4] < 0.0f ? -1.0f : 0.0f);
+  const float sg5 = static_cast<float>((dq[4] > 0.0f) - (dq[4] < 0.0f));
   const float s6 = sin_q[5];
   const float c6 = cos_q[5];
-  const float sg6 = dq[5] > 0.0f ? 1.0f : (dq[5] < 0.0f ? -1.0f : 0.0f);
+  const float sg6 = static_cast<float>((dq[5] > 0.0f) - (dq[5] < 0.0f));
   const float t0 = -dq[0] * c2;
   const float t1 = dq[0] * s2;
   const float t2 = -ddq[0] * c2 + dq[0] * dq[1] * s2;
@@ -4196,22 +4196,22 @@ void base_from_standard(const float* p_standard, float* beta) {
 // velocities and accelerations. Output W: kDof x kBaseParams, row-major:
 // W[i * kBaseParams + k] is the torque of joint i per unit of kBaseParamNames[k].
 void idim_regressor(const double* q, const double* dq, const double* ddq, double* W) {
-  const double sg1 = dq[0] > 0.0 ? 1.0 : (dq[0] < 0.0 ? -1.0 : 0.0);
+  const double sg1 = static_cast<double>((dq[0] > 0.0) - (dq[0] < 0.0));
   const double s2 = std::sin(q[1]);
   const double c2 = std::cos(q[1]);
-  const double sg2 = dq[1] > 0.0 ? 1.0 : (dq[1] < 0.0 ? -1.0 : 0.0);
+  const double sg2 = static_cast<double>((dq[1] > 0.0) - (dq[1] < 0.0));
   const double s3 = std::sin(q[2]);
   const double c3 = std::cos(q[2]);
-  const double sg3 = dq[2] > 0.0 ? 1.0 : (dq[2] < 0.0 ? -1.0 : 0.0);
+  const double sg3 = static_cast<double>((dq[2] > 0.0) - (dq[2] < 0.0));
   const double s4 = std::sin(q[3]);
   const double c4 = std::cos(q[3]);
-  const double sg4 = dq[3] > 0.0 ? 1.0 : (dq[3] < 0.0 ? -1.0 : 0.0);
+  const double sg4 = static_cast<double>((dq[3] > 0.0) - (dq[3] < 0.0));
   const double s5 = std::sin(q[4]);
   const double c5 = std::cos(q[4]);
-  const double sg5 = dq[4] > 0.0 ? 1.0 : (dq[4] < 0.0 ? -1.0 : 0.0);
+  const double sg5 = static_cast<double>((dq[4] > 0.0) - (dq[4] < 0.0));
   const double s6 = std::sin(q[5]);
   const double c6 = std::cos(q[5]);
-  const double sg6 = dq[5] > 0.0 ? 1.0 : (dq[5] < 0.0 ? -1.0 : 0.0);
+  const double sg6 = static_cast<double>((dq[5] > 0.0) - (dq[5] < 0.0));
   W[0] = ddq[0];  // ZZ1R
   W[1] = dq[0];  // Fv1
   W[2] = sg1;  // Fc1
@@ -4825,22 +4825,22 @@ void idim_regressor(const double* q, const double* dq, const double* ddq, double
 // velocities and accelerations. Output W: kDof x kBaseParams, row-major:
 // W[i * kBaseParams + k] is the torque of joint i per unit of kBaseParamNames[k].
 void idim_regressor(const float* q, const float* dq, const float* ddq, float* W) {
-  const float sg1 = dq[0] > 0.0f ? 1.0f : (dq[0] < 0.0f ? -1.0f : 0.0f);
+  const float sg1 = static_cast<float>((dq[0] > 0.0f) - (dq[0] < 0.0f));
   const float s2 = std::sin(q[1]);
   const float c2 = std::cos(q[1]);
-  const float sg2 = dq[1] > 0.0f ? 1.0f : (dq[1] < 0.0f ? -1.0f : 0.0f);
+  const float sg2 = static_cast<float>((dq[1] > 0.0f) - (dq[1] < 0.0f));
   const float s3 = std::sin(q[2]);
   const float c3 = std::cos(q[2]);
-  const float sg3 = dq[2] > 0.0f ? 1.0f : (dq[2] < 0.0f ? -1.0f : 0.0f);
+  const float sg3 = static_cast<float>((dq[2] > 0.0f) - (dq[2] < 0.0f));
   const float s4 = std::sin(q[3]);
   const float c4 = std::cos(q[3]);
-  const float sg4 = dq[3] > 0.0f ? 1.0f : (dq[3] < 0.0f ? -1.0f : 0.0f);
+  const float sg4 = static_cast<float>((dq[3] > 0.0f) - (dq[3] < 0.0f));
   const float s5 = std::sin(q[4]);
   const float c5 = std::cos(q[4]);
-  const float sg5 = dq[4] > 0.0f ? 1.0f : (dq[4] < 0.0f ? -1.0f : 0.0f);
+  const float sg5 = static_cast<float>((dq[4] > 0.0f) - (dq[4] < 0.0f));
   const float s6 = std::sin(q[5]);
   const float c6 = std::cos(q[5]);
-  const float sg6 = dq[5] > 0.0f ? 1.0f : (dq[5] < 0.0f ? -1.0f : 0.0f);
+  const float sg6 = static_cast<float>((dq[5] > 0.0f) - (dq[5] < 0.0f));
   W[0] = ddq[0];  // ZZ1R
   W[1] = dq[0];  // Fv1
   W[2] = sg1;  // Fc1
@@ -5454,22 +5454,22 @@ void idim_regressor(const float* q, const float* dq, const float* ddq, float* W)
 // order of kBaseParamNames; base_from_standard computes it from standard parameters).
 void inverse_dynamics(const double* q, const double* dq, const double* ddq,
                       const double* beta, double* tau) {
-  const double sg1 = dq[0] > 0.0 ? 1.0 : (dq[0] < 0.0 ? -1.0 : 0.0);
+  const double sg1 = static_cast<double>((dq[0] > 0.0) - (dq[0] < 0.0));
   const double s2 = std::sin(q[1]);
   const double c2 = std::cos(q[1]);
-  const double sg2 = dq[1] > 0.0 ? 1.0 : (dq[1] < 0.0 ? -1.0 : 0.0);
+  const double sg2 = static_cast<double>((dq[1] > 0.0) - (dq[1] < 0.0));
   const double s3 = std::sin(q[2]);
   const double c3 = std::cos(q[2]);
-  const double sg3 = dq[2] > 0.0 ? 1.0 : (dq[2] < 0.0 ? -1.0 : 0.0);
+  const double sg3 = static_cast<double>((dq[2] > 0.0) - (dq[2] < 0.0));
   const double s4 = std::sin(q[3]);
   const double c4 = std::cos(q[3]);
-  const double sg4 = dq[3] > 0.0 ? 1.0 : (dq[3] < 0.0 ? -1.0 : 0.0);
+  const double sg4 = static_cast<double>((dq[3] > 0.0) - (dq[3] < 0.0));
   const double s5 = std::sin(q[4]);
   const double c5 = std::cos(q[4]);
-  const double sg5 = dq[4] > 0.0 ? 1.0 : (dq[4] < 0.0 ? -1.0 : 0.0);
+  const double sg5 = static_cast<double>((dq[4] > 0.0) - (dq[4] < 0.0));
   const double s6 = std::sin(q[5]);
   const double c6 = std::cos(q[5]);
-  const double sg6 = dq[5] > 0.0 ? 1.0 : (dq[5] < 0.0 ? -1.0 : 0.0);
+  const double sg6 = static_cast<double>((dq[5] > 0.0) - (dq[5] < 0.0));
   const double t0 = -dq[0] * c2;
   const double t1 = dq[0] * s2;
   const double t2 = -ddq[0] * c2 + dq[0] * dq[1] * s2;
@@ -5583,22 +5583,22 @@ void inverse_dynamics(const double* q, const double* dq, const double* ddq,
 // order of kBaseParamNames; base_from_standard computes it from standard parameters).
 void inverse_dynamics(const float* q, const float* dq, const float* ddq,
                       const float* beta, float* tau) {
-  const float sg1 = dq[0] > 0.0f ? 1.0f : (dq[0] < 0.0f ? -1.0f : 0.0f);
+  const float sg1 = static_cast<float>((dq[0] > 0.0f) - (dq[0] < 0.0f));
   const float s2 = std::sin(q[1]);
   const float c2 = std::cos(q[1]);
-  const float sg2 = dq[1] > 0.0f ? 1.0f : (dq[1] < 0.0f ? -1.0f : 0.0f);
+  const float sg2 = static_cast<float>((dq[1] > 0.0f) - (dq[1] < 0.0f));
   const float s3 = std::sin(q[2]);
   const float c3 = std::cos(q[2]);
-  const float sg3 = dq[2] > 0.0f ? 1.0f : (dq[2] < 0.0f ? -1.0f : 0.0f);
+  const float sg3 = static_cast<float>((dq[2] > 0.0f) - (dq[2] < 0.0f));
   const float s4 = std::sin(q[3]);
   const float c4 = std::cos(q[3]);
-  const float sg4 = dq[3] > 0.0f ? 1.0f : (dq[3] < 0.0f ? -1.0f : 0.0f);
+  const float sg4 = static_cast<float>((dq[3] > 0.0f) - (dq[3] < 0.0f));
   const float s5 = std::sin(q[4]);
   const float c5 = std::cos(q[4]);
-  const float sg5 = dq[4] > 0.0f ? 1.0f : (dq[4] < 0.0f ? -1.0f : 0.0f);
+  const float sg5 = static_cast<float>((dq[4] > 0.0f) - (dq[4] < 0.0f));
   const float s6 = std::sin(q[5]);
   const float c6 = std::cos(q[5]);
-  const float sg6 = dq[5] > 0.0f ? 1.0f : (dq[5] < 0.0f ? -1.0f : 0.0f);
+  const float sg6 = static_cast<float>((dq[5] > 0.0f) - (dq[5] < 0.0f));
   const float t0 = -dq[0] * c2;
   const float t1 = dq[0] * s2;
   const float t2 = -ddq[0] * c2 + dq[0] * dq[1] * s2;
@@ -5712,22 +5712,22 @@ void inverse_dynamics(const float* q, const float* dq, const float* ddq,
 void idim_regressor_sincos(const double* q, const double* sin_q, const double* cos_q,
                            const double* dq, const double* ddq, double* W) {
   static_cast<void>(q);
-  const double sg1 = dq[0] > 0.0 ? 1.0 : (dq[0] < 0.0 ? -1.0 : 0.0);
+  const double sg1 = static_cast<double>((dq[0] > 0.0) - (dq[0] < 0.0));
   const double s2 = sin_q[1];
   const double c2 = cos_q[1];
-  const double sg2 = dq[1] > 0.0 ? 1.0 : (dq[1] < 0.0 ? -1.0 : 0.0);
+  const double sg2 = static_cast<double>((dq[1] > 0.0) - (dq[1] < 0.0));
   const double s3 = sin_q[2];
   const double c3 = cos_q[2];
-  const double sg3 = dq[2] > 0.0 ? 1.0 : (dq[2] < 0.0 ? -1.0 : 0.0);
+  const double sg3 = static_cast<double>((dq[2] > 0.0) - (dq[2] < 0.0));
   const double s4 = sin_q[3];
   const double c4 = cos_q[3];
-  const double sg4 = dq[3] > 0.0 ? 1.0 : (dq[3] < 0.0 ? -1.0 : 0.0);
+  const double sg4 = static_cast<double>((dq[3] > 0.0) - (dq[3] < 0.0));
   const double s5 = sin_q[4];
   const double c5 = cos_q[4];
-  const double sg5 = dq[4] > 0.0 ? 1.0 : (dq[4] < 0.0 ? -1.0 : 0.0);
+  const double sg5 = static_cast<double>((dq[4] > 0.0) - (dq[4] < 0.0));
   const double s6 = sin_q[5];
   const double c6 = cos_q[5];
-  const double sg6 = dq[5] > 0.0 ? 1.0 : (dq[5] < 0.0 ? -1.0 : 0.0);
+  const double sg6 = static_cast<double>((dq[5] > 0.0) - (dq[5] < 0.0));
   W[0] = ddq[0];  // ZZ1R
   W[1] = dq[0];  // Fv1
   W[2] = sg1;  // Fc1
@@ -6341,22 +6341,22 @@ void idim_regressor_sincos(const double* q, const double* sin_q, const double* c
 void idim_regressor_sincos(const float* q, const float* sin_q, const float* cos_q,
                            const float* dq, const float* ddq, float* W) {
   static_cast<void>(q);
-  const float sg1 = dq[0] > 0.0f ? 1.0f : (dq[0] < 0.0f ? -1.0f : 0.0f);
+  const float sg1 = static_cast<float>((dq[0] > 0.0f) - (dq[0] < 0.0f));
   const float s2 = sin_q[1];
   const float c2 = cos_q[1];
-  const float sg2 = dq[1] > 0.0f ? 1.0f : (dq[1] < 0.0f ? -1.0f : 0.0f);
+  const float sg2 = static_cast<float>((dq[1] > 0.0f) - (dq[1] < 0.0f));
   const float s3 = sin_q[2];
   const float c3 = cos_q[2];
-  const float sg3 = dq[2] > 0.0f ? 1.0f : (dq[2] < 0.0f ? -1.0f : 0.0f);
+  const float sg3 = static_cast<float>((dq[2] > 0.0f) - (dq[2] < 0.0f));
   const float s4 = sin_q[3];
   const float c4 = cos_q[3];
-  const float sg4 = dq[3] > 0.0f ? 1.0f : (dq[3] < 0.0f ? -1.0f : 0.0f);
+  const float sg4 = static_cast<float>((dq[3] > 0.0f) - (dq[3] < 0.0f));
   const float s5 = sin_q[4];
   const float c5 = cos_q[4];
-  const float sg5 = dq[4] > 0.0f ? 1.0f : (dq[4] < 0.0f ? -1.0f : 0.0f);
+  const float sg5 = static_cast<float>((dq[4] > 0.0f) - (dq[4] < 0.0f));
   const float s6 = sin_q[5];
   const float c6 = cos_q[5];
-  const float sg6 = dq[5] > 0.0f ? 1.0f : (dq[5] < 0.0f ? -1.0f : 0.0f);
+  const float sg6 = static_cast<float>((dq[5] > 0.0f) - (dq[5] < 0.0f));
   W[0] = ddq[0];  // ZZ1R
   W[1] = dq[0];  // Fv1
   W[2] = sg1;  // Fc1
@@ -6971,22 +6971,22 @@ void inverse_dynamics_sincos(const double* q, const double* sin_q, const double*
                              const double* dq, const double* ddq, const double* beta,
                              double* tau) {
   static_cast<void>(q);
-  const double sg1 = dq[0] > 0.0 ? 1.0 : (dq[0] < 0.0 ? -1.0 : 0.0);
+  const double sg1 = static_cast<double>((dq[0] > 0.0) - (dq[0] < 0.0));
   const double s2 = sin_q[1];
   const double c2 = cos_q[1];
-  const double sg2 = dq[1] > 0.0 ? 1.0 : (dq[1] < 0.0 ? -1.0 : 0.0);
+  const double sg2 = static_cast<double>((dq[1] > 0.0) - (dq[1] < 0.0));
   const double s3 = sin_q[2];
   const double c3 = cos_q[2];
-  const double sg3 = dq[2] > 0.0 ? 1.0 : (dq[2] < 0.0 ? -1.0 : 0.0);
+  const double sg3 = static_cast<double>((dq[2] > 0.0) - (dq[2] < 0.0));
   const double s4 = sin_q[3];
   const double c4 = cos_q[3];
-  const double sg4 = dq[3] > 0.0 ? 1.0 : (dq[3] < 0.0 ? -1.0 : 0.0);
+  const double sg4 = static_cast<double>((dq[3] > 0.0) - (dq[3] < 0.0));
   const double s5 = sin_q[4];
   const double c5 = cos_q[4];
-  const double sg5 = dq[4] > 0.0 ? 1.0 : (dq[4] < 0.0 ? -1.0 : 0.0);
+  const double sg5 = static_cast<double>((dq[4] > 0.0) - (dq[4] < 0.0));
   const double s6 = sin_q[5];
   const double c6 = cos_q[5];
-  const double sg6 = dq[5] > 0.0 ? 1.0 : (dq[5] < 0.0 ? -1.0 : 0.0);
+  const double sg6 = static_cast<double>((dq[5] > 0.0) - (dq[5] < 0.0));
   const double t0 = -dq[0] * c2;
   const double t1 = dq[0] * s2;
   const double t2 = -ddq[0] * c2 + dq[0] * dq[1] * s2;
@@ -7101,22 +7101,22 @@ void inverse_dynamics_sincos(const float* q, const float* sin_q, const float* co
                              const float* dq, const float* ddq, const float* beta,
                              float* tau) {
   static_cast<void>(q);
-  const float sg1 = dq[0] > 0.0f ? 1.0f : (dq[0] < 0.0f ? -1.0f : 0.0f);
+  const float sg1 = static_cast<float>((dq[0] > 0.0f) - (dq[0] < 0.0f));
   const float s2 = sin_q[1];
   const float c2 = cos_q[1];
-  const float sg2 = dq[1] > 0.0f ? 1.0f : (dq[1] < 0.0f ? -1.0f : 0.0f);
+  const float sg2 = static_cast<float>((dq[1] > 0.0f) - (dq[1] < 0.0f));
   const float s3 = sin_q[2];
   const float c3 = cos_q[2];
-  const float sg3 = dq[2] > 0.0f ? 1.0f : (dq[2] < 0.0f ? -1.0f : 0.0f);
+  const float sg3 = static_cast<float>((dq[2] > 0.0f) - (dq[2] < 0.0f));
   const float s4 = sin_q[3];
   const float c4 = cos_q[3];
-  const float sg4 = dq[3] > 0.0f ? 1.0f : (dq[3] < 0.0f ? -1.0f : 0.0f);
+  const float sg4 = static_cast<float>((dq[3] > 0.0f) - (dq[3] < 0.0f));
   const float s5 = sin_q[4];
   const float c5 = cos_q[4];
-  const float sg5 = dq[4] > 0.0f ? 1.0f : (dq[4] < 0.0f ? -1.0f : 0.0f);
+  const float sg5 = static_cast<float>((dq[4] > 0.0f) - (dq[4] < 0.0f));
   const float s6 = sin_q[5];
   const float c6 = cos_q[5];
-  const float sg6 = dq[5] > 0.0f ? 1.0f : (dq[5] < 0.0f ? -1.0f : 0.0f);
+  const float sg6 = static_cast<float>((dq[5] > 0.0f) - (dq[5] < 0.0f));
   const float t0 = -dq[0] * c2;
   const float t1 = dq[0] * s2;
   const float t2 = -ddq[0] * c2 + dq[0] * dq[1] * s2;

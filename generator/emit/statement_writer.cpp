@@ -110,7 +110,7 @@ class StatementWriter {
   }
 
   void declare_symbols(std::vector<std::string>& lines) {
-    const std::string zero = format_literal(0.0, scalar_), one = format_literal(1.0, scalar_);
+    const std::string zero = format_literal(0.0, scalar_);
     for (std::size_t s = 0; s < g_.symbols().size(); ++s) {
       if (!symbol_used_[s]) continue;
       const Symbol& symbol = g_.symbols()[s];
@@ -135,7 +135,6 @@ class StatementWriter {
           {"scalar", scalar_name(scalar_)}, {"name", symbol.name}, {"input", input}};
       if (!trig) {
         values.push_back({"zero", zero});
-        values.push_back({"one", one});
       }
       lines.push_back(render_line(tmpl, values));
     }

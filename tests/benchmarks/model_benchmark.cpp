@@ -58,6 +58,20 @@ struct Tx40 {
   static void regressor(const T* q, const T* dq, const T* ddq, T* W) {
     tx40::idim_regressor_standard(q, dq, ddq, W);
   }
+  static constexpr int kBase = tx40::kBaseParams;
+  static void base_from_standard(const double* p, double* beta) {
+    tx40::base_from_standard(p, beta);
+  }
+  static void joint_sincos(const double* q, double* s, double* c) { tx40::joint_sincos(q, s, c); }
+  static void base_inverse_dynamics(const double* q, const double* s, const double* c,
+                                    const double* dq, const double* ddq, const double* beta,
+                                    double* tau) {
+    if (s == nullptr) {
+      tx40::inverse_dynamics(q, dq, ddq, beta, tau);
+    } else {
+      tx40::inverse_dynamics_sincos(q, s, c, dq, ddq, beta, tau);
+    }
+  }
 };
 
 struct Kr150 {
@@ -73,6 +87,20 @@ struct Kr150 {
   static void regressor(const T* q, const T* dq, const T* ddq, T* W) {
     kr150::idim_regressor_standard(q, dq, ddq, W);
   }
+  static constexpr int kBase = kr150::kBaseParams;
+  static void base_from_standard(const double* p, double* beta) {
+    kr150::base_from_standard(p, beta);
+  }
+  static void joint_sincos(const double* q, double* s, double* c) { kr150::joint_sincos(q, s, c); }
+  static void base_inverse_dynamics(const double* q, const double* s, const double* c,
+                                    const double* dq, const double* ddq, const double* beta,
+                                    double* tau) {
+    if (s == nullptr) {
+      kr150::inverse_dynamics(q, dq, ddq, beta, tau);
+    } else {
+      kr150::inverse_dynamics_sincos(q, s, c, dq, ddq, beta, tau);
+    }
+  }
 };
 
 struct Iiwa14 {
@@ -87,6 +115,20 @@ struct Iiwa14 {
   template <class T>
   static void regressor(const T* q, const T* dq, const T* ddq, T* W) {
     iiwa14::idim_regressor_standard(q, dq, ddq, W);
+  }
+  static constexpr int kBase = iiwa14::kBaseParams;
+  static void base_from_standard(const double* p, double* beta) {
+    iiwa14::base_from_standard(p, beta);
+  }
+  static void joint_sincos(const double* q, double* s, double* c) { iiwa14::joint_sincos(q, s, c); }
+  static void base_inverse_dynamics(const double* q, const double* s, const double* c,
+                                    const double* dq, const double* ddq, const double* beta,
+                                    double* tau) {
+    if (s == nullptr) {
+      iiwa14::inverse_dynamics(q, dq, ddq, beta, tau);
+    } else {
+      iiwa14::inverse_dynamics_sincos(q, s, c, dq, ddq, beta, tau);
+    }
   }
 };
 
@@ -201,6 +243,33 @@ void generated_regressor(benchmark::State& state, const Workload& w) {
   }
 }
 
+// The base-parameter inverse dynamics (beta from base_from_standard, outside the timing); with
+// `given_sincos` the sines and cosines of the pool are computed beforehand by joint_sincos and
+// the *_sincos entry point is timed: the cost of the arithmetic alone.
+template <class Robot>
+void generated_base_inverse_dynamics(benchmark::State& state, const Workload& w,
+                                     bool given_sincos) {
+  double beta[Robot::kBase];
+  Robot::base_from_standard(w.p.data(), beta);
+  std::vector<double> sin_q(w.q.size()), cos_q(w.q.size());
+  for (int k = 0; k < kPoolSize; ++k) {
+    const int offset = k * Robot::kDof;
+    Robot::joint_sincos(w.q.data() + offset, sin_q.data() + offset, cos_q.data() + offset);
+  }
+  double tau[Robot::kDof];
+  int s = 0;
+  for (auto _ : state) {
+    const int offset = s * Robot::kDof;
+    Robot::base_inverse_dynamics(w.q.data() + offset,
+                                 given_sincos ? sin_q.data() + offset : nullptr,
+                                 given_sincos ? cos_q.data() + offset : nullptr,
+                                 w.dq.data() + offset, w.ddq.data() + offset, beta, tau);
+    benchmark::DoNotOptimize(tau);
+    benchmark::ClobberMemory();
+    s = (s + 1) & (kPoolSize - 1);
+  }
+}
+
 void kdl_rne(benchmark::State& state, const Workload& w, KdlRne& kdl) {
   KDL::JntArray tau(kdl.num_joints());
   int s = 0;
@@ -258,6 +327,12 @@ void register_robot(Workload& w) {
   benchmark::RegisterBenchmark(
       name("generated_inverse_dynamics_float").c_str(),
       [&w](benchmark::State& st) { generated_inverse_dynamics<Robot, float>(st, w); });
+  benchmark::RegisterBenchmark(
+      name("generated_inverse_dynamics_base").c_str(),
+      [&w](benchmark::State& st) { generated_base_inverse_dynamics<Robot>(st, w, false); });
+  benchmark::RegisterBenchmark(
+      name("generated_inverse_dynamics_base_sincos").c_str(),
+      [&w](benchmark::State& st) { generated_base_inverse_dynamics<Robot>(st, w, true); });
   benchmark::RegisterBenchmark(name("kdl_rne").c_str(),
                                [&w](benchmark::State& st) { kdl_rne(st, w, *w.kdl); });
   benchmark::RegisterBenchmark(name("kdl_rne_oracle_chain").c_str(),

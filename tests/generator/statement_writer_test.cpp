@@ -218,7 +218,7 @@ TEST_F(StatementWriterTest, SignLeavesUseTheScalarLiterals) {
   ASSERT_EQ(body.lines.size(), 2u);
   EXPECT_EQ(body.lines[1], "tau[0] = p[0] * sg1;");
   EXPECT_EQ(body.lines[0].rfind("const float sg1 = ", 0), 0u) << body.lines[0];
-  EXPECT_NE(body.lines[0].find("dq[0] > 0.0f ? 1.0f"), std::string::npos) << body.lines[0];
+  EXPECT_EQ(body.lines[0], "const float sg1 = static_cast<float>((dq[0] > 0.0f) - (dq[0] < 0.0f));");
   EXPECT_EQ(body.lines[0].find("double"), std::string::npos) << body.lines[0];
   EXPECT_EQ(body.counts.trig, 0);
 }
