@@ -28,15 +28,17 @@ std::string read(const fs::path& path) {
 }
 
 CliRun modelgen(const std::string& arguments) {
+  // Per-test output files: CTest runs the tests of this file in parallel processes.
+  const std::string test = testing::UnitTest::GetInstance()->current_test_info()->name();
   const fs::path dir = fs::path(testing::TempDir());
+  const fs::path out = dir / ("cli_out_" + test), err = dir / ("cli_err_" + test);
   const std::string command = "'" + std::string(MODELGEN_BINARY_DIR) + "/bin/modelgen' " +
-                              arguments + " >'" + (dir / "cli_out").string() + "' 2>'" +
-                              (dir / "cli_err").string() + "'";
+                              arguments + " >'" + out.string() + "' 2>'" + err.string() + "'";
   const int status = std::system(command.c_str());
   CliRun run;
   run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  run.out = read(dir / "cli_out");
-  run.err = read(dir / "cli_err");
+  run.out = read(out);
+  run.err = read(err);
   return run;
 }
 
