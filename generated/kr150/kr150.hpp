@@ -14,6 +14,10 @@
 // inverse_dynamics                      349    283       10
 // idim_regressor_sincos                 599    463        0
 // inverse_dynamics_sincos               349    283        0
+// energy_regressor                      125     58       10
+// power_regressor                       313    180       10
+// energy_regressor_sincos               125     58        0
+// power_regressor_sincos                313    180        0
 #ifndef MODELGEN_KR150_HPP_
 #define MODELGEN_KR150_HPP_
 
@@ -110,6 +114,31 @@ void inverse_dynamics_sincos(const double* q, const double* sin_q, const double*
 void inverse_dynamics_sincos(const float* q, const float* sin_q, const float* cos_q,
                              const float* dq, const float* ddq, const float* beta,
                              float* tau);
+
+// Energy regressor of the power identification model (Gautier & Briot eq. 8): the total
+// energy of links and drives is H = h * beta, up to a constant that depends on the parameters
+// only. Inputs q, dq: kDof joint positions and velocities. Output h: kBaseParams values, in the
+// order of kBaseParamNames.
+void energy_regressor(const double* q, const double* dq, double* h);
+void energy_regressor(const float* q, const float* dq, float* h);
+
+// Power regressor of the power identification model (Gautier & Briot eq. 9-10): the power
+// delivered by the joints is dq . tau = dh * beta, with dh = d h / dt plus the friction and
+// offset power. Inputs q, dq, ddq: kDof each. Output dh: kBaseParams values.
+void power_regressor(const double* q, const double* dq, const double* ddq, double* dh);
+void power_regressor(const float* q, const float* dq, const float* ddq, float* dh);
+
+// energy_regressor with sin_q, cos_q (kDof each) from joint_sincos(q, ...); identical results.
+void energy_regressor_sincos(const double* q, const double* sin_q, const double* cos_q,
+                             const double* dq, double* h);
+void energy_regressor_sincos(const float* q, const float* sin_q, const float* cos_q,
+                             const float* dq, float* h);
+
+// power_regressor with sin_q, cos_q (kDof each) from joint_sincos(q, ...); identical results.
+void power_regressor_sincos(const double* q, const double* sin_q, const double* cos_q,
+                            const double* dq, const double* ddq, double* dh);
+void power_regressor_sincos(const float* q, const float* sin_q, const float* cos_q,
+                            const float* dq, const float* ddq, float* dh);
 
 }  // namespace kr150
 }  // namespace modelgen

@@ -7,81 +7,11 @@
 #include <array>
 #include <string>
 
+#include "generator/dynamics/symbolic_vectors.hpp"
+
 namespace modelgen::gen {
 
 namespace {
-
-using V3 = std::array<ExprId, 3>;
-using M3 = std::array<ExprId, 9>;  // row-major
-
-class VectorAlgebra {
- public:
-  explicit VectorAlgebra(ExprGraph& g) : g_(g) {}
-
-  V3 zero() const { return {g_.zero(), g_.zero(), g_.zero()}; }
-  V3 vector(const std::array<double, 3>& v) {
-    return {g_.constant(v[0]), g_.constant(v[1]), g_.constant(v[2])};
-  }
-  M3 matrix(const std::array<double, 9>& m) {
-    M3 out;
-    for (int i = 0; i < 9; ++i) out[i] = g_.constant(m[i]);
-    return out;
-  }
-  V3 add(const V3& a, const V3& b) {
-    return {g_.add(a[0], b[0]), g_.add(a[1], b[1]), g_.add(a[2], b[2])};
-  }
-  // Each component as an atom computed once (a customized Newton-Euler intermediate variable).
-  V3 share(const V3& a) { return {g_.share(a[0]), g_.share(a[1]), g_.share(a[2])}; }
-  V3 scale(ExprId s, const V3& a) { return {g_.mul(s, a[0]), g_.mul(s, a[1]), g_.mul(s, a[2])}; }
-  ExprId dot(const V3& a, const V3& b) {
-    return g_.add({g_.mul(a[0], b[0]), g_.mul(a[1], b[1]), g_.mul(a[2], b[2])});
-  }
-  V3 cross(const V3& a, const V3& b) {
-    return {g_.sub(g_.mul(a[1], b[2]), g_.mul(a[2], b[1])),
-            g_.sub(g_.mul(a[2], b[0]), g_.mul(a[0], b[2])),
-            g_.sub(g_.mul(a[0], b[1]), g_.mul(a[1], b[0]))};
-  }
-  V3 mul(const M3& m, const V3& v) {
-    V3 out;
-    for (int r = 0; r < 3; ++r) {
-      out[r] = g_.add({g_.mul(m[3 * r], v[0]), g_.mul(m[3 * r + 1], v[1]), g_.mul(m[3 * r + 2], v[2])});
-    }
-    return out;
-  }
-  V3 mul_transposed(const M3& m, const V3& v) {
-    V3 out;
-    for (int c = 0; c < 3; ++c) {
-      out[c] = g_.add({g_.mul(m[c], v[0]), g_.mul(m[3 + c], v[1]), g_.mul(m[6 + c], v[2])});
-    }
-    return out;
-  }
-  M3 mul(const M3& a, const M3& b) {
-    M3 out;
-    for (int r = 0; r < 3; ++r) {
-      for (int c = 0; c < 3; ++c) {
-        out[3 * r + c] = g_.add({g_.mul(a[3 * r], b[c]), g_.mul(a[3 * r + 1], b[3 + c]),
-                                 g_.mul(a[3 * r + 2], b[6 + c])});
-      }
-    }
-    return out;
-  }
-  // Symmetric 3x3 (tensor entries xx, xy, xz, yy, yz, zz) times v.
-  V3 symmetric_mul(const std::array<ExprId, 6>& J, const V3& v) {
-    return {g_.add({g_.mul(J[0], v[0]), g_.mul(J[1], v[1]), g_.mul(J[2], v[2])}),
-            g_.add({g_.mul(J[1], v[0]), g_.mul(J[3], v[1]), g_.mul(J[4], v[2])}),
-            g_.add({g_.mul(J[2], v[0]), g_.mul(J[4], v[1]), g_.mul(J[5], v[2])})};
-  }
-
- private:
-  ExprGraph& g_;
-};
-
-// Pose of frame j in its antecedent and the motion of every frame, in that frame.
-struct SymbolicMotion {
-  std::vector<M3> R;  // antecedent <- body
-  std::vector<V3> p;  // body origin in the antecedent frame
-  std::vector<V3> w, dw, dv;
-};
 
 // Rotation by q about the constant unit axis u (Rodrigues): c 1 + s [u]x + (1 - c) u u^T.
 M3 axis_rotation(ExprGraph& g, const std::array<double, 3>& u, ExprId s, ExprId c) {
@@ -97,7 +27,9 @@ M3 axis_rotation(ExprGraph& g, const std::array<double, 3>& u, ExprId s, ExprId 
   return R;
 }
 
-SymbolicMotion forward_recursion(ExprGraph& g, const RigidBodyTree& tree, const SymbolicInputs& in) {
+}  // namespace
+
+SymbolicMotion derive_motion(ExprGraph& g, const RigidBodyTree& tree, const SymbolicInputs& in) {
   VectorAlgebra va(g);
   const std::size_t n = tree.bodies.size();
   SymbolicMotion m;
@@ -106,6 +38,7 @@ SymbolicMotion forward_recursion(ExprGraph& g, const RigidBodyTree& tree, const 
   m.w.resize(n);
   m.dw.resize(n);
   m.dv.resize(n);
+  m.v.resize(n);
   // Gravity as an upward acceleration of the base (dv0 = -g).
   const V3 base_dv = va.vector({-tree.gravity[0], -tree.gravity[1], -tree.gravity[2]});
   for (std::size_t j = 0; j < n; ++j) {
@@ -128,16 +61,18 @@ SymbolicMotion forward_recursion(ExprGraph& g, const RigidBodyTree& tree, const 
         m.p[j] = tf;
         break;
     }
-    V3 wa = va.zero(), dwa = va.zero(), dva = base_dv;
+    V3 wa = va.zero(), dwa = va.zero(), dva = base_dv, va_ = va.zero();
     if (body.parent >= 0) {
       wa = m.w[body.parent];
       dwa = m.dw[body.parent];
       dva = m.dv[body.parent];
+      va_ = m.v[body.parent];
     }
     const V3& p = m.p[j];
     const V3 w_in = va.mul_transposed(m.R[j], wa);
     m.w[j] = w_in;
     m.dw[j] = va.mul_transposed(m.R[j], dwa);
+    m.v[j] = va.mul_transposed(m.R[j], va.add(va_, va.cross(wa, p)));
     m.dv[j] = va.mul_transposed(m.R[j], va.add(dva, va.add(va.cross(dwa, p), va.cross(wa, va.cross(wa, p)))));
     if (body.type == JointType::kRevolute) {
       const V3 dq_u = va.scale(in.dq[i], u);
@@ -145,15 +80,19 @@ SymbolicMotion forward_recursion(ExprGraph& g, const RigidBodyTree& tree, const 
       m.dw[j] = va.add(m.dw[j], va.add(va.scale(in.ddq[i], u), va.cross(w_in, dq_u)));
     } else if (body.type == JointType::kPrismatic) {
       const V3 dq_u = va.scale(in.dq[i], u);
+      m.v[j] = va.add(m.v[j], dq_u);
       m.dv[j] = va.add(m.dv[j], va.add(va.scale(in.ddq[i], u),
                                        va.scale(g.constant(2.0), va.cross(m.w[j], dq_u))));
     }
     m.w[j] = va.share(m.w[j]);
     m.dw[j] = va.share(m.dw[j]);
     m.dv[j] = va.share(m.dv[j]);
+    m.v[j] = va.share(m.v[j]);
   }
   return m;
 }
+
+namespace {
 
 // Torque contribution of a joint's drive parameter (inertia, friction, offset).
 ExprId drive_column(ExprGraph& g, ParamKind kind, int i, const SymbolicInputs& in) {
@@ -202,7 +141,7 @@ SymbolicInputs make_symbolic_inputs(ExprGraph& g, const RigidBodyTree& tree) {
 std::vector<ExprId> derive_standard_regressor(ExprGraph& g, const RigidBodyTree& tree,
                                               const SymbolicInputs& in) {
   VectorAlgebra va(g);
-  const SymbolicMotion m = forward_recursion(g, tree, in);
+  const SymbolicMotion m = derive_motion(g, tree, in);
   const std::size_t num_params = tree.params.size();
   std::vector<ExprId> W(tree.dof * num_params, g.zero());
   const V3 ex = va.vector({1, 0, 0}), ey = va.vector({0, 1, 0}), ez = va.vector({0, 0, 1});
@@ -267,7 +206,7 @@ std::vector<ExprId> derive_standard_regressor(ExprGraph& g, const RigidBodyTree&
 std::vector<ExprId> derive_inverse_dynamics(ExprGraph& g, const RigidBodyTree& tree,
                                             const SymbolicInputs& in) {
   VectorAlgebra va(g);
-  const SymbolicMotion m = forward_recursion(g, tree, in);
+  const SymbolicMotion m = derive_motion(g, tree, in);
   const std::size_t n = tree.bodies.size();
   std::vector<std::array<ExprId, 6>> J(n);
   std::vector<V3> MS(n, va.zero());

@@ -6,6 +6,7 @@
 
 #include <vector>
 
+#include "generator/dynamics/symbolic_vectors.hpp"
 #include "generator/symbolic/expr.hpp"
 #include "modelgen/rigid_body_tree.hpp"
 
@@ -23,6 +24,16 @@ struct SymbolicInputs {
 };
 
 SymbolicInputs make_symbolic_inputs(ExprGraph& graph, const RigidBodyTree& tree);
+
+/// The forward recursion: pose of each body frame in its antecedent and its motion, every
+/// vector in the body's own frame. dv includes gravity (dv0 = -g); v does not.
+struct SymbolicMotion {
+  std::vector<M3> R;  ///< antecedent <- body rotation
+  std::vector<V3> p;  ///< body origin in the antecedent frame
+  std::vector<V3> w, dw, v, dv;  ///< angular velocity and acceleration, origin velocity and acceleration
+};
+
+SymbolicMotion derive_motion(ExprGraph& graph, const RigidBodyTree& tree, const SymbolicInputs& in);
 
 /// The standard regressor W, row-major dof x params: tau = W p (Gautier & Briot eq. 2).
 std::vector<ExprId> derive_standard_regressor(ExprGraph& graph, const RigidBodyTree& tree,

@@ -8,6 +8,7 @@
 
 #include "generator/dynamics/base_parameters.hpp"
 #include "generator/dynamics/newton_euler.hpp"
+#include "generator/dynamics/power_model.hpp"
 #include "generator/emit/printer.hpp"
 #include "generator/output/sha256.hpp"
 #include "generator/version.hpp"
@@ -176,6 +177,20 @@ GeneratedModel emit_model(const RobotModel& model, const GenerationInput& input)
   }
 
   {
+    // Power model on the base parameters: the base columns of the standard h and dh.
+    const std::vector<ExprId> h = derive_energy_regressor(graph, tree, symbols);
+    const std::vector<ExprId> dh = derive_power_regressor(graph, tree, symbols, h);
+    FunctionSpec energy{"energy_regressor", {}, {"q", "dq"}};
+    FunctionSpec power{"power_regressor", {}, {"q", "dq", "ddq"}};
+    for (int b = 0; b < num_base; ++b) {
+      const int k = base.params[b].standard_index;
+      energy.outputs.push_back({"h[" + std::to_string(b) + "]", h[k], base.params[b].name});
+      power.outputs.push_back({"dh[" + std::to_string(b) + "]", dh[k], base.params[b].name});
+    }
+    specs.push_back(std::move(energy));
+    specs.push_back(std::move(power));
+  }
+  {
     FunctionSpec spec{"joint_sincos", {}, {"q"}};
     for (int i = 0; i < dof; ++i) {
       spec.outputs.push_back({"sin_q[" + std::to_string(i) + "]", symbols.sin_q[i], ""});
@@ -199,7 +214,8 @@ GeneratedModel emit_model(const RobotModel& model, const GenerationInput& input)
   const std::vector<std::string> order = {
       "idim_regressor_standard", "inverse_dynamics_standard", "joint_sincos",
       "idim_regressor_standard_sincos", "inverse_dynamics_standard_sincos", "base_from_standard",
-      "idim_regressor", "inverse_dynamics", "idim_regressor_sincos", "inverse_dynamics_sincos"};
+      "idim_regressor", "inverse_dynamics", "idim_regressor_sincos", "inverse_dynamics_sincos",
+      "energy_regressor", "power_regressor", "energy_regressor_sincos", "power_regressor_sincos"};
   std::stable_sort(specs.begin(), specs.end(), [&order](const FunctionSpec& a, const FunctionSpec& b) {
     return std::find(order.begin(), order.end(), a.name) < std::find(order.begin(), order.end(), b.name);
   });

@@ -96,6 +96,38 @@ TEST_F(GeneratedModel, BaseParameterFunctionsEqualTheStandardModel) {
   EXPECT_LT(worst, 1e-10);
 }
 
+TEST_F(GeneratedModel, PowerModelSharesTheBaseParameters) {
+  const int n = model::kDof, nb = model::kBaseParams;
+  test::Random random(12);
+  std::vector<double> beta(nb), h1(nb), h2(nb), dh(nb), s(n), c(n), dh_sc(nb);
+  for (int state = 0; state < kStates; ++state) {
+    const Eigen::VectorXd q = random.vector(n, -3.2, 3.2), dq = random.vector(n, -3, 3),
+                          ddq = random.vector(n, -10, 10);
+    const Eigen::VectorXd p = test::random_physical_parameters(description_.tree, random);
+    model::base_from_standard(p.data(), beta.data());
+    const Eigen::Map<const Eigen::VectorXd> b(beta.data(), nb);
+    // Gautier & Briot eq. 9: dh . beta = dq . tau, with the reference torques.
+    model::power_regressor(q.data(), dq.data(), ddq.data(), dh.data());
+    const double power = Eigen::Map<const Eigen::VectorXd>(dh.data(), nb).dot(b);
+    const double expected = dq.dot(reference_.inverse_dynamics(q, dq, ddq, p));
+    EXPECT_NEAR(power, expected, 1e-10 * std::max(1.0, std::abs(expected)));
+    // Energy differences between two states equal the reference's (H is defined up to a
+    // constant once parameters are regrouped).
+    const Eigen::VectorXd q2 = random.vector(n, -3.2, 3.2), dq2 = random.vector(n, -3, 3);
+    model::energy_regressor(q.data(), dq.data(), h1.data());
+    model::energy_regressor(q2.data(), dq2.data(), h2.data());
+    const double difference = (Eigen::Map<const Eigen::VectorXd>(h1.data(), nb) -
+                               Eigen::Map<const Eigen::VectorXd>(h2.data(), nb)).dot(b);
+    const double expected_difference =
+        reference_.kinetic_energy(q, dq, p) + reference_.potential_energy(q, p) -
+        reference_.kinetic_energy(q2, dq2, p) - reference_.potential_energy(q2, p);
+    EXPECT_NEAR(difference, expected_difference, 1e-10 * std::max(1.0, std::abs(expected_difference)));
+    model::joint_sincos(q.data(), s.data(), c.data());
+    model::power_regressor_sincos(q.data(), s.data(), c.data(), dq.data(), ddq.data(), dh_sc.data());
+    EXPECT_EQ(dh, dh_sc);
+  }
+}
+
 TEST_F(GeneratedModel, SincosVariantsEqualThePlainFunctions) {
   const int n = model::kDof, np = model::kStandardParams, nb = model::kBaseParams;
   test::Random random(5);
