@@ -4,20 +4,20 @@
 // The generated code belongs to the owner of the robot description.
 //
 // Function                              mul    add  sin/cos
-// idim_regressor_standard               936    710       10
-// inverse_dynamics_standard             466    381       10
+// idim_regressor_standard               951    716       10
+// inverse_dynamics_standard             496    402       10
 // joint_sincos                            0      0       12
-// idim_regressor_standard_sincos        936    710        0
-// inverse_dynamics_standard_sincos      466    381        0
+// idim_regressor_standard_sincos        951    716        0
+// inverse_dynamics_standard_sincos      496    402        0
 // base_from_standard                     49     81        0
-// idim_regressor                        599    463       10
-// inverse_dynamics                      349    283       10
-// idim_regressor_sincos                 599    463        0
-// inverse_dynamics_sincos               349    283        0
-// energy_regressor                      125     58       10
-// power_regressor                       313    180       10
-// energy_regressor_sincos               125     58        0
-// power_regressor_sincos                313    180        0
+// idim_regressor                        614    469       10
+// inverse_dynamics                      379    304       10
+// idim_regressor_sincos                 614    469        0
+// inverse_dynamics_sincos               379    304        0
+// energy_regressor                      132     61       10
+// power_regressor                       325    186       10
+// energy_regressor_sincos               132     61        0
+// power_regressor_sincos                325    186        0
 #ifndef MODELGEN_KR150_HPP_
 #define MODELGEN_KR150_HPP_
 
@@ -29,10 +29,10 @@ constexpr int kFormatVersion = 1;
 // Moving joints: the length of q, dq, ddq and tau.
 constexpr int kDof = 6;
 // Standard dynamic parameters (Gautier & Briot eq. 3): the length of p, the columns of W.
-constexpr int kStandardParams = 88;
+constexpr int kStandardParams = 94;
 
 // Base (identifiable) parameters: the length of beta, the columns of the base regressor.
-constexpr int kBaseParams = 52;
+constexpr int kBaseParams = 58;
 
 // Names of the standard parameters in the order of p: "XX1", "XY1", ... as in DESIGN.md.
 extern const char* const kStandardParamNames[kStandardParams];

@@ -182,8 +182,8 @@ class MdhYamlLoader {
     read_joints(in_.require(root, "joints", "the robot description"));
     if (root["friction"]) read_friction(root["friction"]);
     if (root["rotor_inertia"]) model_.rotor_inertia = in_.boolean(root["rotor_inertia"], "rotor_inertia");
-    build_standard_parameters(model_);
     read_drives(root["drives"]);
+    build_standard_parameters(model_);
     if (root["payload"]) read_payload(root["payload"]);
     if (root["known"]) read_known(root["known"]);
     validate(model_.tree);

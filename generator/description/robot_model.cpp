@@ -152,6 +152,21 @@ void build_standard_parameters(RobotModel& model) {
                                         ParamKind::kYY, ParamKind::kYZ, ParamKind::kZZ,
                                         ParamKind::kMX, ParamKind::kMY, ParamKind::kMZ,
                                         ParamKind::kM};
+  // Motors that drive several joints (rows of motor_from_joint with off-diagonal entries) get
+  // their own rotor inertia and friction, scaled to their joint (Gautier & Briot eq. 26).
+  model.tree.coupled_motors.clear();
+  const Eigen::MatrixXd& K = model.drives.motor_from_joint;
+  if (K.rows() == model.tree.dof && K.cols() == model.tree.dof) {
+    for (int m = 0; m < model.tree.dof; ++m) {
+      bool coupled = false;
+      for (int l = 0; l < model.tree.dof; ++l) coupled = coupled || (l != m && K(m, l) != 0.0);
+      if (!coupled || K(m, m) == 0.0) continue;
+      CoupledMotor motor;
+      motor.dof_index = m;
+      for (int l = 0; l < model.tree.dof; ++l) motor.coupling.push_back(l == m ? 1.0 : K(m, l) / K(m, m));
+      model.tree.coupled_motors.push_back(std::move(motor));
+    }
+  }
   std::vector<StandardParam>& params = model.tree.params;
   params.clear();
   for (std::size_t j = 0; j < model.tree.bodies.size(); ++j) {
@@ -177,6 +192,12 @@ void build_standard_parameters(RobotModel& model) {
       if (model.friction.coulomb) add(ParamKind::kFc);
     }
     if (model.friction.offset) add(ParamKind::kOff);
+    for (const CoupledMotor& motor : model.tree.coupled_motors) {
+      if (motor.dof_index != model.tree.bodies[j].dof_index) continue;
+      if (model.rotor_inertia) add(ParamKind::kIam);
+      if (model.friction.viscous) add(ParamKind::kFvm);
+      if (model.friction.coulomb) add(ParamKind::kFcm);
+    }
   }
   model.known_values.assign(params.size(), std::nullopt);
 }

@@ -107,7 +107,9 @@ struct RobotModel {
 
 /// Fills tree.params from the bodies and the friction/rotor options: per body j (1-based
 /// suffix), XXj XYj XZj YYj YZj ZZj MXj MYj MZj Mj, then for moving joints Iaj, Fvj, Fcj (or
-/// Fvpj Fvnj Fcpj Fcnj when asymmetric), OFFj as enabled. Resets known_values to all-unknown.
+/// Fvpj Fvnj Fcpj Fcnj when asymmetric), OFFj as enabled, then Iamj Fvmj Fcmj when motor j
+/// drives several joints (drives.motor_from_joint has off-diagonal entries in row j; fills
+/// tree.coupled_motors). Resets known_values to all-unknown.
 void build_standard_parameters(RobotModel& model);
 
 /// Throws InputError at `where` unless `name` can be a C++ namespace for generated code:

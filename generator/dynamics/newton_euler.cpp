@@ -109,6 +109,34 @@ ExprId drive_column(ExprGraph& g, ParamKind kind, int i, const SymbolicInputs& i
   }
 }
 
+// Torques of a coupled motor's parameter on every joint: c_l times the motor term, with the
+// motor velocity u' = c . dq (Gautier & Briot eq. 26).
+std::vector<ExprId> motor_columns(ExprGraph& g, const RigidBodyTree& tree, const StandardParam& param,
+                                  const SymbolicInputs& in) {
+  const CoupledMotor& motor = *coupled_motor_of(tree, param);
+  std::vector<ExprId> velocity, acceleration;
+  for (int l = 0; l < tree.dof; ++l) {
+    if (motor.coupling[l] == 0.0) continue;
+    velocity.push_back(g.mul(g.constant(motor.coupling[l]), in.dq[l]));
+    acceleration.push_back(g.mul(g.constant(motor.coupling[l]), in.ddq[l]));
+  }
+  const ExprId u = g.share(g.add(velocity));
+  ExprId term = g.zero();
+  switch (param.kind) {
+    case ParamKind::kIam: term = g.share(g.add(acceleration)); break;
+    case ParamKind::kFvm: term = u; break;
+    case ParamKind::kFcm: term = g.sign(u); break;
+    default: break;
+  }
+  std::vector<ExprId> columns(tree.dof, g.zero());
+  for (int l = 0; l < tree.dof; ++l) columns[l] = g.mul(g.constant(motor.coupling[l]), term);
+  return columns;
+}
+
+bool is_motor(ParamKind kind) {
+  return kind == ParamKind::kIam || kind == ParamKind::kFvm || kind == ParamKind::kFcm;
+}
+
 bool is_inertial(ParamKind kind) {
   return kind == ParamKind::kXX || kind == ParamKind::kXY || kind == ParamKind::kXZ ||
          kind == ParamKind::kYY || kind == ParamKind::kYZ || kind == ParamKind::kZZ ||
@@ -148,6 +176,11 @@ std::vector<ExprId> derive_standard_regressor(ExprGraph& g, const RigidBodyTree&
   for (std::size_t k = 0; k < num_params; ++k) {
     const StandardParam& param = tree.params[k];
     const Body& owner = tree.bodies[param.body];
+    if (is_motor(param.kind)) {
+      const std::vector<ExprId> columns = motor_columns(g, tree, param, in);
+      for (int l = 0; l < tree.dof; ++l) W[l * num_params + k] = columns[l];
+      continue;
+    }
     if (!is_inertial(param.kind)) {
       W[owner.dof_index * num_params + k] = drive_column(g, param.kind, owner.dof_index, in);
       continue;
@@ -230,6 +263,11 @@ std::vector<ExprId> derive_inverse_dynamics(ExprGraph& g, const RigidBodyTree& t
       case ParamKind::kM: M[b] = g.add(M[b], p); break;
       default: {
         const int i = tree.bodies[b].dof_index;
+        if (is_motor(param.kind)) {
+          const std::vector<ExprId> columns = motor_columns(g, tree, param, in);
+          for (int l = 0; l < tree.dof; ++l) drive[l] = g.add(drive[l], g.mul(columns[l], p));
+          break;
+        }
         drive[i] = g.add(drive[i], g.mul(drive_column(g, param.kind, i, in), p));
       }
     }

@@ -12,6 +12,19 @@
 
 namespace modelgen::gen {
 
+namespace {
+
+// The velocity u' = c . dq of the coupled motor a kIam/kFvm/kFcm parameter belongs to.
+ExprId motor_velocity(ExprGraph& g, const RigidBodyTree& tree, const StandardParam& param,
+                      const SymbolicInputs& in) {
+  const CoupledMotor& motor = *coupled_motor_of(tree, param);
+  std::vector<ExprId> terms;
+  for (int l = 0; l < tree.dof; ++l) terms.push_back(g.mul(g.constant(motor.coupling[l]), in.dq[l]));
+  return g.share(g.add(std::move(terms)));
+}
+
+}  // namespace
+
 std::vector<ExprId> derive_energy_regressor(ExprGraph& g, const RigidBodyTree& tree,
                                             const SymbolicInputs& in) {
   VectorAlgebra va(g);
@@ -48,6 +61,12 @@ std::vector<ExprId> derive_energy_regressor(ExprGraph& g, const RigidBodyTree& t
       case ParamKind::kMZ: h[k] = g.sub(va.cross(v, w)[2], gravity[j][2]); break;
       case ParamKind::kM: h[k] = g.sub(g.mul(half, va.dot(v, v)), height[j]); break;
       case ParamKind::kIa: h[k] = g.mul({half, in.dq[i], in.dq[i]}); break;
+      case ParamKind::kIam: {
+        // Rotor of a coupled motor: Iam u'^2 / 2 with u' = c . dq.
+        const ExprId u = motor_velocity(g, tree, param, in);
+        h[k] = g.mul({half, u, u});
+        break;
+      }
       default: break;  // friction and offsets store no energy
     }
   }
@@ -78,6 +97,16 @@ std::vector<ExprId> derive_power_regressor(ExprGraph& g, const RigidBodyTree& tr
       case ParamKind::kFvNeg: dh[k] = g.mul({in.negative_dq[i], in.dq[i], in.dq[i]}); break;
       case ParamKind::kFcPos: dh[k] = g.mul(in.positive_dq[i], in.dq[i]); break;
       case ParamKind::kFcNeg: dh[k] = g.neg(g.mul(in.negative_dq[i], in.dq[i])); break;
+      case ParamKind::kFvm: {
+        const ExprId u = motor_velocity(g, tree, param, in);
+        dh[k] = g.mul(u, u);
+        break;
+      }
+      case ParamKind::kFcm: {
+        const ExprId u = motor_velocity(g, tree, param, in);
+        dh[k] = g.mul(g.sign(u), u);
+        break;
+      }
       default: dh[k] = d_dt(energy_regressor[k]); break;
     }
   }

@@ -58,7 +58,7 @@ class StatementWriter {
 
   bool is_operation(ExprId id) const {
     const Op op = g_.node(id).op;
-    return op == Op::kAdd || op == Op::kMul || op == Op::kShare;
+    return op == Op::kAdd || op == Op::kMul || op == Op::kShare || op == Op::kSign;
   }
 
   // A shared intermediate used once is printed as its expression.
@@ -81,6 +81,8 @@ class StatementWriter {
       visited[id] = true;
       for (ExprId arg : g_.node(id).args) {
         ++uses_[arg];
+        // A sign reads its argument twice ((x > 0) - (x < 0)): make it a temporary.
+        if (g_.node(id).op == Op::kSign) ++uses_[arg];
         stack.push_back(arg);
       }
     }
@@ -97,6 +99,15 @@ class StatementWriter {
     }
     if (!is_operation(id)) return;
     for (ExprId arg : n.args) prepare(arg, body);
+    if (n.op == Op::kSign) {
+      name_[id] = "t" + std::to_string(temporaries_++);
+      body.push_back(render_line("statements/sign_of",
+                                 {{"scalar", scalar_name(scalar_)},
+                                  {"name", name_[id]},
+                                  {"value", expression(n.args[0], Context::kFactor)},
+                                  {"zero", format_literal(0.0, scalar_)}}));
+      return;
+    }
     if (n.op == Op::kShare && !name_[n.args[0]].empty()) {
       name_[id] = name_[n.args[0]];  // already a temporary: no copy
       return;
@@ -236,6 +247,7 @@ class StatementWriter {
         return context == Context::kFactor ? "(" + out + ")" : out;
       }
       case Op::kShare: break;  // resolved above
+      case Op::kSign: break;   // always a temporary
     }
     return "";
   }

@@ -167,6 +167,17 @@ ExprId ExprGraph::share(ExprId e) {
   return intern(std::move(node));
 }
 
+ExprId ExprGraph::sign(ExprId e) {
+  if (nodes_[e].op == Op::kConstant) {
+    const double v = nodes_[e].value;
+    return constant(v > 0 ? 1.0 : (v < 0 ? -1.0 : 0.0));
+  }
+  Node node;
+  node.op = Op::kSign;
+  node.args = {e};
+  return intern(std::move(node));
+}
+
 std::vector<double> ExprGraph::evaluate(const std::function<double(const Symbol&)>& leaf) const {
   std::vector<double> value(nodes_.size());
   // Children are interned before their parents, so one pass in id order suffices.
@@ -188,6 +199,11 @@ std::vector<double> ExprGraph::evaluate(const std::function<double(const Symbol&
         break;
       }
       case Op::kShare: value[i] = value[n.args[0]]; break;
+      case Op::kSign: {
+        const double x = value[n.args[0]];
+        value[i] = x > 0 ? 1.0 : (x < 0 ? -1.0 : 0.0);
+        break;
+      }
     }
   }
   return value;

@@ -21,6 +21,7 @@ enum class Op : std::uint8_t {
   kAdd,  // n-ary sum, args sorted by id, no constant zero, no nested sums
   kMul,  // n-ary product, at most one constant (first), no 0 or 1 constants, no nested products
   kShare,  // one arg: an intermediate result kept whole, an atom to sums and products
+  kSign,   // one arg: -1, 0 or 1 (Coulomb friction of a motor driving several joints)
 };
 
 /// What a leaf stands for. The statement writer defines derived leaves (sin, cos, sign of a
@@ -69,6 +70,9 @@ class ExprGraph {
   /// (Khalil & Kleinfinger). Constants, symbols and constant multiples of symbols stay as they
   /// are.
   ExprId share(ExprId e);
+
+  /// sign(e): -1, 0 or +1; folded when e is a constant.
+  ExprId sign(ExprId e);
 
   const Node& node(ExprId id) const { return nodes_[id]; }
   const std::vector<Symbol>& symbols() const { return symbols_; }

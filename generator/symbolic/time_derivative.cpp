@@ -42,6 +42,9 @@ ExprId TimeDerivative::operator()(ExprId e) {
     case Op::kShare:
       result = graph_.share((*this)(node.args[0]));
       break;
+    case Op::kSign:
+      break;  // piecewise constant: zero wherever it is differentiable
+
   }
   done_.emplace(e, result);
   return result;

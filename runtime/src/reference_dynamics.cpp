@@ -67,15 +67,29 @@ void check_size(const Eigen::VectorXd& v, int n, const char* what) {
   }
 }
 
+struct MotorTerms {
+  const CoupledMotor* motor = nullptr;
+  double Iam = 0, Fvm = 0, Fcm = 0;
+};
+
 struct Unpacked {
   std::vector<BodyInertia> inertia;
   std::vector<DriveTerms> drive;  // per dof
+  std::vector<MotorTerms> motors;  // per tree.coupled_motors entry
 };
 
 Unpacked unpack(const RigidBodyTree& tree, const Eigen::VectorXd& p) {
   Unpacked u;
   u.inertia.resize(tree.bodies.size());
   u.drive.resize(tree.dof);
+  u.motors.resize(tree.coupled_motors.size());
+  for (std::size_t m = 0; m < tree.coupled_motors.size(); ++m) {
+    u.motors[m].motor = &tree.coupled_motors[m];
+  }
+  auto motor_terms = [&](const StandardParam& param) -> MotorTerms& {
+    const CoupledMotor* motor = coupled_motor_of(tree, param);
+    return u.motors[static_cast<std::size_t>(motor - tree.coupled_motors.data())];
+  };
   for (std::size_t k = 0; k < tree.params.size(); ++k) {
     const StandardParam& param = tree.params[k];
     BodyInertia& b = u.inertia[param.body];
@@ -100,6 +114,9 @@ Unpacked unpack(const RigidBodyTree& tree, const Eigen::VectorXd& p) {
       case ParamKind::kFvNeg: u.drive[dof].Fvn += v; break;
       case ParamKind::kFcPos: u.drive[dof].Fcp += v; break;
       case ParamKind::kFcNeg: u.drive[dof].Fcn += v; break;
+      case ParamKind::kIam: motor_terms(param).Iam += v; break;
+      case ParamKind::kFvm: motor_terms(param).Fvm += v; break;
+      case ParamKind::kFcm: motor_terms(param).Fcm += v; break;
     }
   }
   return u;
@@ -205,6 +222,13 @@ Eigen::VectorXd ReferenceDynamics::inverse_dynamics(const Eigen::VectorXd& q,
       moment[body.parent] += m.R[j] * moment[j] + m.p[j].cross(f_parent);
     }
   }
+  // Coupled motors: their inertia and friction act on the motor velocity u' = c . dq and
+  // reach every joint they drive through c (Gautier & Briot eq. 26).
+  for (const MotorTerms& terms : par.motors) {
+    const Eigen::Map<const Eigen::VectorXd> c(terms.motor->coupling.data(), dof());
+    const double torque = terms.Iam * c.dot(ddq) + terms.Fvm * c.dot(dq) + terms.Fcm * sign(c.dot(dq));
+    tau += torque * c;
+  }
   return tau;
 }
 
@@ -237,6 +261,10 @@ double ReferenceDynamics::kinetic_energy(const Eigen::VectorXd& q, const Eigen::
               0.5 * m.w[j].dot(b.J * m.w[j]);
   }
   for (int i = 0; i < dof(); ++i) energy += 0.5 * par.drive[i].Ia * dq[i] * dq[i];
+  for (const MotorTerms& terms : par.motors) {
+    const double u = Eigen::Map<const Eigen::VectorXd>(terms.motor->coupling.data(), dof()).dot(dq);
+    energy += 0.5 * terms.Iam * u * u;
+  }
   return energy;
 }
 

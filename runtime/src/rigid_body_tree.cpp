@@ -30,6 +30,9 @@ const char* param_kind_stem(ParamKind kind) {
     case ParamKind::kFvNeg: return "Fvn";
     case ParamKind::kFcPos: return "Fcp";
     case ParamKind::kFcNeg: return "Fcn";
+    case ParamKind::kIam: return "Iam";
+    case ParamKind::kFvm: return "Fvm";
+    case ParamKind::kFcm: return "Fcm";
   }
   return "?";
 }
@@ -39,7 +42,12 @@ namespace {
 bool is_drive_param(ParamKind kind) {
   return kind == ParamKind::kIa || kind == ParamKind::kFv || kind == ParamKind::kFc ||
          kind == ParamKind::kOff || kind == ParamKind::kFvPos || kind == ParamKind::kFvNeg ||
-         kind == ParamKind::kFcPos || kind == ParamKind::kFcNeg;
+         kind == ParamKind::kFcPos || kind == ParamKind::kFcNeg || kind == ParamKind::kIam ||
+         kind == ParamKind::kFvm || kind == ParamKind::kFcm;
+}
+
+bool is_motor_param(ParamKind kind) {
+  return kind == ParamKind::kIam || kind == ParamKind::kFvm || kind == ParamKind::kFcm;
 }
 
 void check_rotation(const Body& body) {
@@ -61,6 +69,15 @@ void check_rotation(const Body& body) {
 }
 
 }  // namespace
+
+const CoupledMotor* coupled_motor_of(const RigidBodyTree& tree, const StandardParam& param) {
+  if (param.body < 0 || param.body >= static_cast<int>(tree.bodies.size())) return nullptr;
+  const int dof = tree.bodies[param.body].dof_index;
+  for (const CoupledMotor& motor : tree.coupled_motors) {
+    if (motor.dof_index == dof) return &motor;
+  }
+  return nullptr;
+}
 
 void validate(const RigidBodyTree& tree) {
   std::vector<int> dof_owner(tree.dof, -1);
@@ -93,6 +110,17 @@ void validate(const RigidBodyTree& tree) {
       throw std::invalid_argument("dof index " + std::to_string(i) + " has no joint");
     }
   }
+  std::set<int> motors;
+  for (const CoupledMotor& motor : tree.coupled_motors) {
+    if (motor.dof_index < 0 || motor.dof_index >= tree.dof || !motors.insert(motor.dof_index).second) {
+      throw std::invalid_argument("coupled motor of dof " + std::to_string(motor.dof_index) +
+                                  " is out of range or given twice");
+    }
+    if (static_cast<int>(motor.coupling.size()) != tree.dof || motor.coupling[motor.dof_index] != 1.0) {
+      throw std::invalid_argument("coupled motor of dof " + std::to_string(motor.dof_index) +
+                                  ": coupling needs one entry per dof and 1 on its own joint");
+    }
+  }
   std::set<std::string> names;
   for (const StandardParam& param : tree.params) {
     if (param.body < 0 || param.body >= static_cast<int>(tree.bodies.size())) {
@@ -100,6 +128,9 @@ void validate(const RigidBodyTree& tree) {
     }
     if (!names.insert(param.name).second) {
       throw std::invalid_argument("parameter '" + param.name + "' appears twice");
+    }
+    if (is_motor_param(param.kind) && coupled_motor_of(tree, param) == nullptr) {
+      throw std::invalid_argument("parameter '" + param.name + "' refers to no coupled motor");
     }
     if (is_drive_param(param.kind) && tree.bodies[param.body].type == JointType::kFixed) {
       throw std::invalid_argument("parameter '" + param.name +

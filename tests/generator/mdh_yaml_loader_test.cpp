@@ -92,7 +92,14 @@ TEST(MdhYamlLoader, Kr150CouplingInvertsSweversEq11) {
 TEST(MdhYamlLoader, StandardParametersFollowDesignOrder) {
   const RobotModel model = load_robot(test::source_path("robots/tx40.yaml"));
   const std::vector<std::string> names = model.param_names();
-  ASSERT_EQ(names.size(), 6u * 14 + 10);
+  // 14 per joint, the rotor and friction of motor 6 that turns with dq5 + dq6 (Gautier & Briot
+  // eq. 25-26), 10 for the fixed payload frame.
+  ASSERT_EQ(names.size(), 6u * 14 + 3 + 10);
+  EXPECT_EQ(std::vector<std::string>(names.begin() + 84, names.begin() + 87),
+            (std::vector<std::string>{"Iam6", "Fvm6", "Fcm6"}));
+  ASSERT_EQ(model.tree.coupled_motors.size(), 1u);
+  EXPECT_EQ(model.tree.coupled_motors[0].dof_index, 5);
+  EXPECT_EQ(model.tree.coupled_motors[0].coupling, (std::vector<double>{0, 0, 0, 0, 1, 1}));
   const std::vector<std::string> first = {"XX1", "XY1", "XZ1", "YY1", "YZ1", "ZZ1", "MX1",
                                           "MY1", "MZ1", "M1",  "Ia1", "Fv1", "Fc1", "OFF1"};
   EXPECT_EQ(std::vector<std::string>(names.begin(), names.begin() + 14), first);

@@ -114,8 +114,13 @@ TEST_P(ShippedRobot, PowerEqualsTimeDerivativeOfEnergy) {
   Eigen::VectorXd p = random.vector(dynamics.num_params(), -1, 1);
   for (int k = 0; k < dynamics.num_params(); ++k) {
     const ParamKind kind = model.tree.params[k].kind;
-    if (kind == ParamKind::kIa || kind == ParamKind::kM) p[k] = std::abs(p[k]) + 0.1;
-    if (kind == ParamKind::kFv || kind == ParamKind::kFc || kind == ParamKind::kOff) p[k] = 0;
+    if (kind == ParamKind::kIa || kind == ParamKind::kIam || kind == ParamKind::kM) {
+      p[k] = std::abs(p[k]) + 0.1;
+    }
+    if (kind == ParamKind::kFv || kind == ParamKind::kFc || kind == ParamKind::kOff ||
+        kind == ParamKind::kFvm || kind == ParamKind::kFcm) {
+      p[k] = 0;
+    }
   }
   // q(t) = a sin(w t + phi): smooth, with analytic dq and ddq.
   const Eigen::VectorXd a = random.vector(n, 0.2, 1.0), w = random.vector(n, 0.5, 2.0),

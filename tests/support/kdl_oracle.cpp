@@ -162,6 +162,24 @@ Eigen::VectorXd drive_torques(const RigidBodyTree& tree, const Eigen::VectorXd& 
       case ParamKind::kFcNeg:
         tau[i] -= dq[i] < 0 ? v : 0.0;
         break;
+      case ParamKind::kIam:
+      case ParamKind::kFvm:
+      case ParamKind::kFcm: {
+        // A motor driving several joints: its term on u' = c . dq reaches each joint through c
+        // (Gautier & Briot eq. 26), written out here independently of the reference.
+        const StandardParam& param = tree.params[k];
+        const CoupledMotor* motor = coupled_motor_of(tree, param);
+        double u = 0, du = 0;
+        for (int l = 0; l < tree.dof; ++l) {
+          u += motor->coupling[l] * dq[l];
+          du += motor->coupling[l] * ddq[l];
+        }
+        const double term = param.kind == ParamKind::kIam   ? v * du
+                            : param.kind == ParamKind::kFvm ? v * u
+                                                            : v * sign(u);
+        for (int l = 0; l < tree.dof; ++l) tau[l] += motor->coupling[l] * term;
+        break;
+      }
       default:
         break;  // inertial parameters: in the KDL chain
     }

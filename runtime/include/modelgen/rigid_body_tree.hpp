@@ -41,7 +41,9 @@ enum class ParamKind {
   kIa,                           // drive (rotor + gear) inertia on the joint side
   kFv, kFc,                      // viscous and Coulomb friction
   kOff,                          // torque offset
-  kFvPos, kFvNeg, kFcPos, kFcNeg // asymmetric friction (Bona & Curatella eq. 2)
+  kFvPos, kFvNeg, kFcPos, kFcNeg, // asymmetric friction (Bona & Curatella eq. 2)
+  kIam, kFvm, kFcm               // rotor inertia and friction of a motor that drives several
+                                 // joints (Gautier & Briot eq. 26), see CoupledMotor
 };
 
 struct StandardParam {
@@ -50,12 +52,27 @@ struct StandardParam {
   ParamKind kind = ParamKind::kM;
 };
 
+/// A motor whose velocity is a combination of several joint velocities (a coupled wrist):
+/// dq_motor = ratio * sum_l coupling[l] dq[l], with coupling[dof_index] = 1. Its rotor inertia
+/// and friction, scaled to its own joint (Iam = ratio^2 J_rotor, Fvm = ratio^2 Fv_rotor,
+/// Fcm = ratio Fc_rotor), add tau[l] += coupling[l] (Iam u'' + Fvm u' + Fcm sign(u')) with
+/// u' = sum_l coupling[l] dq[l] (Gautier & Briot eq. 26; Swevers et al. eq. 5-10).
+struct CoupledMotor {
+  int dof_index = -1;             ///< the joint this motor is numbered after
+  std::vector<double> coupling;   ///< one entry per dof
+};
+
 struct RigidBodyTree {
   std::vector<Body> bodies;
   std::array<double, 3> gravity{0, 0, -9.81};  ///< in the base frame, m/s^2
   int dof = 0;                                 ///< number of moving joints
   std::vector<StandardParam> params;           ///< order of the standard parameter vector
+  std::vector<CoupledMotor> coupled_motors;    ///< motors kIam/kFvm/kFcm parameters refer to
 };
+
+/// The coupled motor a kIam/kFvm/kFcm parameter belongs to: the one numbered after the joint of
+/// the parameter's body. nullptr if there is none.
+const CoupledMotor* coupled_motor_of(const RigidBodyTree& tree, const StandardParam& param);
 
 /// The name stem of a parameter kind: "XX", "Ia", "Fcp", ...
 const char* param_kind_stem(ParamKind kind);
