@@ -4,15 +4,15 @@
 // The generated code belongs to the owner of the robot description.
 //
 // Function                              mul    add  sin/cos
-// idim_regressor_standard              1899   1322       12
+// idim_regressor_standard              1522   1188       12
 // inverse_dynamics_standard             714    573       12
 // joint_sincos                            0      0       18
-// idim_regressor_standard_sincos       1899   1322        0
+// idim_regressor_standard_sincos       1522   1188        0
 // inverse_dynamics_standard_sincos      714    573        0
 // base_from_standard                     56    105        0
-// idim_regressor                       1377    981       12
+// idim_regressor                       1218    955       12
 // inverse_dynamics                      604    480       12
-// idim_regressor_sincos                1377    981        0
+// idim_regressor_sincos                1218    955        0
 // inverse_dynamics_sincos               604    480        0
 // energy_regressor                      219    134       12
 // power_regressor                       511    340       12

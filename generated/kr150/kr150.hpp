@@ -4,15 +4,15 @@
 // The generated code belongs to the owner of the robot description.
 //
 // Function                              mul    add  sin/cos
-// idim_regressor_standard               951    716       10
+// idim_regressor_standard               685    567       10
 // inverse_dynamics_standard             496    402       10
 // joint_sincos                            0      0       12
-// idim_regressor_standard_sincos        951    716        0
+// idim_regressor_standard_sincos        685    567        0
 // inverse_dynamics_standard_sincos      496    402        0
 // base_from_standard                     49     81        0
-// idim_regressor                        614    469       10
+// idim_regressor                        477    390       10
 // inverse_dynamics                      379    304       10
-// idim_regressor_sincos                 614    469        0
+// idim_regressor_sincos                 477    390        0
 // inverse_dynamics_sincos               379    304        0
 // energy_regressor                      132     61       10
 // power_regressor                       325    186       10

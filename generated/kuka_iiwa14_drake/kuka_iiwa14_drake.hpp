@@ -4,15 +4,15 @@
 // The generated code belongs to the owner of the robot description.
 //
 // Function                              mul    add  sin/cos
-// idim_regressor_standard              1181    831       12
+// idim_regressor_standard              1007    742       12
 // inverse_dynamics_standard             484    397       12
 // joint_sincos                            0      0       14
-// idim_regressor_standard_sincos       1181    831        0
+// idim_regressor_standard_sincos       1007    742        0
 // inverse_dynamics_standard_sincos      484    397        0
 // base_from_standard                     23     59        0
-// idim_regressor                        838    609       12
+// idim_regressor                        798    591       12
 // inverse_dynamics                      422    347       12
-// idim_regressor_sincos                 838    609        0
+// idim_regressor_sincos                 798    591        0
 // inverse_dynamics_sincos               422    347        0
 // energy_regressor                      148     70       12
 // power_regressor                       378    210       12

@@ -4,15 +4,15 @@
 // The generated code belongs to the owner of the robot description.
 //
 // Function                              mul    add  sin/cos
-// idim_regressor_standard               852    756       10
+// idim_regressor_standard               614    489       10
 // inverse_dynamics_standard             419    331       10
 // joint_sincos                            0      0       12
-// idim_regressor_standard_sincos        852    756        0
+// idim_regressor_standard_sincos        614    489        0
 // inverse_dynamics_standard_sincos      419    331        0
 // base_from_standard                     37     75        0
-// idim_regressor                        614    561       10
+// idim_regressor                        490    385       10
 // inverse_dynamics                      365    287       10
-// idim_regressor_sincos                 614    561        0
+// idim_regressor_sincos                 490    385        0
 // inverse_dynamics_sincos               365    287        0
 // energy_regressor                      127     51       10
 // power_regressor                       317    168       10

@@ -4,15 +4,15 @@
 // The generated code belongs to the owner of the robot description.
 //
 // Function                              mul    add  sin/cos
-// idim_regressor_standard               811    609       10
+// idim_regressor_standard               585    480       10
 // inverse_dynamics_standard             441    377       10
 // joint_sincos                            0      0       12
-// idim_regressor_standard_sincos        811    609        0
+// idim_regressor_standard_sincos        585    480        0
 // inverse_dynamics_standard_sincos      441    377        0
 // base_from_standard                     32     70        0
-// idim_regressor                        593    454       10
+// idim_regressor                        468    381       10
 // inverse_dynamics                      338    289       10
-// idim_regressor_sincos                 593    454        0
+// idim_regressor_sincos                 468    381        0
 // inverse_dynamics_sincos               338    289        0
 // energy_regressor                      126     59       10
 // power_regressor                       318    181       10

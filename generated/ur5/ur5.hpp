@@ -4,15 +4,15 @@
 // The generated code belongs to the owner of the robot description.
 //
 // Function                              mul    add  sin/cos
-// idim_regressor_standard               963    798       10
+// idim_regressor_standard               577    459       10
 // inverse_dynamics_standard             434    354       10
 // joint_sincos                            0      0       12
-// idim_regressor_standard_sincos        963    798        0
+// idim_regressor_standard_sincos        577    459        0
 // inverse_dynamics_standard_sincos      434    354        0
 // base_from_standard                     36     60        0
-// idim_regressor                        667    568       10
+// idim_regressor                        454    363       10
 // inverse_dynamics                      378    308       10
-// idim_regressor_sincos                 667    568        0
+// idim_regressor_sincos                 454    363        0
 // inverse_dynamics_sincos               378    308        0
 // energy_regressor                      133     61       10
 // power_regressor                       338    190       10

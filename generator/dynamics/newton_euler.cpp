@@ -133,6 +133,46 @@ std::vector<ExprId> motor_columns(ExprGraph& g, const RigidBodyTree& tree, const
   return columns;
 }
 
+// The axis of joint i as a screw expressed at body j (j at or below i): a torque about the
+// joint from a wrench (f, n) at body j's origin, in frame j, is a . n + b . f, with
+// a = R_ij^T u_i and b = R_ij^T (u_i x p_ij). Built outward once per (joint, body) pair,
+// a_j = R_j^T a_a and b_j = R_j^T (b_a + a_a x p_j), instead of carrying every parameter's
+// wrench down to the base: the regressor's columns then cost two dot products each.
+struct JointScrew {
+  V3 a, b;
+};
+
+class JointScrews {
+ public:
+  JointScrews(ExprGraph& g, const RigidBodyTree& tree, const SymbolicMotion& m)
+      : n_(tree.bodies.size()), screws_(n_ * n_) {
+    VectorAlgebra va(g);
+    for (std::size_t i = 0; i < n_; ++i) {
+      if (tree.bodies[i].type == JointType::kFixed) continue;
+      at(i, i) = {va.vector(tree.bodies[i].axis), va.zero()};
+      // Bodies are ordered parents first, so one pass reaches the whole subtree of i.
+      std::vector<bool> below(n_, false);
+      below[i] = true;
+      for (std::size_t j = i + 1; j < n_; ++j) {
+        const int a = tree.bodies[j].parent;
+        if (a < 0 || !below[a]) continue;
+        below[j] = true;
+        const JointScrew& s = at(i, a);
+        at(i, j) = {va.share(va.mul_transposed(m.R[j], s.a)),
+                    va.share(va.mul_transposed(m.R[j], va.add(s.b, va.cross(s.a, m.p[j]))))};
+      }
+    }
+  }
+  const JointScrew& at(std::size_t joint, std::size_t body) const {
+    return screws_[joint * n_ + body];
+  }
+
+ private:
+  JointScrew& at(std::size_t joint, std::size_t body) { return screws_[joint * n_ + body]; }
+  std::size_t n_;
+  std::vector<JointScrew> screws_;
+};
+
 bool is_motor(ParamKind kind) {
   return kind == ParamKind::kIam || kind == ParamKind::kFvm || kind == ParamKind::kFcm;
 }
@@ -173,6 +213,7 @@ std::vector<ExprId> derive_standard_regressor(ExprGraph& g, const RigidBodyTree&
   const std::size_t num_params = tree.params.size();
   std::vector<ExprId> W(tree.dof * num_params, g.zero());
   const V3 ex = va.vector({1, 0, 0}), ey = va.vector({0, 1, 0}), ez = va.vector({0, 0, 1});
+  const JointScrews screws(g, tree, m);
   for (std::size_t k = 0; k < num_params; ++k) {
     const StandardParam& param = tree.params[k];
     const Body& owner = tree.bodies[param.body];
@@ -215,22 +256,17 @@ std::vector<ExprId> derive_standard_regressor(ExprGraph& g, const RigidBodyTree&
       case ParamKind::kM: f = dv; break;
       default: break;
     }
-    // Carry the wrench down to the base; each moving joint on the way takes its component.
+    // Each moving joint i at or below the body takes its torque through the joint's screw
+    // expressed at this body: tau_i = a . n + b . f (revolute) or a . f (prismatic).
+    f = va.share(f);
+    nm = va.share(nm);
     for (int b = param.body; b >= 0; b = tree.bodies[b].parent) {
-      const Body& body = tree.bodies[b];
-      // The joint torque and the antecedent's wrench both read this wrench: compute it once.
-      f = va.share(f);
-      nm = va.share(nm);
-      if (body.type != JointType::kFixed) {
-        const V3 u = va.vector(body.axis);
-        W[body.dof_index * num_params + k] =
-            va.dot(body.type == JointType::kRevolute ? nm : f, u);
-      }
-      if (body.parent >= 0) {
-        const V3 f_parent = va.share(va.mul(m.R[b], f));
-        nm = va.add(va.mul(m.R[b], nm), va.cross(m.p[b], f_parent));
-        f = f_parent;
-      }
+      const Body& joint = tree.bodies[b];
+      if (joint.type == JointType::kFixed) continue;
+      const JointScrew& screw = screws.at(b, param.body);
+      W[joint.dof_index * num_params + k] =
+          joint.type == JointType::kRevolute ? g.add(va.dot(screw.a, nm), va.dot(screw.b, f))
+                                             : va.dot(screw.a, f);
     }
   }
   return W;
