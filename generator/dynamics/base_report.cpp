@@ -14,6 +14,13 @@ std::string describe_base_parameters(const RobotModel& model, const BaseParamete
   out << "base parameters of " << model.name << ": " << base.params.size() << " of "
       << model.tree.params.size()
       << " standard (numeric derivation: independent regressor columns in standard order)\n";
+  std::size_t inertial = 0;
+  for (const BaseParameter& b : base.params) {
+    const ParamKind kind = model.tree.params[b.standard_index].kind;
+    if (kind <= ParamKind::kM) ++inertial;
+  }
+  out << "  " << inertial << " inertial (built on XX..M), " << base.params.size() - inertial
+      << " drive (built on Ia, friction, offset, motor parameters)\n";
   std::size_t width = 0;
   for (const BaseParameter& b : base.params) width = std::max(width, b.name.size());
   for (const BaseParameter& b : base.params) {

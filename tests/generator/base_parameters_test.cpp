@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include "generator/description/load_robot.hpp"
+#include "generator/description/mdh_yaml_loader.hpp"
 #include "generator/dynamics/base_parameters.hpp"
 #include "modelgen/reference_dynamics.hpp"
 #include "tests/support/test_support.hpp"
@@ -99,17 +100,42 @@ TEST(BaseParameters, Tx40MatchesKhalilClosedForm) {
   EXPECT_NEAR(coefficient(model, zz3, "M6"), r4 * r4, 1e-15);
 }
 
+TEST(BaseParameters, GeneralSixRArmHasThirtySixInertialBaseParameters) {
+  // The TX-40 of Table I alone (no payload frame, no drive model but viscous and Coulomb
+  // friction): the published count for a general 6R arm is 36 base inertial parameters, and
+  // SymPyBotics reports 48 with the 12 friction ones.
+  const RobotModel model = load_mdh_yaml(
+      "tx40_links.yaml",
+      "name: tx40_links\n"
+      "joints:\n"
+      "  - {type: revolute, alpha: 0, d: 0, theta: 0, r: 0}\n"
+      "  - {type: revolute, alpha: -pi/2, d: 0, theta: -pi/2, r: 0}\n"
+      "  - {type: revolute, alpha: 0, d: 0.225, theta: pi/2, r: 0.035}\n"
+      "  - {type: revolute, alpha: pi/2, d: 0, theta: 0, r: 0.225}\n"
+      "  - {type: revolute, alpha: -pi/2, d: 0, theta: 0, r: 0}\n"
+      "  - {type: revolute, alpha: pi/2, d: 0, theta: 0, r: 0}\n"
+      "friction: {viscous: true, coulomb: true, offset: false}\n"
+      "rotor_inertia: false\n");
+  const BaseParameterSet base = derive_base_parameters(model.tree);
+  int inertial = 0;
+  for (const BaseParameter& b : base.params) {
+    if (model.tree.params[b.standard_index].kind <= ParamKind::kM) ++inertial;
+  }
+  EXPECT_EQ(inertial, 36);
+  EXPECT_EQ(base.params.size(), 48u);
+}
+
 TEST(BaseParameters, Tx40ContainsTheParametersOfTableII) {
   const RobotModel model = load_robot(test::source_path("robots/tx40.yaml"));
   const std::vector<std::string> ours = names(derive_base_parameters(model.tree));
   // Table II of Gautier & Briot (identified essential parameters), in DESIGN.md spelling
-  // (fs -> Fc). zz6 is ZZ6R here because the payload frame 7 regroups into link 6; fvm6 and
-  // fsm6 are the motor-side coupling parameters of eq. 26, not modelled yet.
+  // (fs -> Fc, fsm -> Fcm). zz6, xy6, xz6, mx6, my6 carry an R here because the payload frame
+  // 7 regroups into link 6; ia6 of the paper (motor 6 rotor, N6^2 Ja6, eq. 26) is Iam6.
   for (const char* name :
        {"ZZ1R", "Fv1", "Fc1", "XX2R", "XY2", "XZ2R", "ZZ2R", "MX2R", "Fv2", "Fc2", "XX3R", "XZ3",
         "YZ3", "ZZ3R", "MY3R", "Ia3", "Fv3", "Fc3", "XY4", "YZ4", "ZZ4R", "MX4", "Ia4", "Fv4",
-        "Fc4", "YZ5", "Ia5", "Fv5", "Fc5", "XY6R", "XZ6R", "ZZ6R", "MX6R", "MY6R", "Ia6", "Fv6",
-        "Fc6"}) {
+        "Fc4", "YZ5", "Ia5", "Fv5", "Fc5", "XY6R", "XZ6R", "ZZ6R", "MX6R", "MY6R", "Iam6", "Fv6",
+        "Fc6", "Fvm6", "Fcm6"}) {
     EXPECT_NE(std::find(ours.begin(), ours.end(), name), ours.end()) << name;
   }
   // Drive inertias of joints 1 and 2 cannot be told from ZZ1 and ZZ2 (Table II has neither).
