@@ -125,6 +125,19 @@ TEST(BaseParameters, GeneralSixRArmHasThirtySixInertialBaseParameters) {
   EXPECT_EQ(base.params.size(), 48u);
 }
 
+TEST(BaseParameters, PandaArmHasTheFortyThreeOfGazEtAl) {
+  // Gaz et al. (RA-L 2019) report 43 base inertial parameters for the Panda arm (joints 1-7).
+  LoadOptions options;
+  options.tip_link = "panda_link7";
+  const RobotModel model = load_robot(test::source_path("robots/urdf/franka_panda.urdf"), options);
+  const BaseParameterSet base = derive_base_parameters(model.tree);
+  int inertial = 0;
+  for (const BaseParameter& b : base.params) {
+    if (model.tree.params[b.standard_index].kind <= ParamKind::kM) ++inertial;
+  }
+  EXPECT_EQ(inertial, 43);
+}
+
 TEST(BaseParameters, Tx40ContainsTheParametersOfTableII) {
   const RobotModel model = load_robot(test::source_path("robots/tx40.yaml"));
   const std::vector<std::string> ours = names(derive_base_parameters(model.tree));
