@@ -63,6 +63,12 @@ struct Tx40 {
     tx40::base_from_standard(p, beta);
   }
   static void joint_sincos(const double* q, double* s, double* c) { tx40::joint_sincos(q, s, c); }
+  static void base_regressor(const double* q, const double* dq, const double* ddq, double* W) {
+    tx40::idim_regressor(q, dq, ddq, W);
+  }
+  static void power_regressor(const double* q, const double* dq, const double* ddq, double* dh) {
+    tx40::power_regressor(q, dq, ddq, dh);
+  }
   static void base_inverse_dynamics(const double* q, const double* s, const double* c,
                                     const double* dq, const double* ddq, const double* beta,
                                     double* tau) {
@@ -92,6 +98,12 @@ struct Kr150 {
     kr150::base_from_standard(p, beta);
   }
   static void joint_sincos(const double* q, double* s, double* c) { kr150::joint_sincos(q, s, c); }
+  static void base_regressor(const double* q, const double* dq, const double* ddq, double* W) {
+    kr150::idim_regressor(q, dq, ddq, W);
+  }
+  static void power_regressor(const double* q, const double* dq, const double* ddq, double* dh) {
+    kr150::power_regressor(q, dq, ddq, dh);
+  }
   static void base_inverse_dynamics(const double* q, const double* s, const double* c,
                                     const double* dq, const double* ddq, const double* beta,
                                     double* tau) {
@@ -121,6 +133,12 @@ struct Iiwa14 {
     iiwa14::base_from_standard(p, beta);
   }
   static void joint_sincos(const double* q, double* s, double* c) { iiwa14::joint_sincos(q, s, c); }
+  static void base_regressor(const double* q, const double* dq, const double* ddq, double* W) {
+    iiwa14::idim_regressor(q, dq, ddq, W);
+  }
+  static void power_regressor(const double* q, const double* dq, const double* ddq, double* dh) {
+    iiwa14::power_regressor(q, dq, ddq, dh);
+  }
   static void base_inverse_dynamics(const double* q, const double* s, const double* c,
                                     const double* dq, const double* ddq, const double* beta,
                                     double* tau) {
@@ -270,6 +288,26 @@ void generated_base_inverse_dynamics(benchmark::State& state, const Workload& w,
   }
 }
 
+// A base-parameter regressor (IDIM kDof x kBase, or PIM 1 x kBase) on the pool.
+template <class Robot, bool kPower>
+void generated_base_regressor(benchmark::State& state, const Workload& w) {
+  std::vector<double> out(static_cast<std::size_t>(kPower ? 1 : Robot::kDof) * Robot::kBase);
+  int s = 0;
+  for (auto _ : state) {
+    const int offset = s * Robot::kDof;
+    if constexpr (kPower) {
+      Robot::power_regressor(w.q.data() + offset, w.dq.data() + offset, w.ddq.data() + offset,
+                             out.data());
+    } else {
+      Robot::base_regressor(w.q.data() + offset, w.dq.data() + offset, w.ddq.data() + offset,
+                            out.data());
+    }
+    benchmark::DoNotOptimize(out.data());
+    benchmark::ClobberMemory();
+    s = (s + 1) & (kPoolSize - 1);
+  }
+}
+
 void kdl_rne(benchmark::State& state, const Workload& w, KdlRne& kdl) {
   KDL::JntArray tau(kdl.num_joints());
   int s = 0;
@@ -333,6 +371,12 @@ void register_robot(Workload& w) {
   benchmark::RegisterBenchmark(
       name("generated_inverse_dynamics_base_sincos").c_str(),
       [&w](benchmark::State& st) { generated_base_inverse_dynamics<Robot>(st, w, true); });
+  benchmark::RegisterBenchmark(
+      name("generated_regressor_base").c_str(),
+      [&w](benchmark::State& st) { generated_base_regressor<Robot, false>(st, w); });
+  benchmark::RegisterBenchmark(
+      name("generated_power_regressor_base").c_str(),
+      [&w](benchmark::State& st) { generated_base_regressor<Robot, true>(st, w); });
   benchmark::RegisterBenchmark(name("kdl_rne").c_str(),
                                [&w](benchmark::State& st) { kdl_rne(st, w, *w.kdl); });
   benchmark::RegisterBenchmark(name("kdl_rne_oracle_chain").c_str(),
