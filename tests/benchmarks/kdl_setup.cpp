@@ -21,27 +21,17 @@
 #include <kdl/segment.hpp>
 
 #include "modelgen/rigid_body_tree.hpp"
+#include "tests/support/kdl_oracle.hpp"
 
 namespace modelgen::bench {
 namespace {
-
-// Slot of an inertial parameter in XX XY XZ YY YZ ZZ MX MY MZ M order, -1 for drive parameters.
-int inertial_slot(ParamKind kind) {
-  static constexpr ParamKind kOrder[] = {
-      ParamKind::kXX, ParamKind::kXY, ParamKind::kXZ, ParamKind::kYY, ParamKind::kYZ,
-      ParamKind::kZZ, ParamKind::kMX, ParamKind::kMY, ParamKind::kMZ, ParamKind::kM};
-  for (int slot = 0; slot < 10; ++slot) {
-    if (kOrder[slot] == kind) return slot;
-  }
-  return -1;
-}
 
 // The ten inertial standard parameters of every body, summed over tree.params.
 std::vector<std::array<double, 10>> standard_per_body(const RigidBodyTree& tree,
                                                       const Eigen::VectorXd& p) {
   std::vector<std::array<double, 10>> out(tree.bodies.size(), std::array<double, 10>{});
   for (std::size_t k = 0; k < tree.params.size(); ++k) {
-    const int slot = inertial_slot(tree.params[k].kind);
+    const int slot = test::inertial_slot(tree.params[k].kind);
     if (slot >= 0) out[tree.params[k].body][slot] += p[static_cast<Eigen::Index>(k)];
   }
   return out;

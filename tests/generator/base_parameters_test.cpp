@@ -63,16 +63,8 @@ TEST_P(ShippedRobotBase, CountEqualsRankAndRelationsHold) {
   }
 }
 
-std::string robot_test_name(const testing::TestParamInfo<std::string>& info) {
-  std::string name = info.param.substr(info.param.find_last_of('/') + 1);
-  for (char& c : name) {
-    if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
-  }
-  return name;
-}
-
 INSTANTIATE_TEST_SUITE_P(All, ShippedRobotBase, testing::ValuesIn(test::shipped_robots()),
-                         robot_test_name);
+                         test::robot_test_name);
 
 TEST(BaseParameters, Tx40MatchesKhalilClosedForm) {
   const RobotModel model = load_robot(test::source_path("robots/tx40.yaml"));

@@ -16,34 +16,6 @@ namespace {
 
 class SymbolicNewtonEuler : public testing::TestWithParam<std::string> {};
 
-// Leaf values for a state: inputs by their C++ text, derived leaves from their input.
-std::function<double(const Symbol&)> leaves(const Eigen::VectorXd& q, const Eigen::VectorXd& dq,
-                                            const Eigen::VectorXd& ddq, const Eigen::VectorXd& p) {
-  return [&q, &dq, &ddq, &p](const Symbol& s) {
-    auto input = [&](const std::string& text) {
-      const std::size_t open = text.find('[');
-      const std::string array = text.substr(0, open);
-      const int index = std::stoi(text.substr(open + 1));
-      if (array == "q") return q[index];
-      if (array == "dq") return dq[index];
-      if (array == "ddq") return ddq[index];
-      return p[index];
-    };
-    switch (s.kind) {
-      case SymbolKind::kInput: return input(s.name);
-      case SymbolKind::kSin: return std::sin(input(s.input));
-      case SymbolKind::kCos: return std::cos(input(s.input));
-      case SymbolKind::kSign: {
-        const double x = input(s.input);
-        return x > 0 ? 1.0 : (x < 0 ? -1.0 : 0.0);
-      }
-      case SymbolKind::kPositive: return input(s.input) > 0 ? 1.0 : 0.0;
-      case SymbolKind::kNegative: return input(s.input) < 0 ? 1.0 : 0.0;
-    }
-    return 0.0;
-  };
-}
-
 TEST_P(SymbolicNewtonEuler, MatchesNumericReference) {
   const RobotModel model = load_robot(GetParam());
   const ReferenceDynamics reference(model.tree);
@@ -56,7 +28,7 @@ TEST_P(SymbolicNewtonEuler, MatchesNumericReference) {
   for (int trial = 0; trial < 100; ++trial) {
     const Eigen::VectorXd q = random.vector(n, -3, 3), dq = random.vector(n, -2, 2),
                           ddq = random.vector(n, -5, 5), p = random.vector(np, -1, 1);
-    const std::vector<double> value = graph.evaluate(leaves(q, dq, ddq, p));
+    const std::vector<double> value = graph.evaluate(test::symbol_values(q, dq, ddq, p));
     Eigen::MatrixXd W_symbolic(n, np);
     Eigen::VectorXd tau_symbolic(n);
     for (int i = 0; i < n; ++i) {
@@ -70,16 +42,8 @@ TEST_P(SymbolicNewtonEuler, MatchesNumericReference) {
   }
 }
 
-std::string robot_test_name(const testing::TestParamInfo<std::string>& info) {
-  std::string name = info.param.substr(info.param.find_last_of('/') + 1);
-  for (char& c : name) {
-    if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
-  }
-  return name;
-}
-
 INSTANTIATE_TEST_SUITE_P(All, SymbolicNewtonEuler, testing::ValuesIn(test::shipped_robots()),
-                         robot_test_name);
+                         test::robot_test_name);
 
 }  // namespace
 }  // namespace modelgen::gen

@@ -28,23 +28,7 @@ TEST_P(PowerModel, EnergyAndPowerMatchTheReference) {
   for (int trial = 0; trial < 100; ++trial) {
     const Eigen::VectorXd q = random.vector(n, -3, 3), dq = random.vector(n, -2, 2),
                           ddq = random.vector(n, -5, 5), p = random.vector(np, -1, 1);
-    const std::vector<double> value = graph.evaluate([&](const Symbol& s) {
-      auto input = [&](const std::string& text) {
-        const std::size_t open = text.find('[');
-        const int index = std::stoi(text.substr(open + 1));
-        const std::string array = text.substr(0, open);
-        return array == "q" ? q[index] : array == "dq" ? dq[index] : array == "ddq" ? ddq[index] : p[index];
-      };
-      switch (s.kind) {
-        case SymbolKind::kInput: return input(s.name);
-        case SymbolKind::kSin: return std::sin(input(s.input));
-        case SymbolKind::kCos: return std::cos(input(s.input));
-        case SymbolKind::kSign: return input(s.input) > 0 ? 1.0 : (input(s.input) < 0 ? -1.0 : 0.0);
-        case SymbolKind::kPositive: return input(s.input) > 0 ? 1.0 : 0.0;
-        case SymbolKind::kNegative: return input(s.input) < 0 ? 1.0 : 0.0;
-      }
-      return 0.0;
-    });
+    const std::vector<double> value = graph.evaluate(test::symbol_values(q, dq, ddq, p));
     double energy = 0, power = 0;
     for (int k = 0; k < np; ++k) {
       energy += value[h[k]] * p[k];
@@ -57,15 +41,7 @@ TEST_P(PowerModel, EnergyAndPowerMatchTheReference) {
   }
 }
 
-std::string robot_test_name(const testing::TestParamInfo<std::string>& info) {
-  std::string name = info.param.substr(info.param.find_last_of('/') + 1);
-  for (char& c : name) {
-    if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
-  }
-  return name;
-}
-
-INSTANTIATE_TEST_SUITE_P(All, PowerModel, testing::ValuesIn(test::shipped_robots()), robot_test_name);
+INSTANTIATE_TEST_SUITE_P(All, PowerModel, testing::ValuesIn(test::shipped_robots()), test::robot_test_name);
 
 }  // namespace
 }  // namespace modelgen::gen

@@ -146,15 +146,7 @@ TEST_P(ShippedRobot, PowerEqualsTimeDerivativeOfEnergy) {
   }
 }
 
-std::string robot_test_name(const testing::TestParamInfo<std::string>& info) {
-  std::string name = info.param.substr(info.param.find_last_of('/') + 1);
-  for (char& c : name) {
-    if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
-  }
-  return name;
-}
-
-INSTANTIATE_TEST_SUITE_P(All, ShippedRobot, testing::ValuesIn(test::shipped_robots()), robot_test_name);
+INSTANTIATE_TEST_SUITE_P(All, ShippedRobot, testing::ValuesIn(test::shipped_robots()), test::robot_test_name);
 
 }  // namespace
 }  // namespace modelgen

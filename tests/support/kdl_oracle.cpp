@@ -39,18 +39,6 @@ struct BodyInertial {
   double M = 0;
 };
 
-// Position of an inertial parameter in standard_from_inertial's order (XX XY XZ YY YZ ZZ MX MY MZ
-// M), or -1 for a drive parameter.
-int inertial_slot(ParamKind kind) {
-  static constexpr ParamKind kOrder[] = {
-      ParamKind::kXX, ParamKind::kXY, ParamKind::kXZ, ParamKind::kYY, ParamKind::kYZ,
-      ParamKind::kZZ, ParamKind::kMX, ParamKind::kMY, ParamKind::kMZ, ParamKind::kM};
-  for (int slot = 0; slot < 10; ++slot) {
-    if (kOrder[slot] == kind) return slot;
-  }
-  return -1;
-}
-
 std::vector<BodyInertial> body_inertials(const RigidBodyTree& tree, const Eigen::VectorXd& p) {
   std::vector<std::array<double, 10>> standard(tree.bodies.size(), std::array<double, 10>{});
   for (std::size_t k = 0; k < tree.params.size(); ++k) {
@@ -194,6 +182,16 @@ bool is_serial(const RigidBodyTree& tree) {
     if (tree.bodies[j].parent != static_cast<int>(j) - 1) return false;
   }
   return true;
+}
+
+int inertial_slot(ParamKind kind) {
+  static constexpr ParamKind kOrder[] = {
+      ParamKind::kXX, ParamKind::kXY, ParamKind::kXZ, ParamKind::kYY, ParamKind::kYZ,
+      ParamKind::kZZ, ParamKind::kMX, ParamKind::kMY, ParamKind::kMZ, ParamKind::kM};
+  for (int slot = 0; slot < 10; ++slot) {
+    if (kOrder[slot] == kind) return slot;
+  }
+  return -1;
 }
 
 bool is_inertial(ParamKind kind) { return inertial_slot(kind) >= 0; }

@@ -20,6 +20,10 @@ bool is_serial(const RigidBodyTree& tree);
 /// ones (Ia, Fv, Fc, OFF and the asymmetric friction kinds).
 bool is_inertial(ParamKind kind);
 
+/// Position of an inertial parameter in XX XY XZ YY YZ ZZ MX MY MZ M order (the order of
+/// gen::standard_from_inertial), -1 for a drive parameter.
+int inertial_slot(ParamKind kind);
+
 /// Joint torques (N m, N for prismatic joints), tree.dof entries in modelgen's dof order, by
 /// KDL::ChainIdSolver_RNE on a chain built from `tree` and `p`, plus the drive terms KDL lacks
 /// (Gautier & Briot eq. 3: Ia ddq + Fv dq + Fc sign(dq) + OFF; asymmetric friction Bona &
