@@ -103,8 +103,9 @@ int main(int argc, char** argv) {
       std::cout << modelgen::gen::describe(modelgen::gen::load_robot(args.robot, args.load));
     } else if (args.command == "base") {
       const modelgen::gen::RobotModel model = modelgen::gen::load_robot(args.robot, args.load);
+      const auto closed = modelgen::gen::derive_closed_form_relations(model);
       std::cout << modelgen::gen::describe_base_parameters(
-          model, modelgen::gen::derive_base_parameters(model.tree));
+          model, modelgen::gen::derive_base_parameters(model.tree), closed ? &*closed : nullptr);
     } else {
       modelgen::gen::generate_from_file(args.robot, args.load, args.scalar).files.write_to(args.output_dir);
     }

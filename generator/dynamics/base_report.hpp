@@ -6,9 +6,14 @@
 
 #include "generator/description/robot_model.hpp"
 #include "generator/dynamics/base_parameters.hpp"
+#include "generator/dynamics/closed_form_base.hpp"
 
 namespace modelgen::gen {
 
-std::string describe_base_parameters(const RobotModel& model, const BaseParameterSet& base);
+/// One line per base parameter with its relation in numbers; with `closed` (MDH robots) a
+/// second line with the coefficients written with d_j and r_j where the closed-form rules give
+/// them (terms the numeric method regroups beyond the rules keep their number).
+std::string describe_base_parameters(const RobotModel& model, const BaseParameterSet& base,
+                                     const ClosedFormRelations* closed = nullptr);
 
 }  // namespace modelgen::gen

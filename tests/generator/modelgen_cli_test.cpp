@@ -97,6 +97,9 @@ TEST(ModelgenCli, BasePrintsRegroupingRelations) {
       << run.out;
   // 6 x 14 joint parameters, motor 6's Iam6 Fvm6 Fcm6 (eq. 26), 10 of the payload frame.
   EXPECT_NE(run.out.find("61 of 97"), std::string::npos) << run.out;
+  // The same relation with the symbols of Table I (closed-form rules).
+  EXPECT_NE(run.out.find("= ZZ1 + Ia1 + YY2 + YY3 + 2*r3 MZ3 + (d3^2 + r3^2) M3"), std::string::npos)
+      << run.out;
 }
 
 TEST(ModelgenCli, UsageErrorsExitTwo) {
