@@ -105,7 +105,7 @@ int main(int argc, char** argv) {
       const modelgen::gen::RobotModel model = modelgen::gen::load_robot(args.robot, args.load);
       const auto closed = modelgen::gen::derive_closed_form_relations(model);
       std::cout << modelgen::gen::describe_base_parameters(
-          model, modelgen::gen::derive_base_parameters(model.tree), closed ? &*closed : nullptr);
+          model, modelgen::derive_base_parameters(model.tree), closed ? &*closed : nullptr);
     } else {
       modelgen::gen::generate_from_file(args.robot, args.load, args.scalar).files.write_to(args.output_dir);
     }

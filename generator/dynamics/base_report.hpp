@@ -5,7 +5,7 @@
 #include <string>
 
 #include "generator/description/robot_model.hpp"
-#include "generator/dynamics/base_parameters.hpp"
+#include "modelgen/base_parameters.hpp"
 #include "generator/dynamics/closed_form_base.hpp"
 
 namespace modelgen::gen {

@@ -6,7 +6,7 @@
 #include <algorithm>
 #include <cctype>
 
-#include "generator/dynamics/base_parameters.hpp"
+#include "modelgen/base_parameters.hpp"
 #include "generator/dynamics/newton_euler.hpp"
 #include "generator/dynamics/power_model.hpp"
 #include "generator/emit/printer.hpp"

@@ -9,7 +9,7 @@
 
 #include "generator/description/load_robot.hpp"
 #include "generator/description/mdh_yaml_loader.hpp"
-#include "generator/dynamics/base_parameters.hpp"
+#include "modelgen/base_parameters.hpp"
 #include "generator/dynamics/closed_form_base.hpp"
 #include "modelgen/reference_dynamics.hpp"
 #include "tests/support/test_support.hpp"

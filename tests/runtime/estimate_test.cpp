@@ -9,7 +9,7 @@
 #include <gtest/gtest.h>
 
 #include "generator/description/load_robot.hpp"
-#include "generator/dynamics/base_parameters.hpp"
+#include "modelgen/base_parameters.hpp"
 #include "modelgen/estimate.hpp"
 #include "modelgen/reference_dynamics.hpp"
 #include "tests/support/kdl_oracle.hpp"
@@ -30,8 +30,8 @@ class SimulatedTx40 : public testing::Test {
     data_ = new Data();
     const gen::RobotModel model = gen::load_robot(test::source_path("robots/tx40.yaml"));
     const ReferenceDynamics reference(model.tree);
-    const gen::BaseParameterSet base = gen::derive_base_parameters(model.tree);
-    for (const gen::BaseParameter& b : base.params) data_->names.push_back(b.name);
+    const BaseParameterSet base = derive_base_parameters(model.tree);
+    for (const BaseParameter& b : base.params) data_->names.push_back(b.name);
     test::Random random(1);
     data_->beta = base.K * test::random_physical_parameters(model.tree, random);
     // Five-harmonic Fourier trajectories (Swevers eq. 15) with a 10 s period, 1500 samples.

@@ -13,7 +13,7 @@
 
 #include "modelgen/rigid_body_tree.hpp"
 
-namespace modelgen::gen {
+namespace modelgen {
 
 struct BaseParameter {
   std::string name;        ///< the standard name, suffixed R when it absorbs others: "ZZ1R"
@@ -31,8 +31,9 @@ struct BaseParameterSet {
   Eigen::MatrixXd K;
 };
 
-/// Derives the base parameters of `tree`. Deterministic (fixed seed); throws std::logic_error
-/// if the relations fail their own check W_std p == W_base K p on fresh states.
+/// Derives the base parameters of `tree` (validated as ReferenceDynamics does). Deterministic
+/// (fixed seed): the same tree gives the same set on every machine. Throws std::logic_error if
+/// the relations fail their own check W_std p == W_base K p on fresh states.
 BaseParameterSet derive_base_parameters(const RigidBodyTree& tree);
 
-}  // namespace modelgen::gen
+}  // namespace modelgen

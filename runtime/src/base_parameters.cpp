@@ -2,7 +2,7 @@
 // stacked standard regressor, independent columns chosen greedily left to right by
 // Gram-Schmidt with reorthogonalization, regrouping coefficients from a least-squares solve.
 
-#include "generator/dynamics/base_parameters.hpp"
+#include "modelgen/base_parameters.hpp"
 
 #include <cmath>
 #include <cstdio>
@@ -15,7 +15,7 @@
 
 #include "modelgen/reference_dynamics.hpp"
 
-namespace modelgen::gen {
+namespace modelgen {
 
 namespace {
 
@@ -138,4 +138,4 @@ BaseParameterSet derive_base_parameters(const RigidBodyTree& tree) {
   return result;
 }
 
-}  // namespace modelgen::gen
+}  // namespace modelgen

@@ -10,7 +10,7 @@
 
 #include "generator/description/load_robot.hpp"
 #include "generator/description/mdh_yaml_loader.hpp"
-#include "generator/dynamics/base_parameters.hpp"
+#include "modelgen/base_parameters.hpp"
 #include "modelgen/reference_dynamics.hpp"
 #include "tests/support/test_support.hpp"
 
