@@ -140,6 +140,32 @@ void power_regressor_sincos(const double* q, const double* sin_q, const double* 
 void power_regressor_sincos(const float* q, const float* sin_q, const float* cos_q,
                             const float* dq, const float* ddq, float* dh);
 
+// The entry points above in one type, so that generic code such as the modelgen runtime's
+// modelgen::GeneratedModel<modelgen::panda::Model> can use this robot by its type.
+struct Model {
+  static constexpr int kFormatVersion = ::modelgen::panda::kFormatVersion;
+  static constexpr int kDof = ::modelgen::panda::kDof;
+  static constexpr int kStandardParams = ::modelgen::panda::kStandardParams;
+  static constexpr int kBaseParams = ::modelgen::panda::kBaseParams;
+  static const char* name() { return "panda"; }
+  static const char* input_sha256() { return "63792d2679f22c4e41cda2c4d9d903644e628970ad0656b9eec8485113941555"; }
+  static const char* const* standard_param_names() { return kStandardParamNames; }
+  static const char* const* base_param_names() { return kBaseParamNames; }
+  static void base_from_standard(const double* p_standard, double* beta) {
+    ::modelgen::panda::base_from_standard(p_standard, beta);
+  }
+  static void idim_regressor(const double* q, const double* dq, const double* ddq, double* W) {
+    ::modelgen::panda::idim_regressor(q, dq, ddq, W);
+  }
+  static void inverse_dynamics(const double* q, const double* dq, const double* ddq,
+                               const double* beta, double* tau) {
+    ::modelgen::panda::inverse_dynamics(q, dq, ddq, beta, tau);
+  }
+  static void power_regressor(const double* q, const double* dq, const double* ddq, double* dh) {
+    ::modelgen::panda::power_regressor(q, dq, ddq, dh);
+  }
+};
+
 }  // namespace panda
 }  // namespace modelgen
 

@@ -140,6 +140,32 @@ void power_regressor_sincos(const double* q, const double* sin_q, const double* 
 void power_regressor_sincos(const float* q, const float* sin_q, const float* cos_q,
                             const float* dq, const float* ddq, float* dh);
 
+// The entry points above in one type, so that generic code such as the modelgen runtime's
+// modelgen::GeneratedModel<modelgen::kr150::Model> can use this robot by its type.
+struct Model {
+  static constexpr int kFormatVersion = ::modelgen::kr150::kFormatVersion;
+  static constexpr int kDof = ::modelgen::kr150::kDof;
+  static constexpr int kStandardParams = ::modelgen::kr150::kStandardParams;
+  static constexpr int kBaseParams = ::modelgen::kr150::kBaseParams;
+  static const char* name() { return "kr150"; }
+  static const char* input_sha256() { return "1c4837146f484cb7efe5fd3e090ce53bed25e0a1be72f4464282b41a70849232"; }
+  static const char* const* standard_param_names() { return kStandardParamNames; }
+  static const char* const* base_param_names() { return kBaseParamNames; }
+  static void base_from_standard(const double* p_standard, double* beta) {
+    ::modelgen::kr150::base_from_standard(p_standard, beta);
+  }
+  static void idim_regressor(const double* q, const double* dq, const double* ddq, double* W) {
+    ::modelgen::kr150::idim_regressor(q, dq, ddq, W);
+  }
+  static void inverse_dynamics(const double* q, const double* dq, const double* ddq,
+                               const double* beta, double* tau) {
+    ::modelgen::kr150::inverse_dynamics(q, dq, ddq, beta, tau);
+  }
+  static void power_regressor(const double* q, const double* dq, const double* ddq, double* dh) {
+    ::modelgen::kr150::power_regressor(q, dq, ddq, dh);
+  }
+};
+
 }  // namespace kr150
 }  // namespace modelgen
 

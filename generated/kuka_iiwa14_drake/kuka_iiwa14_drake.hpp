@@ -140,6 +140,32 @@ void power_regressor_sincos(const double* q, const double* sin_q, const double* 
 void power_regressor_sincos(const float* q, const float* sin_q, const float* cos_q,
                             const float* dq, const float* ddq, float* dh);
 
+// The entry points above in one type, so that generic code such as the modelgen runtime's
+// modelgen::GeneratedModel<modelgen::iiwa14::Model> can use this robot by its type.
+struct Model {
+  static constexpr int kFormatVersion = ::modelgen::iiwa14::kFormatVersion;
+  static constexpr int kDof = ::modelgen::iiwa14::kDof;
+  static constexpr int kStandardParams = ::modelgen::iiwa14::kStandardParams;
+  static constexpr int kBaseParams = ::modelgen::iiwa14::kBaseParams;
+  static const char* name() { return "iiwa14"; }
+  static const char* input_sha256() { return "e9f934b402dc71dcd3de1f216272250ece58e755e59c0d64b48121c2bc8b1f6f"; }
+  static const char* const* standard_param_names() { return kStandardParamNames; }
+  static const char* const* base_param_names() { return kBaseParamNames; }
+  static void base_from_standard(const double* p_standard, double* beta) {
+    ::modelgen::iiwa14::base_from_standard(p_standard, beta);
+  }
+  static void idim_regressor(const double* q, const double* dq, const double* ddq, double* W) {
+    ::modelgen::iiwa14::idim_regressor(q, dq, ddq, W);
+  }
+  static void inverse_dynamics(const double* q, const double* dq, const double* ddq,
+                               const double* beta, double* tau) {
+    ::modelgen::iiwa14::inverse_dynamics(q, dq, ddq, beta, tau);
+  }
+  static void power_regressor(const double* q, const double* dq, const double* ddq, double* dh) {
+    ::modelgen::iiwa14::power_regressor(q, dq, ddq, dh);
+  }
+};
+
 }  // namespace iiwa14
 }  // namespace modelgen
 

@@ -140,6 +140,32 @@ void power_regressor_sincos(const double* q, const double* sin_q, const double* 
 void power_regressor_sincos(const float* q, const float* sin_q, const float* cos_q,
                             const float* dq, const float* ddq, float* dh);
 
+// The entry points above in one type, so that generic code such as the modelgen runtime's
+// modelgen::GeneratedModel<modelgen::kuka_kr150_2::Model> can use this robot by its type.
+struct Model {
+  static constexpr int kFormatVersion = ::modelgen::kuka_kr150_2::kFormatVersion;
+  static constexpr int kDof = ::modelgen::kuka_kr150_2::kDof;
+  static constexpr int kStandardParams = ::modelgen::kuka_kr150_2::kStandardParams;
+  static constexpr int kBaseParams = ::modelgen::kuka_kr150_2::kBaseParams;
+  static const char* name() { return "kuka_kr150_2"; }
+  static const char* input_sha256() { return "de5a482507ed6e873e2616c284e9729f8dd74ced6c3a006f53fa0e11dc70e382"; }
+  static const char* const* standard_param_names() { return kStandardParamNames; }
+  static const char* const* base_param_names() { return kBaseParamNames; }
+  static void base_from_standard(const double* p_standard, double* beta) {
+    ::modelgen::kuka_kr150_2::base_from_standard(p_standard, beta);
+  }
+  static void idim_regressor(const double* q, const double* dq, const double* ddq, double* W) {
+    ::modelgen::kuka_kr150_2::idim_regressor(q, dq, ddq, W);
+  }
+  static void inverse_dynamics(const double* q, const double* dq, const double* ddq,
+                               const double* beta, double* tau) {
+    ::modelgen::kuka_kr150_2::inverse_dynamics(q, dq, ddq, beta, tau);
+  }
+  static void power_regressor(const double* q, const double* dq, const double* ddq, double* dh) {
+    ::modelgen::kuka_kr150_2::power_regressor(q, dq, ddq, dh);
+  }
+};
+
 }  // namespace kuka_kr150_2
 }  // namespace modelgen
 

@@ -140,6 +140,32 @@ void power_regressor_sincos(const double* q, const double* sin_q, const double* 
 void power_regressor_sincos(const float* q, const float* sin_q, const float* cos_q,
                             const float* dq, const float* ddq, float* dh);
 
+// The entry points above in one type, so that generic code such as the modelgen runtime's
+// modelgen::GeneratedModel<modelgen::tx40::Model> can use this robot by its type.
+struct Model {
+  static constexpr int kFormatVersion = ::modelgen::tx40::kFormatVersion;
+  static constexpr int kDof = ::modelgen::tx40::kDof;
+  static constexpr int kStandardParams = ::modelgen::tx40::kStandardParams;
+  static constexpr int kBaseParams = ::modelgen::tx40::kBaseParams;
+  static const char* name() { return "tx40"; }
+  static const char* input_sha256() { return "8a2f905d78aeaa2a733324532df16a3f3b000f2d2ef68a724a12c92f21ed3654"; }
+  static const char* const* standard_param_names() { return kStandardParamNames; }
+  static const char* const* base_param_names() { return kBaseParamNames; }
+  static void base_from_standard(const double* p_standard, double* beta) {
+    ::modelgen::tx40::base_from_standard(p_standard, beta);
+  }
+  static void idim_regressor(const double* q, const double* dq, const double* ddq, double* W) {
+    ::modelgen::tx40::idim_regressor(q, dq, ddq, W);
+  }
+  static void inverse_dynamics(const double* q, const double* dq, const double* ddq,
+                               const double* beta, double* tau) {
+    ::modelgen::tx40::inverse_dynamics(q, dq, ddq, beta, tau);
+  }
+  static void power_regressor(const double* q, const double* dq, const double* ddq, double* dh) {
+    ::modelgen::tx40::power_regressor(q, dq, ddq, dh);
+  }
+};
+
 }  // namespace tx40
 }  // namespace modelgen
 

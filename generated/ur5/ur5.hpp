@@ -140,6 +140,32 @@ void power_regressor_sincos(const double* q, const double* sin_q, const double* 
 void power_regressor_sincos(const float* q, const float* sin_q, const float* cos_q,
                             const float* dq, const float* ddq, float* dh);
 
+// The entry points above in one type, so that generic code such as the modelgen runtime's
+// modelgen::GeneratedModel<modelgen::ur5::Model> can use this robot by its type.
+struct Model {
+  static constexpr int kFormatVersion = ::modelgen::ur5::kFormatVersion;
+  static constexpr int kDof = ::modelgen::ur5::kDof;
+  static constexpr int kStandardParams = ::modelgen::ur5::kStandardParams;
+  static constexpr int kBaseParams = ::modelgen::ur5::kBaseParams;
+  static const char* name() { return "ur5"; }
+  static const char* input_sha256() { return "21a125fe2f6a18d2d94caba5026df3c58b4248084a3d33d33763da6fb6b232ca"; }
+  static const char* const* standard_param_names() { return kStandardParamNames; }
+  static const char* const* base_param_names() { return kBaseParamNames; }
+  static void base_from_standard(const double* p_standard, double* beta) {
+    ::modelgen::ur5::base_from_standard(p_standard, beta);
+  }
+  static void idim_regressor(const double* q, const double* dq, const double* ddq, double* W) {
+    ::modelgen::ur5::idim_regressor(q, dq, ddq, W);
+  }
+  static void inverse_dynamics(const double* q, const double* dq, const double* ddq,
+                               const double* beta, double* tau) {
+    ::modelgen::ur5::inverse_dynamics(q, dq, ddq, beta, tau);
+  }
+  static void power_regressor(const double* q, const double* dq, const double* ddq, double* dh) {
+    ::modelgen::ur5::power_regressor(q, dq, ddq, dh);
+  }
+};
+
 }  // namespace ur5
 }  // namespace modelgen
 

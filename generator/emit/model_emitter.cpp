@@ -284,6 +284,21 @@ GeneratedModel emit_model(const RobotModel& model, const GenerationInput& input)
           .set("dof", dof)
           .set("standard_param_count", num_params)
           .set("base_param_count", num_base)
+          .set_block("model_struct",
+                     [&](CodeWriter& out) {
+                       if (input.scalars.empty() || input.scalars[0] != Scalar::kDouble) return;
+                       const std::string text = strip_newline(Printer(embedded_template("model_struct"))
+                                                                  .set("robot", model.name)
+                                                                  .set("sha256", sha256)
+                                                                  .render());
+                       std::size_t start = 0;
+                       while (start <= text.size()) {
+                         std::size_t end = text.find('\n', start);
+                         if (end == std::string::npos) end = text.size();
+                         out.line(text.substr(start, end - start));
+                         start = end + 1;
+                       }
+                     })
           .set_block("declarations",
                      [&](CodeWriter& out) {
                        for (std::size_t i = 0; i < functions.size(); ++i) {

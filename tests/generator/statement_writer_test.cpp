@@ -373,6 +373,9 @@ std::vector<double> magnitudes(const ExprGraph& g, const std::vector<double>& va
       case Op::kShare:
         m[i] = m[n.args[0]];
         break;
+      case Op::kSign:
+        m[i] = 1;
+        break;
       case Op::kAdd:
         m[i] = 0;
         for (ExprId a : n.args) m[i] += m[a];

@@ -1,0 +1,111 @@
+// The one interface identification works through: a robot's base-parameter regressor, power
+// regressor and regrouping, from generated code compiled in (GeneratedModel) or from the
+// numeric reference built from any description at run time (ReferenceModel). Both give the
+// same numbers; tests/runtime/model_test.cpp checks it.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "modelgen/base_parameters.hpp"
+#include "modelgen/reference_dynamics.hpp"
+#include "modelgen/rigid_body_tree.hpp"
+
+namespace modelgen {
+
+/// The format of generated code this runtime understands (the kFormatVersion of generated
+/// headers).
+constexpr int kGeneratedFormatVersion = 1;
+
+class IdentificationModel {
+ public:
+  virtual ~IdentificationModel() = default;
+
+  virtual std::string name() const = 0;
+  virtual int dof() const = 0;
+  virtual const std::vector<std::string>& standard_param_names() const = 0;
+  virtual const std::vector<std::string>& base_param_names() const = 0;
+  int num_base_params() const { return static_cast<int>(base_param_names().size()); }
+  int num_standard_params() const { return static_cast<int>(standard_param_names().size()); }
+
+  /// Base regressor: q, dq, ddq have dof() entries; W receives dof() x num_base_params()
+  /// values, row-major, with tau = W beta (Gautier & Briot eq. 4-6).
+  virtual void regressor(const double* q, const double* dq, const double* ddq,
+                         double* W) const = 0;
+  /// Power regressor: dh receives num_base_params() values with dq . tau = dh beta (eq. 9-10).
+  virtual void power_regressor(const double* q, const double* dq, const double* ddq,
+                               double* dh) const = 0;
+  /// Joint torques from base parameters: tau receives dof() values.
+  virtual void inverse_dynamics(const double* q, const double* dq, const double* ddq,
+                                const double* beta, double* tau) const = 0;
+  /// The regrouping relations: beta (num_base_params()) from standard parameters
+  /// (num_standard_params()).
+  virtual void base_from_standard(const double* p_standard, double* beta) const = 0;
+};
+
+/// The numeric reference as an identification model: any description, slower than generated
+/// code (one Newton-Euler pass per standard parameter for the regressor).
+class ReferenceModel final : public IdentificationModel {
+ public:
+  /// Validates `tree` and derives its base parameters; throws std::invalid_argument for a
+  /// malformed tree.
+  ReferenceModel(std::string name, RigidBodyTree tree);
+
+  std::string name() const override { return name_; }
+  int dof() const override { return dynamics_.dof(); }
+  const std::vector<std::string>& standard_param_names() const override { return standard_; }
+  const std::vector<std::string>& base_param_names() const override { return base_names_; }
+  void regressor(const double* q, const double* dq, const double* ddq, double* W) const override;
+  void power_regressor(const double* q, const double* dq, const double* ddq,
+                       double* dh) const override;
+  void inverse_dynamics(const double* q, const double* dq, const double* ddq, const double* beta,
+                        double* tau) const override;
+  void base_from_standard(const double* p_standard, double* beta) const override;
+
+  const BaseParameterSet& base() const { return base_; }
+
+ private:
+  std::string name_;
+  ReferenceDynamics dynamics_;
+  BaseParameterSet base_;
+  std::vector<std::string> standard_, base_names_;
+};
+
+/// A generated model compiled in: GeneratedModel<modelgen::tx40::Model>.
+template <class Generated>
+class GeneratedModel final : public IdentificationModel {
+  static_assert(Generated::kFormatVersion == kGeneratedFormatVersion,
+                "this generated model was made by a modelgen whose generated format differs "
+                "from this runtime's: regenerate it with the modelgen of this runtime");
+
+ public:
+  GeneratedModel()
+      : standard_(Generated::standard_param_names(),
+                  Generated::standard_param_names() + Generated::kStandardParams),
+        base_(Generated::base_param_names(), Generated::base_param_names() + Generated::kBaseParams) {}
+
+  std::string name() const override { return Generated::name(); }
+  int dof() const override { return Generated::kDof; }
+  const std::vector<std::string>& standard_param_names() const override { return standard_; }
+  const std::vector<std::string>& base_param_names() const override { return base_; }
+  void regressor(const double* q, const double* dq, const double* ddq, double* W) const override {
+    Generated::idim_regressor(q, dq, ddq, W);
+  }
+  void power_regressor(const double* q, const double* dq, const double* ddq,
+                       double* dh) const override {
+    Generated::power_regressor(q, dq, ddq, dh);
+  }
+  void inverse_dynamics(const double* q, const double* dq, const double* ddq, const double* beta,
+                        double* tau) const override {
+    Generated::inverse_dynamics(q, dq, ddq, beta, tau);
+  }
+  void base_from_standard(const double* p_standard, double* beta) const override {
+    Generated::base_from_standard(p_standard, beta);
+  }
+
+ private:
+  std::vector<std::string> standard_, base_;
+};
+
+}  // namespace modelgen

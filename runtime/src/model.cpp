@@ -1,0 +1,56 @@
+// The numeric reference behind the IdentificationModel interface: the base regressor is the
+// standard one restricted to the independent columns, and dh = dq^T W (the power balance).
+
+#include "modelgen/model.hpp"
+
+#include <Eigen/Core>
+
+namespace modelgen {
+
+ReferenceModel::ReferenceModel(std::string name, RigidBodyTree tree)
+    : name_(std::move(name)), dynamics_(std::move(tree)), base_(derive_base_parameters(dynamics_.tree())) {
+  for (const StandardParam& p : dynamics_.tree().params) standard_.push_back(p.name);
+  for (const BaseParameter& b : base_.params) base_names_.push_back(b.name);
+}
+
+void ReferenceModel::regressor(const double* q, const double* dq, const double* ddq,
+                               double* W) const {
+  const int n = dof(), nb = num_base_params();
+  const Eigen::Map<const Eigen::VectorXd> Q(q, n), DQ(dq, n), DDQ(ddq, n);
+  const Eigen::MatrixXd standard = dynamics_.standard_regressor(Q, DQ, DDQ);
+  for (int i = 0; i < n; ++i) {
+    for (int b = 0; b < nb; ++b) W[i * nb + b] = standard(i, base_.params[b].standard_index);
+  }
+}
+
+void ReferenceModel::power_regressor(const double* q, const double* dq, const double* ddq,
+                                     double* dh) const {
+  const int n = dof(), nb = num_base_params();
+  std::vector<double> W(static_cast<std::size_t>(n) * nb);
+  regressor(q, dq, ddq, W.data());
+  // dq . tau = dq . (W beta): the power regressor is dq^T W (Gautier & Briot eq. 9).
+  for (int b = 0; b < nb; ++b) {
+    double sum = 0;
+    for (int i = 0; i < n; ++i) sum += dq[i] * W[i * nb + b];
+    dh[b] = sum;
+  }
+}
+
+void ReferenceModel::inverse_dynamics(const double* q, const double* dq, const double* ddq,
+                                      const double* beta, double* tau) const {
+  const int n = dof(), nb = num_base_params();
+  std::vector<double> W(static_cast<std::size_t>(n) * nb);
+  regressor(q, dq, ddq, W.data());
+  for (int i = 0; i < n; ++i) {
+    double sum = 0;
+    for (int b = 0; b < nb; ++b) sum += W[i * nb + b] * beta[b];
+    tau[i] = sum;
+  }
+}
+
+void ReferenceModel::base_from_standard(const double* p_standard, double* beta) const {
+  const Eigen::Map<const Eigen::VectorXd> p(p_standard, num_standard_params());
+  Eigen::Map<Eigen::VectorXd>(beta, num_base_params()) = base_.K * p;
+}
+
+}  // namespace modelgen
