@@ -48,7 +48,8 @@ std::string unidentifiable(const Eigen::MatrixXd& W, const std::vector<std::stri
       continue;
     }
     for (int pass = 0; pass < 2; ++pass) v -= Q * (Q.transpose() * v);
-    if (v.norm() <= 1e-9 * norm) {
+    // Looser than the QR rank threshold, so that nearly dependent columns are named too.
+    if (v.norm() <= 1e-7 * norm) {
       dependent << " " << names[k];
       continue;
     }

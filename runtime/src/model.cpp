@@ -7,8 +7,11 @@
 
 namespace modelgen {
 
-ReferenceModel::ReferenceModel(std::string name, RigidBodyTree tree)
-    : name_(std::move(name)), dynamics_(std::move(tree)), base_(derive_base_parameters(dynamics_.tree())) {
+ReferenceModel::ReferenceModel(std::string name, RigidBodyTree tree, std::string description_sha256)
+    : name_(std::move(name)),
+      sha256_(std::move(description_sha256)),
+      dynamics_(std::move(tree)),
+      base_(derive_base_parameters(dynamics_.tree())) {
   for (const StandardParam& p : dynamics_.tree().params) standard_.push_back(p.name);
   for (const BaseParameter& b : base_.params) base_names_.push_back(b.name);
 }

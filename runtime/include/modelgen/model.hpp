@@ -23,6 +23,9 @@ class IdentificationModel {
   virtual ~IdentificationModel() = default;
 
   virtual std::string name() const = 0;
+  /// SHA-256 of the description the model was made from (hex), for estimates to name the
+  /// model they belong to; empty when unknown.
+  virtual std::string description_sha256() const = 0;
   virtual int dof() const = 0;
   virtual const std::vector<std::string>& standard_param_names() const = 0;
   virtual const std::vector<std::string>& base_param_names() const = 0;
@@ -50,9 +53,10 @@ class ReferenceModel final : public IdentificationModel {
  public:
   /// Validates `tree` and derives its base parameters; throws std::invalid_argument for a
   /// malformed tree.
-  ReferenceModel(std::string name, RigidBodyTree tree);
+  ReferenceModel(std::string name, RigidBodyTree tree, std::string description_sha256 = "");
 
   std::string name() const override { return name_; }
+  std::string description_sha256() const override { return sha256_; }
   int dof() const override { return dynamics_.dof(); }
   const std::vector<std::string>& standard_param_names() const override { return standard_; }
   const std::vector<std::string>& base_param_names() const override { return base_names_; }
@@ -67,6 +71,7 @@ class ReferenceModel final : public IdentificationModel {
 
  private:
   std::string name_;
+  std::string sha256_;
   ReferenceDynamics dynamics_;
   BaseParameterSet base_;
   std::vector<std::string> standard_, base_names_;
@@ -86,6 +91,7 @@ class GeneratedModel final : public IdentificationModel {
         base_(Generated::base_param_names(), Generated::base_param_names() + Generated::kBaseParams) {}
 
   std::string name() const override { return Generated::name(); }
+  std::string description_sha256() const override { return Generated::input_sha256(); }
   int dof() const override { return Generated::kDof; }
   const std::vector<std::string>& standard_param_names() const override { return standard_; }
   const std::vector<std::string>& base_param_names() const override { return base_; }

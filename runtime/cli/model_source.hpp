@@ -1,0 +1,23 @@
+// What --robot names: a compiled-in generated model ("kr150") or a description file (any
+// YAML/URDF, through the numeric reference).
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "generator/description/robot_model.hpp"
+#include "modelgen/model.hpp"
+
+namespace modelgen::internal {
+
+struct ModelSource {
+  std::unique_ptr<IdentificationModel> model;
+  std::optional<gen::RobotModel> description;  ///< when --robot was a file
+};
+
+/// Throws gen::InputError for a file that does not load, std::invalid_argument for a name
+/// that is neither a file nor a compiled-in model (the message lists the compiled-in ones).
+ModelSource load_model_source(const std::string& robot);
+
+}  // namespace modelgen::internal

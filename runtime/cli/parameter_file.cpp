@@ -1,0 +1,70 @@
+// JSON parameter files through nlohmann::json.
+
+#include "runtime/cli/parameter_file.hpp"
+
+#include <fstream>
+#include <stdexcept>
+
+#include <nlohmann/json.hpp>
+
+#include "generator/description/diagnostics.hpp"
+
+namespace modelgen::internal {
+
+namespace {
+
+int index_of(const std::vector<std::string>& names, const std::string& name,
+             const std::string& path, const char* kind) {
+  for (std::size_t k = 0; k < names.size(); ++k) {
+    if (names[k] == name) return static_cast<int>(k);
+  }
+  throw std::runtime_error(path + ": error: '" + name + "' is not a " + kind + " parameter of " +
+                           "this model" + gen::did_you_mean(name, names));
+}
+
+double number(const nlohmann::json& value, const std::string& path, const std::string& name) {
+  if (!value.is_number()) {
+    throw std::runtime_error(path + ": error: the value of '" + name + "' is not a number");
+  }
+  return value.get<double>();
+}
+
+}  // namespace
+
+Eigen::VectorXd read_base_parameters(const std::string& path, const IdentificationModel& model) {
+  std::ifstream in(path);
+  if (!in) throw std::runtime_error(path + ": error: cannot open the file");
+  nlohmann::json json;
+  try {
+    json = nlohmann::json::parse(in);
+  } catch (const nlohmann::json::parse_error& e) {
+    throw std::runtime_error(path + ": error: not valid JSON: " + e.what());
+  }
+  Eigen::VectorXd beta = Eigen::VectorXd::Zero(model.num_base_params());
+  if (json.contains("standard")) {
+    Eigen::VectorXd p = Eigen::VectorXd::Zero(model.num_standard_params());
+    for (const auto& [name, value] : json["standard"].items()) {
+      p[index_of(model.standard_param_names(), name, path, "standard")] = number(value, path, name);
+    }
+    model.base_from_standard(p.data(), beta.data());
+  } else if (json.contains("base")) {
+    for (const auto& [name, value] : json["base"].items()) {
+      beta[index_of(model.base_param_names(), name, path, "base")] = number(value, path, name);
+    }
+  } else if (json.contains("parameters") && json["parameters"].is_array()) {
+    for (const auto& entry : json["parameters"]) {
+      if (!entry.contains("name") || !entry["name"].is_string() || !entry.contains("value")) {
+        throw std::runtime_error(path + ": error: every entry of \"parameters\" needs a \"name\" " +
+                                 "and a \"value\"");
+      }
+      const std::string name = entry["name"].get<std::string>();
+      beta[index_of(model.base_param_names(), name, path, "base")] = number(entry["value"], path, name);
+    }
+  } else {
+    throw std::runtime_error(path + ": error: expected a \"standard\", \"base\" or " +
+                             "\"parameters\" entry");
+  }
+  return beta;
+}
+
+}  // namespace modelgen::internal

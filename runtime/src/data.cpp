@@ -1,0 +1,189 @@
+// CSV trajectories: header-driven column lookup, every field checked, errors positioned.
+
+#include "modelgen/data.hpp"
+
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+namespace modelgen {
+
+namespace {
+
+[[noreturn]] void fail(const std::string& path, int line, const std::string& column,
+                       const std::string& message) {
+  std::string where = path;
+  if (line > 0) where += ":" + std::to_string(line);
+  if (!column.empty()) where += " (column " + column + ")";
+  throw DataError(where + ": error: " + message);
+}
+
+std::vector<std::string> split(const std::string& line) {
+  std::vector<std::string> fields;
+  std::string field;
+  std::istringstream in(line);
+  while (std::getline(in, field, ',')) {
+    const std::size_t first = field.find_first_not_of(" \t\r");
+    const std::size_t last = field.find_last_not_of(" \t\r");
+    fields.push_back(first == std::string::npos ? "" : field.substr(first, last - first + 1));
+  }
+  if (!line.empty() && line.back() == ',') fields.push_back("");
+  return fields;
+}
+
+std::string format(double value) {
+  char buffer[32];
+  auto [end, ec] = std::to_chars(buffer, buffer + sizeof buffer, value);
+  return std::string(buffer, end);
+}
+
+}  // namespace
+
+Trajectory read_trajectory_csv(const std::string& path, int dof) {
+  std::ifstream in(path);
+  if (!in) fail(path, 0, "", "cannot open the file");
+  std::string line;
+  int line_number = 0;
+  std::vector<std::string> header;
+  while (std::getline(in, line)) {
+    ++line_number;
+    if (line.find_first_not_of(" \t\r") != std::string::npos) break;
+  }
+  header = split(line);
+  std::map<std::string, int> column;
+  for (std::size_t c = 0; c < header.size(); ++c) column[header[c]] = static_cast<int>(c);
+  auto find = [&](const std::string& name, bool required) {
+    auto found = column.find(name);
+    if (found != column.end()) return found->second;
+    if (required) {
+      std::string present;
+      for (const std::string& h : header) present += (present.empty() ? "" : ", ") + h;
+      fail(path, line_number, name,
+           "missing column '" + name + "' (the header has: " + present + "); expected t, q1..q" +
+               std::to_string(dof) + ", tau1..tau" + std::to_string(dof) +
+               " and optionally dq1.., ddq1..");
+    }
+    return -1;
+  };
+  const int t_column = find("t", true);
+  std::vector<int> q(dof), tau(dof), dq(dof), ddq(dof);
+  bool velocity = true;
+  for (int j = 0; j < dof; ++j) {
+    const std::string k = std::to_string(j + 1);
+    q[j] = find("q" + k, true);
+    if (column.count("i" + k) && !column.count("tau" + k)) {
+      fail(path, line_number, "i" + k,
+           "motor currents are not converted yet: give joint or motor torques as tau1..tau" +
+               std::to_string(dof));
+    }
+    tau[j] = find("tau" + k, true);
+    dq[j] = find("dq" + k, false);
+    ddq[j] = find("ddq" + k, false);
+    velocity = velocity && dq[j] >= 0 && ddq[j] >= 0;
+  }
+
+  std::vector<std::vector<double>> rows;
+  while (std::getline(in, line)) {
+    ++line_number;
+    if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
+    const std::vector<std::string> fields = split(line);
+    if (fields.size() != header.size()) {
+      fail(path, line_number, "", "expected " + std::to_string(header.size()) + " fields like the header, found " +
+                                      std::to_string(fields.size()));
+    }
+    std::vector<double> values(fields.size());
+    for (std::size_t c = 0; c < fields.size(); ++c) {
+      const std::string& text = fields[c];
+      double value = 0;
+      const char* first = text.data();
+      if (!text.empty() && *first == '+') ++first;
+      auto [end, ec] = std::from_chars(first, text.data() + text.size(), value);
+      if (text.empty() || ec != std::errc() || end != text.data() + text.size()) {
+        fail(path, line_number, header[c], "'" + text + "' is not a number");
+      }
+      if (!std::isfinite(value)) fail(path, line_number, header[c], "value is NaN or infinite");
+      values[c] = value;
+    }
+    if (!rows.empty() && !(values[t_column] > rows.back()[t_column])) {
+      fail(path, line_number, "t", "time does not increase (" + format(values[t_column]) + " after " +
+                                       format(rows.back()[t_column]) + ")");
+    }
+    rows.push_back(std::move(values));
+  }
+  if (rows.size() < 3) fail(path, line_number, "", "fewer than 3 samples");
+
+  Trajectory out;
+  out.source = path;
+  const Eigen::Index n = static_cast<Eigen::Index>(rows.size());
+  out.t.resize(n);
+  out.q.resize(n, dof);
+  out.tau.resize(n, dof);
+  out.dq = Eigen::MatrixXd::Zero(n, dof);
+  out.ddq = Eigen::MatrixXd::Zero(n, dof);
+  out.has_velocity = velocity;
+  for (Eigen::Index s = 0; s < n; ++s) {
+    out.t[s] = rows[s][t_column];
+    for (int j = 0; j < dof; ++j) {
+      out.q(s, j) = rows[s][q[j]];
+      out.tau(s, j) = rows[s][tau[j]];
+      if (velocity) {
+        out.dq(s, j) = rows[s][dq[j]];
+        out.ddq(s, j) = rows[s][ddq[j]];
+      }
+    }
+  }
+  return out;
+}
+
+void differentiate(Trajectory& x) {
+  const Eigen::Index n = x.t.size();
+  if (n < 3) throw DataError(x.source + ": error: fewer than 3 samples to differentiate");
+  const Eigen::Index dof = x.q.cols();
+  Eigen::MatrixXd dq(n - 2, dof), ddq(n - 2, dof);
+  for (Eigen::Index s = 1; s + 1 < n; ++s) {
+    const double h0 = x.t[s] - x.t[s - 1], h1 = x.t[s + 1] - x.t[s];
+    for (Eigen::Index j = 0; j < dof; ++j) {
+      const double a = x.q(s - 1, j), b = x.q(s, j), c = x.q(s + 1, j);
+      // Second-order differences on a non-uniform grid.
+      dq(s - 1, j) = (-h1 / (h0 * (h0 + h1))) * a + ((h1 - h0) / (h0 * h1)) * b +
+                     (h0 / (h1 * (h0 + h1))) * c;
+      ddq(s - 1, j) = 2.0 * (a / (h0 * (h0 + h1)) - b / (h0 * h1) + c / (h1 * (h0 + h1)));
+    }
+  }
+  x.t = x.t.segment(1, n - 2).eval();
+  x.q = x.q.middleRows(1, n - 2).eval();
+  x.tau = x.tau.middleRows(1, n - 2).eval();
+  x.dq = dq;
+  x.ddq = ddq;
+  x.has_velocity = true;
+}
+
+void write_trajectory_csv(const std::string& path, const Trajectory& x) {
+  // Written beside the destination and renamed at the end: never a half-written file.
+  const std::string temporary = path + ".tmp-modelid";
+  std::ofstream out(temporary);
+  if (!out) throw DataError(path + ": error: cannot write the file");
+  const Eigen::Index dof = x.q.cols();
+  out << "t";
+  for (const char* prefix : {"q", "dq", "ddq", "tau"}) {
+    for (Eigen::Index j = 0; j < dof; ++j) out << "," << prefix << j + 1;
+  }
+  out << "\n";
+  for (Eigen::Index s = 0; s < x.t.size(); ++s) {
+    out << format(x.t[s]);
+    for (const Eigen::MatrixXd* m : {&x.q, &x.dq, &x.ddq, &x.tau}) {
+      for (Eigen::Index j = 0; j < dof; ++j) out << "," << format((*m)(s, j));
+    }
+    out << "\n";
+  }
+  out.close();
+  if (!out || std::rename(temporary.c_str(), path.c_str()) != 0) {
+    std::remove(temporary.c_str());
+    throw DataError(path + ": error: cannot write the file");
+  }
+}
+
+}  // namespace modelgen

@@ -1,0 +1,75 @@
+// CSV trajectories: every broken file in tests/bad_inputs/data/ gives its message with file,
+// line and column; central differences reproduce analytic derivatives of a smooth trajectory.
+
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "modelgen/data.hpp"
+#include "modelgen/excitation.hpp"
+#include "tests/support/test_support.hpp"
+
+namespace modelgen {
+namespace {
+
+TEST(TrajectoryCsv, BadFilesNameFileLineAndColumn) {
+  struct Case {
+    const char* file;
+    const char* where;
+    const char* phrase;
+  };
+  const Case cases[] = {
+      {"missing_column.csv", ":1 (column tau2)", "missing column 'tau2'"},
+      {"nan_value.csv", ":3 (column q2)", "NaN or infinite"},
+      {"time_backwards.csv", ":4 (column t)", "time does not increase"},
+      {"short_row.csv", ":3", "expected 5 fields like the header, found 4"},
+      {"not_a_number.csv", ":3 (column q2)", "'zero' is not a number"},
+  };
+  for (const Case& c : cases) {
+    const std::string path = test::source_path("tests/bad_inputs/data/") + c.file;
+    try {
+      read_trajectory_csv(path, 2);
+      ADD_FAILURE() << c.file << " was accepted";
+    } catch (const DataError& e) {
+      const std::string what = e.what();
+      EXPECT_EQ(what.rfind(path + c.where, 0), 0u) << what;
+      EXPECT_NE(what.find(c.phrase), std::string::npos) << what;
+    }
+  }
+}
+
+TEST(TrajectoryCsv, WriteThenReadGivesTheSameNumbers) {
+  FourierTrajectory f;
+  f.period = 4.0;
+  f.q0 = Eigen::Vector2d(0.1, -0.2);
+  f.a = Eigen::MatrixXd::Constant(2, 3, 0.3);
+  f.b = Eigen::MatrixXd::Constant(2, 3, -0.2);
+  Trajectory x = sample(f, 0.01, 4.0);
+  x.tau = x.q * 3.0;
+  const std::string path = testing::TempDir() + "trajectory_roundtrip.csv";
+  write_trajectory_csv(path, x);
+  const Trajectory y = read_trajectory_csv(path, 2);
+  EXPECT_TRUE(y.has_velocity);
+  EXPECT_EQ(y.q, x.q);  // shortest round-trip text: exact
+  EXPECT_EQ(y.ddq, x.ddq);
+  EXPECT_EQ(y.tau, x.tau);
+}
+
+TEST(TrajectoryCsv, CentralDifferencesMatchTheAnalyticDerivatives) {
+  FourierTrajectory f;
+  f.period = 5.0;
+  f.q0 = Eigen::Vector2d(0.0, 0.5);
+  f.a = (Eigen::MatrixXd(2, 2) << 0.4, -0.2, 0.1, 0.3).finished();
+  f.b = (Eigen::MatrixXd(2, 2) << 0.2, 0.1, -0.3, 0.2).finished();
+  const Trajectory exact = sample(f, 0.001, 5.0);
+  Trajectory numeric = exact;
+  numeric.has_velocity = false;
+  differentiate(numeric);
+  ASSERT_EQ(numeric.t.size(), exact.t.size() - 2);
+  // Second-order differences with h = 1 ms: errors of order h^2 times the third derivative.
+  EXPECT_LT((numeric.dq - exact.dq.middleRows(1, exact.t.size() - 2)).cwiseAbs().maxCoeff(), 1e-5);
+  EXPECT_LT((numeric.ddq - exact.ddq.middleRows(1, exact.t.size() - 2)).cwiseAbs().maxCoeff(), 1e-3);
+}
+
+}  // namespace
+}  // namespace modelgen

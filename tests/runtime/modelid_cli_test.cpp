@@ -1,0 +1,110 @@
+// modelid as a user runs it: the bundled KR150 data are exactly what the documented simulate
+// command makes; fitting noise-free simulated data gives the true base parameters; bad data
+// and unknown robots give messages and exit 1.
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "tests/support/test_support.hpp"
+
+namespace modelgen {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct CliRun {
+  int exit_code = -1;
+  std::string out, err;
+};
+
+std::string read(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream bytes;
+  bytes << in.rdbuf();
+  return bytes.str();
+}
+
+CliRun modelid(const std::string& arguments) {
+  const std::string test = testing::UnitTest::GetInstance()->current_test_info()->name();
+  const fs::path dir = fs::path(testing::TempDir());
+  const fs::path out = dir / ("modelid_out_" + test), err = dir / ("modelid_err_" + test);
+  const std::string command = "'" + std::string(MODELGEN_BINARY_DIR) + "/bin/modelid' " +
+                              arguments + " >'" + out.string() + "' 2>'" + err.string() + "'";
+  const int status = std::system(command.c_str());
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, read(out), read(err)};
+}
+
+std::string quoted(const std::string& relative) { return "'" + test::source_path(relative) + "'"; }
+
+TEST(ModelidCli, BundledDataComeFromTheDocumentedSimulation) {
+  const std::string csv = testing::TempDir() + "kr150_resimulated.csv";
+  const CliRun run = modelid("simulate --robot kr150 --params " + quoted("robots/data/kr150/true.json") +
+                          " --trajectory " + quoted("robots/data/kr150/excitation.yaml") +
+                          " --noise 2 --seed 1 --sample-time 0.01 -o '" + csv + "'");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_EQ(read(csv), read(test::source_path("robots/data/kr150/excitation.csv")))
+      << "robots/data/kr150/excitation.csv is not what its documented command makes";
+}
+
+TEST(ModelidCli, NoiseFreeDataGiveTheTrueParameters) {
+  const std::string csv = testing::TempDir() + "tx40_noise_free.csv";
+  const std::string estimate = testing::TempDir() + "tx40_noise_free.json";
+  const std::string truth = testing::TempDir() + "tx40_truth.json";
+  // TX-40 with its own description's a-priori drive values plus link inertias, through the
+  // numeric reference (--robot is the description file).
+  std::ofstream(truth) << R"({"standard": {"ZZ1": 1.2, "XX2": 0.3, "YY2": 0.9, "ZZ2": 1.1,
+      "MX2": 2.2, "MY2": 0.1, "M2": 10, "XX3": 0.1, "YY3": 0.2, "ZZ3": 0.15, "MY3": -0.6, "M3": 5,
+      "XX4": 0.02, "ZZ4": 0.03, "MX4": -0.04, "XX5": 0.01, "YZ5": 0.003, "MY5": 0.02,
+      "ZZ6": 0.002, "MX6": 0.02, "Ia3": 0.09, "Ia4": 0.03, "Ia5": 0.05, "Ia6": 0.01,
+      "Fv1": 8, "Fc1": 7, "Fv2": 5.5, "Fc2": 8, "Fv3": 2, "Fc3": 6, "Fv4": 1.1, "Fc4": 2.5,
+      "Fv5": 1.9, "Fc5": 3, "Fv6": 0.65, "Fc6": 0.3, "Iam6": 0.0096, "Fvm6": 0.6, "Fcm6": 1.9}})";
+  const std::string description = quoted("robots/tx40.yaml");
+  ASSERT_EQ(modelid("simulate --robot " + description + " --params '" + truth + "' --trajectory " +
+                    quoted("robots/data/kr150/excitation.yaml") + " --noise 0 -o '" + csv + "'")
+                .exit_code,
+            0);
+  const CliRun fit = modelid("fit --robot tx40 --data '" + csv + "' --method ols -o '" + estimate +
+                          "' --truth '" + truth + "'");
+  ASSERT_EQ(fit.exit_code, 0) << fit.err;
+  const nlohmann::json json = nlohmann::json::parse(read(estimate));
+  EXPECT_EQ(json["model"], "tx40");
+  EXPECT_EQ(json["description_sha256"].get<std::string>().size(), 64u);
+  EXPECT_LT(json["rel_error_norm"].get<double>(), 1e-10);
+  // The compiled-in model and the reference agree, so the truth read through the compiled-in
+  // model's regrouping is what the fit must return.
+  const CliRun truth_fit = modelid("fit --robot " + description + " --data '" + csv +
+                                "' --method ols -o '" + estimate + ".ref'");
+  ASSERT_EQ(truth_fit.exit_code, 0) << truth_fit.err;
+  const nlohmann::json reference = nlohmann::json::parse(read(estimate + ".ref"));
+  ASSERT_EQ(json["parameters"].size(), reference["parameters"].size());
+  for (std::size_t b = 0; b < json["parameters"].size(); ++b) {
+    const double a = json["parameters"][b]["value"], r = reference["parameters"][b]["value"];
+    EXPECT_NEAR(a, r, 1e-8 * std::max(1.0, std::abs(r))) << json["parameters"][b]["name"];
+  }
+  // Against the truth itself (--truth puts it beside each estimate).
+  for (const auto& parameter : json["parameters"]) {
+    const double value = parameter["value"], truth_value = parameter["truth"];
+    EXPECT_NEAR(value, truth_value, 1e-8 * std::max(1.0, std::abs(truth_value))) << parameter["name"];
+  }
+  EXPECT_EQ(json["parameters"].size(), 61u);
+}
+
+TEST(ModelidCli, BadDataAndUnknownRobotExitOne) {
+  const CliRun bad = modelid("fit --robot tx40 --data " + quoted("tests/bad_inputs/data/nan_value.csv") +
+                          " --method wls");
+  EXPECT_EQ(bad.exit_code, 1);
+  EXPECT_NE(bad.err.find("missing column 'q3'"), std::string::npos) << bad.err;
+  const CliRun unknown = modelid("fit --robot kr15 --data x.csv --method wls");
+  EXPECT_EQ(unknown.exit_code, 1);
+  EXPECT_NE(unknown.err.find("compiled in:"), std::string::npos) << unknown.err;
+  const CliRun usage = modelid("fit --robot tx40 --bogus 1");
+  EXPECT_EQ(usage.exit_code, 2);
+}
+
+}  // namespace
+}  // namespace modelgen
