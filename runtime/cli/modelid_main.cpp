@@ -17,7 +17,6 @@
 #include <nlohmann/json.hpp>
 #include <yaml-cpp/yaml.h>
 
-#include "generator/description/describe.hpp"
 #include "generator/description/diagnostics.hpp"
 #include "modelgen/data.hpp"
 #include "modelgen/excitation.hpp"
