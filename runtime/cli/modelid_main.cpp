@@ -4,6 +4,7 @@
 
 #include <charconv>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
@@ -164,7 +165,18 @@ int run_fit(const Arguments& args) {
   return 0;
 }
 
+FourierTrajectory read_fourier_checked(const std::string& path, int dof);
+
+// Every yaml-cpp error (syntax, bad conversion) as an InputError naming the file and position.
 FourierTrajectory read_fourier(const std::string& path, int dof) {
+  try {
+    return read_fourier_checked(path, dof);
+  } catch (const YAML::Exception& e) {
+    throw gen::InputError({path, e.mark.line + 1, e.mark.column + 1}, e.msg);
+  }
+}
+
+FourierTrajectory read_fourier_checked(const std::string& path, int dof) {
   YAML::Node root;
   try {
     root = YAML::LoadFile(path);
@@ -180,6 +192,7 @@ FourierTrajectory read_fourier(const std::string& path, int dof) {
                                   "joint with q0, a, b)");
   }
   f.period = root["period"].as<double>();
+  if (!(f.period > 0)) throw gen::InputError(at(root["period"]), "'period' must be positive (s)");
   const YAML::Node joints = root["joints"];
   if (static_cast<int>(joints.size()) != dof) {
     throw gen::InputError(at(joints), "'joints' has " + std::to_string(joints.size()) +
@@ -213,7 +226,14 @@ int run_simulate(const Arguments& args) {
   const double sample_time = args.has("--sample-time") ? parse_number(args.one("--sample-time"), "--sample-time")
                                                        : fourier.period / 1000.0;
   const double periods = args.has("--periods") ? parse_number(args.one("--periods"), "--periods") : 1.0;
-  const unsigned long seed = args.has("--seed") ? std::stoul(args.one("--seed")) : 1;
+  std::uint64_t seed = 1;
+  if (args.has("--seed")) {
+    const std::string& text = args.one("--seed");
+    auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), seed);
+    if (ec != std::errc() || end != text.data() + text.size()) {
+      throw UsageError{"--seed must be a non-negative integer, not '" + text + "'"};
+    }
+  }
   Trajectory x = sample(fourier, sample_time, periods * fourier.period);
   // Gaussian torque noise by Box-Muller on a fixed generator: the same seed, the same file.
   std::mt19937_64 engine(seed);
@@ -223,7 +243,8 @@ int run_simulate(const Arguments& args) {
     const Eigen::VectorXd q = x.q.row(s), dq = x.dq.row(s), ddq = x.ddq.row(s);
     model.inverse_dynamics(q.data(), dq.data(), ddq.data(), beta.data(), tau.data());
     for (int j = 0; j < model.dof(); ++j) {
-      const double g = std::sqrt(-2.0 * std::log(uniform())) * std::cos(2.0 * std::numbers::pi * uniform());
+      const double u1 = uniform(), u2 = uniform();  // named: operand order is unspecified
+      const double g = std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * std::numbers::pi * u2);
       x.tau(s, j) = tau[j] + noise * g;
     }
   }

@@ -41,6 +41,11 @@ Eigen::VectorXd read_base_parameters(const std::string& path, const Identificati
     throw std::runtime_error(path + ": error: not valid JSON: " + e.what());
   }
   Eigen::VectorXd beta = Eigen::VectorXd::Zero(model.num_base_params());
+  for (const char* key : {"standard", "base"}) {
+    if (json.contains(key) && !json[key].is_object()) {
+      throw std::runtime_error(path + ": error: \"" + key + "\" must be an object of name: value");
+    }
+  }
   if (json.contains("standard")) {
     Eigen::VectorXd p = Eigen::VectorXd::Zero(model.num_standard_params());
     for (const auto& [name, value] : json["standard"].items()) {

@@ -45,7 +45,10 @@ Eigen::MatrixXd stacked_regressor(const ReferenceDynamics& dynamics, int states,
       q[i] = body.type == JointType::kRevolute ? s.uniform(-std::numbers::pi, std::numbers::pi)
                                                : s.uniform(-0.5, 0.5);
       // Velocities never zero, so that friction columns keep their sign pattern generic.
-      dq[i] = s.uniform(0.2, 2.0) * (s.uniform(0, 1) < 0.5 ? -1 : 1);
+      // Two draws in named steps: the order of operands of * is unspecified in C++.
+      const double magnitude = s.uniform(0.2, 2.0);
+      const bool negative = s.uniform(0, 1) < 0.5;
+      dq[i] = negative ? -magnitude : magnitude;
       ddq[i] = s.uniform(-3, 3);
     }
     W.middleRows(k * n, n) = dynamics.standard_regressor(q, dq, ddq);

@@ -118,14 +118,18 @@ LeastSquaresResult fit_wls(const Eigen::MatrixXd& W, const Eigen::VectorXd& y,
     throw EstimationError("one group per equation is needed: " + std::to_string(group.size()) +
                           " groups for " + std::to_string(W.rows()) + " equations");
   }
-  const int groups = *std::max_element(group.begin(), group.end()) + 1;
   if (*std::min_element(group.begin(), group.end()) < 0) {
     throw EstimationError("group indices must be 0 or more");
   }
+  const int groups = *std::max_element(group.begin(), group.end()) + 1;
+  if (groups > W.rows()) throw EstimationError("more groups than equations");
   // Eq. 20: each group's error standard deviation from the OLS solution of its own equations
   // (the block-triangular structure makes those solvable joint by joint).
   std::vector<std::vector<Eigen::Index>> rows(groups);
   for (Eigen::Index r = 0; r < W.rows(); ++r) rows[group[r]].push_back(r);
+  for (int g = 0; g < groups; ++g) {
+    if (rows[g].empty()) throw EstimationError("group " + std::to_string(g) + " has no equations");
+  }
   std::vector<double> sigma(groups);
   for (int g = 0; g < groups; ++g) {
     const auto& members = rows[g];
@@ -151,9 +155,12 @@ LeastSquaresResult fit_wls(const Eigen::MatrixXd& W, const Eigen::VectorXd& y,
     const Eigen::VectorXd residual = yg - Wseen * qr.solve(yg);
     sigma[g] = std::sqrt(residual.squaredNorm() /
                          static_cast<double>(members.size() - qr.rank()));
-    if (!(sigma[g] > 0)) {
-      sigma[g] = std::max(1e-300, yg.norm() * 1e-15);  // noise-free group: near-infinite weight
-    }
+  }
+  // A group fitted exactly (noise-free data) gets the largest weight the others allow, not an
+  // infinite one that would overflow the factorization.
+  const double largest = *std::max_element(sigma.begin(), sigma.end());
+  for (double& s : sigma) {
+    if (!(s > 0)) s = largest > 0 ? 1e-6 * largest : 1.0;
   }
   Eigen::MatrixXd Ww = W;
   Eigen::VectorXd yw = y;
@@ -171,6 +178,9 @@ EssentialParameters essential_parameters(const Eigen::MatrixXd& W, const Eigen::
                                          const std::vector<int>& group,
                                          const std::vector<std::string>& names, double r_sigma) {
   EssentialParameters out;
+  if (static_cast<Eigen::Index>(names.size()) != W.cols() || W.cols() == 0) {
+    throw EstimationError("essential parameters need one name per column of a non-empty W");
+  }
   for (Eigen::Index k = 0; k < W.cols(); ++k) out.kept.push_back(static_cast<int>(k));
   while (true) {
     Eigen::MatrixXd Wk(W.rows(), out.kept.size());

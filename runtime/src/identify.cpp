@@ -23,6 +23,13 @@ Identification identify(const IdentificationModel& model, const std::vector<Traj
       throw EstimationError(x.source + ": " + std::to_string(x.q.cols()) + " joints, the model has " +
                             std::to_string(n));
     }
+    const Eigen::Index m = x.t.size();
+    for (const Eigen::MatrixXd* a : {&x.q, &x.dq, &x.ddq, &x.tau}) {
+      if (a->rows() != m || a->cols() != n) {
+        throw EstimationError(x.source + ": q, dq, ddq and tau need " + std::to_string(m) +
+                              " rows (one per time) and " + std::to_string(n) + " columns");
+      }
+    }
     samples += x.t.size();
   }
   const bool power = method == Method::kPimWls;

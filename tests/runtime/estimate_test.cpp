@@ -154,6 +154,11 @@ TEST(Estimate, BadInputsAreErrors) {
   EXPECT_THROW(fit_ols(W, Eigen::VectorXd::Zero(9), {"a", "b"}), EstimationError);
   EXPECT_THROW(fit_ols(W, y, {"a"}), EstimationError);
   EXPECT_THROW(fit_ols(W.topRows(2), y.head(2), {"a", "b"}), EstimationError);
+  // A group number with no equations (here 1, between 0 and 2).
+  std::vector<int> group(10, 0);
+  for (int r = 5; r < 10; ++r) group[r] = 2;
+  EXPECT_THROW(fit_wls(W, y, group, {"a", "b"}), EstimationError);
+  EXPECT_THROW(essential_parameters(W, y, {}, {"a"}), EstimationError);
   W(3, 1) = std::nan("");
   EXPECT_THROW(fit_ols(W, y, {"a", "b"}), EstimationError);
 }

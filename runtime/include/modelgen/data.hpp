@@ -10,8 +10,8 @@
 
 namespace modelgen {
 
-/// A problem with a data file; what() reads "file:line:column: error: message" (column: the
-/// CSV column's name when known).
+/// A problem with a data file; what() reads "file:line (column NAME): error: message", the line
+/// and column parts when known.
 class DataError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
@@ -28,8 +28,8 @@ struct Trajectory {
 /// Reads a CSV file with a header row naming its columns: `t`, `q1`..`qn`, `tau1`..`taun`, and
 /// optionally `dq1`..`dqn` and `ddq1`..`ddqn` (any order; other columns are ignored). Comma
 /// separated, one sample per line, time strictly increasing, every value finite.
-/// Throws DataError naming the file, line and column for: a missing column (with the closest
-/// name found), a row with the wrong number of fields, a value that is not a number, NaN or
+/// Throws DataError naming the file, line and column for: a missing column (listing the header's
+/// columns), a row with the wrong number of fields, a value that is not a number, NaN or
 /// infinity, time not increasing, fewer than 3 samples.
 Trajectory read_trajectory_csv(const std::string& path, int dof);
 
