@@ -48,6 +48,26 @@ const char* const kBaseParamNames[kBaseParams] = {
     "M8", "Ia8", "Fv8", "Fc8", "OFF8", "MX9", "MY9", "MZ9", "M9", "Ia9", "Fv9", "Fc9", "OFF9",
 };
 
+const double kMotorFromJoint[kDof * kDof] = {
+    1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0,
+    0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0,
+    0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0,
+    0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0,
+    0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0,
+    0.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0,
+    0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0,
+    0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0,
+    0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0,
+};
+
+const double kTorqueConstant[kDof] = {
+    0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0,
+};
+
+const double kJointOffset[kDof] = {
+    0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0,
+};
+
 // Standard regressor of the inverse dynamic identification model (Gautier & Briot eq. 2):
 // tau = W * p. Inputs q, dq, ddq: kDof joint positions (rad or m), velocities and accelerations.
 // Output W: kDof x kStandardParams, row-major: W[i * kStandardParams + k] is the torque of joint

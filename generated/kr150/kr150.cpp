@@ -44,6 +44,23 @@ const char* const kBaseParamNames[kBaseParams] = {
     "YZ6R", "ZZ6R", "MX6R", "MY6R", "Ia6", "Fv6", "Fc6", "Iam6", "Fvm6", "Fcm6",
 };
 
+const double kMotorFromJoint[kDof * kDof] = {
+    1.0, 0.0, 0.0, 0.0, 0.0, 0.0,
+    0.0, 1.0, 0.0, 0.0, 0.0, 0.0,
+    0.0, 0.0, 1.0, 0.0, 0.0, 0.0,
+    0.0, 0.0, 0.0, 1.0, 0.0, 0.0,
+    0.0, 0.0, 0.0, -0.0093, 1.0, 0.0,
+    0.0, 0.0, 0.0, -0.0139302, 0.014, 1.0,
+};
+
+const double kTorqueConstant[kDof] = {
+    0.0, 0.0, 0.0, 0.0, 0.0, 0.0,
+};
+
+const double kJointOffset[kDof] = {
+    0.0, 0.0, 0.0, 0.0, 0.0, 0.0,
+};
+
 // Standard regressor of the inverse dynamic identification model (Gautier & Briot eq. 2):
 // tau = W * p. Inputs q, dq, ddq: kDof joint positions (rad or m), velocities and accelerations.
 // Output W: kDof x kStandardParams, row-major: W[i * kStandardParams + k] is the torque of joint

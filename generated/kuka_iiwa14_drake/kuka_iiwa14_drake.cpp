@@ -45,6 +45,24 @@ const char* const kBaseParamNames[kBaseParams] = {
     "XZ7", "YZ7", "ZZ7", "MX7", "MY7", "Ia7", "Fv7", "Fc7", "OFF7",
 };
 
+const double kMotorFromJoint[kDof * kDof] = {
+    1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0,
+    0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0,
+    0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0,
+    0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0,
+    0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0,
+    0.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0,
+    0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0,
+};
+
+const double kTorqueConstant[kDof] = {
+    0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0,
+};
+
+const double kJointOffset[kDof] = {
+    0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0,
+};
+
 // Standard regressor of the inverse dynamic identification model (Gautier & Briot eq. 2):
 // tau = W * p. Inputs q, dq, ddq: kDof joint positions (rad or m), velocities and accelerations.
 // Output W: kDof x kStandardParams, row-major: W[i * kStandardParams + k] is the torque of joint

@@ -43,6 +43,23 @@ const char* const kBaseParamNames[kBaseParams] = {
     "XY6", "XZ6", "YY6R", "YZ6", "MY6", "MZ6", "Ia6", "Fv6", "Fc6", "OFF6",
 };
 
+const double kMotorFromJoint[kDof * kDof] = {
+    1.0, 0.0, 0.0, 0.0, 0.0, 0.0,
+    0.0, 1.0, 0.0, 0.0, 0.0, 0.0,
+    0.0, 0.0, 1.0, 0.0, 0.0, 0.0,
+    0.0, 0.0, 0.0, 1.0, 0.0, 0.0,
+    0.0, 0.0, 0.0, 0.0, 1.0, 0.0,
+    0.0, 0.0, 0.0, 0.0, 0.0, 1.0,
+};
+
+const double kTorqueConstant[kDof] = {
+    0.0, 0.0, 0.0, 0.0, 0.0, 0.0,
+};
+
+const double kJointOffset[kDof] = {
+    0.0, 0.0, 0.0, 0.0, 0.0, 0.0,
+};
+
 // Standard regressor of the inverse dynamic identification model (Gautier & Briot eq. 2):
 // tau = W * p. Inputs q, dq, ddq: kDof joint positions (rad or m), velocities and accelerations.
 // Output W: kDof x kStandardParams, row-major: W[i * kStandardParams + k] is the torque of joint

@@ -45,6 +45,23 @@ const char* const kBaseParamNames[kBaseParams] = {
     "Fcm6",
 };
 
+const double kMotorFromJoint[kDof * kDof] = {
+    32.0, 0.0, 0.0, 0.0, 0.0, 0.0,
+    0.0, 32.0, 0.0, 0.0, 0.0, 0.0,
+    0.0, 0.0, 45.0, 0.0, 0.0, 0.0,
+    0.0, 0.0, 0.0, -48.0, 0.0, 0.0,
+    0.0, 0.0, 0.0, 0.0, 45.0, 0.0,
+    0.0, 0.0, 0.0, 0.0, 32.0, 32.0,
+};
+
+const double kTorqueConstant[kDof] = {
+    0.0, 0.0, 0.0, 0.0, 0.0, 0.0,
+};
+
+const double kJointOffset[kDof] = {
+    0.0, 0.0, 0.0, 0.0, 0.0, 0.0,
+};
+
 // Standard regressor of the inverse dynamic identification model (Gautier & Briot eq. 2):
 // tau = W * p. Inputs q, dq, ddq: kDof joint positions (rad or m), velocities and accelerations.
 // Output W: kDof x kStandardParams, row-major: W[i * kStandardParams + k] is the torque of joint

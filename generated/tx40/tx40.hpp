@@ -25,7 +25,7 @@ namespace modelgen {
 namespace tx40 {
 
 // Version of this generated interface; the runtime's adapter for generated models checks it.
-constexpr int kFormatVersion = 1;
+constexpr int kFormatVersion = 2;
 // Moving joints: the length of q, dq, ddq and tau.
 constexpr int kDof = 6;
 // Standard dynamic parameters (Gautier & Briot eq. 3): the length of p, the columns of W.
@@ -39,6 +39,15 @@ extern const char* const kStandardParamNames[kStandardParams];
 // Names of the base parameters in the order of beta: "ZZ1R", "XX2R", ... (suffix R: the
 // parameter absorbs others; the relations are base_from_standard and the manifest).
 extern const char* const kBaseParamNames[kBaseParams];
+
+// The drive chain of the description, for data measured on the motor side. Row-major
+// kDof x kDof K with dq_motor = K dq and tau = K^T tau_motor (Gautier & Briot eq. 25).
+extern const double kMotorFromJoint[kDof * kDof];
+// Motor torque constants, N m/A: tau_motor = kTorqueConstant * current; 0 where the
+// description gives none.
+extern const double kTorqueConstant[kDof];
+// Joint position at motor position zero: q = K^-1 q_motor + kJointOffset (rad or m).
+extern const double kJointOffset[kDof];
 
 // Standard regressor of the inverse dynamic identification model (Gautier & Briot eq. 2):
 // tau = W * p. Inputs q, dq, ddq: kDof joint positions (rad or m), velocities and accelerations.
@@ -151,6 +160,9 @@ struct Model {
   static const char* input_sha256() { return "8a2f905d78aeaa2a733324532df16a3f3b000f2d2ef68a724a12c92f21ed3654"; }
   static const char* const* standard_param_names() { return kStandardParamNames; }
   static const char* const* base_param_names() { return kBaseParamNames; }
+  static const double* motor_from_joint() { return kMotorFromJoint; }
+  static const double* torque_constant() { return kTorqueConstant; }
+  static const double* joint_offset() { return kJointOffset; }
   static void base_from_standard(const double* p_standard, double* beta) {
     ::modelgen::tx40::base_from_standard(p_standard, beta);
   }

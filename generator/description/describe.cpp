@@ -155,6 +155,22 @@ std::string describe(const RobotModel& model) {
     out << "  motor_from_joint K (dq_motor = K dq_joint, tau_joint = K^T tau_motor):\n";
     print_matrix(out, drives.motor_from_joint, "    ");
   }
+  auto any_nonzero = [](const std::vector<double>& v) {
+    for (double x : v) {
+      if (x != 0) return true;
+    }
+    return false;
+  };
+  if (any_nonzero(drives.torque_constant)) {
+    out << "  torque constant (N m/A, motor side): "
+        << vector_text(drives.torque_constant.data(), static_cast<int>(drives.torque_constant.size()))
+        << "\n";
+  }
+  if (any_nonzero(drives.joint_offset)) {
+    out << "  joint offset (q = K^-1 q_motor + offset): "
+        << vector_text(drives.joint_offset.data(), static_cast<int>(drives.joint_offset.size()))
+        << "\n";
+  }
   out << "  friction: " << (model.friction.viscous ? "viscous " : "")
       << (model.friction.coulomb ? "Coulomb " : "") << (model.friction.offset ? "offset " : "")
       << (model.friction.asymmetric ? "(asymmetric, Bona & Curatella eq. 2)" : "(symmetric)")

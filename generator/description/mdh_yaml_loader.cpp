@@ -363,8 +363,26 @@ class MdhYamlLoader {
     DriveChain& drives = model_.drives;
     const int n = model_.dof();
     drives.motor_from_joint = Eigen::MatrixXd::Identity(n, n);
+    drives.torque_constant.assign(n, 0.0);
+    drives.joint_offset.assign(n, 0.0);
     if (!node) return;
-    in_.check_keys(node, {"ratio", "coupling"}, "drives");
+    in_.check_keys(node, {"ratio", "coupling", "torque_constant", "joint_offset"}, "drives");
+    if (node["torque_constant"]) {
+      drives.torque_constant = in_.numbers(node["torque_constant"], "torque_constant", n);
+      for (int i = 0; i < n; ++i) {
+        if (!(drives.torque_constant[i] > 0)) {
+          in_.fail(node["torque_constant"][i], "a torque constant must be positive (N m/A)");
+        }
+      }
+    }
+    if (node["joint_offset"]) {
+      const YAML::Node offsets = node["joint_offset"];
+      if (!offsets.IsSequence() || static_cast<int>(offsets.size()) != n) {
+        in_.fail(offsets, "'joint_offset' must list " + std::to_string(n) +
+                              " values, one per moving joint");
+      }
+      for (int i = 0; i < n; ++i) drives.joint_offset[i] = in_.angle(offsets[i], "joint_offset").value;
+    }
     if (node["ratio"]) {
       drives.ratio = in_.numbers(node["ratio"], "ratio", n);
       for (std::size_t i = 0; i < drives.ratio.size(); ++i) {

@@ -72,6 +72,10 @@ struct DriveChain {
   Eigen::MatrixXd coupling_as_written;  ///< the matrix the user gave (block of coupled joints)
   std::vector<int> coupled_joints;  ///< 0-based dof indices the written block acts on
   Eigen::MatrixXd motor_from_joint; ///< dof x dof; identity scaled by ratio when no coupling
+  /// Motor torque constant per motor, N m/A (tau_motor = k i); 0 where not given.
+  std::vector<double> torque_constant;
+  /// Joint position at motor position zero, per joint: q = K^-1 q_motor + joint_offset.
+  std::vector<double> joint_offset;
 
   bool has_coupling() const { return !coupling_form.empty(); }
 };

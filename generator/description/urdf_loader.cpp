@@ -629,6 +629,8 @@ RobotModel load_urdf(const std::string& path, const std::string& text, const Loa
 
   // No drive ratios in URDF: motor and joint sides coincide.
   model.drives.motor_from_joint = Eigen::MatrixXd::Identity(model.tree.dof, model.tree.dof);
+  model.drives.torque_constant.assign(model.tree.dof, 0.0);
+  model.drives.joint_offset.assign(model.tree.dof, 0.0);
   build_standard_parameters(model);
   for (std::size_t k = 0; k < model.tree.params.size(); ++k) {
     const StandardParam& param = model.tree.params[k];

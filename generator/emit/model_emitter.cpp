@@ -66,10 +66,11 @@ std::string json_string(const std::string& text) {
 std::string json_number(double value) { return format_literal(value, Scalar::kDouble); }
 
 // Quoted names, comma-terminated, wrapped before 92 columns.
-void write_name_list(const std::vector<std::string>& names, CodeWriter& out) {
+// Items separated by commas, wrapped to fit the 100-column generated style.
+void write_list(const std::vector<std::string>& items, CodeWriter& out) {
   std::string line;
-  for (const std::string& name : names) {
-    const std::string item = json_string(name) + ",";
+  for (const std::string& text : items) {
+    const std::string item = text + ",";
     if (!line.empty() && line.size() + 1 + item.size() > 92) {
       out.line(line);
       line.clear();
@@ -77,6 +78,18 @@ void write_name_list(const std::vector<std::string>& names, CodeWriter& out) {
     line += (line.empty() ? "" : " ") + item;
   }
   if (!line.empty()) out.line(line);
+}
+
+void write_name_list(const std::vector<std::string>& names, CodeWriter& out) {
+  std::vector<std::string> quoted;
+  for (const std::string& name : names) quoted.push_back(json_string(name));
+  write_list(quoted, out);
+}
+
+void write_number_list(const std::vector<double>& values, CodeWriter& out) {
+  std::vector<std::string> literals;
+  for (double value : values) literals.push_back(format_literal(value, Scalar::kDouble));
+  write_list(literals, out);
 }
 
 std::string pad_left(const std::string& text, std::size_t width) {
@@ -332,6 +345,20 @@ GeneratedModel emit_model(const RobotModel& model, const GenerationInput& input)
                      [&](CodeWriter& out) { write_name_list(standard_names, out); })
           .set_block("base_param_names",
                      [&](CodeWriter& out) { write_name_list(base_names, out); })
+          .set_block("motor_from_joint",
+                     [&](CodeWriter& out) {
+                       // One row of K per line, so the matrix reads as written.
+                       const Eigen::MatrixXd& K = model.drives.motor_from_joint;
+                       for (Eigen::Index r = 0; r < K.rows(); ++r) {
+                         std::vector<double> row(K.cols());
+                         for (Eigen::Index c = 0; c < K.cols(); ++c) row[c] = K(r, c);
+                         write_number_list(row, out);
+                       }
+                     })
+          .set_block("torque_constant",
+                     [&](CodeWriter& out) { write_number_list(model.drives.torque_constant, out); })
+          .set_block("joint_offset",
+                     [&](CodeWriter& out) { write_number_list(model.drives.joint_offset, out); })
           .set_block("definitions",
                      [&](CodeWriter& out) {
                        bool first = true;

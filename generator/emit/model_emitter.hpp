@@ -33,7 +33,7 @@ struct GeneratedModel {
 };
 
 /// Format of the generated interface; bump when the generated API changes incompatibly.
-inline constexpr int kFormatVersion = 1;
+inline constexpr int kFormatVersion = 2;
 
 GeneratedModel emit_model(const RobotModel& model, const GenerationInput& input);
 

@@ -42,7 +42,7 @@ std::string format(double value) {
 
 }  // namespace
 
-Trajectory read_trajectory_csv(const std::string& path, int dof) {
+Trajectory read_trajectory_csv(const std::string& path, int dof, EffortColumns effort) {
   std::ifstream in(path);
   if (!in) fail(path, 0, "", "cannot open the file");
   std::string line;
@@ -64,22 +64,28 @@ Trajectory read_trajectory_csv(const std::string& path, int dof) {
       fail(path, line_number, name,
            "missing column '" + name + "' (the header has: " + present + "); expected t, q1..q" +
                std::to_string(dof) + ", tau1..tau" + std::to_string(dof) +
-               " and optionally dq1.., ddq1..");
+               " (or motor currents i1..i" + std::to_string(dof) + ") and optionally dq1.., ddq1..");
     }
     return -1;
   };
   const int t_column = find("t", true);
-  std::vector<int> q(dof), tau(dof), dq(dof), ddq(dof);
+  // Torques or currents: decided by the first joint's column, then required for every joint.
+  Measured measured = Measured::kTorque;
+  if (column.count("tau1") && column.count("i1")) {
+    fail(path, line_number, "i1", "both torque (tau) and current (i) columns: give one kind");
+  }
+  if (column.count("i1")) {
+    measured = Measured::kCurrent;
+  } else if (!column.count("tau1") && effort == EffortColumns::kOptional) {
+    measured = Measured::kNothing;
+  }
+  const std::string effort_prefix = measured == Measured::kCurrent ? "i" : "tau";
+  std::vector<int> q(dof), tau(dof, -1), dq(dof), ddq(dof);
   bool velocity = true;
   for (int j = 0; j < dof; ++j) {
     const std::string k = std::to_string(j + 1);
     q[j] = find("q" + k, true);
-    if (column.count("i" + k) && !column.count("tau" + k)) {
-      fail(path, line_number, "i" + k,
-           "motor currents are not converted yet: give joint or motor torques as tau1..tau" +
-               std::to_string(dof));
-    }
-    tau[j] = find("tau" + k, true);
+    if (measured != Measured::kNothing) tau[j] = find(effort_prefix + k, true);
     dq[j] = find("dq" + k, false);
     ddq[j] = find("ddq" + k, false);
     velocity = velocity && dq[j] >= 0 && ddq[j] >= 0;
@@ -120,7 +126,8 @@ Trajectory read_trajectory_csv(const std::string& path, int dof) {
   const Eigen::Index n = static_cast<Eigen::Index>(rows.size());
   out.t.resize(n);
   out.q.resize(n, dof);
-  out.tau.resize(n, dof);
+  out.tau = Eigen::MatrixXd::Zero(n, dof);
+  out.measured = measured;
   out.dq = Eigen::MatrixXd::Zero(n, dof);
   out.ddq = Eigen::MatrixXd::Zero(n, dof);
   out.has_velocity = velocity;
@@ -128,7 +135,7 @@ Trajectory read_trajectory_csv(const std::string& path, int dof) {
     out.t[s] = rows[s][t_column];
     for (int j = 0; j < dof; ++j) {
       out.q(s, j) = rows[s][q[j]];
-      out.tau(s, j) = rows[s][tau[j]];
+      if (tau[j] >= 0) out.tau(s, j) = rows[s][tau[j]];
       if (velocity) {
         out.dq(s, j) = rows[s][dq[j]];
         out.ddq(s, j) = rows[s][ddq[j]];

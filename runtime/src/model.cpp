@@ -7,9 +7,11 @@
 
 namespace modelgen {
 
-ReferenceModel::ReferenceModel(std::string name, RigidBodyTree tree, std::string description_sha256)
+ReferenceModel::ReferenceModel(std::string name, RigidBodyTree tree, std::string description_sha256,
+                               std::optional<Transmission> drive)
     : name_(std::move(name)),
       sha256_(std::move(description_sha256)),
+      drive_(drive ? std::move(*drive) : Transmission::identity(tree.dof)),
       dynamics_(std::move(tree)),
       base_(derive_base_parameters(dynamics_.tree())) {
   for (const StandardParam& p : dynamics_.tree().params) standard_.push_back(p.name);

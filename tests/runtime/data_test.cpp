@@ -2,6 +2,7 @@
 // line and column; central differences reproduce analytic derivatives of a smooth trajectory.
 
 #include <cmath>
+#include <fstream>
 
 #include <gtest/gtest.h>
 
@@ -24,6 +25,8 @@ TEST(TrajectoryCsv, BadFilesNameFileLineAndColumn) {
       {"time_backwards.csv", ":4 (column t)", "time does not increase"},
       {"short_row.csv", ":3", "expected 5 fields like the header, found 4"},
       {"not_a_number.csv", ":3 (column q2)", "'zero' is not a number"},
+      {"torque_and_current.csv", ":1 (column i1)", "both torque (tau) and current (i) columns"},
+      {"missing_current.csv", ":1 (column i2)", "missing column 'i2'"},
   };
   for (const Case& c : cases) {
     const std::string path = test::source_path("tests/bad_inputs/data/") + c.file;
@@ -53,6 +56,25 @@ TEST(TrajectoryCsv, WriteThenReadGivesTheSameNumbers) {
   EXPECT_EQ(y.q, x.q);  // shortest round-trip text: exact
   EXPECT_EQ(y.ddq, x.ddq);
   EXPECT_EQ(y.tau, x.tau);
+}
+
+// Currents are read as they are, flagged for to_joint_side; a file without effort columns is
+// accepted only when the caller says torques are optional (prediction).
+TEST(TrajectoryCsv, CurrentColumnsAndOptionalTorques) {
+  const std::string currents = testing::TempDir() + "currents.csv";
+  std::ofstream(currents) << "t,q1,q2,i1,i2\n0,0.1,0.2,1.5,-2\n0.1,0.1,0.2,1.5,-2\n0.2,0.1,0.2,1.5,-2\n";
+  const Trajectory x = read_trajectory_csv(currents, 2);
+  EXPECT_EQ(x.measured, Measured::kCurrent);
+  EXPECT_EQ(x.tau(2, 0), 1.5);
+  EXPECT_EQ(x.tau(1, 1), -2.0);
+
+  const std::string positions = testing::TempDir() + "positions_only.csv";
+  std::ofstream(positions) << "t,q1,q2\n0,0.1,0.2\n0.1,0.1,0.2\n0.2,0.1,0.2\n";
+  EXPECT_THROW(read_trajectory_csv(positions, 2), DataError);
+  const Trajectory y = read_trajectory_csv(positions, 2, EffortColumns::kOptional);
+  EXPECT_EQ(y.measured, Measured::kNothing);
+  EXPECT_EQ(y.tau.rows(), 3);
+  EXPECT_EQ(y.tau.cwiseAbs().maxCoeff(), 0.0);
 }
 
 TEST(TrajectoryCsv, CentralDifferencesMatchTheAnalyticDerivatives) {

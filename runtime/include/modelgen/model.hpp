@@ -5,18 +5,20 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "modelgen/base_parameters.hpp"
 #include "modelgen/reference_dynamics.hpp"
 #include "modelgen/rigid_body_tree.hpp"
+#include "modelgen/transmission.hpp"
 
 namespace modelgen {
 
 /// The format of generated code this runtime understands (the kFormatVersion of generated
 /// headers).
-constexpr int kGeneratedFormatVersion = 1;
+constexpr int kGeneratedFormatVersion = 2;
 
 class IdentificationModel {
  public:
@@ -45,6 +47,8 @@ class IdentificationModel {
   /// The regrouping relations: beta (num_base_params()) from standard parameters
   /// (num_standard_params()).
   virtual void base_from_standard(const double* p_standard, double* beta) const = 0;
+  /// The description's drive chain, for motor-side data and current measurements.
+  virtual const Transmission& transmission() const = 0;
 };
 
 /// The numeric reference as an identification model: any description, slower than generated
@@ -53,7 +57,9 @@ class ReferenceModel final : public IdentificationModel {
  public:
   /// Validates `tree` and derives its base parameters; throws std::invalid_argument for a
   /// malformed tree.
-  ReferenceModel(std::string name, RigidBodyTree tree, std::string description_sha256 = "");
+  /// `drive` defaults to the identity drive chain.
+  ReferenceModel(std::string name, RigidBodyTree tree, std::string description_sha256 = "",
+                 std::optional<Transmission> drive = std::nullopt);
 
   std::string name() const override { return name_; }
   std::string description_sha256() const override { return sha256_; }
@@ -66,12 +72,14 @@ class ReferenceModel final : public IdentificationModel {
   void inverse_dynamics(const double* q, const double* dq, const double* ddq, const double* beta,
                         double* tau) const override;
   void base_from_standard(const double* p_standard, double* beta) const override;
+  const Transmission& transmission() const override { return drive_; }
 
   const BaseParameterSet& base() const { return base_; }
 
  private:
   std::string name_;
   std::string sha256_;
+  Transmission drive_;
   ReferenceDynamics dynamics_;
   BaseParameterSet base_;
   std::vector<std::string> standard_, base_names_;
@@ -88,7 +96,13 @@ class GeneratedModel final : public IdentificationModel {
   GeneratedModel()
       : standard_(Generated::standard_param_names(),
                   Generated::standard_param_names() + Generated::kStandardParams),
-        base_(Generated::base_param_names(), Generated::base_param_names() + Generated::kBaseParams) {}
+        base_(Generated::base_param_names(), Generated::base_param_names() + Generated::kBaseParams) {
+    constexpr int n = Generated::kDof;
+    drive_.motor_from_joint =
+        Eigen::Map<const Eigen::Matrix<double, n, n, Eigen::RowMajor>>(Generated::motor_from_joint());
+    drive_.torque_constant = Eigen::Map<const Eigen::VectorXd>(Generated::torque_constant(), n);
+    drive_.joint_offset = Eigen::Map<const Eigen::VectorXd>(Generated::joint_offset(), n);
+  }
 
   std::string name() const override { return Generated::name(); }
   std::string description_sha256() const override { return Generated::input_sha256(); }
@@ -109,9 +123,11 @@ class GeneratedModel final : public IdentificationModel {
   void base_from_standard(const double* p_standard, double* beta) const override {
     Generated::base_from_standard(p_standard, beta);
   }
+  const Transmission& transmission() const override { return drive_; }
 
  private:
   std::vector<std::string> standard_, base_;
+  Transmission drive_;
 };
 
 }  // namespace modelgen
