@@ -86,9 +86,9 @@ void write_name_list(const std::vector<std::string>& names, CodeWriter& out) {
   write_list(quoted, out);
 }
 
-void write_number_list(const std::vector<double>& values, CodeWriter& out) {
+void write_number_list(const std::vector<double>& values, Scalar scalar, CodeWriter& out) {
   std::vector<std::string> literals;
-  for (double value : values) literals.push_back(format_literal(value, Scalar::kDouble));
+  for (double value : values) literals.push_back(format_literal(value, scalar));
   write_list(literals, out);
 }
 
@@ -294,6 +294,8 @@ GeneratedModel emit_model(const RobotModel& model, const GenerationInput& input)
           .set("include_guard", guard)
           .set("robot", model.name)
           .set("format_version", kFormatVersion)
+          // The drive-chain constants take the first scalar type asked for.
+          .set("scalar", scalar_name(input.scalars.front()))
           .set("dof", dof)
           .set("standard_param_count", num_params)
           .set("base_param_count", num_base)
@@ -341,6 +343,7 @@ GeneratedModel emit_model(const RobotModel& model, const GenerationInput& input)
           .set("banner", strip_newline(banner(source_name)))
           .set("header", header_name)
           .set("robot", model.name)
+          .set("scalar", scalar_name(input.scalars.front()))
           .set_block("standard_param_names",
                      [&](CodeWriter& out) { write_name_list(standard_names, out); })
           .set_block("base_param_names",
@@ -352,13 +355,13 @@ GeneratedModel emit_model(const RobotModel& model, const GenerationInput& input)
                        for (Eigen::Index r = 0; r < K.rows(); ++r) {
                          std::vector<double> row(K.cols());
                          for (Eigen::Index c = 0; c < K.cols(); ++c) row[c] = K(r, c);
-                         write_number_list(row, out);
+                         write_number_list(row, input.scalars.front(), out);
                        }
                      })
           .set_block("torque_constant",
-                     [&](CodeWriter& out) { write_number_list(model.drives.torque_constant, out); })
+                     [&](CodeWriter& out) { write_number_list(model.drives.torque_constant, input.scalars.front(), out); })
           .set_block("joint_offset",
-                     [&](CodeWriter& out) { write_number_list(model.drives.joint_offset, out); })
+                     [&](CodeWriter& out) { write_number_list(model.drives.joint_offset, input.scalars.front(), out); })
           .set_block("definitions",
                      [&](CodeWriter& out) {
                        bool first = true;

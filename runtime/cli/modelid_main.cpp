@@ -38,7 +38,8 @@ constexpr const char* kUsage =
     "       modelid --help\n"
     "\n"
     "ROBOT is a description (.yaml/.urdf, through the numeric reference) or the name of a\n"
-    "compiled-in generated model (tx40, kr150, ur5, iiwa14, panda, kuka_kr150_2).\n"
+    "compiled-in generated model (tx40, kr150, ur5, iiwa14, panda, kuka_kr150_2,\n"
+    "panda_arm).\n"
     "Data files: CSV with a header t, q1..qn, tau1..taun and optionally dq1.., ddq1.. (without\n"
     "them, velocities and accelerations come from central differences). README.md has details.\n";
 

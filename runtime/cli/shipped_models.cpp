@@ -9,6 +9,7 @@
 #include "kr150.hpp"
 #include "kuka_iiwa14_drake.hpp"
 #include "kuka_kr150_2.hpp"
+#include "panda_arm.hpp"
 #include "tx40.hpp"
 #include "ur5.hpp"
 
@@ -29,6 +30,7 @@ const std::map<std::string, std::function<std::unique_ptr<IdentificationModel>()
       {"iiwa14", make<modelgen::iiwa14::Model>},
       {"panda", make<modelgen::panda::Model>},
       {"kuka_kr150_2", make<modelgen::kuka_kr150_2::Model>},
+      {"panda_arm", make<modelgen::panda_arm::Model>},
   };
   return kModels;
 }
