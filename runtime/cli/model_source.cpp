@@ -15,9 +15,9 @@ ModelSource load_model_source(const std::string& robot) {
   ModelSource source;
   if (std::filesystem::exists(robot)) {
     source.description = gen::load_robot(robot);
-    source.model = std::make_unique<ReferenceModel>(source.description->name,
-                                                    source.description->tree,
-                                                    gen::sha256_hex(gen::read_source_file(robot)));
+    source.model =
+        std::make_unique<ReferenceModel>(source.description->name, source.description->tree,
+                                         gen::sha256_hex(gen::read_source_file(robot)));
     return source;
   }
   source.model = make_shipped_model(robot);
