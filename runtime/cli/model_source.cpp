@@ -20,10 +20,9 @@ ModelSource load_model_source(const std::string& robot) {
     Transmission drive{drives.motor_from_joint,
                        Eigen::Map<const Eigen::VectorXd>(drives.torque_constant.data(), dof),
                        Eigen::Map<const Eigen::VectorXd>(drives.joint_offset.data(), dof)};
-    source.model = std::make_unique<ReferenceModel>(source.description->name,
-                                                    source.description->tree,
-                                                    gen::sha256_hex(gen::read_source_file(robot)),
-                                                    std::move(drive));
+    source.model = std::make_unique<ReferenceModel>(
+        source.description->name, source.description->tree,
+        gen::sha256_hex(gen::read_source_file(robot)), std::move(drive));
     return source;
   }
   source.model = make_shipped_model(robot);

@@ -63,7 +63,8 @@ Eigen::VectorXd read_base_parameters(const std::string& path, const Identificati
                                  "and a \"value\"");
       }
       const std::string name = entry["name"].get<std::string>();
-      beta[index_of(model.base_param_names(), name, path, "base")] = number(entry["value"], path, name);
+      beta[index_of(model.base_param_names(), name, path, "base")] =
+          number(entry["value"], path, name);
     }
   } else {
     throw std::runtime_error(path + ": error: expected a \"standard\", \"base\" or " +

@@ -23,15 +23,16 @@ std::unique_ptr<IdentificationModel> make() {
 }
 
 const std::map<std::string, std::function<std::unique_ptr<IdentificationModel>()>>& registry() {
-  static const std::map<std::string, std::function<std::unique_ptr<IdentificationModel>()>> kModels = {
-      {"tx40", make<modelgen::tx40::Model>},
-      {"kr150", make<modelgen::kr150::Model>},
-      {"ur5", make<modelgen::ur5::Model>},
-      {"iiwa14", make<modelgen::iiwa14::Model>},
-      {"panda", make<modelgen::panda::Model>},
-      {"kuka_kr150_2", make<modelgen::kuka_kr150_2::Model>},
-      {"panda_arm", make<modelgen::panda_arm::Model>},
-  };
+  static const std::map<std::string, std::function<std::unique_ptr<IdentificationModel>()>>
+      kModels = {
+          {"tx40", make<modelgen::tx40::Model>},
+          {"kr150", make<modelgen::kr150::Model>},
+          {"ur5", make<modelgen::ur5::Model>},
+          {"iiwa14", make<modelgen::iiwa14::Model>},
+          {"panda", make<modelgen::panda::Model>},
+          {"kuka_kr150_2", make<modelgen::kuka_kr150_2::Model>},
+          {"panda_arm", make<modelgen::panda_arm::Model>},
+      };
   return kModels;
 }
 

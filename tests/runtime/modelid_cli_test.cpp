@@ -1,51 +1,35 @@
 // modelid as a user runs it: the bundled KR150 data are exactly what the documented simulate
 // command makes; fitting noise-free simulated data gives the true base parameters; bad data
-// and unknown robots give messages and exit 1.
+// and unknown robots give messages and exit 1; command lines that cannot be right exit 2;
+// short runs print no progress lines into logs. predict: modelid_predict_test.cpp; fit's
+// essential parameters and plots: modelid_fit_test.cpp.
 
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "tests/runtime/modelid_cli_support.hpp"
 #include "tests/support/test_support.hpp"
 
 namespace modelgen {
 namespace {
 
-namespace fs = std::filesystem;
+using test::CliRun;
+using test::modelid;
+using test::read_text;
 
-struct CliRun {
-  int exit_code = -1;
-  std::string out, err;
-};
+std::string quoted(const std::string& relative) { return test::quoted_source(relative); }
 
-std::string read(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream bytes;
-  bytes << in.rdbuf();
-  return bytes.str();
-}
-
-CliRun modelid(const std::string& arguments) {
-  const std::string test = testing::UnitTest::GetInstance()->current_test_info()->name();
-  const fs::path dir = fs::path(testing::TempDir());
-  const fs::path out = dir / ("modelid_out_" + test), err = dir / ("modelid_err_" + test);
-  const std::string command = "'" + std::string(MODELGEN_BINARY_DIR) + "/bin/modelid' " +
-                              arguments + " >'" + out.string() + "' 2>'" + err.string() + "'";
-  const int status = std::system(command.c_str());
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, read(out), read(err)};
-}
-
-std::string quoted(const std::string& relative) { return "'" + test::source_path(relative) + "'"; }
+std::string read(const std::string& path) { return read_text(path); }
 
 TEST(ModelidCli, BundledDataComeFromTheDocumentedSimulation) {
   const std::string csv = testing::TempDir() + "kr150_resimulated.csv";
-  const CliRun run = modelid("simulate --robot kr150 --params " + quoted("robots/data/kr150/true.json") +
-                          " --trajectory " + quoted("robots/data/kr150/excitation.yaml") +
-                          " --noise 2 --seed 1 --sample-time 0.01 -o '" + csv + "'");
+  const CliRun run =
+      modelid("simulate --robot kr150 --params " + quoted("robots/data/kr150/true.json") +
+              " --trajectory " + quoted("robots/data/kr150/excitation.yaml") +
+              " --noise 2 --seed 1 --sample-time 0.01 -o '" + csv + "'");
   ASSERT_EQ(run.exit_code, 0) << run.err;
   EXPECT_EQ(read(csv), read(test::source_path("robots/data/kr150/excitation.csv")))
       << "robots/data/kr150/excitation.csv is not what its documented command makes";
@@ -69,7 +53,7 @@ TEST(ModelidCli, NoiseFreeDataGiveTheTrueParameters) {
                 .exit_code,
             0);
   const CliRun fit = modelid("fit --robot tx40 --data '" + csv + "' --method ols -o '" + estimate +
-                          "' --truth '" + truth + "'");
+                             "' --truth '" + truth + "'");
   ASSERT_EQ(fit.exit_code, 0) << fit.err;
   const nlohmann::json json = nlohmann::json::parse(read(estimate));
   EXPECT_EQ(json["model"], "tx40");
@@ -78,7 +62,7 @@ TEST(ModelidCli, NoiseFreeDataGiveTheTrueParameters) {
   // The compiled-in model and the reference agree, so the truth read through the compiled-in
   // model's regrouping is what the fit must return.
   const CliRun truth_fit = modelid("fit --robot " + description + " --data '" + csv +
-                                "' --method ols -o '" + estimate + ".ref'");
+                                   "' --method ols -o '" + estimate + ".ref'");
   ASSERT_EQ(truth_fit.exit_code, 0) << truth_fit.err;
   const nlohmann::json reference = nlohmann::json::parse(read(estimate + ".ref"));
   ASSERT_EQ(json["parameters"].size(), reference["parameters"].size());
@@ -89,14 +73,15 @@ TEST(ModelidCli, NoiseFreeDataGiveTheTrueParameters) {
   // Against the truth itself (--truth puts it beside each estimate).
   for (const auto& parameter : json["parameters"]) {
     const double value = parameter["value"], truth_value = parameter["truth"];
-    EXPECT_NEAR(value, truth_value, 1e-8 * std::max(1.0, std::abs(truth_value))) << parameter["name"];
+    EXPECT_NEAR(value, truth_value, 1e-8 * std::max(1.0, std::abs(truth_value)))
+        << parameter["name"];
   }
   EXPECT_EQ(json["parameters"].size(), 61u);
 }
 
 TEST(ModelidCli, BadDataAndUnknownRobotExitOne) {
-  const CliRun bad = modelid("fit --robot tx40 --data " + quoted("tests/bad_inputs/data/nan_value.csv") +
-                          " --method wls");
+  const CliRun bad = modelid("fit --robot tx40 --data " +
+                             quoted("tests/bad_inputs/data/nan_value.csv") + " --method wls");
   EXPECT_EQ(bad.exit_code, 1);
   EXPECT_NE(bad.err.find("missing column 'q3'"), std::string::npos) << bad.err;
   const CliRun unknown = modelid("fit --robot kr15 --data x.csv --method wls");
@@ -104,6 +89,44 @@ TEST(ModelidCli, BadDataAndUnknownRobotExitOne) {
   EXPECT_NE(unknown.err.find("compiled in:"), std::string::npos) << unknown.err;
   const CliRun usage = modelid("fit --robot tx40 --bogus 1");
   EXPECT_EQ(usage.exit_code, 2);
+}
+
+TEST(ModelidCli, CommandLinesThatCannotBeRightExitTwo) {
+  const std::string data = " --data " + quoted("robots/data/kr150/excitation.csv");
+  struct Case {
+    std::string arguments, message;
+  };
+  const std::vector<Case> cases = {
+      {"fit --robot kr150 --method ols --essential --r-sigma 0.5" + data, "--r-sigma must be"},
+      {"fit --robot kr150 --method ols --r-sigma 5" + data, "add --essential"},
+      {"fit --robot kr150 --method ols --essential --essential" + data, "--essential given twice"},
+      {"fit --robot kr150 --method ols --essential" + data + " --r-sigma",
+       "--r-sigma needs a value"},
+      {"predict --robot kr150" + data, "predict needs --params"},
+      {"predict --robot kr150 --params x.json", "predict needs at least one --data"},
+      {"predict --robot kr150 --params x.json --truth y.json" + data, "unknown option '--truth'"},
+      {"frobnicate", "unknown command 'frobnicate'"},
+  };
+  for (const Case& c : cases) {
+    const CliRun run = modelid(c.arguments);
+    EXPECT_EQ(run.exit_code, 2) << c.arguments << "\n" << run.err;
+    EXPECT_NE(run.err.find(c.message), std::string::npos) << c.arguments << "\n" << run.err;
+    EXPECT_NE(run.err.find("usage: modelid fit"), std::string::npos) << run.err;
+  }
+}
+
+TEST(ModelidCli, ShortRunsPrintNoProgressIntoLogs) {
+  // stderr is a file here, not a terminal: a run shorter than a second adds no progress line,
+  // so simulate says only where it wrote.
+  const std::filesystem::path dir = test::test_folder();
+  const CliRun run =
+      modelid("simulate --robot kr150 --params " + quoted("robots/data/kr150/true.json") +
+              " --trajectory " + quoted("robots/data/kr150/excitation.yaml") + " --noise 1 -o " +
+              test::quoted(dir / "a.csv"));
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_EQ(run.err, "modelid simulate: 1000 samples of kr150 written to " +
+                         (dir / "a.csv").string() + "\n");
+  EXPECT_EQ(run.err.find('\r'), std::string::npos);
 }
 
 }  // namespace

@@ -1,0 +1,22 @@
+// The modelid commands, one source file each; main dispatches to them. Each returns the exit
+// code and throws UsageError, gen::InputError, DataError, EstimationError or
+// std::runtime_error for main to report.
+#pragma once
+
+#include "runtime/cli/arguments.hpp"
+
+namespace modelgen::internal {
+
+/// The options each command accepts, for parse_arguments.
+extern const std::map<std::string, OptionKind> kFitOptions, kPredictOptions, kSimulateOptions;
+
+/// modelid fit: base parameters from trajectories (fit_command.cpp).
+int run_fit(const Arguments& args);
+/// modelid predict: torques of an estimate on trajectories and their errors.
+int run_predict(const Arguments& args);
+/// modelid simulate: synthetic data from a Fourier excitation and true parameters.
+int run_simulate(const Arguments& args);
+/// modelid check ROBOT: loads a model and prints its sizes.
+int run_check(const Arguments& args);
+
+}  // namespace modelgen::internal

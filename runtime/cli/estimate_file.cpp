@@ -1,0 +1,93 @@
+// EST.json through nlohmann::json: writing the estimate of fit, checking the model of an
+// estimate before predict uses it.
+
+#include "runtime/cli/estimate_file.hpp"
+
+#include <cmath>
+#include <fstream>
+#include <stdexcept>
+
+#include <nlohmann/json.hpp>
+
+namespace modelgen::internal {
+
+namespace {
+
+// JSON has no infinity or NaN: a relative standard deviation of a zero estimate is null.
+nlohmann::json number(double value) {
+  return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json();
+}
+
+nlohmann::json parameters_json(const std::vector<EstimatedParameter>& parameters) {
+  nlohmann::json list = nlohmann::json::array();
+  for (const EstimatedParameter& p : parameters) {
+    nlohmann::json entry = {{"name", p.name},
+                            {"value", number(p.value)},
+                            {"std", number(p.std_dev)},
+                            {"rel_std", number(p.rel_std_dev)}};
+    if (p.truth) entry["truth"] = number(*p.truth);
+    list.push_back(std::move(entry));
+  }
+  return list;
+}
+
+nlohmann::json numbers(const std::vector<double>& values) {
+  nlohmann::json list = nlohmann::json::array();
+  for (double value : values) list.push_back(number(value));
+  return list;
+}
+
+}  // namespace
+
+std::string estimate_json(const EstimateFile& estimate) {
+  nlohmann::json out;
+  out["model"] = estimate.model;
+  out["description_sha256"] = estimate.description_sha256;
+  out["method"] = estimate.method;
+  out["samples"] = estimate.samples;
+  out["data"] = estimate.data;
+  out["rel_error_norm"] = number(estimate.rel_error_norm);
+  out["condition_number"] = number(estimate.condition_number);
+  out["residual_std"] = number(estimate.residual_std);
+  out["rms_per_axis"] = numbers(estimate.rms_per_axis);
+  out["rms_torque_per_axis"] = numbers(estimate.rms_torque_per_axis);
+  out["parameters"] = parameters_json(estimate.parameters);
+  if (estimate.essential) {
+    const EssentialEstimate& e = *estimate.essential;
+    out["essential"] = {{"r_sigma", e.r_sigma},
+                        {"kept", e.kept},
+                        {"eliminated", e.eliminated},
+                        {"parameters", parameters_json(e.parameters)},
+                        {"rel_error_norm", number(e.rel_error_norm)},
+                        {"condition_number", number(e.condition_number)}};
+  }
+  return out.dump(2) + "\n";
+}
+
+void check_estimate_model(const std::string& path, const IdentificationModel& model) {
+  std::ifstream in(path);
+  if (!in) throw std::runtime_error(path + ": error: cannot open the file");
+  nlohmann::json json;
+  try {
+    json = nlohmann::json::parse(in);
+  } catch (const nlohmann::json::parse_error& e) {
+    throw std::runtime_error(path + ": error: not valid JSON: " + e.what());
+  }
+  if (!json.is_object() || !json.contains("description_sha256")) return;
+  const nlohmann::json& field = json["description_sha256"];
+  if (!field.is_string()) {
+    throw std::runtime_error(path + ": error: \"description_sha256\" must be a string");
+  }
+  const std::string sha = field.get<std::string>();
+  if (sha.empty() || sha == model.description_sha256()) return;
+  std::string made_for = "another model";
+  if (json.contains("model") && json["model"].is_string()) {
+    made_for = "'" + json["model"].get<std::string>() + "'";
+  }
+  throw std::runtime_error(path + ": error: the estimate belongs to another model: it was " +
+                           "identified on " + made_for + " (description_sha256 '" + sha +
+                           "'), --robot is '" + model.name() + "' (description_sha256 '" +
+                           model.description_sha256() + "')");
+}
+
+}  // namespace modelgen::internal

@@ -1,0 +1,61 @@
+// The estimate file of modelid (EST.json): what `fit -o` writes, and the check that an
+// estimate given to `predict` belongs to the model it is used with. The parameter values are
+// read back by read_base_parameters (runtime/cli/parameter_file.hpp).
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "modelgen/model.hpp"
+
+namespace modelgen::internal {
+
+struct EstimatedParameter {
+  std::string name;             ///< base parameter name, e.g. "ZZ1R"
+  double value = 0;             ///< SI units of the parameter (kg m^2, kg m, kg, N m s/rad, ...)
+  double std_dev = 0;           ///< standard deviation, same unit (Gautier & Briot eq. 18)
+  double rel_std_dev = 0;       ///< in %, +inf for a zero estimate (written as null)
+  std::optional<double> truth;  ///< from fit --truth
+};
+
+/// The essential parameters (Gautier & Briot, iterative elimination with ratio r_sigma).
+struct EssentialEstimate {
+  double r_sigma = 0;
+  std::vector<std::string> kept;               ///< in base parameter order
+  std::vector<std::string> eliminated;         ///< in elimination order
+  std::vector<EstimatedParameter> parameters;  ///< the kept ones, re-estimated
+  double rel_error_norm = 0;                   ///< of the fitted equations
+  double condition_number = 0;
+};
+
+struct EstimateFile {
+  std::string model;                           ///< IdentificationModel::name()
+  std::string description_sha256;              ///< of the description the model was made from
+  std::string method;                          ///< "IDIM-OLS", "IDIM-WLS", "PIM-WLS"
+  std::vector<EstimatedParameter> parameters;  ///< every base parameter, in model order
+  double rel_error_norm = 0;                   ///< ||tau - W beta|| / ||tau||
+  double condition_number = 0;
+  double residual_std = 0;                  ///< sigma_rho (eq. 17)
+  std::vector<double> rms_per_axis;         ///< rms torque error per joint
+  std::vector<double> rms_torque_per_axis;  ///< rms measured torque per joint
+  long long samples = 0;
+  std::vector<std::string> data;  ///< the --data files as given
+  std::optional<EssentialEstimate> essential;
+};
+
+/// The JSON text of an estimate: {"model", "description_sha256", "method", "samples", "data",
+/// "rel_error_norm", "condition_number", "residual_std", "rms_per_axis",
+/// "rms_torque_per_axis", "parameters": [{"name", "value", "std", "rel_std", "truth"?}],
+/// "essential"?: {"r_sigma", "kept", "eliminated", "parameters", "rel_error_norm",
+/// "condition_number"}}. Non-finite numbers are written as null.
+std::string estimate_json(const EstimateFile& estimate);
+
+/// Refuses a parameter file made for another model: when the JSON file at `path` has a
+/// non-empty "description_sha256" that differs from model.description_sha256(), throws
+/// std::runtime_error "PATH: error: the estimate belongs to another model ...". Files without
+/// the field (hand-written parameter files) pass. Throws std::runtime_error for a file that
+/// cannot be read or is not JSON, or whose field is not a string.
+void check_estimate_model(const std::string& path, const IdentificationModel& model);
+
+}  // namespace modelgen::internal

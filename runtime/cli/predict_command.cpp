@@ -1,0 +1,73 @@
+// modelid predict: joint torques of an estimate (base parameters) on measured trajectories by
+// the model's inverse dynamics (Gautier & Briot eq. 4-6), compared with the measured torques
+// per axis (Swevers 2002, Table 3: rms torque, rms error, error in %) and as a relative error
+// norm ||tau - tau_pred|| / ||tau|| (Gautier & Briot, Tables III-IV).
+
+#include <cmath>
+#include <iostream>
+
+#include "runtime/cli/commands.hpp"
+#include "runtime/cli/data_files.hpp"
+#include "runtime/cli/estimate_file.hpp"
+#include "runtime/cli/model_source.hpp"
+#include "runtime/cli/parameter_file.hpp"
+#include "runtime/cli/text_format.hpp"
+#include "runtime/cli/torque_plots.hpp"
+#include "runtime/cli/torque_prediction.hpp"
+
+namespace modelgen::internal {
+
+const std::map<std::string, OptionKind> kPredictOptions = {{"--robot", OptionKind::kOnce},
+                                                           {"--params", OptionKind::kOnce},
+                                                           {"--data", OptionKind::kRepeated},
+                                                           {"-o", OptionKind::kOnce},
+                                                           {"--plot", OptionKind::kOnce}};
+
+namespace {
+
+void print_errors(const std::vector<Trajectory>& data, const TorquePrediction& prediction) {
+  std::cout << "  axis   rms torque    rms error   error %\n";
+  for (Eigen::Index j = 0; j < prediction.rms_torque.size(); ++j) {
+    const double torque = prediction.rms_torque[j], error = prediction.rms_error[j];
+    // No percentage for an axis that carries no torque in these data.
+    const std::string percent = torque > 0 ? fixed(100.0 * error / torque, 9, 4) : "        -";
+    std::cout << "  " << fixed(static_cast<double>(j + 1), 4, 3) << " " << fixed(torque, 12, 6)
+              << " " << fixed(error, 12, 6) << " " << percent << "\n";
+  }
+  std::cout << "  relative error norm ||tau - tau_pred|| / ||tau||: "
+            << fixed(prediction.rel_error_norm, 0, 6) << "\n";
+  if (data.size() > 1) {
+    for (std::size_t e = 0; e < data.size(); ++e) {
+      std::cout << "    experiment " << e + 1 << " (" << data[e].source
+                << "): " << fixed(prediction.rel_error_norm_per_experiment[e], 0, 6) << "\n";
+    }
+  }
+}
+
+}  // namespace
+
+int run_predict(const Arguments& args) {
+  const ModelSource source = load_model_source(args.one("--robot"));
+  const IdentificationModel& model = *source.model;
+  const std::string& params = args.one("--params");
+  if (!args.has("--data")) throw UsageError{"predict needs at least one --data file"};
+  // Before the names are looked up: an estimate of another robot would otherwise fail on a
+  // parameter name, or worse, match by chance.
+  check_estimate_model(params, model);
+  const Eigen::VectorXd beta = read_base_parameters(params, model);
+  if (args.has("--plot")) prepare_plot_folder(args.one("--plot"));
+  const std::vector<Trajectory> data = read_experiments(args.all("--data"), model.dof());
+  const TorquePrediction prediction = predict_torques(model, data, beta);
+
+  std::cout << "modelid predict: " << model.name() << " on " << data.size() << " experiment(s), "
+            << prediction.samples << " samples, parameters from " << params << "\n";
+  print_errors(data, prediction);
+  if (args.has("-o")) write_file(args.one("-o"), prediction_csv(data, prediction, true));
+  if (args.has("--plot")) {
+    write_torque_plots(args.one("--plot"), model.name() + " predicted with " + params, data,
+                       prediction, std::cout, std::cerr);
+  }
+  return 0;
+}
+
+}  // namespace modelgen::internal

@@ -1,0 +1,27 @@
+// Number and column formatting shared by the modelid commands.
+
+#include "runtime/cli/text_format.hpp"
+
+#include <charconv>
+#include <cstdio>
+
+namespace modelgen::internal {
+
+std::string shortest(double value) {
+  char buffer[32];
+  auto [end, ec] = std::to_chars(buffer, buffer + sizeof buffer, value);
+  return std::string(buffer, end);
+}
+
+std::string fixed(double value, int width, int precision) {
+  char text[64];
+  std::snprintf(text, sizeof text, "%*.*g", width, precision, value);
+  return text;
+}
+
+std::string pad(std::string text, std::size_t width) {
+  if (text.size() < width) text.resize(width, ' ');
+  return text;
+}
+
+}  // namespace modelgen::internal

@@ -1,0 +1,34 @@
+// --plot DIR of fit and predict: the measured and predicted torques as CSV, and one SVG per
+// axis drawn by gnuplot when it is installed.
+#pragma once
+
+#include <iosfwd>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "modelgen/data.hpp"
+#include "runtime/cli/torque_prediction.hpp"
+
+namespace modelgen::internal {
+
+/// Creates `dir` and its parents when missing. Throws std::runtime_error "DIR: error: ..." when
+/// it cannot be created or is not a folder; called before any work so a bad DIR fails early.
+void prepare_plot_folder(const std::string& dir);
+
+/// The full path of an executable `name` found on $PATH, or nothing; never throws.
+std::optional<std::string> find_program(const std::string& name);
+
+/// Writes DIR/torques.csv (prediction_csv without positions: experiment, t, tau, tau_pred,
+/// error) and, when gnuplot is on PATH, DIR/plot.gp and DIR/axis<j>.svg (j = 1..dof): measured
+/// and predicted torque against time above, their difference below, experiments end to end.
+/// DIR/plot.gp is written in every case, so the plots can be drawn elsewhere
+/// (`cd DIR && gnuplot plot.gp`). `title` heads every plot. Says on `out` what was written or
+/// why the SVGs were skipped; a gnuplot failure is a warning on `warnings` with gnuplot's
+/// message (the CSV stays), not an exception. Throws std::runtime_error when the CSV or the
+/// script cannot be written.
+void write_torque_plots(const std::string& dir, const std::string& title,
+                        const std::vector<Trajectory>& data, const TorquePrediction& prediction,
+                        std::ostream& out, std::ostream& warnings);
+
+}  // namespace modelgen::internal

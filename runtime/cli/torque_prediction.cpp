@@ -1,0 +1,103 @@
+// Torque prediction sample by sample through the model's inverse dynamics on base parameters
+// (tau = W(q, dq, ddq) beta, Gautier & Briot eq. 4-6) and the error statistics of the
+// validation tables (Swevers 2002 Table 3, Gautier & Briot Tables III-IV).
+
+#include "runtime/cli/torque_prediction.hpp"
+
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include "runtime/cli/progress.hpp"
+#include "runtime/cli/text_format.hpp"
+
+namespace modelgen::internal {
+
+namespace {
+
+// ||a|| / ||b||, NaN when b is zero (no measured torque to compare with).
+double ratio(double error_square_sum, double torque_square_sum) {
+  return torque_square_sum > 0 ? std::sqrt(error_square_sum / torque_square_sum)
+                               : std::numeric_limits<double>::quiet_NaN();
+}
+
+}  // namespace
+
+TorquePrediction predict_torques(const IdentificationModel& model,
+                                 const std::vector<Trajectory>& data, const Eigen::VectorXd& beta) {
+  const int n = model.dof();
+  if (beta.size() != model.num_base_params()) {
+    throw std::invalid_argument("predict_torques: " + std::to_string(beta.size()) +
+                                " base parameters given, the model has " +
+                                std::to_string(model.num_base_params()));
+  }
+  long long total = 0;
+  for (const Trajectory& x : data) {
+    const Eigen::Index m = x.t.size();
+    for (const Eigen::MatrixXd* a : {&x.q, &x.dq, &x.ddq, &x.tau}) {
+      if (a->rows() != m || a->cols() != n) {
+        throw std::invalid_argument(x.source + ": q, dq, ddq and tau need " + std::to_string(m) +
+                                    " rows and " + std::to_string(n) + " columns");
+      }
+    }
+    total += m;
+  }
+  TorquePrediction out;
+  out.samples = total;
+  Eigen::VectorXd error_squares = Eigen::VectorXd::Zero(n),
+                  torque_squares = Eigen::VectorXd::Zero(n);
+  Progress progress("predicting torques", total);
+  long long done = 0;
+  std::vector<double> tau(n);
+  for (const Trajectory& x : data) {
+    Eigen::MatrixXd tau_pred(x.t.size(), n);
+    for (Eigen::Index s = 0; s < x.t.size(); ++s, ++done) {
+      if (done % 1024 == 0) progress.update(done);
+      const Eigen::VectorXd q = x.q.row(s), dq = x.dq.row(s), ddq = x.ddq.row(s);
+      model.inverse_dynamics(q.data(), dq.data(), ddq.data(), beta.data(), tau.data());
+      for (int j = 0; j < n; ++j) tau_pred(s, j) = tau[j];
+    }
+    Eigen::MatrixXd error = x.tau - tau_pred;
+    const Eigen::VectorXd e2 = error.colwise().squaredNorm().transpose();
+    const Eigen::VectorXd t2 = x.tau.colwise().squaredNorm().transpose();
+    out.rel_error_norm_per_experiment.push_back(ratio(e2.sum(), t2.sum()));
+    error_squares += e2;
+    torque_squares += t2;
+    out.tau_pred.push_back(std::move(tau_pred));
+    out.error.push_back(std::move(error));
+  }
+  progress.update(done);
+  out.rel_error_norm = ratio(error_squares.sum(), torque_squares.sum());
+  const double samples = static_cast<double>(std::max(total, 1LL));
+  out.rms_error = (error_squares / samples).cwiseSqrt();
+  out.rms_torque = (torque_squares / samples).cwiseSqrt();
+  return out;
+}
+
+std::string prediction_csv(const std::vector<Trajectory>& data, const TorquePrediction& prediction,
+                           bool with_positions) {
+  const Eigen::Index n = data.empty() ? 0 : data.front().q.cols();
+  std::string text = "experiment,t";
+  std::vector<const char*> prefixes = {"tau", "tau_pred", "error"};
+  if (with_positions) prefixes.insert(prefixes.begin(), "q");
+  for (const char* prefix : prefixes) {
+    for (Eigen::Index j = 0; j < n; ++j) text += "," + std::string(prefix) + std::to_string(j + 1);
+  }
+  text += "\n";
+  for (std::size_t e = 0; e < data.size(); ++e) {
+    const Trajectory& x = data[e];
+    std::vector<const Eigen::MatrixXd*> blocks = {&x.tau, &prediction.tau_pred[e],
+                                                  &prediction.error[e]};
+    if (with_positions) blocks.insert(blocks.begin(), &x.q);
+    for (Eigen::Index s = 0; s < x.t.size(); ++s) {
+      text += std::to_string(e + 1) + "," + shortest(x.t[s]);
+      for (const Eigen::MatrixXd* block : blocks) {
+        for (Eigen::Index j = 0; j < n; ++j) text += "," + shortest((*block)(s, j));
+      }
+      text += "\n";
+    }
+  }
+  return text;
+}
+
+}  // namespace modelgen::internal

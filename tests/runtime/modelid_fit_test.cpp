@@ -1,0 +1,204 @@
+// modelid fit's additions as a user runs them, against independent computations: the essential
+// parameters (--essential) are re-estimated here by least squares on the kept columns of a
+// regressor built with the numeric reference, their %std ratio is below r_sigma and one more
+// parameter would break it; EST.json holds the documented fields; the table marks poorly
+// identified parameters; --plot writes the torques the estimate predicts.
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <set>
+#include <sstream>
+
+#include <gtest/gtest.h>
+#include <Eigen/Core>
+#include <nlohmann/json.hpp>
+
+#include "generator/description/load_robot.hpp"
+#include "modelgen/data.hpp"
+#include "modelgen/estimate.hpp"
+#include "modelgen/model.hpp"
+#include "tests/runtime/modelid_cli_support.hpp"
+#include "tests/support/test_support.hpp"
+
+namespace modelgen {
+namespace {
+
+namespace fs = std::filesystem;
+using test::CliRun;
+using test::modelid;
+using test::quoted;
+using test::quoted_source;
+
+// The bundled KR150 run: simulated with torque noise of 2 N m (README.md).
+const std::string kData = "robots/data/kr150/excitation.csv";
+
+ReferenceModel kr150_reference() {
+  const gen::RobotModel description = gen::load_robot(test::source_path("robots/kr150.yaml"));
+  return ReferenceModel(description.name, description.tree);
+}
+
+// The IDIM equations of `data` through the reference model: W (samples*dof x base), y.
+void reference_equations(const ReferenceModel& model, const Trajectory& data, Eigen::MatrixXd& W,
+                         Eigen::VectorXd& y) {
+  const int n = model.dof(), nb = model.num_base_params();
+  W.resize(data.t.size() * n, nb);
+  y.resize(data.t.size() * n);
+  std::vector<double> sample(static_cast<std::size_t>(n) * nb);
+  for (Eigen::Index s = 0; s < data.t.size(); ++s) {
+    const Eigen::VectorXd q = data.q.row(s), dq = data.dq.row(s), ddq = data.ddq.row(s);
+    model.regressor(q.data(), dq.data(), ddq.data(), sample.data());
+    for (int i = 0; i < n; ++i) {
+      for (int b = 0; b < nb; ++b) W(s * n + i, b) = sample[i * nb + b];
+      y[s * n + i] = data.tau(s, i);
+    }
+  }
+}
+
+Eigen::MatrixXd columns(const Eigen::MatrixXd& W, const std::vector<int>& indices) {
+  Eigen::MatrixXd out(W.rows(), indices.size());
+  for (std::size_t k = 0; k < indices.size(); ++k) out.col(k) = W.col(indices[k]);
+  return out;
+}
+
+int index_of(const std::vector<std::string>& names, const std::string& name) {
+  const auto found = std::find(names.begin(), names.end(), name);
+  EXPECT_NE(found, names.end()) << name;
+  return static_cast<int>(found - names.begin());
+}
+
+TEST(ModelidFit, EssentialParametersKeepTheirRatioBelowRSigma) {
+  const fs::path dir = test::test_folder();
+  const ReferenceModel reference = kr150_reference();
+  const std::vector<std::string>& names = reference.base_param_names();
+  const Trajectory data = read_trajectory_csv(test::source_path(kData), reference.dof());
+  Eigen::MatrixXd W;
+  Eigen::VectorXd y;
+  reference_equations(reference, data, W, y);
+
+  std::set<std::string> kept_at_20;
+  for (const double r_sigma : {20.0, 5.0}) {
+    SCOPED_TRACE("r_sigma " + std::to_string(r_sigma));
+    const fs::path estimate = dir / "est.json";
+    const std::string ratio = r_sigma == 20.0 ? "" : " --r-sigma 5";  // 20 is the default
+    const CliRun run = modelid("fit --robot kr150 --method ols --essential" + ratio + " --data " +
+                               quoted_source(kData) + " -o " + quoted(estimate));
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+    const nlohmann::json essential = nlohmann::json::parse(test::read_text(estimate))["essential"];
+    ASSERT_TRUE(essential.is_object());
+    EXPECT_EQ(essential["r_sigma"].get<double>(), r_sigma);
+    const auto kept = essential["kept"].get<std::vector<std::string>>();
+    const auto eliminated = essential["eliminated"].get<std::vector<std::string>>();
+    ASSERT_FALSE(kept.empty());
+    ASSERT_FALSE(eliminated.empty()) << "these data identify every parameter well";
+    // Every base parameter is either kept or eliminated, none both.
+    std::set<std::string> all(kept.begin(), kept.end());
+    all.insert(eliminated.begin(), eliminated.end());
+    EXPECT_EQ(all.size(), names.size());
+    EXPECT_EQ(all, std::set<std::string>(names.begin(), names.end()));
+    if (r_sigma == 20.0) kept_at_20.insert(kept.begin(), kept.end());
+    for (const std::string& name : kept) {
+      if (r_sigma != 20.0) {
+        EXPECT_TRUE(kept_at_20.count(name)) << "a smaller ratio keeps " << name;
+      }
+    }
+
+    // The kept parameters, re-estimated here by OLS on the reference's columns.
+    std::vector<int> kept_columns;
+    for (const std::string& name : kept) kept_columns.push_back(index_of(names, name));
+    std::vector<std::string> kept_names = kept;
+    const LeastSquaresResult fit = fit_ols(columns(W, kept_columns), y, kept_names);
+    ASSERT_EQ(essential["parameters"].size(), kept.size());
+    double largest = 0, smallest = INFINITY;
+    for (std::size_t k = 0; k < kept.size(); ++k) {
+      const nlohmann::json& p = essential["parameters"][k];
+      EXPECT_EQ(p["name"], kept[k]);
+      EXPECT_NEAR(p["value"].get<double>(), fit.value[k],
+                  1e-7 * std::max(1.0, std::abs(fit.value[k])))
+          << kept[k];
+      EXPECT_NEAR(p["rel_std"].get<double>(), fit.rel_std_dev[k], 1e-6 * fit.rel_std_dev[k]);
+      largest = std::max(largest, fit.rel_std_dev[k]);
+      smallest = std::min(smallest, fit.rel_std_dev[k]);
+    }
+    EXPECT_LT(largest / smallest, r_sigma);
+    // With the last eliminated parameter back, the ratio was not below r_sigma and that
+    // parameter had the largest %std.
+    std::vector<int> before = kept_columns;
+    before.push_back(index_of(names, eliminated.back()));
+    std::vector<std::string> before_names = kept_names;
+    before_names.push_back(eliminated.back());
+    const LeastSquaresResult previous = fit_ols(columns(W, before), y, before_names);
+    Eigen::Index worst = 0;
+    EXPECT_GE(previous.rel_std_dev.maxCoeff(&worst) / previous.rel_std_dev.minCoeff(), r_sigma);
+    EXPECT_EQ(worst, static_cast<Eigen::Index>(kept.size()));
+    // The screen names every eliminated parameter.
+    EXPECT_NE(run.out.find("eliminated, first to last (" + std::to_string(eliminated.size()) + ")"),
+              std::string::npos)
+        << run.out;
+    for (const std::string& name : eliminated) {
+      EXPECT_NE(run.out.find(" " + name), std::string::npos) << name;
+    }
+  }
+}
+
+TEST(ModelidFit, EstimateFileTableAndPlots) {
+  const fs::path dir = test::test_folder();
+  const fs::path estimate = dir / "est.json", plots = dir / "plots";
+  const CliRun run = modelid("fit --robot kr150 --method wls --data " + quoted_source(kData) +
+                             " -o " + quoted(estimate) + " --plot " + quoted(plots));
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const nlohmann::json json = nlohmann::json::parse(test::read_text(estimate));
+  for (const char* key : {"model", "description_sha256", "method", "parameters", "rel_error_norm",
+                          "rms_per_axis", "condition_number", "residual_std", "samples", "data"}) {
+    EXPECT_TRUE(json.contains(key)) << key;
+  }
+  EXPECT_EQ(json["model"], "kr150");
+  EXPECT_EQ(json["method"], "IDIM-WLS");
+  EXPECT_EQ(json["data"], nlohmann::json::array({test::source_path(kData)}));
+  EXPECT_FALSE(json.contains("essential"));
+  const ReferenceModel reference = kr150_reference();
+  const int n = reference.dof();
+  const Trajectory data = read_trajectory_csv(test::source_path(kData), n);
+  EXPECT_EQ(json["samples"].get<long long>(), data.t.size());
+  ASSERT_EQ(json["parameters"].size(), static_cast<std::size_t>(reference.num_base_params()));
+
+  // The table marks exactly the parameters above 10 %std.
+  Eigen::VectorXd beta(reference.num_base_params());
+  for (std::size_t b = 0; b < json["parameters"].size(); ++b) {
+    const nlohmann::json& p = json["parameters"][b];
+    EXPECT_EQ(p["name"], reference.base_param_names()[b]);
+    beta[b] = p["value"].get<double>();
+    const bool poor = p["rel_std"].is_null() || p["rel_std"].get<double>() > 10;
+    std::string name = p["name"];
+    name.resize(std::max<std::size_t>(name.size(), 9), ' ');
+    const std::size_t line = run.out.find("\n  " + name + " ");
+    ASSERT_NE(line, std::string::npos) << name;
+    const std::string row = run.out.substr(line + 1, run.out.find('\n', line + 1) - line - 1);
+    EXPECT_EQ(row.back() == '*', poor) << row;
+  }
+
+  // torques.csv: the measured torques and those of the estimate, computed here by the
+  // reference model; its error columns give the rms per axis of EST.json.
+  const test::CsvTable table = test::read_csv(plots / "torques.csv");
+  EXPECT_EQ(table.header, test::expected_header({"tau", "tau_pred", "error"}, n));
+  ASSERT_EQ(table.rows.size(), static_cast<std::size_t>(data.t.size()));
+  std::vector<double> tau(n), error_squares(n, 0.0);
+  for (std::size_t s = 0; s < table.rows.size(); ++s) {
+    const Eigen::VectorXd q = data.q.row(s), dq = data.dq.row(s), ddq = data.ddq.row(s);
+    reference.inverse_dynamics(q.data(), dq.data(), ddq.data(), beta.data(), tau.data());
+    for (int j = 0; j < n; ++j) {
+      const std::string k = std::to_string(j + 1);
+      EXPECT_EQ(table.at(s, "tau" + k), data.tau(s, j));
+      EXPECT_NEAR(table.at(s, "tau_pred" + k), tau[j], 1e-9 * std::max(1.0, std::abs(tau[j])));
+      error_squares[j] += std::pow(data.tau(s, j) - tau[j], 2);
+    }
+  }
+  for (int j = 0; j < n; ++j) {
+    const double rms = std::sqrt(error_squares[j] / data.t.size());
+    EXPECT_NEAR(json["rms_per_axis"][j].get<double>(), rms, 1e-8 * rms) << j;
+  }
+  EXPECT_TRUE(fs::exists(plots / "plot.gp"));
+}
+
+}  // namespace
+}  // namespace modelgen
