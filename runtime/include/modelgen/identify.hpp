@@ -3,6 +3,7 @@
 // eq. 14-20), and the torque prediction errors per axis.
 #pragma once
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -24,8 +25,8 @@ enum class Method {
 Method parse_method(const std::string& text);
 
 struct Identification {
-  LeastSquaresResult fit;           ///< base parameters in model.base_param_names() order
-  std::vector<std::string> names;   ///< model.base_param_names()
+  LeastSquaresResult fit;          ///< base parameters in model.base_param_names() order
+  std::vector<std::string> names;  ///< model.base_param_names()
   /// Per joint, over all experiments: rms of measured minus predicted torque, and rms of the
   /// measured torque (Swevers Table 3 style).
   Eigen::VectorXd rms_error, rms_torque;
@@ -34,9 +35,20 @@ struct Identification {
   Eigen::Index samples = 0;
 };
 
+/// Progress of a long identification: `fraction` of the work done, increasing from 0 to 1.
+using ProgressCallback = std::function<void(double fraction)>;
+
 /// Identifies the base parameters of `model` from `data` (each trajectory with dq and ddq set,
-/// dof columns). Throws EstimationError with the reason (rank deficiency names parameters).
+/// dof columns). The regressor rows go straight into a LeastSquaresAccumulator (one group per
+/// joint and experiment for the IDIM, per experiment for the PIM) in two threads; W is never
+/// stored, so memory does not grow with the number of samples beyond `data` itself.
+/// `model`'s functions are called from two threads at once (both shipped kinds are stateless).
+/// `progress`, when given, is called from the calling thread only, at most ~100 times, last
+/// with 1; an exception it throws cancels the identification and propagates.
+/// Throws EstimationError with the reason: a trajectory with no samples, wrong sizes or a
+/// non-finite value (naming the source, sample and column), rank deficiency (naming the
+/// parameters), too few samples.
 Identification identify(const IdentificationModel& model, const std::vector<Trajectory>& data,
-                        Method method);
+                        Method method, const ProgressCallback& progress = nullptr);
 
 }  // namespace modelgen

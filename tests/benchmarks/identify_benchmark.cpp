@@ -1,0 +1,353 @@
+// Speed and memory of identification (Gautier & Briot eq. 15-20) on the TX-40: IDIM-WLS with
+// 100 000 samples of a Fourier trajectory (Swevers eq. 15-17) and simulated torques, through the
+// checked-in generated model (what ships) and, on fewer samples, the numeric reference model.
+// Building the stacked W, the fit alone and identify() end to end are timed separately; peak
+// memory (ru_maxrss) is reported as counters. After the runs a summary prints the targets.
+
+#include <sys/resource.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <limits>
+#include <map>
+#include <memory>
+#include <numbers>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <benchmark/benchmark.h>
+#include <Eigen/Core>
+
+#include "generated/tx40/tx40.hpp"
+#include "generator/description/load_robot.hpp"
+#include "modelgen/data.hpp"
+#include "modelgen/estimate.hpp"
+#include "modelgen/excitation.hpp"
+#include "modelgen/identify.hpp"
+#include "modelgen/model.hpp"
+#include "tests/support/kdl_oracle.hpp"
+#include "tests/support/test_support.hpp"
+
+namespace modelgen::bench {
+namespace {
+
+constexpr Eigen::Index kSamples = 100000;         // the problem size
+constexpr Eigen::Index kReferenceSamples = 2000;  // the reference regressor is ~500x slower
+constexpr double kNoise[6] = {2.0, 2.0, 1.0, 0.3, 0.3, 0.1};  // N m per joint
+
+// Peak resident memory of the process so far, MB (Linux reports ru_maxrss in KiB).
+double peak_rss_mb() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return static_cast<double>(usage.ru_maxrss) / 1024.0;
+}
+
+// Gaussian numbers by Box-Muller on the portable uniform generator.
+double gaussian(test::Random& random) {
+  const double u = random.uniform(1e-300, 1.0), v = random.uniform(0.0, 1.0);
+  return std::sqrt(-2.0 * std::log(u)) * std::cos(2.0 * std::numbers::pi * v);
+}
+
+// One 10 s period of a five-harmonic Fourier trajectory, sampled so that it has `samples`
+// samples, with torques from known base parameters plus Gaussian noise.
+Trajectory simulated(const IdentificationModel& model, const Eigen::VectorXd& beta,
+                     Eigen::Index samples, std::uint64_t seed) {
+  test::Random random(seed);
+  FourierTrajectory fourier;
+  fourier.period = 10.0;
+  fourier.q0 = Eigen::VectorXd::Zero(model.dof());
+  fourier.a.resize(model.dof(), 5);
+  fourier.b.resize(model.dof(), 5);
+  for (Eigen::Index j = 0; j < model.dof(); ++j) {
+    for (Eigen::Index l = 0; l < 5; ++l) {
+      fourier.a(j, l) = random.uniform(-0.5, 0.5);
+      fourier.b(j, l) = random.uniform(-0.5, 0.5);
+    }
+  }
+  Trajectory x = sample(fourier, fourier.period / static_cast<double>(samples), fourier.period);
+  x.source = "simulated";
+  const int n = model.dof();
+  double q[16], dq[16], ddq[16], tau[16];
+  for (Eigen::Index s = 0; s < x.t.size(); ++s) {
+    for (int j = 0; j < n; ++j) {
+      q[j] = x.q(s, j);
+      dq[j] = x.dq(s, j);
+      ddq[j] = x.ddq(s, j);
+    }
+    model.inverse_dynamics(q, dq, ddq, beta.data(), tau);
+    for (int j = 0; j < n; ++j) x.tau(s, j) = tau[j] + kNoise[j] * gaussian(random);
+  }
+  return x;
+}
+
+// The models and data, built once before timing.
+struct Workload {
+  GeneratedModel<tx40::Model> generated;
+  std::unique_ptr<ReferenceModel> reference;
+  Eigen::VectorXd beta;
+  std::vector<Trajectory> data, reference_data;
+
+  Workload() {
+    const gen::RobotModel description = gen::load_robot(test::source_path("robots/tx40.yaml"));
+    reference = std::make_unique<ReferenceModel>(description.name, description.tree);
+    test::Random random(2024);
+    const Eigen::VectorXd p = test::random_physical_parameters(description.tree, random);
+    beta.resize(generated.num_base_params());
+    generated.base_from_standard(p.data(), beta.data());
+    data.push_back(simulated(generated, beta, kSamples, 1));
+    reference_data.push_back(simulated(*reference, beta, kReferenceSamples, 1));
+  }
+};
+
+Workload* workload = nullptr;
+
+// The stacked IDIM of a user calling fit_wls: one row per joint and sample, one group per joint.
+struct Stacked {
+  Eigen::MatrixXd W;
+  Eigen::VectorXd tau;
+  std::vector<int> group;
+};
+
+Stacked build_stacked(const IdentificationModel& model, const Trajectory& x) {
+  const int n = model.dof(), nb = model.num_base_params();
+  const Eigen::Index samples = x.t.size();
+  Stacked out;
+  out.W.resize(samples * n, nb);
+  out.tau.resize(samples * n);
+  out.group.resize(static_cast<std::size_t>(samples * n));
+  std::vector<double> row(static_cast<std::size_t>(n) * nb);
+  double q[16], dq[16], ddq[16];
+  for (Eigen::Index s = 0; s < samples; ++s) {
+    for (int j = 0; j < n; ++j) {
+      q[j] = x.q(s, j);
+      dq[j] = x.dq(s, j);
+      ddq[j] = x.ddq(s, j);
+    }
+    model.regressor(q, dq, ddq, row.data());
+    for (int i = 0; i < n; ++i) {
+      for (int b = 0; b < nb; ++b) out.W(s * n + i, b) = row[i * nb + b];
+      out.tau[s * n + i] = x.tau(s, i);
+      out.group[s * n + i] = i;
+    }
+  }
+  return out;
+}
+
+// Peak resident memory right after the set-up (models and data), MB.
+double setup_peak_mb = 0;
+
+// ru_maxrss only grows: growth_MB is the peak above the set-up, over everything run so far in
+// the process. Run one benchmark per process (--benchmark_filter) for its own figure.
+void set_memory_counters(benchmark::State& state) {
+  const double peak = peak_rss_mb();
+  state.counters["peak_MB"] = peak;
+  state.counters["growth_MB"] = peak - setup_peak_mb;
+}
+
+// The regressor alone over every sample, into one small buffer: the part of identify() that
+// building W costs when W is not stored.
+void BM_tx40_regressor_pass(benchmark::State& state) {
+  const IdentificationModel& model = workload->generated;
+  const Trajectory& x = workload->data[0];
+  const int n = model.dof();
+  std::vector<double> row(static_cast<std::size_t>(n * model.num_base_params()));
+  double q[16], dq[16], ddq[16];
+  for (auto _ : state) {
+    for (Eigen::Index s = 0; s < x.t.size(); ++s) {
+      for (int j = 0; j < n; ++j) {
+        q[j] = x.q(s, j);
+        dq[j] = x.dq(s, j);
+        ddq[j] = x.ddq(s, j);
+      }
+      model.regressor(q, dq, ddq, row.data());
+      benchmark::DoNotOptimize(row.data());
+    }
+  }
+  state.SetItemsProcessed(state.iterations() * kSamples);
+  set_memory_counters(state);
+}
+
+void BM_tx40_build_W(benchmark::State& state) {
+  for (auto _ : state) {
+    Stacked stacked = build_stacked(workload->generated, workload->data[0]);
+    benchmark::DoNotOptimize(stacked.W.data());
+  }
+  state.SetItemsProcessed(state.iterations() * kSamples);
+  set_memory_counters(state);
+}
+
+void BM_tx40_fit_wls(benchmark::State& state) {
+  const Stacked stacked = build_stacked(workload->generated, workload->data[0]);
+  for (auto _ : state) {
+    LeastSquaresResult fit =
+        fit_wls(stacked.W, stacked.tau, stacked.group, workload->generated.base_param_names());
+    benchmark::DoNotOptimize(fit.value.data());
+  }
+  state.SetItemsProcessed(state.iterations() * kSamples);
+  set_memory_counters(state);
+}
+
+void identify_benchmark(benchmark::State& state, const IdentificationModel& model,
+                        const std::vector<Trajectory>& data, Method method) {
+  double error = 0;
+  for (auto _ : state) {
+    Identification id = identify(model, data, method);
+    error = test::relative_error(id.fit.value, workload->beta);
+    benchmark::DoNotOptimize(id.fit.value.data());
+  }
+  state.SetItemsProcessed(state.iterations() * data[0].t.size());
+  state.counters["beta_err"] = error;  // relative, infinity norm: the noise shows here
+  set_memory_counters(state);
+}
+
+void BM_tx40_identify_wls(benchmark::State& state) {
+  identify_benchmark(state, workload->generated, workload->data, Method::kWls);
+}
+void BM_tx40_identify_ols(benchmark::State& state) {
+  identify_benchmark(state, workload->generated, workload->data, Method::kOls);
+}
+void BM_tx40_identify_pim_wls(benchmark::State& state) {
+  identify_benchmark(state, workload->generated, workload->data, Method::kPimWls);
+}
+void BM_tx40_reference_identify_wls(benchmark::State& state) {
+  identify_benchmark(state, *workload->reference, workload->reference_data, Method::kWls);
+}
+
+// Registration order is run order: identify() first, so that its memory counters are not
+// hidden under the peak of the benchmarks that keep a whole stacked W.
+void register_all() {
+  for (auto* bm :
+       {benchmark::RegisterBenchmark("BM_tx40_identify_wls", BM_tx40_identify_wls),
+        benchmark::RegisterBenchmark("BM_tx40_identify_ols", BM_tx40_identify_ols),
+        benchmark::RegisterBenchmark("BM_tx40_identify_pim_wls", BM_tx40_identify_pim_wls),
+        benchmark::RegisterBenchmark("BM_tx40_reference_identify_wls",
+                                     BM_tx40_reference_identify_wls),
+        benchmark::RegisterBenchmark("BM_tx40_regressor_pass", BM_tx40_regressor_pass),
+        benchmark::RegisterBenchmark("BM_tx40_build_W", BM_tx40_build_W),
+        benchmark::RegisterBenchmark("BM_tx40_fit_wls", BM_tx40_fit_wls)}) {
+    bm->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime()->UseRealTime();
+  }
+}
+
+// printf-style formatting into a std::string, for the summary lines.
+template <class... Args>
+std::string printf_string(const char* format, Args... args) {
+  char text[256];
+  std::snprintf(text, sizeof text, format, args...);
+  return text;
+}
+
+// The console output, then per-sample times, the reference/generated ratio and the targets.
+// Times are wall-clock (identify and the fit use two threads) and CPU time of the process (both
+// threads), the median when there are repetitions.
+class SummaryReporter : public benchmark::ConsoleReporter {
+ public:
+  using ConsoleReporter::ConsoleReporter;
+
+  void ReportRuns(const std::vector<Run>& runs) override {
+    for (const Run& run : runs) record(run);
+    ConsoleReporter::ReportRuns(runs);
+  }
+
+  void Finalize() override {
+    std::ostream& out = GetOutputStream();
+    // CPU time per sample: the reference's 2000 samples run in one thread, 100 000 in two.
+    const double per_sample_ref =
+        get(cpu_ms_, "BM_tx40_reference_identify_wls") / static_cast<double>(kReferenceSamples);
+    const double per_sample_gen =
+        get(cpu_ms_, "BM_tx40_identify_wls") / static_cast<double>(kSamples);
+    out << "\nTX-40, 61 base parameters, " << kSamples << " samples"
+        << (any_median_ ? ", median of the repetitions" : "") << "\n";
+    for (const char* name :
+         {"BM_tx40_regressor_pass", "BM_tx40_build_W", "BM_tx40_fit_wls", "BM_tx40_identify_wls",
+          "BM_tx40_identify_ols", "BM_tx40_identify_pim_wls"}) {
+      if (times_ms_.count(name) == 0) continue;  // filtered out
+      out << printf_string("  %-32s wall %8.1f ms, CPU %8.1f ms, peak %5.0f MB, growth %5.0f MB\n",
+                           name, get(times_ms_, name), get(cpu_ms_, name), peak_mb_[name],
+                           growth_mb_[name]);
+    }
+    if (!std::isnan(per_sample_ref) && !std::isnan(per_sample_gen)) {
+      out << printf_string(
+          "  identify WLS, CPU per sample: generated %.2f us, reference %.1f us: ratio %.0fx\n",
+          per_sample_gen * 1e3, per_sample_ref * 1e3, per_sample_ref / per_sample_gen);
+    }
+    const double wls = get(times_ms_, "BM_tx40_identify_wls");
+    if (!std::isnan(wls)) {
+      out << printf_string("Target: IDIM-WLS, 100 000 samples, under 100 ms: %.1f ms, %s\n", wls,
+                           wls < 100 ? "met" : "MISSED");
+    }
+    out.flush();
+  }
+
+ private:
+  void record(const Run& run) {
+    if (run.error_occurred) return;
+    const bool median = run.run_type == Run::RT_Aggregate && run.aggregate_name == "median";
+    if (run.run_type == Run::RT_Aggregate && !median) return;
+    const std::string& name = run.run_name.function_name;
+    if (!median && from_median_.count(name) != 0) return;
+    times_ms_[name] = run.GetAdjustedRealTime();  // the unit is ms for every benchmark here
+    cpu_ms_[name] = run.GetAdjustedCPUTime();
+    const auto counter = [&](const char* key) {
+      const auto it = run.counters.find(key);
+      return it == run.counters.end() ? std::numeric_limits<double>::quiet_NaN()
+                                      : static_cast<double>(it->second);
+    };
+    peak_mb_[name] = counter("peak_MB");
+    growth_mb_[name] = counter("growth_MB");
+    if (median) {
+      from_median_[name] = true;
+      any_median_ = true;
+    }
+  }
+
+  static double get(const std::map<std::string, double>& values, const std::string& name) {
+    const auto it = values.find(name);
+    return it == values.end() ? std::numeric_limits<double>::quiet_NaN() : it->second;
+  }
+
+  std::map<std::string, double> times_ms_, cpu_ms_, peak_mb_, growth_mb_;
+  std::map<std::string, bool> from_median_;
+  bool any_median_ = false;
+};
+
+bool console_format(int argc, char** argv) {
+  constexpr std::string_view kFlag = "--benchmark_format=";
+  for (int i = 1; i < argc; ++i) {
+    const std::string_view arg = argv[i];
+    if (arg.substr(0, kFlag.size()) == kFlag) return arg.substr(kFlag.size()) == "console";
+  }
+  return true;
+}
+
+}  // namespace
+}  // namespace modelgen::bench
+
+int main(int argc, char** argv) {
+  using namespace modelgen::bench;
+  const bool console = console_format(argc, argv);
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  std::unique_ptr<Workload> owned;
+  try {
+    owned = std::make_unique<Workload>();
+  } catch (const std::exception& e) {
+    std::cerr << "identify_benchmark: setup failed: " << e.what() << "\n";
+    return 1;
+  }
+  workload = owned.get();
+  setup_peak_mb = peak_rss_mb();
+  register_all();
+  if (console) {
+    SummaryReporter reporter(isatty(STDOUT_FILENO) ? benchmark::ConsoleReporter::OO_ColorTabular
+                                                   : benchmark::ConsoleReporter::OO_Tabular);
+    benchmark::RunSpecifiedBenchmarks(&reporter);
+  } else {
+    benchmark::RunSpecifiedBenchmarks();
+  }
+  benchmark::Shutdown();
+  return 0;
+}
