@@ -1,22 +1,89 @@
-// Reading the --data files of fit and predict, one experiment per file.
+// Reading and preparing the --data files of fit and predict, one experiment per file.
 
 #include "runtime/cli/data_files.hpp"
+
+#include <iostream>
 
 #include "runtime/cli/progress.hpp"
 
 namespace modelgen::internal {
 
-std::vector<Trajectory> read_experiments(const std::vector<std::string>& paths, int dof) {
-  std::vector<Trajectory> data;
+std::map<std::string, OptionKind> with_data_options(std::map<std::string, OptionKind> options) {
+  options.insert({{"--motor-side", OptionKind::kFlag},
+                  {"--periodic", OptionKind::kFlag},
+                  {"--period", OptionKind::kOnce},
+                  {"--harmonics", OptionKind::kOnce},
+                  {"--raw", OptionKind::kFlag},
+                  {"--bandwidth", OptionKind::kOnce},
+                  {"--cutoff", OptionKind::kOnce},
+                  {"--decimate", OptionKind::kOnce}});
+  return options;
+}
+
+namespace {
+
+double positive(const Arguments& args, const std::string& option) {
+  const double value = parse_number(args.one(option), option);
+  if (!(value > 0)) throw UsageError{option + " must be positive, not '" + args.one(option) + "'"};
+  return value;
+}
+
+int count(const Arguments& args, const std::string& option) {
+  const double value = parse_number(args.one(option), option);
+  if (!(value >= 1) || value != static_cast<int>(value)) {
+    throw UsageError{option + " must be a whole number of at least 1, not '" + args.one(option) +
+                     "'"};
+  }
+  return static_cast<int>(value);
+}
+
+}  // namespace
+
+PreparationOptions preparation_options(const Arguments& args) {
+  PreparationOptions options;
+  if (args.has("--motor-side")) options.side = Side::kMotor;
+  options.periodic = args.has("--periodic");
+  options.raw = args.has("--raw");
+  if (options.periodic && options.raw) {
+    throw UsageError{"--periodic and --raw exclude each other (the periodic route computes the "
+                     "derivatives from the Fourier series)"};
+  }
+  for (const char* option : {"--period", "--harmonics"}) {
+    if (args.has(option) && !options.periodic) {
+      throw UsageError{std::string(option) + " belongs to --periodic; add --periodic"};
+    }
+  }
+  for (const char* option : {"--bandwidth", "--cutoff"}) {
+    if (args.has(option) && (options.periodic || options.raw)) {
+      throw UsageError{std::string(option) +
+                       " sets the position filter of non-periodic data; it does not go with " +
+                       (options.periodic ? "--periodic" : "--raw")};
+    }
+  }
+  if (args.has("--period")) options.period = positive(args, "--period");
+  if (args.has("--harmonics")) options.harmonics = count(args, "--harmonics");
+  if (args.has("--bandwidth")) options.bandwidth_hz = positive(args, "--bandwidth");
+  if (args.has("--cutoff")) options.cutoff_hz = positive(args, "--cutoff");
+  if (args.has("--decimate")) options.decimation = count(args, "--decimate");
+  return options;
+}
+
+Experiments read_experiments(const std::vector<std::string>& paths,
+                             const IdentificationModel& model, const PreparationOptions& options,
+                             EffortColumns effort, std::ostream& report) {
+  Experiments out;
   Progress progress("reading data", static_cast<long long>(paths.size()));
   for (const std::string& path : paths) {
-    progress.update(static_cast<long long>(data.size()), path);
-    Trajectory x = read_trajectory_csv(path, dof);
-    if (!x.has_velocity) differentiate(x);
-    data.push_back(std::move(x));
+    progress.update(static_cast<long long>(out.data.size()), path);
+    PreparedExperiment prepared = prepare_experiment(read_trajectory_csv(path, model.dof(), effort),
+                                                     model.transmission(), options);
+    report << "  " << path << ": " << prepared.summary << "\n";
+    if (!prepared.warning.empty()) std::cerr << prepared.warning << "\n";
+    out.data.push_back(std::move(prepared.data));
+    out.decimation.push_back(prepared.decimation);
   }
-  progress.update(static_cast<long long>(data.size()));
-  return data;
+  progress.update(static_cast<long long>(out.data.size()));
+  return out;
 }
 
 }  // namespace modelgen::internal

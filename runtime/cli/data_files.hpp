@@ -1,18 +1,38 @@
-// The experiments of a modelid run: every --data file read, checked and completed with
-// velocities and accelerations.
+// The experiments of a modelid run: every --data file read, brought to the joint side and
+// prepared (modelgen/prepare.hpp) as the data options say.
 #pragma once
 
+#include <map>
+#include <ostream>
 #include <string>
 #include <vector>
 
-#include "modelgen/data.hpp"
+#include "modelgen/model.hpp"
+#include "modelgen/prepare.hpp"
+#include "runtime/cli/arguments.hpp"
 
 namespace modelgen::internal {
 
-/// Reads each CSV file (read_trajectory_csv: t, q1..qn, tau1..taun, optionally dq, ddq) for a
-/// robot with `dof` joints; files without dq/ddq get them from central differences (their
-/// first and last samples are dropped). Shows progress on stderr for many or large files.
-/// Throws DataError naming the file, line and column of the first problem.
-std::vector<Trajectory> read_experiments(const std::vector<std::string>& paths, int dof);
+/// `options` plus the data options of fit and predict: --motor-side, --periodic, --period,
+/// --harmonics, --raw, --bandwidth, --cutoff, --decimate.
+std::map<std::string, OptionKind> with_data_options(std::map<std::string, OptionKind> options);
+
+/// The preparation the data options ask for; UsageError for values out of range or options
+/// that contradict each other (--periodic with --raw, --period without --periodic, ...).
+PreparationOptions preparation_options(const Arguments& args);
+
+struct Experiments {
+  std::vector<Trajectory> data;  ///< joint side, with dq and ddq
+  std::vector<int> decimation;   ///< parallel decimation factor per experiment
+};
+
+/// Reads each CSV file (read_trajectory_csv: t, q1..qn, tau1..taun or currents i1..in,
+/// optionally dq, ddq) for `model` and prepares it (prepare_experiment with the model's drive
+/// chain); prints one summary line per file to `report` and warnings to stderr. Shows
+/// progress on stderr for many or large files. Throws DataError naming the file, line and
+/// column of the first problem.
+Experiments read_experiments(const std::vector<std::string>& paths,
+                             const IdentificationModel& model, const PreparationOptions& options,
+                             EffortColumns effort, std::ostream& report);
 
 }  // namespace modelgen::internal

@@ -6,25 +6,26 @@
 #include <cmath>
 #include <iostream>
 #include <optional>
+#include <sstream>
 
 #include "modelgen/identify.hpp"
 #include "runtime/cli/commands.hpp"
 #include "runtime/cli/data_files.hpp"
-#include "runtime/cli/essential_fit.hpp"
 #include "runtime/cli/estimate_file.hpp"
 #include "runtime/cli/model_source.hpp"
 #include "runtime/cli/parameter_file.hpp"
+#include "runtime/cli/progress.hpp"
 #include "runtime/cli/text_format.hpp"
 #include "runtime/cli/torque_plots.hpp"
 #include "runtime/cli/torque_prediction.hpp"
 
 namespace modelgen::internal {
 
-const std::map<std::string, OptionKind> kFitOptions = {
+const std::map<std::string, OptionKind> kFitOptions = with_data_options({
     {"--robot", OptionKind::kOnce},   {"--data", OptionKind::kRepeated},
     {"--method", OptionKind::kOnce},  {"-o", OptionKind::kOnce},
     {"--truth", OptionKind::kOnce},   {"--essential", OptionKind::kFlag},
-    {"--r-sigma", OptionKind::kOnce}, {"--plot", OptionKind::kOnce}};
+    {"--r-sigma", OptionKind::kOnce}, {"--plot", OptionKind::kOnce}});
 
 namespace {
 
@@ -91,11 +92,11 @@ void print_wrapped(const std::vector<std::string>& names, const std::string& ind
   if (line.size() > indent.size()) std::cout << line << "\n";
 }
 
-EssentialEstimate run_essential(const IdentificationModel& model,
-                                const std::vector<Trajectory>& data, Method method,
-                                double r_sigma) {
+// `data`: the experiments as the fit compared them (after the decimation filter).
+EssentialEstimate essential_estimate(const IdentificationModel& model,
+                                     const std::vector<Trajectory>& data,
+                                     const EssentialParameters& essential, double r_sigma) {
   const std::vector<std::string>& names = model.base_param_names();
-  const EssentialParameters essential = essential_fit(model, data, method, r_sigma);
   EssentialEstimate out;
   out.r_sigma = r_sigma;
   std::vector<std::string> kept_names;
@@ -153,16 +154,31 @@ int run_fit(const Arguments& args) {
   }
   // A plot folder that cannot be made fails now, before the data are read.
   if (args.has("--plot")) prepare_plot_folder(args.one("--plot"));
-  const std::vector<Trajectory> data = read_experiments(args.all("--data"), model.dof());
+  std::ostringstream data_report;
+  const Experiments experiments = read_experiments(
+      args.all("--data"), model, preparation_options(args), EffortColumns::kRequired, data_report);
+  const std::vector<Trajectory>& data = experiments.data;
 
-  // TODO(identify progress callback): identify() is getting a progress callback; pass one
-  // that drives a Progress("fitting", ...) here, as read_experiments does for the data.
-  const Identification id = identify(model, data, method);
+  IdentifyOptions options;
+  options.decimation = experiments.decimation;
+  if (essential) options.essential_r_sigma = r_sigma;
+  Progress fitting("fitting", 1000);
+  options.progress = [&fitting](double fraction) {
+    fitting.update(static_cast<long long>(1000 * fraction));
+  };
+  const Identification id = identify(model, data, method, options);
+  fitting.finish();
+  // Torques compared where the fit compared them: after the parallel decimation's filter.
+  std::vector<Trajectory> compared = data;
+  for (std::size_t e = 0; e < compared.size(); ++e) {
+    decimate_trajectory(compared[e], experiments.decimation[e]);
+  }
   Eigen::VectorXd truth;
   if (args.has("--truth")) truth = read_base_parameters(args.one("--truth"), model);
 
   std::cout << "modelid fit: " << model.name() << ", " << method_name(method) << " on "
-            << data.size() << " experiment(s), " << id.samples << " samples\n";
+            << data.size() << " experiment(s), " << id.samples << " samples\n"
+            << data_report.str();
   const std::vector<EstimatedParameter> parameters = estimated(id.fit, id.names, truth);
   if (print_parameter_table(parameters)) {
     std::cout << "  * %std above " << kPoorlyIdentifiedPercent
@@ -179,13 +195,13 @@ int run_fit(const Arguments& args) {
 
   EstimateFile estimate;
   if (essential) {
-    estimate.essential = run_essential(model, data, method, r_sigma);
+    estimate.essential = essential_estimate(model, compared, id.essential, r_sigma);
     print_essential(*estimate.essential, id.names.size());
   }
   if (args.has("--plot")) {
-    const TorquePrediction prediction = predict_torques(model, data, id.fit.value);
-    write_torque_plots(args.one("--plot"), model.name() + " " + method_name(method) + " fit", data,
-                       prediction, std::cout, std::cerr);
+    const TorquePrediction prediction = predict_torques(model, compared, id.fit.value);
+    write_torque_plots(args.one("--plot"), model.name() + " " + method_name(method) + " fit",
+                       compared, prediction, std::cout, std::cerr);
   }
   if (args.has("-o")) {
     estimate.model = model.name();

@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <iostream>
+#include <sstream>
 
 #include "runtime/cli/commands.hpp"
 #include "runtime/cli/data_files.hpp"
@@ -17,11 +18,11 @@
 
 namespace modelgen::internal {
 
-const std::map<std::string, OptionKind> kPredictOptions = {{"--robot", OptionKind::kOnce},
+const std::map<std::string, OptionKind> kPredictOptions = with_data_options({{"--robot", OptionKind::kOnce},
                                                            {"--params", OptionKind::kOnce},
                                                            {"--data", OptionKind::kRepeated},
                                                            {"-o", OptionKind::kOnce},
-                                                           {"--plot", OptionKind::kOnce}};
+                                                           {"--plot", OptionKind::kOnce}});
 
 namespace {
 
@@ -56,11 +57,20 @@ int run_predict(const Arguments& args) {
   check_estimate_model(params, model);
   const Eigen::VectorXd beta = read_base_parameters(params, model);
   if (args.has("--plot")) prepare_plot_folder(args.one("--plot"));
-  const std::vector<Trajectory> data = read_experiments(args.all("--data"), model.dof());
+  const PreparationOptions preparation = preparation_options(args);
+  std::ostringstream data_report;
+  Experiments experiments = read_experiments(args.all("--data"), model, preparation,
+                                             EffortColumns::kRequired, data_report);
+  // Compared where identification compares them: after the parallel decimation's filter.
+  for (std::size_t e = 0; e < experiments.data.size(); ++e) {
+    decimate_trajectory(experiments.data[e], experiments.decimation[e]);
+  }
+  const std::vector<Trajectory>& data = experiments.data;
   const TorquePrediction prediction = predict_torques(model, data, beta);
 
   std::cout << "modelid predict: " << model.name() << " on " << data.size() << " experiment(s), "
-            << prediction.samples << " samples, parameters from " << params << "\n";
+            << prediction.samples << " samples, parameters from " << params << "\n"
+            << data_report.str();
   print_errors(data, prediction);
   if (args.has("-o")) write_file(args.one("-o"), prediction_csv(data, prediction, true));
   if (args.has("--plot")) {

@@ -7,6 +7,8 @@
 
 #include "modelgen/identify.hpp"
 
+#include "modelgen/preprocess.hpp"
+
 #include <algorithm>
 #include <array>
 #include <atomic>
@@ -34,13 +36,19 @@ struct Piece {
   Eigen::Index begin, end;
 };
 
-// The samples of all experiments in order, cut into two halves of (nearly) equal size.
+// The samples of the experiments that are streamed (not decimated) in order, cut into two
+// halves of (nearly) equal size.
 std::array<std::vector<Piece>, 2> split_samples(const std::vector<Trajectory>& data,
-                                                Eigen::Index samples) {
+                                                const std::vector<int>& decimation) {
   std::array<std::vector<Piece>, 2> parts;
+  Eigen::Index samples = 0;
+  for (std::size_t e = 0; e < data.size(); ++e) {
+    if (decimation[e] == 1) samples += data[e].t.size();
+  }
   const Eigen::Index half = samples / 2;
   Eigen::Index start = 0;
   for (std::size_t e = 0; e < data.size(); ++e) {
+    if (decimation[e] != 1) continue;
     const Eigen::Index m = data[e].t.size();
     const Eigen::Index cut = std::clamp<Eigen::Index>(half - start, 0, m);
     if (cut > 0) parts[0].push_back({e, 0, cut});
@@ -176,6 +184,73 @@ void build_equations(const IdentificationModel& model, const std::vector<Traject
   }
 }
 
+// One experiment's equations after the parallel decimation (eq. 13-14): the IDIM rows
+// (decimated samples x dof, rows s * dof + j) and torques, kept for the torque errors.
+struct DecimatedExperiment {
+  std::size_t experiment = 0;
+  Eigen::MatrixXd W;
+  Eigen::VectorXd tau;
+};
+
+// A view of joint j's rows (every dof-th row from row j) of a stacked column-major matrix.
+using JointRows = Eigen::Map<Eigen::MatrixXd, 0, Eigen::Stride<Eigen::Dynamic, Eigen::Dynamic>>;
+JointRows joint_rows(double* data, Eigen::Index stacked_rows, Eigen::Index cols, int n, int j) {
+  return JointRows(data + j, stacked_rows / n, cols,
+                   Eigen::Stride<Eigen::Dynamic, Eigen::Dynamic>(stacked_rows, n));
+}
+
+// Builds experiment e's whole IDIM W and torques, decimates every column of each joint's rows
+// and the torques with the same filter, and adds the result to `equations` (and, for the PIM,
+// the power rows dq^T W with the powers dq . tau, decimated the same way: both are linear in
+// the rows they combine, so the decimated equations still hold, eq. 14).
+DecimatedExperiment build_decimated(const IdentificationModel& model, const Trajectory& x,
+                                    std::size_t e, int factor, bool power,
+                                    LeastSquaresAccumulator& equations, Progress& progress) {
+  const int n = model.dof(), nb = model.num_base_params();
+  const Eigen::Index m = x.t.size(), md = decimated_rows(m, factor);
+  Eigen::MatrixXd W(m * n, nb);
+  Eigen::VectorXd tau(m * n);
+  Eigen::MatrixXd P(power ? m : 0, nb);
+  Eigen::VectorXd p(power ? m : 0);
+  State state(n);
+  std::vector<double> rows(static_cast<std::size_t>(n) * nb);
+  for (Eigen::Index s = 0; s < m; ++s) {
+    if (progress.stopped()) return {};
+    state.load(x, s);
+    model.regressor(state.q(), state.dq(), state.ddq(), rows.data());
+    const Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>
+        Ws(rows.data(), n, nb);
+    W.middleRows(s * n, n) = Ws;
+    tau.segment(s * n, n) = x.tau.row(s).transpose();
+    if (power) {
+      // Eq. 9-10 before decimation: P = dq . tau = dq^T W beta.
+      P.row(s) = x.dq.row(s) * Ws;
+      p[s] = x.dq.row(s).dot(x.tau.row(s));
+    }
+    if ((s + 1) % kChunkSamples == 0) progress.advance(kChunkSamples, 0.0, kBuilt, true);
+  }
+  DecimatedExperiment out{e, Eigen::MatrixXd(md * n, nb), Eigen::VectorXd(md * n)};
+  for (int j = 0; j < n; ++j) {
+    decimate(joint_rows(W.data(), W.rows(), nb, n, j), factor,
+             joint_rows(out.W.data(), out.W.rows(), nb, n, j));
+    decimate(joint_rows(tau.data(), tau.size(), 1, n, j), factor,
+             joint_rows(out.tau.data(), out.tau.size(), 1, n, j));
+  }
+  const int experiment = static_cast<int>(e);
+  if (power) {
+    const Eigen::MatrixXd Pd = decimate(P, factor);
+    const Eigen::MatrixXd pd = decimate(p, factor);
+    equations.add(experiment, md, Pd.data(), 1, Pd.rows(), pd.data(), 1);
+  } else {
+    for (int j = 0; j < n; ++j) {
+      equations.add(experiment * n + j, md, out.W.data() + j, n, out.W.rows(), out.tau.data() + j,
+                    n);
+    }
+  }
+  equations.compact();
+  return out;
+}
+
 // Per joint, sums of squares of measured minus predicted torque and of measured torque over
 // `pieces`, the prediction from model.inverse_dynamics (the PIM's equations are not torques).
 void torque_errors(const IdentificationModel& model, const std::vector<Trajectory>& data,
@@ -238,8 +313,32 @@ Method parse_method(const std::string& text) {
 
 Identification identify(const IdentificationModel& model, const std::vector<Trajectory>& data,
                         Method method, const ProgressCallback& progress_callback) {
+  IdentifyOptions options;
+  options.progress = progress_callback;
+  return identify(model, data, method, options);
+}
+
+Identification identify(const IdentificationModel& model, const std::vector<Trajectory>& data,
+                        Method method, const IdentifyOptions& options) {
   const int n = model.dof(), nb = model.num_base_params();
   if (data.empty()) throw EstimationError("no trajectories: identification needs data");
+  std::vector<int> decimation = options.decimation;
+  if (decimation.empty()) decimation.assign(data.size(), 1);
+  if (decimation.size() != data.size()) {
+    throw EstimationError(std::to_string(decimation.size()) + " decimation factors for " +
+                          std::to_string(data.size()) + " experiments: give one per experiment");
+  }
+  for (std::size_t e = 0; e < data.size(); ++e) {
+    if (decimation[e] < 1) {
+      throw EstimationError(data[e].source + ": decimation factor " +
+                            std::to_string(decimation[e]) + ": it must be at least 1");
+    }
+    if (decimation[e] > 1 && decimated_rows(data[e].t.size(), decimation[e]) < 2) {
+      throw EstimationError(data[e].source + ": decimation by " + std::to_string(decimation[e]) +
+                            " leaves fewer than 2 of its " + std::to_string(data[e].t.size()) +
+                            " samples");
+    }
+  }
   Eigen::Index samples = 0;
   for (const Trajectory& x : data) {
     if (x.q.cols() != n) {
@@ -260,8 +359,8 @@ Identification identify(const IdentificationModel& model, const std::vector<Traj
   const bool power = method == Method::kPimWls;
   const int groups = static_cast<int>(data.size()) * (power ? 1 : n);
   const bool parallel = samples >= kParallelSamples;
-  const std::array<std::vector<Piece>, 2> parts = split_samples(data, samples);
-  Progress progress(progress_callback, samples);
+  const std::array<std::vector<Piece>, 2> parts = split_samples(data, decimation);
+  Progress progress(options.progress, samples);
   progress.report(0.0);
 
   std::array<LeastSquaresAccumulator, 2> equations = {LeastSquaresAccumulator(nb, groups),
@@ -270,10 +369,23 @@ Identification identify(const IdentificationModel& model, const std::vector<Traj
     build_equations(model, data, parts[part], power, equations[part], progress, caller);
   });
   equations[0].merge(std::move(equations[1]));
+  // Decimated experiments, one at a time: each needs its whole W before filtering.
+  std::vector<DecimatedExperiment> decimated;
+  Eigen::Index used_samples = 0;
+  for (std::size_t e = 0; e < data.size(); ++e) {
+    if (decimation[e] == 1) {
+      used_samples += data[e].t.size();
+      continue;
+    }
+    decimated.push_back(
+        build_decimated(model, data[e], e, decimation[e], power, equations[0], progress));
+    if (progress.stopped()) break;
+    used_samples += decimated.back().W.rows() / n;
+  }
 
   Identification out;
   out.names = model.base_param_names();
-  out.samples = samples;
+  out.samples = used_samples;
   out.fit =
       method == Method::kOls ? equations[0].fit_ols(out.names) : equations[0].fit_wls(out.names);
   Eigen::VectorXd error_squares = Eigen::VectorXd::Zero(n), torque_squares = error_squares;
@@ -286,6 +398,14 @@ Identification identify(const IdentificationModel& model, const std::vector<Traj
     });
     error_squares = errors[0] + errors[1];
     torque_squares = torques[0] + torques[1];
+    // Decimated experiments: their decimated torques against their decimated IDIM rows.
+    for (const DecimatedExperiment& d : decimated) {
+      const Eigen::VectorXd residual = d.tau - d.W * out.fit.value;
+      for (Eigen::Index r = 0; r < residual.size(); ++r) {
+        error_squares[r % n] += residual[r] * residual[r];
+        torque_squares[r % n] += d.tau[r] * d.tau[r];
+      }
+    }
   } else {
     // The IDIM's groups are the torque equations of one joint and experiment: their residual
     // norms come from the factors, ||tau_g - W_g beta|| = ||R_g [beta; -1]||.
@@ -298,8 +418,12 @@ Identification identify(const IdentificationModel& model, const std::vector<Traj
   // Gautier & Briot Tables III-IV: the relative error norm over all torque equations.
   out.torque_rel_error_norm =
       std::sqrt(error_squares.sum()) / std::max(std::sqrt(torque_squares.sum()), 1e-300);
-  out.rms_error = (error_squares / static_cast<double>(samples)).cwiseSqrt();
-  out.rms_torque = (torque_squares / static_cast<double>(samples)).cwiseSqrt();
+  out.rms_error = (error_squares / static_cast<double>(used_samples)).cwiseSqrt();
+  out.rms_torque = (torque_squares / static_cast<double>(used_samples)).cwiseSqrt();
+  if (options.essential_r_sigma) {
+    out.essential = essential_parameters(equations[0], method != Method::kOls, out.names,
+                                         *options.essential_r_sigma);
+  }
   progress.report(1.0);
   return out;
 }

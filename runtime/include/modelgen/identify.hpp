@@ -4,6 +4,7 @@
 #pragma once
 
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -32,11 +33,27 @@ struct Identification {
   Eigen::VectorXd rms_error, rms_torque;
   /// ||tau - W beta|| / ||tau|| over all torque equations (Gautier & Briot Tables III-IV).
   double torque_rel_error_norm = 0;
-  Eigen::Index samples = 0;
+  Eigen::Index samples = 0;  ///< samples used, after decimation
+  /// Essential parameters (IdentifyOptions::essential_r_sigma set): indices into `names`.
+  EssentialParameters essential;
 };
 
 /// Progress of a long identification: `fraction` of the work done, increasing from 0 to 1.
 using ProgressCallback = std::function<void(double fraction)>;
+
+/// What identify() does besides the plain fit.
+struct IdentifyOptions {
+  /// Parallel decimation factor per experiment (Gautier & Briot eq. 13-14; empty: none). For an
+  /// experiment with a factor n_d > 1, its W (samples x dof rows) and torque vector are built
+  /// whole, every column of each joint's rows and the torques low-passed with the same
+  /// zero-phase filter and one sample in n_d kept (modelgen/preprocess.hpp decimate()); the
+  /// PIM's power rows and powers likewise. Memory then grows with that experiment's samples
+  /// times the base parameters for the duration of its reduction.
+  std::vector<int> decimation;
+  ProgressCallback progress;
+  /// When set, also the essential parameters for this r_sigma (Identification::essential).
+  std::optional<double> essential_r_sigma;
+};
 
 /// Identifies the base parameters of `model` from `data` (each trajectory with dq and ddq set,
 /// dof columns). The regressor rows go straight into a LeastSquaresAccumulator (one group per
@@ -50,5 +67,11 @@ using ProgressCallback = std::function<void(double fraction)>;
 /// parameters), too few samples.
 Identification identify(const IdentificationModel& model, const std::vector<Trajectory>& data,
                         Method method, const ProgressCallback& progress = nullptr);
+
+/// identify() with options (decimation, essential parameters). Also throws EstimationError
+/// for a decimation list that does not have one factor (>= 1) per experiment, or a factor that
+/// leaves an experiment too few samples.
+Identification identify(const IdentificationModel& model, const std::vector<Trajectory>& data,
+                        Method method, const IdentifyOptions& options);
 
 }  // namespace modelgen

@@ -1,0 +1,61 @@
+// One measured experiment made ready for identification: to the joint side through the drive
+// chain, then either the periodic route of Swevers et al. 2002 (average the periods, estimate
+// the noise, re-estimate the Fourier series, analytic derivatives) or the non-periodic route of
+// Gautier & Briot (zero-phase position filter, central differences, and a decimation factor
+// for the parallel decimation of Y and W that identify() applies).
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include <Eigen/Core>
+
+#include "modelgen/data.hpp"
+#include "modelgen/preprocess.hpp"
+#include "modelgen/transmission.hpp"
+
+namespace modelgen {
+
+/// How to prepare the experiments; every unset value is chosen from the data.
+struct PreparationOptions {
+  Side side = Side::kJoint;  ///< where positions (and torques) were measured
+  /// Periodic excitation (Swevers): average the periods and re-estimate the Fourier series.
+  bool periodic = false;
+  std::optional<double> period;   ///< s; detected from the positions when unset
+  std::optional<int> harmonics;   ///< Fourier harmonics kept; select_harmonics() when unset
+  /// Non-periodic data without dq/ddq columns: no position filter and no decimation, only
+  /// central differences (for clean, e.g. simulated, data).
+  bool raw = false;
+  std::optional<double> bandwidth_hz;  ///< excitation bandwidth; estimated when unset
+  std::optional<double> cutoff_hz;     ///< position filter cut-off; from plan_filtering
+  std::optional<int> decimation;       ///< n_d; from plan_filtering (1 for data with dq/ddq)
+};
+
+struct PreparedExperiment {
+  Trajectory data;      ///< joint side, with dq and ddq
+  int decimation = 1;   ///< parallel decimation factor for identify() (eq. 13-14)
+  /// Periodic route: noise variance of the averaged torque per axis ((N m)^2), else empty.
+  Eigen::VectorXd tau_noise_variance;
+  std::string summary;  ///< what was done, in one or two lines, for the user
+  std::string warning;  ///< e.g. the samples dropped after the last whole period; may be empty
+};
+
+/// Prepares one experiment as `options` say (see PreparationOptions). Data whose sampling is
+/// not uniform (time stamps with jitter) are first resampled on a uniform grid at their median
+/// sample time by linear interpolation, and the summary says so.
+/// Throws DataError naming the file for anything the steps reject (no period found, a
+/// cut-off above Nyquist, too few samples, ...).
+PreparedExperiment prepare_experiment(Trajectory raw, const Transmission& drive,
+                                      const PreparationOptions& options);
+
+/// Decimates every column of q, dq, ddq and tau with the same zero-phase filter (decimate()
+/// of modelgen/preprocess.hpp) and keeps t at the kept rows: for comparing predicted and
+/// measured torques in the frequency range identify() fitted with the same factor. (identify()
+/// itself decimates W and Y, eq. 13-14, not the positions.) Factor 1 leaves x unchanged.
+void decimate_trajectory(Trajectory& x, int factor);
+
+/// Linear interpolation of q, tau (and dq, ddq when present) on t0, t0 + dt, ... up to the last
+/// time. Throws DataError naming the source for dt <= 0 or fewer than 2 samples.
+Trajectory resample_uniform(const Trajectory& x, double dt);
+
+}  // namespace modelgen

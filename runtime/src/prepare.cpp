@@ -1,0 +1,147 @@
+// The two data-preparation routes, chosen by options and by what the file holds.
+
+#include "modelgen/prepare.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <vector>
+
+namespace modelgen {
+
+namespace {
+
+std::string number(double value, int digits = 4) {
+  char text[64];
+  std::snprintf(text, sizeof text, "%.*g", digits, value);
+  return text;
+}
+
+double median_step(const Eigen::VectorXd& t) {
+  std::vector<double> steps(t.size() - 1);
+  for (Eigen::Index k = 0; k + 1 < t.size(); ++k) steps[k] = t[k + 1] - t[k];
+  std::nth_element(steps.begin(), steps.begin() + steps.size() / 2, steps.end());
+  return steps[steps.size() / 2];
+}
+
+// Same test as uniform_sample_time: every sample within 1% of dt of the uniform grid.
+bool is_uniform(const Eigen::VectorXd& t) {
+  const Eigen::Index n = t.size();
+  const double dt = (t[n - 1] - t[0]) / static_cast<double>(n - 1);
+  for (Eigen::Index k = 0; k < n; ++k) {
+    if (std::abs(t[k] - (t[0] + static_cast<double>(k) * dt)) > 0.01 * dt) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+Trajectory resample_uniform(const Trajectory& x, double dt) {
+  const Eigen::Index n = x.t.size();
+  if (n < 2 || !(dt > 0)) {
+    throw DataError(x.source + ": error: cannot resample " + std::to_string(n) +
+                    " samples with a sample time of " + number(dt) + " s");
+  }
+  const Eigen::Index m = static_cast<Eigen::Index>(std::floor((x.t[n - 1] - x.t[0]) / dt)) + 1;
+  Trajectory out;
+  out.source = x.source;
+  out.measured = x.measured;
+  out.has_velocity = x.has_velocity;
+  out.t.resize(m);
+  out.q.resize(m, x.q.cols());
+  out.dq.setZero(m, x.q.cols());
+  out.ddq.setZero(m, x.q.cols());
+  out.tau.resize(m, x.q.cols());
+  Eigen::Index k = 0;
+  for (Eigen::Index s = 0; s < m; ++s) {
+    const double t = x.t[0] + static_cast<double>(s) * dt;
+    while (k + 2 < n && x.t[k + 1] <= t) ++k;
+    const double w = std::clamp((t - x.t[k]) / (x.t[k + 1] - x.t[k]), 0.0, 1.0);
+    out.t[s] = t;
+    out.q.row(s) = (1 - w) * x.q.row(k) + w * x.q.row(k + 1);
+    out.tau.row(s) = (1 - w) * x.tau.row(k) + w * x.tau.row(k + 1);
+    if (x.has_velocity) {
+      out.dq.row(s) = (1 - w) * x.dq.row(k) + w * x.dq.row(k + 1);
+      out.ddq.row(s) = (1 - w) * x.ddq.row(k) + w * x.ddq.row(k + 1);
+    }
+  }
+  return out;
+}
+
+void decimate_trajectory(Trajectory& x, int factor) {
+  if (factor == 1) return;
+  Eigen::VectorXd t(decimated_rows(x.t.size(), factor));
+  for (Eigen::Index s = 0; s < t.size(); ++s) t[s] = x.t[s * factor];
+  x.t = t;
+  for (Eigen::MatrixXd* m : {&x.q, &x.dq, &x.ddq, &x.tau}) *m = decimate(*m, factor);
+}
+
+PreparedExperiment prepare_experiment(Trajectory raw, const Transmission& drive,
+                                      const PreparationOptions& options) {
+  PreparedExperiment out;
+  to_joint_side(raw, drive, options.side);
+  std::string resampled;
+  const bool needs_filtering = options.periodic || (!raw.has_velocity && !options.raw);
+  if (needs_filtering && raw.t.size() >= 3 && !is_uniform(raw.t)) {
+    const double dt = median_step(raw.t);
+    raw = resample_uniform(raw, dt);
+    resampled = "resampled on a uniform grid of " + number(dt * 1e3) +
+                " ms (linear interpolation: the time stamps are not uniform); ";
+  }
+
+  if (options.periodic) {
+    // Swevers 2002, section 4: average whole periods, noise variance of the averages, DFT
+    // re-estimation of eq. 15 and analytic eq. 16-17.
+    const double period = options.period ? *options.period : detect_period(raw);
+    PeriodicAverage average = average_periods(raw, period);
+    const int harmonics = options.harmonics ? *options.harmonics : select_harmonics(average);
+    const FourierTrajectory fourier = fit_fourier(average.averaged, average.period, harmonics);
+    apply_fourier(average.averaged, fourier);
+    out.data = std::move(average.averaged);
+    out.tau_noise_variance = average.tau_noise_variance;
+    out.decimation = options.decimation.value_or(1);
+    out.summary = resampled + "periodic: " + std::to_string(average.periods) + " periods of " +
+                  std::to_string(average.samples_per_period) + " samples (period " +
+                  number(average.period, 6) + " s" + (options.period ? "" : ", detected") +
+                  ") averaged, " + std::to_string(harmonics) +
+                  " harmonics re-estimated; torque noise std of the averages:";
+    for (Eigen::Index j = 0; j < out.tau_noise_variance.size(); ++j) {
+      out.summary += " " + number(std::sqrt(out.tau_noise_variance[j]), 3);
+    }
+    if (average.dropped_samples > 0) {
+      out.warning = raw.source + ": warning: the record is not a whole number of periods; the " +
+                    std::to_string(average.dropped_samples) + " samples (" +
+                    number(average.dropped_seconds) + " s) after the last whole period are not used";
+    }
+    return out;
+  }
+
+  if (raw.has_velocity) {
+    out.decimation = options.decimation.value_or(1);
+    out.summary = resampled + "velocities and accelerations as given in the file";
+  } else if (options.raw) {
+    differentiate(raw);
+    out.decimation = options.decimation.value_or(1);
+    out.summary = resampled + "central differences of the positions, no filter";
+  } else {
+    // Gautier & Briot, section IV.A: position filter well above the dynamics, central
+    // differences, then the parallel decimation of Y and W (eq. 13-14) in identify().
+    const double dt = uniform_sample_time(raw);
+    const double bandwidth =
+        options.bandwidth_hz ? *options.bandwidth_hz : estimate_bandwidth(raw);
+    FilterPlan plan = plan_filtering(1.0 / dt, bandwidth);
+    if (options.cutoff_hz) plan.position_cutoff_hz = *options.cutoff_hz;
+    if (options.decimation) plan.decimation_factor = *options.decimation;
+    filter_positions(raw, plan.position_cutoff_hz, plan.position_order);
+    out.decimation = plan.decimation_factor;
+    out.summary = resampled + "sampled at " + number(1.0 / dt) + " Hz, excitation bandwidth " +
+                  number(bandwidth, 3) + " Hz" + (options.bandwidth_hz ? " (given)" : " (estimated)") +
+                  "; positions low-passed at " + number(plan.position_cutoff_hz, 3) +
+                  " Hz (zero phase), central differences, parallel decimation by " +
+                  std::to_string(out.decimation);
+  }
+  out.data = std::move(raw);
+  return out;
+}
+
+}  // namespace modelgen

@@ -1,0 +1,160 @@
+// Identification on real measurements nobody here made (shared/datasets, SOURCES.md there).
+// Skipped with a message when the folder is absent.
+// - Staubli TX-40 (figaroh-examples): motor-side positions and torques at 5 kHz through the
+//   coupled drive chain of robots/tx40.yaml, the non-periodic route of Gautier & Briot
+//   (position filter, central differences, parallel decimation), IDIM-WLS. Compared with the
+//   paper's Table III (relative error norm 0.077 for its Case 1) and Table II (essential
+//   parameters of Case 1), which were identified on another run of the same robot type.
+// - Franka Panda (Gaz et al. 2019): joint positions and link-side torques at ~1 kHz with
+//   jittered time stamps, robots/panda_arm.yaml; per-joint rms torque error next to the rms of
+//   the measured torque.
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <sstream>
+
+#include <gtest/gtest.h>
+
+#include "modelgen/identify.hpp"
+#include "modelgen/prepare.hpp"
+#include "runtime/cli/shipped_models.hpp"
+#include "tests/support/test_support.hpp"
+
+namespace modelgen {
+namespace {
+
+using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+
+// A CSV with one header row (figaroh's Joint_1..Joint_6) and `columns` numbers per row.
+Eigen::MatrixXd read_csv(const std::string& path, int columns) {
+  std::ifstream in(path);
+  std::string line;
+  std::getline(in, line);
+  std::vector<double> values;
+  while (std::getline(in, line)) {
+    std::istringstream fields(line);
+    std::string field;
+    while (std::getline(fields, field, ',')) values.push_back(std::stod(field));
+  }
+  EXPECT_EQ(values.size() % columns, 0u) << path;
+  return Eigen::Map<RowMajor>(values.data(), static_cast<Eigen::Index>(values.size()) / columns,
+                              columns);
+}
+
+// One value per line, `columns` consecutive values per sample (the Panda logs).
+Eigen::MatrixXd read_stream(const std::string& path, int columns) {
+  std::ifstream in(path);
+  std::vector<double> values;
+  double value = 0;
+  while (in >> value) values.push_back(value);
+  EXPECT_EQ(values.size() % columns, 0u) << path;
+  return Eigen::Map<RowMajor>(values.data(), static_cast<Eigen::Index>(values.size()) / columns,
+                              columns);
+}
+
+Trajectory positions_and_torques(const std::string& source, Eigen::VectorXd t, Eigen::MatrixXd q,
+                                 Eigen::MatrixXd tau) {
+  Trajectory x;
+  x.source = source;
+  x.t = std::move(t);
+  x.q = std::move(q);
+  x.tau = std::move(tau);
+  x.dq.setZero(x.q.rows(), x.q.cols());
+  x.ddq.setZero(x.q.rows(), x.q.cols());
+  return x;
+}
+
+double value_of(const Identification& id, const std::string& name) {
+  for (std::size_t k = 0; k < id.essential.kept.size(); ++k) {
+    if (id.names[id.essential.kept[k]] == name) return id.essential.fit.value[k];
+  }
+  return std::nan("");
+}
+
+TEST(RealData, Tx40IdimWlsMatchesGautierBriotTables) {
+  const std::string dir = test::shared_path("datasets/tx40-figaroh/");
+  if (!std::filesystem::exists(dir + "pos_read_data.csv")) {
+    GTEST_SKIP() << "no TX-40 data set in " << dir;
+  }
+  const std::unique_ptr<IdentificationModel> model = internal::make_shipped_model("tx40");
+  // SOURCES.md: motor-side positions (rad) and torques (N m), 0.2 ms sample time.
+  Eigen::MatrixXd q = read_csv(dir + "pos_read_data.csv", 6);
+  Eigen::MatrixXd tau = read_csv(dir + "curr_data.csv", 6);
+  ASSERT_EQ(q.rows(), tau.rows());
+  const Eigen::VectorXd t = Eigen::VectorXd::LinSpaced(q.rows(), 0.0, 2e-4 * (q.rows() - 1));
+  PreparationOptions options;
+  options.side = Side::kMotor;
+  const PreparedExperiment prepared = prepare_experiment(
+      positions_and_torques("tx40-figaroh", t, q, tau), model->transmission(), options);
+  std::cout << "TX-40: " << prepared.summary << "\n";
+
+  IdentifyOptions identify_options;
+  identify_options.decimation = {prepared.decimation};
+  identify_options.essential_r_sigma = 20.0;  // as in the paper
+  const Identification id = identify(*model, {prepared.data}, Method::kWls, identify_options);
+  std::cout << "TX-40 IDIM-WLS: relative error norm " << id.torque_rel_error_norm
+            << " (Gautier & Briot Table III, Case 1: 0.077); essential parameters "
+            << id.essential.kept.size() << ", relative error norm "
+            << id.essential.fit.relative_error_norm << "\n";
+  // Same order of magnitude as the paper's identification on its own run.
+  EXPECT_GT(id.torque_rel_error_norm, 0.03);
+  EXPECT_LT(id.torque_rel_error_norm, 0.12);
+
+  // Table II, Case 1 (IDIM-WLS, essential parameters), our names.
+  const std::map<std::string, double> table2 = {
+      {"ZZ1R", 1.29},   {"Fv1", 6.90},    {"Fc1", 6.71},    {"XX2R", -0.457}, {"XZ2R", -0.135},
+      {"ZZ2R", 1.06},   {"MX2R", 2.22},   {"Fv2", 4.54},    {"Fc2", 8.11},    {"ZZ3R", 0.139},
+      {"MY3R", -0.630}, {"Ia3", 0.0827},  {"Fv3", 1.73},    {"Fc3", 6.30},    {"Fv4", 0.915},
+      {"Fc4", 2.40},    {"Ia5", 0.0544},  {"Fv5", 1.60},    {"Fc5", 3.37},    {"Fv6", 0.581},
+      {"Fc6", 1.96},    {"Fvm6", 0.519},  {"Fcm6", 1.85}};
+  std::printf("  %-6s %10s %10s\n", "param", "here", "Table II");
+  for (const auto& [name, paper] : table2) {
+    std::printf("  %-6s %10.4g %10.4g\n", name.c_str(), value_of(id, name), paper);
+  }
+  // The inertial parameters the data identify best (the gravity and main inertia terms of
+  // the shoulder and elbow) agree with the paper's within 10%: same geometry, same joint
+  // zero (a wrong motor-to-joint offset would change MX2R and MY3R), same robot type.
+  for (const char* name : {"ZZ1R", "XX2R", "ZZ2R", "MX2R", "MY3R"}) {
+    const double here = value_of(id, name), paper = table2.at(name);
+    EXPECT_LT(std::abs(here - paper), 0.10 * std::abs(paper)) << name << " " << here;
+  }
+}
+
+TEST(RealData, PandaTorquesArePredictedPerJoint) {
+  const std::string dir = test::shared_path("datasets/panda-gaz2019/");
+  if (!std::filesystem::exists(dir + "exciting_traj_time.txt")) {
+    GTEST_SKIP() << "no Panda data set in " << dir;
+  }
+  const std::unique_ptr<IdentificationModel> model = internal::make_shipped_model("panda_arm");
+  const Eigen::MatrixXd time = read_stream(dir + "exciting_traj_time.txt", 1);
+  Trajectory raw = positions_and_torques("panda-gaz2019", time.col(0),
+                                         read_stream(dir + "exciting_traj_positions.txt", 7),
+                                         read_stream(dir + "exciting_traj_torques.txt", 7));
+  ASSERT_EQ(raw.q.rows(), raw.t.size());
+  // The excitation is a 5-harmonic Fourier series with a period of about 13.35 s (0.37 Hz at
+  // its top); estimate_bandwidth() is not reliable on these re-sampled, jittered time stamps
+  // (see its documentation), so the bandwidth is given: 1 Hz covers the excitation.
+  PreparationOptions options;
+  options.bandwidth_hz = 1.0;
+  const PreparedExperiment prepared = prepare_experiment(raw, model->transmission(), options);
+  std::cout << "Panda: " << prepared.summary << "\n";
+  IdentifyOptions identify_options;
+  identify_options.decimation = {prepared.decimation};
+  const Identification id = identify(*model, {prepared.data}, Method::kWls, identify_options);
+  std::cout << "Panda IDIM-WLS: relative error norm " << id.torque_rel_error_norm << "\n"
+            << "  joint  rms error  rms torque (N m)\n";
+  for (int j = 0; j < 7; ++j) {
+    std::printf("  %5d %10.3f %11.3f\n", j + 1, id.rms_error[j], id.rms_torque[j]);
+  }
+  EXPECT_LT(id.torque_rel_error_norm, 0.05);
+  // Every joint's torque is explained: the error is a fraction of the torque, also for the
+  // wrist joints whose torques are small (joint 7: rms 0.27 N m).
+  for (int j = 0; j < 7; ++j) EXPECT_LT(id.rms_error[j], 0.3 * id.rms_torque[j]) << "joint " << j + 1;
+}
+
+}  // namespace
+}  // namespace modelgen
