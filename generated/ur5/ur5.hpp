@@ -14,6 +14,7 @@
 // inverse_dynamics                      378    308       10
 // idim_regressor_sincos                 454    363        0
 // inverse_dynamics_sincos               378    308        0
+// inverse_dynamics_state_jacobian      2707   2523       10
 // energy_regressor                      133     61       10
 // power_regressor                       338    190       10
 // energy_regressor_sincos               133     61        0
@@ -124,6 +125,17 @@ void inverse_dynamics_sincos(const float* q, const float* sin_q, const float* co
                              const float* dq, const float* ddq, const float* beta,
                              float* tau);
 
+// Jacobian of inverse_dynamics with respect to the state x = [q, dq, ddq] (3 kDof values), for
+// maximum likelihood with errors in variables (Bona & Curatella eq. 15-16): J is kDof x 3 kDof,
+// row-major, J[i * 3 * kDof + k] = d tau_i / d x_k (units of tau per unit of x). Inputs as for
+// inverse_dynamics. Coulomb friction counts as locally constant: the dq columns are exact
+// wherever no joint velocity (nor, for coupled drives, motor velocity) is zero; the friction
+// torque jumps there.
+void inverse_dynamics_state_jacobian(const double* q, const double* dq, const double* ddq,
+                                     const double* beta, double* J);
+void inverse_dynamics_state_jacobian(const float* q, const float* dq, const float* ddq,
+                                     const float* beta, float* J);
+
 // Energy regressor of the power identification model (Gautier & Briot eq. 8): the total
 // energy of links and drives is H = h * beta, up to a constant that depends on the parameters
 // only. Inputs q, dq: kDof joint positions and velocities. Output h: kBaseParams values, in the
@@ -172,6 +184,10 @@ struct Model {
   static void inverse_dynamics(const double* q, const double* dq, const double* ddq,
                                const double* beta, double* tau) {
     ::modelgen::ur5::inverse_dynamics(q, dq, ddq, beta, tau);
+  }
+  static void inverse_dynamics_state_jacobian(const double* q, const double* dq, const double* ddq,
+                                              const double* beta, double* J) {
+    ::modelgen::ur5::inverse_dynamics_state_jacobian(q, dq, ddq, beta, J);
   }
   static void power_regressor(const double* q, const double* dq, const double* ddq, double* dh) {
     ::modelgen::ur5::power_regressor(q, dq, ddq, dh);

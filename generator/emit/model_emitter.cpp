@@ -11,6 +11,7 @@
 #include "generator/dynamics/power_model.hpp"
 #include "generator/emit/printer.hpp"
 #include "generator/output/sha256.hpp"
+#include "generator/symbolic/derivative.hpp"
 #include "generator/version.hpp"
 
 namespace modelgen::gen {
@@ -101,9 +102,11 @@ std::string pad_right(const std::string& text, std::size_t width) {
 }
 
 bool uses_array(const FunctionBody& body, const std::string& array) {
-  // A body uses an input array when some statement reads array[...].
+  // A body uses an input array when some statement reads array[...]; trailing comments, which
+  // may name inputs (the columns of a Jacobian), do not count.
   const std::string needle = array + "[";
-  for (const std::string& line : body.lines) {
+  for (const std::string& full_line : body.lines) {
+    const std::string line = full_line.substr(0, full_line.find("//"));
     for (std::size_t at = line.find(needle); at != std::string::npos; at = line.find(needle, at + 1)) {
       if (at == 0 || !(std::isalnum(static_cast<unsigned char>(line[at - 1])) || line[at - 1] == '_')) {
         return true;
@@ -165,6 +168,25 @@ GeneratedModel emit_model(const RobotModel& model, const GenerationInput& input)
       spec.outputs.push_back({"tau[" + std::to_string(i) + "]", tau[i], ""});
     }
     specs.push_back(std::move(spec));
+
+    // d tau / d(q, dq, ddq), the state part of B in Bona & Curatella eq. 15-16, from the same
+    // DAG: derivatives of Newton-Euler intermediates stay intermediates. The first row names
+    // the state variable of each column.
+    std::vector<ExprId> state = symbols.q;
+    state.insert(state.end(), symbols.dq.begin(), symbols.dq.end());
+    state.insert(state.end(), symbols.ddq.begin(), symbols.ddq.end());
+    const std::vector<ExprId> J = jacobian(graph, tau, state);
+    FunctionSpec jacobian_spec{"inverse_dynamics_state_jacobian", {}, {"q", "dq", "ddq", "beta"}};
+    for (int i = 0; i < dof; ++i) {
+      for (int k = 0; k < 3 * dof; ++k) {
+        const int index = i * 3 * dof + k;
+        const char* array = k < dof ? "q" : (k < 2 * dof ? "dq" : "ddq");
+        jacobian_spec.outputs.push_back(
+            {"J[" + std::to_string(index) + "]", J[index],
+             i == 0 ? std::string(array) + "[" + std::to_string(k % dof) + "]" : std::string()});
+      }
+    }
+    specs.push_back(std::move(jacobian_spec));
   }
   {
     FunctionSpec spec{"base_from_standard", {}, {"p_standard"}};
@@ -212,8 +234,14 @@ GeneratedModel emit_model(const RobotModel& model, const GenerationInput& input)
     specs.push_back(std::move(spec));
   }
   // Variants reading sin/cos from the caller (joint_sincos), for several functions per state.
+  // Not for the state Jacobian: its body is several times that of the inverse dynamics, so
+  // sharing the sines and cosines would save under 1 % of its work for twice the code to
+  // compile.
   for (std::size_t i = 0, count = specs.size(); i < count; ++i) {
-    if (specs[i].name == "joint_sincos" || specs[i].name == "base_from_standard") continue;
+    if (specs[i].name == "joint_sincos" || specs[i].name == "base_from_standard" ||
+        specs[i].name == "inverse_dynamics_state_jacobian") {
+      continue;
+    }
     FunctionSpec variant = specs[i];
     variant.name += "_sincos";
     variant.parameters.push_back("sin_q");
@@ -228,7 +256,8 @@ GeneratedModel emit_model(const RobotModel& model, const GenerationInput& input)
       "idim_regressor_standard", "inverse_dynamics_standard", "joint_sincos",
       "idim_regressor_standard_sincos", "inverse_dynamics_standard_sincos", "base_from_standard",
       "idim_regressor", "inverse_dynamics", "idim_regressor_sincos", "inverse_dynamics_sincos",
-      "energy_regressor", "power_regressor", "energy_regressor_sincos", "power_regressor_sincos"};
+      "inverse_dynamics_state_jacobian", "energy_regressor", "power_regressor",
+      "energy_regressor_sincos", "power_regressor_sincos"};
   std::stable_sort(specs.begin(), specs.end(), [&order](const FunctionSpec& a, const FunctionSpec& b) {
     return std::find(order.begin(), order.end(), a.name) < std::find(order.begin(), order.end(), b.name);
   });
@@ -245,6 +274,11 @@ GeneratedModel emit_model(const RobotModel& model, const GenerationInput& input)
   }
 
   const std::string sha256 = sha256_hex(input.input_bytes);
+  // The name column of the banner's operation table fits the longest function name.
+  std::size_t name_width = 34;
+  for (const FunctionReport& f : result.functions) {
+    name_width = std::max(name_width, f.name.size() + 2);
+  }
   auto banner = [&](const std::string& file) {
     return Printer(embedded_template("banner"))
         .set("file", file)
@@ -257,7 +291,7 @@ GeneratedModel emit_model(const RobotModel& model, const GenerationInput& input)
                      auto row = [&](const std::string& name, const std::string& mul,
                                     const std::string& add, const std::string& trig) {
                        std::string text = Printer(embedded_template("banner_row"))
-                                              .set("function", pad_right(name, 34))
+                                              .set("function", pad_right(name, name_width))
                                               .set("mul", pad_left(mul, 7))
                                               .set("add", pad_left(add, 7))
                                               .set("trig", pad_left(trig, 9))
