@@ -45,8 +45,9 @@ PreparationOptions preparation_options(const Arguments& args) {
   options.periodic = args.has("--periodic");
   options.raw = args.has("--raw");
   if (options.periodic && options.raw) {
-    throw UsageError{"--periodic and --raw exclude each other (the periodic route computes the "
-                     "derivatives from the Fourier series)"};
+    throw UsageError{
+        "--periodic and --raw exclude each other (the periodic route computes the "
+        "derivatives from the Fourier series)"};
   }
   for (const char* option : {"--period", "--harmonics"}) {
     if (args.has(option) && !options.periodic) {

@@ -21,11 +21,15 @@
 
 namespace modelgen::internal {
 
-const std::map<std::string, OptionKind> kFitOptions = with_data_options({
-    {"--robot", OptionKind::kOnce},   {"--data", OptionKind::kRepeated},
-    {"--method", OptionKind::kOnce},  {"-o", OptionKind::kOnce},
-    {"--truth", OptionKind::kOnce},   {"--essential", OptionKind::kFlag},
-    {"--r-sigma", OptionKind::kOnce}, {"--plot", OptionKind::kOnce}});
+const std::map<std::string, OptionKind> kFitOptions =
+    with_data_options({{"--robot", OptionKind::kOnce},
+                       {"--data", OptionKind::kRepeated},
+                       {"--method", OptionKind::kOnce},
+                       {"-o", OptionKind::kOnce},
+                       {"--truth", OptionKind::kOnce},
+                       {"--essential", OptionKind::kFlag},
+                       {"--r-sigma", OptionKind::kOnce},
+                       {"--plot", OptionKind::kOnce}});
 
 namespace {
 
@@ -92,9 +96,10 @@ void print_wrapped(const std::vector<std::string>& names, const std::string& ind
   if (line.size() > indent.size()) std::cout << line << "\n";
 }
 
-// `data`: the experiments as the fit compared them (after the decimation filter).
+// `data`, `decimation`: the experiments as prepared for the fit.
 EssentialEstimate essential_estimate(const IdentificationModel& model,
                                      const std::vector<Trajectory>& data,
+                                     const std::vector<int>& decimation,
                                      const EssentialParameters& essential, double r_sigma) {
   const std::vector<std::string>& names = model.base_param_names();
   EssentialEstimate out;
@@ -111,7 +116,8 @@ EssentialEstimate essential_estimate(const IdentificationModel& model,
   out.condition_number = essential.fit.condition_number;
   // The torque error of the essential model, comparable with the full fit's whatever the
   // method (the PIM fits power equations, not torques).
-  out.rel_error_norm = predict_torques(model, data, beta).rel_error_norm;
+  std::vector<Trajectory> compared = data;
+  out.rel_error_norm = predict_decimated(model, compared, beta, decimation).rel_error_norm;
   return out;
 }
 
@@ -168,11 +174,7 @@ int run_fit(const Arguments& args) {
   };
   const Identification id = identify(model, data, method, options);
   fitting.finish();
-  // Torques compared where the fit compared them: after the parallel decimation's filter.
-  std::vector<Trajectory> compared = data;
-  for (std::size_t e = 0; e < compared.size(); ++e) {
-    decimate_trajectory(compared[e], experiments.decimation[e]);
-  }
+
   Eigen::VectorXd truth;
   if (args.has("--truth")) truth = read_base_parameters(args.one("--truth"), model);
 
@@ -195,11 +197,15 @@ int run_fit(const Arguments& args) {
 
   EstimateFile estimate;
   if (essential) {
-    estimate.essential = essential_estimate(model, compared, id.essential, r_sigma);
+    estimate.essential =
+        essential_estimate(model, data, experiments.decimation, id.essential, r_sigma);
     print_essential(*estimate.essential, id.names.size());
   }
   if (args.has("--plot")) {
-    const TorquePrediction prediction = predict_torques(model, compared, id.fit.value);
+    // Torques compared where the fit compared them: after the parallel decimation's filter.
+    std::vector<Trajectory> compared = data;
+    const TorquePrediction prediction =
+        predict_decimated(model, compared, id.fit.value, experiments.decimation);
     write_torque_plots(args.one("--plot"), model.name() + " " + method_name(method) + " fit",
                        compared, prediction, std::cout, std::cerr);
   }

@@ -18,11 +18,12 @@
 
 namespace modelgen::internal {
 
-const std::map<std::string, OptionKind> kPredictOptions = with_data_options({{"--robot", OptionKind::kOnce},
-                                                           {"--params", OptionKind::kOnce},
-                                                           {"--data", OptionKind::kRepeated},
-                                                           {"-o", OptionKind::kOnce},
-                                                           {"--plot", OptionKind::kOnce}});
+const std::map<std::string, OptionKind> kPredictOptions =
+    with_data_options({{"--robot", OptionKind::kOnce},
+                       {"--params", OptionKind::kOnce},
+                       {"--data", OptionKind::kRepeated},
+                       {"-o", OptionKind::kOnce},
+                       {"--plot", OptionKind::kOnce}});
 
 namespace {
 
@@ -62,11 +63,9 @@ int run_predict(const Arguments& args) {
   Experiments experiments = read_experiments(args.all("--data"), model, preparation,
                                              EffortColumns::kRequired, data_report);
   // Compared where identification compares them: after the parallel decimation's filter.
-  for (std::size_t e = 0; e < experiments.data.size(); ++e) {
-    decimate_trajectory(experiments.data[e], experiments.decimation[e]);
-  }
+  const TorquePrediction prediction =
+      predict_decimated(model, experiments.data, beta, experiments.decimation);
   const std::vector<Trajectory>& data = experiments.data;
-  const TorquePrediction prediction = predict_torques(model, data, beta);
 
   std::cout << "modelid predict: " << model.name() << " on " << data.size() << " experiment(s), "
             << prediction.samples << " samples, parameters from " << params << "\n"

@@ -8,6 +8,8 @@
 #include <limits>
 #include <stdexcept>
 
+#include "modelgen/prepare.hpp"
+#include "modelgen/preprocess.hpp"
 #include "runtime/cli/progress.hpp"
 #include "runtime/cli/text_format.hpp"
 
@@ -19,6 +21,32 @@ namespace {
 double ratio(double error_square_sum, double torque_square_sum) {
   return torque_square_sum > 0 ? std::sqrt(error_square_sum / torque_square_sum)
                                : std::numeric_limits<double>::quiet_NaN();
+}
+
+// The statistics of predicted against measured torques, experiment by experiment.
+TorquePrediction compare(const std::vector<Trajectory>& data,
+                         std::vector<Eigen::MatrixXd> predicted) {
+  const Eigen::Index n = data.empty() ? 0 : data.front().q.cols();
+  TorquePrediction out;
+  Eigen::VectorXd error_squares = Eigen::VectorXd::Zero(n),
+                  torque_squares = Eigen::VectorXd::Zero(n);
+  for (std::size_t e = 0; e < data.size(); ++e) {
+    const Trajectory& x = data[e];
+    Eigen::MatrixXd error = x.tau - predicted[e];
+    const Eigen::VectorXd e2 = error.colwise().squaredNorm().transpose();
+    const Eigen::VectorXd t2 = x.tau.colwise().squaredNorm().transpose();
+    out.rel_error_norm_per_experiment.push_back(ratio(e2.sum(), t2.sum()));
+    error_squares += e2;
+    torque_squares += t2;
+    out.samples += x.t.size();
+    out.tau_pred.push_back(std::move(predicted[e]));
+    out.error.push_back(std::move(error));
+  }
+  out.rel_error_norm = ratio(error_squares.sum(), torque_squares.sum());
+  const double samples = static_cast<double>(std::max(out.samples, 1LL));
+  out.rms_error = (error_squares / samples).cwiseSqrt();
+  out.rms_torque = (torque_squares / samples).cwiseSqrt();
+  return out;
 }
 
 }  // namespace
@@ -42,13 +70,10 @@ TorquePrediction predict_torques(const IdentificationModel& model,
     }
     total += m;
   }
-  TorquePrediction out;
-  out.samples = total;
-  Eigen::VectorXd error_squares = Eigen::VectorXd::Zero(n),
-                  torque_squares = Eigen::VectorXd::Zero(n);
   Progress progress("predicting torques", total);
   long long done = 0;
   std::vector<double> tau(n);
+  std::vector<Eigen::MatrixXd> predicted;
   for (const Trajectory& x : data) {
     Eigen::MatrixXd tau_pred(x.t.size(), n);
     for (Eigen::Index s = 0; s < x.t.size(); ++s, ++done) {
@@ -57,21 +82,23 @@ TorquePrediction predict_torques(const IdentificationModel& model,
       model.inverse_dynamics(q.data(), dq.data(), ddq.data(), beta.data(), tau.data());
       for (int j = 0; j < n; ++j) tau_pred(s, j) = tau[j];
     }
-    Eigen::MatrixXd error = x.tau - tau_pred;
-    const Eigen::VectorXd e2 = error.colwise().squaredNorm().transpose();
-    const Eigen::VectorXd t2 = x.tau.colwise().squaredNorm().transpose();
-    out.rel_error_norm_per_experiment.push_back(ratio(e2.sum(), t2.sum()));
-    error_squares += e2;
-    torque_squares += t2;
-    out.tau_pred.push_back(std::move(tau_pred));
-    out.error.push_back(std::move(error));
+    predicted.push_back(std::move(tau_pred));
   }
   progress.update(done);
-  out.rel_error_norm = ratio(error_squares.sum(), torque_squares.sum());
-  const double samples = static_cast<double>(std::max(total, 1LL));
-  out.rms_error = (error_squares / samples).cwiseSqrt();
-  out.rms_torque = (torque_squares / samples).cwiseSqrt();
-  return out;
+  return compare(data, std::move(predicted));
+}
+
+TorquePrediction predict_decimated(const IdentificationModel& model, std::vector<Trajectory>& data,
+                                   const Eigen::VectorXd& beta,
+                                   const std::vector<int>& decimation) {
+  TorquePrediction full = predict_torques(model, data, beta);
+  for (std::size_t e = 0; e < data.size() && e < decimation.size(); ++e) {
+    if (decimation[e] == 1) continue;
+    // Eq. 14: decimate(W) beta = decimate(W beta), the same filter on both sides.
+    full.tau_pred[e] = decimate(full.tau_pred[e], decimation[e]);
+    decimate_trajectory(data[e], decimation[e]);
+  }
+  return compare(data, std::move(full.tau_pred));
 }
 
 std::string prediction_csv(const std::vector<Trajectory>& data, const TorquePrediction& prediction,

@@ -32,6 +32,15 @@ struct TorquePrediction {
 TorquePrediction predict_torques(const IdentificationModel& model,
                                  const std::vector<Trajectory>& data, const Eigen::VectorXd& beta);
 
+/// The comparison identification makes after the parallel decimation (Gautier & Briot eq.
+/// 13-14): torques predicted at the full rate, then for each experiment with a factor
+/// decimation[e] > 1 the measured and the predicted torques pass the same decimation filter
+/// (decimate(W) beta = decimate(W beta)); data[e] is replaced by its decimated trajectory
+/// (decimate_trajectory), so rows of the prediction and of data still match. Factors of 1, or
+/// missing, leave an experiment as it is.
+TorquePrediction predict_decimated(const IdentificationModel& model, std::vector<Trajectory>& data,
+                                   const Eigen::VectorXd& beta, const std::vector<int>& decimation);
+
 /// CSV of the prediction, one row per sample, experiments one after the other: columns
 /// experiment (1-based, in the order of `data`), t, then q1..qn when `with_positions`,
 /// tau1..taun (measured), tau_pred1..tau_predn, error1..errorn (measured - predicted).

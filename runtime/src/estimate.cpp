@@ -391,9 +391,20 @@ LeastSquaresResult Reducer::solve(const std::vector<int>& kept,
   Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(M.leftCols(b));
   qr.setThreshold(1e-10);
   if (qr.rank() < b) {
+    std::string why = unidentifiable(M.leftCols(b), scale, rows, names);
+    if (why.empty()) {
+      // Dependent only at the scale of the whole matrix (e.g. WLS weights of very different
+      // sizes): name the columns the pivoting QR left last, those it could not resolve.
+      why = " too weakly determined next to the others (the data or the weights make them "
+            "negligible):";
+      const auto& order = qr.colsPermutation().indices();
+      for (Eigen::Index i = qr.rank(); i < b; ++i) {
+        why += " " + names[static_cast<std::size_t>(order[i])];
+      }
+      why += ".";
+    }
     throw EstimationError("W is rank-deficient (rank " + std::to_string(qr.rank()) + " of " +
-                          std::to_string(b) +
-                          "):" + unidentifiable(M.leftCols(b), scale, rows, names));
+                          std::to_string(b) + "):" + why);
   }
   LeastSquaresResult result;
   result.value = qr.solve(M.col(b));

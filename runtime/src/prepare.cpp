@@ -11,6 +11,9 @@ namespace modelgen {
 
 namespace {
 
+// Filter edges dropped after the position filter, in periods of its cut-off frequency.
+constexpr double kEdgePeriods = 3.0;
+
 std::string number(double value, int digits = 4) {
   char text[64];
   std::snprintf(text, sizeof text, "%.*g", digits, value);
@@ -111,7 +114,8 @@ PreparedExperiment prepare_experiment(Trajectory raw, const Transmission& drive,
     if (average.dropped_samples > 0) {
       out.warning = raw.source + ": warning: the record is not a whole number of periods; the " +
                     std::to_string(average.dropped_samples) + " samples (" +
-                    number(average.dropped_seconds) + " s) after the last whole period are not used";
+                    number(average.dropped_seconds) +
+                    " s) after the last whole period are not used";
     }
     return out;
   }
@@ -127,17 +131,34 @@ PreparedExperiment prepare_experiment(Trajectory raw, const Transmission& drive,
     // Gautier & Briot, section IV.A: position filter well above the dynamics, central
     // differences, then the parallel decimation of Y and W (eq. 13-14) in identify().
     const double dt = uniform_sample_time(raw);
-    const double bandwidth =
-        options.bandwidth_hz ? *options.bandwidth_hz : estimate_bandwidth(raw);
+    const double bandwidth = options.bandwidth_hz ? *options.bandwidth_hz : estimate_bandwidth(raw);
     FilterPlan plan = plan_filtering(1.0 / dt, bandwidth);
     if (options.cutoff_hz) plan.position_cutoff_hz = *options.cutoff_hz;
     if (options.decimation) plan.decimation_factor = *options.decimation;
     filter_positions(raw, plan.position_cutoff_hz, plan.position_order);
+    // The zero-phase filter's start and end are only approximately right (its edges assume
+    // the signal continues as its reflection), and differentiating twice amplifies that: the
+    // samples within kEdgePeriods cut-off periods of either end are dropped.
+    const Eigen::Index edge =
+        static_cast<Eigen::Index>(std::ceil(kEdgePeriods / (plan.position_cutoff_hz * dt)));
+    const Eigen::Index kept = raw.t.size() - 2 * edge;
+    if (kept < 3) {
+      throw DataError(raw.source + ": error: too short for a position filter at " +
+                      number(plan.position_cutoff_hz, 3) + " Hz: its edges (" +
+                      std::to_string(edge) + " samples at each end) leave " +
+                      std::to_string(std::max<Eigen::Index>(kept, 0)) + " samples");
+    }
+    raw.t = raw.t.segment(edge, kept).eval();
+    for (Eigen::MatrixXd* m : {&raw.q, &raw.dq, &raw.ddq, &raw.tau}) {
+      *m = m->middleRows(edge, kept).eval();
+    }
     out.decimation = plan.decimation_factor;
     out.summary = resampled + "sampled at " + number(1.0 / dt) + " Hz, excitation bandwidth " +
-                  number(bandwidth, 3) + " Hz" + (options.bandwidth_hz ? " (given)" : " (estimated)") +
+                  number(bandwidth, 3) + " Hz" +
+                  (options.bandwidth_hz ? " (given)" : " (estimated)") +
                   "; positions low-passed at " + number(plan.position_cutoff_hz, 3) +
-                  " Hz (zero phase), central differences, parallel decimation by " +
+                  " Hz (zero phase), central differences, " + number(edge * dt, 3) +
+                  " s dropped at each end (filter edges), parallel decimation by " +
                   std::to_string(out.decimation);
   }
   out.data = std::move(raw);

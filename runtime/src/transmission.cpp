@@ -35,7 +35,8 @@ void to_joint_side(Trajectory& x, const Transmission& drive, Side positions) {
       if (!(drive.torque_constant[j] > 0)) {
         throw DataError(x.source + ": error: column i" + std::to_string(j + 1) +
                         " holds motor currents but the description gives no torque constant for "
-                        "motor " + std::to_string(j + 1) + " (drives: torque_constant)");
+                        "motor " +
+                        std::to_string(j + 1) + " (drives: torque_constant)");
       }
     }
     x.tau = x.tau * drive.torque_constant.asDiagonal();

@@ -106,11 +106,11 @@ TEST(RealData, Tx40IdimWlsMatchesGautierBriotTables) {
 
   // Table II, Case 1 (IDIM-WLS, essential parameters), our names.
   const std::map<std::string, double> table2 = {
-      {"ZZ1R", 1.29},   {"Fv1", 6.90},    {"Fc1", 6.71},    {"XX2R", -0.457}, {"XZ2R", -0.135},
-      {"ZZ2R", 1.06},   {"MX2R", 2.22},   {"Fv2", 4.54},    {"Fc2", 8.11},    {"ZZ3R", 0.139},
-      {"MY3R", -0.630}, {"Ia3", 0.0827},  {"Fv3", 1.73},    {"Fc3", 6.30},    {"Fv4", 0.915},
-      {"Fc4", 2.40},    {"Ia5", 0.0544},  {"Fv5", 1.60},    {"Fc5", 3.37},    {"Fv6", 0.581},
-      {"Fc6", 1.96},    {"Fvm6", 0.519},  {"Fcm6", 1.85}};
+      {"ZZ1R", 1.29},   {"Fv1", 6.90},   {"Fc1", 6.71}, {"XX2R", -0.457}, {"XZ2R", -0.135},
+      {"ZZ2R", 1.06},   {"MX2R", 2.22},  {"Fv2", 4.54}, {"Fc2", 8.11},    {"ZZ3R", 0.139},
+      {"MY3R", -0.630}, {"Ia3", 0.0827}, {"Fv3", 1.73}, {"Fc3", 6.30},    {"Fv4", 0.915},
+      {"Fc4", 2.40},    {"Ia5", 0.0544}, {"Fv5", 1.60}, {"Fc5", 3.37},    {"Fv6", 0.581},
+      {"Fc6", 1.96},    {"Fvm6", 0.519}, {"Fcm6", 1.85}};
   std::printf("  %-6s %10s %10s\n", "param", "here", "Table II");
   for (const auto& [name, paper] : table2) {
     std::printf("  %-6s %10.4g %10.4g\n", name.c_str(), value_of(id, name), paper);
@@ -153,7 +153,8 @@ TEST(RealData, PandaTorquesArePredictedPerJoint) {
   EXPECT_LT(id.torque_rel_error_norm, 0.05);
   // Every joint's torque is explained: the error is a fraction of the torque, also for the
   // wrist joints whose torques are small (joint 7: rms 0.27 N m).
-  for (int j = 0; j < 7; ++j) EXPECT_LT(id.rms_error[j], 0.3 * id.rms_torque[j]) << "joint " << j + 1;
+  for (int j = 0; j < 7; ++j)
+    EXPECT_LT(id.rms_error[j], 0.3 * id.rms_torque[j]) << "joint " << j + 1;
 }
 
 }  // namespace

@@ -5,8 +5,8 @@
 
 #include <cmath>
 
-#include <Eigen/LU>
 #include <gtest/gtest.h>
+#include <Eigen/LU>
 
 #include "generator/description/load_robot.hpp"
 #include "modelgen/model.hpp"

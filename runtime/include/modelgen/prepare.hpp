@@ -21,8 +21,8 @@ struct PreparationOptions {
   Side side = Side::kJoint;  ///< where positions (and torques) were measured
   /// Periodic excitation (Swevers): average the periods and re-estimate the Fourier series.
   bool periodic = false;
-  std::optional<double> period;   ///< s; detected from the positions when unset
-  std::optional<int> harmonics;   ///< Fourier harmonics kept; select_harmonics() when unset
+  std::optional<double> period;  ///< s; detected from the positions when unset
+  std::optional<int> harmonics;  ///< Fourier harmonics kept; select_harmonics() when unset
   /// Non-periodic data without dq/ddq columns: no position filter and no decimation, only
   /// central differences (for clean, e.g. simulated, data).
   bool raw = false;
@@ -32,8 +32,8 @@ struct PreparationOptions {
 };
 
 struct PreparedExperiment {
-  Trajectory data;      ///< joint side, with dq and ddq
-  int decimation = 1;   ///< parallel decimation factor for identify() (eq. 13-14)
+  Trajectory data;     ///< joint side, with dq and ddq
+  int decimation = 1;  ///< parallel decimation factor for identify() (eq. 13-14)
   /// Periodic route: noise variance of the averaged torque per axis ((N m)^2), else empty.
   Eigen::VectorXd tau_noise_variance;
   std::string summary;  ///< what was done, in one or two lines, for the user
