@@ -21,6 +21,7 @@
 #include <benchmark/benchmark.h>
 #include <Eigen/Core>
 
+#include "generated/kr150/kr150.hpp"
 #include "generated/tx40/tx40.hpp"
 #include "generator/description/load_robot.hpp"
 #include "modelgen/data.hpp"
@@ -28,6 +29,7 @@
 #include "modelgen/excitation.hpp"
 #include "modelgen/identify.hpp"
 #include "modelgen/model.hpp"
+#include "modelgen/prepare.hpp"
 #include "tests/support/kdl_oracle.hpp"
 #include "tests/support/test_support.hpp"
 
@@ -216,6 +218,20 @@ void BM_tx40_reference_identify_wls(benchmark::State& state) {
   identify_benchmark(state, *workload->reference, workload->reference_data, Method::kWls);
 }
 
+// The README's first command without its printing: the bundled KR150 run (1000 samples with
+// dq, ddq) read from CSV, prepared, and fitted by IDIM-WLS with the generated model.
+void BM_kr150_bundled_pipeline(benchmark::State& state) {
+  const GeneratedModel<kr150::Model> model;
+  const std::string path = test::source_path("robots/data/kr150/excitation.csv");
+  for (auto _ : state) {
+    PreparedExperiment prepared = prepare_experiment(read_trajectory_csv(path, model.dof()),
+                                                     model.transmission(), PreparationOptions());
+    Identification id = identify(model, {prepared.data}, Method::kWls);
+    benchmark::DoNotOptimize(id.fit.value.data());
+  }
+  set_memory_counters(state);
+}
+
 // Registration order is run order: identify() first, so that its memory counters are not
 // hidden under the peak of the benchmarks that keep a whole stacked W.
 void register_all() {
@@ -227,7 +243,8 @@ void register_all() {
                                      BM_tx40_reference_identify_wls),
         benchmark::RegisterBenchmark("BM_tx40_regressor_pass", BM_tx40_regressor_pass),
         benchmark::RegisterBenchmark("BM_tx40_build_W", BM_tx40_build_W),
-        benchmark::RegisterBenchmark("BM_tx40_fit_wls", BM_tx40_fit_wls)}) {
+        benchmark::RegisterBenchmark("BM_tx40_fit_wls", BM_tx40_fit_wls),
+        benchmark::RegisterBenchmark("BM_kr150_bundled_pipeline", BM_kr150_bundled_pipeline)}) {
     bm->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime()->UseRealTime();
   }
 }
