@@ -61,7 +61,16 @@ int run_predict(const Arguments& args) {
   const PreparationOptions preparation = preparation_options(args);
   std::ostringstream data_report;
   Experiments experiments = read_experiments(args.all("--data"), model, preparation,
-                                             EffortColumns::kRequired, data_report);
+                                             EffortColumns::kOptional, data_report);
+  // Torques are optional: without them there is nothing to compare, only predictions.
+  const bool measured = experiments.data.front().measured != Measured::kNothing;
+  for (const Trajectory& x : experiments.data) {
+    if ((x.measured != Measured::kNothing) != measured) {
+      throw DataError(x.source + ": error: " + (measured ? "no" : "has") +
+                      " torque or current columns, unlike " + experiments.data.front().source +
+                      ": give them in every file or in none");
+    }
+  }
   // Compared where identification compares them: after the parallel decimation's filter.
   const TorquePrediction prediction =
       predict_decimated(model, experiments.data, beta, experiments.decimation);
@@ -70,9 +79,15 @@ int run_predict(const Arguments& args) {
   std::cout << "modelid predict: " << model.name() << " on " << data.size() << " experiment(s), "
             << prediction.samples << " samples, parameters from " << params << "\n"
             << data_report.str();
-  print_errors(data, prediction);
-  if (args.has("-o")) write_file(args.one("-o"), prediction_csv(data, prediction, true));
-  if (args.has("--plot")) {
+  if (measured) {
+    print_errors(data, prediction);
+  } else {
+    std::cout << "  no measured torques in the data: predicted torques only\n";
+  }
+  if (args.has("-o")) write_file(args.one("-o"), prediction_csv(data, prediction, true, measured));
+  if (args.has("--plot") && !measured) {
+    std::cout << "  plots skipped: there are no measured torques to compare with\n";
+  } else if (args.has("--plot")) {
     write_torque_plots(args.one("--plot"), model.name() + " predicted with " + params, data,
                        prediction, std::cout, std::cerr);
   }

@@ -102,10 +102,11 @@ TorquePrediction predict_decimated(const IdentificationModel& model, std::vector
 }
 
 std::string prediction_csv(const std::vector<Trajectory>& data, const TorquePrediction& prediction,
-                           bool with_positions) {
+                           bool with_positions, bool with_measured) {
   const Eigen::Index n = data.empty() ? 0 : data.front().q.cols();
   std::string text = "experiment,t";
   std::vector<const char*> prefixes = {"tau", "tau_pred", "error"};
+  if (!with_measured) prefixes = {"tau_pred"};
   if (with_positions) prefixes.insert(prefixes.begin(), "q");
   for (const char* prefix : prefixes) {
     for (Eigen::Index j = 0; j < n; ++j) text += "," + std::string(prefix) + std::to_string(j + 1);
@@ -115,6 +116,7 @@ std::string prediction_csv(const std::vector<Trajectory>& data, const TorquePred
     const Trajectory& x = data[e];
     std::vector<const Eigen::MatrixXd*> blocks = {&x.tau, &prediction.tau_pred[e],
                                                   &prediction.error[e]};
+    if (!with_measured) blocks = {&prediction.tau_pred[e]};
     if (with_positions) blocks.insert(blocks.begin(), &x.q);
     for (Eigen::Index s = 0; s < x.t.size(); ++s) {
       text += std::to_string(e + 1) + "," + shortest(x.t[s]);

@@ -43,9 +43,10 @@ TorquePrediction predict_decimated(const IdentificationModel& model, std::vector
 
 /// CSV of the prediction, one row per sample, experiments one after the other: columns
 /// experiment (1-based, in the order of `data`), t, then q1..qn when `with_positions`,
-/// tau1..taun (measured), tau_pred1..tau_predn, error1..errorn (measured - predicted).
+/// tau1..taun (measured), tau_pred1..tau_predn, error1..errorn (measured - predicted); only
+/// tau_pred1..tau_predn without `with_measured` (data without torque columns).
 /// Numbers in shortest round-trip form.
 std::string prediction_csv(const std::vector<Trajectory>& data, const TorquePrediction& prediction,
-                           bool with_positions);
+                           bool with_positions, bool with_measured = true);
 
 }  // namespace modelgen::internal

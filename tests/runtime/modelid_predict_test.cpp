@@ -276,19 +276,65 @@ TEST(ModelidPredict, AnEstimateOfTheSameDescriptionIsAccepted) {
   EXPECT_LT(parse_errors(run.out).rel_error_norm, 1e-9) << run.out;
 }
 
+// Without measured torques predict still predicts: the CSV holds the positions and the
+// predicted torques, which are the reference's.
+TEST(ModelidPredict, DataWithoutTorquesGivePredictionsOnly) {
+  const fs::path dir = test::test_folder();
+  const fs::path csv = simulate(dir, "a.csv", "0.05"), pred = dir / "pred.csv";
+  // The same file without its tau columns.
+  const test::CsvTable full = test::read_csv(csv);
+  std::string text = "t";
+  for (const char* prefix : {"q", "dq", "ddq"}) {
+    for (int j = 1; j <= kDof; ++j) text += "," + std::string(prefix) + std::to_string(j);
+  }
+  text += "\n";
+  for (std::size_t s = 0; s < full.rows.size(); ++s) {
+    std::ostringstream row;
+    row.precision(17);
+    row << full.at(s, "t");
+    for (const char* prefix : {"q", "dq", "ddq"}) {
+      for (int j = 1; j <= kDof; ++j) row << "," << full.at(s, prefix + std::to_string(j));
+    }
+    text += row.str() + "\n";
+  }
+  test::write_text(dir / "positions.csv", text);
+  const CliRun run = modelid("predict --robot tx40 --params " + quoted(dir / "truth.json") +
+                             " --data " + quoted(dir / "positions.csv") + " -o " + quoted(pred));
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_NE(run.out.find("predicted torques only"), std::string::npos) << run.out;
+  const Trajectory data = read_trajectory_csv(csv.string(), kDof);
+  const Reference reference;
+  const Eigen::MatrixXd tau_reference = reference.torques(data, reference.parameters(kTruth));
+  const double scale = data.tau.cwiseAbs().maxCoeff();
+  const test::CsvTable table = test::read_csv(pred);
+  EXPECT_EQ(table.header, test::expected_header({"q", "tau_pred"}, kDof));
+  ASSERT_EQ(table.rows.size(), static_cast<std::size_t>(data.t.size()));
+  for (std::size_t s = 0; s < table.rows.size(); ++s) {
+    for (int j = 0; j < kDof; ++j) {
+      EXPECT_NEAR(table.at(s, "tau_pred" + std::to_string(j + 1)), tau_reference(s, j),
+                  1e-10 * scale);
+    }
+  }
+}
+
 TEST(ModelidPredict, DataProblemsNameTheFile) {
   const fs::path dir = test::test_folder();
   test::write_text(dir / "truth.json", standard_json(kTruth));
-  // Measured torques are required (the CSV reader needs tau1..taun).
-  test::write_text(dir / "no_tau.csv",
-                   "t,q1,q2,q3,q4,q5,q6\n0,0,0,0,0,0,0\n0.1,0,0,0,0,0,0\n0.2,0,0,0,0,0,0\n");
-  const CliRun no_tau = modelid("predict --robot tx40 --params " + quoted(dir / "truth.json") +
-                                " --data " + quoted(dir / "no_tau.csv"));
-  EXPECT_EQ(no_tau.exit_code, 1);
-  EXPECT_NE(no_tau.err.find((dir / "no_tau.csv").string() + ":1 (column tau1): error: missing "
-                                                            "column 'tau1'"),
+  // Files with torques and files without cannot be mixed: the comparison would be partial.
+  const fs::path with_tau = simulate(dir, "a.csv", "0.05");
+  test::write_text(
+      dir / "no_tau.csv",
+      "t,q1,q2,q3,q4,q5,q6,dq1,dq2,dq3,dq4,dq5,dq6,ddq1,ddq2,ddq3,ddq4,ddq5,ddq6\n"
+      "0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0\n0.1,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0\n"
+      "0.2,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0\n");
+  const CliRun mixed =
+      modelid("predict --robot tx40 --params " + quoted(dir / "truth.json") + " --data " +
+              quoted(with_tau) + " --data " + quoted(dir / "no_tau.csv"));
+  EXPECT_EQ(mixed.exit_code, 1);
+  EXPECT_NE(mixed.err.find((dir / "no_tau.csv").string() + ": error: no torque or current "
+                                                           "columns"),
             std::string::npos)
-      << no_tau.err;
+      << mixed.err;
   const CliRun nan =
       modelid("predict --robot kr150 --params " + quoted_source("robots/data/kr150/true.json") +
               " --data " + quoted_source("tests/bad_inputs/data/nan_value.csv"));
