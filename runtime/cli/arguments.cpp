@@ -84,4 +84,10 @@ void write_file(const std::string& path, const std::string& text) {
   }
 }
 
+void reject_positional(const Arguments& args) {
+  if (args.positional.empty()) return;
+  throw UsageError{"unexpected argument '" + args.positional.front() + "' for " + args.command +
+                   " (each data file needs its own --data)"};
+}
+
 }  // namespace modelgen::internal

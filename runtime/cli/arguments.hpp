@@ -36,6 +36,10 @@ struct Arguments {
 /// Parses argv[2..argc) for the command argv[1]: anything starting with '-' must be one of
 /// `allowed`, and a kOnce or kRepeated option consumes the next argument as its value.
 /// Throws UsageError for an unknown option, a missing value or a kOnce/kFlag option given twice.
+/// Throws UsageError naming the first positional argument, for commands that take options
+/// only (a data file given without --data would otherwise be ignored).
+void reject_positional(const Arguments& args);
+
 Arguments parse_arguments(int argc, char** argv, const std::map<std::string, OptionKind>& allowed);
 
 /// A finite number in the whole of `text` (from_chars syntax); UsageError naming `option`

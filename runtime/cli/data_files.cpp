@@ -61,6 +61,11 @@ PreparationOptions preparation_options(const Arguments& args) {
                        (options.periodic ? "--periodic" : "--raw")};
     }
   }
+  if (options.periodic && args.has("--decimate")) {
+    throw UsageError{
+        "--decimate does not go with --periodic: the averaged period is already "
+        "noise-reduced and its Fourier series smooth"};
+  }
   if (args.has("--period")) options.period = positive(args, "--period");
   if (args.has("--harmonics")) options.harmonics = count(args, "--harmonics");
   if (args.has("--bandwidth")) options.bandwidth_hz = positive(args, "--bandwidth");

@@ -39,6 +39,9 @@ constexpr double kPoorlyIdentifiedPercent = 10.0;
 // Gautier & Briot, section on essential parameters: r_sigma "ideally chosen between 10 and 30",
 // fixed to 20 for all their identifications.
 constexpr double kDefaultRSigma = 20.0;
+// Above this condition number of the (weighted) W, a fit gets a warning: its estimates move by
+// that factor times the relative noise.
+constexpr double kIllConditioned = 1e8;
 
 const char* method_name(Method method) {
   switch (method) {
@@ -144,6 +147,7 @@ void print_essential(const EssentialEstimate& essential, std::size_t num_base) {
 }  // namespace
 
 int run_fit(const Arguments& args) {
+  reject_positional(args);
   const ModelSource source = load_model_source(args.one("--robot"));
   const IdentificationModel& model = *source.model;
   if (!args.has("--data")) throw UsageError{"fit needs at least one --data file"};
@@ -188,6 +192,14 @@ int run_fit(const Arguments& args) {
   }
   std::cout << "  relative error norm of the torques " << fixed(id.torque_rel_error_norm, 0, 4)
             << ", condition number " << fixed(id.fit.condition_number, 0, 4) << "\n";
+  // A fit can be full rank and still useless: say so rather than exit quietly.
+  if (id.fit.condition_number > kIllConditioned || !(id.torque_rel_error_norm < 1)) {
+    std::cerr << "modelid: warning: this fit explains the torques poorly (relative error norm "
+              << fixed(id.torque_rel_error_norm, 0, 3) << ", condition number "
+              << fixed(id.fit.condition_number, 0, 3)
+              << "): the data excite some parameters too little; more or richer experiments "
+                 "help (the PIM needs a block-triangular set, Gautier & Briot section IV)\n";
+  }
   std::cout << "  rms torque error per axis (rms torque):";
   for (Eigen::Index j = 0; j < id.rms_error.size(); ++j) {
     std::cout << " " << fixed(id.rms_error[j], 0, 3) << " (" << fixed(id.rms_torque[j], 0, 3)

@@ -49,6 +49,7 @@ void print_errors(const std::vector<Trajectory>& data, const TorquePrediction& p
 }  // namespace
 
 int run_predict(const Arguments& args) {
+  reject_positional(args);
   const ModelSource source = load_model_source(args.one("--robot"));
   const IdentificationModel& model = *source.model;
   const std::string& params = args.one("--params");

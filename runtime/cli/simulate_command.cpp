@@ -26,6 +26,7 @@ const std::map<std::string, OptionKind> kSimulateOptions = {
     {"--periods", OptionKind::kOnce},    {"-o", OptionKind::kOnce}};
 
 int run_simulate(const Arguments& args) {
+  reject_positional(args);
   const ModelSource source = load_model_source(args.one("--robot"));
   const IdentificationModel& model = *source.model;
   const Eigen::VectorXd beta = read_base_parameters(args.one("--params"), model);

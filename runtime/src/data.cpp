@@ -64,7 +64,8 @@ Trajectory read_trajectory_csv(const std::string& path, int dof, EffortColumns e
       fail(path, line_number, name,
            "missing column '" + name + "' (the header has: " + present + "); expected t, q1..q" +
                std::to_string(dof) + ", tau1..tau" + std::to_string(dof) +
-               " (or motor currents i1..i" + std::to_string(dof) + ") and optionally dq1.., ddq1..");
+               " (or motor currents i1..i" + std::to_string(dof) +
+               ") and optionally dq1.., ddq1..");
     }
     return -1;
   };
@@ -97,8 +98,9 @@ Trajectory read_trajectory_csv(const std::string& path, int dof, EffortColumns e
     if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
     const std::vector<std::string> fields = split(line);
     if (fields.size() != header.size()) {
-      fail(path, line_number, "", "expected " + std::to_string(header.size()) + " fields like the header, found " +
-                                      std::to_string(fields.size()));
+      fail(path, line_number, "",
+           "expected " + std::to_string(header.size()) + " fields like the header, found " +
+               std::to_string(fields.size()));
     }
     std::vector<double> values(fields.size());
     for (std::size_t c = 0; c < fields.size(); ++c) {
@@ -114,8 +116,9 @@ Trajectory read_trajectory_csv(const std::string& path, int dof, EffortColumns e
       values[c] = value;
     }
     if (!rows.empty() && !(values[t_column] > rows.back()[t_column])) {
-      fail(path, line_number, "t", "time does not increase (" + format(values[t_column]) + " after " +
-                                       format(rows.back()[t_column]) + ")");
+      fail(path, line_number, "t",
+           "time does not increase (" + format(values[t_column]) + " after " +
+               format(rows.back()[t_column]) + ")");
     }
     rows.push_back(std::move(values));
   }
@@ -155,8 +158,8 @@ void differentiate(Trajectory& x) {
     for (Eigen::Index j = 0; j < dof; ++j) {
       const double a = x.q(s - 1, j), b = x.q(s, j), c = x.q(s + 1, j);
       // Second-order differences on a non-uniform grid.
-      dq(s - 1, j) = (-h1 / (h0 * (h0 + h1))) * a + ((h1 - h0) / (h0 * h1)) * b +
-                     (h0 / (h1 * (h0 + h1))) * c;
+      dq(s - 1, j) =
+          (-h1 / (h0 * (h0 + h1))) * a + ((h1 - h0) / (h0 * h1)) * b + (h0 / (h1 * (h0 + h1))) * c;
       ddq(s - 1, j) = 2.0 * (a / (h0 * (h0 + h1)) - b / (h0 * h1) + c / (h1 * (h0 + h1)));
     }
   }

@@ -12,15 +12,14 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
-#include <exception>
 #include <limits>
 #include <sstream>
-#include <system_error>
-#include <thread>
 #include <utility>
 
 #include <Eigen/QR>
 #include <Eigen/SVD>
+
+#include "runtime/src/two_parts.hpp"
 
 namespace modelgen {
 
@@ -66,6 +65,11 @@ class Reducer {
 
   int params() const { return params_; }
   int groups() const { return static_cast<int>(groups_.size()); }
+  // How messages name group g: its label when the caller gave labels, else "group g".
+  void set_labels(std::vector<std::string> labels) { labels_ = std::move(labels); }
+  std::string label(std::size_t g) const {
+    return g < labels_.size() ? labels_[g] : "group " + std::to_string(g);
+  }
   const Group& group(int g) const { return groups_[static_cast<std::size_t>(g)]; }
   Eigen::Index rows() const {
     Eigen::Index total = 0;
@@ -263,6 +267,7 @@ class Reducer {
 
   int params_;
   std::vector<Group> groups_;
+  std::vector<std::string> labels_;
   std::vector<std::uint64_t> bits_;  // scratch of add_new_columns()
   std::vector<double> row_max_;      // scratch of add_new_columns()
   std::vector<double> largest_;      // scratch of append()
@@ -311,8 +316,8 @@ LeastSquaresResult Reducer::solve(const std::vector<int>& kept,
   }
   const int bad = first_non_finite();
   if (bad >= 0) {
-    throw EstimationError("W or Y holds NaN or infinite values (in group " + std::to_string(bad) +
-                          ")");
+    throw EstimationError("W or Y holds NaN or infinite values (in " +
+                          label(static_cast<std::size_t>(bad)) + ")");
   }
   // slot[k]: where column k of W goes in the fit (-1: left out); the right-hand side goes last.
   std::vector<Eigen::Index> slot(static_cast<std::size_t>(params_) + 1, -1);
@@ -329,7 +334,7 @@ LeastSquaresResult Reducer::solve(const std::vector<int>& kept,
     for (std::size_t g = 0; g < groups_.size(); ++g) {
       const Group& group = groups_[g];
       if (group.rows == 0) {
-        throw EstimationError("group " + std::to_string(g) + " has no equations");
+        throw EstimationError(label(g) + " has no equations");
       }
       const Eigen::Index w = group.width();
       std::vector<Eigen::Index> seen;  // positions, in the order of the fit's columns
@@ -342,8 +347,8 @@ LeastSquaresResult Reducer::solve(const std::vector<int>& kept,
       });
       const Eigen::Index c = static_cast<Eigen::Index>(seen.size());
       if (group.rows <= c) {
-        throw EstimationError("group " + std::to_string(g) + " has " + std::to_string(group.rows) +
-                              " equations for " + std::to_string(c) +
+        throw EstimationError(label(g) + " has " + std::to_string(group.rows) + " equations for " +
+                              std::to_string(c) +
                               " parameters: too few to estimate its error level");
       }
       const auto R = group.S.topRows(w);
@@ -395,8 +400,9 @@ LeastSquaresResult Reducer::solve(const std::vector<int>& kept,
     if (why.empty()) {
       // Dependent only at the scale of the whole matrix (e.g. WLS weights of very different
       // sizes): name the columns the pivoting QR left last, those it could not resolve.
-      why = " too weakly determined next to the others (the data or the weights make them "
-            "negligible):";
+      why =
+          " too weakly determined next to the others (the data or the weights make them "
+          "negligible):";
       const auto& order = qr.colsPermutation().indices();
       for (Eigen::Index i = qr.rank(); i < b; ++i) {
         why += " " + names[static_cast<std::size_t>(order[i])];
@@ -448,38 +454,6 @@ LeastSquaresResult Reducer::solve(const std::vector<int>& kept,
       y_squares > 0 ? std::sqrt(residual_squares / y_squares) : std::sqrt(residual_squares);
   if (weighted) result.group_std_dev = sigma;
   return result;
-}
-
-// Runs part(0) here and part(1) in a second thread when `parallel`, else both here in order;
-// the work is split the same way either way, so the results do not depend on it. Rethrows the
-// first exception once both have finished.
-template <class Part>
-void run_two_parts(bool parallel, const Part& part) {
-  std::exception_ptr error[2];
-  const auto guarded = [&](int i) {
-    try {
-      part(i);
-    } catch (...) {
-      error[i] = std::current_exception();
-    }
-  };
-  std::thread helper;
-  if (parallel) {
-    try {
-      helper = std::thread(guarded, 1);
-    } catch (const std::system_error&) {
-      parallel = false;  // no thread to be had: the same work, in order
-    }
-  }
-  guarded(0);
-  if (parallel) {
-    helper.join();
-  } else {
-    guarded(1);
-  }
-  for (const std::exception_ptr& e : error) {
-    if (e) std::rethrow_exception(e);
-  }
 }
 
 // Where W or y holds its first non-finite value, for the message.
@@ -545,32 +519,35 @@ Reducer reduce_matrix(const Eigen::MatrixXd& W, const Eigen::VectorXd& y,
   const int b = static_cast<int>(W.cols());
   Reducer parts[2] = {Reducer(b, groups), Reducer(b, groups)};
   const Eigen::Index half = W.rows() / 2;
-  run_two_parts(W.rows() >= kParallelRows, [&](int part) {
-    const Eigen::Index begin = part == 0 ? 0 : half, end = part == 0 ? half : W.rows();
-    Reducer& reducer = parts[part];
-    // Blocks of consecutive rows copied row-major (one read of W from memory, contiguous rows
-    // for the reducer's vectorized pass), then handed over group by group.
-    using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
-    RowMajor block(std::min(kBlockRows, end - begin), W.cols());
-    std::vector<std::vector<Eigen::Index>> members(static_cast<std::size_t>(groups));
-    for (Eigen::Index start = begin; start < end; start += kBlockRows) {
-      const Eigen::Index count = std::min(end, start + kBlockRows) - start;
-      block.topRows(count) = W.middleRows(start, count);
-      for (auto& m : members) m.clear();
-      for (Eigen::Index r = start; r < start + count; ++r) {
-        const int g = group.empty() ? 0 : group[static_cast<std::size_t>(r)];
-        members[static_cast<std::size_t>(g)].push_back(r);
-      }
-      for (int g = 0; g < groups; ++g) {
-        const std::vector<Eigen::Index>& m = members[static_cast<std::size_t>(g)];
-        if (m.empty()) continue;
-        reducer.append<Reducer::kRows>(
-            g, static_cast<Eigen::Index>(m.size()),
-            [&](Eigen::Index i) { return &block(m[static_cast<std::size_t>(i)] - start, 0); },
-            [&](Eigen::Index i) { return y[m[static_cast<std::size_t>(i)]]; });
-      }
-    }
-  });
+  internal::run_two_parts(
+      W.rows() >= kParallelRows,
+      [&](int part, bool) {
+        const Eigen::Index begin = part == 0 ? 0 : half, end = part == 0 ? half : W.rows();
+        Reducer& reducer = parts[part];
+        // Blocks of consecutive rows copied row-major (one read of W from memory, contiguous rows
+        // for the reducer's vectorized pass), then handed over group by group.
+        using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+        RowMajor block(std::min(kBlockRows, end - begin), W.cols());
+        std::vector<std::vector<Eigen::Index>> members(static_cast<std::size_t>(groups));
+        for (Eigen::Index start = begin; start < end; start += kBlockRows) {
+          const Eigen::Index count = std::min(end, start + kBlockRows) - start;
+          block.topRows(count) = W.middleRows(start, count);
+          for (auto& m : members) m.clear();
+          for (Eigen::Index r = start; r < start + count; ++r) {
+            const int g = group.empty() ? 0 : group[static_cast<std::size_t>(r)];
+            members[static_cast<std::size_t>(g)].push_back(r);
+          }
+          for (int g = 0; g < groups; ++g) {
+            const std::vector<Eigen::Index>& m = members[static_cast<std::size_t>(g)];
+            if (m.empty()) continue;
+            reducer.append<Reducer::kRows>(
+                g, static_cast<Eigen::Index>(m.size()),
+                [&](Eigen::Index i) { return &block(m[static_cast<std::size_t>(i)] - start, 0); },
+                [&](Eigen::Index i) { return y[m[static_cast<std::size_t>(i)]]; });
+          }
+        }
+      },
+      [] {});
   parts[0].merge(std::move(parts[1]));
   if (parts[0].first_non_finite() >= 0) {
     throw EstimationError("W or Y holds NaN or infinite values: " +
@@ -589,6 +566,10 @@ std::vector<int> all_columns(int b) {
 template <class Fit>
 EssentialParameters eliminate(int params, const Fit& fit, const std::vector<std::string>& names,
                               double r_sigma) {
+  if (!(r_sigma > 1) || !std::isfinite(r_sigma)) {
+    throw EstimationError("r_sigma must be a finite ratio above 1 (Gautier & Briot use 20), not " +
+                          std::to_string(r_sigma));
+  }
   EssentialParameters out;
   out.kept = all_columns(params);
   while (true) {
@@ -598,7 +579,8 @@ EssentialParameters eliminate(int params, const Fit& fit, const std::vector<std:
     Eigen::Index worst = 0;
     const double largest = out.fit.rel_std_dev.maxCoeff(&worst);
     const double smallest = out.fit.rel_std_dev.minCoeff();
-    if (out.kept.size() == 1 || largest < r_sigma * smallest) return out;
+    // <= so that exact data (every %std 0) keep every parameter: nothing is less certain.
+    if (out.kept.size() == 1 || largest <= r_sigma * smallest) return out;
     out.eliminated.push_back(out.kept[static_cast<std::size_t>(worst)]);
     out.kept.erase(out.kept.begin() + worst);
   }
@@ -624,6 +606,10 @@ LeastSquaresAccumulator::~LeastSquaresAccumulator() = default;
 LeastSquaresAccumulator::LeastSquaresAccumulator(LeastSquaresAccumulator&&) noexcept = default;
 LeastSquaresAccumulator& LeastSquaresAccumulator::operator=(LeastSquaresAccumulator&&) noexcept =
     default;
+
+void LeastSquaresAccumulator::name_groups(std::vector<std::string> labels) {
+  impl_->reducer.set_labels(std::move(labels));
+}
 
 int LeastSquaresAccumulator::params() const { return impl_->reducer.params(); }
 int LeastSquaresAccumulator::groups() const { return impl_->reducer.groups(); }

@@ -29,7 +29,8 @@ Trajectory sample(const FourierTrajectory& trajectory, double sample_time, doubl
   const Eigen::Index joints = trajectory.q0.size();
   if (trajectory.a.rows() != joints || trajectory.b.rows() != joints ||
       trajectory.a.cols() != trajectory.b.cols()) {
-    throw std::invalid_argument("Fourier coefficients a and b need one row per joint and equal lengths");
+    throw std::invalid_argument(
+        "Fourier coefficients a and b need one row per joint and equal lengths");
   }
   if (!(trajectory.period > 0)) throw std::invalid_argument("the period must be positive");
   if (!(sample_time > 0) || !(duration > sample_time)) {

@@ -7,15 +7,13 @@
 
 #include "modelgen/identify.hpp"
 
-#include "modelgen/preprocess.hpp"
-
 #include <algorithm>
 #include <array>
 #include <atomic>
 #include <cmath>
-#include <exception>
-#include <system_error>
-#include <thread>
+
+#include "modelgen/preprocess.hpp"
+#include "runtime/src/two_parts.hpp"
 
 namespace modelgen {
 
@@ -88,39 +86,6 @@ class Progress {
   std::atomic<bool> stop_{false};
   int last_percent_ = -1;
 };
-
-// Runs part(0, true) here and part(1, false) in a second thread when `parallel`, else both here
-// in order (both reporting); the split is the same either way, so are the results. If one part
-// throws, the other is told to stop; the first exception is rethrown once both are done.
-template <class Part>
-void run_two_parts(bool parallel, Progress& progress, const Part& part) {
-  std::exception_ptr error[2];
-  const auto guarded = [&](int i, bool caller) {
-    try {
-      part(i, caller);
-    } catch (...) {
-      error[i] = std::current_exception();
-      progress.stop();
-    }
-  };
-  std::thread helper;
-  if (parallel) {
-    try {
-      helper = std::thread(guarded, 1, false);
-    } catch (const std::system_error&) {
-      parallel = false;  // no thread to be had: the same work, in order
-    }
-  }
-  guarded(0, true);
-  if (parallel) {
-    helper.join();
-  } else if (!error[0]) {
-    guarded(1, true);
-  }
-  for (const std::exception_ptr& e : error) {
-    if (e) std::rethrow_exception(e);
-  }
-}
 
 // q, dq, ddq of sample s as the model's functions take them.
 struct State {
@@ -215,7 +180,6 @@ DecimatedExperiment build_decimated(const IdentificationModel& model, const Traj
   State state(n);
   std::vector<double> rows(static_cast<std::size_t>(n) * nb);
   for (Eigen::Index s = 0; s < m; ++s) {
-    if (progress.stopped()) return {};
     state.load(x, s);
     model.regressor(state.q(), state.dq(), state.ddq(), rows.data());
     const Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>
@@ -229,6 +193,7 @@ DecimatedExperiment build_decimated(const IdentificationModel& model, const Traj
     }
     if ((s + 1) % kChunkSamples == 0) progress.advance(kChunkSamples, 0.0, kBuilt, true);
   }
+  progress.advance(m % kChunkSamples, 0.0, kBuilt, true);
   DecimatedExperiment out{e, Eigen::MatrixXd(md * n, nb), Eigen::VectorXd(md * n)};
   for (int j = 0; j < n; ++j) {
     decimate(joint_rows(W.data(), W.rows(), nb, n, j), factor,
@@ -365,10 +330,22 @@ Identification identify(const IdentificationModel& model, const std::vector<Traj
 
   std::array<LeastSquaresAccumulator, 2> equations = {LeastSquaresAccumulator(nb, groups),
                                                       LeastSquaresAccumulator(nb, groups)};
-  run_two_parts(parallel, progress, [&](int part, bool caller) {
-    build_equations(model, data, parts[part], power, equations[part], progress, caller);
-  });
+  internal::run_two_parts(
+      parallel,
+      [&](int part, bool caller) {
+        build_equations(model, data, parts[part], power, equations[part], progress, caller);
+      },
+      [&progress] { progress.stop(); });
   equations[0].merge(std::move(equations[1]));
+  std::vector<std::string> labels;
+  for (const Trajectory& x : data) {
+    if (power) {
+      labels.push_back(x.source + " (power equations)");
+    } else {
+      for (int j = 0; j < n; ++j) labels.push_back(x.source + ", joint " + std::to_string(j + 1));
+    }
+  }
+  equations[0].name_groups(std::move(labels));
   // Decimated experiments, one at a time: each needs its whole W before filtering.
   std::vector<DecimatedExperiment> decimated;
   Eigen::Index used_samples = 0;
@@ -379,23 +356,39 @@ Identification identify(const IdentificationModel& model, const std::vector<Traj
     }
     decimated.push_back(
         build_decimated(model, data[e], e, decimation[e], power, equations[0], progress));
-    if (progress.stopped()) break;
     used_samples += decimated.back().W.rows() / n;
   }
 
   Identification out;
   out.names = model.base_param_names();
   out.samples = used_samples;
-  out.fit =
-      method == Method::kOls ? equations[0].fit_ols(out.names) : equations[0].fit_wls(out.names);
+  try {
+    out.fit =
+        method == Method::kOls ? equations[0].fit_ols(out.names) : equations[0].fit_wls(out.names);
+  } catch (const EstimationError& e) {
+    // Too few equations or an unexcited column may come from the decimation: say so.
+    std::string hint;
+    for (std::size_t k = 0; k < data.size(); ++k) {
+      if (decimation[k] > 1) {
+        hint += (hint.empty() ? " (decimated: " : ", ") + data[k].source + " by " +
+                std::to_string(decimation[k]);
+      }
+    }
+    if (hint.empty()) throw;
+    throw EstimationError(std::string(e.what()) + hint +
+                          "; a smaller decimation factor keeps more equations)");
+  }
   Eigen::VectorXd error_squares = Eigen::VectorXd::Zero(n), torque_squares = error_squares;
   if (power) {
     progress.start_pass();
     std::array<Eigen::VectorXd, 2> errors, torques;
-    run_two_parts(parallel, progress, [&](int part, bool caller) {
-      torque_errors(model, data, parts[part], out.fit.value, errors[part], torques[part], progress,
-                    caller);
-    });
+    internal::run_two_parts(
+        parallel,
+        [&](int part, bool caller) {
+          torque_errors(model, data, parts[part], out.fit.value, errors[part], torques[part],
+                        progress, caller);
+        },
+        [&progress] { progress.stop(); });
     error_squares = errors[0] + errors[1];
     torque_squares = torques[0] + torques[1];
     // Decimated experiments: their decimated torques against their decimated IDIM rows.

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <stdexcept>
 #include <vector>
 
 namespace modelgen {
@@ -20,11 +21,15 @@ std::string number(double value, int digits = 4) {
   return text;
 }
 
-double median_step(const Eigen::VectorXd& t) {
+// The nominal sample time of jittered time stamps: their mean step, unless samples are missing
+// (gaps make the mean more than 1% longer than the median step), then the median step.
+double nominal_step(const Eigen::VectorXd& t) {
   std::vector<double> steps(t.size() - 1);
   for (Eigen::Index k = 0; k + 1 < t.size(); ++k) steps[k] = t[k + 1] - t[k];
   std::nth_element(steps.begin(), steps.begin() + steps.size() / 2, steps.end());
-  return steps[steps.size() / 2];
+  const double median = steps[steps.size() / 2];
+  const double mean = (t[t.size() - 1] - t[0]) / static_cast<double>(t.size() - 1);
+  return std::abs(mean - median) <= 0.01 * median ? mean : median;
 }
 
 // Same test as uniform_sample_time: every sample within 1% of dt of the uniform grid.
@@ -84,9 +89,12 @@ PreparedExperiment prepare_experiment(Trajectory raw, const Transmission& drive,
   PreparedExperiment out;
   to_joint_side(raw, drive, options.side);
   std::string resampled;
-  const bool needs_filtering = options.periodic || (!raw.has_velocity && !options.raw);
-  if (needs_filtering && raw.t.size() >= 3 && !is_uniform(raw.t)) {
-    const double dt = median_step(raw.t);
+  // Every digital filter here (averaging per period, position filter, decimation) assumes a
+  // uniform sample time.
+  const bool needs_uniform =
+      options.periodic || (!raw.has_velocity && !options.raw) || options.decimation.value_or(1) > 1;
+  if (needs_uniform && raw.t.size() >= 3 && !is_uniform(raw.t)) {
+    const double dt = nominal_step(raw.t);
     raw = resample_uniform(raw, dt);
     resampled = "resampled on a uniform grid of " + number(dt * 1e3) +
                 " ms (linear interpolation: the time stamps are not uniform); ";
@@ -95,7 +103,15 @@ PreparedExperiment prepare_experiment(Trajectory raw, const Transmission& drive,
   if (options.periodic) {
     // Swevers 2002, section 4: average whole periods, noise variance of the averages, DFT
     // re-estimation of eq. 15 and analytic eq. 16-17.
-    const double period = options.period ? *options.period : detect_period(raw);
+    double period = 0;
+    if (options.period) {
+      period = *options.period;
+    } else {
+      // An excitation played on the controller's clock has a whole number of samples per
+      // period: the detected period is rounded to it (detect_period's advice).
+      const double dt = uniform_sample_time(raw);
+      period = std::round(detect_period(raw) / dt) * dt;
+    }
     PeriodicAverage average = average_periods(raw, period);
     const int harmonics = options.harmonics ? *options.harmonics : select_harmonics(average);
     const FourierTrajectory fourier = fit_fourier(average.averaged, average.period, harmonics);
@@ -120,19 +136,39 @@ PreparedExperiment prepare_experiment(Trajectory raw, const Transmission& drive,
     return out;
   }
 
+  const std::string decimated =
+      options.decimation.value_or(1) > 1
+          ? ", parallel decimation by " + std::to_string(*options.decimation)
+          : "";
   if (raw.has_velocity) {
     out.decimation = options.decimation.value_or(1);
-    out.summary = resampled + "velocities and accelerations as given in the file";
+    out.summary = resampled + "velocities and accelerations as given in the file" + decimated;
+    if (options.bandwidth_hz || options.cutoff_hz) {
+      out.warning = raw.source +
+                    ": warning: the file gives dq and ddq, so no position filter is applied: "
+                    "--bandwidth and --cutoff are not used for it";
+    }
   } else if (options.raw) {
     differentiate(raw);
     out.decimation = options.decimation.value_or(1);
-    out.summary = resampled + "central differences of the positions, no filter";
+    out.summary = resampled + "central differences of the positions, no filter" + decimated;
   } else {
     // Gautier & Briot, section IV.A: position filter well above the dynamics, central
     // differences, then the parallel decimation of Y and W (eq. 13-14) in identify().
     const double dt = uniform_sample_time(raw);
-    const double bandwidth = options.bandwidth_hz ? *options.bandwidth_hz : estimate_bandwidth(raw);
-    FilterPlan plan = plan_filtering(1.0 / dt, bandwidth);
+    // The bandwidth is only needed for what the user did not set.
+    const bool need_bandwidth = !options.cutoff_hz || !options.decimation;
+    const double bandwidth = options.bandwidth_hz ? *options.bandwidth_hz
+                             : need_bandwidth     ? estimate_bandwidth(raw)
+                                                  : 0.0;
+    FilterPlan plan;
+    if (need_bandwidth) {
+      try {
+        plan = plan_filtering(1.0 / dt, bandwidth);
+      } catch (const std::invalid_argument& e) {
+        throw DataError(raw.source + ": error: " + e.what());
+      }
+    }
     if (options.cutoff_hz) plan.position_cutoff_hz = *options.cutoff_hz;
     if (options.decimation) plan.decimation_factor = *options.decimation;
     filter_positions(raw, plan.position_cutoff_hz, plan.position_order);
@@ -153,9 +189,11 @@ PreparedExperiment prepare_experiment(Trajectory raw, const Transmission& drive,
       *m = m->middleRows(edge, kept).eval();
     }
     out.decimation = plan.decimation_factor;
-    out.summary = resampled + "sampled at " + number(1.0 / dt) + " Hz, excitation bandwidth " +
-                  number(bandwidth, 3) + " Hz" +
-                  (options.bandwidth_hz ? " (given)" : " (estimated)") +
+    const std::string band =
+        options.bandwidth_hz ? ", excitation bandwidth " + number(bandwidth, 3) + " Hz (given)"
+        : need_bandwidth     ? ", excitation bandwidth " + number(bandwidth, 3) + " Hz (estimated)"
+                             : "";
+    out.summary = resampled + "sampled at " + number(1.0 / dt) + " Hz" + band +
                   "; positions low-passed at " + number(plan.position_cutoff_hz, 3) +
                   " Hz (zero phase), central differences, " + number(edge * dt, 3) +
                   " s dropped at each end (filter edges), parallel decimation by " +

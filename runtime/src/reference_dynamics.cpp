@@ -74,7 +74,7 @@ struct MotorTerms {
 
 struct Unpacked {
   std::vector<BodyInertia> inertia;
-  std::vector<DriveTerms> drive;  // per dof
+  std::vector<DriveTerms> drive;   // per dof
   std::vector<MotorTerms> motors;  // per tree.coupled_motors entry
 };
 
@@ -96,27 +96,72 @@ Unpacked unpack(const RigidBodyTree& tree, const Eigen::VectorXd& p) {
     const int dof = tree.bodies[param.body].dof_index;
     const double v = p[static_cast<Eigen::Index>(k)];
     switch (param.kind) {
-      case ParamKind::kXX: b.J(0, 0) += v; break;
-      case ParamKind::kYY: b.J(1, 1) += v; break;
-      case ParamKind::kZZ: b.J(2, 2) += v; break;
-      case ParamKind::kXY: b.J(0, 1) += v; b.J(1, 0) += v; break;
-      case ParamKind::kXZ: b.J(0, 2) += v; b.J(2, 0) += v; break;
-      case ParamKind::kYZ: b.J(1, 2) += v; b.J(2, 1) += v; break;
-      case ParamKind::kMX: b.MS.x() += v; break;
-      case ParamKind::kMY: b.MS.y() += v; break;
-      case ParamKind::kMZ: b.MS.z() += v; break;
-      case ParamKind::kM: b.M += v; break;
-      case ParamKind::kIa: u.drive[dof].Ia += v; break;
-      case ParamKind::kFv: u.drive[dof].Fv += v; break;
-      case ParamKind::kFc: u.drive[dof].Fc += v; break;
-      case ParamKind::kOff: u.drive[dof].Off += v; break;
-      case ParamKind::kFvPos: u.drive[dof].Fvp += v; break;
-      case ParamKind::kFvNeg: u.drive[dof].Fvn += v; break;
-      case ParamKind::kFcPos: u.drive[dof].Fcp += v; break;
-      case ParamKind::kFcNeg: u.drive[dof].Fcn += v; break;
-      case ParamKind::kIam: motor_terms(param).Iam += v; break;
-      case ParamKind::kFvm: motor_terms(param).Fvm += v; break;
-      case ParamKind::kFcm: motor_terms(param).Fcm += v; break;
+      case ParamKind::kXX:
+        b.J(0, 0) += v;
+        break;
+      case ParamKind::kYY:
+        b.J(1, 1) += v;
+        break;
+      case ParamKind::kZZ:
+        b.J(2, 2) += v;
+        break;
+      case ParamKind::kXY:
+        b.J(0, 1) += v;
+        b.J(1, 0) += v;
+        break;
+      case ParamKind::kXZ:
+        b.J(0, 2) += v;
+        b.J(2, 0) += v;
+        break;
+      case ParamKind::kYZ:
+        b.J(1, 2) += v;
+        b.J(2, 1) += v;
+        break;
+      case ParamKind::kMX:
+        b.MS.x() += v;
+        break;
+      case ParamKind::kMY:
+        b.MS.y() += v;
+        break;
+      case ParamKind::kMZ:
+        b.MS.z() += v;
+        break;
+      case ParamKind::kM:
+        b.M += v;
+        break;
+      case ParamKind::kIa:
+        u.drive[dof].Ia += v;
+        break;
+      case ParamKind::kFv:
+        u.drive[dof].Fv += v;
+        break;
+      case ParamKind::kFc:
+        u.drive[dof].Fc += v;
+        break;
+      case ParamKind::kOff:
+        u.drive[dof].Off += v;
+        break;
+      case ParamKind::kFvPos:
+        u.drive[dof].Fvp += v;
+        break;
+      case ParamKind::kFvNeg:
+        u.drive[dof].Fvn += v;
+        break;
+      case ParamKind::kFcPos:
+        u.drive[dof].Fcp += v;
+        break;
+      case ParamKind::kFcNeg:
+        u.drive[dof].Fcn += v;
+        break;
+      case ParamKind::kIam:
+        motor_terms(param).Iam += v;
+        break;
+      case ParamKind::kFvm:
+        motor_terms(param).Fvm += v;
+        break;
+      case ParamKind::kFcm:
+        motor_terms(param).Fcm += v;
+        break;
     }
   }
   return u;
@@ -226,7 +271,8 @@ Eigen::VectorXd ReferenceDynamics::inverse_dynamics(const Eigen::VectorXd& q,
   // reach every joint they drive through c (Gautier & Briot eq. 26).
   for (const MotorTerms& terms : par.motors) {
     const Eigen::Map<const Eigen::VectorXd> c(terms.motor->coupling.data(), dof());
-    const double torque = terms.Iam * c.dot(ddq) + terms.Fvm * c.dot(dq) + terms.Fcm * sign(c.dot(dq));
+    const double torque =
+        terms.Iam * c.dot(ddq) + terms.Fvm * c.dot(dq) + terms.Fcm * sign(c.dot(dq));
     tau += torque * c;
   }
   return tau;

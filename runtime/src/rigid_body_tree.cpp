@@ -12,27 +12,48 @@ namespace modelgen {
 
 const char* param_kind_stem(ParamKind kind) {
   switch (kind) {
-    case ParamKind::kXX: return "XX";
-    case ParamKind::kXY: return "XY";
-    case ParamKind::kXZ: return "XZ";
-    case ParamKind::kYY: return "YY";
-    case ParamKind::kYZ: return "YZ";
-    case ParamKind::kZZ: return "ZZ";
-    case ParamKind::kMX: return "MX";
-    case ParamKind::kMY: return "MY";
-    case ParamKind::kMZ: return "MZ";
-    case ParamKind::kM: return "M";
-    case ParamKind::kIa: return "Ia";
-    case ParamKind::kFv: return "Fv";
-    case ParamKind::kFc: return "Fc";
-    case ParamKind::kOff: return "OFF";
-    case ParamKind::kFvPos: return "Fvp";
-    case ParamKind::kFvNeg: return "Fvn";
-    case ParamKind::kFcPos: return "Fcp";
-    case ParamKind::kFcNeg: return "Fcn";
-    case ParamKind::kIam: return "Iam";
-    case ParamKind::kFvm: return "Fvm";
-    case ParamKind::kFcm: return "Fcm";
+    case ParamKind::kXX:
+      return "XX";
+    case ParamKind::kXY:
+      return "XY";
+    case ParamKind::kXZ:
+      return "XZ";
+    case ParamKind::kYY:
+      return "YY";
+    case ParamKind::kYZ:
+      return "YZ";
+    case ParamKind::kZZ:
+      return "ZZ";
+    case ParamKind::kMX:
+      return "MX";
+    case ParamKind::kMY:
+      return "MY";
+    case ParamKind::kMZ:
+      return "MZ";
+    case ParamKind::kM:
+      return "M";
+    case ParamKind::kIa:
+      return "Ia";
+    case ParamKind::kFv:
+      return "Fv";
+    case ParamKind::kFc:
+      return "Fc";
+    case ParamKind::kOff:
+      return "OFF";
+    case ParamKind::kFvPos:
+      return "Fvp";
+    case ParamKind::kFvNeg:
+      return "Fvn";
+    case ParamKind::kFcPos:
+      return "Fcp";
+    case ParamKind::kFcNeg:
+      return "Fcn";
+    case ParamKind::kIam:
+      return "Iam";
+    case ParamKind::kFvm:
+      return "Fvm";
+    case ParamKind::kFcm:
+      return "Fcm";
   }
   return "?";
 }
@@ -112,11 +133,13 @@ void validate(const RigidBodyTree& tree) {
   }
   std::set<int> motors;
   for (const CoupledMotor& motor : tree.coupled_motors) {
-    if (motor.dof_index < 0 || motor.dof_index >= tree.dof || !motors.insert(motor.dof_index).second) {
+    if (motor.dof_index < 0 || motor.dof_index >= tree.dof ||
+        !motors.insert(motor.dof_index).second) {
       throw std::invalid_argument("coupled motor of dof " + std::to_string(motor.dof_index) +
                                   " is out of range or given twice");
     }
-    if (static_cast<int>(motor.coupling.size()) != tree.dof || motor.coupling[motor.dof_index] != 1.0) {
+    if (static_cast<int>(motor.coupling.size()) != tree.dof ||
+        motor.coupling[motor.dof_index] != 1.0) {
       throw std::invalid_argument("coupled motor of dof " + std::to_string(motor.dof_index) +
                                   ": coupling needs one entry per dof and 1 on its own joint");
     }

@@ -24,8 +24,16 @@ void to_joint_side(Trajectory& x, const Transmission& drive, Side positions) {
   }
   const Eigen::MatrixXd& K = drive.motor_from_joint;
   if (positions == Side::kMotor) {
+    const Eigen::FullPivLU<Eigen::MatrixXd> lu(K);
+    if (!lu.isInvertible()) {
+      throw DataError(x.source +
+                      ": error: the drive chain's motor_from_joint matrix is singular "
+                      "(rank " +
+                      std::to_string(lu.rank()) +
+                      "): motor positions do not determine the joint positions");
+    }
     // Rows are samples: q^T = q_motor^T K^-T.
-    const Eigen::MatrixXd joint_from_motor_T = K.inverse().transpose();
+    const Eigen::MatrixXd joint_from_motor_T = lu.inverse().transpose();
     x.q = (x.q * joint_from_motor_T).rowwise() + drive.joint_offset.transpose();
     x.dq = x.dq * joint_from_motor_T;
     x.ddq = x.ddq * joint_from_motor_T;

@@ -74,6 +74,9 @@ class LeastSquaresAccumulator {
 
   int params() const;
   int groups() const;
+  /// Names for the groups in error messages (e.g. "run1.csv, joint 2"), one per group;
+  /// default "group g".
+  void name_groups(std::vector<std::string> labels);
   /// Equations added to `group` (or to all groups).
   Eigen::Index rows(int group) const;
   Eigen::Index rows() const;
@@ -122,9 +125,10 @@ struct EssentialParameters {
 
 /// Essential parameters (Pham & Gautier, as used by Gautier & Briot): starting from all
 /// columns, repeatedly drop the one with the largest relative standard deviation until the
-/// ratio of the largest to the smallest relative standard deviation is below `r_sigma`.
-/// Fits with WLS when `group` is non-empty, else OLS.
-/// One pass over W, then every elimination step refits from the factors only.
+/// ratio of the largest to the smallest relative standard deviation is at most `r_sigma`
+/// (exact data, every %std 0, keep every parameter). Fits with WLS when `group` is non-empty,
+/// else OLS. One pass over W, then every elimination step refits from the factors only.
+/// Throws EstimationError as fit_ols/fit_wls do, and for r_sigma not finite or not above 1.
 EssentialParameters essential_parameters(const Eigen::MatrixXd& W, const Eigen::VectorXd& y,
                                          const std::vector<int>& group,
                                          const std::vector<std::string>& names,

@@ -36,8 +36,7 @@ class IdentificationModel {
 
   /// Base regressor: q, dq, ddq have dof() entries; W receives dof() x num_base_params()
   /// values, row-major, with tau = W beta (Gautier & Briot eq. 4-6).
-  virtual void regressor(const double* q, const double* dq, const double* ddq,
-                         double* W) const = 0;
+  virtual void regressor(const double* q, const double* dq, const double* ddq, double* W) const = 0;
   /// Power regressor: dh receives num_base_params() values with dq . tau = dh beta (eq. 9-10).
   virtual void power_regressor(const double* q, const double* dq, const double* ddq,
                                double* dh) const = 0;
@@ -96,10 +95,11 @@ class GeneratedModel final : public IdentificationModel {
   GeneratedModel()
       : standard_(Generated::standard_param_names(),
                   Generated::standard_param_names() + Generated::kStandardParams),
-        base_(Generated::base_param_names(), Generated::base_param_names() + Generated::kBaseParams) {
+        base_(Generated::base_param_names(),
+              Generated::base_param_names() + Generated::kBaseParams) {
     constexpr int n = Generated::kDof;
-    drive_.motor_from_joint =
-        Eigen::Map<const Eigen::Matrix<double, n, n, Eigen::RowMajor>>(Generated::motor_from_joint());
+    drive_.motor_from_joint = Eigen::Map<const Eigen::Matrix<double, n, n, Eigen::RowMajor>>(
+        Generated::motor_from_joint());
     drive_.torque_constant = Eigen::Map<const Eigen::VectorXd>(Generated::torque_constant(), n);
     drive_.joint_offset = Eigen::Map<const Eigen::VectorXd>(Generated::joint_offset(), n);
   }

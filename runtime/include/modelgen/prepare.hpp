@@ -41,8 +41,9 @@ struct PreparedExperiment {
 };
 
 /// Prepares one experiment as `options` say (see PreparationOptions). Data whose sampling is
-/// not uniform (time stamps with jitter) are first resampled on a uniform grid at their median
-/// sample time by linear interpolation, and the summary says so.
+/// not uniform (time stamps with jitter) are first resampled on a uniform grid by linear
+/// interpolation (step: the mean step, or the median one when samples are missing, i.e. the
+/// mean is more than 1% longer), and the summary says so.
 /// Throws DataError naming the file for anything the steps reject (no period found, a
 /// cut-off above Nyquist, too few samples, ...).
 PreparedExperiment prepare_experiment(Trajectory raw, const Transmission& drive,

@@ -35,15 +35,28 @@ struct Body {
 /// What a standard parameter is. Inertial ones are about the origin of the body frame, in the
 /// body frame; XY etc. are tensor entries (XY = -integral of x y dm).
 enum class ParamKind {
-  kXX, kXY, kXZ, kYY, kYZ, kZZ,  // inertia tensor, kg m^2
-  kMX, kMY, kMZ,                 // first moments, kg m
-  kM,                            // mass, kg
-  kIa,                           // drive (rotor + gear) inertia on the joint side
-  kFv, kFc,                      // viscous and Coulomb friction
-  kOff,                          // torque offset
-  kFvPos, kFvNeg, kFcPos, kFcNeg, // asymmetric friction (Bona & Curatella eq. 2)
-  kIam, kFvm, kFcm               // rotor inertia and friction of a motor that drives several
-                                 // joints (Gautier & Briot eq. 26), see CoupledMotor
+  kXX,
+  kXY,
+  kXZ,
+  kYY,
+  kYZ,
+  kZZ,  // inertia tensor, kg m^2
+  kMX,
+  kMY,
+  kMZ,  // first moments, kg m
+  kM,   // mass, kg
+  kIa,  // drive (rotor + gear) inertia on the joint side
+  kFv,
+  kFc,   // viscous and Coulomb friction
+  kOff,  // torque offset
+  kFvPos,
+  kFvNeg,
+  kFcPos,
+  kFcNeg,  // asymmetric friction (Bona & Curatella eq. 2)
+  kIam,
+  kFvm,
+  kFcm  // rotor inertia and friction of a motor that drives several
+        // joints (Gautier & Briot eq. 26), see CoupledMotor
 };
 
 struct StandardParam {
@@ -58,8 +71,8 @@ struct StandardParam {
 /// Fcm = ratio Fc_rotor), add tau[l] += coupling[l] (Iam u'' + Fvm u' + Fcm sign(u')) with
 /// u' = sum_l coupling[l] dq[l] (Gautier & Briot eq. 26; Swevers et al. eq. 5-10).
 struct CoupledMotor {
-  int dof_index = -1;             ///< the joint this motor is numbered after
-  std::vector<double> coupling;   ///< one entry per dof
+  int dof_index = -1;            ///< the joint this motor is numbered after
+  std::vector<double> coupling;  ///< one entry per dof
 };
 
 struct RigidBodyTree {

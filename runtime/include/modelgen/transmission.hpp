@@ -31,7 +31,7 @@ enum class Side { kJoint, kMotor };
 ///   tau = K^T (torque_constant .* i), whatever `positions` says (currents are motor
 ///   quantities); with Measured::kTorque and `positions` kMotor, tau = K^T tau_motor.
 /// Sets x.measured to kTorque. Throws DataError naming x.source when a torque constant needed
-/// is not known (zero) or the sizes do not match.
+/// is not positive (0: not given), K is singular, or the sizes do not match.
 void to_joint_side(Trajectory& x, const Transmission& drive, Side positions);
 
 }  // namespace modelgen

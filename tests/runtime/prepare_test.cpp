@@ -1,0 +1,85 @@
+// prepare_experiment's glue: jittered time stamps resampled on a uniform grid (linear
+// interpolation, checked against the signal sampled there), decimate_trajectory keeping rows
+// 0, n_d, 2 n_d, ..., and the summaries naming what was done.
+
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "modelgen/prepare.hpp"
+#include "tests/support/test_support.hpp"
+
+namespace modelgen {
+namespace {
+
+double signal(double t) { return 0.3 * t + std::sin(2.0 * t); }
+
+Trajectory jittered(int samples, double dt, double jitter) {
+  test::Random random(12);
+  Trajectory x;
+  x.source = "jittered.csv";
+  x.t.resize(samples);
+  x.q.resize(samples, 1);
+  x.tau.resize(samples, 1);
+  x.dq = Eigen::MatrixXd::Zero(samples, 1);
+  x.ddq = Eigen::MatrixXd::Zero(samples, 1);
+  for (int s = 0; s < samples; ++s) {
+    x.t[s] = s * dt + (s > 0 && s + 1 < samples ? random.uniform(-jitter, jitter) : 0.0);
+    x.q(s, 0) = signal(x.t[s]);
+    x.tau(s, 0) = 2.0 * signal(x.t[s]);
+  }
+  return x;
+}
+
+TEST(Prepare, ResampledSignalsMatchTheSignalOnTheNewGrid) {
+  const Trajectory x = jittered(2001, 0.001, 0.0003);
+  const Trajectory y = resample_uniform(x, 0.001);
+  ASSERT_EQ(y.t.size(), 2001);
+  for (Eigen::Index s = 0; s < y.t.size(); ++s) {
+    EXPECT_NEAR(y.t[s], 0.001 * s, 1e-12);
+    // Linear interpolation of a smooth signal: error <= max|q''| h^2 / 8 with h <= 1.6 ms.
+    EXPECT_NEAR(y.q(s, 0), signal(y.t[s]), 4.0 * 1.6e-3 * 1.6e-3 / 8 + 1e-12) << s;
+    EXPECT_NEAR(y.tau(s, 0), 2.0 * signal(y.t[s]), 2 * (4.0 * 1.6e-3 * 1.6e-3 / 8) + 1e-12);
+  }
+  EXPECT_THROW(resample_uniform(x, 0.0), DataError);
+}
+
+TEST(Prepare, JitteredStampsAreResampledBeforeFiltering) {
+  Trajectory x = jittered(4001, 0.001, 0.0003);
+  PreparationOptions options;
+  options.bandwidth_hz = 1.0;
+  const PreparedExperiment prepared = prepare_experiment(x, Transmission::identity(1), options);
+  EXPECT_NE(prepared.summary.find("resampled on a uniform grid of 1 ms"), std::string::npos)
+      << prepared.summary;
+  EXPECT_NE(prepared.summary.find("parallel decimation by 200"), std::string::npos)
+      << prepared.summary;
+  // Uniform afterwards: every step 1 ms.
+  for (Eigen::Index s = 1; s < prepared.data.t.size(); ++s) {
+    EXPECT_NEAR(prepared.data.t[s] - prepared.data.t[s - 1], 0.001, 1e-12);
+  }
+  // dq of the filtered, resampled positions is the signal's derivative away from the edges.
+  for (Eigen::Index s = 0; s < prepared.data.t.size(); ++s) {
+    const double t = prepared.data.t[s];
+    EXPECT_NEAR(prepared.data.dq(s, 0), 0.3 + 2.0 * std::cos(2.0 * t), 1e-3) << t;
+  }
+}
+
+TEST(Prepare, DecimatedTrajectoriesKeepEveryNthTime) {
+  Trajectory x = jittered(1000, 0.001, 0.0);
+  x.has_velocity = true;
+  decimate_trajectory(x, 10);
+  ASSERT_EQ(x.t.size(), 100);
+  for (Eigen::Index s = 0; s < 100; ++s) EXPECT_NEAR(x.t[s], 0.01 * s, 1e-12);
+  // A slow signal passes the decimation filter, away from the edges, within the Chebyshev
+  // pass band's ripple (0.05 dB at the band edge; ~5e-5 this close to DC).
+  for (Eigen::Index s = 10; s < 90; ++s) EXPECT_NEAR(x.q(s, 0), signal(x.t[s]), 1e-4);
+  // A fast one (250 Hz, above the 40 Hz cut-off) does not, once the start-up transient of the
+  // filter's edges (which it excites: the edges follow the first two samples' slope) is over.
+  Trajectory y = jittered(3000, 0.001, 0.0);
+  for (Eigen::Index s = 0; s < 3000; ++s) y.q(s, 0) += std::sin(2 * M_PI * 250 * y.t[s]);
+  decimate_trajectory(y, 10);
+  for (Eigen::Index s = 100; s < 200; ++s) EXPECT_NEAR(y.q(s, 0), signal(y.t[s]), 1e-4);
+}
+
+}  // namespace
+}  // namespace modelgen
