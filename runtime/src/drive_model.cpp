@@ -4,20 +4,26 @@
 
 #include "modelgen/drive_model.hpp"
 
+#include <Eigen/LU>
 #include <algorithm>
 #include <stdexcept>
 #include <utility>
-
-#include <Eigen/LU>
 
 namespace modelgen {
 namespace {
 
 bool is_inertial(ParamKind kind) {
   switch (kind) {
-    case ParamKind::kXX: case ParamKind::kXY: case ParamKind::kXZ: case ParamKind::kYY:
-    case ParamKind::kYZ: case ParamKind::kZZ: case ParamKind::kMX: case ParamKind::kMY:
-    case ParamKind::kMZ: case ParamKind::kM:
+    case ParamKind::kXX:
+    case ParamKind::kXY:
+    case ParamKind::kXZ:
+    case ParamKind::kYY:
+    case ParamKind::kYZ:
+    case ParamKind::kZZ:
+    case ParamKind::kMX:
+    case ParamKind::kMY:
+    case ParamKind::kMZ:
+    case ParamKind::kM:
       return true;
     default:
       return false;
@@ -79,8 +85,7 @@ void ReferenceDriveModel::set_samples(const Eigen::MatrixXd& q, const Eigen::Mat
   dq_M_ = K_ * dq.transpose();
   ddq_M_ = K_ * ddq.transpose();
   for (Eigen::Index s = 0; s < n; ++s) {
-    const Eigen::MatrixXd W = rigid_.standard_regressor(q.row(s).transpose(),
-                                                        dq.row(s).transpose(),
+    const Eigen::MatrixXd W = rigid_.standard_regressor(q.row(s).transpose(), dq.row(s).transpose(),
                                                         ddq.row(s).transpose());
     // Eq. 10: tau'_G = V^T tau_G = K^-T W_std p.
     Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(
@@ -88,8 +93,8 @@ void ReferenceDriveModel::set_samples(const Eigen::MatrixXd& q, const Eigen::Mat
   }
 }
 
-void ReferenceDriveModel::torque_jacobian(Eigen::Index sample, const double* theta,
-                                          double* tau_M, double* J) const {
+void ReferenceDriveModel::torque_jacobian(Eigen::Index sample, const double* theta, double* tau_M,
+                                          double* J) const {
   const int P = num_params();
   const double* A = &A_[static_cast<size_t>(sample * dof_ * inertial_)];
   for (int i = 0; i < dof_; ++i) {

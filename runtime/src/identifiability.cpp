@@ -3,14 +3,13 @@
 
 #include "modelgen/identifiability.hpp"
 
+#include <Eigen/QR>
+#include <Eigen/SVD>
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numeric>
 #include <sstream>
-
-#include <Eigen/QR>
-#include <Eigen/SVD>
 
 namespace modelgen {
 

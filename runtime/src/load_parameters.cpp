@@ -4,11 +4,10 @@
 
 #include "modelgen/load_parameters.hpp"
 
+#include <Eigen/Eigenvalues>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
-
-#include <Eigen/Eigenvalues>
 
 namespace modelgen {
 namespace {
@@ -67,8 +66,7 @@ Eigen::MatrixXd standard_from_load_jacobian(const LoadParameters& load) {
 }
 
 LoadParameters load_from_standard(const double* standard) {
-  static const char* const kNames[10] = {"XX", "XY", "XZ", "YY", "YZ",
-                                         "ZZ", "MX", "MY", "MZ", "M"};
+  static const char* const kNames[10] = {"XX", "XY", "XZ", "YY", "YZ", "ZZ", "MX", "MY", "MZ", "M"};
   for (int k = 0; k < 10; ++k) {
     if (!std::isfinite(standard[k])) {
       throw std::invalid_argument(std::string("load from standard parameters: ") + kNames[k] +
@@ -85,9 +83,12 @@ LoadParameters load_from_standard(const double* standard) {
   const double cx = standard[6] / m, cy = standard[7] / m, cz = standard[8] / m;
   load.com = {cx, cy, cz};
   // Parallel-axis theorem backwards: I_c = J_O - m (|c|^2 1 - c c^T).
-  load.inertia = {standard[0] - m * (cy * cy + cz * cz), standard[3] - m * (cx * cx + cz * cz),
-                  standard[5] - m * (cx * cx + cy * cy), standard[1] + m * cx * cy,
-                  standard[2] + m * cx * cz,             standard[4] + m * cy * cz};
+  load.inertia = {standard[0] - m * (cy * cy + cz * cz),
+                  standard[3] - m * (cx * cx + cz * cz),
+                  standard[5] - m * (cx * cx + cy * cy),
+                  standard[1] + m * cx * cy,
+                  standard[2] + m * cx * cz,
+                  standard[4] + m * cy * cz};
   return load;
 }
 
@@ -107,8 +108,8 @@ std::vector<std::string> physical_consistency_warnings(const LoadParameters& loa
   Eigen::Matrix3d Ic;
   Ic << I[0], I[3], I[4], I[3], I[1], I[5], I[4], I[5], I[2];
   const Eigen::Vector3d moments = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(Ic).eigenvalues();
-  const std::string listed = format(moments[0]) + ", " + format(moments[1]) + ", " +
-                             format(moments[2]) + " kg m^2";
+  const std::string listed =
+      format(moments[0]) + ", " + format(moments[1]) + ", " + format(moments[2]) + " kg m^2";
   if (!(moments[0] > 0)) {
     warnings.push_back(
         "the inertia about the centre of gravity is not positive definite: principal moments " +

@@ -4,11 +4,11 @@
 
 #include "modelgen/ml_fit.hpp"
 
+#include <ceres/ceres.h>
+
+#include <Eigen/SVD>
 #include <cmath>
 #include <limits>
-
-#include <ceres/ceres.h>
-#include <Eigen/SVD>
 
 #include "modelgen/estimate.hpp"
 #include "modelgen/ml_initial_guess.hpp"
@@ -59,8 +59,9 @@ MlFitResult fit_ml(MlProblem& problem, const MlFitOptions& options) {
   Eigen::MatrixXd J;
   problem.evaluate(result.initial, residuals, &J);
   if (!residuals.allFinite() || !J.allFinite()) {
-    throw EstimationError("maximum likelihood: the residuals or their Jacobian are not finite at "
-                          "the initial guess (check the known values, e.g. an efficiency of 0)");
+    throw EstimationError(
+        "maximum likelihood: the residuals or their Jacobian are not finite at "
+        "the initial guess (check the known values, e.g. an efficiency of 0)");
   }
   result.identifiability = identifiability(J, result.names, options.rank_tolerance);
   result.initial_cost = 0.5 * residuals.squaredNorm();
@@ -103,8 +104,10 @@ MlFitResult fit_ml(MlProblem& problem, const MlFitOptions& options) {
 
   problem.evaluate(theta1, residuals, &J);
   result.final_cost = 0.5 * residuals.squaredNorm();
-  const Eigen::Index dof_free = problem.num_residuals() - (U - static_cast<Eigen::Index>(held.size()));
-  const double s2 = residuals.squaredNorm() / static_cast<double>(std::max<Eigen::Index>(1, dof_free));
+  const Eigen::Index dof_free =
+      problem.num_residuals() - (U - static_cast<Eigen::Index>(held.size()));
+  const double s2 =
+      residuals.squaredNorm() / static_cast<double>(std::max<Eigen::Index>(1, dof_free));
   result.residual_std_dev = std::sqrt(s2);
   result.std_dev = standard_deviations(J, result.identifiability.identifiable, s2);
   result.value = theta1;
@@ -114,9 +117,8 @@ MlFitResult fit_ml(MlProblem& problem, const MlFitOptions& options) {
   result.all_values = problem.with_unknowns(theta1);
 
   const Eigen::MatrixXd errors = problem.torque_errors(result.all_values);
-  result.rms_error = (errors.colwise().squaredNorm() / static_cast<double>(errors.rows()))
-                         .cwiseSqrt()
-                         .transpose();
+  result.rms_error =
+      (errors.colwise().squaredNorm() / static_cast<double>(errors.rows())).cwiseSqrt().transpose();
 
   // The load in physical terms: m, c, I_c with standard deviations; NaN where not identifiable.
   Eigen::VectorXd load(kLoadParams), load_sd = Eigen::VectorXd::Constant(kLoadParams, kNaN);

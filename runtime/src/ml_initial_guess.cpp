@@ -4,10 +4,9 @@
 
 #include "modelgen/ml_initial_guess.hpp"
 
+#include <Eigen/QR>
 #include <algorithm>
 #include <stdexcept>
-
-#include <Eigen/QR>
 
 #include "modelgen/load_parameters.hpp"
 
@@ -61,7 +60,8 @@ Eigen::VectorXd linear_initial_guess(const MlProblem& problem, std::vector<std::
   Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod(As);
   cod.setThreshold(1e-10);
   const Eigen::VectorXd step = scale.cwiseInverse().asDiagonal() * cod.solve(b);
-  for (size_t c = 0; c < columns.size(); ++c) theta[columns[c]] += step[static_cast<Eigen::Index>(c)];
+  for (size_t c = 0; c < columns.size(); ++c)
+    theta[columns[c]] += step[static_cast<Eigen::Index>(c)];
   for (const int k : columns) {
     if (std::find(problem.unknown_indices().begin(), problem.unknown_indices().end(), k) !=
         problem.unknown_indices().end()) {

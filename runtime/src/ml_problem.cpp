@@ -5,13 +5,13 @@
 
 #include "modelgen/ml_problem.hpp"
 
+#include <ceres/cost_function.h>
+
+#include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
 #include <map>
 #include <utility>
-
-#include <ceres/cost_function.h>
-#include <Eigen/LU>
 
 #include "modelgen/estimate.hpp"
 #include "modelgen/load_parameters.hpp"
@@ -27,8 +27,9 @@ MlExperiment ml_experiment(const PreparedExperiment& prepared, const Transmissio
   const Trajectory& x = prepared.data;
   const Eigen::Index n = x.q.cols();
   if (prepared.tau_noise_variance.size() == 0) {
-    fail(x.source + ": error: no torque noise variance; the maximum-likelihood fit needs "
-                    "periodic data prepared with period averaging (--periodic)");
+    fail(x.source +
+         ": error: no torque noise variance; the maximum-likelihood fit needs "
+         "periodic data prepared with period averaging (--periodic)");
   }
   if (drive.motor_from_joint.rows() != n || drive.motor_from_joint.cols() != n ||
       prepared.tau_noise_variance.size() != n || x.tau.cols() != n) {
@@ -58,12 +59,12 @@ struct MlProblem::Impl {
 
   DriveModel* model = nullptr;
   MlSetup setup;
-  std::vector<std::string> names;       // ml_param_names
-  std::vector<int> unknown;             // indices into names
-  std::vector<int> payload;             // drive-parameter indices of XXj .. Mj
-  int P = 0;                            // drive model parameters
+  std::vector<std::string> names;  // ml_param_names
+  std::vector<int> unknown;        // indices into names
+  std::vector<int> payload;        // drive-parameter indices of XXj .. Mj
+  int P = 0;                       // drive model parameters
   Eigen::VectorXd values;
-  Eigen::MatrixXd measured, sigma;      // stacked samples x dof
+  Eigen::MatrixXd measured, sigma;  // stacked samples x dof
   std::vector<std::unique_ptr<BlockCost>> blocks;
   Eigen::Index residuals = 0;
 
@@ -172,8 +173,10 @@ MlProblem::MlProblem(DriveModel& model, const std::vector<MlExperiment>& data, M
     if (found == index.end()) {
       std::string valid;
       for (const std::string& v : p.names) valid += (valid.empty() ? "" : " ") + v;
-      fail("maximum likelihood: unknown parameter '" + name + "' is not a parameter of the model; "
-           "valid names: " + valid);
+      fail("maximum likelihood: unknown parameter '" + name +
+           "' is not a parameter of the model; "
+           "valid names: " +
+           valid);
     }
     if (std::find(p.unknown.begin(), p.unknown.end(), found->second) != p.unknown.end()) {
       fail("maximum likelihood: parameter '" + name + "' is listed twice as unknown");
@@ -246,8 +249,9 @@ MlProblem::MlProblem(DriveModel& model, const std::vector<MlExperiment>& data, M
       }
     }
     if (static_cast<int>(rv.size()) != n) {
-      fail("maximum likelihood: the drive model does not name one Rv parameter per motor; give "
-           "the fitted axes explicitly");
+      fail(
+          "maximum likelihood: the drive model does not name one Rv parameter per motor; give "
+          "the fitted axes explicitly");
     }
     std::vector<double> tau(n), J(static_cast<size_t>(n) * p.P);
     const Eigen::VectorXd theta = p.drive_parameters(p.values);

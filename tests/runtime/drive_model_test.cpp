@@ -4,18 +4,19 @@
 // Ceres automatic differentiation (1e-12) and central differences (1e-8); the adapter for
 // generated drive models on a stand-in; bad drive chains.
 
+#include "modelgen/drive_model.hpp"
+
+#include <ceres/jet.h>
+#include <gtest/gtest.h>
+
+#include <Eigen/LU>
 #include <cmath>
 #include <map>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
-#include <ceres/jet.h>
-#include <gtest/gtest.h>
-#include <Eigen/LU>
-
 #include "generator/description/load_robot.hpp"
-#include "modelgen/drive_model.hpp"
 #include "modelgen/reference_dynamics.hpp"
 #include "tests/support/kdl_oracle.hpp"
 #include "tests/support/test_support.hpp"
@@ -100,11 +101,11 @@ TEST(ReferenceDriveModel, TorqueMatchesAnIndependentComputation) {
       if (found != by_name.end()) p[k] = found->second;
     }
     for (int s = 0; s < 50; ++s) {
-      const Eigen::VectorXd tau_G =
-          full.inverse_dynamics(x.q.row(s).transpose(), x.dq.row(s).transpose(),
-                                x.ddq.row(s).transpose(), p);
+      const Eigen::VectorXd tau_G = full.inverse_dynamics(
+          x.q.row(s).transpose(), x.dq.row(s).transpose(), x.ddq.row(s).transpose(), p);
       const Eigen::VectorXd tau_pg = K.transpose().partialPivLu().solve(tau_G);  // eq. 10
-      const Eigen::VectorXd dq_M = K * x.dq.row(s).transpose(), ddq_M = K * x.ddq.row(s).transpose();
+      const Eigen::VectorXd dq_M = K * x.dq.row(s).transpose(),
+                            ddq_M = K * x.ddq.row(s).transpose();
       Eigen::VectorXd tau(6);
       model.torque(s, theta.data(), tau.data());
       for (int i = 0; i < 6; ++i) {
@@ -146,7 +147,8 @@ TEST(ReferenceDriveModel, JacobianMatchesAutodiffAndCentralDifferences) {
         double row_scale = 1;
         for (int k = 0; k < P; ++k) row_scale = std::max(row_scale, std::abs(J[i * P + k]));
         for (int k = 0; k < P; ++k) {
-          EXPECT_NEAR(J[i * P + k], tau_jet[i].v[k], 1e-12 * row_scale) << s << " " << i << " " << k;
+          EXPECT_NEAR(J[i * P + k], tau_jet[i].v[k], 1e-12 * row_scale)
+              << s << " " << i << " " << k;
         }
       }
       // Central differences: relative step 1e-6; eq. 8 switches only when tau'_G changes sign,

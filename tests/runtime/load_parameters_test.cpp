@@ -3,15 +3,16 @@
 // Jacobian against Ceres automatic differentiation and central differences, and the
 // physical-consistency warnings on hand-made loads.
 
-#include <cmath>
-#include <stdexcept>
-#include <string>
+#include "modelgen/load_parameters.hpp"
 
 #include <ceres/jet.h>
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
 #include "generator/description/robot_model.hpp"
-#include "modelgen/load_parameters.hpp"
 #include "tests/support/test_support.hpp"
 
 namespace modelgen {

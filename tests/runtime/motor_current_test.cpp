@@ -1,13 +1,14 @@
 // Motor torque from current (Swevers 2002 eq. 4): closed-form values, odd symmetry, and the
 // errors for non-finite currents and a wrong number of polynomials.
 
-#include <cmath>
-#include <string>
+#include "modelgen/motor_current.hpp"
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <string>
+
 #include "modelgen/data.hpp"
-#include "modelgen/motor_current.hpp"
 
 namespace modelgen {
 namespace {

@@ -6,11 +6,10 @@
 // parameters, the automatic-differentiation oracle); GeneratedDriveModel adapts generated code.
 #pragma once
 
+#include <Eigen/Core>
 #include <stdexcept>
 #include <string>
 #include <vector>
-
-#include <Eigen/Core>
 
 #include "modelgen/reference_dynamics.hpp"
 #include "modelgen/rigid_body_tree.hpp"
@@ -139,14 +138,13 @@ class GeneratedDriveModel final : public DriveModel {
   }
   Eigen::Index num_samples() const override { return q_.cols(); }
   void torque(Eigen::Index s, const double* theta, double* tau_M) const override {
-    Generated::drive_torque(q_.col(s).data(), dq_.col(s).data(), ddq_.col(s).data(), theta,
-                            tau_M);
+    Generated::drive_torque(q_.col(s).data(), dq_.col(s).data(), ddq_.col(s).data(), theta, tau_M);
   }
   void torque_jacobian(Eigen::Index s, const double* theta, double* tau_M,
                        double* J) const override {
     torque(s, theta, tau_M);
-    Generated::drive_torque_jacobian(q_.col(s).data(), dq_.col(s).data(), ddq_.col(s).data(),
-                                     theta, J);
+    Generated::drive_torque_jacobian(q_.col(s).data(), dq_.col(s).data(), ddq_.col(s).data(), theta,
+                                     J);
   }
 
  private:

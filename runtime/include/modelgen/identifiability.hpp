@@ -4,10 +4,9 @@
 // condition number, and the directions the data cannot see, named in words.
 #pragma once
 
+#include <Eigen/Core>
 #include <string>
 #include <vector>
-
-#include <Eigen/Core>
 
 namespace modelgen {
 

@@ -4,11 +4,10 @@
 // physical-consistency checks an estimated load must pass before anyone trusts it.
 #pragma once
 
+#include <Eigen/Core>
 #include <array>
 #include <string>
 #include <vector>
-
-#include <Eigen/Core>
 
 namespace modelgen {
 
@@ -18,8 +17,8 @@ constexpr int kLoadParams = 10;
 /// A rigid load in the frame of the link carrying it (the payload link).
 /// As a vector (to_vector) in Swevers eq. 3 order: m, cx, cy, cz, Ixx, Iyy, Izz, Ixy, Ixz, Iyz.
 struct LoadParameters {
-  double mass = 0;                ///< kg
-  std::array<double, 3> com{};    ///< centre of gravity x, y, z in m
+  double mass = 0;              ///< kg
+  std::array<double, 3> com{};  ///< centre of gravity x, y, z in m
   /// Inertia tensor about the centre of gravity, kg m^2, entries xx yy zz xy xz yz. Off-diagonal
   /// entries are tensor entries (Ixy = -integral of x y dm, as XY in the standard parameters).
   std::array<double, 6> inertia{};

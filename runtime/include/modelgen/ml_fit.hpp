@@ -4,10 +4,9 @@
 // from the Jacobian at the optimum, and the load in physical terms with consistency warnings.
 #pragma once
 
+#include <Eigen/Core>
 #include <string>
 #include <vector>
-
-#include <Eigen/Core>
 
 #include "modelgen/identifiability.hpp"
 #include "modelgen/load_parameters.hpp"
@@ -37,14 +36,14 @@ struct MlFitResult {
   bool has_load = false;
   LoadParameters load, load_std_dev;
   std::vector<std::string> load_warnings;
-  Eigen::VectorXd rms_error;   ///< per motor, N m: rms of measured minus model (0 if not fitted)
-  double initial_cost = 0;     ///< 1/2 sum of squared weighted residuals at the start
-  double final_cost = 0;       ///< and at the optimum
-  double residual_std_dev = 0; ///< s above
-  int iterations = 0;          ///< Levenberg-Marquardt iterations
-  double solve_seconds = 0;    ///< Ceres' minimizer time
+  Eigen::VectorXd rms_error;    ///< per motor, N m: rms of measured minus model (0 if not fitted)
+  double initial_cost = 0;      ///< 1/2 sum of squared weighted residuals at the start
+  double final_cost = 0;        ///< and at the optimum
+  double residual_std_dev = 0;  ///< s above
+  int iterations = 0;           ///< Levenberg-Marquardt iterations
+  double solve_seconds = 0;     ///< Ceres' minimizer time
   bool converged = false;
-  std::string solver_report;   ///< Ceres' brief report
+  std::string solver_report;       ///< Ceres' brief report
   std::vector<std::string> notes;  ///< initial-guess remarks, in words
 };
 

@@ -6,10 +6,9 @@
 // payload's standard parameters (load_from_standard).
 #pragma once
 
+#include <Eigen/Core>
 #include <string>
 #include <vector>
-
-#include <Eigen/Core>
 
 #include "modelgen/ml_problem.hpp"
 

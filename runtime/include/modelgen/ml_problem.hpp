@@ -6,11 +6,10 @@
 // hands to Levenberg-Marquardt), the Jacobian by the chain rule from the drive model's.
 #pragma once
 
+#include <Eigen/Core>
 #include <memory>
 #include <string>
 #include <vector>
-
-#include <Eigen/Core>
 
 #include "modelgen/drive_model.hpp"
 #include "modelgen/prepare.hpp"

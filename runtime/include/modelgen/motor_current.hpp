@@ -3,18 +3,17 @@
 // the transmission ratio.
 #pragma once
 
+#include <Eigen/Core>
 #include <array>
 #include <string>
 #include <vector>
-
-#include <Eigen/Core>
 
 namespace modelgen {
 
 /// One motor's current-torque relation (Swevers eq. 4):
 /// tau_M = ratio * sign(I) * (c0 + c1 |I| + c2 I^2 + c3 |I|^3), with sign(0) = 0.
 struct CurrentTorquePolynomial {
-  double ratio = 1;                ///< mu, transmission ratio (link-side torque per motor torque)
+  double ratio = 1;  ///< mu, transmission ratio (link-side torque per motor torque)
   std::array<double, 4> c{0, 0, 0, 0};  ///< c0 (N m), c1 (N m/A), c2 (N m/A^2), c3 (N m/A^3)
 };
 
