@@ -373,5 +373,34 @@ TEST(MlProblem, BadSetupsAreNamed) {
   EXPECT_NE(message(setup, {bad}).find("noise standard deviation of axis 5"), std::string::npos);
 }
 
+TEST(MlExperiment, FromPeriodicPreparedExperiment) {
+  // K = diag(2, 4): tau_joint = K^T tau_M, so tau_M = tau_joint / ratio and its noise standard
+  // deviation the joint-side one over the ratio.
+  Transmission drive = Transmission::identity(2);
+  drive.motor_from_joint = Eigen::Vector2d(2, 4).asDiagonal();
+  PreparedExperiment prepared;
+  prepared.data.source = "run.csv";
+  prepared.data.q = Eigen::MatrixXd::Random(5, 2);
+  prepared.data.dq = Eigen::MatrixXd::Random(5, 2);
+  prepared.data.ddq = Eigen::MatrixXd::Random(5, 2);
+  prepared.data.tau = Eigen::MatrixXd::Random(5, 2);
+  prepared.tau_noise_variance = Eigen::Vector2d(9, 16);
+  const MlExperiment x = ml_experiment(prepared, drive);
+  EXPECT_EQ(x.source, "run.csv");
+  EXPECT_TRUE(x.q == prepared.data.q);
+  EXPECT_NEAR((x.tau_M.col(0) - prepared.data.tau.col(0) / 2).norm(), 0, 1e-15);
+  EXPECT_NEAR((x.tau_M.col(1) - prepared.data.tau.col(1) / 4).norm(), 0, 1e-15);
+  EXPECT_NEAR(x.sigma[0], 1.5, 1e-15);
+  EXPECT_NEAR(x.sigma[1], 1.0, 1e-15);
+  prepared.tau_noise_variance.resize(0);
+  try {
+    ml_experiment(prepared, drive);
+    FAIL() << "expected EstimationError";
+  } catch (const EstimationError& error) {
+    EXPECT_EQ(std::string(error.what()).rfind("run.csv: error: no torque noise variance", 0), 0u)
+        << error.what();
+  }
+}
+
 }  // namespace
 }  // namespace modelgen
