@@ -1,0 +1,141 @@
+// Swevers et al. 2002, section 3.2 and eq. 18: the maximum-likelihood fit on Ceres
+// (Levenberg-Marquardt, analytic Jacobians from MlProblem's cost functions), with the rank
+// analysis of section 4.2 at the initial guess and standard deviations at the optimum.
+
+#include "modelgen/ml_fit.hpp"
+
+#include <ceres/ceres.h>
+
+#include <Eigen/SVD>
+#include <cmath>
+#include <limits>
+
+#include "modelgen/estimate.hpp"
+#include "modelgen/ml_initial_guess.hpp"
+
+namespace modelgen {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+// Covariance of the identifiable unknowns: s^2 (J^T J)^-1 on unit-norm columns by the SVD.
+Eigen::VectorXd standard_deviations(const Eigen::MatrixXd& J, const std::vector<bool>& keep,
+                                    double s2) {
+  std::vector<Eigen::Index> live;
+  for (Eigen::Index u = 0; u < J.cols(); ++u) {
+    if (keep[u]) live.push_back(u);
+  }
+  Eigen::VectorXd out = Eigen::VectorXd::Constant(J.cols(), kNaN);
+  if (live.empty()) return out;
+  Eigen::MatrixXd Js(J.rows(), static_cast<Eigen::Index>(live.size()));
+  Eigen::VectorXd scale(static_cast<Eigen::Index>(live.size()));
+  for (size_t c = 0; c < live.size(); ++c) {
+    scale[c] = J.col(live[c]).norm();
+    Js.col(c) = J.col(live[c]) / scale[c];
+  }
+  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(Js, Eigen::ComputeThinV);
+  const Eigen::VectorXd inv = svd.singularValues().cwiseInverse();
+  const Eigen::MatrixXd Vs = svd.matrixV() * inv.asDiagonal();
+  for (size_t c = 0; c < live.size(); ++c) {
+    out[live[c]] = std::sqrt(s2 * Vs.row(c).squaredNorm()) / scale[c];
+  }
+  return out;
+}
+
+}  // namespace
+
+MlFitResult fit_ml(MlProblem& problem, const MlFitOptions& options) {
+  MlFitResult result;
+  result.names = problem.unknown_names();
+  const int U = problem.num_unknowns();
+  const int P = problem.model().num_params();
+  if (options.linear_initial_guess) {
+    problem.set_values(linear_initial_guess(problem, result.notes));
+  }
+  result.initial = problem.initial();
+
+  // Section 4.2: rank of the Jacobian at the initial guess decides what can be identified.
+  Eigen::VectorXd residuals;
+  Eigen::MatrixXd J;
+  problem.evaluate(result.initial, residuals, &J);
+  if (!residuals.allFinite() || !J.allFinite()) {
+    throw EstimationError(
+        "maximum likelihood: the residuals or their Jacobian are not finite at "
+        "the initial guess (check the known values, e.g. an efficiency of 0)");
+  }
+  result.identifiability = identifiability(J, result.names, options.rank_tolerance);
+  result.initial_cost = 0.5 * residuals.squaredNorm();
+
+  Eigen::VectorXd theta1 = result.initial;
+  ceres::Problem::Options problem_options;
+  problem_options.cost_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+  ceres::Problem solver_problem(problem_options);
+  for (ceres::CostFunction* cost : problem.cost_functions()) {
+    solver_problem.AddResidualBlock(cost, nullptr, theta1.data());
+  }
+  std::vector<int> held;
+  for (int u = 0; u < U; ++u) {
+    if (!result.identifiability.identifiable[u]) held.push_back(u);
+  }
+  if (static_cast<int>(held.size()) == U) {
+    solver_problem.SetParameterBlockConstant(theta1.data());
+  } else if (!held.empty()) {
+    solver_problem.SetManifold(theta1.data(), new ceres::SubsetManifold(U, held));
+  }
+  ceres::Solver::Options solver_options;
+  solver_options.minimizer_type = ceres::TRUST_REGION;
+  solver_options.trust_region_strategy_type = ceres::LEVENBERG_MARQUARDT;
+  solver_options.linear_solver_type = ceres::DENSE_QR;
+  solver_options.max_num_iterations = options.max_iterations;
+  solver_options.num_threads = std::max(1, options.threads);
+  solver_options.function_tolerance = 1e-12;
+  solver_options.parameter_tolerance = 1e-12;
+  solver_options.gradient_tolerance = 1e-14;
+  solver_options.logging_type = ceres::SILENT;
+  ceres::Solver::Summary summary;
+  ceres::Solve(solver_options, &solver_problem, &summary);
+  if (summary.termination_type == ceres::FAILURE) {
+    throw EstimationError("maximum likelihood: Levenberg-Marquardt failed: " + summary.message);
+  }
+  result.converged = summary.termination_type == ceres::CONVERGENCE;
+  result.iterations = static_cast<int>(summary.iterations.size()) - 1;
+  result.solve_seconds = summary.minimizer_time_in_seconds;
+  result.solver_report = summary.BriefReport();
+
+  problem.evaluate(theta1, residuals, &J);
+  result.final_cost = 0.5 * residuals.squaredNorm();
+  const Eigen::Index dof_free =
+      problem.num_residuals() - (U - static_cast<Eigen::Index>(held.size()));
+  const double s2 =
+      residuals.squaredNorm() / static_cast<double>(std::max<Eigen::Index>(1, dof_free));
+  result.residual_std_dev = std::sqrt(s2);
+  result.std_dev = standard_deviations(J, result.identifiability.identifiable, s2);
+  result.value = theta1;
+  for (int u = 0; u < U; ++u) {
+    if (!result.identifiability.identifiable[u]) result.value[u] = kNaN;
+  }
+  result.all_values = problem.with_unknowns(theta1);
+
+  const Eigen::MatrixXd errors = problem.torque_errors(result.all_values);
+  result.rms_error =
+      (errors.colwise().squaredNorm() / static_cast<double>(errors.rows())).cwiseSqrt().transpose();
+
+  // The load in physical terms: m, c, I_c with standard deviations; NaN where not identifiable.
+  Eigen::VectorXd load(kLoadParams), load_sd = Eigen::VectorXd::Constant(kLoadParams, kNaN);
+  load = result.all_values.segment(P, kLoadParams);
+  for (int u = 0; u < U; ++u) {
+    const int k = problem.unknown_indices()[u];
+    if (k < P) continue;
+    result.has_load = true;
+    load_sd[k - P] = result.std_dev[u];
+    if (!result.identifiability.identifiable[u]) load[k - P] = kNaN;
+  }
+  if (result.has_load) {
+    result.load = LoadParameters::from_vector(load.data());
+    result.load_std_dev = LoadParameters::from_vector(load_sd.data());
+    result.load_warnings = physical_consistency_warnings(result.load);
+  }
+  return result;
+}
+
+}  // namespace modelgen
