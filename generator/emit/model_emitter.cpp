@@ -7,6 +7,7 @@
 #include <cctype>
 
 #include "modelgen/base_parameters.hpp"
+#include "generator/dynamics/drive_model.hpp"
 #include "generator/dynamics/newton_euler.hpp"
 #include "generator/dynamics/power_model.hpp"
 #include "generator/emit/printer.hpp"
@@ -225,6 +226,46 @@ GeneratedModel emit_model(const RobotModel& model, const GenerationInput& input)
     specs.push_back(std::move(energy));
     specs.push_back(std::move(power));
   }
+  // The Swevers drive model F (eq. 12) and its Jacobians with respect to its parameters theta
+  // (eq. 14) and to the state (Bona & Curatella eq. 13-16), all from one DAG. The sign terms
+  // (friction, efficiency branch) are piecewise constant: their derivative is taken as zero.
+  const DriveModel drive =
+      derive_drive_model(graph, tree, model.drives.motor_from_joint, symbols);
+  const int num_drive = static_cast<int>(drive.theta.size());
+  {
+    FunctionSpec spec{"drive_torque", {}, {"q", "dq", "ddq", "theta"}};
+    for (int i = 0; i < dof; ++i) {
+      spec.outputs.push_back({"tau_M[" + std::to_string(i) + "]", drive.tau_M[i], ""});
+    }
+    specs.push_back(std::move(spec));
+
+    const std::vector<ExprId> J = jacobian(graph, drive.tau_M, drive.theta);
+    FunctionSpec theta_spec{"drive_torque_jacobian", {}, {"q", "dq", "ddq", "theta"}};
+    for (int i = 0; i < dof; ++i) {
+      for (int k = 0; k < num_drive; ++k) {
+        const int index = i * num_drive + k;
+        theta_spec.outputs.push_back({"J[" + std::to_string(index) + "]", J[index],
+                                      i == 0 ? drive.names[k] : std::string()});
+      }
+    }
+    specs.push_back(std::move(theta_spec));
+
+    std::vector<ExprId> state = symbols.q;
+    state.insert(state.end(), symbols.dq.begin(), symbols.dq.end());
+    state.insert(state.end(), symbols.ddq.begin(), symbols.ddq.end());
+    const std::vector<ExprId> S = jacobian(graph, drive.tau_M, state);
+    FunctionSpec state_spec{"drive_torque_state_jacobian", {}, {"q", "dq", "ddq", "theta"}};
+    for (int i = 0; i < dof; ++i) {
+      for (int k = 0; k < 3 * dof; ++k) {
+        const int index = i * 3 * dof + k;
+        const char* array = k < dof ? "q" : (k < 2 * dof ? "dq" : "ddq");
+        state_spec.outputs.push_back(
+            {"J[" + std::to_string(index) + "]", S[index],
+             i == 0 ? std::string(array) + "[" + std::to_string(k % dof) + "]" : std::string()});
+      }
+    }
+    specs.push_back(std::move(state_spec));
+  }
   {
     FunctionSpec spec{"joint_sincos", {}, {"q"}};
     for (int i = 0; i < dof; ++i) {
@@ -236,10 +277,11 @@ GeneratedModel emit_model(const RobotModel& model, const GenerationInput& input)
   // Variants reading sin/cos from the caller (joint_sincos), for several functions per state.
   // Not for the state Jacobian: its body is several times that of the inverse dynamics, so
   // sharing the sines and cosines would save under 1 % of its work for twice the code to
-  // compile.
+  // compile. Not for the drive model either (one call per sample in an estimation loop).
   for (std::size_t i = 0, count = specs.size(); i < count; ++i) {
     if (specs[i].name == "joint_sincos" || specs[i].name == "base_from_standard" ||
-        specs[i].name == "inverse_dynamics_state_jacobian") {
+        specs[i].name == "inverse_dynamics_state_jacobian" ||
+        specs[i].name.starts_with("drive_torque")) {
       continue;
     }
     FunctionSpec variant = specs[i];
@@ -257,7 +299,8 @@ GeneratedModel emit_model(const RobotModel& model, const GenerationInput& input)
       "idim_regressor_standard_sincos", "inverse_dynamics_standard_sincos", "base_from_standard",
       "idim_regressor", "inverse_dynamics", "idim_regressor_sincos", "inverse_dynamics_sincos",
       "inverse_dynamics_state_jacobian", "energy_regressor", "power_regressor",
-      "energy_regressor_sincos", "power_regressor_sincos"};
+      "energy_regressor_sincos", "power_regressor_sincos", "drive_torque", "drive_torque_jacobian",
+      "drive_torque_state_jacobian"};
   std::stable_sort(specs.begin(), specs.end(), [&order](const FunctionSpec& a, const FunctionSpec& b) {
     return std::find(order.begin(), order.end(), a.name) < std::find(order.begin(), order.end(), b.name);
   });
@@ -333,6 +376,7 @@ GeneratedModel emit_model(const RobotModel& model, const GenerationInput& input)
           .set("dof", dof)
           .set("standard_param_count", num_params)
           .set("base_param_count", num_base)
+          .set("drive_param_count", num_drive)
           .set_block("model_struct",
                      [&](CodeWriter& out) {
                        if (input.scalars.empty() || input.scalars[0] != Scalar::kDouble) return;
@@ -382,6 +426,8 @@ GeneratedModel emit_model(const RobotModel& model, const GenerationInput& input)
                      [&](CodeWriter& out) { write_name_list(standard_names, out); })
           .set_block("base_param_names",
                      [&](CodeWriter& out) { write_name_list(base_names, out); })
+          .set_block("drive_param_names",
+                     [&](CodeWriter& out) { write_name_list(drive.names, out); })
           .set_block("motor_from_joint",
                      [&](CodeWriter& out) {
                        // One row of K per line, so the matrix reads as written.
