@@ -20,8 +20,8 @@
 // energy_regressor_sincos               126     59        0
 // power_regressor_sincos                318    181        0
 // drive_torque                          501    384       10
-// drive_torque_jacobian                1587    978       10
-// drive_torque_state_jacobian          3967   3794       10
+// drive_torque_jacobian                1990    998       10
+// drive_torque_state_jacobian          3244   2918       20
 #ifndef MODELGEN_TX40_HPP_
 #define MODELGEN_TX40_HPP_
 
@@ -188,7 +188,8 @@ void drive_torque(const float* q, const float* dq, const float* ddq,
 // estimation (Swevers et al. 2002 eq. 18): J is kDof x kDriveParams, row-major,
 // J[i * kDriveParams + k] = d tau_M_i / d theta_k. Inputs as for drive_torque. The efficiency
 // branch and the Coulomb friction sign count as constant: exact wherever no motor velocity and
-// no power flow tau'_G dq_M is zero.
+// no power flow tau'_G dq_M is zero. Calls idim_regressor_standard into a local array of
+// kDof * kStandardParams values (on the stack) and applies the chain rule to it.
 void drive_torque_jacobian(const double* q, const double* dq, const double* ddq,
                            const double* theta, double* J);
 void drive_torque_jacobian(const float* q, const float* dq, const float* ddq,
@@ -199,6 +200,9 @@ void drive_torque_jacobian(const float* q, const float* dq, const float* ddq,
 // kDof x 3 kDof, row-major, J[i * 3 * kDof + k] = d tau_M_i / d x_k. Inputs as for
 // drive_torque. The efficiency branch and the Coulomb friction sign count as constant: exact
 // wherever no motor velocity and no power flow tau'_G dq_M is zero (the torque jumps there).
+// Calls base_from_standard, inverse_dynamics and inverse_dynamics_state_jacobian into local
+// arrays (kStandardParams + kBaseParams + kDof + 3 kDof^2 values, on the stack) and applies the
+// chain rule to them.
 void drive_torque_state_jacobian(const double* q, const double* dq, const double* ddq,
                                  const double* theta, double* J);
 void drive_torque_state_jacobian(const float* q, const float* dq, const float* ddq,

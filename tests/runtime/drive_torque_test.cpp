@@ -8,8 +8,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
 #include <functional>
 #include <iostream>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -17,6 +19,7 @@
 #include <gtest/gtest.h>
 #include <Eigen/Core>
 #include <Eigen/LU>
+#include <nlohmann/json.hpp>
 
 #include "generator/description/load_robot.hpp"
 #include "kr150.hpp"
@@ -35,6 +38,7 @@ using Vector = Eigen::Matrix<T, Eigen::Dynamic, 1>;
 struct Kr150 {
   using Model = ::modelgen::kr150::Model;
   static constexpr const char* kDescription = "robots/kr150.yaml";
+  static constexpr const char* kManifest = "generated/kr150/kr150.json";
   static void drive_torque_float(const float* q, const float* dq, const float* ddq,
                                  const float* theta, float* tau_M) {
     ::modelgen::kr150::drive_torque(q, dq, ddq, theta, tau_M);
@@ -44,6 +48,7 @@ struct Kr150 {
 struct Tx40 {
   using Model = ::modelgen::tx40::Model;
   static constexpr const char* kDescription = "robots/tx40.yaml";
+  static constexpr const char* kManifest = "generated/tx40/tx40.json";
   static void drive_torque_float(const float* q, const float* dq, const float* ddq,
                                  const float* theta, float* tau_M) {
     ::modelgen::tx40::drive_torque(q, dq, ddq, theta, tau_M);
@@ -264,6 +269,17 @@ TYPED_TEST(DriveTorque, ParameterNamesFollowTheDocumentedOrder) {
   for (int k = 0; k < Model::kDriveParams; ++k) {
     EXPECT_EQ(Model::drive_param_names()[k], expected[k]) << "theta[" << k << "]";
   }
+}
+
+TYPED_TEST(DriveTorque, ManifestListsTheSameParameters) {
+  using Model = typename TypeParam::Model;
+  std::ifstream file(test::source_path(TypeParam::kManifest));
+  std::stringstream text;
+  text << file.rdbuf();
+  const nlohmann::json manifest = nlohmann::json::parse(text.str());
+  const std::vector<std::string> names = manifest.at("drive_parameters");
+  ASSERT_EQ(static_cast<int>(names.size()), Model::kDriveParams);
+  for (int k = 0; k < Model::kDriveParams; ++k) EXPECT_EQ(names[k], Model::drive_param_names()[k]);
 }
 
 TYPED_TEST(DriveTorque, EqualsTheNumericModelOnBothEfficiencyBranches) {
