@@ -43,6 +43,14 @@ struct Kr150 {
                                  const float* theta, float* tau_M) {
     ::modelgen::kr150::drive_torque(q, dq, ddq, theta, tau_M);
   }
+  static void drive_torque_jacobian_float(const float* q, const float* dq, const float* ddq,
+                                          const float* theta, float* J) {
+    ::modelgen::kr150::drive_torque_jacobian(q, dq, ddq, theta, J);
+  }
+  static void drive_torque_state_jacobian_float(const float* q, const float* dq, const float* ddq,
+                                                const float* theta, float* J) {
+    ::modelgen::kr150::drive_torque_state_jacobian(q, dq, ddq, theta, J);
+  }
 };
 
 struct Tx40 {
@@ -52,6 +60,14 @@ struct Tx40 {
   static void drive_torque_float(const float* q, const float* dq, const float* ddq,
                                  const float* theta, float* tau_M) {
     ::modelgen::tx40::drive_torque(q, dq, ddq, theta, tau_M);
+  }
+  static void drive_torque_jacobian_float(const float* q, const float* dq, const float* ddq,
+                                          const float* theta, float* J) {
+    ::modelgen::tx40::drive_torque_jacobian(q, dq, ddq, theta, J);
+  }
+  static void drive_torque_state_jacobian_float(const float* q, const float* dq, const float* ddq,
+                                                const float* theta, float* J) {
+    ::modelgen::tx40::drive_torque_state_jacobian(q, dq, ddq, theta, J);
   }
 };
 
@@ -334,6 +350,26 @@ TYPED_TEST(DriveTorque, FloatVariantAgreesWithDouble) {
                                   tau.data());
     worst =
         std::max(worst, test::relative_error(tau.cast<double>(), this->generated(x, theta), 1.0));
+  }
+  EXPECT_LT(worst, 1e-4);
+}
+
+TYPED_TEST(DriveTorque, FloatJacobiansAgreeWithDouble) {
+  constexpr int n = TestFixture::n, m = TestFixture::m;
+  using RowMajorF = Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+  test::Random random(1451);
+  double worst = 0;
+  for (int s = 0; s < 100; ++s) {
+    const Eigen::VectorXd theta = this->random_theta(random);
+    const Eigen::VectorXd x = this->smooth_state(random, theta, 1e-3);
+    const Eigen::VectorXf xf = x.cast<float>(), thetaf = theta.cast<float>();
+    RowMajorF J(n, m), S(n, 3 * n);
+    TypeParam::drive_torque_jacobian_float(xf.data(), xf.data() + n, xf.data() + 2 * n,
+                                           thetaf.data(), J.data());
+    TypeParam::drive_torque_state_jacobian_float(xf.data(), xf.data() + n, xf.data() + 2 * n,
+                                                 thetaf.data(), S.data());
+    worst = std::max(worst, relative_difference(J.cast<double>(), this->theta_jacobian(x, theta)));
+    worst = std::max(worst, relative_difference(S.cast<double>(), this->state_jacobian(x, theta)));
   }
   EXPECT_LT(worst, 1e-4);
 }
