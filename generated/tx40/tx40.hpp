@@ -19,6 +19,9 @@
 // power_regressor                       318    181       10
 // energy_regressor_sincos               126     59        0
 // power_regressor_sincos                318    181        0
+// drive_torque                          501    384       10
+// drive_torque_jacobian                1990    998       10
+// drive_torque_state_jacobian          3244   2918       20
 #ifndef MODELGEN_TX40_HPP_
 #define MODELGEN_TX40_HPP_
 
@@ -34,12 +37,19 @@ constexpr int kStandardParams = 97;
 
 // Base (identifiable) parameters: the length of beta, the columns of the base regressor.
 constexpr int kBaseParams = 61;
+// Parameters theta of the Swevers drive model (eq. 14): the length of theta, the columns of
+// drive_torque_jacobian.
+constexpr int kDriveParams = 94;
 
 // Names of the standard parameters in the order of p: "XX1", "XY1", ... as in DESIGN.md.
 extern const char* const kStandardParamNames[kStandardParams];
 // Names of the base parameters in the order of beta: "ZZ1R", "XX2R", ... (suffix R: the
 // parameter absorbs others; the relations are base_from_standard and the manifest).
 extern const char* const kBaseParamNames[kBaseParams];
+// Names of the drive model parameters in the order of theta: the inertial standard parameters
+// (XXj ... Mj of every body, as in kStandardParamNames), then per moving joint JMj, Rvj, Rcj,
+// Rzj (motor inertia, viscous and Coulomb friction, transmission efficiency).
+extern const char* const kDriveParamNames[kDriveParams];
 
 // The drive chain of the description, for data measured on the motor side. Row-major
 // kDof x kDof K with dq_motor = K dq and tau = K^T tau_motor (Gautier & Briot eq. 25).
@@ -161,6 +171,43 @@ void power_regressor_sincos(const double* q, const double* sin_q, const double* 
 void power_regressor_sincos(const float* q, const float* sin_q, const float* cos_q,
                             const float* dq, const float* ddq, float* dh);
 
+// Motor torques tau_M (kDof) of the nonlinear drive model F of Swevers et al. 2002 (eq. 7-12)
+// for joint positions q, velocities dq and accelerations ddq (kDof each) and the parameters
+// theta (kDriveParams, in the order of kDriveParamNames). With K = kMotorFromJoint:
+// tau_G = rigid-body torques of the inertial parameters (eq. 1), tau'_G = K^-T tau_G (eq. 10),
+// dq_M = K dq and ddq_M = K ddq (eq. 9), tau_T = tau'_G / Rz if tau'_G dq_M > 0, tau'_G Rz if
+// < 0 and the mean of both if 0 (eq. 8), tau_M = tau_T + JM ddq_M + Rv dq_M + Rc sign(dq_M)
+// (eq. 7). Units follow K: N m on the motor side when K holds gear ratios, on the link side
+// (as in the paper) when it is the coupling alone. Every Rz must be non-zero.
+void drive_torque(const double* q, const double* dq, const double* ddq,
+                  const double* theta, double* tau_M);
+void drive_torque(const float* q, const float* dq, const float* ddq,
+                  const float* theta, float* tau_M);
+
+// Jacobian of drive_torque with respect to its parameters theta, for maximum-likelihood
+// estimation (Swevers et al. 2002 eq. 18): J is kDof x kDriveParams, row-major,
+// J[i * kDriveParams + k] = d tau_M_i / d theta_k. Inputs as for drive_torque. The efficiency
+// branch and the Coulomb friction sign count as constant: exact wherever no motor velocity and
+// no power flow tau'_G dq_M is zero. Calls idim_regressor_standard into a local array of
+// kDof * kStandardParams values (on the stack) and applies the chain rule to it.
+void drive_torque_jacobian(const double* q, const double* dq, const double* ddq,
+                           const double* theta, double* J);
+void drive_torque_jacobian(const float* q, const float* dq, const float* ddq,
+                           const float* theta, float* J);
+
+// Jacobian of drive_torque with respect to the state x = [q, dq, ddq] (3 kDof values), for
+// maximum likelihood with errors in variables (Bona & Curatella eq. 13-16): J is
+// kDof x 3 kDof, row-major, J[i * 3 * kDof + k] = d tau_M_i / d x_k. Inputs as for
+// drive_torque. The efficiency branch and the Coulomb friction sign count as constant: exact
+// wherever no motor velocity and no power flow tau'_G dq_M is zero (the torque jumps there).
+// Calls base_from_standard, inverse_dynamics and inverse_dynamics_state_jacobian into local
+// arrays (kStandardParams + kBaseParams + kDof + 3 kDof^2 values, on the stack) and applies the
+// chain rule to them.
+void drive_torque_state_jacobian(const double* q, const double* dq, const double* ddq,
+                                 const double* theta, double* J);
+void drive_torque_state_jacobian(const float* q, const float* dq, const float* ddq,
+                                 const float* theta, float* J);
+
 // The entry points above in one type, so that generic code such as the modelgen runtime's
 // modelgen::GeneratedModel<modelgen::tx40::Model> can use this robot by its type.
 struct Model {
@@ -168,10 +215,12 @@ struct Model {
   static constexpr int kDof = ::modelgen::tx40::kDof;
   static constexpr int kStandardParams = ::modelgen::tx40::kStandardParams;
   static constexpr int kBaseParams = ::modelgen::tx40::kBaseParams;
+  static constexpr int kDriveParams = ::modelgen::tx40::kDriveParams;
   static const char* name() { return "tx40"; }
   static const char* input_sha256() { return "8a2f905d78aeaa2a733324532df16a3f3b000f2d2ef68a724a12c92f21ed3654"; }
   static const char* const* standard_param_names() { return kStandardParamNames; }
   static const char* const* base_param_names() { return kBaseParamNames; }
+  static const char* const* drive_param_names() { return kDriveParamNames; }
   static const double* motor_from_joint() { return kMotorFromJoint; }
   static const double* torque_constant() { return kTorqueConstant; }
   static const double* joint_offset() { return kJointOffset; }
@@ -188,6 +237,18 @@ struct Model {
   static void inverse_dynamics_state_jacobian(const double* q, const double* dq, const double* ddq,
                                               const double* beta, double* J) {
     ::modelgen::tx40::inverse_dynamics_state_jacobian(q, dq, ddq, beta, J);
+  }
+  static void drive_torque(const double* q, const double* dq, const double* ddq,
+                           const double* theta, double* tau_M) {
+    ::modelgen::tx40::drive_torque(q, dq, ddq, theta, tau_M);
+  }
+  static void drive_torque_jacobian(const double* q, const double* dq, const double* ddq,
+                                    const double* theta, double* J) {
+    ::modelgen::tx40::drive_torque_jacobian(q, dq, ddq, theta, J);
+  }
+  static void drive_torque_state_jacobian(const double* q, const double* dq, const double* ddq,
+                                          const double* theta, double* J) {
+    ::modelgen::tx40::drive_torque_state_jacobian(q, dq, ddq, theta, J);
   }
   static void power_regressor(const double* q, const double* dq, const double* ddq, double* dh) {
     ::modelgen::tx40::power_regressor(q, dq, ddq, dh);

@@ -197,6 +197,7 @@ std::string print(const ExprGraph& g, ExprId id) {
     case Op::kSymbol: return g.symbols()[n.symbol].name;
     case Op::kShare:
     case Op::kSign: return print(g, n.args[0]);
+    case Op::kInv: return "1/(" + print(g, n.args[0]) + ")";
     case Op::kMul: {
       std::string out;
       std::size_t i = 0;

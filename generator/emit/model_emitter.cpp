@@ -5,8 +5,11 @@
 
 #include <algorithm>
 #include <cctype>
+#include <functional>
+#include <stdexcept>
 
 #include "modelgen/base_parameters.hpp"
+#include "generator/dynamics/drive_model.hpp"
 #include "generator/dynamics/newton_euler.hpp"
 #include "generator/dynamics/power_model.hpp"
 #include "generator/emit/printer.hpp"
@@ -23,7 +26,33 @@ struct FunctionSpec {
   std::vector<FunctionOutput> outputs;
   std::vector<std::string> parameters;  // the input arrays, for unused-parameter checks
   TrigSource trig = TrigSource::kCompute;
+  // Lines before the statements: local arrays filled by calls to other entry points (whose
+  // operation counts, `calls`, are added to this function's).
+  std::function<std::vector<std::string>(Scalar)> prologue{};
+  std::vector<std::string> calls{};
 };
+
+std::string render_statement(const char* template_name,
+                             const std::vector<std::pair<const char*, std::string>>& values) {
+  Printer printer(embedded_template(template_name));
+  for (const auto& [name, value] : values) printer.set(name, value);
+  std::string text = printer.render();
+  if (!text.empty() && text.back() == '\n') text.pop_back();
+  return text;
+}
+
+std::string local_array(Scalar scalar, const std::string& name, const std::string& size) {
+  return render_statement("statements/local_array",
+                          {{"scalar", scalar_name(scalar)}, {"name", name}, {"size", size}});
+}
+
+std::string call(const std::string& function, const std::string& arguments) {
+  return render_statement("statements/call", {{"function", function}, {"arguments", arguments}});
+}
+
+ExprId input_symbol(ExprGraph& graph, const std::string& array, int index) {
+  return graph.symbol({array + "[" + std::to_string(index) + "]", SymbolKind::kInput, ""});
+}
 
 struct EmittedFunction {
   const FunctionSpec* spec;
@@ -102,13 +131,18 @@ std::string pad_right(const std::string& text, std::size_t width) {
 }
 
 bool uses_array(const FunctionBody& body, const std::string& array) {
-  // A body uses an input array when some statement reads array[...]; trailing comments, which
-  // may name inputs (the columns of a Jacobian), do not count.
-  const std::string needle = array + "[";
+  // A body uses an input array when some statement reads array[...] or passes it to a call
+  // ("(q," or " q)"); trailing comments, which may name inputs (the columns of a Jacobian), do
+  // not count.
   for (const std::string& full_line : body.lines) {
     const std::string line = full_line.substr(0, full_line.find("//"));
-    for (std::size_t at = line.find(needle); at != std::string::npos; at = line.find(needle, at + 1)) {
-      if (at == 0 || !(std::isalnum(static_cast<unsigned char>(line[at - 1])) || line[at - 1] == '_')) {
+    for (std::size_t at = line.find(array); at != std::string::npos;
+         at = line.find(array, at + 1)) {
+      const bool inside_name =
+          at > 0 && (std::isalnum(static_cast<unsigned char>(line[at - 1])) || line[at - 1] == '_');
+      if (inside_name) continue;
+      const std::size_t end = at + array.size();
+      if (end < line.size() && (line[end] == '[' || line[end] == ',' || line[end] == ')')) {
         return true;
       }
     }
@@ -225,6 +259,109 @@ GeneratedModel emit_model(const RobotModel& model, const GenerationInput& input)
     specs.push_back(std::move(energy));
     specs.push_back(std::move(power));
   }
+  // The Swevers drive model F (eq. 12) and its Jacobians with respect to its parameters theta
+  // (eq. 14) and to the state (Bona & Curatella eq. 13-16). The sign terms (friction,
+  // efficiency branch) are piecewise constant: their derivative is taken as zero. drive_torque
+  // is flattened like the others; the Jacobians call the standard regressor, or the base inverse
+  // dynamics and its state Jacobian, into local arrays and apply the chain rule to them, so
+  // their bodies stay small (flattened, the state Jacobian alone doubled the compile time of
+  // the larger models).
+  const DriveParameters drive = make_drive_parameters(graph, tree);
+  const int num_drive = static_cast<int>(drive.theta.size());
+  const Eigen::MatrixXd V = joint_from_motor(model.drives.motor_from_joint, dof);
+  {
+    SymbolicInputs rigid = symbols;
+    rigid.p = rigid_body_parameters(graph, tree, drive);
+    const DriveTorques torques = derive_drive_torques(
+        graph, model.drives.motor_from_joint, symbols, drive,
+        derive_inverse_dynamics(graph, tree, rigid));
+    FunctionSpec spec{"drive_torque", {}, {"q", "dq", "ddq", "theta"}};
+    for (int i = 0; i < dof; ++i) {
+      spec.outputs.push_back({"tau_M[" + std::to_string(i) + "]", torques.tau_M[i], ""});
+    }
+    specs.push_back(std::move(spec));
+  }
+  {
+    // tau_G = W_std p with W_std from idim_regressor_standard: F is then an expression of
+    // W_std and theta, and d F / d theta its symbolic derivative.
+    std::vector<ExprId> tau_G;
+    for (int i = 0; i < dof; ++i) {
+      std::vector<ExprId> terms;
+      for (std::size_t k = 0; k < drive.standard_index.size(); ++k) {
+        terms.push_back(graph.mul(
+            input_symbol(graph, "W_std", i * num_params + drive.standard_index[k]),
+            drive.theta[k]));
+      }
+      tau_G.push_back(graph.add(std::move(terms)));
+    }
+    const DriveTorques torques =
+        derive_drive_torques(graph, model.drives.motor_from_joint, symbols, drive, tau_G);
+    const std::vector<ExprId> J = jacobian(graph, torques.tau_M, drive.theta);
+    FunctionSpec spec{"drive_torque_jacobian", {}, {"q", "dq", "ddq", "theta"}};
+    for (int i = 0; i < dof; ++i) {
+      for (int k = 0; k < num_drive; ++k) {
+        const int index = i * num_drive + k;
+        spec.outputs.push_back({"J[" + std::to_string(index) + "]", J[index],
+                                i == 0 ? drive.names[k] : std::string()});
+      }
+    }
+    spec.prologue = [](Scalar scalar) {
+      return std::vector<std::string>{
+          local_array(scalar, "W_std", "kDof * kStandardParams"),
+          call("idim_regressor_standard", "q, dq, ddq, W_std")};
+    };
+    spec.calls = {"idim_regressor_standard"};
+    specs.push_back(std::move(spec));
+  }
+  {
+    // d tau_M / d x = c V^T d tau_G / d x + Rv K (dq block) + JM K (ddq block), with tau_G and
+    // d tau_G / d x from the base inverse dynamics and its state Jacobian at
+    // beta = base_from_standard(p) (tau = W_std p = W_base beta for every p).
+    std::vector<ExprId> tau_G;
+    for (int i = 0; i < dof; ++i) tau_G.push_back(input_symbol(graph, "tau_G", i));
+    const DriveTorques torques =
+        derive_drive_torques(graph, model.drives.motor_from_joint, symbols, drive, tau_G);
+    const Eigen::MatrixXd& K = model.drives.motor_from_joint;
+    FunctionSpec spec{"drive_torque_state_jacobian", {}, {"q", "dq", "ddq", "theta"}};
+    for (int i = 0; i < dof; ++i) {
+      for (int k = 0; k < 3 * dof; ++k) {
+        std::vector<ExprId> chain;
+        for (int j = 0; j < dof; ++j) {
+          chain.push_back(graph.mul(graph.constant(V(j, i)),
+                                    input_symbol(graph, "dtau_G", j * 3 * dof + k)));
+        }
+        std::vector<ExprId> terms = {graph.mul(torques.efficiency[i], graph.add(chain))};
+        // Eq. 7 and 9: d (Rv dq_M) / d dq = Rv K, d (JM ddq_M) / d ddq = JM K.
+        if (k >= dof && k < 2 * dof) {
+          terms.push_back(graph.mul(graph.constant(K(i, k - dof)), drive.Rv[i]));
+        } else if (k >= 2 * dof) {
+          terms.push_back(graph.mul(graph.constant(K(i, k - 2 * dof)), drive.JM[i]));
+        }
+        const char* array = k < dof ? "q" : (k < 2 * dof ? "dq" : "ddq");
+        spec.outputs.push_back(
+            {"J[" + std::to_string(i * 3 * dof + k) + "]", graph.add(terms),
+             i == 0 ? std::string(array) + "[" + std::to_string(k % dof) + "]" : std::string()});
+      }
+    }
+    spec.prologue = [&drive](Scalar scalar) {
+      std::vector<std::string> lines = {local_array(scalar, "p_std", "kStandardParams")};
+      for (std::size_t k = 0; k < drive.standard_index.size(); ++k) {
+        lines.push_back(render_statement(
+            "statements/output",
+            {{"target", "p_std[" + std::to_string(drive.standard_index[k]) + "]"},
+             {"value", "theta[" + std::to_string(k) + "]"}}));
+      }
+      lines.push_back(local_array(scalar, "beta", "kBaseParams"));
+      lines.push_back(call("base_from_standard", "p_std, beta"));
+      lines.push_back(local_array(scalar, "tau_G", "kDof"));
+      lines.push_back(call("inverse_dynamics", "q, dq, ddq, beta, tau_G"));
+      lines.push_back(local_array(scalar, "dtau_G", "kDof * 3 * kDof"));
+      lines.push_back(call("inverse_dynamics_state_jacobian", "q, dq, ddq, beta, dtau_G"));
+      return lines;
+    };
+    spec.calls = {"base_from_standard", "inverse_dynamics", "inverse_dynamics_state_jacobian"};
+    specs.push_back(std::move(spec));
+  }
   {
     FunctionSpec spec{"joint_sincos", {}, {"q"}};
     for (int i = 0; i < dof; ++i) {
@@ -236,10 +373,11 @@ GeneratedModel emit_model(const RobotModel& model, const GenerationInput& input)
   // Variants reading sin/cos from the caller (joint_sincos), for several functions per state.
   // Not for the state Jacobian: its body is several times that of the inverse dynamics, so
   // sharing the sines and cosines would save under 1 % of its work for twice the code to
-  // compile.
+  // compile. Not for the drive model either (one call per sample in an estimation loop).
   for (std::size_t i = 0, count = specs.size(); i < count; ++i) {
     if (specs[i].name == "joint_sincos" || specs[i].name == "base_from_standard" ||
-        specs[i].name == "inverse_dynamics_state_jacobian") {
+        specs[i].name == "inverse_dynamics_state_jacobian" ||
+        specs[i].name.starts_with("drive_torque")) {
       continue;
     }
     FunctionSpec variant = specs[i];
@@ -257,7 +395,8 @@ GeneratedModel emit_model(const RobotModel& model, const GenerationInput& input)
       "idim_regressor_standard_sincos", "inverse_dynamics_standard_sincos", "base_from_standard",
       "idim_regressor", "inverse_dynamics", "idim_regressor_sincos", "inverse_dynamics_sincos",
       "inverse_dynamics_state_jacobian", "energy_regressor", "power_regressor",
-      "energy_regressor_sincos", "power_regressor_sincos"};
+      "energy_regressor_sincos", "power_regressor_sincos", "drive_torque", "drive_torque_jacobian",
+      "drive_torque_state_jacobian"};
   std::stable_sort(specs.begin(), specs.end(), [&order](const FunctionSpec& a, const FunctionSpec& b) {
     return std::find(order.begin(), order.end(), a.name) < std::find(order.begin(), order.end(), b.name);
   });
@@ -267,9 +406,27 @@ GeneratedModel emit_model(const RobotModel& model, const GenerationInput& input)
   for (const FunctionSpec& spec : specs) {
     EmittedFunction f{&spec, {}};
     for (Scalar scalar : input.scalars) {
-      f.body.push_back(write_statements(graph, spec.outputs, scalar, spec.trig));
+      FunctionBody body = write_statements(graph, spec.outputs, scalar, spec.trig);
+      if (spec.prologue) {
+        std::vector<std::string> lines = spec.prologue(scalar);
+        lines.insert(lines.end(), body.lines.begin(), body.lines.end());
+        body.lines = std::move(lines);
+      }
+      f.body.push_back(std::move(body));
     }
-    result.functions.push_back({spec.name, f.body[0].counts});
+    OpCounts counts = f.body[0].counts;
+    for (const std::string& callee : spec.calls) {
+      const auto found = std::find_if(result.functions.begin(), result.functions.end(),
+                                      [&](const FunctionReport& r) { return r.name == callee; });
+      if (found == result.functions.end()) {
+        throw std::logic_error("emit_model: " + spec.name + " calls " + callee +
+                               ", which is not emitted before it");
+      }
+      counts.mul += found->counts.mul;
+      counts.add += found->counts.add;
+      counts.trig += found->counts.trig;
+    }
+    result.functions.push_back({spec.name, counts});
     functions.push_back(std::move(f));
   }
 
@@ -333,6 +490,7 @@ GeneratedModel emit_model(const RobotModel& model, const GenerationInput& input)
           .set("dof", dof)
           .set("standard_param_count", num_params)
           .set("base_param_count", num_base)
+          .set("drive_param_count", num_drive)
           .set_block("model_struct",
                      [&](CodeWriter& out) {
                        if (input.scalars.empty() || input.scalars[0] != Scalar::kDouble) return;
@@ -382,6 +540,8 @@ GeneratedModel emit_model(const RobotModel& model, const GenerationInput& input)
                      [&](CodeWriter& out) { write_name_list(standard_names, out); })
           .set_block("base_param_names",
                      [&](CodeWriter& out) { write_name_list(base_names, out); })
+          .set_block("drive_param_names",
+                     [&](CodeWriter& out) { write_name_list(drive.names, out); })
           .set_block("motor_from_joint",
                      [&](CodeWriter& out) {
                        // One row of K per line, so the matrix reads as written.
@@ -463,6 +623,12 @@ GeneratedModel emit_model(const RobotModel& model, const GenerationInput& input)
                          out.line("{\"name\": " + json_string(base.params[b].name) +
                                   ", \"relation\": {" + relation + "}}" +
                                   (b + 1 < num_base ? "," : ""));
+                       }
+                     })
+          .set_block("drive_parameters",
+                     [&](CodeWriter& out) {
+                       for (int k = 0; k < num_drive; ++k) {
+                         out.line(json_string(drive.names[k]) + (k + 1 < num_drive ? "," : ""));
                        }
                      })
           .set_block("functions",

@@ -21,7 +21,8 @@ struct GenerationInput {
   std::vector<Scalar> scalars = {Scalar::kDouble, Scalar::kFloat};
 };
 
-/// Operation counts of one generated function (double and float bodies are the same code).
+/// Operation counts of one generated function (double and float bodies are the same code),
+/// including those of the entry points it calls (the drive model Jacobians call others).
 struct FunctionReport {
   std::string name;
   OpCounts counts;

@@ -58,7 +58,8 @@ class StatementWriter {
 
   bool is_operation(ExprId id) const {
     const Op op = g_.node(id).op;
-    return op == Op::kAdd || op == Op::kMul || op == Op::kShare || op == Op::kSign;
+    return op == Op::kAdd || op == Op::kMul || op == Op::kShare || op == Op::kSign ||
+           op == Op::kInv;
   }
 
   // A shared intermediate used once is printed as its expression.
@@ -245,6 +246,17 @@ class StatementWriter {
         bool first = true;
         append_terms(id, false, out, first);
         return context == Context::kFactor ? "(" + out + ")" : out;
+      }
+      case Op::kInv: {
+        // One division, counted as a multiplication. The divisor is parenthesized unless it is
+        // a single name or a sum (which kFactor already parenthesizes): 1.0 / (a * b).
+        ++counts_.mul;
+        const ExprId divisor = resolve(n.args[0]);
+        std::string text = expression(divisor, Context::kFactor);
+        const Op op = g_.node(divisor).op;
+        if (name_[divisor].empty() && (op == Op::kMul || op == Op::kInv)) text = "(" + text + ")";
+        const std::string quotient = format_literal(1.0, scalar_) + " / " + text;
+        return context == Context::kFactor ? "(" + quotient + ")" : quotient;
       }
       case Op::kShare: break;  // resolved above
       case Op::kSign: break;   // always a temporary

@@ -13,7 +13,7 @@
 namespace modelgen::gen {
 
 struct OpCounts {
-  long mul = 0;   ///< multiplications
+  long mul = 0;   ///< multiplications and divisions (1 / x, for transmission efficiencies)
   long add = 0;   ///< additions, subtractions and negations
   long trig = 0;  ///< sin and cos calls
 };

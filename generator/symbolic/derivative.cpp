@@ -85,6 +85,12 @@ ExprId PartialDerivative::differentiate_node(ExprId e) {
     }
     case Op::kShare: return graph_.share(done_[node.args[0]]);
     case Op::kSign: return graph_.zero();  // zero wherever it is differentiable
+    case Op::kInv: {
+      // d (1/u) = -(1/u)^2 du, reusing the node 1/u itself (e), so no new division.
+      const ExprId d = done_[node.args[0]];
+      if (graph_.is_zero(d)) return graph_.zero();
+      return graph_.mul({graph_.constant(-1.0), e, e, d});
+    }
   }
   return graph_.zero();
 }

@@ -20,6 +20,7 @@ namespace modelgen::gen {
 /// - sign(e) (Op::kSign and the derived sign leaves) has derivative 0. It is piecewise
 ///   constant, so this is its derivative wherever it exists: everywhere except where its
 ///   argument changes sign (for friction, where a joint velocity crosses zero).
+/// - d (1/e) = -(1/e)^2 d e, with the node 1/e itself as the factor (no new division).
 /// - The derivative of share(e) is share(d e): derivatives of intermediate results stay
 ///   intermediate results, so generated code keeps the customized Newton-Euler structure.
 /// - An expression not containing x has derivative graph.zero(), the constant 0 node.

@@ -172,11 +172,33 @@ ExprId ExprGraph::sign(ExprId e) {
     const double v = nodes_[e].value;
     return constant(v > 0 ? 1.0 : (v < 0 ? -1.0 : 0.0));
   }
+  if (const auto [c, rest] = split_coefficient(e); c != 1.0) {
+    // The coefficient of a product is non-zero (mul folds zero away): only its sign matters.
+    return c > 0 ? sign(rest) : neg(sign(rest));
+  }
   Node node;
   node.op = Op::kSign;
   node.args = {e};
   return intern(std::move(node));
 }
+
+ExprId ExprGraph::inv(ExprId e) {
+  const Node& n = nodes_[e];
+  if (n.op == Op::kConstant) {
+    if (n.value == 0.0) throw std::logic_error("ExprGraph: reciprocal of the constant 0");
+    return constant(1.0 / n.value);
+  }
+  if (n.op == Op::kInv) return n.args[0];
+  if (const auto [c, rest] = split_coefficient(e); c != 1.0) {
+    return mul(constant(1.0 / c), inv(rest));
+  }
+  Node node;
+  node.op = Op::kInv;
+  node.args = {e};
+  return intern(std::move(node));
+}
+
+ExprId ExprGraph::div(ExprId a, ExprId b) { return mul(a, inv(b)); }
 
 std::vector<double> ExprGraph::evaluate(const std::function<double(const Symbol&)>& leaf) const {
   std::vector<double> value(nodes_.size());
@@ -204,6 +226,7 @@ std::vector<double> ExprGraph::evaluate(const std::function<double(const Symbol&
         value[i] = x > 0 ? 1.0 : (x < 0 ? -1.0 : 0.0);
         break;
       }
+      case Op::kInv: value[i] = 1.0 / value[n.args[0]]; break;
     }
   }
   return value;

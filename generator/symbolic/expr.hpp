@@ -22,6 +22,8 @@ enum class Op : std::uint8_t {
   kMul,  // n-ary product, at most one constant (first), no 0 or 1 constants, no nested products
   kShare,  // one arg: an intermediate result kept whole, an atom to sums and products
   kSign,   // one arg: -1, 0 or 1 (Coulomb friction of a motor driving several joints)
+  kInv,    // one arg: its reciprocal 1 / arg (transmission efficiency, Swevers eq. 8); never
+           // of a constant, of a reciprocal or of a product with a constant coefficient
 };
 
 /// What a leaf stands for. The statement writer defines derived leaves (sin, cos, sign of a
@@ -71,8 +73,16 @@ class ExprGraph {
   /// are.
   ExprId share(ExprId e);
 
-  /// sign(e): -1, 0 or +1; folded when e is a constant.
+  /// sign(e): -1, 0 or +1; folded when e is a constant, and sign(c e) = sign(c) sign(e) for a
+  /// constant coefficient c.
   ExprId sign(ExprId e);
+
+  /// 1 / e. Folded: a constant gives its reciprocal (std::logic_error for 0), 1 / (1 / x) gives
+  /// x, and 1 / (c x) gives (1 / c) (1 / x), so constant coefficients stay in front where sums
+  /// can collect them. Products are not searched for x (1 / x): x / x stays as it is.
+  ExprId inv(ExprId e);
+  /// a / b as a (1 / b), with the folding of inv().
+  ExprId div(ExprId a, ExprId b);
 
   const Node& node(ExprId id) const { return nodes_[id]; }
   const std::vector<Symbol>& symbols() const { return symbols_; }

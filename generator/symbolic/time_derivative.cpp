@@ -44,6 +44,12 @@ ExprId TimeDerivative::operator()(ExprId e) {
       break;
     case Op::kSign:
       break;  // piecewise constant: zero wherever it is differentiable
+    case Op::kInv: {
+      // d/dt (1/u) = -(1/u)^2 du/dt
+      const ExprId d = (*this)(node.args[0]);
+      if (!graph_.is_zero(d)) result = graph_.mul({graph_.constant(-1.0), e, e, d});
+      break;
+    }
 
   }
   done_.emplace(e, result);

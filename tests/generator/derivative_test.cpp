@@ -104,6 +104,27 @@ TEST_F(DerivativeTest, SignsArePiecewiseConstant) {
   EXPECT_EQ(d(g.mul(g.sign(g.add(x, sy)), y), y), g.sign(g.add(x, sy)));
 }
 
+TEST_F(DerivativeTest, ReciprocalsFollowTheQuotientRule) {
+  // d (1/x) / dx = -(1/x)^2, built on the node 1/x itself.
+  const ExprId inv_x = g.inv(x);
+  EXPECT_EQ(d(inv_x, x), g.mul({g.constant(-1), inv_x, inv_x}));
+  EXPECT_EQ(d(inv_x, y), g.zero());
+  // d (y / (x^2 + 1)) / dx = -2 x y / (x^2 + 1)^2, compared by value with the closed form.
+  const ExprId e = g.div(y, g.add(g.mul(x, x), g.one()));
+  const ExprId dx = d(e, x);
+  const ExprId dy = d(e, y);
+  const std::map<std::string, double> at = {{"x", 0.7}, {"y", -1.3}, {"z", 0.0}};
+  const std::vector<double> v = g.evaluate(leaf_values(at));
+  const double den = 0.7 * 0.7 + 1;
+  EXPECT_NEAR(v[dx], -2 * 0.7 * -1.3 / (den * den), 1e-15);
+  EXPECT_NEAR(v[dy], 1 / den, 1e-15);
+  // Through a share and a product: d (1 / share(x y)) / dy = -x / (x y)^2.
+  const ExprId shared = g.share(g.add(g.mul(x, y), z));
+  const ExprId d_shared = d(g.inv(shared), y);
+  const std::vector<double> w = g.evaluate(leaf_values(at));
+  EXPECT_NEAR(w[d_shared], -0.7 / ((0.7 * -1.3) * (0.7 * -1.3)), 1e-14);
+}
+
 TEST_F(DerivativeTest, ExpressionsWithoutTheVariableGiveTheZeroNode) {
   const ExprId shared = g.share(g.add(g.mul(y, z), sy));
   const ExprId e = g.add({g.mul(shared, cy), g.mul(g.constant(2), z), g.sign(y), sgz,

@@ -150,6 +150,42 @@ TEST_F(ExprTest, SignsAndCoefficientsCombine) {
   EXPECT_EQ(g.add(g.mul(g.constant(3), x), g.mul(g.constant(-3), x)), g.zero());
 }
 
+TEST_F(ExprTest, ReciprocalsFold) {
+  EXPECT_EQ(g.inv(g.constant(4)), g.constant(0.25));
+  EXPECT_EQ(g.inv(g.constant(-0.5)), g.constant(-2));
+  EXPECT_THROW(g.inv(g.zero()), std::logic_error);
+  const ExprId inv_a = g.inv(a);
+  ASSERT_EQ(g.node(inv_a).op, Op::kInv);
+  EXPECT_EQ(g.node(inv_a).args, std::vector<ExprId>{a});
+  EXPECT_EQ(g.inv(a), inv_a);  // hash-consed
+  EXPECT_EQ(g.inv(inv_a), a);
+  // The constant coefficient leaves the reciprocal: 1 / (4 a b) = 0.25 (1 / (a b)).
+  const ExprId ab = g.mul(a, b);
+  EXPECT_EQ(g.inv(g.mul(g.constant(4), ab)), g.mul(g.constant(0.25), g.inv(ab)));
+  EXPECT_EQ(g.inv(g.neg(a)), g.neg(inv_a));
+  EXPECT_EQ(g.div(b, a), g.mul(b, inv_a));
+  EXPECT_EQ(g.div(g.zero(), a), g.zero());
+  // A reciprocal is an atom to sums and products: like terms collect over it.
+  EXPECT_EQ(g.add(g.mul(g.constant(2), inv_a), inv_a), g.mul(g.constant(3), inv_a));
+  // Values: 1 / (a + b) and b / (2 a) at a = 0.5, b = 3.
+  const ExprId sum_inverse = g.inv(g.add(a, b));
+  const ExprId quotient = g.div(b, g.mul(g.constant(2), a));
+  const std::vector<double> v = g.evaluate([](const Symbol& s) {
+    return s.name == "p[0]" ? 0.5 : (s.name == "p[1]" ? 3.0 : 0.0);
+  });
+  EXPECT_DOUBLE_EQ(v[sum_inverse], 1.0 / 3.5);
+  EXPECT_DOUBLE_EQ(v[quotient], 3.0);
+}
+
+TEST_F(ExprTest, SignOfAProductDropsItsConstantCoefficient) {
+  EXPECT_EQ(g.sign(g.mul(g.constant(3), a)), g.sign(a));
+  EXPECT_EQ(g.sign(g.mul({g.constant(-0.25), a, b})), g.neg(g.sign(g.mul(a, b))));
+  EXPECT_EQ(g.sign(g.constant(-2)), g.constant(-1));
+  const std::vector<double> v =
+      g.evaluate([](const Symbol& s) { return s.name == "p[0]" ? -1.5 : 2.0; });
+  EXPECT_EQ(v[g.sign(g.mul({g.constant(-0.25), a, b}))], 1.0);  // -0.25 * -1.5 * 2 > 0
+}
+
 TEST_F(ExprTest, NegativeZeroIsZero) {
   EXPECT_EQ(g.constant(-0.0), g.zero());
   EXPECT_FALSE(std::signbit(g.constant_value(g.constant(-0.0))));

@@ -223,6 +223,30 @@ TEST_F(StatementWriterTest, SignLeavesUseTheScalarLiterals) {
   EXPECT_EQ(body.counts.trig, 0);
 }
 
+TEST_F(StatementWriterTest, ReciprocalsPrintAsOneDivisionCountedAsAMultiplication) {
+  const FunctionBody body =
+      write_statements(g,
+                       {{"y[0]", g.inv(p0), ""},
+                        {"y[1]", g.mul(p1, g.inv(p0)), ""},
+                        {"y[2]", g.inv(g.mul(p1, p2)), ""},
+                        {"y[3]", g.inv(g.add(p1, p2)), ""}},
+                       Scalar::kDouble);
+  // 1 / p[0] is used twice: a temporary.
+  EXPECT_EQ(body.lines, (Lines{
+                            "const double t0 = 1.0 / p[0];",
+                            "y[0] = t0;",
+                            "y[1] = p[1] * t0;",
+                            "y[2] = 1.0 / (p[1] * p[2]);",
+                            "y[3] = 1.0 / (p[1] + p[2]);",
+                        }));
+  EXPECT_EQ(body.counts.mul, 5);  // three divisions and two products
+  EXPECT_EQ(body.counts.add, 1);
+  const FunctionBody single =
+      write_statements(g, {{"y[0]", g.mul({p1, p2, g.inv(p0)}), ""}}, Scalar::kFloat);
+  EXPECT_EQ(single.lines, (Lines{"y[0] = p[1] * p[2] * (1.0f / p[0]);"}));
+  EXPECT_EQ(single.counts.mul, 3);
+}
+
 // ---- Operation counts against the text, and the text's values against the DAG ----
 
 // The operations a statement line performs: '*' is a multiplication; every '+' and '-' that
@@ -375,6 +399,9 @@ std::vector<double> magnitudes(const ExprGraph& g, const std::vector<double>& va
         break;
       case Op::kSign:
         m[i] = 1;
+        break;
+      case Op::kInv:  // not built by the random graphs here
+        m[i] = std::fabs(values[i]);
         break;
       case Op::kAdd:
         m[i] = 0;
