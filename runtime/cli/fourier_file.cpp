@@ -3,6 +3,11 @@
 
 #include "runtime/cli/fourier_file.hpp"
 
+#include <algorithm>
+#include <array>
+#include <numbers>
+#include <vector>
+
 #include <yaml-cpp/yaml.h>
 
 #include "generator/description/diagnostics.hpp"
@@ -25,32 +30,74 @@ FourierTrajectory read_fourier_checked(const std::string& path, int dof) {
   if (!root["period"] || !root["joints"] || !root["joints"].IsSequence()) {
     throw gen::InputError({path},
                           "a trajectory needs 'period' (s) and 'joints' (one entry per "
-                          "joint with q0, a, b)");
+                          "joint with q0 and a, b or terms)");
   }
   f.period = root["period"].as<double>();
   if (!(f.period > 0)) throw gen::InputError(at(root["period"]), "'period' must be positive (s)");
+  std::string form = "velocity";
+  if (root["form"]) form = root["form"].as<std::string>();
+  if (form != "velocity" && form != "position") {
+    throw gen::InputError(at(root["form"]),
+                          "'form' is 'velocity' (a/(l w) sin - b/(l w) cos, Swevers 1997) or "
+                          "'position' (a sin + b cos, Swevers 2002 eq. 15), not '" +
+                              form + "'");
+  }
   const YAML::Node joints = root["joints"];
   if (static_cast<int>(joints.size()) != dof) {
     throw gen::InputError(at(joints), "'joints' has " + std::to_string(joints.size()) +
                                           " entries, the robot has " + std::to_string(dof) +
                                           " joints");
   }
-  const std::size_t harmonics = joints[0]["a"] ? joints[0]["a"].size() : 0;
+  // Coefficients as written: dense lists a, b (harmonics 1, 2, ...) or sparse terms
+  // [{l, a, b}], zero elsewhere.
+  std::vector<std::vector<std::array<double, 3>>> written(static_cast<std::size_t>(dof));
+  int harmonics = 0;
   f.q0 = Eigen::VectorXd::Zero(dof);
+  for (int j = 0; j < dof; ++j) {
+    const YAML::Node joint = joints[j];
+    if (joint["q0"]) f.q0[j] = joint["q0"].as<double>();
+    auto& terms = written[static_cast<std::size_t>(j)];
+    if (joint["terms"]) {
+      if (joint["a"] || joint["b"]) {
+        throw gen::InputError(at(joint), "joint " + std::to_string(j + 1) +
+                                             ": give either 'a' and 'b' or 'terms', not both");
+      }
+      for (const YAML::Node& term : joint["terms"]) {
+        if (!term["l"] || !term["a"] || !term["b"]) {
+          throw gen::InputError(at(term), "a term needs 'l' (harmonic, 1 or more), 'a' and 'b'");
+        }
+        const int l = term["l"].as<int>();
+        if (l < 1) throw gen::InputError(at(term["l"]), "harmonic 'l' must be 1 or more");
+        terms.push_back({static_cast<double>(l), term["a"].as<double>(), term["b"].as<double>()});
+        harmonics = std::max(harmonics, l);
+      }
+    } else {
+      if (!joint["a"] || !joint["b"] || joint["a"].size() != joint["b"].size()) {
+        throw gen::InputError(at(joint), "joint " + std::to_string(j + 1) +
+                                             " needs 'a' and 'b' with as many coefficients "
+                                             "each, or 'terms'");
+      }
+      for (std::size_t l = 0; l < joint["a"].size(); ++l) {
+        terms.push_back(
+            {static_cast<double>(l + 1), joint["a"][l].as<double>(), joint["b"][l].as<double>()});
+      }
+      harmonics = std::max(harmonics, static_cast<int>(joint["a"].size()));
+    }
+  }
+  const double wf = 2.0 * std::numbers::pi / f.period;
   f.a = Eigen::MatrixXd::Zero(dof, harmonics);
   f.b = Eigen::MatrixXd::Zero(dof, harmonics);
   for (int j = 0; j < dof; ++j) {
-    const YAML::Node joint = joints[j];
-    if (!joint["a"] || !joint["b"] || joint["a"].size() != harmonics ||
-        joint["b"].size() != harmonics) {
-      throw gen::InputError(at(joint), "joint " + std::to_string(j + 1) +
-                                           " needs 'a' and 'b' with " + std::to_string(harmonics) +
-                                           " coefficients each");
-    }
-    if (joint["q0"]) f.q0[j] = joint["q0"].as<double>();
-    for (std::size_t l = 0; l < harmonics; ++l) {
-      f.a(j, l) = joint["a"][l].as<double>();
-      f.b(j, l) = joint["b"][l].as<double>();
+    for (const auto& [l, a, b] : written[static_cast<std::size_t>(j)]) {
+      const int k = static_cast<int>(l) - 1;
+      if (form == "velocity") {
+        f.a(j, k) = a;
+        f.b(j, k) = b;
+      } else {
+        // a sin(l w t) + b cos(l w t) = (a l w)/(l w) sin - (-b l w)/(l w) cos.
+        f.a(j, k) = a * l * wf;
+        f.b(j, k) = -b * l * wf;
+      }
     }
   }
   return f;

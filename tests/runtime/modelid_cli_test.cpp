@@ -129,5 +129,55 @@ TEST(ModelidCli, ShortRunsPrintNoProgressIntoLogs) {
   EXPECT_EQ(run.err.find('\r'), std::string::npos);
 }
 
+// The two conventions of excitation files: position amplitudes (Swevers 2002 eq. 15, sparse
+// terms as in its Table 1) give q = q0 + sum a sin(l w t) + b cos(l w t), computed here in closed
+// form; the same trajectory in velocity amplitudes (dense lists) gives the same samples.
+TEST(ModelidCli, TrajectoryFormsFollowTheirEquations) {
+  const std::filesystem::path dir = test::test_folder();
+  const double period = 8.0, w = 2 * M_PI / period;
+  // Joint 3: q0 = 0.4, harmonic 3 with a = 0.1, b = -0.05; other joints still.
+  std::string position = "period: 8\nform: position\njoints:\n";
+  std::string velocity = "period: 8\njoints:\n";
+  for (int j = 1; j <= 6; ++j) {
+    if (j == 3) {
+      position += "  - {q0: 0.4, terms: [{l: 3, a: 0.1, b: -0.05}]}\n";
+      // a_v/(3w) = 0.1 and -b_v/(3w) = -0.05.
+      velocity += "  - {q0: 0.4, a: [0, 0, " + std::to_string(0.1 * 3 * w) + "], b: [0, 0, " +
+                  std::to_string(0.05 * 3 * w) + "]}\n";
+    } else {
+      position += "  - {q0: 0, terms: []}\n";
+      velocity += "  - {q0: 0, a: [0], b: [0]}\n";
+    }
+  }
+  test::write_text(dir / "position.yaml", position);
+  test::write_text(dir / "velocity.yaml", velocity);
+  test::write_text(dir / "zero.json", "{\"base\": {}}");
+  for (const char* name : {"position", "velocity"}) {
+    const CliRun run = modelid(
+        "simulate --robot tx40 --params " + test::quoted(dir / "zero.json") + " --trajectory " +
+        test::quoted(dir / (std::string(name) + ".yaml")) + " --noise 0 --sample-time 0.5 -o " +
+        test::quoted(dir / (std::string(name) + ".csv")));
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+    const test::CsvTable table = test::read_csv(dir / (std::string(name) + ".csv"));
+    ASSERT_EQ(table.rows.size(), 16u);
+    for (std::size_t s = 0; s < table.rows.size(); ++s) {
+      const double t = table.at(s, "t");
+      EXPECT_NEAR(table.at(s, "q3"), 0.4 + 0.1 * std::sin(3 * w * t) - 0.05 * std::cos(3 * w * t),
+                  1e-6)
+          << name << " t = " << t;
+      EXPECT_NEAR(table.at(s, "dq3"),
+                  0.1 * 3 * w * std::cos(3 * w * t) + 0.05 * 3 * w * std::sin(3 * w * t), 1e-6)
+          << name;
+      EXPECT_EQ(table.at(s, "q1"), 0.0);
+    }
+  }
+  test::write_text(dir / "bad.yaml", "period: 8\nform: amplitude\njoints: []\n");
+  const CliRun bad = modelid("simulate --robot tx40 --params " + test::quoted(dir / "zero.json") +
+                             " --trajectory " + test::quoted(dir / "bad.yaml") + " --noise 0 -o " +
+                             test::quoted(dir / "bad.csv"));
+  EXPECT_EQ(bad.exit_code, 1);
+  EXPECT_NE(bad.err.find("bad.yaml:2"), std::string::npos) << bad.err;
+}
+
 }  // namespace
 }  // namespace modelgen
