@@ -165,7 +165,11 @@ int run_fit(const Arguments& args) {
   const ModelSource source = load_model_source(args.one("--robot"));
   const IdentificationModel& model = *source.model;
   if (!args.has("--data")) throw UsageError{"fit needs at least one --data file"};
-  const Method method = parse_method(args.one("--method"));
+  const std::string& method_text = args.one("--method");
+  if (method_text != "ols" && method_text != "wls" && method_text != "pim-wls") {
+    throw UsageError{"--method must be ols, wls, pim-wls or ml, not '" + method_text + "'"};
+  }
+  const Method method = parse_method(method_text);
   const bool essential = args.has("--essential");
   double r_sigma = kDefaultRSigma;
   if (args.has("--r-sigma")) {

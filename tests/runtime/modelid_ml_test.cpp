@@ -263,6 +263,11 @@ TEST(ModelidMl, UsageErrors) {
             std::string::npos)
       << run.err;
 
+  run = modelid("fit --method mle --robot " + robot + data);
+  EXPECT_EQ(run.exit_code, 2);
+  EXPECT_NE(run.err.find("--method must be ols, wls, pim-wls or ml, not 'mle'"), std::string::npos)
+      << run.err;
+
   run = modelid("fit --method wls --approach 3 --robot " + robot + data);
   EXPECT_EQ(run.exit_code, 2);
   EXPECT_NE(run.err.find("--approach belongs to --method ml"), std::string::npos) << run.err;
