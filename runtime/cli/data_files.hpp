@@ -24,6 +24,9 @@ PreparationOptions preparation_options(const Arguments& args);
 struct Experiments {
   std::vector<Trajectory> data;  ///< joint side, with dq and ddq
   std::vector<int> decimation;   ///< parallel decimation factor per experiment
+  /// Per experiment: the joint-side torque noise variance per axis from the period average
+  /// (N^2 m^2, dof values) with --periodic, empty otherwise (PreparedExperiment).
+  std::vector<Eigen::VectorXd> tau_noise_variance;
 };
 
 /// Reads each CSV file (read_trajectory_csv: t, q1..qn, tau1..taun or currents i1..in,

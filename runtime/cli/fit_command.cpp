@@ -29,7 +29,10 @@ const std::map<std::string, OptionKind> kFitOptions =
                        {"--truth", OptionKind::kOnce},
                        {"--essential", OptionKind::kFlag},
                        {"--r-sigma", OptionKind::kOnce},
-                       {"--plot", OptionKind::kOnce}});
+                       {"--plot", OptionKind::kOnce},
+                       {"--approach", OptionKind::kOnce},
+                       {"--unknown", OptionKind::kOnce},
+                       {"--known", OptionKind::kOnce}});
 
 namespace {
 
@@ -148,10 +151,25 @@ void print_essential(const EssentialEstimate& essential, std::size_t num_base) {
 
 int run_fit(const Arguments& args) {
   reject_positional(args);
+  if (args.has("--method") && args.one("--method") == "ml") {
+    for (const char* option : {"--truth", "--essential", "--r-sigma", "--plot"}) {
+      if (args.has(option)) {
+        throw UsageError{std::string(option) + " belongs to the linear methods, not --method ml"};
+      }
+    }
+    return run_fit_ml(args);
+  }
+  for (const char* option : {"--approach", "--unknown", "--known"}) {
+    if (args.has(option)) throw UsageError{std::string(option) + " belongs to --method ml"};
+  }
   const ModelSource source = load_model_source(args.one("--robot"));
   const IdentificationModel& model = *source.model;
   if (!args.has("--data")) throw UsageError{"fit needs at least one --data file"};
-  const Method method = parse_method(args.one("--method"));
+  const std::string& method_text = args.one("--method");
+  if (method_text != "ols" && method_text != "wls" && method_text != "pim-wls") {
+    throw UsageError{"--method must be ols, wls, pim-wls or ml, not '" + method_text + "'"};
+  }
+  const Method method = parse_method(method_text);
   const bool essential = args.has("--essential");
   double r_sigma = kDefaultRSigma;
   if (args.has("--r-sigma")) {

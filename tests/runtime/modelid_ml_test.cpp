@@ -1,0 +1,277 @@
+// modelid fit --method ml (Swevers et al. 2002, eq. 18, approaches 1 and 3 of section 4) run as a
+// user would: a KR150-like periodic experiment (the Table 1 excitation of axes 3-6, four periods)
+// simulated here with the runtime's ReferenceDriveModel from a known load (Table 2), efficiencies
+// R_z below 1, friction and seeded noise, written as joint-side torques tau = K^T tau_M; the
+// description is robots/kr150.yaml plus `known:` link values. Checks the load in EST.json
+// against the simulated truth within its reported standard deviations (approach 3), the bias of
+// approach 1 (R_z taken as 1), and the usage errors.
+
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <numbers>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "generator/description/load_robot.hpp"
+#include "modelgen/drive_model.hpp"
+#include "modelgen/load_parameters.hpp"
+#include "tests/runtime/modelid_cli_support.hpp"
+#include "tests/support/kdl_oracle.hpp"
+
+namespace modelgen::test {
+namespace {
+
+constexpr double kPeriod = 36.96;
+constexpr int kSamplesPerPeriod = 1540;  // 24 ms
+constexpr int kPeriods = 4;
+// Noise standard deviation on the averaged motor torques (N m); per sample sqrt(P) times this.
+constexpr double kSigma[6] = {5, 5, 5, 2, 2, 1.5};
+constexpr double kJM[6] = {20, 20, 8, 2, 2, 1};
+constexpr double kRv[6] = {80, 80, 40, 12, 10, 8};
+constexpr double kRc[6] = {150, 150, 90, 30, 25, 20};
+constexpr double kRz[6] = {0.9, 0.9, 0.85, 0.88, 0.9, 0.87};
+
+LoadParameters table2_load() {
+  LoadParameters load;
+  load.mass = 125.46;
+  load.com = {0.088, -0.032, 0.140};
+  load.inertia = {38.21, 6.55, 37.13, 7.28, 1.49, -1.23};
+  return load;
+}
+
+double gaussian(Random& random) {
+  const double u = random.uniform(1e-300, 1.0), v = random.uniform(0.0, 1.0);
+  return std::sqrt(-2.0 * std::log(u)) * std::cos(2.0 * std::numbers::pi * v);
+}
+
+// Swevers Table 1 (q = q0 + sum a sin + b cos), axes 3-6 moving, axes 1 and 2 held.
+void table1_state(double t, Eigen::VectorXd& q, Eigen::VectorXd& dq, Eigen::VectorXd& ddq) {
+  struct Term {
+    int axis, harmonic;
+    double a, b;
+  };
+  const std::vector<Term> terms = {{2, 25, 8.72e-2, -4.62e-3}, {3, 1, 1.57, 0},
+                                   {3, 18, 4.60e-1, -1.76e-2}, {4, 1, -8.38e-1, 1.78e-3},
+                                   {4, 19, -2.10e-1, 8.52e-3}, {5, 1, 0, 1.57},
+                                   {5, 15, 2.56e-2, 1.57}};
+  const double wf = 2 * std::numbers::pi / kPeriod;
+  q = Eigen::VectorXd::Zero(6);
+  dq = Eigen::VectorXd::Zero(6);
+  ddq = Eigen::VectorXd::Zero(6);
+  q[1] = -std::numbers::pi / 2;
+  q[2] = 1.57;
+  for (const Term& term : terms) {
+    const double w = wf * term.harmonic, s = std::sin(w * t), c = std::cos(w * t);
+    q[term.axis] += term.a * s + term.b * c;
+    dq[term.axis] += w * (term.a * c - term.b * s);
+    ddq[term.axis] += -w * w * (term.a * s + term.b * c);
+  }
+}
+
+std::string number(double value) {
+  char text[40];
+  std::snprintf(text, sizeof text, "%.17g", value);
+  return text;
+}
+
+// The scenario's files in `dir`: robot.yaml (kr150.yaml plus `known:` XXj..Mj of links 1-7, link
+// 7 zero as it carries only the load, and Iaj = JMj: the wrist coupling has a unit diagonal),
+// data.csv (t, q1..q6, tau1..tau6, joint side).
+void write_scenario(const std::filesystem::path& dir) {
+  const std::string description_text = read_text(source_path("robots/kr150.yaml"));
+  const gen::RobotModel description = gen::load_robot(source_path("robots/kr150.yaml"));
+  Random random(2002);
+  const Eigen::VectorXd p = random_physical_parameters(description.tree, random);
+  std::map<std::string, double> known;
+  for (std::size_t k = 0; k < description.tree.params.size(); ++k) {
+    const std::string& name = description.tree.params[k].name;
+    const char last = name.back();
+    if (name.find_first_of("0123456789") == std::string::npos) continue;
+    const std::string stem = name.substr(0, name.find_first_of("0123456789"));
+    if (stem == "XX" || stem == "XY" || stem == "XZ" || stem == "YY" || stem == "YZ" ||
+        stem == "ZZ" || stem == "MX" || stem == "MY" || stem == "MZ" || stem == "M") {
+      known[name] = last == '7' ? 0.0 : p[static_cast<Eigen::Index>(k)];
+    }
+  }
+  for (int j = 0; j < 6; ++j) known["Ia" + std::to_string(j + 1)] = kJM[j];
+  std::string yaml = description_text + "known:\n";
+  for (const auto& [name, value] : known) yaml += "  " + name + ": " + number(value) + "\n";
+  write_text(dir / "robot.yaml", yaml);
+
+  // Motor torques of the true model: links' own values plus the load on link 7.
+  Transmission drive = Transmission::identity(6);
+  drive.motor_from_joint = description.drives.motor_from_joint;
+  ReferenceDriveModel model(description.tree, drive);
+  const std::vector<std::string>& names = model.param_names();
+  Eigen::VectorXd theta = Eigen::VectorXd::Zero(model.num_params());
+  const auto index = [&names](const std::string& name) {
+    const auto found = std::find(names.begin(), names.end(), name);
+    EXPECT_NE(found, names.end()) << name;
+    return found - names.begin();
+  };
+  for (const auto& [name, value] : known) {
+    if (name.compare(0, 2, "Ia") != 0) theta[index(name)] = value;
+  }
+  for (int j = 0; j < 6; ++j) {
+    const std::string n = std::to_string(j + 1);
+    theta[index("JM" + n)] = kJM[j];
+    theta[index("Rv" + n)] = kRv[j];
+    theta[index("Rc" + n)] = kRc[j];
+    theta[index("Rz" + n)] = kRz[j];
+  }
+  const std::array<double, 10> load = standard_from_load(table2_load());
+  const char* stems[10] = {"XX", "XY", "XZ", "YY", "YZ", "ZZ", "MX", "MY", "MZ", "M"};
+  for (int m = 0; m < 10; ++m) theta[index(std::string(stems[m]) + "7")] += load[m];
+
+  const int samples = kSamplesPerPeriod * kPeriods;
+  Eigen::MatrixXd q(samples, 6), dq(samples, 6), ddq(samples, 6);
+  for (int s = 0; s < samples; ++s) {
+    Eigen::VectorXd qs, dqs, ddqs;
+    table1_state(kPeriod * s / kSamplesPerPeriod, qs, dqs, ddqs);
+    q.row(s) = qs.transpose();
+    dq.row(s) = dqs.transpose();
+    ddq.row(s) = ddqs.transpose();
+  }
+  model.set_samples(q, dq, ddq);
+  std::ostringstream csv;
+  csv << "t,q1,q2,q3,q4,q5,q6,tau1,tau2,tau3,tau4,tau5,tau6\n";
+  for (int s = 0; s < samples; ++s) {
+    Eigen::VectorXd tau_M(6);
+    model.torque(s, theta.data(), tau_M.data());
+    for (int i = 0; i < 6; ++i) tau_M[i] += std::sqrt(kPeriods) * kSigma[i] * gaussian(random);
+    const Eigen::VectorXd tau = drive.motor_from_joint.transpose() * tau_M;
+    csv << number(kPeriod * s / kSamplesPerPeriod);
+    for (int j = 0; j < 6; ++j) csv << "," << number(q(s, j));
+    for (int j = 0; j < 6; ++j) csv << "," << number(tau[j]);
+    csv << "\n";
+  }
+  write_text(dir / "data.csv", csv.str());
+}
+
+std::string fit_arguments(const std::filesystem::path& dir, const std::string& approach) {
+  return "fit --method ml --approach " + approach + " --robot " + quoted(dir / "robot.yaml") +
+         " --data " + quoted(dir / "data.csv") + " --periodic --period 36.96 -o " +
+         quoted(dir / ("est" + approach + ".json"));
+}
+
+// The load in EST.json as 10 values in LoadParameters::to_vector() order ("load" or its "std").
+std::array<double, 10> load_values(const nlohmann::json& load) {
+  const auto value = [](const nlohmann::json& v) {
+    return v.is_null() ? std::nan("") : v.get<double>();
+  };
+  return {value(load["m"]),       value(load["c"][0]),    value(load["c"][1]),
+          value(load["c"][2]),    value(load["I"]["xx"]), value(load["I"]["yy"]),
+          value(load["I"]["zz"]), value(load["I"]["xy"]), value(load["I"]["xz"]),
+          value(load["I"]["yz"])};
+}
+
+TEST(ModelidMl, Approach3RecoversTheLoadAndApproach1IsBiased) {
+  const std::filesystem::path dir = test_folder();
+  write_scenario(dir);
+  const std::array<double, 10> truth = table2_load().to_vector();
+  const std::vector<std::string>& names = load_param_names();
+
+  const CliRun run3 = modelid(fit_arguments(dir, "3"));
+  ASSERT_EQ(run3.exit_code, 0) << run3.out << run3.err;
+  std::printf("%s%s", run3.out.c_str(), run3.err.c_str());
+  EXPECT_EQ(run3.err.find("warning"), std::string::npos) << run3.err;
+  const nlohmann::json est3 = nlohmann::json::parse(read_text(dir / "est3.json"));
+  EXPECT_EQ(est3["method"], "ML approach 3");
+  EXPECT_EQ(est3["identifiability"]["rank"], 22);
+  EXPECT_EQ(est3["identifiability"]["unknowns"], 22);
+  EXPECT_TRUE(est3["load"]["warnings"].empty());
+  const std::array<double, 10> load3 = load_values(est3["load"]);
+  const std::array<double, 10> sd3 = load_values(est3["load"]["std"]);
+  for (int k = 0; k < 10; ++k) {
+    EXPECT_LT(std::abs(load3[k] - truth[k]), 4 * sd3[k])
+        << names[k] << " estimate " << load3[k] << " sd " << sd3[k] << " truth " << truth[k];
+  }
+  // The drive unknowns: Rv, Rc, Rz of axes 3-6, within their standard deviations.
+  ASSERT_EQ(est3["parameters"].size(), 12u);
+  for (const nlohmann::json& p : est3["parameters"]) {
+    const std::string name = p["name"];
+    const int j = name.back() - '1';
+    const double exact = name[1] == 'v' ? kRv[j] : (name[1] == 'c' ? kRc[j] : kRz[j]);
+    EXPECT_LT(std::abs(p["value"].get<double>() - exact), 4 * p["std"].get<double>()) << name;
+  }
+  // The residuals are the noise: rms error per fitted motor near its sigma (the CSV's noise is
+  // sqrt(P) sigma per sample, the average's sigma).
+  for (int i = 2; i < 6; ++i) {
+    EXPECT_NEAR(est3["rms_per_axis"][i].get<double>(), kSigma[i], 0.15 * kSigma[i]) << i;
+  }
+
+  // Approach 1: efficiencies taken as 1 while they are 0.85-0.9: the load is off by many of its
+  // standard deviations (the paper's Table 2 bias), far more than approach 3's.
+  const CliRun run1 = modelid(fit_arguments(dir, "1"));
+  ASSERT_EQ(run1.exit_code, 0) << run1.out << run1.err;
+  std::printf("%s%s", run1.out.c_str(), run1.err.c_str());
+  const nlohmann::json est1 = nlohmann::json::parse(read_text(dir / "est1.json"));
+  EXPECT_EQ(est1["method"], "ML approach 1");
+  EXPECT_EQ(est1["identifiability"]["unknowns"], 18);
+  EXPECT_EQ(est1["iterations"], 0);
+  const std::array<double, 10> load1 = load_values(est1["load"]);
+  const std::array<double, 10> sd1 = load_values(est1["load"]["std"]);
+  std::printf("load       truth    approach 3 (sd)        approach 1 (sd)\n");
+  for (int k = 0; k < 10; ++k) {
+    std::printf("%-9s %9.4f %9.4f (%.2g) %9.4f (%.2g)\n", names[k].c_str(), truth[k], load3[k],
+                sd3[k], load1[k], sd1[k]);
+  }
+  EXPECT_GT(std::abs(load1[0] - truth[0]), 10 * sd1[0]) << "approach 1 mass " << load1[0];
+  EXPECT_GT(std::abs(load1[0] - truth[0]), 5 * std::abs(load3[0] - truth[0]));
+}
+
+TEST(ModelidMl, UsageErrors) {
+  const std::filesystem::path dir = test_folder();
+  write_text(dir / "data.csv", "t,q1,q2,q3,q4,q5,q6,tau1,tau2,tau3,tau4,tau5,tau6\n");
+  const std::string robot = quoted_source("robots/kr150.yaml");
+  const std::string data = " --data " + quoted(dir / "data.csv");
+
+  CliRun run = modelid("fit --method ml --approach 3 --robot " + robot + data);
+  EXPECT_EQ(run.exit_code, 2);
+  EXPECT_NE(run.err.find("--method ml needs --periodic"), std::string::npos) << run.err;
+
+  run = modelid("fit --method ml --approach 3 --robot kr150 --periodic" + data);
+  EXPECT_EQ(run.exit_code, 2);
+  EXPECT_NE(run.err.find("needs --robot to be a description file"), std::string::npos) << run.err;
+
+  run = modelid("fit --method ml --approach 4 --robot " + robot + " --periodic" + data);
+  EXPECT_EQ(run.exit_code, 2);
+  EXPECT_NE(run.err.find("--approach must be 1, 2 or 3, not '4'"), std::string::npos) << run.err;
+
+  run = modelid("fit --method ml --robot " + robot + " --periodic" + data);
+  EXPECT_EQ(run.exit_code, 2);
+  EXPECT_NE(run.err.find("--method ml needs --approach"), std::string::npos) << run.err;
+
+  run = modelid("fit --method ml --approach 3 --unknown load,Jm --robot " + robot + " --periodic" +
+                data);
+  EXPECT_EQ(run.exit_code, 2);
+  EXPECT_NE(run.err.find("--unknown takes a comma-separated list of load, Rv, Rc, Rz, not 'Jm'"),
+            std::string::npos)
+      << run.err;
+
+  write_text(dir / "known.json", "{\"JM3\": 8, \"Ia3\": 8}");
+  run = modelid("fit --method ml --approach 3 --robot " + robot + " --periodic --known " +
+                quoted(dir / "known.json") + data);
+  EXPECT_EQ(run.exit_code, 1);
+  EXPECT_NE(run.err.find("known.json: error: 'Ia3' is not a parameter of the drive model"),
+            std::string::npos)
+      << run.err;
+
+  run = modelid("fit --method mle --robot " + robot + data);
+  EXPECT_EQ(run.exit_code, 2);
+  EXPECT_NE(run.err.find("--method must be ols, wls, pim-wls or ml, not 'mle'"), std::string::npos)
+      << run.err;
+
+  run = modelid("fit --method wls --approach 3 --robot " + robot + data);
+  EXPECT_EQ(run.exit_code, 2);
+  EXPECT_NE(run.err.find("--approach belongs to --method ml"), std::string::npos) << run.err;
+}
+
+}  // namespace
+}  // namespace modelgen::test
