@@ -9,7 +9,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <fstream>
 #include <iostream>
 #include <map>
 #include <set>
@@ -22,6 +21,7 @@
 #include "modelgen/ml_problem.hpp"
 #include "runtime/cli/commands.hpp"
 #include "runtime/cli/data_files.hpp"
+#include "runtime/cli/drive_parameter_file.hpp"
 #include "runtime/cli/model_source.hpp"
 #include "runtime/cli/text_format.hpp"
 
@@ -59,35 +59,6 @@ std::set<std::string> parse_unknown_groups(const Arguments& args) {
   }
   if (groups.empty()) throw UsageError{"--unknown lists nothing"};
   return groups;
-}
-
-// {"name": value, ...}; every name must be one of `names` (ml_param_names).
-std::map<std::string, double> read_known_file(const std::string& path,
-                                              const std::vector<std::string>& names) {
-  std::ifstream in(path);
-  if (!in) throw std::runtime_error(path + ": error: cannot open the file");
-  nlohmann::json json;
-  try {
-    json = nlohmann::json::parse(in);
-  } catch (const nlohmann::json::parse_error& e) {
-    throw std::runtime_error(path + ": error: not valid JSON: " + e.what());
-  }
-  if (!json.is_object()) {
-    throw std::runtime_error(path + ": error: expected an object {\"name\": value, ...}");
-  }
-  std::map<std::string, double> out;
-  for (const auto& [name, value] : json.items()) {
-    if (std::find(names.begin(), names.end(), name) == names.end()) {
-      throw std::runtime_error(path + ": error: '" + name +
-                               "' is not a parameter of the drive model (XXj..Mj, JMj, Rvj, Rcj, "
-                               "Rzj, load_m, load_cx, ...)");
-    }
-    if (!value.is_number() || !std::isfinite(value.get<double>())) {
-      throw std::runtime_error(path + ": error: '" + name + "' must be a finite number");
-    }
-    out[name] = value.get<double>();
-  }
-  return out;
 }
 
 // The a-priori values of every ml_param_names() entry, and the names that had none.
@@ -211,7 +182,7 @@ int run_fit_ml(const Arguments& args) {
   ReferenceDriveModel drive_model(description.tree, model.transmission());
   const std::vector<std::string> names = ml_param_names(drive_model);
   std::map<std::string, double> overrides;
-  if (args.has("--known")) overrides = read_known_file(args.one("--known"), names);
+  if (args.has("--known")) overrides = read_drive_parameter_values(args.one("--known"), names);
 
   std::ostringstream data_report;
   const Experiments experiments = read_experiments(
