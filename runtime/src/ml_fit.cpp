@@ -9,9 +9,10 @@
 #include <Eigen/SVD>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 #include "modelgen/estimate.hpp"
-#include "modelgen/ml_initial_guess.hpp"
+#include "modelgen/ml_linear_route.hpp"
 
 namespace modelgen {
 namespace {
@@ -50,7 +51,9 @@ MlFitResult fit_ml(MlProblem& problem, const MlFitOptions& options) {
   const int U = problem.num_unknowns();
   const int P = problem.model().num_params();
   if (options.linear_initial_guess) {
-    problem.set_values(linear_initial_guess(problem, result.notes));
+    LinearRoute route = linear_route(problem, options.rank_tolerance);
+    problem.set_values(route.values);
+    result.notes = std::move(route.fit.notes);
   }
   result.initial = problem.initial();
 

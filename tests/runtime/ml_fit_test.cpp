@@ -23,6 +23,7 @@
 #include "modelgen/drive_model.hpp"
 #include "modelgen/estimate.hpp"
 #include "modelgen/load_parameters.hpp"
+#include "modelgen/ml_linear_route.hpp"
 #include "modelgen/ml_problem.hpp"
 #include "tests/support/kdl_oracle.hpp"
 #include "tests/support/test_support.hpp"
@@ -400,6 +401,150 @@ TEST(MlExperiment, FromPeriodicPreparedExperiment) {
     EXPECT_EQ(std::string(error.what()).rfind("run.csv: error: no torque noise variance", 0), 0u)
         << error.what();
   }
+}
+
+
+// The linear route (section 3.2, approach 1 of section 4) on the scenario's motion with data
+// remade: `efficiency_one` gives the motor torques of the same truth with every R_z = 1, plus the
+// scenario's noise when `noise`. From MlProblem::torque_errors: measured - model.
+struct LinearScenario {
+  Scenario scenario{true};
+  std::vector<std::string> unknown;  // approach 1: the load, Rv and Rc of axes 3-6
+  Eigen::VectorXd truth;             // scenario.truth with R_z = 1
+  MlExperiment data;
+
+  explicit LinearScenario(bool noise) {
+    for (const std::string& name : scenario.unknowns({2, 3, 4, 5})) {
+      if (name.compare(0, 2, "Rz") != 0) unknown.push_back(name);
+    }
+    truth = scenario.truth;
+    for (size_t k = 0; k < scenario.names.size(); ++k) {
+      if (scenario.names[k].compare(0, 2, "Rz") == 0) truth[static_cast<Eigen::Index>(k)] = 1;
+    }
+    MlSetup setup = this->setup();
+    MlProblem problem(*scenario.model, {scenario.data}, setup, truth);
+    data = scenario.data;
+    data.tau_M -= problem.torque_errors(truth);  // model torques with R_z = 1
+    if (noise) data.tau_M += problem.torque_errors(scenario.truth);  // the noise
+  }
+
+  MlSetup setup() const {
+    MlSetup s;
+    s.unknown = unknown;
+    s.payload_link = 7;
+    return s;
+  }
+
+  // The known values (R_z = 1) and a starting point far from the truth for the unknowns.
+  Eigen::VectorXd start() const {
+    Eigen::VectorXd values = scenario.start(unknown);
+    for (size_t k = 0; k < scenario.names.size(); ++k) {
+      if (scenario.names[k].compare(0, 2, "Rz") == 0) values[static_cast<Eigen::Index>(k)] = 1;
+    }
+    return values;
+  }
+};
+
+TEST(LinearRoute, RecoversTheLoadFromNoiseFreeDataWithUnitEfficiencies) {
+  LinearScenario linear(false);
+  MlProblem problem(*linear.scenario.model, {linear.data}, linear.setup(),
+                    linear.start());
+  const LinearRoute route = linear_route(problem);
+  std::printf("linear model: %d parameters excited, %d base parameters\n",
+              route.excited_parameters, route.base_parameters);
+  EXPECT_LT(route.base_parameters, route.excited_parameters);  // regrouping happened
+  const MlFitResult& fit = route.fit;
+  // Approach 1's unknowns: the load, Rv and Rc of axes 3-6, then the rotor inertias JM3-JM6.
+  ASSERT_EQ(fit.names.size(), 22u);
+  EXPECT_EQ(fit.names[18], "JM3");
+  EXPECT_EQ(fit.identifiability.rank, 22) << fit.identifiability.directions.size();
+  ASSERT_TRUE(fit.has_load);
+  const auto estimate = fit.load.to_vector(), truth = table2_load().to_vector();
+  for (int k = 0; k < kLoadParams; ++k) {
+    EXPECT_NEAR(estimate[k], truth[k], 1e-7 * (1 + std::abs(truth[k]))) << load_param_names()[k];
+  }
+  for (size_t u = kLoadParams; u < fit.names.size(); ++u) {
+    const auto k = std::find(linear.scenario.names.begin(), linear.scenario.names.end(),
+                             fit.names[u]) -
+                   linear.scenario.names.begin();
+    EXPECT_NEAR(fit.value[static_cast<Eigen::Index>(u)], linear.truth[k], 1e-6 * linear.truth[k])
+        << fit.names[u];
+  }
+  for (const int i : {2, 3, 4, 5}) EXPECT_LT(fit.rms_error[i], 1e-8) << i;
+  // The starting point handed to the nonlinear search carries the same unknowns.
+  for (int u = 0; u < problem.num_unknowns(); ++u) {
+    const int k = problem.unknown_indices()[u];
+    EXPECT_NEAR(route.values[k], linear.truth[k], 1e-6 * (1 + std::abs(linear.truth[k])))
+        << problem.unknown_names()[u];
+  }
+}
+
+TEST(LinearRoute, StandardDeviationsDescribeTheErrorsWithUnitEfficiencies) {
+  LinearScenario linear(true);
+  MlProblem problem(*linear.scenario.model, {linear.data}, linear.setup(),
+                    linear.start());
+  const MlFitResult fit = linear_route(problem).fit;
+  const auto estimate = fit.load.to_vector(), truth = table2_load().to_vector(),
+             sd = fit.load_std_dev.to_vector();
+  for (int k = 0; k < kLoadParams; ++k) {
+    std::printf("%-9s exact %9.4f approach 1 %9.4f (sd %.2g)\n", load_param_names()[k].c_str(),
+                truth[k], estimate[k], sd[k]);
+    EXPECT_LT(std::abs(estimate[k] - truth[k]), 4 * sd[k]) << load_param_names()[k];
+  }
+  // The linear model's residuals are the noise.
+  for (const int i : {2, 3, 4, 5}) EXPECT_NEAR(fit.rms_error[i], kSigma[i], 0.1 * kSigma[i]) << i;
+}
+
+// Swevers Tables 2 and 3: with efficiencies below 1, approach 1 (linear, R_z = 1) gets the load
+// wrong by far more than approach 3 (R_z unknown), while its many parameters fit the torques at
+// least as well as approach 2 (the physical model with R_z = 1): approach 2's model is approach
+// 1's with the link values fixed, so its weighted residual cannot be smaller.
+TEST(LinearRoute, Approach1IsBiasedButFitsTheTorquesBetterThanApproach2) {
+  Scenario scenario(true);
+  LinearScenario linear(false);  // for approach 1's unknowns and R_z = 1 values
+  MlProblem problem(*scenario.model, {scenario.data}, linear.setup(), linear.start());
+  const LinearRoute approach1 = linear_route(problem);
+  const MlFitResult approach2 = fit_ml(problem);
+  MlSetup setup3 = linear.setup();
+  setup3.unknown = scenario.unknowns({2, 3, 4, 5});
+  MlProblem problem3(*scenario.model, {scenario.data}, setup3, scenario.start(setup3.unknown));
+  const MlFitResult approach3 = fit_ml(problem3);
+  const auto truth = table2_load().to_vector(), load1 = approach1.fit.load.to_vector(),
+             load2 = approach2.load.to_vector(), load3 = approach3.load.to_vector(),
+             sd3 = approach3.load_std_dev.to_vector();
+  std::printf("load errors (estimate - exact): approach 1, approach 2, approach 3 (sd)\n");
+  for (int k = 0; k < kLoadParams; ++k) {
+    std::printf("%-9s %10.4f %10.4f %10.4f (%.2g)\n", load_param_names()[k].c_str(),
+                load1[k] - truth[k], load2[k] - truth[k], load3[k] - truth[k], sd3[k]);
+  }
+  const double error1 = std::abs(load1[0] - truth[0]), error3 = std::abs(load3[0] - truth[0]);
+  EXPECT_GT(error1, 10 * error3) << "mass";
+  EXPECT_GT(error1, 10 * sd3[0]) << "mass";
+  double weighted1 = 0, weighted2 = 0;
+  for (const int i : {2, 3, 4, 5}) {
+    std::printf("axis %d rms error: approach 1 %.3f, approach 2 %.3f, approach 3 %.3f N m\n",
+                i + 1, approach1.fit.rms_error[i], approach2.rms_error[i], approach3.rms_error[i]);
+    weighted1 += std::pow(approach1.fit.rms_error[i] / kSigma[i], 2);
+    weighted2 += std::pow(approach2.rms_error[i] / kSigma[i], 2);
+  }
+  EXPECT_LT(weighted1, weighted2);
+}
+
+TEST(LinearRoute, WristOnlyNamesTheLoadMass) {
+  Scenario scenario(false);
+  MlSetup setup;
+  for (const std::string& name : scenario.unknowns({3, 4, 5})) {
+    if (name.compare(0, 2, "Rz") != 0) setup.unknown.push_back(name);
+  }
+  setup.payload_link = 7;
+  MlProblem problem(*scenario.model, {scenario.data}, setup, scenario.start(setup.unknown));
+  const MlFitResult fit = linear_route(problem).fit;
+  ASSERT_FALSE(fit.identifiability.directions.empty());
+  for (const std::string& direction : fit.identifiability.directions) {
+    std::printf("%s\n", direction.c_str());
+  }
+  EXPECT_FALSE(fit.identifiability.identifiable[0]) << "load_m";
+  EXPECT_TRUE(std::isnan(fit.load.mass));
 }
 
 }  // namespace

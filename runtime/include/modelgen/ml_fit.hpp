@@ -15,7 +15,7 @@
 namespace modelgen {
 
 struct MlFitOptions {
-  bool linear_initial_guess = true;  ///< section 3.2; else start from the given values
+  bool linear_initial_guess = true;  ///< section 3.2 (linear_route); else the given values
   int max_iterations = 100;          ///< Levenberg-Marquardt iterations
   double rank_tolerance = 1e-9;      ///< identifiability(): relative singular value
   int threads = 2;                   ///< Ceres evaluation threads
