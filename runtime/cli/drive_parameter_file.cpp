@@ -12,7 +12,7 @@
 namespace modelgen::internal {
 
 std::map<std::string, double> read_drive_parameter_values(const std::string& path,
-                                                         const std::vector<std::string>& names) {
+                                                          const std::vector<std::string>& names) {
   std::ifstream in(path);
   if (!in) throw std::runtime_error(path + ": error: cannot open the file");
   nlohmann::json json;

@@ -13,6 +13,6 @@ namespace modelgen::internal {
 /// the file and the problem (not JSON, not an object, an unknown name, a value that is not a
 /// finite number).
 std::map<std::string, double> read_drive_parameter_values(const std::string& path,
-                                                         const std::vector<std::string>& names);
+                                                          const std::vector<std::string>& names);
 
 }  // namespace modelgen::internal

@@ -152,7 +152,7 @@ void print_essential(const EssentialEstimate& essential, std::size_t num_base) {
 int run_fit(const Arguments& args) {
   reject_positional(args);
   if (args.has("--method") && args.one("--method") == "ml") {
-    for (const char* option : {"--truth", "--essential", "--r-sigma", "--plot"}) {
+    for (const char* option : {"--essential", "--r-sigma", "--plot"}) {
       if (args.has(option)) {
         throw UsageError{std::string(option) + " belongs to the linear methods, not --method ml"};
       }

@@ -1,7 +1,9 @@
 // modelid fit --method ml: load identification by maximum likelihood with the nonlinear drive
 // model of Swevers et al. 2002 (eq. 12, cost eq. 18), the paper's approaches 1-3 (section 4):
-// 1 the linear route of section 3.2 (efficiencies R_z fixed to 1, no nonlinear search),
-// 2 the nonlinear search with R_z fixed to 1, 3 the nonlinear search with R_z unknown.
+// 1 the linear route of section 3.2 (base parameters of the moving links with the load, rotor
+// inertias and friction by weighted least squares with R_z = 1, the load solved from them),
+// 2 the nonlinear search with R_z fixed to 1, 3 the nonlinear search with R_z unknown; `all`
+// runs the three and compares them as Tables 2-3 do. --truth adds exact values and errors.
 // The a-priori values theta2 come from the description's `known:` values and --known.
 
 #include <nlohmann/json.hpp>
@@ -18,10 +20,12 @@
 #include "modelgen/estimate.hpp"
 #include "modelgen/load_parameters.hpp"
 #include "modelgen/ml_fit.hpp"
+#include "modelgen/ml_linear_route.hpp"
 #include "modelgen/ml_problem.hpp"
 #include "runtime/cli/commands.hpp"
 #include "runtime/cli/data_files.hpp"
 #include "runtime/cli/drive_parameter_file.hpp"
+#include "runtime/cli/ml_report.hpp"
 #include "runtime/cli/model_source.hpp"
 #include "runtime/cli/text_format.hpp"
 
@@ -31,17 +35,19 @@ namespace {
 
 const std::vector<std::string> kUnknownGroups = {"load", "Rv", "Rc", "Rz"};
 
-int parse_approach(const Arguments& args) {
+// The approaches to run: 1, 2 or 3, or all three for the comparison of Tables 2-3.
+std::vector<int> parse_approaches(const Arguments& args) {
   if (!args.has("--approach")) {
     throw UsageError{
-        "--method ml needs --approach 1, 2 or 3 (Swevers section 4: 1 linear, "
+        "--method ml needs --approach 1, 2, 3 or all (Swevers section 4: 1 linear, "
         "2 nonlinear with R_z = 1, 3 nonlinear with R_z unknown)"};
   }
   const std::string& text = args.one("--approach");
+  if (text == "all") return {1, 2, 3};
   if (text != "1" && text != "2" && text != "3") {
-    throw UsageError{"--approach must be 1, 2 or 3, not '" + text + "'"};
+    throw UsageError{"--approach must be 1, 2, 3 or all, not '" + text + "'"};
   }
-  return text[0] - '0';
+  return {text[0] - '0'};
 }
 
 std::set<std::string> parse_unknown_groups(const Arguments& args) {
@@ -129,35 +135,15 @@ int drive_motor(const std::string& name) {
   return 0;
 }
 
-nlohmann::json number(double value) {
-  return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json(nullptr);
-}
-
-nlohmann::json load_json(const LoadParameters& load) {
-  return {{"m", number(load.mass)},
-          {"c", {number(load.com[0]), number(load.com[1]), number(load.com[2])}},
-          {"I",
-           {{"xx", number(load.inertia[0])},
-            {"yy", number(load.inertia[1])},
-            {"zz", number(load.inertia[2])},
-            {"xy", number(load.inertia[3])},
-            {"xz", number(load.inertia[4])},
-            {"yz", number(load.inertia[5])}}}};
-}
-
-std::string with_std(double value, double sd, double scale, int precision) {
-  if (!std::isfinite(value)) return "not identifiable";
-  return fixed(value * scale, 10, precision) + " +- " + fixed(sd * scale, 0, 2);
-}
-
 }  // namespace
 
 int run_fit_ml(const Arguments& args) {
-  const int approach = parse_approach(args);
+  const std::vector<int> approaches = parse_approaches(args);
   const std::set<std::string> groups = parse_unknown_groups(args);
-  if (approach != 3 && args.has("--unknown") && groups.count("Rz")) {
-    std::cerr << "modelid: note: approach " << approach
-              << " fixes R_z to 1; Rz in --unknown is ignored\n";
+  const bool rz_unknown = groups.count("Rz") > 0;
+  if (args.has("--unknown") && rz_unknown &&
+      std::find(approaches.begin(), approaches.end(), 3) == approaches.end()) {
+    std::cerr << "modelid: note: approaches 1 and 2 fix R_z to 1; Rz in --unknown is ignored\n";
   }
   const ModelSource source = load_model_source(args.one("--robot"));
   if (!source.description) {
@@ -183,6 +169,8 @@ int run_fit_ml(const Arguments& args) {
   const std::vector<std::string> names = ml_param_names(drive_model);
   std::map<std::string, double> overrides;
   if (args.has("--known")) overrides = read_drive_parameter_values(args.one("--known"), names);
+  MlTruth truth;
+  if (args.has("--truth")) truth = read_drive_parameter_values(args.one("--truth"), names);
 
   std::ostringstream data_report;
   const Experiments experiments = read_experiments(
@@ -196,37 +184,47 @@ int run_fit_ml(const Arguments& args) {
   }
 
   std::vector<std::string> missing;
-  Eigen::VectorXd values =
+  const Eigen::VectorXd priors =
       prior_values(description, model.transmission(), names, overrides, missing);
-
-  MlSetup setup;
-  setup.payload_link = description.payload_body >= 0 ? description.payload_body + 1 : 0;
   const std::vector<int> axes = moving_axes(data, model.transmission());
   if (axes.empty()) throw EstimationError("maximum likelihood: no motor moves in the data");
-  setup.axes = axes;
-  if (groups.count("load")) setup.unknown = load_param_names();
-  for (const char* stem : {"Rv", "Rc", "Rz"}) {
-    if (!groups.count(stem)) continue;
-    for (const int j : axes) {
-      const std::string name = stem + std::to_string(j + 1);
-      if (std::string(stem) == "Rz" && approach != 3) continue;
-      setup.unknown.push_back(name);
+  const int payload_link = description.payload_body >= 0 ? description.payload_body + 1 : 0;
+
+  // theta1 of an approach (Swevers section 4): the chosen groups for the moving axes; the
+  // efficiencies only in approach 3, every one of them 1 in approaches 1 and 2.
+  const auto setup_of = [&](int approach) {
+    MlSetup setup;
+    setup.payload_link = payload_link;
+    setup.axes = axes;
+    if (groups.count("load")) setup.unknown = load_param_names();
+    for (const char* stem : {"Rv", "Rc", "Rz"}) {
+      if (!groups.count(stem) || (std::string(stem) == "Rz" && approach != 3)) continue;
+      for (const int j : axes) setup.unknown.push_back(stem + std::to_string(j + 1));
     }
-  }
-  if (setup.unknown.empty()) throw UsageError{"--unknown leaves nothing to identify"};
-  // Approaches 1 and 2: every efficiency at 1 (Swevers section 4).
-  if (approach != 3) {
-    for (std::size_t k = 0; k < names.size(); ++k) {
-      if (names[k].compare(0, 2, "Rz") == 0) values[static_cast<Eigen::Index>(k)] = 1.0;
+    if (setup.unknown.empty()) throw UsageError{"--unknown leaves nothing to identify"};
+    return setup;
+  };
+  const auto values_of = [&](int approach) {
+    Eigen::VectorXd values = priors;
+    if (approach != 3) {
+      for (std::size_t k = 0; k < names.size(); ++k) {
+        if (names[k].compare(0, 2, "Rz") == 0) values[static_cast<Eigen::Index>(k)] = 1.0;
+      }
     }
-  }
-  // A-priori values the fit uses without having been given; the unknowns only start there.
+    return values;
+  };
+
+  // A-priori values the fits use without having been given; the unknowns only start there.
   std::vector<std::string> defaulted;
+  const MlSetup widest = setup_of(approaches.back());
   for (const std::string& name : missing) {
-    if (std::find(setup.unknown.begin(), setup.unknown.end(), name) != setup.unknown.end()) {
+    if (std::find(widest.unknown.begin(), widest.unknown.end(), name) != widest.unknown.end()) {
       continue;
     }
-    if (approach != 3 && name.compare(0, 2, "Rz") == 0) continue;
+    if (name.compare(0, 2, "Rz") == 0 &&
+        std::find(approaches.begin(), approaches.end(), 3) == approaches.end()) {
+      continue;
+    }
     // Drive parameters of motors not fitted do not enter eq. 18.
     const int motor = drive_motor(name);
     if (motor > 0 && std::find(axes.begin(), axes.end(), motor - 1) == axes.end()) continue;
@@ -239,85 +237,54 @@ int run_fit_ml(const Arguments& args) {
               << "; taken as 0 (Rz as 1)\n";
   }
 
-  MlProblem problem(drive_model, data, setup, values);
-  MlFitOptions options;
-  // Approach 1: the linear route only. fit_ml then evaluates the statistics at the linear
-  // estimate, which with every R_z = 1 is the weighted least-squares solution itself.
-  if (approach == 1) options.max_iterations = 0;
-  const auto start = std::chrono::steady_clock::now();
-  const MlFitResult fit = fit_ml(problem, options);
-  const double seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  std::vector<MlRun> runs;
+  Eigen::Index samples = 0;
+  for (const int approach : approaches) {
+    MlProblem problem(drive_model, data, setup_of(approach), values_of(approach));
+    samples = problem.num_samples();
+    MlRun run;
+    run.approach = approach;
+    const auto start = std::chrono::steady_clock::now();
+    if (approach == 1) {
+      const LinearRoute route = linear_route(problem);
+      run.fit = route.fit;
+      run.summary =
+          "linear model (R_z = 1, section 3.2): " + std::to_string(route.excited_parameters) +
+          " parameters, " + std::to_string(route.base_parameters) +
+          " identifiable combinations estimated by weighted least squares, the "
+          "unknowns solved from them and the a-priori link values";
+    } else {
+      run.fit = fit_ml(problem);
+      run.summary = "nonlinear drive model (eq. 12), R_z " +
+                    std::string(approach == 3 ? "unknown" : "fixed to 1") +
+                    ", started from the linear route";
+    }
+    run.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    runs.push_back(std::move(run));
+  }
 
-  std::cout << "modelid fit: " << model.name() << ", ML approach " << approach << " on "
-            << data.size() << " experiment(s), " << problem.num_samples()
-            << " averaged samples, axes";
-  for (const int j : problem.axes()) std::cout << " " << j + 1;
+  std::cout << "modelid fit: " << model.name() << ", ML approach"
+            << (runs.size() > 1 ? "es 1-3" : " " + std::to_string(runs[0].approach)) << " on "
+            << data.size() << " experiment(s), " << samples << " averaged samples, axes";
+  for (const int j : axes) std::cout << " " << j + 1;
   std::cout << "\n" << data_report.str();
-  const Identifiability& id = fit.identifiability;
-  std::cout << "  identifiability: rank " << id.rank << " of " << fit.names.size()
-            << " unknowns, condition number " << fixed(id.condition_number, 0, 4) << "\n";
-  for (const std::string& direction : id.directions) std::cout << "    " << direction << "\n";
-  for (const std::string& note : fit.notes) std::cout << "  note: " << note << "\n";
-  if (fit.has_load) {
-    const LoadParameters& l = fit.load;
-    const LoadParameters& s = fit.load_std_dev;
-    std::cout << "  load on link " << setup.payload_link
-              << " (centre of gravity in mm, inertia about it in kg m^2):\n"
-              << "    m   " << with_std(l.mass, s.mass, 1, 6) << " kg\n";
-    const char* c_names[3] = {"cx", "cy", "cz"};
-    for (int k = 0; k < 3; ++k) {
-      std::cout << "    " << pad(c_names[k], 3) << " " << with_std(l.com[k], s.com[k], 1e3, 5)
-                << " mm\n";
-    }
-    const char* i_names[6] = {"Ixx", "Iyy", "Izz", "Ixy", "Ixz", "Iyz"};
-    for (int k = 0; k < 6; ++k) {
-      std::cout << "    " << i_names[k] << " " << with_std(l.inertia[k], s.inertia[k], 1, 5)
-                << "\n";
-    }
-    for (const std::string& warning : fit.load_warnings) {
-      std::cout << "  warning: " << warning << "\n";
-    }
+  if (runs.size() == 1) {
+    print_ml_run(std::cout, runs[0], payload_link, truth);
+  } else {
+    print_ml_comparison(std::cout, runs, payload_link, truth);
   }
-  std::cout << "  drive parameters:\n";
-  nlohmann::json parameters = nlohmann::json::array();
-  for (std::size_t u = 0; u < fit.names.size(); ++u) {
-    if (fit.names[u].compare(0, 5, "load_") == 0) continue;
-    std::cout << "    " << pad(fit.names[u], 5) << " "
-              << with_std(fit.value[static_cast<Eigen::Index>(u)],
-                          fit.std_dev[static_cast<Eigen::Index>(u)], 1, 5)
-              << "\n";
-    parameters.push_back({{"name", fit.names[u]},
-                          {"value", number(fit.value[static_cast<Eigen::Index>(u)])},
-                          {"std", number(fit.std_dev[static_cast<Eigen::Index>(u)])}});
-  }
-  std::cout << "  rms torque error per motor (N m):";
-  for (Eigen::Index j = 0; j < fit.rms_error.size(); ++j) {
-    std::cout << " " << fixed(fit.rms_error[j], 0, 3);
-  }
-  std::cout << "\n  " << fit.iterations << " Levenberg-Marquardt iteration(s), "
-            << fixed(seconds, 0, 3) << " s" << (approach == 1 ? " (linear route only)" : "")
-            << "\n";
 
   if (args.has("-o")) {
     nlohmann::json out;
     out["model"] = model.name();
     out["description_sha256"] = model.description_sha256();
-    out["method"] = "ML approach " + std::to_string(approach);
-    if (fit.has_load) {
-      nlohmann::json load = load_json(fit.load);
-      load["std"] = load_json(fit.load_std_dev);
-      load["warnings"] = fit.load_warnings;
-      out["load"] = load;
+    if (runs.size() == 1) {
+      out.update(ml_run_json(runs[0]));
+    } else {
+      out["method"] = "ML approaches 1-3";
+      out["approaches"] = nlohmann::json::array();
+      for (const MlRun& run : runs) out["approaches"].push_back(ml_run_json(run));
     }
-    out["parameters"] = parameters;
-    out["rms_per_axis"] =
-        std::vector<double>(fit.rms_error.data(), fit.rms_error.data() + fit.rms_error.size());
-    out["identifiability"] = {{"rank", id.rank},
-                              {"unknowns", fit.names.size()},
-                              {"condition_number", number(id.condition_number)},
-                              {"directions", id.directions}};
-    out["iterations"] = fit.iterations;
     out["data"] = args.all("--data");
     write_file(args.one("-o"), out.dump(2) + "\n");
   }

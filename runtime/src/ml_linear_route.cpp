@@ -47,7 +47,8 @@ void minimum_norm_step(const Eigen::MatrixXd& M, const Eigen::VectorXd& y,
   for (Eigen::Index c = 0; c < scale.size(); ++c) {
     if (!(scale[c] > 0)) scale[c] = 1;
   }
-  Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod(M * scale.cwiseInverse().asDiagonal());
+  Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod(M *
+                                                              scale.cwiseInverse().asDiagonal());
   cod.setThreshold(1e-10);
   dx_dy = scale.cwiseInverse().asDiagonal() * cod.pseudoInverse();
   x = x0 + dx_dy * (y - M * x0);
@@ -148,7 +149,8 @@ LinearRoute linear_route(const MlProblem& problem, double rank_tolerance) {
     }
   }
   const Eigen::VectorXd residual = b - pivots * psi;
-  const double s2 = residual.squaredNorm() / static_cast<double>(std::max<Eigen::Index>(1, rows - r));
+  const double s2 =
+      residual.squaredNorm() / static_cast<double>(std::max<Eigen::Index>(1, rows - r));
   const Eigen::MatrixXd psi_covariance = s2 * R11_inv * R11_inv.transpose();
   fit.residual_std_dev = std::sqrt(s2);
   // Per-motor rms error of the linear model, N m.

@@ -403,7 +403,6 @@ TEST(MlExperiment, FromPeriodicPreparedExperiment) {
   }
 }
 
-
 // The linear route (section 3.2, approach 1 of section 4) on the scenario's motion with data
 // remade: `efficiency_one` gives the motor torques of the same truth with every R_z = 1, plus the
 // scenario's noise when `noise`. From MlProblem::torque_errors: measured - model.
@@ -424,7 +423,7 @@ struct LinearScenario {
     MlSetup setup = this->setup();
     MlProblem problem(*scenario.model, {scenario.data}, setup, truth);
     data = scenario.data;
-    data.tau_M -= problem.torque_errors(truth);  // model torques with R_z = 1
+    data.tau_M -= problem.torque_errors(truth);                      // model torques with R_z = 1
     if (noise) data.tau_M += problem.torque_errors(scenario.truth);  // the noise
   }
 
@@ -447,11 +446,10 @@ struct LinearScenario {
 
 TEST(LinearRoute, RecoversTheLoadFromNoiseFreeDataWithUnitEfficiencies) {
   LinearScenario linear(false);
-  MlProblem problem(*linear.scenario.model, {linear.data}, linear.setup(),
-                    linear.start());
+  MlProblem problem(*linear.scenario.model, {linear.data}, linear.setup(), linear.start());
   const LinearRoute route = linear_route(problem);
-  std::printf("linear model: %d parameters excited, %d base parameters\n",
-              route.excited_parameters, route.base_parameters);
+  std::printf("linear model: %d parameters excited, %d base parameters\n", route.excited_parameters,
+              route.base_parameters);
   EXPECT_LT(route.base_parameters, route.excited_parameters);  // regrouping happened
   const MlFitResult& fit = route.fit;
   // Approach 1's unknowns: the load, Rv and Rc of axes 3-6, then the rotor inertias JM3-JM6.
@@ -464,9 +462,9 @@ TEST(LinearRoute, RecoversTheLoadFromNoiseFreeDataWithUnitEfficiencies) {
     EXPECT_NEAR(estimate[k], truth[k], 1e-7 * (1 + std::abs(truth[k]))) << load_param_names()[k];
   }
   for (size_t u = kLoadParams; u < fit.names.size(); ++u) {
-    const auto k = std::find(linear.scenario.names.begin(), linear.scenario.names.end(),
-                             fit.names[u]) -
-                   linear.scenario.names.begin();
+    const auto k =
+        std::find(linear.scenario.names.begin(), linear.scenario.names.end(), fit.names[u]) -
+        linear.scenario.names.begin();
     EXPECT_NEAR(fit.value[static_cast<Eigen::Index>(u)], linear.truth[k], 1e-6 * linear.truth[k])
         << fit.names[u];
   }
@@ -481,8 +479,7 @@ TEST(LinearRoute, RecoversTheLoadFromNoiseFreeDataWithUnitEfficiencies) {
 
 TEST(LinearRoute, StandardDeviationsDescribeTheErrorsWithUnitEfficiencies) {
   LinearScenario linear(true);
-  MlProblem problem(*linear.scenario.model, {linear.data}, linear.setup(),
-                    linear.start());
+  MlProblem problem(*linear.scenario.model, {linear.data}, linear.setup(), linear.start());
   const MlFitResult fit = linear_route(problem).fit;
   const auto estimate = fit.load.to_vector(), truth = table2_load().to_vector(),
              sd = fit.load_std_dev.to_vector();
@@ -522,8 +519,8 @@ TEST(LinearRoute, Approach1IsBiasedButFitsTheTorquesBetterThanApproach2) {
   EXPECT_GT(error1, 10 * sd3[0]) << "mass";
   double weighted1 = 0, weighted2 = 0;
   for (const int i : {2, 3, 4, 5}) {
-    std::printf("axis %d rms error: approach 1 %.3f, approach 2 %.3f, approach 3 %.3f N m\n",
-                i + 1, approach1.fit.rms_error[i], approach2.rms_error[i], approach3.rms_error[i]);
+    std::printf("axis %d rms error: approach 1 %.3f, approach 2 %.3f, approach 3 %.3f N m\n", i + 1,
+                approach1.fit.rms_error[i], approach2.rms_error[i], approach3.rms_error[i]);
     weighted1 += std::pow(approach1.fit.rms_error[i] / kSigma[i], 2);
     weighted2 += std::pow(approach2.rms_error[i] / kSigma[i], 2);
   }

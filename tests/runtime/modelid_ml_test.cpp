@@ -206,24 +206,35 @@ TEST(ModelidMl, Approach3RecoversTheLoadAndApproach1IsBiased) {
     EXPECT_NEAR(est3["rms_per_axis"][i].get<double>(), kSigma[i], 0.15 * kSigma[i]) << i;
   }
 
-  // Approach 1: efficiencies taken as 1 while they are 0.85-0.9: the load is off by many of its
-  // standard deviations (the paper's Table 2 bias), far more than approach 3's.
-  const CliRun run1 = modelid(fit_arguments(dir, "1"));
-  ASSERT_EQ(run1.exit_code, 0) << run1.out << run1.err;
-  std::printf("%s%s", run1.out.c_str(), run1.err.c_str());
-  const nlohmann::json est1 = nlohmann::json::parse(read_text(dir / "est1.json"));
-  EXPECT_EQ(est1["method"], "ML approach 1");
-  EXPECT_EQ(est1["identifiability"]["unknowns"], 18);
-  EXPECT_EQ(est1["iterations"], 0);
-  const std::array<double, 10> load1 = load_values(est1["load"]);
-  const std::array<double, 10> sd1 = load_values(est1["load"]["std"]);
-  std::printf("load       truth    approach 3 (sd)        approach 1 (sd)\n");
-  for (int k = 0; k < 10; ++k) {
-    std::printf("%-9s %9.4f %9.4f (%.2g) %9.4f (%.2g)\n", names[k].c_str(), truth[k], load3[k],
-                sd3[k], load1[k], sd1[k]);
+  // All three approaches compared (Tables 2-3), with the exact values: approach 1 takes the
+  // efficiencies as 1 while they are 0.85-0.9, and its load is off by far more than approach 3's.
+  std::string truth_json = "{";
+  for (int k = 0; k < 10; ++k) truth_json += "\"" + names[k] + "\": " + number(truth[k]) + ", ";
+  for (int j = 2; j < 6; ++j) {
+    const std::string n = std::to_string(j + 1);
+    truth_json += "\"Rv" + n + "\": " + number(kRv[j]) + ", \"Rc" + n + "\": " + number(kRc[j]) +
+                  ", \"Rz" + n + "\": " + number(kRz[j]) + (j < 5 ? ", " : "}");
   }
-  EXPECT_GT(std::abs(load1[0] - truth[0]), 10 * sd1[0]) << "approach 1 mass " << load1[0];
-  EXPECT_GT(std::abs(load1[0] - truth[0]), 5 * std::abs(load3[0] - truth[0]));
+  write_text(dir / "truth.json", truth_json);
+  const CliRun all = modelid(fit_arguments(dir, "all") + " --truth " + quoted(dir / "truth.json"));
+  ASSERT_EQ(all.exit_code, 0) << all.out << all.err;
+  std::printf("%s%s", all.out.c_str(), all.err.c_str());
+  EXPECT_NE(all.out.find("errors (estimate - exact)"), std::string::npos);
+  EXPECT_NE(all.out.find("rms torque errors (N m)"), std::string::npos);
+  const nlohmann::json est = nlohmann::json::parse(read_text(dir / "estall.json"));
+  EXPECT_EQ(est["method"], "ML approaches 1-3");
+  ASSERT_EQ(est["approaches"].size(), 3u);
+  const nlohmann::json& est1 = est["approaches"][0];
+  EXPECT_EQ(est1["method"], "ML approach 1");
+  EXPECT_EQ(est1["identifiability"]["unknowns"], 22);  // + JM3-JM6, unknown in approach 1
+  EXPECT_EQ(est1["iterations"], 0);
+  EXPECT_EQ(est["approaches"][1]["identifiability"]["unknowns"], 18);  // R_z fixed to 1
+  // Approach 3 within the comparison is the approach-3 fit above.
+  EXPECT_NEAR(load_values(est["approaches"][2]["load"])[0], load3[0], 1e-9);
+  const std::array<double, 10> load1 = load_values(est1["load"]);
+  EXPECT_GT(std::abs(load1[0] - truth[0]), 10 * std::abs(load3[0] - truth[0]))
+      << "approach 1 mass " << load1[0];
+  EXPECT_GT(std::abs(load1[0] - truth[0]), 10 * sd3[0]) << "approach 1 mass " << load1[0];
 }
 
 TEST(ModelidMl, UsageErrors) {
@@ -242,7 +253,8 @@ TEST(ModelidMl, UsageErrors) {
 
   run = modelid("fit --method ml --approach 4 --robot " + robot + " --periodic" + data);
   EXPECT_EQ(run.exit_code, 2);
-  EXPECT_NE(run.err.find("--approach must be 1, 2 or 3, not '4'"), std::string::npos) << run.err;
+  EXPECT_NE(run.err.find("--approach must be 1, 2, 3 or all, not '4'"), std::string::npos)
+      << run.err;
 
   run = modelid("fit --method ml --robot " + robot + " --periodic" + data);
   EXPECT_EQ(run.exit_code, 2);

@@ -1,0 +1,42 @@
+// What `modelid fit --method ml` prints and writes: one approach in detail, or the approaches
+// side by side as Swevers et al. 2002 compare them (Table 2: load estimates and their errors,
+// Table 3: rms actuator torque errors), and EST.json.
+#pragma once
+
+#include <nlohmann/json.hpp>
+
+#include <map>
+#include <ostream>
+#include <string>
+
+#include "modelgen/ml_fit.hpp"
+
+namespace modelgen::internal {
+
+/// One approach's result.
+struct MlRun {
+  int approach = 0;     ///< 1, 2 or 3 (section 4)
+  MlFitResult fit;      ///< approach 1: LinearRoute::fit
+  double seconds = 0;   ///< wall time of the fit
+  std::string summary;  ///< one line on how it was obtained
+};
+
+/// Exact values by ml_param_names() name (load_m, Rv3, ...) from --truth; empty without it.
+using MlTruth = std::map<std::string, double>;
+
+/// One approach: identifiability, the load (centre of gravity in mm), the drive parameters with
+/// standard deviations, "not identifiable" where there is no number, the exact value and error
+/// where `truth` has one, the rms torque errors per fitted motor.
+void print_ml_run(std::ostream& out, const MlRun& run, int payload_link, const MlTruth& truth);
+
+/// The runs side by side: load and drive parameter estimates +- standard deviation (Table 2,
+/// with an exact column and a table of errors when `truth` is given), rms torque errors per
+/// fitted motor (Table 3), rank, iterations and time.
+void print_ml_comparison(std::ostream& out, const std::vector<MlRun>& runs, int payload_link,
+                         const MlTruth& truth);
+
+/// EST.json's description of one run: method, load with std and warnings, the other unknowns,
+/// rms per axis, identifiability, iterations, seconds.
+nlohmann::json ml_run_json(const MlRun& run);
+
+}  // namespace modelgen::internal
