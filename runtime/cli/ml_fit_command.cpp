@@ -13,6 +13,7 @@
 #include <cmath>
 #include <iostream>
 #include <map>
+#include <memory>
 #include <set>
 #include <sstream>
 
@@ -27,6 +28,7 @@
 #include "runtime/cli/drive_parameter_file.hpp"
 #include "runtime/cli/ml_report.hpp"
 #include "runtime/cli/model_source.hpp"
+#include "runtime/cli/shipped_models.hpp"
 #include "runtime/cli/text_format.hpp"
 
 namespace modelgen::internal {
@@ -165,8 +167,15 @@ int run_fit_ml(const Arguments& args) {
                      " names no payload link (add 'payload: {link: N}')"};
   }
 
-  ReferenceDriveModel drive_model(description.tree, model.transmission());
-  const std::vector<std::string> names = ml_param_names(drive_model);
+  // The generated drive model (flattened analytic Jacobians) when this description is one
+  // modelid carries compiled in, else the numeric reference's.
+  std::string generated_name;
+  std::unique_ptr<DriveModel> drive_model =
+      make_shipped_drive_model(model.description_sha256(), &generated_name);
+  if (drive_model == nullptr) {
+    drive_model = std::make_unique<ReferenceDriveModel>(description.tree, model.transmission());
+  }
+  const std::vector<std::string> names = ml_param_names(*drive_model);
   std::map<std::string, double> overrides;
   if (args.has("--known")) overrides = read_drive_parameter_values(args.one("--known"), names);
   MlTruth truth;
@@ -240,7 +249,7 @@ int run_fit_ml(const Arguments& args) {
   std::vector<MlRun> runs;
   Eigen::Index samples = 0;
   for (const int approach : approaches) {
-    MlProblem problem(drive_model, data, setup_of(approach), values_of(approach));
+    MlProblem problem(*drive_model, data, setup_of(approach), values_of(approach));
     samples = problem.num_samples();
     MlRun run;
     run.approach = approach;
@@ -267,7 +276,12 @@ int run_fit_ml(const Arguments& args) {
             << (runs.size() > 1 ? "es 1-3" : " " + std::to_string(runs[0].approach)) << " on "
             << data.size() << " experiment(s), " << samples << " averaged samples, axes";
   for (const int j : axes) std::cout << " " << j + 1;
-  std::cout << "\n" << data_report.str();
+  std::cout << "\n"
+            << data_report.str() << "  drive model: "
+            << (generated_name.empty()
+                    ? std::string("numeric reference (the description is not compiled in)")
+                    : "generated " + generated_name + " (analytic Jacobians)")
+            << "\n";
   if (runs.size() == 1) {
     print_ml_run(std::cout, runs[0], payload_link, truth);
   } else {

@@ -5,12 +5,19 @@
 #include <string>
 #include <vector>
 
+#include "modelgen/drive_model.hpp"
 #include "modelgen/model.hpp"
 
 namespace modelgen::internal {
 
 /// The compiled-in model named `name` ("tx40", "kr150", ...), or nullptr.
 std::unique_ptr<IdentificationModel> make_shipped_model(const std::string& name);
+
+/// The generated drive model (Swevers eq. 12 with its analytic Jacobians) of the compiled-in
+/// model generated from a description with SHA-256 `description_sha256`, or nullptr; `name`,
+/// when not null, receives that model's name.
+std::unique_ptr<DriveModel> make_shipped_drive_model(const std::string& description_sha256,
+                                                     std::string* name = nullptr);
 
 /// Names of the compiled-in models, sorted.
 std::vector<std::string> shipped_model_names();

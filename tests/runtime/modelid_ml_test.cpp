@@ -103,6 +103,13 @@ void write_scenario(const std::filesystem::path& dir) {
   std::string yaml = description_text + "known:\n";
   for (const auto& [name, value] : known) yaml += "  " + name + ": " + number(value) + "\n";
   write_text(dir / "robot.yaml", yaml);
+  // The same a-priori values as a --known file for the shipped robots/kr150.yaml (JMj = Iaj).
+  std::string json = "{";
+  for (const auto& [name, value] : known) {
+    json += (json.size() > 1 ? ", \"" : "\"") +
+            (name.compare(0, 2, "Ia") == 0 ? "JM" + name.substr(2) : name) + "\": " + number(value);
+  }
+  write_text(dir / "known.json", json + "}");
 
   // Motor torques of the true model: links' own values plus the load on link 7.
   Transmission drive = Transmission::identity(6);
@@ -204,6 +211,24 @@ TEST(ModelidMl, Approach3RecoversTheLoadAndApproach1IsBiased) {
   // sqrt(P) sigma per sample, the average's sigma).
   for (int i = 2; i < 6; ++i) {
     EXPECT_NEAR(est3["rms_per_axis"][i].get<double>(), kSigma[i], 0.15 * kSigma[i]) << i;
+  }
+
+  // The shipped description with the same values from --known: modelid uses the compiled-in
+  // generated drive model (flattened analytic Jacobians) instead of the numeric reference's, an
+  // independent computation that must give the same estimate.
+  const CliRun generated =
+      modelid("fit --method ml --approach 3 --robot " + quoted_source("robots/kr150.yaml") +
+              " --known " + quoted(dir / "known.json") + " --data " + quoted(dir / "data.csv") +
+              " --periodic --period 36.96 -o " + quoted(dir / "generated.json"));
+  ASSERT_EQ(generated.exit_code, 0) << generated.out << generated.err;
+  EXPECT_NE(generated.out.find("drive model: generated kr150 (analytic Jacobians)"),
+            std::string::npos)
+      << generated.out;
+  EXPECT_NE(run3.out.find("drive model: numeric reference"), std::string::npos) << run3.out;
+  const nlohmann::json est_generated = nlohmann::json::parse(read_text(dir / "generated.json"));
+  const std::array<double, 10> load_generated = load_values(est_generated["load"]);
+  for (int k = 0; k < 10; ++k) {
+    EXPECT_NEAR(load_generated[k], load3[k], 1e-6 * sd3[k]) << names[k];
   }
 
   // All three approaches compared (Tables 2-3), with the exact values: approach 1 takes the
