@@ -28,7 +28,11 @@ constexpr const char* kUsage =
     "       modelid predict --robot ROBOT --params EST.json --data A.csv [--data B.csv ...]\n"
     "                   [-o PRED.csv] [--plot DIR]\n"
     "       modelid simulate --robot ROBOT --params TRUE.json --trajectory TRAJ.yaml\n"
-    "                   --noise SIGMA [--seed N] [--sample-time S] [--periods K] -o A.csv\n"
+    "                   --noise SIGMA[,SIGMA2,...] [--seed N] [--sample-time S] [--periods K]\n"
+    "                   -o A.csv\n"
+    "       modelid simulate --robot DESCRIPTION.yaml --drive THETA.json --trajectory TRAJ.yaml\n"
+    "                   --noise SIGMA[,SIGMA2,...] [--seed N] [--sample-time S] [--periods K]\n"
+    "                   -o A.csv\n"
     "       modelid check ROBOT\n"
     "       modelid --help\n"
     "\n"
@@ -36,7 +40,10 @@ constexpr const char* kUsage =
     "compiled-in generated model (tx40, kr150, ur5, iiwa14, panda, kuka_kr150_2,\n"
     "panda_arm).\n"
     "Data files: CSV with a header t, q1..qn, tau1..taun and optionally dq1.., ddq1.. (without\n"
-    "them, velocities and accelerations come from central differences). README.md has details.\n";
+    "them, velocities and accelerations come from central differences). README.md has details.\n"
+    "simulate --drive: THETA.json is {\"name\": value} over the drive model's parameters\n"
+    "(XXj..Mj, JMj, Rvj, Rcj, Rzj, load_m, load_cx, ..., load_Iyz; missing: 0, Rzj 1); the\n"
+    "noise (one sigma or one per motor) is added to the motor torques, tau = K^T tau_M written.\n";
 
 int dispatch(int argc, char** argv) {
   const std::string command = argv[1];

@@ -1,17 +1,23 @@
 // modelid simulate: samples a Fourier excitation (Swevers 2002, eq. 15-17), computes the joint
-// torques of given base parameters by the model's inverse dynamics (Gautier & Briot eq. 4-6)
-// and adds seeded Gaussian noise, then writes the trajectory CSV.
+// torques of given base parameters by the model's inverse dynamics (Gautier & Briot eq. 4-6),
+// or the motor torques of the drive model (Swevers eq. 12, drive_simulation.hpp) mapped to the
+// joints, adds seeded Gaussian noise per axis, then writes the trajectory CSV.
 
 #include <charconv>
 #include <cmath>
 #include <cstdint>
 #include <iostream>
 #include <numbers>
+#include <optional>
 #include <random>
+#include <sstream>
+#include <vector>
 
 #include "modelgen/data.hpp"
+#include "modelgen/drive_model.hpp"
 #include "modelgen/excitation.hpp"
 #include "runtime/cli/commands.hpp"
+#include "runtime/cli/drive_simulation.hpp"
 #include "runtime/cli/fourier_file.hpp"
 #include "runtime/cli/model_source.hpp"
 #include "runtime/cli/parameter_file.hpp"
@@ -19,19 +25,65 @@
 
 namespace modelgen::internal {
 
-const std::map<std::string, OptionKind> kSimulateOptions = {
-    {"--robot", OptionKind::kOnce},      {"--params", OptionKind::kOnce},
-    {"--trajectory", OptionKind::kOnce}, {"--noise", OptionKind::kOnce},
-    {"--seed", OptionKind::kOnce},       {"--sample-time", OptionKind::kOnce},
-    {"--periods", OptionKind::kOnce},    {"-o", OptionKind::kOnce}};
+const std::map<std::string, OptionKind> kSimulateOptions = {{"--robot", OptionKind::kOnce},
+                                                            {"--params", OptionKind::kOnce},
+                                                            {"--drive", OptionKind::kOnce},
+                                                            {"--trajectory", OptionKind::kOnce},
+                                                            {"--noise", OptionKind::kOnce},
+                                                            {"--seed", OptionKind::kOnce},
+                                                            {"--sample-time", OptionKind::kOnce},
+                                                            {"--periods", OptionKind::kOnce},
+                                                            {"-o", OptionKind::kOnce}};
+
+namespace {
+
+// --noise S or S1,...,Sn: one standard deviation for every axis or one per axis (`axes` names
+// them in messages: joints or motors).
+std::vector<double> parse_noise(const std::string& text, int dof, const std::string& axes) {
+  std::vector<double> sigma;
+  std::istringstream in(text);
+  for (std::string item; std::getline(in, item, ',');) {
+    const double value = parse_number(item, "--noise");
+    if (value < 0) {
+      throw UsageError{"--noise: a standard deviation cannot be negative, not '" + item + "'"};
+    }
+    sigma.push_back(value);
+  }
+  if (sigma.size() == 1) sigma.assign(static_cast<std::size_t>(dof), sigma[0]);
+  if (static_cast<int>(sigma.size()) != dof || text.empty() || text.back() == ',') {
+    throw UsageError{"--noise needs one standard deviation or " + std::to_string(dof) +
+                     " (one per " + axes + "), not " + std::to_string(sigma.size()) + ": '" + text +
+                     "'"};
+  }
+  return sigma;
+}
+
+}  // namespace
 
 int run_simulate(const Arguments& args) {
   reject_positional(args);
+  const bool drive_mode = args.has("--drive");
+  if (drive_mode && args.has("--params")) {
+    throw UsageError{
+        "--drive and --params exclude each other: simulate either the base parameters "
+        "(--params) or the drive model (--drive)"};
+  }
+  if (!drive_mode && !args.has("--params")) {
+    throw UsageError{
+        "simulate needs --params TRUE.json (base or standard parameters) or --drive "
+        "THETA.json (drive model parameters)"};
+  }
   const ModelSource source = load_model_source(args.one("--robot"));
+  if (drive_mode && !source.description) {
+    throw UsageError{"--drive needs --robot to be a description file (.yaml/.urdf), not '" +
+                     args.one("--robot") + "'"};
+  }
   const IdentificationModel& model = *source.model;
-  const Eigen::VectorXd beta = read_base_parameters(args.one("--params"), model);
+  Eigen::VectorXd beta;
+  if (!drive_mode) beta = read_base_parameters(args.one("--params"), model);
   const FourierTrajectory fourier = read_fourier(args.one("--trajectory"), model.dof());
-  const double noise = parse_number(args.one("--noise"), "--noise");
+  const std::vector<double> noise =
+      parse_noise(args.one("--noise"), model.dof(), drive_mode ? "motor" : "joint");
   const double sample_time = args.has("--sample-time")
                                  ? parse_number(args.one("--sample-time"), "--sample-time")
                                  : fourier.period / 1000.0;
@@ -46,22 +98,43 @@ int run_simulate(const Arguments& args) {
     }
   }
   const std::string& output = args.one("-o");
+  std::optional<ReferenceDriveModel> drive_model;
+  DriveTruth truth;
+  if (drive_mode) {
+    drive_model.emplace(source.description->tree, model.transmission());
+    truth = read_drive_truth(args.one("--drive"), *source.description, *drive_model);
+    if (!truth.note.empty()) std::cerr << "modelid simulate: note: " << truth.note << "\n";
+  }
   Trajectory x = sample(fourier, sample_time, periods * fourier.period);
-  // Gaussian torque noise by Box-Muller on a fixed generator: the same seed, the same file.
+
+  // Noise-free torques: the joint torques of the base parameters (Gautier & Briot eq. 4-6), or
+  // the drive model's motor torques (Swevers eq. 12).
+  Progress progress("simulating", x.t.size());
+  Eigen::MatrixXd tau(x.t.size(), model.dof());
+  if (drive_mode) {
+    tau = motor_torques(*drive_model, x, truth.theta, progress);
+  } else {
+    for (Eigen::Index s = 0; s < x.t.size(); ++s) {
+      if (s % 1024 == 0) progress.update(s);
+      const Eigen::VectorXd q = x.q.row(s), dq = x.dq.row(s), ddq = x.ddq.row(s);
+      Eigen::VectorXd row(model.dof());
+      model.inverse_dynamics(q.data(), dq.data(), ddq.data(), beta.data(), row.data());
+      tau.row(s) = row.transpose();
+    }
+  }
+  // Gaussian noise per axis by Box-Muller on a fixed generator: the same seed, the same file.
   std::mt19937_64 engine(seed);
   auto uniform = [&engine] { return (static_cast<double>(engine() >> 11) + 0.5) * 0x1.0p-53; };
-  std::vector<double> tau(model.dof());
-  Progress progress("simulating", x.t.size());
   for (Eigen::Index s = 0; s < x.t.size(); ++s) {
-    if (s % 1024 == 0) progress.update(s);
-    const Eigen::VectorXd q = x.q.row(s), dq = x.dq.row(s), ddq = x.ddq.row(s);
-    model.inverse_dynamics(q.data(), dq.data(), ddq.data(), beta.data(), tau.data());
     for (int j = 0; j < model.dof(); ++j) {
       const double u1 = uniform(), u2 = uniform();  // named: operand order is unspecified
       const double g = std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * std::numbers::pi * u2);
-      x.tau(s, j) = tau[j] + noise * g;
+      x.tau(s, j) = tau(s, j) + noise[static_cast<std::size_t>(j)] * g;
     }
   }
+  // Swevers eq. 10 / power balance: the joint torques the motor torques produce,
+  // tau = K^T tau_M, which `fit --method ml` maps back by tau_M = K^-T tau (ml_experiment).
+  if (drive_mode) x.tau = x.tau * model.transmission().motor_from_joint;
   progress.update(x.t.size());
   progress.finish();
   write_trajectory_csv(output, x);
