@@ -5,10 +5,11 @@
 // The base parameters are numeric, of this experiment: a column-pivoted QR of the weighted,
 // column-scaled regressor A D^-1 P = Q [R11 R12] gives psi = [I, R11^-1 R12] P^T D theta, the
 // combinations the data determine, estimated as R11^-1 Q1^T b with covariance s^2 R11^-1 R11^-T
-// (Gautier & Briot eq. 15-18 in this basis). The equations G theta = psi_hat are then solved for
-// the unknown columns with the link values known, each equation weighted by 1 / sigma(psi_i):
-// "solving a set of equations" (section 3.2), scaled so that poorly excited combinations count
-// little. The load comes from its ten standard parameters, load_from_standard (eq. 3 backwards).
+// (Gautier & Briot eq. 15-18 in this basis). The equations G theta = psi_hat ("solving a set of
+// equations", section 3.2) are then solved for the unknown columns with the link values known, by
+// generalised least squares with psi_hat's covariance: the combinations the experiment excites
+// poorly (section 4's reason 3 for approach 1's errors) count as little as they deserve. The load
+// comes from its ten standard parameters, load_from_standard (eq. 3 backwards).
 
 #include "modelgen/ml_linear_route.hpp"
 
@@ -212,13 +213,15 @@ LinearRoute linear_route(const MlProblem& problem, double rank_tolerance) {
   }
   Eigen::MatrixXd M(r, X);
   for (Eigen::Index u = 0; u < X; ++u) M.col(u) = G.col(x_columns[u]);
-  const Eigen::VectorXd weight = psi_covariance.diagonal().cwiseSqrt().cwiseInverse();
-  const Eigen::MatrixXd Mw = weight.asDiagonal() * M;
-  const Eigen::VectorXd yw = weight.asDiagonal() * (psi - G * theta_known);
+  // Generalised least squares with the estimates' covariance s^2 R11^-1 R11^-T: whitened by
+  // R11 / s, so that combinations the data determine poorly count little.
+  const Eigen::MatrixXd whiten = R11 / std::sqrt(s2);
+  const Eigen::MatrixXd Mw = whiten * M;
+  const Eigen::VectorXd yw = whiten * (psi - G * theta_known);
   Eigen::VectorXd x;
   Eigen::MatrixXd dx_dy;
   minimum_norm_step(Mw, yw, x0, x, dx_dy);
-  const Eigen::MatrixXd dx_dpsi = dx_dy * weight.asDiagonal();
+  const Eigen::MatrixXd dx_dpsi = dx_dy * whiten;
   const Eigen::MatrixXd x_covariance = dx_dpsi * psi_covariance * dx_dpsi.transpose();
 
   // The load in its own terms; its covariance and the identifiability in those terms through
