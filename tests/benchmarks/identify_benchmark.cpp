@@ -5,17 +5,12 @@
 // memory (ru_maxrss) is reported as counters. After the runs a summary prints the targets.
 
 #include <sys/resource.h>
-#include <unistd.h>
 
 #include <cmath>
 #include <cstdio>
-#include <iostream>
-#include <limits>
-#include <map>
 #include <memory>
-#include <numbers>
+#include <ostream>
 #include <string>
-#include <string_view>
 #include <vector>
 
 #include <benchmark/benchmark.h>
@@ -30,6 +25,7 @@
 #include "modelgen/identify.hpp"
 #include "modelgen/model.hpp"
 #include "modelgen/prepare.hpp"
+#include "tests/benchmarks/benchmark_summary.hpp"
 #include "tests/support/kdl_oracle.hpp"
 #include "tests/support/test_support.hpp"
 
@@ -45,12 +41,6 @@ double peak_rss_mb() {
   rusage usage{};
   getrusage(RUSAGE_SELF, &usage);
   return static_cast<double>(usage.ru_maxrss) / 1024.0;
-}
-
-// Gaussian numbers by Box-Muller on the portable uniform generator.
-double gaussian(test::Random& random) {
-  const double u = random.uniform(1e-300, 1.0), v = random.uniform(0.0, 1.0);
-  return std::sqrt(-2.0 * std::log(u)) * std::cos(2.0 * std::numbers::pi * v);
 }
 
 // One 10 s period of a five-harmonic Fourier trajectory, sampled so that it has `samples`
@@ -80,7 +70,7 @@ Trajectory simulated(const IdentificationModel& model, const Eigen::VectorXd& be
       ddq[j] = x.ddq(s, j);
     }
     model.inverse_dynamics(q, dq, ddq, beta.data(), tau);
-    for (int j = 0; j < n; ++j) x.tau(s, j) = tau[j] + kNoise[j] * gaussian(random);
+    for (int j = 0; j < n; ++j) x.tau(s, j) = tau[j] + kNoise[j] * random.normal();
   }
   return x;
 }
@@ -235,109 +225,46 @@ void BM_kr150_bundled_pipeline(benchmark::State& state) {
 // Registration order is run order: identify() first, so that its memory counters are not
 // hidden under the peak of the benchmarks that keep a whole stacked W.
 void register_all() {
-  for (auto* bm :
-       {benchmark::RegisterBenchmark("BM_tx40_identify_wls", BM_tx40_identify_wls),
-        benchmark::RegisterBenchmark("BM_tx40_identify_ols", BM_tx40_identify_ols),
-        benchmark::RegisterBenchmark("BM_tx40_identify_pim_wls", BM_tx40_identify_pim_wls),
-        benchmark::RegisterBenchmark("BM_tx40_reference_identify_wls",
-                                     BM_tx40_reference_identify_wls),
-        benchmark::RegisterBenchmark("BM_tx40_regressor_pass", BM_tx40_regressor_pass),
-        benchmark::RegisterBenchmark("BM_tx40_build_W", BM_tx40_build_W),
-        benchmark::RegisterBenchmark("BM_tx40_fit_wls", BM_tx40_fit_wls),
-        benchmark::RegisterBenchmark("BM_kr150_bundled_pipeline", BM_kr150_bundled_pipeline)}) {
-    bm->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime()->UseRealTime();
-  }
+  register_wall_and_process_cpu_ms(
+      {{"BM_tx40_identify_wls", BM_tx40_identify_wls},
+       {"BM_tx40_identify_ols", BM_tx40_identify_ols},
+       {"BM_tx40_identify_pim_wls", BM_tx40_identify_pim_wls},
+       {"BM_tx40_reference_identify_wls", BM_tx40_reference_identify_wls},
+       {"BM_tx40_regressor_pass", BM_tx40_regressor_pass},
+       {"BM_tx40_build_W", BM_tx40_build_W},
+       {"BM_tx40_fit_wls", BM_tx40_fit_wls},
+       {"BM_kr150_bundled_pipeline", BM_kr150_bundled_pipeline}});
 }
 
-// printf-style formatting into a std::string, for the summary lines.
-template <class... Args>
-std::string printf_string(const char* format, Args... args) {
-  char text[256];
-  std::snprintf(text, sizeof text, format, args...);
-  return text;
-}
-
-// The console output, then per-sample times, the reference/generated ratio and the targets.
+// After the console output: per-sample times, the reference/generated ratio and the targets.
 // Times are wall-clock (identify and the fit use two threads) and CPU time of the process (both
-// threads), the median when there are repetitions.
-class SummaryReporter : public benchmark::ConsoleReporter {
- public:
-  using ConsoleReporter::ConsoleReporter;
-
-  void ReportRuns(const std::vector<Run>& runs) override {
-    for (const Run& run : runs) record(run);
-    ConsoleReporter::ReportRuns(runs);
+// threads), the median when there are repetitions; the unit is ms for every benchmark here.
+void print_summary(const KeptRuns& runs, std::ostream& out) {
+  // CPU time per sample: the reference's 2000 samples run in one thread, 100 000 in two.
+  const double per_sample_ref =
+      runs.cpu_time("BM_tx40_reference_identify_wls") / static_cast<double>(kReferenceSamples);
+  const double per_sample_gen =
+      runs.cpu_time("BM_tx40_identify_wls") / static_cast<double>(kSamples);
+  out << "\nTX-40, 61 base parameters, " << kSamples << " samples"
+      << (runs.any_median() ? ", median of the repetitions" : "") << "\n";
+  for (const char* name :
+       {"BM_tx40_regressor_pass", "BM_tx40_build_W", "BM_tx40_fit_wls", "BM_tx40_identify_wls",
+        "BM_tx40_identify_ols", "BM_tx40_identify_pim_wls"}) {
+    if (runs.find(name) == nullptr) continue;  // filtered out
+    out << printf_string("  %-32s wall %8.1f ms, CPU %8.1f ms, peak %5.0f MB, growth %5.0f MB\n",
+                         name, runs.real_time(name), runs.cpu_time(name),
+                         runs.counter(name, "peak_MB"), runs.counter(name, "growth_MB"));
   }
-
-  void Finalize() override {
-    std::ostream& out = GetOutputStream();
-    // CPU time per sample: the reference's 2000 samples run in one thread, 100 000 in two.
-    const double per_sample_ref =
-        get(cpu_ms_, "BM_tx40_reference_identify_wls") / static_cast<double>(kReferenceSamples);
-    const double per_sample_gen =
-        get(cpu_ms_, "BM_tx40_identify_wls") / static_cast<double>(kSamples);
-    out << "\nTX-40, 61 base parameters, " << kSamples << " samples"
-        << (any_median_ ? ", median of the repetitions" : "") << "\n";
-    for (const char* name :
-         {"BM_tx40_regressor_pass", "BM_tx40_build_W", "BM_tx40_fit_wls", "BM_tx40_identify_wls",
-          "BM_tx40_identify_ols", "BM_tx40_identify_pim_wls"}) {
-      if (times_ms_.count(name) == 0) continue;  // filtered out
-      out << printf_string("  %-32s wall %8.1f ms, CPU %8.1f ms, peak %5.0f MB, growth %5.0f MB\n",
-                           name, get(times_ms_, name), get(cpu_ms_, name), peak_mb_[name],
-                           growth_mb_[name]);
-    }
-    if (!std::isnan(per_sample_ref) && !std::isnan(per_sample_gen)) {
-      out << printf_string(
-          "  identify WLS, CPU per sample: generated %.2f us, reference %.1f us: ratio %.0fx\n",
-          per_sample_gen * 1e3, per_sample_ref * 1e3, per_sample_ref / per_sample_gen);
-    }
-    const double wls = get(times_ms_, "BM_tx40_identify_wls");
-    if (!std::isnan(wls)) {
-      out << printf_string("Target: IDIM-WLS, 100 000 samples, under 100 ms: %.1f ms, %s\n", wls,
-                           wls < 100 ? "met" : "MISSED");
-    }
-    out.flush();
+  if (!std::isnan(per_sample_ref) && !std::isnan(per_sample_gen)) {
+    out << printf_string(
+        "  identify WLS, CPU per sample: generated %.2f us, reference %.1f us: ratio %.0fx\n",
+        per_sample_gen * 1e3, per_sample_ref * 1e3, per_sample_ref / per_sample_gen);
   }
-
- private:
-  void record(const Run& run) {
-    if (run.error_occurred) return;
-    const bool median = run.run_type == Run::RT_Aggregate && run.aggregate_name == "median";
-    if (run.run_type == Run::RT_Aggregate && !median) return;
-    const std::string& name = run.run_name.function_name;
-    if (!median && from_median_.count(name) != 0) return;
-    times_ms_[name] = run.GetAdjustedRealTime();  // the unit is ms for every benchmark here
-    cpu_ms_[name] = run.GetAdjustedCPUTime();
-    const auto counter = [&](const char* key) {
-      const auto it = run.counters.find(key);
-      return it == run.counters.end() ? std::numeric_limits<double>::quiet_NaN()
-                                      : static_cast<double>(it->second);
-    };
-    peak_mb_[name] = counter("peak_MB");
-    growth_mb_[name] = counter("growth_MB");
-    if (median) {
-      from_median_[name] = true;
-      any_median_ = true;
-    }
+  const double wls = runs.real_time("BM_tx40_identify_wls");
+  if (!std::isnan(wls)) {
+    out << printf_string("Target: IDIM-WLS, 100 000 samples, under 100 ms: %.1f ms, %s\n", wls,
+                         wls < 100 ? "met" : "MISSED");
   }
-
-  static double get(const std::map<std::string, double>& values, const std::string& name) {
-    const auto it = values.find(name);
-    return it == values.end() ? std::numeric_limits<double>::quiet_NaN() : it->second;
-  }
-
-  std::map<std::string, double> times_ms_, cpu_ms_, peak_mb_, growth_mb_;
-  std::map<std::string, bool> from_median_;
-  bool any_median_ = false;
-};
-
-bool console_format(int argc, char** argv) {
-  constexpr std::string_view kFlag = "--benchmark_format=";
-  for (int i = 1; i < argc; ++i) {
-    const std::string_view arg = argv[i];
-    if (arg.substr(0, kFlag.size()) == kFlag) return arg.substr(kFlag.size()) == "console";
-  }
-  return true;
 }
 
 }  // namespace
@@ -345,26 +272,10 @@ bool console_format(int argc, char** argv) {
 
 int main(int argc, char** argv) {
   using namespace modelgen::bench;
-  const bool console = console_format(argc, argv);
-  benchmark::Initialize(&argc, argv);
-  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
-  std::unique_ptr<Workload> owned;
-  try {
-    owned = std::make_unique<Workload>();
-  } catch (const std::exception& e) {
-    std::cerr << "identify_benchmark: setup failed: " << e.what() << "\n";
-    return 1;
-  }
-  workload = owned.get();
-  setup_peak_mb = peak_rss_mb();
-  register_all();
-  if (console) {
-    SummaryReporter reporter(isatty(STDOUT_FILENO) ? benchmark::ConsoleReporter::OO_ColorTabular
-                                                   : benchmark::ConsoleReporter::OO_Tabular);
-    benchmark::RunSpecifiedBenchmarks(&reporter);
-  } else {
-    benchmark::RunSpecifiedBenchmarks();
-  }
-  benchmark::Shutdown();
-  return 0;
+  const auto register_after_setup = [] {
+    setup_peak_mb = peak_rss_mb();
+    register_all();
+  };
+  return run_benchmarks(argc, argv, "identify_benchmark", workload, register_after_setup,
+                        print_summary);
 }

@@ -7,21 +7,15 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstdio>
-#include <exception>
-#include <iostream>
 #include <limits>
-#include <map>
 #include <memory>
 #include <ostream>
-#include <set>
 #include <stdexcept>
 #include <string>
 #include <string_view>
 #include <type_traits>
 #include <utility>
 #include <vector>
-
-#include <unistd.h>
 
 #include <benchmark/benchmark.h>
 #include <Eigen/Core>
@@ -34,6 +28,7 @@
 #include "generator/description/robot_model.hpp"
 #include "generator/generate.hpp"
 #include "modelgen/reference_dynamics.hpp"
+#include "tests/benchmarks/benchmark_summary.hpp"
 #include "tests/benchmarks/kdl_setup.hpp"
 #include "tests/support/kdl_oracle.hpp"
 #include "tests/support/test_support.hpp"
@@ -405,30 +400,18 @@ struct RobotInfo {
   int dof;
 };
 
-// printf-style formatting into a std::string, for the fixed-width summary table.
-template <class... Args>
-std::string printf_string(const char* format, Args... args) {
-  char text[256];
-  std::snprintf(text, sizeof text, format, args...);
-  return text;
-}
-
-// The console output, plus a table of ratios and the targets at the end. Times are CPU time
-// per call: the median over the repetitions when there are several (less disturbed by other
-// load on the machine than the mean), else the single measurement.
-class SummaryReporter : public benchmark::ConsoleReporter {
+// After the console output, a table of ratios and the targets. Times are CPU time per call: the
+// median over the repetitions when there are several, else the single measurement.
+class ModelSummary {
  public:
-  SummaryReporter(OutputOptions options, std::vector<RobotInfo> robots)
-      : ConsoleReporter(options), robots_(std::move(robots)) {}
+  explicit ModelSummary(std::vector<RobotInfo> robots) : robots_(std::move(robots)) {}
 
-  void ReportRuns(const std::vector<Run>& runs) override {
-    for (const Run& run : runs) record(run);
-    ConsoleReporter::ReportRuns(runs);
-  }
-
-  void Finalize() override {
-    std::ostream& out = GetOutputStream();
-    out << "\nCPU time per call, " << (any_median_ ? "median of the repetitions" : "single run")
+  void operator()(const KeptRuns& runs, std::ostream& out) const {
+    const auto get = [&runs](const RobotInfo& robot, std::string_view what) {
+      return cpu_ns(runs, benchmark_name(robot.name, what));
+    };
+    out << "\nCPU time per call, "
+        << (runs.any_median() ? "median of the repetitions" : "single run")
         << ".\nID: generated inverse_dynamics_standard (IDf: float). KDL: ChainIdSolver_RNE, one\n"
         << "segment per body (KDL2: the KDL oracle's two). W: generated idim_regressor_standard.\n"
         << "ref: ReferenceDynamics. gen: generate_from_file.\n"
@@ -459,23 +442,9 @@ class SummaryReporter : public benchmark::ConsoleReporter {
       targets += target(robot, "generation time", get(robot, "generation") / 1e6, ms_limit, " ms");
     }
     if (!targets.empty()) out << "\nTargets\n" << targets;
-    out.flush();
   }
 
  private:
-  void record(const Run& run) {
-    if (run.error_occurred) return;
-    const bool median = run.run_type == Run::RT_Aggregate && run.aggregate_name == "median";
-    if (run.run_type == Run::RT_Aggregate && !median) return;  // mean, stddev, cv
-    const std::string& name = run.run_name.function_name;
-    if (!median && from_median_.count(name) != 0) return;
-    times_ns_[name] = run.GetAdjustedCPUTime() * nanoseconds_per(run.time_unit);
-    if (median) {
-      from_median_.insert(name);
-      any_median_ = true;
-    }
-  }
-
   static double nanoseconds_per(benchmark::TimeUnit unit) {
     switch (unit) {
       case benchmark::kNanosecond:
@@ -491,9 +460,10 @@ class SummaryReporter : public benchmark::ConsoleReporter {
   }
 
   // NaN when the benchmark was filtered out or failed.
-  double get(const RobotInfo& robot, std::string_view what) const {
-    const auto it = times_ns_.find(benchmark_name(robot.name, what));
-    return it == times_ns_.end() ? std::numeric_limits<double>::quiet_NaN() : it->second;
+  static double cpu_ns(const KeptRuns& runs, const std::string& name) {
+    const KeptRuns::Run* run = runs.find(name);
+    return run == nullptr ? std::numeric_limits<double>::quiet_NaN()
+                          : runs.cpu_time(name) * nanoseconds_per(run->time_unit);
   }
 
   static std::string format(double value, int decimals, const char* suffix = "") {
@@ -513,52 +483,24 @@ class SummaryReporter : public benchmark::ConsoleReporter {
   }
 
   std::vector<RobotInfo> robots_;
-  std::map<std::string, double> times_ns_;
-  std::set<std::string> from_median_;
-  bool any_median_ = false;
 };
-
-// The summary table only makes sense on the console; other formats get the library's reporter.
-bool console_format(int argc, char** argv) {
-  constexpr std::string_view kFlag = "--benchmark_format=";
-  for (int i = 1; i < argc; ++i) {
-    const std::string_view arg = argv[i];
-    if (arg.substr(0, kFlag.size()) == kFlag) return arg.substr(kFlag.size()) == "console";
-  }
-  return true;
-}
 
 }  // namespace
 }  // namespace modelgen::bench
 
 int main(int argc, char** argv) {
   using namespace modelgen::bench;
-  const bool console = console_format(argc, argv);
-  benchmark::Initialize(&argc, argv);
-  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
-
   std::unique_ptr<Workload> tx40, kr150, iiwa14;
-  try {
-    tx40 = std::make_unique<Workload>(Tx40::kDescription, Tx40::kDof, Tx40::kParams);
-    kr150 = std::make_unique<Workload>(Kr150::kDescription, Kr150::kDof, Kr150::kParams);
-    iiwa14 = std::make_unique<Workload>(Iiwa14::kDescription, Iiwa14::kDof, Iiwa14::kParams);
-  } catch (const std::exception& e) {
-    std::cerr << "model_benchmark: setup failed: " << e.what() << "\n";
-    return 1;
-  }
-  register_robot<Tx40>(*tx40);
-  register_robot<Kr150>(*kr150);
-  register_robot<Iiwa14>(*iiwa14);
-
-  if (console) {
-    SummaryReporter reporter(
-        isatty(STDOUT_FILENO) ? benchmark::ConsoleReporter::OO_ColorTabular
-                              : benchmark::ConsoleReporter::OO_Tabular,
-        {{Tx40::kName, Tx40::kDof}, {Kr150::kName, Kr150::kDof}, {Iiwa14::kName, Iiwa14::kDof}});
-    benchmark::RunSpecifiedBenchmarks(&reporter);
-  } else {
-    benchmark::RunSpecifiedBenchmarks();
-  }
-  benchmark::Shutdown();
-  return 0;
+  return run_benchmarks(
+      argc, argv, "model_benchmark",
+      [&] {
+        tx40 = std::make_unique<Workload>(Tx40::kDescription, Tx40::kDof, Tx40::kParams);
+        kr150 = std::make_unique<Workload>(Kr150::kDescription, Kr150::kDof, Kr150::kParams);
+        iiwa14 = std::make_unique<Workload>(Iiwa14::kDescription, Iiwa14::kDof, Iiwa14::kParams);
+        register_robot<Tx40>(*tx40);
+        register_robot<Kr150>(*kr150);
+        register_robot<Iiwa14>(*iiwa14);
+      },
+      ModelSummary(
+          {{Tx40::kName, Tx40::kDof}, {Kr150::kName, Kr150::kDof}, {Iiwa14::kName, Iiwa14::kDof}}));
 }

@@ -13,19 +13,11 @@
 #include <string>
 
 #include "generator/description/robot_model.hpp"
+#include "tests/support/kr150_load_scenario.hpp"
 #include "tests/support/test_support.hpp"
 
 namespace modelgen {
 namespace {
-
-// Swevers Table 2, the calibrated load (c in m).
-LoadParameters table2_load() {
-  LoadParameters load;
-  load.mass = 125.46;
-  load.com = {0.088, -0.032, 0.140};
-  load.inertia = {38.21, 6.55, 37.13, 7.28, 1.49, -1.23};
-  return load;
-}
 
 LoadParameters random_load(test::Random& random) {
   LoadParameters load;
@@ -89,29 +81,29 @@ TEST(LoadParameters, JacobianMatchesAutodiffAndCentralDifferences) {
 }
 
 TEST(LoadParameters, Table2LoadIsConsistent) {
-  EXPECT_TRUE(physical_consistency_warnings(table2_load()).empty());
+  EXPECT_TRUE(physical_consistency_warnings(test::table2_load()).empty());
 }
 
 TEST(LoadParameters, WarningsNameWhatIsWrong) {
-  LoadParameters load = table2_load();
+  LoadParameters load = test::table2_load();
   load.mass = -3;
   auto warnings = physical_consistency_warnings(load);
   ASSERT_EQ(warnings.size(), 1u);
   EXPECT_NE(warnings[0].find("mass -3 kg is not positive"), std::string::npos) << warnings[0];
 
-  load = table2_load();
+  load = test::table2_load();
   load.inertia = {1, 1, 1, 2, 0, 0};  // eigenvalues -1, 1, 3
   warnings = physical_consistency_warnings(load);
   ASSERT_GE(warnings.size(), 1u);
   EXPECT_NE(warnings[0].find("not positive definite"), std::string::npos) << warnings[0];
 
-  load = table2_load();
+  load = test::table2_load();
   load.inertia = {1, 1, 3, 0, 0, 0};  // positive definite, 3 > 1 + 1
   warnings = physical_consistency_warnings(load);
   ASSERT_EQ(warnings.size(), 1u);
   EXPECT_NE(warnings[0].find("triangle inequality"), std::string::npos) << warnings[0];
 
-  load = table2_load();
+  load = test::table2_load();
   load.com[1] = std::nan("");
   warnings = physical_consistency_warnings(load);
   ASSERT_EQ(warnings.size(), 1u);
@@ -119,7 +111,7 @@ TEST(LoadParameters, WarningsNameWhatIsWrong) {
 }
 
 TEST(LoadParameters, NoCentreOfGravityWithoutMass) {
-  std::array<double, 10> standard = standard_from_load(table2_load());
+  std::array<double, 10> standard = standard_from_load(test::table2_load());
   standard[9] = 0;
   try {
     load_from_standard(standard.data());

@@ -11,174 +11,27 @@
 #include <ceres/jet.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <map>
-#include <numbers>
 #include <string>
 #include <vector>
 
-#include "generator/description/load_robot.hpp"
 #include "modelgen/drive_model.hpp"
 #include "modelgen/estimate.hpp"
 #include "modelgen/load_parameters.hpp"
 #include "modelgen/ml_linear_route.hpp"
 #include "modelgen/ml_problem.hpp"
-#include "tests/support/kdl_oracle.hpp"
+#include "tests/support/kr150_load_scenario.hpp"
+#include "tests/support/ml_residuals_direct.hpp"
 #include "tests/support/test_support.hpp"
 
 namespace modelgen {
 namespace {
 
-constexpr double kPeriod = 36.96;
-constexpr int kSamples = 1540;
-// Noise on the averaged motor torques (N m), axes 1-6.
-constexpr double kSigma[6] = {5, 5, 5, 2, 2, 1.5};
-
-LoadParameters table2_load() {
-  LoadParameters load;
-  load.mass = 125.46;
-  load.com = {0.088, -0.032, 0.140};
-  load.inertia = {38.21, 6.55, 37.13, 7.28, 1.49, -1.23};
-  return load;
-}
-
-double gaussian(test::Random& random) {
-  const double u = random.uniform(1e-300, 1.0), v = random.uniform(0.0, 1.0);
-  return std::sqrt(-2.0 * std::log(u)) * std::cos(2.0 * std::numbers::pi * v);
-}
-
-// Swevers Table 1 in eq. 15 form (q = q0 + sum a sin + b cos), joint angles; axes 1 and 2 held.
-// `move_axis3` false holds axis 3 at its offset (wrist-only experiment).
-void table1_state(double t, bool move_axis3, Eigen::VectorXd& q, Eigen::VectorXd& dq,
-                  Eigen::VectorXd& ddq) {
-  struct Term {
-    int axis, harmonic;
-    double a, b;
-  };
-  const std::vector<Term> terms = {{2, 25, 8.72e-2, -4.62e-3}, {3, 1, 1.57, 0},
-                                   {3, 18, 4.60e-1, -1.76e-2}, {4, 1, -8.38e-1, 1.78e-3},
-                                   {4, 19, -2.10e-1, 8.52e-3}, {5, 1, 0, 1.57},
-                                   {5, 15, 2.56e-2, 1.57}};
-  const double wf = 2 * std::numbers::pi / kPeriod;
-  q = Eigen::VectorXd::Zero(6);
-  dq = Eigen::VectorXd::Zero(6);
-  ddq = Eigen::VectorXd::Zero(6);
-  q[1] = -std::numbers::pi / 2;
-  q[2] = 1.57;
-  for (const Term& term : terms) {
-    if (term.axis == 2 && !move_axis3) continue;
-    const double w = wf * term.harmonic, s = std::sin(w * t), c = std::cos(w * t);
-    q[term.axis] += term.a * s + term.b * c;
-    dq[term.axis] += w * (term.a * c - term.b * s);
-    ddq[term.axis] += -w * w * (term.a * s + term.b * c);
-  }
-}
-
-struct Scenario {
-  gen::RobotModel description = gen::load_robot(test::source_path("robots/kr150.yaml"));
-  std::unique_ptr<ReferenceDriveModel> model;
-  std::vector<std::string> names;  // ml_param_names
-  Eigen::VectorXd truth;           // every ml_param_names value
-  MlExperiment data;
-
-  explicit Scenario(bool move_axis3, int samples = kSamples) {
-    Transmission drive = Transmission::identity(6);
-    drive.motor_from_joint = description.drives.motor_from_joint;
-    model = std::make_unique<ReferenceDriveModel>(description.tree, drive);
-    names = ml_param_names(*model);
-    // Known link parameters: physical random values; link 7 (the flange) carries only the load.
-    test::Random random(2002);
-    const Eigen::VectorXd p = test::random_physical_parameters(description.tree, random);
-    std::map<std::string, double> standard;
-    for (size_t k = 0; k < description.tree.params.size(); ++k) {
-      standard[description.tree.params[k].name] = p[static_cast<Eigen::Index>(k)];
-    }
-    truth = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(names.size()));
-    const double JM[6] = {20, 20, 8, 2, 2, 1};
-    const double Rv[6] = {80, 80, 40, 12, 10, 8};
-    const double Rc[6] = {150, 150, 90, 30, 25, 20};
-    const double Rz[6] = {0.9, 0.9, 0.85, 0.88, 0.9, 0.87};
-    const std::array<double, kLoadParams> load = table2_load().to_vector();
-    for (size_t k = 0; k < names.size(); ++k) {
-      const std::string& name = names[k];
-      const int j = name.back() - '1';
-      double& v = truth[static_cast<Eigen::Index>(k)];
-      if (k >= names.size() - kLoadParams) {
-        v = load[k - (names.size() - kLoadParams)];
-      } else if (name.back() == '7') {
-        v = 0;  // link 7's own parameters: negligible against the load (Swevers section 2)
-      } else if (name.compare(0, 2, "JM") == 0) {
-        v = JM[j];
-      } else if (name.compare(0, 2, "Rv") == 0) {
-        v = Rv[j];
-      } else if (name.compare(0, 2, "Rc") == 0) {
-        v = Rc[j];
-      } else if (name.compare(0, 2, "Rz") == 0) {
-        v = Rz[j];
-      } else {
-        v = standard.at(name);
-      }
-    }
-    data.source = move_axis3 ? "axes3-6" : "wrist";
-    data.q.resize(samples, 6);
-    data.dq.resize(samples, 6);
-    data.ddq.resize(samples, 6);
-    for (int s = 0; s < samples; ++s) {
-      Eigen::VectorXd q, dq, ddq;
-      table1_state(kPeriod * s / samples, move_axis3, q, dq, ddq);
-      data.q.row(s) = q.transpose();
-      data.dq.row(s) = dq.transpose();
-      data.ddq.row(s) = ddq.transpose();
-    }
-    // Motor torques of the true model plus noise.
-    model->set_samples(data.q, data.dq, data.ddq);
-    Eigen::VectorXd theta = truth.head(model->num_params());
-    const std::array<double, 10> load_standard = standard_from_load(table2_load());
-    for (int m = 0; m < 10; ++m) theta[model->num_params() - 24 - 10 + m] += load_standard[m];
-    data.tau_M.resize(samples, 6);
-    data.sigma = Eigen::Map<const Eigen::VectorXd>(kSigma, 6);
-    for (int s = 0; s < samples; ++s) {
-      double tau[6];
-      model->torque(s, theta.data(), tau);
-      for (int i = 0; i < 6; ++i) data.tau_M(s, i) = tau[i] + kSigma[i] * gaussian(random);
-    }
-  }
-
-  // Approach 3 unknowns: the load, Rv, Rc, Rz of the moving axes.
-  std::vector<std::string> unknowns(const std::vector<int>& axes) const {
-    std::vector<std::string> out = load_param_names();
-    for (const char* stem : {"Rv", "Rc", "Rz"}) {
-      for (const int i : axes) out.push_back(stem + std::to_string(i + 1));
-    }
-    return out;
-  }
-
-  // The known values and a starting point far from the truth for the unknowns.
-  Eigen::VectorXd start(const std::vector<std::string>& unknown) const {
-    Eigen::VectorXd values = truth;
-    for (size_t k = 0; k < names.size(); ++k) {
-      if (std::find(unknown.begin(), unknown.end(), names[k]) == unknown.end()) continue;
-      const std::string& name = names[k];
-      double& v = values[static_cast<Eigen::Index>(k)];
-      if (name == "load_m") {
-        v = 100;
-      } else if (name.compare(0, 7, "load_cx") == 0 || name == "load_cy" || name == "load_cz") {
-        v = 0;
-      } else if (name == "load_Ixx" || name == "load_Iyy" || name == "load_Izz") {
-        v = 10;
-      } else if (name.compare(0, 5, "load_") == 0) {
-        v = 0;
-      } else if (name.compare(0, 2, "Rz") == 0) {
-        v = 1;
-      } else {
-        v = 0;
-      }
-    }
-    return values;
-  }
-};
+using Scenario = test::Kr150LoadScenario;
+constexpr const double* kSigma = Scenario::kSigma;
 
 TEST(MlProblem, JacobianMatchesAutodiffAndCentralDifferences) {
   Scenario scenario(true, 300);
@@ -208,29 +61,18 @@ TEST(MlProblem, JacobianMatchesAutodiffAndCentralDifferences) {
   // standard_from_load; nothing of MlProblem's chain rule is used.
   constexpr int kU = 22;
   using Jet = ceres::Jet<double, kU>;
-  const int P = scenario.model->num_params();
-  std::vector<Jet> all(scenario.names.size());
-  for (size_t k = 0; k < all.size(); ++k) all[k] = Jet(values[static_cast<Eigen::Index>(k)]);
-  for (int u = 0; u < kU; ++u) {
-    const auto k = std::find(scenario.names.begin(), scenario.names.end(), unknown[u]) -
-                   scenario.names.begin();
-    all[k] = Jet(theta1[u], u);
-  }
-  std::vector<Jet> theta(all.begin(), all.begin() + P);
-  Jet load_standard[10];
-  standard_from_load(all.data() + P, load_standard);
-  for (int m = 0; m < 10; ++m) theta[P - 24 - 10 + m] += load_standard[m];
+  std::vector<Jet> theta1_jet(kU), residuals(static_cast<size_t>(problem.num_residuals()));
+  for (int u = 0; u < kU; ++u) theta1_jet[u] = Jet(theta1[u], u);
+  const auto oracle = [&] {
+    test::direct_ml_residuals(problem, *scenario.model, theta1_jet.data(), 0, 300,
+                              residuals.data());
+  };
+  oracle();
   Eigen::MatrixXd J_auto(problem.num_residuals(), kU);
   Eigen::VectorXd r_auto(problem.num_residuals());
-  Eigen::Index row = 0;
-  for (int s = 0; s < 300; ++s) {
-    Jet tau[6];
-    scenario.model->evaluate(s, theta.data(), tau);
-    for (const int i : problem.axes()) {
-      const Jet residual = (scenario.data.tau_M(s, i) - tau[i]) / kSigma[i];
-      r_auto[row] = residual.a;
-      J_auto.row(row++) = residual.v.transpose();
-    }
+  for (Eigen::Index row = 0; row < problem.num_residuals(); ++row) {
+    r_auto[row] = residuals[row].a;
+    J_auto.row(row) = residuals[row].v.transpose();
   }
   EXPECT_LT((r - r_auto).lpNorm<Eigen::Infinity>(), 1e-12 * r_auto.lpNorm<Eigen::Infinity>());
   for (int u = 0; u < kU; ++u) {
@@ -265,12 +107,7 @@ TEST(MlProblem, JacobianMatchesAutodiffAndCentralDifferences) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() / 20;
   };
   const double analytic = time([&] { problem.evaluate(theta1, r, &J); });
-  const double automatic = time([&] {
-    for (int s = 0; s < 300; ++s) {
-      Jet tau[6];
-      scenario.model->evaluate(s, theta.data(), tau);
-    }
-  });
+  const double automatic = time(oracle);
   std::printf(
       "residuals + Jacobian, 300 samples x 4 axes x 22 unknowns: analytic %.3g ms, "
       "autodiff %.3g ms\n",
@@ -300,7 +137,7 @@ TEST(MlFit, Approach3RecoversTheLoadOfTable2) {
   for (const std::string& note : fit.notes) std::printf("note: %s\n", note.c_str());
   EXPECT_TRUE(fit.load_warnings.empty());
   // Table 2, approach 3 column: average errors of the real experiments.
-  const LoadParameters exact = table2_load();
+  const LoadParameters exact = test::table2_load();
   const double bound[10] = {0.85, 0.001, 0.002, 0.004, 0.70, 1.72, 0.39, 0.26, 0.34, 0.18};
   const auto estimate = fit.load.to_vector(), truth = exact.to_vector(),
              sd = fit.load_std_dev.to_vector();

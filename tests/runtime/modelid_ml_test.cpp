@@ -13,7 +13,6 @@
 #include <cmath>
 #include <cstdio>
 #include <map>
-#include <numbers>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -23,56 +22,21 @@
 #include "modelgen/load_parameters.hpp"
 #include "tests/runtime/modelid_cli_support.hpp"
 #include "tests/support/kdl_oracle.hpp"
+#include "tests/support/kr150_load_scenario.hpp"
 
 namespace modelgen::test {
 namespace {
 
-constexpr double kPeriod = 36.96;
-constexpr int kSamplesPerPeriod = 1540;  // 24 ms
+using Scenario = Kr150LoadScenario;  // its trajectory, load, drive parameters and noise levels
+constexpr double kPeriod = Scenario::kPeriod;
+constexpr int kSamplesPerPeriod = Scenario::kSamples;
 constexpr int kPeriods = 4;
 // Noise standard deviation on the averaged motor torques (N m); per sample sqrt(P) times this.
-constexpr double kSigma[6] = {5, 5, 5, 2, 2, 1.5};
-constexpr double kJM[6] = {20, 20, 8, 2, 2, 1};
-constexpr double kRv[6] = {80, 80, 40, 12, 10, 8};
-constexpr double kRc[6] = {150, 150, 90, 30, 25, 20};
-constexpr double kRz[6] = {0.9, 0.9, 0.85, 0.88, 0.9, 0.87};
-
-LoadParameters table2_load() {
-  LoadParameters load;
-  load.mass = 125.46;
-  load.com = {0.088, -0.032, 0.140};
-  load.inertia = {38.21, 6.55, 37.13, 7.28, 1.49, -1.23};
-  return load;
-}
-
-double gaussian(Random& random) {
-  const double u = random.uniform(1e-300, 1.0), v = random.uniform(0.0, 1.0);
-  return std::sqrt(-2.0 * std::log(u)) * std::cos(2.0 * std::numbers::pi * v);
-}
-
-// Swevers Table 1 (q = q0 + sum a sin + b cos), axes 3-6 moving, axes 1 and 2 held.
-void table1_state(double t, Eigen::VectorXd& q, Eigen::VectorXd& dq, Eigen::VectorXd& ddq) {
-  struct Term {
-    int axis, harmonic;
-    double a, b;
-  };
-  const std::vector<Term> terms = {{2, 25, 8.72e-2, -4.62e-3}, {3, 1, 1.57, 0},
-                                   {3, 18, 4.60e-1, -1.76e-2}, {4, 1, -8.38e-1, 1.78e-3},
-                                   {4, 19, -2.10e-1, 8.52e-3}, {5, 1, 0, 1.57},
-                                   {5, 15, 2.56e-2, 1.57}};
-  const double wf = 2 * std::numbers::pi / kPeriod;
-  q = Eigen::VectorXd::Zero(6);
-  dq = Eigen::VectorXd::Zero(6);
-  ddq = Eigen::VectorXd::Zero(6);
-  q[1] = -std::numbers::pi / 2;
-  q[2] = 1.57;
-  for (const Term& term : terms) {
-    const double w = wf * term.harmonic, s = std::sin(w * t), c = std::cos(w * t);
-    q[term.axis] += term.a * s + term.b * c;
-    dq[term.axis] += w * (term.a * c - term.b * s);
-    ddq[term.axis] += -w * w * (term.a * s + term.b * c);
-  }
-}
+constexpr const double* kSigma = Scenario::kSigma;
+constexpr const double* kJM = Scenario::kJM;
+constexpr const double* kRv = Scenario::kRv;
+constexpr const double* kRc = Scenario::kRc;
+constexpr const double* kRz = Scenario::kRz;
 
 std::string number(double value) {
   char text[40];
@@ -140,7 +104,7 @@ void write_scenario(const std::filesystem::path& dir) {
   Eigen::MatrixXd q(samples, 6), dq(samples, 6), ddq(samples, 6);
   for (int s = 0; s < samples; ++s) {
     Eigen::VectorXd qs, dqs, ddqs;
-    table1_state(kPeriod * s / kSamplesPerPeriod, qs, dqs, ddqs);
+    table1_state(kPeriod * s / kSamplesPerPeriod, true, qs, dqs, ddqs);
     q.row(s) = qs.transpose();
     dq.row(s) = dqs.transpose();
     ddq.row(s) = ddqs.transpose();
@@ -151,7 +115,7 @@ void write_scenario(const std::filesystem::path& dir) {
   for (int s = 0; s < samples; ++s) {
     Eigen::VectorXd tau_M(6);
     model.torque(s, theta.data(), tau_M.data());
-    for (int i = 0; i < 6; ++i) tau_M[i] += std::sqrt(kPeriods) * kSigma[i] * gaussian(random);
+    for (int i = 0; i < 6; ++i) tau_M[i] += std::sqrt(kPeriods) * kSigma[i] * random.normal();
     const Eigen::VectorXd tau = drive.motor_from_joint.transpose() * tau_M;
     csv << number(kPeriod * s / kSamplesPerPeriod);
     for (int j = 0; j < 6; ++j) csv << "," << number(q(s, j));

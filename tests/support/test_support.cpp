@@ -6,6 +6,7 @@
 #include <cctype>
 #include <cmath>
 #include <filesystem>
+#include <numbers>
 
 namespace modelgen::test {
 
@@ -34,6 +35,11 @@ double Random::uniform(double lo, double hi) {
   // Not std::uniform_real_distribution: its output is implementation-defined.
   const double unit = static_cast<double>(engine_() >> 11) * 0x1.0p-53;
   return lo + (hi - lo) * unit;
+}
+
+double Random::normal() {
+  const double u = uniform(1e-300, 1.0), v = uniform(0.0, 1.0);
+  return std::sqrt(-2.0 * std::log(u)) * std::cos(2.0 * std::numbers::pi * v);
 }
 
 Eigen::VectorXd Random::vector(int n, double lo, double hi) {

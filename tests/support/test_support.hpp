@@ -29,6 +29,8 @@ class Random {
  public:
   explicit Random(std::uint64_t seed) : engine_(seed) {}
   double uniform(double lo, double hi);
+  /// Standard normal numbers (Box-Muller on two uniform() draws).
+  double normal();
   Eigen::VectorXd vector(int n, double lo, double hi);
 
  private:
