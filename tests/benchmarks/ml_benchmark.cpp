@@ -27,7 +27,7 @@
 #include "modelgen/identifiability.hpp"
 #include "modelgen/load_parameters.hpp"
 #include "modelgen/ml_fit.hpp"
-#include "modelgen/ml_initial_guess.hpp"
+#include "modelgen/ml_linear_route.hpp"
 #include "modelgen/ml_problem.hpp"
 #include "tests/benchmarks/benchmark_summary.hpp"
 #include "tests/support/kr150_load_scenario.hpp"
@@ -120,7 +120,7 @@ MlFitResult fit_ml_autodiff(MlProblem& problem, const AutodiffResiduals& cost,
                             const MlFitOptions& options = {}) {
   MlFitResult result;
   result.names = problem.unknown_names();
-  problem.set_values(linear_initial_guess(problem, result.notes));
+  problem.set_values(linear_route(problem, options.rank_tolerance).values);
   result.initial = problem.initial();
   Eigen::VectorXd residuals;
   Eigen::MatrixXd J;
@@ -222,8 +222,7 @@ struct Workload {
         std::make_unique<MlProblem>(*scenario.model, std::vector{scenario.data}, setup, start);
     autodiff =
         std::make_unique<AutodiffResiduals>(*reference, *scenario.model, setup.samples_per_block);
-    std::vector<std::string> notes;
-    generated->set_values(linear_initial_guess(*generated, notes));
+    generated->set_values(linear_route(*generated).values);
     theta1_initial = generated->initial();
     generated->set_values(start);
     check();

@@ -294,7 +294,7 @@ TEST(LinearRoute, RecoversTheLoadFromNoiseFreeDataWithUnitEfficiencies) {
   EXPECT_EQ(fit.names[18], "JM3");
   EXPECT_EQ(fit.identifiability.rank, 22) << fit.identifiability.directions.size();
   ASSERT_TRUE(fit.has_load);
-  const auto estimate = fit.load.to_vector(), truth = table2_load().to_vector();
+  const auto estimate = fit.load.to_vector(), truth = test::table2_load().to_vector();
   for (int k = 0; k < kLoadParams; ++k) {
     EXPECT_NEAR(estimate[k], truth[k], 1e-7 * (1 + std::abs(truth[k]))) << load_param_names()[k];
   }
@@ -318,7 +318,7 @@ TEST(LinearRoute, StandardDeviationsDescribeTheErrorsWithUnitEfficiencies) {
   LinearScenario linear(true);
   MlProblem problem(*linear.scenario.model, {linear.data}, linear.setup(), linear.start());
   const MlFitResult fit = linear_route(problem).fit;
-  const auto estimate = fit.load.to_vector(), truth = table2_load().to_vector(),
+  const auto estimate = fit.load.to_vector(), truth = test::table2_load().to_vector(),
              sd = fit.load_std_dev.to_vector();
   for (int k = 0; k < kLoadParams; ++k) {
     std::printf("%-9s exact %9.4f approach 1 %9.4f (sd %.2g)\n", load_param_names()[k].c_str(),
@@ -343,7 +343,7 @@ TEST(LinearRoute, Approach1IsBiasedButFitsTheTorquesBetterThanApproach2) {
   setup3.unknown = scenario.unknowns({2, 3, 4, 5});
   MlProblem problem3(*scenario.model, {scenario.data}, setup3, scenario.start(setup3.unknown));
   const MlFitResult approach3 = fit_ml(problem3);
-  const auto truth = table2_load().to_vector(), load1 = approach1.fit.load.to_vector(),
+  const auto truth = test::table2_load().to_vector(), load1 = approach1.fit.load.to_vector(),
              load2 = approach2.load.to_vector(), load3 = approach3.load.to_vector(),
              sd3 = approach3.load_std_dev.to_vector();
   std::printf("load errors (estimate - exact): approach 1, approach 2, approach 3 (sd)\n");
