@@ -6,21 +6,15 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <stdexcept>
+
+#include "runtime/cli/json_file.hpp"
 
 namespace modelgen::internal {
 
 std::map<std::string, double> read_drive_parameter_values(const std::string& path,
                                                           const std::vector<std::string>& names) {
-  std::ifstream in(path);
-  if (!in) throw std::runtime_error(path + ": error: cannot open the file");
-  nlohmann::json json;
-  try {
-    json = nlohmann::json::parse(in);
-  } catch (const nlohmann::json::parse_error& e) {
-    throw std::runtime_error(path + ": error: not valid JSON: " + e.what());
-  }
+  const nlohmann::json json = read_json_file(path);
   if (!json.is_object()) {
     throw std::runtime_error(path + ": error: expected an object {\"name\": value, ...}");
   }

@@ -4,10 +4,11 @@
 #include "runtime/cli/estimate_file.hpp"
 
 #include <cmath>
-#include <fstream>
 #include <stdexcept>
 
 #include <nlohmann/json.hpp>
+
+#include "runtime/cli/json_file.hpp"
 
 namespace modelgen::internal {
 
@@ -65,14 +66,7 @@ std::string estimate_json(const EstimateFile& estimate) {
 }
 
 void check_estimate_model(const std::string& path, const IdentificationModel& model) {
-  std::ifstream in(path);
-  if (!in) throw std::runtime_error(path + ": error: cannot open the file");
-  nlohmann::json json;
-  try {
-    json = nlohmann::json::parse(in);
-  } catch (const nlohmann::json::parse_error& e) {
-    throw std::runtime_error(path + ": error: not valid JSON: " + e.what());
-  }
+  const nlohmann::json json = read_json_file(path);
   if (!json.is_object() || !json.contains("description_sha256")) return;
   const nlohmann::json& field = json["description_sha256"];
   if (!field.is_string()) {

@@ -2,12 +2,12 @@
 
 #include "runtime/cli/parameter_file.hpp"
 
-#include <fstream>
 #include <stdexcept>
 
 #include <nlohmann/json.hpp>
 
 #include "generator/description/diagnostics.hpp"
+#include "runtime/cli/json_file.hpp"
 
 namespace modelgen::internal {
 
@@ -32,14 +32,7 @@ double number(const nlohmann::json& value, const std::string& path, const std::s
 }  // namespace
 
 Eigen::VectorXd read_base_parameters(const std::string& path, const IdentificationModel& model) {
-  std::ifstream in(path);
-  if (!in) throw std::runtime_error(path + ": error: cannot open the file");
-  nlohmann::json json;
-  try {
-    json = nlohmann::json::parse(in);
-  } catch (const nlohmann::json::parse_error& e) {
-    throw std::runtime_error(path + ": error: not valid JSON: " + e.what());
-  }
+  const nlohmann::json json = read_json_file(path);
   Eigen::VectorXd beta = Eigen::VectorXd::Zero(model.num_base_params());
   for (const char* key : {"standard", "base"}) {
     if (json.contains(key) && !json[key].is_object()) {
