@@ -243,7 +243,10 @@ LinearRoute linear_route(const MlProblem& problem, double rank_tolerance) {
     to_load.topLeftCorner(kLoadParams, kLoadParams) = standard_from_load_jacobian(at).inverse();
   }
   const Eigen::MatrixXd covariance = to_load * x_covariance * to_load.transpose();
-  const Eigen::MatrixXd M_load = Mw * to_load.inverse();
+  // At least as many rows as unknowns for identifiability(): fewer base parameters than
+  // unknowns leave directions undetermined, which zero rows keep visible.
+  Eigen::MatrixXd M_load = Eigen::MatrixXd::Zero(std::max(r, X), X);
+  M_load.topRows(r) = Mw * to_load.inverse();
   fit.names = x_names;
   fit.identifiability = identifiability(M_load, x_names, rank_tolerance);
   fit.value = x;

@@ -381,5 +381,29 @@ TEST(LinearRoute, WristOnlyNamesTheLoadMass) {
   EXPECT_TRUE(std::isnan(fit.load.mass));
 }
 
+// Only motor 6 fitted: its torque alone cannot separate the ten load parameters, friction and
+// rotor inertia (fewer identifiable combinations than unknowns); the route names what is
+// missing instead of failing, and reports no number for it.
+TEST(LinearRoute, OneMotorLeavesDirectionsUndetermined) {
+  Scenario scenario(true);
+  MlSetup setup;
+  setup.unknown = load_param_names();
+  for (const char* name : {"Rv6", "Rc6"}) setup.unknown.push_back(name);
+  setup.payload_link = 7;
+  setup.axes = {5};
+  MlProblem problem(*scenario.model, {scenario.data}, setup, scenario.start(setup.unknown));
+  const LinearRoute route = linear_route(problem);
+  std::printf("motor 6 alone: %d base parameters for %zu unknowns, rank %d\n",
+              route.base_parameters, route.fit.names.size(), route.fit.identifiability.rank);
+  EXPECT_LT(route.fit.identifiability.rank, static_cast<int>(route.fit.names.size()));
+  EXPECT_FALSE(route.fit.identifiability.directions.empty());
+  for (size_t u = 0; u < route.fit.names.size(); ++u) {
+    EXPECT_EQ(std::isnan(route.fit.value[static_cast<Eigen::Index>(u)]),
+              !route.fit.identifiability.identifiable[u])
+        << route.fit.names[u];
+  }
+  EXPECT_TRUE(route.values.allFinite());
+}
+
 }  // namespace
 }  // namespace modelgen
