@@ -178,6 +178,10 @@ int run_fit_ml(const Arguments& args) {
   const std::vector<std::string> names = ml_param_names(*drive_model);
   std::map<std::string, double> overrides;
   if (args.has("--known")) overrides = read_drive_parameter_values(args.one("--known"), names);
+  if (overrides.count("load_m") && !(overrides.at("load_m") > 0)) {
+    throw std::runtime_error(args.one("--known") + ": error: 'load_m' must be positive, not " +
+                             shortest(overrides.at("load_m")));
+  }
   MlTruth truth;
   if (args.has("--truth")) truth = read_drive_parameter_values(args.one("--truth"), names);
 
@@ -205,7 +209,12 @@ int run_fit_ml(const Arguments& args) {
     MlSetup setup;
     setup.payload_link = payload_link;
     setup.axes = axes;
-    if (groups.count("load")) setup.unknown = load_param_names();
+    // Load parameters given in --known are known (a weighed mass, say); the rest are unknown.
+    if (groups.count("load")) {
+      for (const std::string& name : load_param_names()) {
+        if (!overrides.count(name)) setup.unknown.push_back(name);
+      }
+    }
     for (const char* stem : {"Rv", "Rc", "Rz"}) {
       if (!groups.count(stem) || (std::string(stem) == "Rz" && approach != 3)) continue;
       for (const int j : axes) setup.unknown.push_back(stem + std::to_string(j + 1));

@@ -67,6 +67,16 @@ bool find(const MlFitResult& fit, const std::string& name, double& value, double
   return true;
 }
 
+// The value of load parameter `name` when the load is in `fit` but `name` is not an unknown:
+// known a priori.
+bool known_load(const MlFitResult& fit, const std::string& name, double& value) {
+  const auto& names = load_param_names();
+  const auto at = std::find(names.begin(), names.end(), name);
+  if (!fit.has_load || at == names.end()) return false;
+  value = fit.load.to_vector()[static_cast<size_t>(at - names.begin())];
+  return true;
+}
+
 std::string estimate_text(double value, double sd, double scale) {
   if (!std::isfinite(value)) return "not identifiable";
   return fixed(value * scale, 0, 6) + " +- " + fixed(sd * scale, 0, 2);
@@ -106,9 +116,15 @@ void print_ml_run(std::ostream& out, const MlRun& run, int payload_link, const M
   for (const std::string& note : fit.notes) out << "  note: " << note << "\n";
   const auto print_row = [&](const Row& row) {
     double value = 0, sd = 0;
-    if (!find(fit, row.name, value, sd)) return;
-    std::string line = "    " + pad(row.label, 5) + " " +
-                       pad(estimate_text(value, sd, row.scale), kCell) + " " + row.unit;
+    std::string text;
+    if (find(fit, row.name, value, sd)) {
+      text = estimate_text(value, sd, row.scale);
+    } else if (known_load(fit, row.name, value)) {
+      text = fixed(value * row.scale, 0, 6) + " (known)";
+    } else {
+      return;
+    }
+    std::string line = "    " + pad(row.label, 5) + " " + pad(text, kCell) + " " + row.unit;
     const auto exact = truth.find(row.name);
     if (exact != truth.end() && std::isfinite(value)) {
       line += "  (exact " + fixed(exact->second * row.scale, 0, 6) + ", error " +
@@ -159,7 +175,9 @@ void print_ml_comparison(std::ostream& out, const std::vector<MlRun>& runs, int 
     if (exact) line += pad(t != truth.end() ? fixed(t->second * row.scale, 0, 6) : "", 12);
     for (const MlRun& run : runs) {
       double value = 0, sd = 0;
-      line += pad(find(run.fit, row.name, value, sd) ? estimate_text(value, sd, row.scale) : "-",
+      line += pad(find(run.fit, row.name, value, sd)     ? estimate_text(value, sd, row.scale)
+                  : known_load(run.fit, row.name, value) ? "known"
+                                                         : "-",
                   kCell);
     }
     emit(line);

@@ -12,6 +12,15 @@
 #include <sstream>
 
 namespace modelgen {
+namespace {
+
+// Components of a unit null-space vector (on unit-norm columns): at least kMoved, the
+// parameter moves along the direction and is not identifiable (below, rounding of an exact
+// null space); at least kNamed, it is named with its component.
+constexpr double kMoved = 1e-6;
+constexpr double kNamed = 0.1;
+
+}  // namespace
 
 Identifiability identifiability(const Eigen::MatrixXd& J, const std::vector<std::string>& names,
                                 double tolerance) {
@@ -56,16 +65,28 @@ Identifiability identifiability(const Eigen::MatrixXd& J, const std::vector<std:
               [&](Eigen::Index a, Eigen::Index b) { return std::abs(v[a]) > std::abs(v[b]); });
     std::ostringstream text;
     text.precision(2);
+    // Every parameter the direction moves is undetermined; the dominant ones are named with
+    // their components, the others (moved by less than kNamed) after them.
     int listed = 0;
+    std::vector<std::string> also;
     for (const Eigen::Index c : order) {
-      if (std::abs(v[c]) < 0.1) break;
-      text << (listed++ > 0 ? ", " : "") << names[live[c]] << " (" << v[c] << ")";
+      if (std::abs(v[c]) < kMoved) break;
       out.identifiable[live[c]] = false;
+      if (listed == 0 || std::abs(v[c]) >= kNamed) {
+        text << (listed++ > 0 ? ", " : "") << names[live[c]] << " (" << v[c] << ")";
+      } else {
+        also.push_back(names[live[c]]);
+      }
     }
     text << (listed > 1 ? " cannot be told apart" : " cannot be determined")
          << " by these data (singular value " << sv[k] / std::max(largest, 1e-300)
-         << " of the largest, columns scaled to unit norm); excite the robot differently or "
-            "make one of them known";
+         << " of the largest, columns scaled to unit norm)";
+    if (!also.empty()) {
+      text << "; with them";
+      for (const std::string& name : also) text << " " << name;
+      text << (also.size() > 1 ? " are" : " is") << " undetermined too";
+    }
+    text << "; excite the robot differently or make one of them known";
     out.directions.push_back(text.str());
   }
   return out;

@@ -5,6 +5,7 @@
 #include "modelgen/load_parameters.hpp"
 
 #include <Eigen/Eigenvalues>
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
@@ -124,6 +125,12 @@ std::vector<std::string> physical_consistency_warnings(const LoadParameters& loa
                        format(moments[0]) + " + " + format(moments[1]));
   }
   return warnings;
+}
+
+std::vector<std::string> load_warnings(const LoadParameters& load) {
+  const std::array<double, kLoadParams> v = load.to_vector();
+  if (std::any_of(v.begin(), v.end(), [](double x) { return std::isnan(x); })) return {};
+  return physical_consistency_warnings(load);
 }
 
 }  // namespace modelgen

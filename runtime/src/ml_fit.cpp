@@ -136,7 +136,7 @@ MlFitResult fit_ml(MlProblem& problem, const MlFitOptions& options) {
   if (result.has_load) {
     result.load = LoadParameters::from_vector(load.data());
     result.load_std_dev = LoadParameters::from_vector(load_sd.data());
-    result.load_warnings = physical_consistency_warnings(result.load);
+    result.load_warnings = load_warnings(result.load);
   }
   return result;
 }

@@ -173,13 +173,23 @@ LinearRoute linear_route(const MlProblem& problem, double rank_tolerance) {
   const auto column_of = [&](int k) {
     return static_cast<Eigen::Index>(std::find(linear.begin(), linear.end(), k) - linear.begin());
   };
+  // A load mass known a priori (weighed, say) is the load's standard parameter M: known like the
+  // links' values. The other load parameters enter the standard ones nonlinearly; when known,
+  // they are imposed in the nonlinear search only.
+  const bool mass_known = load && !is_unknown(P);
+  const int load_x = load ? (mass_known ? kLoadParams - 1 : kLoadParams) : 0;
   std::vector<std::string> x_names;
   std::vector<Eigen::Index> x_columns;  // column of theta_L per entry of x
-  if (load) {
-    for (int m = 0; m < kLoadParams; ++m) {
-      x_names.push_back(load_param_names()[m]);
-      x_columns.push_back(column_of(payload[m]));
-    }
+  for (int m = 0; m < load_x; ++m) {    // the load's XX .. MZ (and M)
+    x_names.push_back(load_param_names()[m + (mass_known ? 1 : 0)]);
+    x_columns.push_back(column_of(payload[m]));
+  }
+  const auto unknown_beyond_mass =
+      std::count_if(unknown.begin(), unknown.end(), [&](int k) { return k > P; });
+  if (load && unknown_beyond_mass < kLoadParams - 1) {
+    fit.notes.push_back(
+        "linear route: known load parameters other than the mass are imposed in the nonlinear "
+        "search only");
   }
   std::vector<std::string> skipped;  // unknowns the linear model does not contain
   for (const int k : unknown) {
@@ -203,11 +213,12 @@ LinearRoute linear_route(const MlProblem& problem, double rank_tolerance) {
   const Eigen::Index X = static_cast<Eigen::Index>(x_columns.size());
   Eigen::VectorXd theta_known(L);
   for (Eigen::Index c = 0; c < L; ++c) theta_known[c] = all[linear[c]];  // own values
+  if (mass_known) theta_known[column_of(payload[9])] += all[P];
   Eigen::VectorXd x0(X);
   std::array<double, 10> load0{};
   if (load) load0 = standard_from_load(LoadParameters::from_vector(all.data() + P));
   for (Eigen::Index u = 0; u < X; ++u) {
-    const bool load_entry = load && u < kLoadParams;
+    const bool load_entry = u < load_x;
     x0[u] = load_entry ? load0[static_cast<size_t>(u)] : all[linear[x_columns[u]]];
     if (!load_entry) theta_known[x_columns[u]] = 0;
   }
@@ -231,16 +242,25 @@ LinearRoute linear_route(const MlProblem& problem, double rank_tolerance) {
   bool load_found = false;
   if (load) {
     LoadParameters at = LoadParameters::from_vector(all.data() + P);
+    double standard[10];
+    for (int m = 0; m < load_x; ++m) standard[m] = x[m];
+    if (mass_known) standard[9] = all[P];
     try {
-      estimate = load_from_standard(x.data());
+      estimate = load_from_standard(standard);
       at = estimate;
       load_found = true;
     } catch (const std::invalid_argument& error) {
-      fit.notes.push_back(std::string("linear route: no load from the base parameters (") +
-                          error.what() + "); the given load values are kept");
+      fit.notes.push_back(
+          std::string("linear route: no load from the base parameters (") + error.what() +
+          (at.mass > 0 ? "); the search starts from the given load"
+                       : "); with no a-priori load, the search starts from 1 kg at the origin of "
+                         "the payload link's frame"));
     }
     if (!(at.mass > 0)) at.mass = 1;  // only to name directions in load terms
-    to_load.topLeftCorner(kLoadParams, kLoadParams) = standard_from_load_jacobian(at).inverse();
+    // d standard / d load; with the mass known, XX .. MZ against cx .. Iyz.
+    const Eigen::MatrixXd S = standard_from_load_jacobian(at);
+    to_load.topLeftCorner(load_x, load_x) =
+        (mass_known ? Eigen::MatrixXd(S.block(0, 1, load_x, load_x)) : S).inverse();
   }
   const Eigen::MatrixXd covariance = to_load * x_covariance * to_load.transpose();
   // At least as many rows as unknowns for identifiability(): fewer base parameters than
@@ -253,10 +273,11 @@ LinearRoute linear_route(const MlProblem& problem, double rank_tolerance) {
   fit.std_dev = covariance.diagonal().cwiseSqrt();
   if (load_found) {
     const std::array<double, kLoadParams> v = estimate.to_vector();
-    for (int m = 0; m < kLoadParams; ++m) fit.value[m] = v[static_cast<size_t>(m)];
+    for (int m = 0; m < load_x; ++m)
+      fit.value[m] = v[static_cast<size_t>(m + kLoadParams - load_x)];
   } else if (load) {
-    fit.value.head(kLoadParams).setConstant(kNaN);
-    fit.std_dev.head(kLoadParams).setConstant(kNaN);
+    fit.value.head(load_x).setConstant(kNaN);
+    fit.std_dev.head(load_x).setConstant(kNaN);
   }
   for (Eigen::Index u = 0; u < X; ++u) {
     if (!fit.identifiability.identifiable[static_cast<size_t>(u)]) {
@@ -265,10 +286,19 @@ LinearRoute linear_route(const MlProblem& problem, double rank_tolerance) {
     }
   }
   if (load) {
+    // The ten load values; a known mass in front, with standard deviation 0.
+    Eigen::VectorXd value(kLoadParams), sd(kLoadParams);
+    if (mass_known) {
+      value << all[P], fit.value.head(load_x);
+      sd << 0.0, fit.std_dev.head(load_x);
+    } else {
+      value = fit.value.head(kLoadParams);
+      sd = fit.std_dev.head(kLoadParams);
+    }
     fit.has_load = true;
-    fit.load = LoadParameters::from_vector(fit.value.data());
-    fit.load_std_dev = LoadParameters::from_vector(fit.std_dev.data());
-    fit.load_warnings = physical_consistency_warnings(fit.load);
+    fit.load = LoadParameters::from_vector(value.data());
+    fit.load_std_dev = LoadParameters::from_vector(sd.data());
+    fit.load_warnings = load_warnings(fit.load);
   }
   if (!skipped.empty()) {
     std::string list;
@@ -278,14 +308,22 @@ LinearRoute linear_route(const MlProblem& problem, double rank_tolerance) {
 
   // The starting point of the nonlinear search: the problem's unknowns from x.
   route.values = all;
-  for (Eigen::Index u = 0; u < X; ++u) {
-    if (load && u < kLoadParams) continue;
+  for (Eigen::Index u = load_x; u < X; ++u) {
     const int k = linear[x_columns[u]];
     if (is_unknown(k)) route.values[k] = x[u];
   }
   if (load_found) {
     const std::array<double, kLoadParams> v = estimate.to_vector();
-    for (int m = 0; m < kLoadParams; ++m) route.values[P + m] = v[static_cast<size_t>(m)];
+    for (int m = 0; m < kLoadParams; ++m) {
+      if (is_unknown(P + m)) route.values[P + m] = v[static_cast<size_t>(m)];
+    }
+  } else if (load && !mass_known && !(all[P] > 0)) {
+    // Nothing to start from: a unit mass, so that the centre of gravity has an effect and the
+    // rank at the start is the generic one (at m = 0 the centre of gravity would look
+    // unidentifiable and the mass identifiable, whatever the data).
+    for (int m = 0; m < kLoadParams; ++m) {
+      if (is_unknown(P + m)) route.values[P + m] = m == 0 ? 1.0 : 0.0;
+    }
   }
   fit.all_values = route.values;
   fit.initial = fit.value;

@@ -72,4 +72,9 @@ LoadParameters load_from_standard(const double* standard);
 /// inequality (each at most the sum of the other two), non-finite values.
 std::vector<std::string> physical_consistency_warnings(const LoadParameters& load);
 
+/// physical_consistency_warnings() of an estimated load whose entries are all numbers; none when
+/// some are NaN, the mark of a parameter the data do not identify (a consistency judgement
+/// would need it, and the estimate reports it as not identifiable already).
+std::vector<std::string> load_warnings(const LoadParameters& load);
+
 }  // namespace modelgen
