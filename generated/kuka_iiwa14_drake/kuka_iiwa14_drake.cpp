@@ -20,7 +20,7 @@
 // energy_regressor_sincos               148     70        0
 // power_regressor_sincos                378    210        0
 // drive_torque                          533    411       12
-// drive_torque_jacobian                2050   1260       12
+// drive_torque_jacobian                2078   1281       12
 // drive_torque_state_jacobian          4983   4222       24
 #include "kuka_iiwa14_drake.hpp"
 
@@ -13268,14 +13268,14 @@ void drive_torque(const float* q, const float* dq, const float* ddq,
   tau_M[6] = t105 * (theta[97] * (0.5f - 0.5f * t136) + (1.0f / theta[97]) * (0.5f + 0.5f * t136)) + ddq[6] * theta[94] + dq[6] * theta[95] + sg7 * theta[96];
 }
 
-// Jacobian of drive_torque with respect to its parameters theta, for maximum-likelihood
-// estimation (Swevers et al. 2002 eq. 18): J is kDof x kDriveParams, row-major,
-// J[i * kDriveParams + k] = d tau_M_i / d theta_k. Inputs as for drive_torque. The efficiency
-// branch and the Coulomb friction sign count as constant: exact wherever no motor velocity and
-// no power flow tau'_G dq_M is zero. Calls idim_regressor_standard into a local array of
-// kDof * kStandardParams values (on the stack) and applies the chain rule to it.
+// drive_torque (tau_M, kDof values) with its Jacobian with respect to the parameters theta, for
+// maximum-likelihood estimation (Swevers et al. 2002 eq. 18): J is kDof x kDriveParams,
+// row-major, J[i * kDriveParams + k] = d tau_M_i / d theta_k. Inputs as for drive_torque. The
+// efficiency branch and the Coulomb friction sign count as constant: exact wherever no motor
+// velocity and no power flow tau'_G dq_M is zero. Calls idim_regressor_standard into a local
+// array of kDof * kStandardParams values (on the stack) and applies the chain rule to it.
 void drive_torque_jacobian(const double* q, const double* dq, const double* ddq,
-                           const double* theta, double* J) {
+                           const double* theta, double* tau_M, double* J) {
   double W_std[kDof * kStandardParams] = {};
   idim_regressor_standard(q, dq, ddq, W_std);
   const double sg1 = static_cast<double>((dq[0] > 0.0) - (dq[0] < 0.0));
@@ -13292,6 +13292,55 @@ void drive_torque_jacobian(const double* q, const double* dq, const double* ddq,
   const double t4 = 1.0 / theta[73];
   const double t5 = 0.5 + 0.5 * t2;
   const double t6 = theta[73] * (0.5 + t3) + t4 * t5;
+  tau_M[0] = ddq[0] * theta[70] + dq[0] * theta[71] + sg1 * theta[72] + t0 * t6;
+  const double t7 = theta[0] * W_std[98] + theta[1] * W_std[99] + theta[2] * W_std[100] + theta[3] * W_std[101] + theta[4] * W_std[102] + theta[5] * W_std[103] + theta[6] * W_std[104] + theta[7] * W_std[105] + theta[8] * W_std[106] + theta[9] * W_std[107] + theta[10] * W_std[112] + theta[11] * W_std[113] + theta[12] * W_std[114] + theta[13] * W_std[115] + theta[14] * W_std[116] + theta[15] * W_std[117] + theta[16] * W_std[118] + theta[17] * W_std[119] + theta[18] * W_std[120] + theta[19] * W_std[121] + theta[20] * W_std[126] + theta[21] * W_std[127] + theta[22] * W_std[128] + theta[23] * W_std[129] + theta[24] * W_std[130] + theta[25] * W_std[131] + theta[26] * W_std[132] + theta[27] * W_std[133] + theta[28] * W_std[134] + theta[29] * W_std[135] + theta[30] * W_std[140] + theta[31] * W_std[141] + theta[32] * W_std[142] + theta[33] * W_std[143] + theta[34] * W_std[144] + theta[35] * W_std[145] + theta[36] * W_std[146] + theta[37] * W_std[147] + theta[38] * W_std[148] + theta[39] * W_std[149] + theta[40] * W_std[154] + theta[41] * W_std[155] + theta[42] * W_std[156] + theta[43] * W_std[157] + theta[44] * W_std[158] + theta[45] * W_std[159] + theta[46] * W_std[160] + theta[47] * W_std[161] + theta[48] * W_std[162] + theta[49] * W_std[163] + theta[50] * W_std[168] + theta[51] * W_std[169] + theta[52] * W_std[170] + theta[53] * W_std[171] + theta[54] * W_std[172] + theta[55] * W_std[173] + theta[56] * W_std[174] + theta[57] * W_std[175] + theta[58] * W_std[176] + theta[59] * W_std[177] + theta[60] * W_std[182] + theta[61] * W_std[183] + theta[62] * W_std[184] + theta[63] * W_std[185] + theta[64] * W_std[186] + theta[65] * W_std[187] + theta[66] * W_std[188] + theta[67] * W_std[189] + theta[68] * W_std[190] + theta[69] * W_std[191];
+  const double t8 = dq[1] * t7;
+  const double t9 = static_cast<double>((t8 > 0.0) - (t8 < 0.0));
+  const double t10 = -0.5 * t9;
+  const double t11 = 1.0 / theta[77];
+  const double t12 = 0.5 + 0.5 * t9;
+  const double t13 = theta[77] * (0.5 + t10) + t11 * t12;
+  tau_M[1] = ddq[1] * theta[74] + dq[1] * theta[75] + sg2 * theta[76] + t7 * t13;
+  const double t14 = theta[0] * W_std[196] + theta[1] * W_std[197] + theta[2] * W_std[198] + theta[3] * W_std[199] + theta[4] * W_std[200] + theta[5] * W_std[201] + theta[6] * W_std[202] + theta[7] * W_std[203] + theta[8] * W_std[204] + theta[9] * W_std[205] + theta[10] * W_std[210] + theta[11] * W_std[211] + theta[12] * W_std[212] + theta[13] * W_std[213] + theta[14] * W_std[214] + theta[15] * W_std[215] + theta[16] * W_std[216] + theta[17] * W_std[217] + theta[18] * W_std[218] + theta[19] * W_std[219] + theta[20] * W_std[224] + theta[21] * W_std[225] + theta[22] * W_std[226] + theta[23] * W_std[227] + theta[24] * W_std[228] + theta[25] * W_std[229] + theta[26] * W_std[230] + theta[27] * W_std[231] + theta[28] * W_std[232] + theta[29] * W_std[233] + theta[30] * W_std[238] + theta[31] * W_std[239] + theta[32] * W_std[240] + theta[33] * W_std[241] + theta[34] * W_std[242] + theta[35] * W_std[243] + theta[36] * W_std[244] + theta[37] * W_std[245] + theta[38] * W_std[246] + theta[39] * W_std[247] + theta[40] * W_std[252] + theta[41] * W_std[253] + theta[42] * W_std[254] + theta[43] * W_std[255] + theta[44] * W_std[256] + theta[45] * W_std[257] + theta[46] * W_std[258] + theta[47] * W_std[259] + theta[48] * W_std[260] + theta[49] * W_std[261] + theta[50] * W_std[266] + theta[51] * W_std[267] + theta[52] * W_std[268] + theta[53] * W_std[269] + theta[54] * W_std[270] + theta[55] * W_std[271] + theta[56] * W_std[272] + theta[57] * W_std[273] + theta[58] * W_std[274] + theta[59] * W_std[275] + theta[60] * W_std[280] + theta[61] * W_std[281] + theta[62] * W_std[282] + theta[63] * W_std[283] + theta[64] * W_std[284] + theta[65] * W_std[285] + theta[66] * W_std[286] + theta[67] * W_std[287] + theta[68] * W_std[288] + theta[69] * W_std[289];
+  const double t15 = dq[2] * t14;
+  const double t16 = static_cast<double>((t15 > 0.0) - (t15 < 0.0));
+  const double t17 = -0.5 * t16;
+  const double t18 = 1.0 / theta[81];
+  const double t19 = 0.5 + 0.5 * t16;
+  const double t20 = theta[81] * (0.5 + t17) + t18 * t19;
+  tau_M[2] = ddq[2] * theta[78] + dq[2] * theta[79] + sg3 * theta[80] + t14 * t20;
+  const double t21 = theta[0] * W_std[294] + theta[1] * W_std[295] + theta[2] * W_std[296] + theta[3] * W_std[297] + theta[4] * W_std[298] + theta[5] * W_std[299] + theta[6] * W_std[300] + theta[7] * W_std[301] + theta[8] * W_std[302] + theta[9] * W_std[303] + theta[10] * W_std[308] + theta[11] * W_std[309] + theta[12] * W_std[310] + theta[13] * W_std[311] + theta[14] * W_std[312] + theta[15] * W_std[313] + theta[16] * W_std[314] + theta[17] * W_std[315] + theta[18] * W_std[316] + theta[19] * W_std[317] + theta[20] * W_std[322] + theta[21] * W_std[323] + theta[22] * W_std[324] + theta[23] * W_std[325] + theta[24] * W_std[326] + theta[25] * W_std[327] + theta[26] * W_std[328] + theta[27] * W_std[329] + theta[28] * W_std[330] + theta[29] * W_std[331] + theta[30] * W_std[336] + theta[31] * W_std[337] + theta[32] * W_std[338] + theta[33] * W_std[339] + theta[34] * W_std[340] + theta[35] * W_std[341] + theta[36] * W_std[342] + theta[37] * W_std[343] + theta[38] * W_std[344] + theta[39] * W_std[345] + theta[40] * W_std[350] + theta[41] * W_std[351] + theta[42] * W_std[352] + theta[43] * W_std[353] + theta[44] * W_std[354] + theta[45] * W_std[355] + theta[46] * W_std[356] + theta[47] * W_std[357] + theta[48] * W_std[358] + theta[49] * W_std[359] + theta[50] * W_std[364] + theta[51] * W_std[365] + theta[52] * W_std[366] + theta[53] * W_std[367] + theta[54] * W_std[368] + theta[55] * W_std[369] + theta[56] * W_std[370] + theta[57] * W_std[371] + theta[58] * W_std[372] + theta[59] * W_std[373] + theta[60] * W_std[378] + theta[61] * W_std[379] + theta[62] * W_std[380] + theta[63] * W_std[381] + theta[64] * W_std[382] + theta[65] * W_std[383] + theta[66] * W_std[384] + theta[67] * W_std[385] + theta[68] * W_std[386] + theta[69] * W_std[387];
+  const double t22 = dq[3] * t21;
+  const double t23 = static_cast<double>((t22 > 0.0) - (t22 < 0.0));
+  const double t24 = -0.5 * t23;
+  const double t25 = 1.0 / theta[85];
+  const double t26 = 0.5 + 0.5 * t23;
+  const double t27 = theta[85] * (0.5 + t24) + t25 * t26;
+  tau_M[3] = ddq[3] * theta[82] + dq[3] * theta[83] + sg4 * theta[84] + t21 * t27;
+  const double t28 = theta[0] * W_std[392] + theta[1] * W_std[393] + theta[2] * W_std[394] + theta[3] * W_std[395] + theta[4] * W_std[396] + theta[5] * W_std[397] + theta[6] * W_std[398] + theta[7] * W_std[399] + theta[8] * W_std[400] + theta[9] * W_std[401] + theta[10] * W_std[406] + theta[11] * W_std[407] + theta[12] * W_std[408] + theta[13] * W_std[409] + theta[14] * W_std[410] + theta[15] * W_std[411] + theta[16] * W_std[412] + theta[17] * W_std[413] + theta[18] * W_std[414] + theta[19] * W_std[415] + theta[20] * W_std[420] + theta[21] * W_std[421] + theta[22] * W_std[422] + theta[23] * W_std[423] + theta[24] * W_std[424] + theta[25] * W_std[425] + theta[26] * W_std[426] + theta[27] * W_std[427] + theta[28] * W_std[428] + theta[29] * W_std[429] + theta[30] * W_std[434] + theta[31] * W_std[435] + theta[32] * W_std[436] + theta[33] * W_std[437] + theta[34] * W_std[438] + theta[35] * W_std[439] + theta[36] * W_std[440] + theta[37] * W_std[441] + theta[38] * W_std[442] + theta[39] * W_std[443] + theta[40] * W_std[448] + theta[41] * W_std[449] + theta[42] * W_std[450] + theta[43] * W_std[451] + theta[44] * W_std[452] + theta[45] * W_std[453] + theta[46] * W_std[454] + theta[47] * W_std[455] + theta[48] * W_std[456] + theta[49] * W_std[457] + theta[50] * W_std[462] + theta[51] * W_std[463] + theta[52] * W_std[464] + theta[53] * W_std[465] + theta[54] * W_std[466] + theta[55] * W_std[467] + theta[56] * W_std[468] + theta[57] * W_std[469] + theta[58] * W_std[470] + theta[59] * W_std[471] + theta[60] * W_std[476] + theta[61] * W_std[477] + theta[62] * W_std[478] + theta[63] * W_std[479] + theta[64] * W_std[480] + theta[65] * W_std[481] + theta[66] * W_std[482] + theta[67] * W_std[483] + theta[68] * W_std[484] + theta[69] * W_std[485];
+  const double t29 = dq[4] * t28;
+  const double t30 = static_cast<double>((t29 > 0.0) - (t29 < 0.0));
+  const double t31 = -0.5 * t30;
+  const double t32 = 1.0 / theta[89];
+  const double t33 = 0.5 + 0.5 * t30;
+  const double t34 = theta[89] * (0.5 + t31) + t32 * t33;
+  tau_M[4] = ddq[4] * theta[86] + dq[4] * theta[87] + sg5 * theta[88] + t28 * t34;
+  const double t35 = theta[0] * W_std[490] + theta[1] * W_std[491] + theta[2] * W_std[492] + theta[3] * W_std[493] + theta[4] * W_std[494] + theta[5] * W_std[495] + theta[6] * W_std[496] + theta[7] * W_std[497] + theta[8] * W_std[498] + theta[9] * W_std[499] + theta[10] * W_std[504] + theta[11] * W_std[505] + theta[12] * W_std[506] + theta[13] * W_std[507] + theta[14] * W_std[508] + theta[15] * W_std[509] + theta[16] * W_std[510] + theta[17] * W_std[511] + theta[18] * W_std[512] + theta[19] * W_std[513] + theta[20] * W_std[518] + theta[21] * W_std[519] + theta[22] * W_std[520] + theta[23] * W_std[521] + theta[24] * W_std[522] + theta[25] * W_std[523] + theta[26] * W_std[524] + theta[27] * W_std[525] + theta[28] * W_std[526] + theta[29] * W_std[527] + theta[30] * W_std[532] + theta[31] * W_std[533] + theta[32] * W_std[534] + theta[33] * W_std[535] + theta[34] * W_std[536] + theta[35] * W_std[537] + theta[36] * W_std[538] + theta[37] * W_std[539] + theta[38] * W_std[540] + theta[39] * W_std[541] + theta[40] * W_std[546] + theta[41] * W_std[547] + theta[42] * W_std[548] + theta[43] * W_std[549] + theta[44] * W_std[550] + theta[45] * W_std[551] + theta[46] * W_std[552] + theta[47] * W_std[553] + theta[48] * W_std[554] + theta[49] * W_std[555] + theta[50] * W_std[560] + theta[51] * W_std[561] + theta[52] * W_std[562] + theta[53] * W_std[563] + theta[54] * W_std[564] + theta[55] * W_std[565] + theta[56] * W_std[566] + theta[57] * W_std[567] + theta[58] * W_std[568] + theta[59] * W_std[569] + theta[60] * W_std[574] + theta[61] * W_std[575] + theta[62] * W_std[576] + theta[63] * W_std[577] + theta[64] * W_std[578] + theta[65] * W_std[579] + theta[66] * W_std[580] + theta[67] * W_std[581] + theta[68] * W_std[582] + theta[69] * W_std[583];
+  const double t36 = dq[5] * t35;
+  const double t37 = static_cast<double>((t36 > 0.0) - (t36 < 0.0));
+  const double t38 = -0.5 * t37;
+  const double t39 = 1.0 / theta[93];
+  const double t40 = 0.5 + 0.5 * t37;
+  const double t41 = theta[93] * (0.5 + t38) + t39 * t40;
+  tau_M[5] = ddq[5] * theta[90] + dq[5] * theta[91] + sg6 * theta[92] + t35 * t41;
+  const double t42 = theta[0] * W_std[588] + theta[1] * W_std[589] + theta[2] * W_std[590] + theta[3] * W_std[591] + theta[4] * W_std[592] + theta[5] * W_std[593] + theta[6] * W_std[594] + theta[7] * W_std[595] + theta[8] * W_std[596] + theta[9] * W_std[597] + theta[10] * W_std[602] + theta[11] * W_std[603] + theta[12] * W_std[604] + theta[13] * W_std[605] + theta[14] * W_std[606] + theta[15] * W_std[607] + theta[16] * W_std[608] + theta[17] * W_std[609] + theta[18] * W_std[610] + theta[19] * W_std[611] + theta[20] * W_std[616] + theta[21] * W_std[617] + theta[22] * W_std[618] + theta[23] * W_std[619] + theta[24] * W_std[620] + theta[25] * W_std[621] + theta[26] * W_std[622] + theta[27] * W_std[623] + theta[28] * W_std[624] + theta[29] * W_std[625] + theta[30] * W_std[630] + theta[31] * W_std[631] + theta[32] * W_std[632] + theta[33] * W_std[633] + theta[34] * W_std[634] + theta[35] * W_std[635] + theta[36] * W_std[636] + theta[37] * W_std[637] + theta[38] * W_std[638] + theta[39] * W_std[639] + theta[40] * W_std[644] + theta[41] * W_std[645] + theta[42] * W_std[646] + theta[43] * W_std[647] + theta[44] * W_std[648] + theta[45] * W_std[649] + theta[46] * W_std[650] + theta[47] * W_std[651] + theta[48] * W_std[652] + theta[49] * W_std[653] + theta[50] * W_std[658] + theta[51] * W_std[659] + theta[52] * W_std[660] + theta[53] * W_std[661] + theta[54] * W_std[662] + theta[55] * W_std[663] + theta[56] * W_std[664] + theta[57] * W_std[665] + theta[58] * W_std[666] + theta[59] * W_std[667] + theta[60] * W_std[672] + theta[61] * W_std[673] + theta[62] * W_std[674] + theta[63] * W_std[675] + theta[64] * W_std[676] + theta[65] * W_std[677] + theta[66] * W_std[678] + theta[67] * W_std[679] + theta[68] * W_std[680] + theta[69] * W_std[681];
+  const double t43 = dq[6] * t42;
+  const double t44 = static_cast<double>((t43 > 0.0) - (t43 < 0.0));
+  const double t45 = -0.5 * t44;
+  const double t46 = 1.0 / theta[97];
+  const double t47 = 0.5 + 0.5 * t44;
+  const double t48 = theta[97] * (0.5 + t45) + t46 * t47;
+  tau_M[6] = ddq[6] * theta[94] + dq[6] * theta[95] + sg7 * theta[96] + t42 * t48;
   J[0] = W_std[0] * t6;  // XX1
   J[1] = W_std[1] * t6;  // XY1
   J[2] = W_std[2] * t6;  // XZ1
@@ -13390,13 +13439,6 @@ void drive_torque_jacobian(const double* q, const double* dq, const double* ddq,
   J[95] = 0.0;  // Rv7
   J[96] = 0.0;  // Rc7
   J[97] = 0.0;  // Rz7
-  const double t7 = theta[0] * W_std[98] + theta[1] * W_std[99] + theta[2] * W_std[100] + theta[3] * W_std[101] + theta[4] * W_std[102] + theta[5] * W_std[103] + theta[6] * W_std[104] + theta[7] * W_std[105] + theta[8] * W_std[106] + theta[9] * W_std[107] + theta[10] * W_std[112] + theta[11] * W_std[113] + theta[12] * W_std[114] + theta[13] * W_std[115] + theta[14] * W_std[116] + theta[15] * W_std[117] + theta[16] * W_std[118] + theta[17] * W_std[119] + theta[18] * W_std[120] + theta[19] * W_std[121] + theta[20] * W_std[126] + theta[21] * W_std[127] + theta[22] * W_std[128] + theta[23] * W_std[129] + theta[24] * W_std[130] + theta[25] * W_std[131] + theta[26] * W_std[132] + theta[27] * W_std[133] + theta[28] * W_std[134] + theta[29] * W_std[135] + theta[30] * W_std[140] + theta[31] * W_std[141] + theta[32] * W_std[142] + theta[33] * W_std[143] + theta[34] * W_std[144] + theta[35] * W_std[145] + theta[36] * W_std[146] + theta[37] * W_std[147] + theta[38] * W_std[148] + theta[39] * W_std[149] + theta[40] * W_std[154] + theta[41] * W_std[155] + theta[42] * W_std[156] + theta[43] * W_std[157] + theta[44] * W_std[158] + theta[45] * W_std[159] + theta[46] * W_std[160] + theta[47] * W_std[161] + theta[48] * W_std[162] + theta[49] * W_std[163] + theta[50] * W_std[168] + theta[51] * W_std[169] + theta[52] * W_std[170] + theta[53] * W_std[171] + theta[54] * W_std[172] + theta[55] * W_std[173] + theta[56] * W_std[174] + theta[57] * W_std[175] + theta[58] * W_std[176] + theta[59] * W_std[177] + theta[60] * W_std[182] + theta[61] * W_std[183] + theta[62] * W_std[184] + theta[63] * W_std[185] + theta[64] * W_std[186] + theta[65] * W_std[187] + theta[66] * W_std[188] + theta[67] * W_std[189] + theta[68] * W_std[190] + theta[69] * W_std[191];
-  const double t8 = dq[1] * t7;
-  const double t9 = static_cast<double>((t8 > 0.0) - (t8 < 0.0));
-  const double t10 = -0.5 * t9;
-  const double t11 = 1.0 / theta[77];
-  const double t12 = 0.5 + 0.5 * t9;
-  const double t13 = theta[77] * (0.5 + t10) + t11 * t12;
   J[98] = W_std[98] * t13;
   J[99] = W_std[99] * t13;
   J[100] = W_std[100] * t13;
@@ -13495,13 +13537,6 @@ void drive_torque_jacobian(const double* q, const double* dq, const double* ddq,
   J[193] = 0.0;
   J[194] = 0.0;
   J[195] = 0.0;
-  const double t14 = theta[0] * W_std[196] + theta[1] * W_std[197] + theta[2] * W_std[198] + theta[3] * W_std[199] + theta[4] * W_std[200] + theta[5] * W_std[201] + theta[6] * W_std[202] + theta[7] * W_std[203] + theta[8] * W_std[204] + theta[9] * W_std[205] + theta[10] * W_std[210] + theta[11] * W_std[211] + theta[12] * W_std[212] + theta[13] * W_std[213] + theta[14] * W_std[214] + theta[15] * W_std[215] + theta[16] * W_std[216] + theta[17] * W_std[217] + theta[18] * W_std[218] + theta[19] * W_std[219] + theta[20] * W_std[224] + theta[21] * W_std[225] + theta[22] * W_std[226] + theta[23] * W_std[227] + theta[24] * W_std[228] + theta[25] * W_std[229] + theta[26] * W_std[230] + theta[27] * W_std[231] + theta[28] * W_std[232] + theta[29] * W_std[233] + theta[30] * W_std[238] + theta[31] * W_std[239] + theta[32] * W_std[240] + theta[33] * W_std[241] + theta[34] * W_std[242] + theta[35] * W_std[243] + theta[36] * W_std[244] + theta[37] * W_std[245] + theta[38] * W_std[246] + theta[39] * W_std[247] + theta[40] * W_std[252] + theta[41] * W_std[253] + theta[42] * W_std[254] + theta[43] * W_std[255] + theta[44] * W_std[256] + theta[45] * W_std[257] + theta[46] * W_std[258] + theta[47] * W_std[259] + theta[48] * W_std[260] + theta[49] * W_std[261] + theta[50] * W_std[266] + theta[51] * W_std[267] + theta[52] * W_std[268] + theta[53] * W_std[269] + theta[54] * W_std[270] + theta[55] * W_std[271] + theta[56] * W_std[272] + theta[57] * W_std[273] + theta[58] * W_std[274] + theta[59] * W_std[275] + theta[60] * W_std[280] + theta[61] * W_std[281] + theta[62] * W_std[282] + theta[63] * W_std[283] + theta[64] * W_std[284] + theta[65] * W_std[285] + theta[66] * W_std[286] + theta[67] * W_std[287] + theta[68] * W_std[288] + theta[69] * W_std[289];
-  const double t15 = dq[2] * t14;
-  const double t16 = static_cast<double>((t15 > 0.0) - (t15 < 0.0));
-  const double t17 = -0.5 * t16;
-  const double t18 = 1.0 / theta[81];
-  const double t19 = 0.5 + 0.5 * t16;
-  const double t20 = theta[81] * (0.5 + t17) + t18 * t19;
   J[196] = W_std[196] * t20;
   J[197] = W_std[197] * t20;
   J[198] = W_std[198] * t20;
@@ -13600,13 +13635,6 @@ void drive_torque_jacobian(const double* q, const double* dq, const double* ddq,
   J[291] = 0.0;
   J[292] = 0.0;
   J[293] = 0.0;
-  const double t21 = theta[0] * W_std[294] + theta[1] * W_std[295] + theta[2] * W_std[296] + theta[3] * W_std[297] + theta[4] * W_std[298] + theta[5] * W_std[299] + theta[6] * W_std[300] + theta[7] * W_std[301] + theta[8] * W_std[302] + theta[9] * W_std[303] + theta[10] * W_std[308] + theta[11] * W_std[309] + theta[12] * W_std[310] + theta[13] * W_std[311] + theta[14] * W_std[312] + theta[15] * W_std[313] + theta[16] * W_std[314] + theta[17] * W_std[315] + theta[18] * W_std[316] + theta[19] * W_std[317] + theta[20] * W_std[322] + theta[21] * W_std[323] + theta[22] * W_std[324] + theta[23] * W_std[325] + theta[24] * W_std[326] + theta[25] * W_std[327] + theta[26] * W_std[328] + theta[27] * W_std[329] + theta[28] * W_std[330] + theta[29] * W_std[331] + theta[30] * W_std[336] + theta[31] * W_std[337] + theta[32] * W_std[338] + theta[33] * W_std[339] + theta[34] * W_std[340] + theta[35] * W_std[341] + theta[36] * W_std[342] + theta[37] * W_std[343] + theta[38] * W_std[344] + theta[39] * W_std[345] + theta[40] * W_std[350] + theta[41] * W_std[351] + theta[42] * W_std[352] + theta[43] * W_std[353] + theta[44] * W_std[354] + theta[45] * W_std[355] + theta[46] * W_std[356] + theta[47] * W_std[357] + theta[48] * W_std[358] + theta[49] * W_std[359] + theta[50] * W_std[364] + theta[51] * W_std[365] + theta[52] * W_std[366] + theta[53] * W_std[367] + theta[54] * W_std[368] + theta[55] * W_std[369] + theta[56] * W_std[370] + theta[57] * W_std[371] + theta[58] * W_std[372] + theta[59] * W_std[373] + theta[60] * W_std[378] + theta[61] * W_std[379] + theta[62] * W_std[380] + theta[63] * W_std[381] + theta[64] * W_std[382] + theta[65] * W_std[383] + theta[66] * W_std[384] + theta[67] * W_std[385] + theta[68] * W_std[386] + theta[69] * W_std[387];
-  const double t22 = dq[3] * t21;
-  const double t23 = static_cast<double>((t22 > 0.0) - (t22 < 0.0));
-  const double t24 = -0.5 * t23;
-  const double t25 = 1.0 / theta[85];
-  const double t26 = 0.5 + 0.5 * t23;
-  const double t27 = theta[85] * (0.5 + t24) + t25 * t26;
   J[294] = W_std[294] * t27;
   J[295] = W_std[295] * t27;
   J[296] = W_std[296] * t27;
@@ -13705,13 +13733,6 @@ void drive_torque_jacobian(const double* q, const double* dq, const double* ddq,
   J[389] = 0.0;
   J[390] = 0.0;
   J[391] = 0.0;
-  const double t28 = theta[0] * W_std[392] + theta[1] * W_std[393] + theta[2] * W_std[394] + theta[3] * W_std[395] + theta[4] * W_std[396] + theta[5] * W_std[397] + theta[6] * W_std[398] + theta[7] * W_std[399] + theta[8] * W_std[400] + theta[9] * W_std[401] + theta[10] * W_std[406] + theta[11] * W_std[407] + theta[12] * W_std[408] + theta[13] * W_std[409] + theta[14] * W_std[410] + theta[15] * W_std[411] + theta[16] * W_std[412] + theta[17] * W_std[413] + theta[18] * W_std[414] + theta[19] * W_std[415] + theta[20] * W_std[420] + theta[21] * W_std[421] + theta[22] * W_std[422] + theta[23] * W_std[423] + theta[24] * W_std[424] + theta[25] * W_std[425] + theta[26] * W_std[426] + theta[27] * W_std[427] + theta[28] * W_std[428] + theta[29] * W_std[429] + theta[30] * W_std[434] + theta[31] * W_std[435] + theta[32] * W_std[436] + theta[33] * W_std[437] + theta[34] * W_std[438] + theta[35] * W_std[439] + theta[36] * W_std[440] + theta[37] * W_std[441] + theta[38] * W_std[442] + theta[39] * W_std[443] + theta[40] * W_std[448] + theta[41] * W_std[449] + theta[42] * W_std[450] + theta[43] * W_std[451] + theta[44] * W_std[452] + theta[45] * W_std[453] + theta[46] * W_std[454] + theta[47] * W_std[455] + theta[48] * W_std[456] + theta[49] * W_std[457] + theta[50] * W_std[462] + theta[51] * W_std[463] + theta[52] * W_std[464] + theta[53] * W_std[465] + theta[54] * W_std[466] + theta[55] * W_std[467] + theta[56] * W_std[468] + theta[57] * W_std[469] + theta[58] * W_std[470] + theta[59] * W_std[471] + theta[60] * W_std[476] + theta[61] * W_std[477] + theta[62] * W_std[478] + theta[63] * W_std[479] + theta[64] * W_std[480] + theta[65] * W_std[481] + theta[66] * W_std[482] + theta[67] * W_std[483] + theta[68] * W_std[484] + theta[69] * W_std[485];
-  const double t29 = dq[4] * t28;
-  const double t30 = static_cast<double>((t29 > 0.0) - (t29 < 0.0));
-  const double t31 = -0.5 * t30;
-  const double t32 = 1.0 / theta[89];
-  const double t33 = 0.5 + 0.5 * t30;
-  const double t34 = theta[89] * (0.5 + t31) + t32 * t33;
   J[392] = W_std[392] * t34;
   J[393] = W_std[393] * t34;
   J[394] = W_std[394] * t34;
@@ -13810,13 +13831,6 @@ void drive_torque_jacobian(const double* q, const double* dq, const double* ddq,
   J[487] = 0.0;
   J[488] = 0.0;
   J[489] = 0.0;
-  const double t35 = theta[0] * W_std[490] + theta[1] * W_std[491] + theta[2] * W_std[492] + theta[3] * W_std[493] + theta[4] * W_std[494] + theta[5] * W_std[495] + theta[6] * W_std[496] + theta[7] * W_std[497] + theta[8] * W_std[498] + theta[9] * W_std[499] + theta[10] * W_std[504] + theta[11] * W_std[505] + theta[12] * W_std[506] + theta[13] * W_std[507] + theta[14] * W_std[508] + theta[15] * W_std[509] + theta[16] * W_std[510] + theta[17] * W_std[511] + theta[18] * W_std[512] + theta[19] * W_std[513] + theta[20] * W_std[518] + theta[21] * W_std[519] + theta[22] * W_std[520] + theta[23] * W_std[521] + theta[24] * W_std[522] + theta[25] * W_std[523] + theta[26] * W_std[524] + theta[27] * W_std[525] + theta[28] * W_std[526] + theta[29] * W_std[527] + theta[30] * W_std[532] + theta[31] * W_std[533] + theta[32] * W_std[534] + theta[33] * W_std[535] + theta[34] * W_std[536] + theta[35] * W_std[537] + theta[36] * W_std[538] + theta[37] * W_std[539] + theta[38] * W_std[540] + theta[39] * W_std[541] + theta[40] * W_std[546] + theta[41] * W_std[547] + theta[42] * W_std[548] + theta[43] * W_std[549] + theta[44] * W_std[550] + theta[45] * W_std[551] + theta[46] * W_std[552] + theta[47] * W_std[553] + theta[48] * W_std[554] + theta[49] * W_std[555] + theta[50] * W_std[560] + theta[51] * W_std[561] + theta[52] * W_std[562] + theta[53] * W_std[563] + theta[54] * W_std[564] + theta[55] * W_std[565] + theta[56] * W_std[566] + theta[57] * W_std[567] + theta[58] * W_std[568] + theta[59] * W_std[569] + theta[60] * W_std[574] + theta[61] * W_std[575] + theta[62] * W_std[576] + theta[63] * W_std[577] + theta[64] * W_std[578] + theta[65] * W_std[579] + theta[66] * W_std[580] + theta[67] * W_std[581] + theta[68] * W_std[582] + theta[69] * W_std[583];
-  const double t36 = dq[5] * t35;
-  const double t37 = static_cast<double>((t36 > 0.0) - (t36 < 0.0));
-  const double t38 = -0.5 * t37;
-  const double t39 = 1.0 / theta[93];
-  const double t40 = 0.5 + 0.5 * t37;
-  const double t41 = theta[93] * (0.5 + t38) + t39 * t40;
   J[490] = W_std[490] * t41;
   J[491] = W_std[491] * t41;
   J[492] = W_std[492] * t41;
@@ -13915,13 +13929,6 @@ void drive_torque_jacobian(const double* q, const double* dq, const double* ddq,
   J[585] = 0.0;
   J[586] = 0.0;
   J[587] = 0.0;
-  const double t42 = theta[0] * W_std[588] + theta[1] * W_std[589] + theta[2] * W_std[590] + theta[3] * W_std[591] + theta[4] * W_std[592] + theta[5] * W_std[593] + theta[6] * W_std[594] + theta[7] * W_std[595] + theta[8] * W_std[596] + theta[9] * W_std[597] + theta[10] * W_std[602] + theta[11] * W_std[603] + theta[12] * W_std[604] + theta[13] * W_std[605] + theta[14] * W_std[606] + theta[15] * W_std[607] + theta[16] * W_std[608] + theta[17] * W_std[609] + theta[18] * W_std[610] + theta[19] * W_std[611] + theta[20] * W_std[616] + theta[21] * W_std[617] + theta[22] * W_std[618] + theta[23] * W_std[619] + theta[24] * W_std[620] + theta[25] * W_std[621] + theta[26] * W_std[622] + theta[27] * W_std[623] + theta[28] * W_std[624] + theta[29] * W_std[625] + theta[30] * W_std[630] + theta[31] * W_std[631] + theta[32] * W_std[632] + theta[33] * W_std[633] + theta[34] * W_std[634] + theta[35] * W_std[635] + theta[36] * W_std[636] + theta[37] * W_std[637] + theta[38] * W_std[638] + theta[39] * W_std[639] + theta[40] * W_std[644] + theta[41] * W_std[645] + theta[42] * W_std[646] + theta[43] * W_std[647] + theta[44] * W_std[648] + theta[45] * W_std[649] + theta[46] * W_std[650] + theta[47] * W_std[651] + theta[48] * W_std[652] + theta[49] * W_std[653] + theta[50] * W_std[658] + theta[51] * W_std[659] + theta[52] * W_std[660] + theta[53] * W_std[661] + theta[54] * W_std[662] + theta[55] * W_std[663] + theta[56] * W_std[664] + theta[57] * W_std[665] + theta[58] * W_std[666] + theta[59] * W_std[667] + theta[60] * W_std[672] + theta[61] * W_std[673] + theta[62] * W_std[674] + theta[63] * W_std[675] + theta[64] * W_std[676] + theta[65] * W_std[677] + theta[66] * W_std[678] + theta[67] * W_std[679] + theta[68] * W_std[680] + theta[69] * W_std[681];
-  const double t43 = dq[6] * t42;
-  const double t44 = static_cast<double>((t43 > 0.0) - (t43 < 0.0));
-  const double t45 = -0.5 * t44;
-  const double t46 = 1.0 / theta[97];
-  const double t47 = 0.5 + 0.5 * t44;
-  const double t48 = theta[97] * (0.5 + t45) + t46 * t47;
   J[588] = W_std[588] * t48;
   J[589] = W_std[589] * t48;
   J[590] = W_std[590] * t48;
@@ -14022,14 +14029,14 @@ void drive_torque_jacobian(const double* q, const double* dq, const double* ddq,
   J[685] = t42 * (0.5 + t45 - t46 * t46 * t47);
 }
 
-// Jacobian of drive_torque with respect to its parameters theta, for maximum-likelihood
-// estimation (Swevers et al. 2002 eq. 18): J is kDof x kDriveParams, row-major,
-// J[i * kDriveParams + k] = d tau_M_i / d theta_k. Inputs as for drive_torque. The efficiency
-// branch and the Coulomb friction sign count as constant: exact wherever no motor velocity and
-// no power flow tau'_G dq_M is zero. Calls idim_regressor_standard into a local array of
-// kDof * kStandardParams values (on the stack) and applies the chain rule to it.
+// drive_torque (tau_M, kDof values) with its Jacobian with respect to the parameters theta, for
+// maximum-likelihood estimation (Swevers et al. 2002 eq. 18): J is kDof x kDriveParams,
+// row-major, J[i * kDriveParams + k] = d tau_M_i / d theta_k. Inputs as for drive_torque. The
+// efficiency branch and the Coulomb friction sign count as constant: exact wherever no motor
+// velocity and no power flow tau'_G dq_M is zero. Calls idim_regressor_standard into a local
+// array of kDof * kStandardParams values (on the stack) and applies the chain rule to it.
 void drive_torque_jacobian(const float* q, const float* dq, const float* ddq,
-                           const float* theta, float* J) {
+                           const float* theta, float* tau_M, float* J) {
   float W_std[kDof * kStandardParams] = {};
   idim_regressor_standard(q, dq, ddq, W_std);
   const float sg1 = static_cast<float>((dq[0] > 0.0f) - (dq[0] < 0.0f));
@@ -14046,6 +14053,55 @@ void drive_torque_jacobian(const float* q, const float* dq, const float* ddq,
   const float t4 = 1.0f / theta[73];
   const float t5 = 0.5f + 0.5f * t2;
   const float t6 = theta[73] * (0.5f + t3) + t4 * t5;
+  tau_M[0] = ddq[0] * theta[70] + dq[0] * theta[71] + sg1 * theta[72] + t0 * t6;
+  const float t7 = theta[0] * W_std[98] + theta[1] * W_std[99] + theta[2] * W_std[100] + theta[3] * W_std[101] + theta[4] * W_std[102] + theta[5] * W_std[103] + theta[6] * W_std[104] + theta[7] * W_std[105] + theta[8] * W_std[106] + theta[9] * W_std[107] + theta[10] * W_std[112] + theta[11] * W_std[113] + theta[12] * W_std[114] + theta[13] * W_std[115] + theta[14] * W_std[116] + theta[15] * W_std[117] + theta[16] * W_std[118] + theta[17] * W_std[119] + theta[18] * W_std[120] + theta[19] * W_std[121] + theta[20] * W_std[126] + theta[21] * W_std[127] + theta[22] * W_std[128] + theta[23] * W_std[129] + theta[24] * W_std[130] + theta[25] * W_std[131] + theta[26] * W_std[132] + theta[27] * W_std[133] + theta[28] * W_std[134] + theta[29] * W_std[135] + theta[30] * W_std[140] + theta[31] * W_std[141] + theta[32] * W_std[142] + theta[33] * W_std[143] + theta[34] * W_std[144] + theta[35] * W_std[145] + theta[36] * W_std[146] + theta[37] * W_std[147] + theta[38] * W_std[148] + theta[39] * W_std[149] + theta[40] * W_std[154] + theta[41] * W_std[155] + theta[42] * W_std[156] + theta[43] * W_std[157] + theta[44] * W_std[158] + theta[45] * W_std[159] + theta[46] * W_std[160] + theta[47] * W_std[161] + theta[48] * W_std[162] + theta[49] * W_std[163] + theta[50] * W_std[168] + theta[51] * W_std[169] + theta[52] * W_std[170] + theta[53] * W_std[171] + theta[54] * W_std[172] + theta[55] * W_std[173] + theta[56] * W_std[174] + theta[57] * W_std[175] + theta[58] * W_std[176] + theta[59] * W_std[177] + theta[60] * W_std[182] + theta[61] * W_std[183] + theta[62] * W_std[184] + theta[63] * W_std[185] + theta[64] * W_std[186] + theta[65] * W_std[187] + theta[66] * W_std[188] + theta[67] * W_std[189] + theta[68] * W_std[190] + theta[69] * W_std[191];
+  const float t8 = dq[1] * t7;
+  const float t9 = static_cast<float>((t8 > 0.0f) - (t8 < 0.0f));
+  const float t10 = -0.5f * t9;
+  const float t11 = 1.0f / theta[77];
+  const float t12 = 0.5f + 0.5f * t9;
+  const float t13 = theta[77] * (0.5f + t10) + t11 * t12;
+  tau_M[1] = ddq[1] * theta[74] + dq[1] * theta[75] + sg2 * theta[76] + t7 * t13;
+  const float t14 = theta[0] * W_std[196] + theta[1] * W_std[197] + theta[2] * W_std[198] + theta[3] * W_std[199] + theta[4] * W_std[200] + theta[5] * W_std[201] + theta[6] * W_std[202] + theta[7] * W_std[203] + theta[8] * W_std[204] + theta[9] * W_std[205] + theta[10] * W_std[210] + theta[11] * W_std[211] + theta[12] * W_std[212] + theta[13] * W_std[213] + theta[14] * W_std[214] + theta[15] * W_std[215] + theta[16] * W_std[216] + theta[17] * W_std[217] + theta[18] * W_std[218] + theta[19] * W_std[219] + theta[20] * W_std[224] + theta[21] * W_std[225] + theta[22] * W_std[226] + theta[23] * W_std[227] + theta[24] * W_std[228] + theta[25] * W_std[229] + theta[26] * W_std[230] + theta[27] * W_std[231] + theta[28] * W_std[232] + theta[29] * W_std[233] + theta[30] * W_std[238] + theta[31] * W_std[239] + theta[32] * W_std[240] + theta[33] * W_std[241] + theta[34] * W_std[242] + theta[35] * W_std[243] + theta[36] * W_std[244] + theta[37] * W_std[245] + theta[38] * W_std[246] + theta[39] * W_std[247] + theta[40] * W_std[252] + theta[41] * W_std[253] + theta[42] * W_std[254] + theta[43] * W_std[255] + theta[44] * W_std[256] + theta[45] * W_std[257] + theta[46] * W_std[258] + theta[47] * W_std[259] + theta[48] * W_std[260] + theta[49] * W_std[261] + theta[50] * W_std[266] + theta[51] * W_std[267] + theta[52] * W_std[268] + theta[53] * W_std[269] + theta[54] * W_std[270] + theta[55] * W_std[271] + theta[56] * W_std[272] + theta[57] * W_std[273] + theta[58] * W_std[274] + theta[59] * W_std[275] + theta[60] * W_std[280] + theta[61] * W_std[281] + theta[62] * W_std[282] + theta[63] * W_std[283] + theta[64] * W_std[284] + theta[65] * W_std[285] + theta[66] * W_std[286] + theta[67] * W_std[287] + theta[68] * W_std[288] + theta[69] * W_std[289];
+  const float t15 = dq[2] * t14;
+  const float t16 = static_cast<float>((t15 > 0.0f) - (t15 < 0.0f));
+  const float t17 = -0.5f * t16;
+  const float t18 = 1.0f / theta[81];
+  const float t19 = 0.5f + 0.5f * t16;
+  const float t20 = theta[81] * (0.5f + t17) + t18 * t19;
+  tau_M[2] = ddq[2] * theta[78] + dq[2] * theta[79] + sg3 * theta[80] + t14 * t20;
+  const float t21 = theta[0] * W_std[294] + theta[1] * W_std[295] + theta[2] * W_std[296] + theta[3] * W_std[297] + theta[4] * W_std[298] + theta[5] * W_std[299] + theta[6] * W_std[300] + theta[7] * W_std[301] + theta[8] * W_std[302] + theta[9] * W_std[303] + theta[10] * W_std[308] + theta[11] * W_std[309] + theta[12] * W_std[310] + theta[13] * W_std[311] + theta[14] * W_std[312] + theta[15] * W_std[313] + theta[16] * W_std[314] + theta[17] * W_std[315] + theta[18] * W_std[316] + theta[19] * W_std[317] + theta[20] * W_std[322] + theta[21] * W_std[323] + theta[22] * W_std[324] + theta[23] * W_std[325] + theta[24] * W_std[326] + theta[25] * W_std[327] + theta[26] * W_std[328] + theta[27] * W_std[329] + theta[28] * W_std[330] + theta[29] * W_std[331] + theta[30] * W_std[336] + theta[31] * W_std[337] + theta[32] * W_std[338] + theta[33] * W_std[339] + theta[34] * W_std[340] + theta[35] * W_std[341] + theta[36] * W_std[342] + theta[37] * W_std[343] + theta[38] * W_std[344] + theta[39] * W_std[345] + theta[40] * W_std[350] + theta[41] * W_std[351] + theta[42] * W_std[352] + theta[43] * W_std[353] + theta[44] * W_std[354] + theta[45] * W_std[355] + theta[46] * W_std[356] + theta[47] * W_std[357] + theta[48] * W_std[358] + theta[49] * W_std[359] + theta[50] * W_std[364] + theta[51] * W_std[365] + theta[52] * W_std[366] + theta[53] * W_std[367] + theta[54] * W_std[368] + theta[55] * W_std[369] + theta[56] * W_std[370] + theta[57] * W_std[371] + theta[58] * W_std[372] + theta[59] * W_std[373] + theta[60] * W_std[378] + theta[61] * W_std[379] + theta[62] * W_std[380] + theta[63] * W_std[381] + theta[64] * W_std[382] + theta[65] * W_std[383] + theta[66] * W_std[384] + theta[67] * W_std[385] + theta[68] * W_std[386] + theta[69] * W_std[387];
+  const float t22 = dq[3] * t21;
+  const float t23 = static_cast<float>((t22 > 0.0f) - (t22 < 0.0f));
+  const float t24 = -0.5f * t23;
+  const float t25 = 1.0f / theta[85];
+  const float t26 = 0.5f + 0.5f * t23;
+  const float t27 = theta[85] * (0.5f + t24) + t25 * t26;
+  tau_M[3] = ddq[3] * theta[82] + dq[3] * theta[83] + sg4 * theta[84] + t21 * t27;
+  const float t28 = theta[0] * W_std[392] + theta[1] * W_std[393] + theta[2] * W_std[394] + theta[3] * W_std[395] + theta[4] * W_std[396] + theta[5] * W_std[397] + theta[6] * W_std[398] + theta[7] * W_std[399] + theta[8] * W_std[400] + theta[9] * W_std[401] + theta[10] * W_std[406] + theta[11] * W_std[407] + theta[12] * W_std[408] + theta[13] * W_std[409] + theta[14] * W_std[410] + theta[15] * W_std[411] + theta[16] * W_std[412] + theta[17] * W_std[413] + theta[18] * W_std[414] + theta[19] * W_std[415] + theta[20] * W_std[420] + theta[21] * W_std[421] + theta[22] * W_std[422] + theta[23] * W_std[423] + theta[24] * W_std[424] + theta[25] * W_std[425] + theta[26] * W_std[426] + theta[27] * W_std[427] + theta[28] * W_std[428] + theta[29] * W_std[429] + theta[30] * W_std[434] + theta[31] * W_std[435] + theta[32] * W_std[436] + theta[33] * W_std[437] + theta[34] * W_std[438] + theta[35] * W_std[439] + theta[36] * W_std[440] + theta[37] * W_std[441] + theta[38] * W_std[442] + theta[39] * W_std[443] + theta[40] * W_std[448] + theta[41] * W_std[449] + theta[42] * W_std[450] + theta[43] * W_std[451] + theta[44] * W_std[452] + theta[45] * W_std[453] + theta[46] * W_std[454] + theta[47] * W_std[455] + theta[48] * W_std[456] + theta[49] * W_std[457] + theta[50] * W_std[462] + theta[51] * W_std[463] + theta[52] * W_std[464] + theta[53] * W_std[465] + theta[54] * W_std[466] + theta[55] * W_std[467] + theta[56] * W_std[468] + theta[57] * W_std[469] + theta[58] * W_std[470] + theta[59] * W_std[471] + theta[60] * W_std[476] + theta[61] * W_std[477] + theta[62] * W_std[478] + theta[63] * W_std[479] + theta[64] * W_std[480] + theta[65] * W_std[481] + theta[66] * W_std[482] + theta[67] * W_std[483] + theta[68] * W_std[484] + theta[69] * W_std[485];
+  const float t29 = dq[4] * t28;
+  const float t30 = static_cast<float>((t29 > 0.0f) - (t29 < 0.0f));
+  const float t31 = -0.5f * t30;
+  const float t32 = 1.0f / theta[89];
+  const float t33 = 0.5f + 0.5f * t30;
+  const float t34 = theta[89] * (0.5f + t31) + t32 * t33;
+  tau_M[4] = ddq[4] * theta[86] + dq[4] * theta[87] + sg5 * theta[88] + t28 * t34;
+  const float t35 = theta[0] * W_std[490] + theta[1] * W_std[491] + theta[2] * W_std[492] + theta[3] * W_std[493] + theta[4] * W_std[494] + theta[5] * W_std[495] + theta[6] * W_std[496] + theta[7] * W_std[497] + theta[8] * W_std[498] + theta[9] * W_std[499] + theta[10] * W_std[504] + theta[11] * W_std[505] + theta[12] * W_std[506] + theta[13] * W_std[507] + theta[14] * W_std[508] + theta[15] * W_std[509] + theta[16] * W_std[510] + theta[17] * W_std[511] + theta[18] * W_std[512] + theta[19] * W_std[513] + theta[20] * W_std[518] + theta[21] * W_std[519] + theta[22] * W_std[520] + theta[23] * W_std[521] + theta[24] * W_std[522] + theta[25] * W_std[523] + theta[26] * W_std[524] + theta[27] * W_std[525] + theta[28] * W_std[526] + theta[29] * W_std[527] + theta[30] * W_std[532] + theta[31] * W_std[533] + theta[32] * W_std[534] + theta[33] * W_std[535] + theta[34] * W_std[536] + theta[35] * W_std[537] + theta[36] * W_std[538] + theta[37] * W_std[539] + theta[38] * W_std[540] + theta[39] * W_std[541] + theta[40] * W_std[546] + theta[41] * W_std[547] + theta[42] * W_std[548] + theta[43] * W_std[549] + theta[44] * W_std[550] + theta[45] * W_std[551] + theta[46] * W_std[552] + theta[47] * W_std[553] + theta[48] * W_std[554] + theta[49] * W_std[555] + theta[50] * W_std[560] + theta[51] * W_std[561] + theta[52] * W_std[562] + theta[53] * W_std[563] + theta[54] * W_std[564] + theta[55] * W_std[565] + theta[56] * W_std[566] + theta[57] * W_std[567] + theta[58] * W_std[568] + theta[59] * W_std[569] + theta[60] * W_std[574] + theta[61] * W_std[575] + theta[62] * W_std[576] + theta[63] * W_std[577] + theta[64] * W_std[578] + theta[65] * W_std[579] + theta[66] * W_std[580] + theta[67] * W_std[581] + theta[68] * W_std[582] + theta[69] * W_std[583];
+  const float t36 = dq[5] * t35;
+  const float t37 = static_cast<float>((t36 > 0.0f) - (t36 < 0.0f));
+  const float t38 = -0.5f * t37;
+  const float t39 = 1.0f / theta[93];
+  const float t40 = 0.5f + 0.5f * t37;
+  const float t41 = theta[93] * (0.5f + t38) + t39 * t40;
+  tau_M[5] = ddq[5] * theta[90] + dq[5] * theta[91] + sg6 * theta[92] + t35 * t41;
+  const float t42 = theta[0] * W_std[588] + theta[1] * W_std[589] + theta[2] * W_std[590] + theta[3] * W_std[591] + theta[4] * W_std[592] + theta[5] * W_std[593] + theta[6] * W_std[594] + theta[7] * W_std[595] + theta[8] * W_std[596] + theta[9] * W_std[597] + theta[10] * W_std[602] + theta[11] * W_std[603] + theta[12] * W_std[604] + theta[13] * W_std[605] + theta[14] * W_std[606] + theta[15] * W_std[607] + theta[16] * W_std[608] + theta[17] * W_std[609] + theta[18] * W_std[610] + theta[19] * W_std[611] + theta[20] * W_std[616] + theta[21] * W_std[617] + theta[22] * W_std[618] + theta[23] * W_std[619] + theta[24] * W_std[620] + theta[25] * W_std[621] + theta[26] * W_std[622] + theta[27] * W_std[623] + theta[28] * W_std[624] + theta[29] * W_std[625] + theta[30] * W_std[630] + theta[31] * W_std[631] + theta[32] * W_std[632] + theta[33] * W_std[633] + theta[34] * W_std[634] + theta[35] * W_std[635] + theta[36] * W_std[636] + theta[37] * W_std[637] + theta[38] * W_std[638] + theta[39] * W_std[639] + theta[40] * W_std[644] + theta[41] * W_std[645] + theta[42] * W_std[646] + theta[43] * W_std[647] + theta[44] * W_std[648] + theta[45] * W_std[649] + theta[46] * W_std[650] + theta[47] * W_std[651] + theta[48] * W_std[652] + theta[49] * W_std[653] + theta[50] * W_std[658] + theta[51] * W_std[659] + theta[52] * W_std[660] + theta[53] * W_std[661] + theta[54] * W_std[662] + theta[55] * W_std[663] + theta[56] * W_std[664] + theta[57] * W_std[665] + theta[58] * W_std[666] + theta[59] * W_std[667] + theta[60] * W_std[672] + theta[61] * W_std[673] + theta[62] * W_std[674] + theta[63] * W_std[675] + theta[64] * W_std[676] + theta[65] * W_std[677] + theta[66] * W_std[678] + theta[67] * W_std[679] + theta[68] * W_std[680] + theta[69] * W_std[681];
+  const float t43 = dq[6] * t42;
+  const float t44 = static_cast<float>((t43 > 0.0f) - (t43 < 0.0f));
+  const float t45 = -0.5f * t44;
+  const float t46 = 1.0f / theta[97];
+  const float t47 = 0.5f + 0.5f * t44;
+  const float t48 = theta[97] * (0.5f + t45) + t46 * t47;
+  tau_M[6] = ddq[6] * theta[94] + dq[6] * theta[95] + sg7 * theta[96] + t42 * t48;
   J[0] = W_std[0] * t6;  // XX1
   J[1] = W_std[1] * t6;  // XY1
   J[2] = W_std[2] * t6;  // XZ1
@@ -14144,13 +14200,6 @@ void drive_torque_jacobian(const float* q, const float* dq, const float* ddq,
   J[95] = 0.0f;  // Rv7
   J[96] = 0.0f;  // Rc7
   J[97] = 0.0f;  // Rz7
-  const float t7 = theta[0] * W_std[98] + theta[1] * W_std[99] + theta[2] * W_std[100] + theta[3] * W_std[101] + theta[4] * W_std[102] + theta[5] * W_std[103] + theta[6] * W_std[104] + theta[7] * W_std[105] + theta[8] * W_std[106] + theta[9] * W_std[107] + theta[10] * W_std[112] + theta[11] * W_std[113] + theta[12] * W_std[114] + theta[13] * W_std[115] + theta[14] * W_std[116] + theta[15] * W_std[117] + theta[16] * W_std[118] + theta[17] * W_std[119] + theta[18] * W_std[120] + theta[19] * W_std[121] + theta[20] * W_std[126] + theta[21] * W_std[127] + theta[22] * W_std[128] + theta[23] * W_std[129] + theta[24] * W_std[130] + theta[25] * W_std[131] + theta[26] * W_std[132] + theta[27] * W_std[133] + theta[28] * W_std[134] + theta[29] * W_std[135] + theta[30] * W_std[140] + theta[31] * W_std[141] + theta[32] * W_std[142] + theta[33] * W_std[143] + theta[34] * W_std[144] + theta[35] * W_std[145] + theta[36] * W_std[146] + theta[37] * W_std[147] + theta[38] * W_std[148] + theta[39] * W_std[149] + theta[40] * W_std[154] + theta[41] * W_std[155] + theta[42] * W_std[156] + theta[43] * W_std[157] + theta[44] * W_std[158] + theta[45] * W_std[159] + theta[46] * W_std[160] + theta[47] * W_std[161] + theta[48] * W_std[162] + theta[49] * W_std[163] + theta[50] * W_std[168] + theta[51] * W_std[169] + theta[52] * W_std[170] + theta[53] * W_std[171] + theta[54] * W_std[172] + theta[55] * W_std[173] + theta[56] * W_std[174] + theta[57] * W_std[175] + theta[58] * W_std[176] + theta[59] * W_std[177] + theta[60] * W_std[182] + theta[61] * W_std[183] + theta[62] * W_std[184] + theta[63] * W_std[185] + theta[64] * W_std[186] + theta[65] * W_std[187] + theta[66] * W_std[188] + theta[67] * W_std[189] + theta[68] * W_std[190] + theta[69] * W_std[191];
-  const float t8 = dq[1] * t7;
-  const float t9 = static_cast<float>((t8 > 0.0f) - (t8 < 0.0f));
-  const float t10 = -0.5f * t9;
-  const float t11 = 1.0f / theta[77];
-  const float t12 = 0.5f + 0.5f * t9;
-  const float t13 = theta[77] * (0.5f + t10) + t11 * t12;
   J[98] = W_std[98] * t13;
   J[99] = W_std[99] * t13;
   J[100] = W_std[100] * t13;
@@ -14249,13 +14298,6 @@ void drive_torque_jacobian(const float* q, const float* dq, const float* ddq,
   J[193] = 0.0f;
   J[194] = 0.0f;
   J[195] = 0.0f;
-  const float t14 = theta[0] * W_std[196] + theta[1] * W_std[197] + theta[2] * W_std[198] + theta[3] * W_std[199] + theta[4] * W_std[200] + theta[5] * W_std[201] + theta[6] * W_std[202] + theta[7] * W_std[203] + theta[8] * W_std[204] + theta[9] * W_std[205] + theta[10] * W_std[210] + theta[11] * W_std[211] + theta[12] * W_std[212] + theta[13] * W_std[213] + theta[14] * W_std[214] + theta[15] * W_std[215] + theta[16] * W_std[216] + theta[17] * W_std[217] + theta[18] * W_std[218] + theta[19] * W_std[219] + theta[20] * W_std[224] + theta[21] * W_std[225] + theta[22] * W_std[226] + theta[23] * W_std[227] + theta[24] * W_std[228] + theta[25] * W_std[229] + theta[26] * W_std[230] + theta[27] * W_std[231] + theta[28] * W_std[232] + theta[29] * W_std[233] + theta[30] * W_std[238] + theta[31] * W_std[239] + theta[32] * W_std[240] + theta[33] * W_std[241] + theta[34] * W_std[242] + theta[35] * W_std[243] + theta[36] * W_std[244] + theta[37] * W_std[245] + theta[38] * W_std[246] + theta[39] * W_std[247] + theta[40] * W_std[252] + theta[41] * W_std[253] + theta[42] * W_std[254] + theta[43] * W_std[255] + theta[44] * W_std[256] + theta[45] * W_std[257] + theta[46] * W_std[258] + theta[47] * W_std[259] + theta[48] * W_std[260] + theta[49] * W_std[261] + theta[50] * W_std[266] + theta[51] * W_std[267] + theta[52] * W_std[268] + theta[53] * W_std[269] + theta[54] * W_std[270] + theta[55] * W_std[271] + theta[56] * W_std[272] + theta[57] * W_std[273] + theta[58] * W_std[274] + theta[59] * W_std[275] + theta[60] * W_std[280] + theta[61] * W_std[281] + theta[62] * W_std[282] + theta[63] * W_std[283] + theta[64] * W_std[284] + theta[65] * W_std[285] + theta[66] * W_std[286] + theta[67] * W_std[287] + theta[68] * W_std[288] + theta[69] * W_std[289];
-  const float t15 = dq[2] * t14;
-  const float t16 = static_cast<float>((t15 > 0.0f) - (t15 < 0.0f));
-  const float t17 = -0.5f * t16;
-  const float t18 = 1.0f / theta[81];
-  const float t19 = 0.5f + 0.5f * t16;
-  const float t20 = theta[81] * (0.5f + t17) + t18 * t19;
   J[196] = W_std[196] * t20;
   J[197] = W_std[197] * t20;
   J[198] = W_std[198] * t20;
@@ -14354,13 +14396,6 @@ void drive_torque_jacobian(const float* q, const float* dq, const float* ddq,
   J[291] = 0.0f;
   J[292] = 0.0f;
   J[293] = 0.0f;
-  const float t21 = theta[0] * W_std[294] + theta[1] * W_std[295] + theta[2] * W_std[296] + theta[3] * W_std[297] + theta[4] * W_std[298] + theta[5] * W_std[299] + theta[6] * W_std[300] + theta[7] * W_std[301] + theta[8] * W_std[302] + theta[9] * W_std[303] + theta[10] * W_std[308] + theta[11] * W_std[309] + theta[12] * W_std[310] + theta[13] * W_std[311] + theta[14] * W_std[312] + theta[15] * W_std[313] + theta[16] * W_std[314] + theta[17] * W_std[315] + theta[18] * W_std[316] + theta[19] * W_std[317] + theta[20] * W_std[322] + theta[21] * W_std[323] + theta[22] * W_std[324] + theta[23] * W_std[325] + theta[24] * W_std[326] + theta[25] * W_std[327] + theta[26] * W_std[328] + theta[27] * W_std[329] + theta[28] * W_std[330] + theta[29] * W_std[331] + theta[30] * W_std[336] + theta[31] * W_std[337] + theta[32] * W_std[338] + theta[33] * W_std[339] + theta[34] * W_std[340] + theta[35] * W_std[341] + theta[36] * W_std[342] + theta[37] * W_std[343] + theta[38] * W_std[344] + theta[39] * W_std[345] + theta[40] * W_std[350] + theta[41] * W_std[351] + theta[42] * W_std[352] + theta[43] * W_std[353] + theta[44] * W_std[354] + theta[45] * W_std[355] + theta[46] * W_std[356] + theta[47] * W_std[357] + theta[48] * W_std[358] + theta[49] * W_std[359] + theta[50] * W_std[364] + theta[51] * W_std[365] + theta[52] * W_std[366] + theta[53] * W_std[367] + theta[54] * W_std[368] + theta[55] * W_std[369] + theta[56] * W_std[370] + theta[57] * W_std[371] + theta[58] * W_std[372] + theta[59] * W_std[373] + theta[60] * W_std[378] + theta[61] * W_std[379] + theta[62] * W_std[380] + theta[63] * W_std[381] + theta[64] * W_std[382] + theta[65] * W_std[383] + theta[66] * W_std[384] + theta[67] * W_std[385] + theta[68] * W_std[386] + theta[69] * W_std[387];
-  const float t22 = dq[3] * t21;
-  const float t23 = static_cast<float>((t22 > 0.0f) - (t22 < 0.0f));
-  const float t24 = -0.5f * t23;
-  const float t25 = 1.0f / theta[85];
-  const float t26 = 0.5f + 0.5f * t23;
-  const float t27 = theta[85] * (0.5f + t24) + t25 * t26;
   J[294] = W_std[294] * t27;
   J[295] = W_std[295] * t27;
   J[296] = W_std[296] * t27;
@@ -14459,13 +14494,6 @@ void drive_torque_jacobian(const float* q, const float* dq, const float* ddq,
   J[389] = 0.0f;
   J[390] = 0.0f;
   J[391] = 0.0f;
-  const float t28 = theta[0] * W_std[392] + theta[1] * W_std[393] + theta[2] * W_std[394] + theta[3] * W_std[395] + theta[4] * W_std[396] + theta[5] * W_std[397] + theta[6] * W_std[398] + theta[7] * W_std[399] + theta[8] * W_std[400] + theta[9] * W_std[401] + theta[10] * W_std[406] + theta[11] * W_std[407] + theta[12] * W_std[408] + theta[13] * W_std[409] + theta[14] * W_std[410] + theta[15] * W_std[411] + theta[16] * W_std[412] + theta[17] * W_std[413] + theta[18] * W_std[414] + theta[19] * W_std[415] + theta[20] * W_std[420] + theta[21] * W_std[421] + theta[22] * W_std[422] + theta[23] * W_std[423] + theta[24] * W_std[424] + theta[25] * W_std[425] + theta[26] * W_std[426] + theta[27] * W_std[427] + theta[28] * W_std[428] + theta[29] * W_std[429] + theta[30] * W_std[434] + theta[31] * W_std[435] + theta[32] * W_std[436] + theta[33] * W_std[437] + theta[34] * W_std[438] + theta[35] * W_std[439] + theta[36] * W_std[440] + theta[37] * W_std[441] + theta[38] * W_std[442] + theta[39] * W_std[443] + theta[40] * W_std[448] + theta[41] * W_std[449] + theta[42] * W_std[450] + theta[43] * W_std[451] + theta[44] * W_std[452] + theta[45] * W_std[453] + theta[46] * W_std[454] + theta[47] * W_std[455] + theta[48] * W_std[456] + theta[49] * W_std[457] + theta[50] * W_std[462] + theta[51] * W_std[463] + theta[52] * W_std[464] + theta[53] * W_std[465] + theta[54] * W_std[466] + theta[55] * W_std[467] + theta[56] * W_std[468] + theta[57] * W_std[469] + theta[58] * W_std[470] + theta[59] * W_std[471] + theta[60] * W_std[476] + theta[61] * W_std[477] + theta[62] * W_std[478] + theta[63] * W_std[479] + theta[64] * W_std[480] + theta[65] * W_std[481] + theta[66] * W_std[482] + theta[67] * W_std[483] + theta[68] * W_std[484] + theta[69] * W_std[485];
-  const float t29 = dq[4] * t28;
-  const float t30 = static_cast<float>((t29 > 0.0f) - (t29 < 0.0f));
-  const float t31 = -0.5f * t30;
-  const float t32 = 1.0f / theta[89];
-  const float t33 = 0.5f + 0.5f * t30;
-  const float t34 = theta[89] * (0.5f + t31) + t32 * t33;
   J[392] = W_std[392] * t34;
   J[393] = W_std[393] * t34;
   J[394] = W_std[394] * t34;
@@ -14564,13 +14592,6 @@ void drive_torque_jacobian(const float* q, const float* dq, const float* ddq,
   J[487] = 0.0f;
   J[488] = 0.0f;
   J[489] = 0.0f;
-  const float t35 = theta[0] * W_std[490] + theta[1] * W_std[491] + theta[2] * W_std[492] + theta[3] * W_std[493] + theta[4] * W_std[494] + theta[5] * W_std[495] + theta[6] * W_std[496] + theta[7] * W_std[497] + theta[8] * W_std[498] + theta[9] * W_std[499] + theta[10] * W_std[504] + theta[11] * W_std[505] + theta[12] * W_std[506] + theta[13] * W_std[507] + theta[14] * W_std[508] + theta[15] * W_std[509] + theta[16] * W_std[510] + theta[17] * W_std[511] + theta[18] * W_std[512] + theta[19] * W_std[513] + theta[20] * W_std[518] + theta[21] * W_std[519] + theta[22] * W_std[520] + theta[23] * W_std[521] + theta[24] * W_std[522] + theta[25] * W_std[523] + theta[26] * W_std[524] + theta[27] * W_std[525] + theta[28] * W_std[526] + theta[29] * W_std[527] + theta[30] * W_std[532] + theta[31] * W_std[533] + theta[32] * W_std[534] + theta[33] * W_std[535] + theta[34] * W_std[536] + theta[35] * W_std[537] + theta[36] * W_std[538] + theta[37] * W_std[539] + theta[38] * W_std[540] + theta[39] * W_std[541] + theta[40] * W_std[546] + theta[41] * W_std[547] + theta[42] * W_std[548] + theta[43] * W_std[549] + theta[44] * W_std[550] + theta[45] * W_std[551] + theta[46] * W_std[552] + theta[47] * W_std[553] + theta[48] * W_std[554] + theta[49] * W_std[555] + theta[50] * W_std[560] + theta[51] * W_std[561] + theta[52] * W_std[562] + theta[53] * W_std[563] + theta[54] * W_std[564] + theta[55] * W_std[565] + theta[56] * W_std[566] + theta[57] * W_std[567] + theta[58] * W_std[568] + theta[59] * W_std[569] + theta[60] * W_std[574] + theta[61] * W_std[575] + theta[62] * W_std[576] + theta[63] * W_std[577] + theta[64] * W_std[578] + theta[65] * W_std[579] + theta[66] * W_std[580] + theta[67] * W_std[581] + theta[68] * W_std[582] + theta[69] * W_std[583];
-  const float t36 = dq[5] * t35;
-  const float t37 = static_cast<float>((t36 > 0.0f) - (t36 < 0.0f));
-  const float t38 = -0.5f * t37;
-  const float t39 = 1.0f / theta[93];
-  const float t40 = 0.5f + 0.5f * t37;
-  const float t41 = theta[93] * (0.5f + t38) + t39 * t40;
   J[490] = W_std[490] * t41;
   J[491] = W_std[491] * t41;
   J[492] = W_std[492] * t41;
@@ -14669,13 +14690,6 @@ void drive_torque_jacobian(const float* q, const float* dq, const float* ddq,
   J[585] = 0.0f;
   J[586] = 0.0f;
   J[587] = 0.0f;
-  const float t42 = theta[0] * W_std[588] + theta[1] * W_std[589] + theta[2] * W_std[590] + theta[3] * W_std[591] + theta[4] * W_std[592] + theta[5] * W_std[593] + theta[6] * W_std[594] + theta[7] * W_std[595] + theta[8] * W_std[596] + theta[9] * W_std[597] + theta[10] * W_std[602] + theta[11] * W_std[603] + theta[12] * W_std[604] + theta[13] * W_std[605] + theta[14] * W_std[606] + theta[15] * W_std[607] + theta[16] * W_std[608] + theta[17] * W_std[609] + theta[18] * W_std[610] + theta[19] * W_std[611] + theta[20] * W_std[616] + theta[21] * W_std[617] + theta[22] * W_std[618] + theta[23] * W_std[619] + theta[24] * W_std[620] + theta[25] * W_std[621] + theta[26] * W_std[622] + theta[27] * W_std[623] + theta[28] * W_std[624] + theta[29] * W_std[625] + theta[30] * W_std[630] + theta[31] * W_std[631] + theta[32] * W_std[632] + theta[33] * W_std[633] + theta[34] * W_std[634] + theta[35] * W_std[635] + theta[36] * W_std[636] + theta[37] * W_std[637] + theta[38] * W_std[638] + theta[39] * W_std[639] + theta[40] * W_std[644] + theta[41] * W_std[645] + theta[42] * W_std[646] + theta[43] * W_std[647] + theta[44] * W_std[648] + theta[45] * W_std[649] + theta[46] * W_std[650] + theta[47] * W_std[651] + theta[48] * W_std[652] + theta[49] * W_std[653] + theta[50] * W_std[658] + theta[51] * W_std[659] + theta[52] * W_std[660] + theta[53] * W_std[661] + theta[54] * W_std[662] + theta[55] * W_std[663] + theta[56] * W_std[664] + theta[57] * W_std[665] + theta[58] * W_std[666] + theta[59] * W_std[667] + theta[60] * W_std[672] + theta[61] * W_std[673] + theta[62] * W_std[674] + theta[63] * W_std[675] + theta[64] * W_std[676] + theta[65] * W_std[677] + theta[66] * W_std[678] + theta[67] * W_std[679] + theta[68] * W_std[680] + theta[69] * W_std[681];
-  const float t43 = dq[6] * t42;
-  const float t44 = static_cast<float>((t43 > 0.0f) - (t43 < 0.0f));
-  const float t45 = -0.5f * t44;
-  const float t46 = 1.0f / theta[97];
-  const float t47 = 0.5f + 0.5f * t44;
-  const float t48 = theta[97] * (0.5f + t45) + t46 * t47;
   J[588] = W_std[588] * t48;
   J[589] = W_std[589] * t48;
   J[590] = W_std[590] * t48;

@@ -20,7 +20,7 @@
 // energy_regressor_sincos               148     70        0
 // power_regressor_sincos                378    210        0
 // drive_torque                          533    411       12
-// drive_torque_jacobian                2050   1260       12
+// drive_torque_jacobian                2078   1281       12
 // drive_torque_state_jacobian          4983   4222       24
 #ifndef MODELGEN_IIWA14_HPP_
 #define MODELGEN_IIWA14_HPP_
@@ -29,7 +29,7 @@ namespace modelgen {
 namespace iiwa14 {
 
 // Version of this generated interface; the runtime's adapter for generated models checks it.
-constexpr int kFormatVersion = 2;
+constexpr int kFormatVersion = 3;
 // Moving joints: the length of q, dq, ddq and tau.
 constexpr int kDof = 7;
 // Standard dynamic parameters (Gautier & Briot eq. 3): the length of p, the columns of W.
@@ -184,16 +184,16 @@ void drive_torque(const double* q, const double* dq, const double* ddq,
 void drive_torque(const float* q, const float* dq, const float* ddq,
                   const float* theta, float* tau_M);
 
-// Jacobian of drive_torque with respect to its parameters theta, for maximum-likelihood
-// estimation (Swevers et al. 2002 eq. 18): J is kDof x kDriveParams, row-major,
-// J[i * kDriveParams + k] = d tau_M_i / d theta_k. Inputs as for drive_torque. The efficiency
-// branch and the Coulomb friction sign count as constant: exact wherever no motor velocity and
-// no power flow tau'_G dq_M is zero. Calls idim_regressor_standard into a local array of
-// kDof * kStandardParams values (on the stack) and applies the chain rule to it.
+// drive_torque (tau_M, kDof values) with its Jacobian with respect to the parameters theta, for
+// maximum-likelihood estimation (Swevers et al. 2002 eq. 18): J is kDof x kDriveParams,
+// row-major, J[i * kDriveParams + k] = d tau_M_i / d theta_k. Inputs as for drive_torque. The
+// efficiency branch and the Coulomb friction sign count as constant: exact wherever no motor
+// velocity and no power flow tau'_G dq_M is zero. Calls idim_regressor_standard into a local
+// array of kDof * kStandardParams values (on the stack) and applies the chain rule to it.
 void drive_torque_jacobian(const double* q, const double* dq, const double* ddq,
-                           const double* theta, double* J);
+                           const double* theta, double* tau_M, double* J);
 void drive_torque_jacobian(const float* q, const float* dq, const float* ddq,
-                           const float* theta, float* J);
+                           const float* theta, float* tau_M, float* J);
 
 // Jacobian of drive_torque with respect to the state x = [q, dq, ddq] (3 kDof values), for
 // maximum likelihood with errors in variables (Bona & Curatella eq. 13-16): J is
@@ -243,8 +243,8 @@ struct Model {
     ::modelgen::iiwa14::drive_torque(q, dq, ddq, theta, tau_M);
   }
   static void drive_torque_jacobian(const double* q, const double* dq, const double* ddq,
-                                    const double* theta, double* J) {
-    ::modelgen::iiwa14::drive_torque_jacobian(q, dq, ddq, theta, J);
+                                    const double* theta, double* tau_M, double* J) {
+    ::modelgen::iiwa14::drive_torque_jacobian(q, dq, ddq, theta, tau_M, J);
   }
   static void drive_torque_state_jacobian(const double* q, const double* dq, const double* ddq,
                                           const double* theta, double* J) {

@@ -20,7 +20,7 @@
 // energy_regressor_sincos               127     51        0
 // power_regressor_sincos                317    168        0
 // drive_torque                          461    347       10
-// drive_torque_jacobian                1388    873       10
+// drive_torque_jacobian                1412    891       10
 // drive_torque_state_jacobian          3362   2955       20
 #include "kuka_kr150_2.hpp"
 
@@ -10320,14 +10320,14 @@ void drive_torque(const float* q, const float* dq, const float* ddq,
   tau_M[5] = -t83 * (theta[83] * (0.5f + 0.5f * t115) + (1.0f / theta[83]) * (0.5f - 0.5f * t115)) + ddq[5] * theta[80] + dq[5] * theta[81] + sg6 * theta[82];
 }
 
-// Jacobian of drive_torque with respect to its parameters theta, for maximum-likelihood
-// estimation (Swevers et al. 2002 eq. 18): J is kDof x kDriveParams, row-major,
-// J[i * kDriveParams + k] = d tau_M_i / d theta_k. Inputs as for drive_torque. The efficiency
-// branch and the Coulomb friction sign count as constant: exact wherever no motor velocity and
-// no power flow tau'_G dq_M is zero. Calls idim_regressor_standard into a local array of
-// kDof * kStandardParams values (on the stack) and applies the chain rule to it.
+// drive_torque (tau_M, kDof values) with its Jacobian with respect to the parameters theta, for
+// maximum-likelihood estimation (Swevers et al. 2002 eq. 18): J is kDof x kDriveParams,
+// row-major, J[i * kDriveParams + k] = d tau_M_i / d theta_k. Inputs as for drive_torque. The
+// efficiency branch and the Coulomb friction sign count as constant: exact wherever no motor
+// velocity and no power flow tau'_G dq_M is zero. Calls idim_regressor_standard into a local
+// array of kDof * kStandardParams values (on the stack) and applies the chain rule to it.
 void drive_torque_jacobian(const double* q, const double* dq, const double* ddq,
-                           const double* theta, double* J) {
+                           const double* theta, double* tau_M, double* J) {
   double W_std[kDof * kStandardParams] = {};
   idim_regressor_standard(q, dq, ddq, W_std);
   const double sg1 = static_cast<double>((dq[0] > 0.0) - (dq[0] < 0.0));
@@ -10343,6 +10343,47 @@ void drive_torque_jacobian(const double* q, const double* dq, const double* ddq,
   const double t4 = 1.0 / theta[63];
   const double t5 = 0.5 + 0.5 * t2;
   const double t6 = theta[63] * (0.5 + t3) + t4 * t5;
+  tau_M[0] = ddq[0] * theta[60] + dq[0] * theta[61] + sg1 * theta[62] + t0 * t6;
+  const double t7 = theta[0] * W_std[84] + theta[1] * W_std[85] + theta[2] * W_std[86] + theta[3] * W_std[87] + theta[4] * W_std[88] + theta[5] * W_std[89] + theta[6] * W_std[90] + theta[7] * W_std[91] + theta[8] * W_std[92] + theta[9] * W_std[93] + theta[10] * W_std[98] + theta[11] * W_std[99] + theta[12] * W_std[100] + theta[13] * W_std[101] + theta[14] * W_std[102] + theta[15] * W_std[103] + theta[16] * W_std[104] + theta[17] * W_std[105] + theta[18] * W_std[106] + theta[19] * W_std[107] + theta[20] * W_std[112] + theta[21] * W_std[113] + theta[22] * W_std[114] + theta[23] * W_std[115] + theta[24] * W_std[116] + theta[25] * W_std[117] + theta[26] * W_std[118] + theta[27] * W_std[119] + theta[28] * W_std[120] + theta[29] * W_std[121] + theta[30] * W_std[126] + theta[31] * W_std[127] + theta[32] * W_std[128] + theta[33] * W_std[129] + theta[34] * W_std[130] + theta[35] * W_std[131] + theta[36] * W_std[132] + theta[37] * W_std[133] + theta[38] * W_std[134] + theta[39] * W_std[135] + theta[40] * W_std[140] + theta[41] * W_std[141] + theta[42] * W_std[142] + theta[43] * W_std[143] + theta[44] * W_std[144] + theta[45] * W_std[145] + theta[46] * W_std[146] + theta[47] * W_std[147] + theta[48] * W_std[148] + theta[49] * W_std[149] + theta[50] * W_std[154] + theta[51] * W_std[155] + theta[52] * W_std[156] + theta[53] * W_std[157] + theta[54] * W_std[158] + theta[55] * W_std[159] + theta[56] * W_std[160] + theta[57] * W_std[161] + theta[58] * W_std[162] + theta[59] * W_std[163];
+  const double t8 = dq[1] * t7;
+  const double t9 = static_cast<double>((t8 > 0.0) - (t8 < 0.0));
+  const double t10 = -0.5 * t9;
+  const double t11 = 1.0 / theta[67];
+  const double t12 = 0.5 + 0.5 * t9;
+  const double t13 = theta[67] * (0.5 + t10) + t11 * t12;
+  tau_M[1] = ddq[1] * theta[64] + dq[1] * theta[65] + sg2 * theta[66] + t7 * t13;
+  const double t14 = theta[0] * W_std[168] + theta[1] * W_std[169] + theta[2] * W_std[170] + theta[3] * W_std[171] + theta[4] * W_std[172] + theta[5] * W_std[173] + theta[6] * W_std[174] + theta[7] * W_std[175] + theta[8] * W_std[176] + theta[9] * W_std[177] + theta[10] * W_std[182] + theta[11] * W_std[183] + theta[12] * W_std[184] + theta[13] * W_std[185] + theta[14] * W_std[186] + theta[15] * W_std[187] + theta[16] * W_std[188] + theta[17] * W_std[189] + theta[18] * W_std[190] + theta[19] * W_std[191] + theta[20] * W_std[196] + theta[21] * W_std[197] + theta[22] * W_std[198] + theta[23] * W_std[199] + theta[24] * W_std[200] + theta[25] * W_std[201] + theta[26] * W_std[202] + theta[27] * W_std[203] + theta[28] * W_std[204] + theta[29] * W_std[205] + theta[30] * W_std[210] + theta[31] * W_std[211] + theta[32] * W_std[212] + theta[33] * W_std[213] + theta[34] * W_std[214] + theta[35] * W_std[215] + theta[36] * W_std[216] + theta[37] * W_std[217] + theta[38] * W_std[218] + theta[39] * W_std[219] + theta[40] * W_std[224] + theta[41] * W_std[225] + theta[42] * W_std[226] + theta[43] * W_std[227] + theta[44] * W_std[228] + theta[45] * W_std[229] + theta[46] * W_std[230] + theta[47] * W_std[231] + theta[48] * W_std[232] + theta[49] * W_std[233] + theta[50] * W_std[238] + theta[51] * W_std[239] + theta[52] * W_std[240] + theta[53] * W_std[241] + theta[54] * W_std[242] + theta[55] * W_std[243] + theta[56] * W_std[244] + theta[57] * W_std[245] + theta[58] * W_std[246] + theta[59] * W_std[247];
+  const double t15 = dq[2] * t14;
+  const double t16 = static_cast<double>((t15 > 0.0) - (t15 < 0.0));
+  const double t17 = -0.5 * t16;
+  const double t18 = 1.0 / theta[71];
+  const double t19 = 0.5 + 0.5 * t16;
+  const double t20 = theta[71] * (0.5 + t17) + t18 * t19;
+  tau_M[2] = ddq[2] * theta[68] + dq[2] * theta[69] + sg3 * theta[70] + t14 * t20;
+  const double t21 = theta[0] * W_std[252] + theta[1] * W_std[253] + theta[2] * W_std[254] + theta[3] * W_std[255] + theta[4] * W_std[256] + theta[5] * W_std[257] + theta[6] * W_std[258] + theta[7] * W_std[259] + theta[8] * W_std[260] + theta[9] * W_std[261] + theta[10] * W_std[266] + theta[11] * W_std[267] + theta[12] * W_std[268] + theta[13] * W_std[269] + theta[14] * W_std[270] + theta[15] * W_std[271] + theta[16] * W_std[272] + theta[17] * W_std[273] + theta[18] * W_std[274] + theta[19] * W_std[275] + theta[20] * W_std[280] + theta[21] * W_std[281] + theta[22] * W_std[282] + theta[23] * W_std[283] + theta[24] * W_std[284] + theta[25] * W_std[285] + theta[26] * W_std[286] + theta[27] * W_std[287] + theta[28] * W_std[288] + theta[29] * W_std[289] + theta[30] * W_std[294] + theta[31] * W_std[295] + theta[32] * W_std[296] + theta[33] * W_std[297] + theta[34] * W_std[298] + theta[35] * W_std[299] + theta[36] * W_std[300] + theta[37] * W_std[301] + theta[38] * W_std[302] + theta[39] * W_std[303] + theta[40] * W_std[308] + theta[41] * W_std[309] + theta[42] * W_std[310] + theta[43] * W_std[311] + theta[44] * W_std[312] + theta[45] * W_std[313] + theta[46] * W_std[314] + theta[47] * W_std[315] + theta[48] * W_std[316] + theta[49] * W_std[317] + theta[50] * W_std[322] + theta[51] * W_std[323] + theta[52] * W_std[324] + theta[53] * W_std[325] + theta[54] * W_std[326] + theta[55] * W_std[327] + theta[56] * W_std[328] + theta[57] * W_std[329] + theta[58] * W_std[330] + theta[59] * W_std[331];
+  const double t22 = dq[3] * t21;
+  const double t23 = static_cast<double>((t22 > 0.0) - (t22 < 0.0));
+  const double t24 = -0.5 * t23;
+  const double t25 = 1.0 / theta[75];
+  const double t26 = 0.5 + 0.5 * t23;
+  const double t27 = theta[75] * (0.5 + t24) + t25 * t26;
+  tau_M[3] = ddq[3] * theta[72] + dq[3] * theta[73] + sg4 * theta[74] + t21 * t27;
+  const double t28 = theta[0] * W_std[336] + theta[1] * W_std[337] + theta[2] * W_std[338] + theta[3] * W_std[339] + theta[4] * W_std[340] + theta[5] * W_std[341] + theta[6] * W_std[342] + theta[7] * W_std[343] + theta[8] * W_std[344] + theta[9] * W_std[345] + theta[10] * W_std[350] + theta[11] * W_std[351] + theta[12] * W_std[352] + theta[13] * W_std[353] + theta[14] * W_std[354] + theta[15] * W_std[355] + theta[16] * W_std[356] + theta[17] * W_std[357] + theta[18] * W_std[358] + theta[19] * W_std[359] + theta[20] * W_std[364] + theta[21] * W_std[365] + theta[22] * W_std[366] + theta[23] * W_std[367] + theta[24] * W_std[368] + theta[25] * W_std[369] + theta[26] * W_std[370] + theta[27] * W_std[371] + theta[28] * W_std[372] + theta[29] * W_std[373] + theta[30] * W_std[378] + theta[31] * W_std[379] + theta[32] * W_std[380] + theta[33] * W_std[381] + theta[34] * W_std[382] + theta[35] * W_std[383] + theta[36] * W_std[384] + theta[37] * W_std[385] + theta[38] * W_std[386] + theta[39] * W_std[387] + theta[40] * W_std[392] + theta[41] * W_std[393] + theta[42] * W_std[394] + theta[43] * W_std[395] + theta[44] * W_std[396] + theta[45] * W_std[397] + theta[46] * W_std[398] + theta[47] * W_std[399] + theta[48] * W_std[400] + theta[49] * W_std[401] + theta[50] * W_std[406] + theta[51] * W_std[407] + theta[52] * W_std[408] + theta[53] * W_std[409] + theta[54] * W_std[410] + theta[55] * W_std[411] + theta[56] * W_std[412] + theta[57] * W_std[413] + theta[58] * W_std[414] + theta[59] * W_std[415];
+  const double t29 = dq[4] * t28;
+  const double t30 = static_cast<double>((t29 > 0.0) - (t29 < 0.0));
+  const double t31 = -0.5 * t30;
+  const double t32 = 1.0 / theta[79];
+  const double t33 = 0.5 + 0.5 * t30;
+  const double t34 = theta[79] * (0.5 + t31) + t32 * t33;
+  tau_M[4] = ddq[4] * theta[76] + dq[4] * theta[77] + sg5 * theta[78] + t28 * t34;
+  const double t35 = theta[0] * W_std[420] + theta[1] * W_std[421] + theta[2] * W_std[422] + theta[3] * W_std[423] + theta[4] * W_std[424] + theta[5] * W_std[425] + theta[6] * W_std[426] + theta[7] * W_std[427] + theta[8] * W_std[428] + theta[9] * W_std[429] + theta[10] * W_std[434] + theta[11] * W_std[435] + theta[12] * W_std[436] + theta[13] * W_std[437] + theta[14] * W_std[438] + theta[15] * W_std[439] + theta[16] * W_std[440] + theta[17] * W_std[441] + theta[18] * W_std[442] + theta[19] * W_std[443] + theta[20] * W_std[448] + theta[21] * W_std[449] + theta[22] * W_std[450] + theta[23] * W_std[451] + theta[24] * W_std[452] + theta[25] * W_std[453] + theta[26] * W_std[454] + theta[27] * W_std[455] + theta[28] * W_std[456] + theta[29] * W_std[457] + theta[30] * W_std[462] + theta[31] * W_std[463] + theta[32] * W_std[464] + theta[33] * W_std[465] + theta[34] * W_std[466] + theta[35] * W_std[467] + theta[36] * W_std[468] + theta[37] * W_std[469] + theta[38] * W_std[470] + theta[39] * W_std[471] + theta[40] * W_std[476] + theta[41] * W_std[477] + theta[42] * W_std[478] + theta[43] * W_std[479] + theta[44] * W_std[480] + theta[45] * W_std[481] + theta[46] * W_std[482] + theta[47] * W_std[483] + theta[48] * W_std[484] + theta[49] * W_std[485] + theta[50] * W_std[490] + theta[51] * W_std[491] + theta[52] * W_std[492] + theta[53] * W_std[493] + theta[54] * W_std[494] + theta[55] * W_std[495] + theta[56] * W_std[496] + theta[57] * W_std[497] + theta[58] * W_std[498] + theta[59] * W_std[499];
+  const double t36 = dq[5] * t35;
+  const double t37 = static_cast<double>((t36 > 0.0) - (t36 < 0.0));
+  const double t38 = -0.5 * t37;
+  const double t39 = 1.0 / theta[83];
+  const double t40 = 0.5 + 0.5 * t37;
+  const double t41 = theta[83] * (0.5 + t38) + t39 * t40;
+  tau_M[5] = ddq[5] * theta[80] + dq[5] * theta[81] + sg6 * theta[82] + t35 * t41;
   J[0] = W_std[0] * t6;  // XX1
   J[1] = W_std[1] * t6;  // XY1
   J[2] = W_std[2] * t6;  // XZ1
@@ -10427,13 +10468,6 @@ void drive_torque_jacobian(const double* q, const double* dq, const double* ddq,
   J[81] = 0.0;  // Rv6
   J[82] = 0.0;  // Rc6
   J[83] = 0.0;  // Rz6
-  const double t7 = theta[0] * W_std[84] + theta[1] * W_std[85] + theta[2] * W_std[86] + theta[3] * W_std[87] + theta[4] * W_std[88] + theta[5] * W_std[89] + theta[6] * W_std[90] + theta[7] * W_std[91] + theta[8] * W_std[92] + theta[9] * W_std[93] + theta[10] * W_std[98] + theta[11] * W_std[99] + theta[12] * W_std[100] + theta[13] * W_std[101] + theta[14] * W_std[102] + theta[15] * W_std[103] + theta[16] * W_std[104] + theta[17] * W_std[105] + theta[18] * W_std[106] + theta[19] * W_std[107] + theta[20] * W_std[112] + theta[21] * W_std[113] + theta[22] * W_std[114] + theta[23] * W_std[115] + theta[24] * W_std[116] + theta[25] * W_std[117] + theta[26] * W_std[118] + theta[27] * W_std[119] + theta[28] * W_std[120] + theta[29] * W_std[121] + theta[30] * W_std[126] + theta[31] * W_std[127] + theta[32] * W_std[128] + theta[33] * W_std[129] + theta[34] * W_std[130] + theta[35] * W_std[131] + theta[36] * W_std[132] + theta[37] * W_std[133] + theta[38] * W_std[134] + theta[39] * W_std[135] + theta[40] * W_std[140] + theta[41] * W_std[141] + theta[42] * W_std[142] + theta[43] * W_std[143] + theta[44] * W_std[144] + theta[45] * W_std[145] + theta[46] * W_std[146] + theta[47] * W_std[147] + theta[48] * W_std[148] + theta[49] * W_std[149] + theta[50] * W_std[154] + theta[51] * W_std[155] + theta[52] * W_std[156] + theta[53] * W_std[157] + theta[54] * W_std[158] + theta[55] * W_std[159] + theta[56] * W_std[160] + theta[57] * W_std[161] + theta[58] * W_std[162] + theta[59] * W_std[163];
-  const double t8 = dq[1] * t7;
-  const double t9 = static_cast<double>((t8 > 0.0) - (t8 < 0.0));
-  const double t10 = -0.5 * t9;
-  const double t11 = 1.0 / theta[67];
-  const double t12 = 0.5 + 0.5 * t9;
-  const double t13 = theta[67] * (0.5 + t10) + t11 * t12;
   J[84] = W_std[84] * t13;
   J[85] = W_std[85] * t13;
   J[86] = W_std[86] * t13;
@@ -10518,13 +10552,6 @@ void drive_torque_jacobian(const double* q, const double* dq, const double* ddq,
   J[165] = 0.0;
   J[166] = 0.0;
   J[167] = 0.0;
-  const double t14 = theta[0] * W_std[168] + theta[1] * W_std[169] + theta[2] * W_std[170] + theta[3] * W_std[171] + theta[4] * W_std[172] + theta[5] * W_std[173] + theta[6] * W_std[174] + theta[7] * W_std[175] + theta[8] * W_std[176] + theta[9] * W_std[177] + theta[10] * W_std[182] + theta[11] * W_std[183] + theta[12] * W_std[184] + theta[13] * W_std[185] + theta[14] * W_std[186] + theta[15] * W_std[187] + theta[16] * W_std[188] + theta[17] * W_std[189] + theta[18] * W_std[190] + theta[19] * W_std[191] + theta[20] * W_std[196] + theta[21] * W_std[197] + theta[22] * W_std[198] + theta[23] * W_std[199] + theta[24] * W_std[200] + theta[25] * W_std[201] + theta[26] * W_std[202] + theta[27] * W_std[203] + theta[28] * W_std[204] + theta[29] * W_std[205] + theta[30] * W_std[210] + theta[31] * W_std[211] + theta[32] * W_std[212] + theta[33] * W_std[213] + theta[34] * W_std[214] + theta[35] * W_std[215] + theta[36] * W_std[216] + theta[37] * W_std[217] + theta[38] * W_std[218] + theta[39] * W_std[219] + theta[40] * W_std[224] + theta[41] * W_std[225] + theta[42] * W_std[226] + theta[43] * W_std[227] + theta[44] * W_std[228] + theta[45] * W_std[229] + theta[46] * W_std[230] + theta[47] * W_std[231] + theta[48] * W_std[232] + theta[49] * W_std[233] + theta[50] * W_std[238] + theta[51] * W_std[239] + theta[52] * W_std[240] + theta[53] * W_std[241] + theta[54] * W_std[242] + theta[55] * W_std[243] + theta[56] * W_std[244] + theta[57] * W_std[245] + theta[58] * W_std[246] + theta[59] * W_std[247];
-  const double t15 = dq[2] * t14;
-  const double t16 = static_cast<double>((t15 > 0.0) - (t15 < 0.0));
-  const double t17 = -0.5 * t16;
-  const double t18 = 1.0 / theta[71];
-  const double t19 = 0.5 + 0.5 * t16;
-  const double t20 = theta[71] * (0.5 + t17) + t18 * t19;
   J[168] = W_std[168] * t20;
   J[169] = W_std[169] * t20;
   J[170] = W_std[170] * t20;
@@ -10609,13 +10636,6 @@ void drive_torque_jacobian(const double* q, const double* dq, const double* ddq,
   J[249] = 0.0;
   J[250] = 0.0;
   J[251] = 0.0;
-  const double t21 = theta[0] * W_std[252] + theta[1] * W_std[253] + theta[2] * W_std[254] + theta[3] * W_std[255] + theta[4] * W_std[256] + theta[5] * W_std[257] + theta[6] * W_std[258] + theta[7] * W_std[259] + theta[8] * W_std[260] + theta[9] * W_std[261] + theta[10] * W_std[266] + theta[11] * W_std[267] + theta[12] * W_std[268] + theta[13] * W_std[269] + theta[14] * W_std[270] + theta[15] * W_std[271] + theta[16] * W_std[272] + theta[17] * W_std[273] + theta[18] * W_std[274] + theta[19] * W_std[275] + theta[20] * W_std[280] + theta[21] * W_std[281] + theta[22] * W_std[282] + theta[23] * W_std[283] + theta[24] * W_std[284] + theta[25] * W_std[285] + theta[26] * W_std[286] + theta[27] * W_std[287] + theta[28] * W_std[288] + theta[29] * W_std[289] + theta[30] * W_std[294] + theta[31] * W_std[295] + theta[32] * W_std[296] + theta[33] * W_std[297] + theta[34] * W_std[298] + theta[35] * W_std[299] + theta[36] * W_std[300] + theta[37] * W_std[301] + theta[38] * W_std[302] + theta[39] * W_std[303] + theta[40] * W_std[308] + theta[41] * W_std[309] + theta[42] * W_std[310] + theta[43] * W_std[311] + theta[44] * W_std[312] + theta[45] * W_std[313] + theta[46] * W_std[314] + theta[47] * W_std[315] + theta[48] * W_std[316] + theta[49] * W_std[317] + theta[50] * W_std[322] + theta[51] * W_std[323] + theta[52] * W_std[324] + theta[53] * W_std[325] + theta[54] * W_std[326] + theta[55] * W_std[327] + theta[56] * W_std[328] + theta[57] * W_std[329] + theta[58] * W_std[330] + theta[59] * W_std[331];
-  const double t22 = dq[3] * t21;
-  const double t23 = static_cast<double>((t22 > 0.0) - (t22 < 0.0));
-  const double t24 = -0.5 * t23;
-  const double t25 = 1.0 / theta[75];
-  const double t26 = 0.5 + 0.5 * t23;
-  const double t27 = theta[75] * (0.5 + t24) + t25 * t26;
   J[252] = W_std[252] * t27;
   J[253] = W_std[253] * t27;
   J[254] = W_std[254] * t27;
@@ -10700,13 +10720,6 @@ void drive_torque_jacobian(const double* q, const double* dq, const double* ddq,
   J[333] = 0.0;
   J[334] = 0.0;
   J[335] = 0.0;
-  const double t28 = theta[0] * W_std[336] + theta[1] * W_std[337] + theta[2] * W_std[338] + theta[3] * W_std[339] + theta[4] * W_std[340] + theta[5] * W_std[341] + theta[6] * W_std[342] + theta[7] * W_std[343] + theta[8] * W_std[344] + theta[9] * W_std[345] + theta[10] * W_std[350] + theta[11] * W_std[351] + theta[12] * W_std[352] + theta[13] * W_std[353] + theta[14] * W_std[354] + theta[15] * W_std[355] + theta[16] * W_std[356] + theta[17] * W_std[357] + theta[18] * W_std[358] + theta[19] * W_std[359] + theta[20] * W_std[364] + theta[21] * W_std[365] + theta[22] * W_std[366] + theta[23] * W_std[367] + theta[24] * W_std[368] + theta[25] * W_std[369] + theta[26] * W_std[370] + theta[27] * W_std[371] + theta[28] * W_std[372] + theta[29] * W_std[373] + theta[30] * W_std[378] + theta[31] * W_std[379] + theta[32] * W_std[380] + theta[33] * W_std[381] + theta[34] * W_std[382] + theta[35] * W_std[383] + theta[36] * W_std[384] + theta[37] * W_std[385] + theta[38] * W_std[386] + theta[39] * W_std[387] + theta[40] * W_std[392] + theta[41] * W_std[393] + theta[42] * W_std[394] + theta[43] * W_std[395] + theta[44] * W_std[396] + theta[45] * W_std[397] + theta[46] * W_std[398] + theta[47] * W_std[399] + theta[48] * W_std[400] + theta[49] * W_std[401] + theta[50] * W_std[406] + theta[51] * W_std[407] + theta[52] * W_std[408] + theta[53] * W_std[409] + theta[54] * W_std[410] + theta[55] * W_std[411] + theta[56] * W_std[412] + theta[57] * W_std[413] + theta[58] * W_std[414] + theta[59] * W_std[415];
-  const double t29 = dq[4] * t28;
-  const double t30 = static_cast<double>((t29 > 0.0) - (t29 < 0.0));
-  const double t31 = -0.5 * t30;
-  const double t32 = 1.0 / theta[79];
-  const double t33 = 0.5 + 0.5 * t30;
-  const double t34 = theta[79] * (0.5 + t31) + t32 * t33;
   J[336] = W_std[336] * t34;
   J[337] = W_std[337] * t34;
   J[338] = W_std[338] * t34;
@@ -10791,13 +10804,6 @@ void drive_torque_jacobian(const double* q, const double* dq, const double* ddq,
   J[417] = 0.0;
   J[418] = 0.0;
   J[419] = 0.0;
-  const double t35 = theta[0] * W_std[420] + theta[1] * W_std[421] + theta[2] * W_std[422] + theta[3] * W_std[423] + theta[4] * W_std[424] + theta[5] * W_std[425] + theta[6] * W_std[426] + theta[7] * W_std[427] + theta[8] * W_std[428] + theta[9] * W_std[429] + theta[10] * W_std[434] + theta[11] * W_std[435] + theta[12] * W_std[436] + theta[13] * W_std[437] + theta[14] * W_std[438] + theta[15] * W_std[439] + theta[16] * W_std[440] + theta[17] * W_std[441] + theta[18] * W_std[442] + theta[19] * W_std[443] + theta[20] * W_std[448] + theta[21] * W_std[449] + theta[22] * W_std[450] + theta[23] * W_std[451] + theta[24] * W_std[452] + theta[25] * W_std[453] + theta[26] * W_std[454] + theta[27] * W_std[455] + theta[28] * W_std[456] + theta[29] * W_std[457] + theta[30] * W_std[462] + theta[31] * W_std[463] + theta[32] * W_std[464] + theta[33] * W_std[465] + theta[34] * W_std[466] + theta[35] * W_std[467] + theta[36] * W_std[468] + theta[37] * W_std[469] + theta[38] * W_std[470] + theta[39] * W_std[471] + theta[40] * W_std[476] + theta[41] * W_std[477] + theta[42] * W_std[478] + theta[43] * W_std[479] + theta[44] * W_std[480] + theta[45] * W_std[481] + theta[46] * W_std[482] + theta[47] * W_std[483] + theta[48] * W_std[484] + theta[49] * W_std[485] + theta[50] * W_std[490] + theta[51] * W_std[491] + theta[52] * W_std[492] + theta[53] * W_std[493] + theta[54] * W_std[494] + theta[55] * W_std[495] + theta[56] * W_std[496] + theta[57] * W_std[497] + theta[58] * W_std[498] + theta[59] * W_std[499];
-  const double t36 = dq[5] * t35;
-  const double t37 = static_cast<double>((t36 > 0.0) - (t36 < 0.0));
-  const double t38 = -0.5 * t37;
-  const double t39 = 1.0 / theta[83];
-  const double t40 = 0.5 + 0.5 * t37;
-  const double t41 = theta[83] * (0.5 + t38) + t39 * t40;
   J[420] = W_std[420] * t41;
   J[421] = W_std[421] * t41;
   J[422] = W_std[422] * t41;
@@ -10884,14 +10890,14 @@ void drive_torque_jacobian(const double* q, const double* dq, const double* ddq,
   J[503] = t35 * (0.5 + t38 - t39 * t39 * t40);
 }
 
-// Jacobian of drive_torque with respect to its parameters theta, for maximum-likelihood
-// estimation (Swevers et al. 2002 eq. 18): J is kDof x kDriveParams, row-major,
-// J[i * kDriveParams + k] = d tau_M_i / d theta_k. Inputs as for drive_torque. The efficiency
-// branch and the Coulomb friction sign count as constant: exact wherever no motor velocity and
-// no power flow tau'_G dq_M is zero. Calls idim_regressor_standard into a local array of
-// kDof * kStandardParams values (on the stack) and applies the chain rule to it.
+// drive_torque (tau_M, kDof values) with its Jacobian with respect to the parameters theta, for
+// maximum-likelihood estimation (Swevers et al. 2002 eq. 18): J is kDof x kDriveParams,
+// row-major, J[i * kDriveParams + k] = d tau_M_i / d theta_k. Inputs as for drive_torque. The
+// efficiency branch and the Coulomb friction sign count as constant: exact wherever no motor
+// velocity and no power flow tau'_G dq_M is zero. Calls idim_regressor_standard into a local
+// array of kDof * kStandardParams values (on the stack) and applies the chain rule to it.
 void drive_torque_jacobian(const float* q, const float* dq, const float* ddq,
-                           const float* theta, float* J) {
+                           const float* theta, float* tau_M, float* J) {
   float W_std[kDof * kStandardParams] = {};
   idim_regressor_standard(q, dq, ddq, W_std);
   const float sg1 = static_cast<float>((dq[0] > 0.0f) - (dq[0] < 0.0f));
@@ -10907,6 +10913,47 @@ void drive_torque_jacobian(const float* q, const float* dq, const float* ddq,
   const float t4 = 1.0f / theta[63];
   const float t5 = 0.5f + 0.5f * t2;
   const float t6 = theta[63] * (0.5f + t3) + t4 * t5;
+  tau_M[0] = ddq[0] * theta[60] + dq[0] * theta[61] + sg1 * theta[62] + t0 * t6;
+  const float t7 = theta[0] * W_std[84] + theta[1] * W_std[85] + theta[2] * W_std[86] + theta[3] * W_std[87] + theta[4] * W_std[88] + theta[5] * W_std[89] + theta[6] * W_std[90] + theta[7] * W_std[91] + theta[8] * W_std[92] + theta[9] * W_std[93] + theta[10] * W_std[98] + theta[11] * W_std[99] + theta[12] * W_std[100] + theta[13] * W_std[101] + theta[14] * W_std[102] + theta[15] * W_std[103] + theta[16] * W_std[104] + theta[17] * W_std[105] + theta[18] * W_std[106] + theta[19] * W_std[107] + theta[20] * W_std[112] + theta[21] * W_std[113] + theta[22] * W_std[114] + theta[23] * W_std[115] + theta[24] * W_std[116] + theta[25] * W_std[117] + theta[26] * W_std[118] + theta[27] * W_std[119] + theta[28] * W_std[120] + theta[29] * W_std[121] + theta[30] * W_std[126] + theta[31] * W_std[127] + theta[32] * W_std[128] + theta[33] * W_std[129] + theta[34] * W_std[130] + theta[35] * W_std[131] + theta[36] * W_std[132] + theta[37] * W_std[133] + theta[38] * W_std[134] + theta[39] * W_std[135] + theta[40] * W_std[140] + theta[41] * W_std[141] + theta[42] * W_std[142] + theta[43] * W_std[143] + theta[44] * W_std[144] + theta[45] * W_std[145] + theta[46] * W_std[146] + theta[47] * W_std[147] + theta[48] * W_std[148] + theta[49] * W_std[149] + theta[50] * W_std[154] + theta[51] * W_std[155] + theta[52] * W_std[156] + theta[53] * W_std[157] + theta[54] * W_std[158] + theta[55] * W_std[159] + theta[56] * W_std[160] + theta[57] * W_std[161] + theta[58] * W_std[162] + theta[59] * W_std[163];
+  const float t8 = dq[1] * t7;
+  const float t9 = static_cast<float>((t8 > 0.0f) - (t8 < 0.0f));
+  const float t10 = -0.5f * t9;
+  const float t11 = 1.0f / theta[67];
+  const float t12 = 0.5f + 0.5f * t9;
+  const float t13 = theta[67] * (0.5f + t10) + t11 * t12;
+  tau_M[1] = ddq[1] * theta[64] + dq[1] * theta[65] + sg2 * theta[66] + t7 * t13;
+  const float t14 = theta[0] * W_std[168] + theta[1] * W_std[169] + theta[2] * W_std[170] + theta[3] * W_std[171] + theta[4] * W_std[172] + theta[5] * W_std[173] + theta[6] * W_std[174] + theta[7] * W_std[175] + theta[8] * W_std[176] + theta[9] * W_std[177] + theta[10] * W_std[182] + theta[11] * W_std[183] + theta[12] * W_std[184] + theta[13] * W_std[185] + theta[14] * W_std[186] + theta[15] * W_std[187] + theta[16] * W_std[188] + theta[17] * W_std[189] + theta[18] * W_std[190] + theta[19] * W_std[191] + theta[20] * W_std[196] + theta[21] * W_std[197] + theta[22] * W_std[198] + theta[23] * W_std[199] + theta[24] * W_std[200] + theta[25] * W_std[201] + theta[26] * W_std[202] + theta[27] * W_std[203] + theta[28] * W_std[204] + theta[29] * W_std[205] + theta[30] * W_std[210] + theta[31] * W_std[211] + theta[32] * W_std[212] + theta[33] * W_std[213] + theta[34] * W_std[214] + theta[35] * W_std[215] + theta[36] * W_std[216] + theta[37] * W_std[217] + theta[38] * W_std[218] + theta[39] * W_std[219] + theta[40] * W_std[224] + theta[41] * W_std[225] + theta[42] * W_std[226] + theta[43] * W_std[227] + theta[44] * W_std[228] + theta[45] * W_std[229] + theta[46] * W_std[230] + theta[47] * W_std[231] + theta[48] * W_std[232] + theta[49] * W_std[233] + theta[50] * W_std[238] + theta[51] * W_std[239] + theta[52] * W_std[240] + theta[53] * W_std[241] + theta[54] * W_std[242] + theta[55] * W_std[243] + theta[56] * W_std[244] + theta[57] * W_std[245] + theta[58] * W_std[246] + theta[59] * W_std[247];
+  const float t15 = dq[2] * t14;
+  const float t16 = static_cast<float>((t15 > 0.0f) - (t15 < 0.0f));
+  const float t17 = -0.5f * t16;
+  const float t18 = 1.0f / theta[71];
+  const float t19 = 0.5f + 0.5f * t16;
+  const float t20 = theta[71] * (0.5f + t17) + t18 * t19;
+  tau_M[2] = ddq[2] * theta[68] + dq[2] * theta[69] + sg3 * theta[70] + t14 * t20;
+  const float t21 = theta[0] * W_std[252] + theta[1] * W_std[253] + theta[2] * W_std[254] + theta[3] * W_std[255] + theta[4] * W_std[256] + theta[5] * W_std[257] + theta[6] * W_std[258] + theta[7] * W_std[259] + theta[8] * W_std[260] + theta[9] * W_std[261] + theta[10] * W_std[266] + theta[11] * W_std[267] + theta[12] * W_std[268] + theta[13] * W_std[269] + theta[14] * W_std[270] + theta[15] * W_std[271] + theta[16] * W_std[272] + theta[17] * W_std[273] + theta[18] * W_std[274] + theta[19] * W_std[275] + theta[20] * W_std[280] + theta[21] * W_std[281] + theta[22] * W_std[282] + theta[23] * W_std[283] + theta[24] * W_std[284] + theta[25] * W_std[285] + theta[26] * W_std[286] + theta[27] * W_std[287] + theta[28] * W_std[288] + theta[29] * W_std[289] + theta[30] * W_std[294] + theta[31] * W_std[295] + theta[32] * W_std[296] + theta[33] * W_std[297] + theta[34] * W_std[298] + theta[35] * W_std[299] + theta[36] * W_std[300] + theta[37] * W_std[301] + theta[38] * W_std[302] + theta[39] * W_std[303] + theta[40] * W_std[308] + theta[41] * W_std[309] + theta[42] * W_std[310] + theta[43] * W_std[311] + theta[44] * W_std[312] + theta[45] * W_std[313] + theta[46] * W_std[314] + theta[47] * W_std[315] + theta[48] * W_std[316] + theta[49] * W_std[317] + theta[50] * W_std[322] + theta[51] * W_std[323] + theta[52] * W_std[324] + theta[53] * W_std[325] + theta[54] * W_std[326] + theta[55] * W_std[327] + theta[56] * W_std[328] + theta[57] * W_std[329] + theta[58] * W_std[330] + theta[59] * W_std[331];
+  const float t22 = dq[3] * t21;
+  const float t23 = static_cast<float>((t22 > 0.0f) - (t22 < 0.0f));
+  const float t24 = -0.5f * t23;
+  const float t25 = 1.0f / theta[75];
+  const float t26 = 0.5f + 0.5f * t23;
+  const float t27 = theta[75] * (0.5f + t24) + t25 * t26;
+  tau_M[3] = ddq[3] * theta[72] + dq[3] * theta[73] + sg4 * theta[74] + t21 * t27;
+  const float t28 = theta[0] * W_std[336] + theta[1] * W_std[337] + theta[2] * W_std[338] + theta[3] * W_std[339] + theta[4] * W_std[340] + theta[5] * W_std[341] + theta[6] * W_std[342] + theta[7] * W_std[343] + theta[8] * W_std[344] + theta[9] * W_std[345] + theta[10] * W_std[350] + theta[11] * W_std[351] + theta[12] * W_std[352] + theta[13] * W_std[353] + theta[14] * W_std[354] + theta[15] * W_std[355] + theta[16] * W_std[356] + theta[17] * W_std[357] + theta[18] * W_std[358] + theta[19] * W_std[359] + theta[20] * W_std[364] + theta[21] * W_std[365] + theta[22] * W_std[366] + theta[23] * W_std[367] + theta[24] * W_std[368] + theta[25] * W_std[369] + theta[26] * W_std[370] + theta[27] * W_std[371] + theta[28] * W_std[372] + theta[29] * W_std[373] + theta[30] * W_std[378] + theta[31] * W_std[379] + theta[32] * W_std[380] + theta[33] * W_std[381] + theta[34] * W_std[382] + theta[35] * W_std[383] + theta[36] * W_std[384] + theta[37] * W_std[385] + theta[38] * W_std[386] + theta[39] * W_std[387] + theta[40] * W_std[392] + theta[41] * W_std[393] + theta[42] * W_std[394] + theta[43] * W_std[395] + theta[44] * W_std[396] + theta[45] * W_std[397] + theta[46] * W_std[398] + theta[47] * W_std[399] + theta[48] * W_std[400] + theta[49] * W_std[401] + theta[50] * W_std[406] + theta[51] * W_std[407] + theta[52] * W_std[408] + theta[53] * W_std[409] + theta[54] * W_std[410] + theta[55] * W_std[411] + theta[56] * W_std[412] + theta[57] * W_std[413] + theta[58] * W_std[414] + theta[59] * W_std[415];
+  const float t29 = dq[4] * t28;
+  const float t30 = static_cast<float>((t29 > 0.0f) - (t29 < 0.0f));
+  const float t31 = -0.5f * t30;
+  const float t32 = 1.0f / theta[79];
+  const float t33 = 0.5f + 0.5f * t30;
+  const float t34 = theta[79] * (0.5f + t31) + t32 * t33;
+  tau_M[4] = ddq[4] * theta[76] + dq[4] * theta[77] + sg5 * theta[78] + t28 * t34;
+  const float t35 = theta[0] * W_std[420] + theta[1] * W_std[421] + theta[2] * W_std[422] + theta[3] * W_std[423] + theta[4] * W_std[424] + theta[5] * W_std[425] + theta[6] * W_std[426] + theta[7] * W_std[427] + theta[8] * W_std[428] + theta[9] * W_std[429] + theta[10] * W_std[434] + theta[11] * W_std[435] + theta[12] * W_std[436] + theta[13] * W_std[437] + theta[14] * W_std[438] + theta[15] * W_std[439] + theta[16] * W_std[440] + theta[17] * W_std[441] + theta[18] * W_std[442] + theta[19] * W_std[443] + theta[20] * W_std[448] + theta[21] * W_std[449] + theta[22] * W_std[450] + theta[23] * W_std[451] + theta[24] * W_std[452] + theta[25] * W_std[453] + theta[26] * W_std[454] + theta[27] * W_std[455] + theta[28] * W_std[456] + theta[29] * W_std[457] + theta[30] * W_std[462] + theta[31] * W_std[463] + theta[32] * W_std[464] + theta[33] * W_std[465] + theta[34] * W_std[466] + theta[35] * W_std[467] + theta[36] * W_std[468] + theta[37] * W_std[469] + theta[38] * W_std[470] + theta[39] * W_std[471] + theta[40] * W_std[476] + theta[41] * W_std[477] + theta[42] * W_std[478] + theta[43] * W_std[479] + theta[44] * W_std[480] + theta[45] * W_std[481] + theta[46] * W_std[482] + theta[47] * W_std[483] + theta[48] * W_std[484] + theta[49] * W_std[485] + theta[50] * W_std[490] + theta[51] * W_std[491] + theta[52] * W_std[492] + theta[53] * W_std[493] + theta[54] * W_std[494] + theta[55] * W_std[495] + theta[56] * W_std[496] + theta[57] * W_std[497] + theta[58] * W_std[498] + theta[59] * W_std[499];
+  const float t36 = dq[5] * t35;
+  const float t37 = static_cast<float>((t36 > 0.0f) - (t36 < 0.0f));
+  const float t38 = -0.5f * t37;
+  const float t39 = 1.0f / theta[83];
+  const float t40 = 0.5f + 0.5f * t37;
+  const float t41 = theta[83] * (0.5f + t38) + t39 * t40;
+  tau_M[5] = ddq[5] * theta[80] + dq[5] * theta[81] + sg6 * theta[82] + t35 * t41;
   J[0] = W_std[0] * t6;  // XX1
   J[1] = W_std[1] * t6;  // XY1
   J[2] = W_std[2] * t6;  // XZ1
@@ -10991,13 +11038,6 @@ void drive_torque_jacobian(const float* q, const float* dq, const float* ddq,
   J[81] = 0.0f;  // Rv6
   J[82] = 0.0f;  // Rc6
   J[83] = 0.0f;  // Rz6
-  const float t7 = theta[0] * W_std[84] + theta[1] * W_std[85] + theta[2] * W_std[86] + theta[3] * W_std[87] + theta[4] * W_std[88] + theta[5] * W_std[89] + theta[6] * W_std[90] + theta[7] * W_std[91] + theta[8] * W_std[92] + theta[9] * W_std[93] + theta[10] * W_std[98] + theta[11] * W_std[99] + theta[12] * W_std[100] + theta[13] * W_std[101] + theta[14] * W_std[102] + theta[15] * W_std[103] + theta[16] * W_std[104] + theta[17] * W_std[105] + theta[18] * W_std[106] + theta[19] * W_std[107] + theta[20] * W_std[112] + theta[21] * W_std[113] + theta[22] * W_std[114] + theta[23] * W_std[115] + theta[24] * W_std[116] + theta[25] * W_std[117] + theta[26] * W_std[118] + theta[27] * W_std[119] + theta[28] * W_std[120] + theta[29] * W_std[121] + theta[30] * W_std[126] + theta[31] * W_std[127] + theta[32] * W_std[128] + theta[33] * W_std[129] + theta[34] * W_std[130] + theta[35] * W_std[131] + theta[36] * W_std[132] + theta[37] * W_std[133] + theta[38] * W_std[134] + theta[39] * W_std[135] + theta[40] * W_std[140] + theta[41] * W_std[141] + theta[42] * W_std[142] + theta[43] * W_std[143] + theta[44] * W_std[144] + theta[45] * W_std[145] + theta[46] * W_std[146] + theta[47] * W_std[147] + theta[48] * W_std[148] + theta[49] * W_std[149] + theta[50] * W_std[154] + theta[51] * W_std[155] + theta[52] * W_std[156] + theta[53] * W_std[157] + theta[54] * W_std[158] + theta[55] * W_std[159] + theta[56] * W_std[160] + theta[57] * W_std[161] + theta[58] * W_std[162] + theta[59] * W_std[163];
-  const float t8 = dq[1] * t7;
-  const float t9 = static_cast<float>((t8 > 0.0f) - (t8 < 0.0f));
-  const float t10 = -0.5f * t9;
-  const float t11 = 1.0f / theta[67];
-  const float t12 = 0.5f + 0.5f * t9;
-  const float t13 = theta[67] * (0.5f + t10) + t11 * t12;
   J[84] = W_std[84] * t13;
   J[85] = W_std[85] * t13;
   J[86] = W_std[86] * t13;
@@ -11082,13 +11122,6 @@ void drive_torque_jacobian(const float* q, const float* dq, const float* ddq,
   J[165] = 0.0f;
   J[166] = 0.0f;
   J[167] = 0.0f;
-  const float t14 = theta[0] * W_std[168] + theta[1] * W_std[169] + theta[2] * W_std[170] + theta[3] * W_std[171] + theta[4] * W_std[172] + theta[5] * W_std[173] + theta[6] * W_std[174] + theta[7] * W_std[175] + theta[8] * W_std[176] + theta[9] * W_std[177] + theta[10] * W_std[182] + theta[11] * W_std[183] + theta[12] * W_std[184] + theta[13] * W_std[185] + theta[14] * W_std[186] + theta[15] * W_std[187] + theta[16] * W_std[188] + theta[17] * W_std[189] + theta[18] * W_std[190] + theta[19] * W_std[191] + theta[20] * W_std[196] + theta[21] * W_std[197] + theta[22] * W_std[198] + theta[23] * W_std[199] + theta[24] * W_std[200] + theta[25] * W_std[201] + theta[26] * W_std[202] + theta[27] * W_std[203] + theta[28] * W_std[204] + theta[29] * W_std[205] + theta[30] * W_std[210] + theta[31] * W_std[211] + theta[32] * W_std[212] + theta[33] * W_std[213] + theta[34] * W_std[214] + theta[35] * W_std[215] + theta[36] * W_std[216] + theta[37] * W_std[217] + theta[38] * W_std[218] + theta[39] * W_std[219] + theta[40] * W_std[224] + theta[41] * W_std[225] + theta[42] * W_std[226] + theta[43] * W_std[227] + theta[44] * W_std[228] + theta[45] * W_std[229] + theta[46] * W_std[230] + theta[47] * W_std[231] + theta[48] * W_std[232] + theta[49] * W_std[233] + theta[50] * W_std[238] + theta[51] * W_std[239] + theta[52] * W_std[240] + theta[53] * W_std[241] + theta[54] * W_std[242] + theta[55] * W_std[243] + theta[56] * W_std[244] + theta[57] * W_std[245] + theta[58] * W_std[246] + theta[59] * W_std[247];
-  const float t15 = dq[2] * t14;
-  const float t16 = static_cast<float>((t15 > 0.0f) - (t15 < 0.0f));
-  const float t17 = -0.5f * t16;
-  const float t18 = 1.0f / theta[71];
-  const float t19 = 0.5f + 0.5f * t16;
-  const float t20 = theta[71] * (0.5f + t17) + t18 * t19;
   J[168] = W_std[168] * t20;
   J[169] = W_std[169] * t20;
   J[170] = W_std[170] * t20;
@@ -11173,13 +11206,6 @@ void drive_torque_jacobian(const float* q, const float* dq, const float* ddq,
   J[249] = 0.0f;
   J[250] = 0.0f;
   J[251] = 0.0f;
-  const float t21 = theta[0] * W_std[252] + theta[1] * W_std[253] + theta[2] * W_std[254] + theta[3] * W_std[255] + theta[4] * W_std[256] + theta[5] * W_std[257] + theta[6] * W_std[258] + theta[7] * W_std[259] + theta[8] * W_std[260] + theta[9] * W_std[261] + theta[10] * W_std[266] + theta[11] * W_std[267] + theta[12] * W_std[268] + theta[13] * W_std[269] + theta[14] * W_std[270] + theta[15] * W_std[271] + theta[16] * W_std[272] + theta[17] * W_std[273] + theta[18] * W_std[274] + theta[19] * W_std[275] + theta[20] * W_std[280] + theta[21] * W_std[281] + theta[22] * W_std[282] + theta[23] * W_std[283] + theta[24] * W_std[284] + theta[25] * W_std[285] + theta[26] * W_std[286] + theta[27] * W_std[287] + theta[28] * W_std[288] + theta[29] * W_std[289] + theta[30] * W_std[294] + theta[31] * W_std[295] + theta[32] * W_std[296] + theta[33] * W_std[297] + theta[34] * W_std[298] + theta[35] * W_std[299] + theta[36] * W_std[300] + theta[37] * W_std[301] + theta[38] * W_std[302] + theta[39] * W_std[303] + theta[40] * W_std[308] + theta[41] * W_std[309] + theta[42] * W_std[310] + theta[43] * W_std[311] + theta[44] * W_std[312] + theta[45] * W_std[313] + theta[46] * W_std[314] + theta[47] * W_std[315] + theta[48] * W_std[316] + theta[49] * W_std[317] + theta[50] * W_std[322] + theta[51] * W_std[323] + theta[52] * W_std[324] + theta[53] * W_std[325] + theta[54] * W_std[326] + theta[55] * W_std[327] + theta[56] * W_std[328] + theta[57] * W_std[329] + theta[58] * W_std[330] + theta[59] * W_std[331];
-  const float t22 = dq[3] * t21;
-  const float t23 = static_cast<float>((t22 > 0.0f) - (t22 < 0.0f));
-  const float t24 = -0.5f * t23;
-  const float t25 = 1.0f / theta[75];
-  const float t26 = 0.5f + 0.5f * t23;
-  const float t27 = theta[75] * (0.5f + t24) + t25 * t26;
   J[252] = W_std[252] * t27;
   J[253] = W_std[253] * t27;
   J[254] = W_std[254] * t27;
@@ -11264,13 +11290,6 @@ void drive_torque_jacobian(const float* q, const float* dq, const float* ddq,
   J[333] = 0.0f;
   J[334] = 0.0f;
   J[335] = 0.0f;
-  const float t28 = theta[0] * W_std[336] + theta[1] * W_std[337] + theta[2] * W_std[338] + theta[3] * W_std[339] + theta[4] * W_std[340] + theta[5] * W_std[341] + theta[6] * W_std[342] + theta[7] * W_std[343] + theta[8] * W_std[344] + theta[9] * W_std[345] + theta[10] * W_std[350] + theta[11] * W_std[351] + theta[12] * W_std[352] + theta[13] * W_std[353] + theta[14] * W_std[354] + theta[15] * W_std[355] + theta[16] * W_std[356] + theta[17] * W_std[357] + theta[18] * W_std[358] + theta[19] * W_std[359] + theta[20] * W_std[364] + theta[21] * W_std[365] + theta[22] * W_std[366] + theta[23] * W_std[367] + theta[24] * W_std[368] + theta[25] * W_std[369] + theta[26] * W_std[370] + theta[27] * W_std[371] + theta[28] * W_std[372] + theta[29] * W_std[373] + theta[30] * W_std[378] + theta[31] * W_std[379] + theta[32] * W_std[380] + theta[33] * W_std[381] + theta[34] * W_std[382] + theta[35] * W_std[383] + theta[36] * W_std[384] + theta[37] * W_std[385] + theta[38] * W_std[386] + theta[39] * W_std[387] + theta[40] * W_std[392] + theta[41] * W_std[393] + theta[42] * W_std[394] + theta[43] * W_std[395] + theta[44] * W_std[396] + theta[45] * W_std[397] + theta[46] * W_std[398] + theta[47] * W_std[399] + theta[48] * W_std[400] + theta[49] * W_std[401] + theta[50] * W_std[406] + theta[51] * W_std[407] + theta[52] * W_std[408] + theta[53] * W_std[409] + theta[54] * W_std[410] + theta[55] * W_std[411] + theta[56] * W_std[412] + theta[57] * W_std[413] + theta[58] * W_std[414] + theta[59] * W_std[415];
-  const float t29 = dq[4] * t28;
-  const float t30 = static_cast<float>((t29 > 0.0f) - (t29 < 0.0f));
-  const float t31 = -0.5f * t30;
-  const float t32 = 1.0f / theta[79];
-  const float t33 = 0.5f + 0.5f * t30;
-  const float t34 = theta[79] * (0.5f + t31) + t32 * t33;
   J[336] = W_std[336] * t34;
   J[337] = W_std[337] * t34;
   J[338] = W_std[338] * t34;
@@ -11355,13 +11374,6 @@ void drive_torque_jacobian(const float* q, const float* dq, const float* ddq,
   J[417] = 0.0f;
   J[418] = 0.0f;
   J[419] = 0.0f;
-  const float t35 = theta[0] * W_std[420] + theta[1] * W_std[421] + theta[2] * W_std[422] + theta[3] * W_std[423] + theta[4] * W_std[424] + theta[5] * W_std[425] + theta[6] * W_std[426] + theta[7] * W_std[427] + theta[8] * W_std[428] + theta[9] * W_std[429] + theta[10] * W_std[434] + theta[11] * W_std[435] + theta[12] * W_std[436] + theta[13] * W_std[437] + theta[14] * W_std[438] + theta[15] * W_std[439] + theta[16] * W_std[440] + theta[17] * W_std[441] + theta[18] * W_std[442] + theta[19] * W_std[443] + theta[20] * W_std[448] + theta[21] * W_std[449] + theta[22] * W_std[450] + theta[23] * W_std[451] + theta[24] * W_std[452] + theta[25] * W_std[453] + theta[26] * W_std[454] + theta[27] * W_std[455] + theta[28] * W_std[456] + theta[29] * W_std[457] + theta[30] * W_std[462] + theta[31] * W_std[463] + theta[32] * W_std[464] + theta[33] * W_std[465] + theta[34] * W_std[466] + theta[35] * W_std[467] + theta[36] * W_std[468] + theta[37] * W_std[469] + theta[38] * W_std[470] + theta[39] * W_std[471] + theta[40] * W_std[476] + theta[41] * W_std[477] + theta[42] * W_std[478] + theta[43] * W_std[479] + theta[44] * W_std[480] + theta[45] * W_std[481] + theta[46] * W_std[482] + theta[47] * W_std[483] + theta[48] * W_std[484] + theta[49] * W_std[485] + theta[50] * W_std[490] + theta[51] * W_std[491] + theta[52] * W_std[492] + theta[53] * W_std[493] + theta[54] * W_std[494] + theta[55] * W_std[495] + theta[56] * W_std[496] + theta[57] * W_std[497] + theta[58] * W_std[498] + theta[59] * W_std[499];
-  const float t36 = dq[5] * t35;
-  const float t37 = static_cast<float>((t36 > 0.0f) - (t36 < 0.0f));
-  const float t38 = -0.5f * t37;
-  const float t39 = 1.0f / theta[83];
-  const float t40 = 0.5f + 0.5f * t37;
-  const float t41 = theta[83] * (0.5f + t38) + t39 * t40;
   J[420] = W_std[420] * t41;
   J[421] = W_std[421] * t41;
   J[422] = W_std[422] * t41;

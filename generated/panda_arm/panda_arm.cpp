@@ -20,7 +20,7 @@
 // energy_regressor_sincos               141     76        0
 // power_regressor_sincos                385    233        0
 // drive_torque                          594    468       12
-// drive_torque_jacobian                2300   1458       12
+// drive_torque_jacobian                2328   1479       12
 // drive_torque_state_jacobian          4990   4460       24
 #include "panda_arm.hpp"
 
@@ -13391,14 +13391,14 @@ void drive_torque(const float* q, const float* dq, const float* ddq,
   tau_M[6] = t114 * (theta[107] * (0.5f - 0.5f * t145) + (1.0f / theta[107]) * (0.5f + 0.5f * t145)) + ddq[6] * theta[104] + dq[6] * theta[105] + sg7 * theta[106];
 }
 
-// Jacobian of drive_torque with respect to its parameters theta, for maximum-likelihood
-// estimation (Swevers et al. 2002 eq. 18): J is kDof x kDriveParams, row-major,
-// J[i * kDriveParams + k] = d tau_M_i / d theta_k. Inputs as for drive_torque. The efficiency
-// branch and the Coulomb friction sign count as constant: exact wherever no motor velocity and
-// no power flow tau'_G dq_M is zero. Calls idim_regressor_standard into a local array of
-// kDof * kStandardParams values (on the stack) and applies the chain rule to it.
+// drive_torque (tau_M, kDof values) with its Jacobian with respect to the parameters theta, for
+// maximum-likelihood estimation (Swevers et al. 2002 eq. 18): J is kDof x kDriveParams,
+// row-major, J[i * kDriveParams + k] = d tau_M_i / d theta_k. Inputs as for drive_torque. The
+// efficiency branch and the Coulomb friction sign count as constant: exact wherever no motor
+// velocity and no power flow tau'_G dq_M is zero. Calls idim_regressor_standard into a local
+// array of kDof * kStandardParams values (on the stack) and applies the chain rule to it.
 void drive_torque_jacobian(const double* q, const double* dq, const double* ddq,
-                           const double* theta, double* J) {
+                           const double* theta, double* tau_M, double* J) {
   double W_std[kDof * kStandardParams] = {};
   idim_regressor_standard(q, dq, ddq, W_std);
   const double sg1 = static_cast<double>((dq[0] > 0.0) - (dq[0] < 0.0));
@@ -13415,6 +13415,55 @@ void drive_torque_jacobian(const double* q, const double* dq, const double* ddq,
   const double t4 = 1.0 / theta[83];
   const double t5 = 0.5 + 0.5 * t2;
   const double t6 = theta[83] * (0.5 + t3) + t4 * t5;
+  tau_M[0] = ddq[0] * theta[80] + dq[0] * theta[81] + sg1 * theta[82] + t0 * t6;
+  const double t7 = theta[0] * W_std[101] + theta[1] * W_std[102] + theta[2] * W_std[103] + theta[3] * W_std[104] + theta[4] * W_std[105] + theta[5] * W_std[106] + theta[6] * W_std[107] + theta[7] * W_std[108] + theta[8] * W_std[109] + theta[9] * W_std[110] + theta[10] * W_std[114] + theta[11] * W_std[115] + theta[12] * W_std[116] + theta[13] * W_std[117] + theta[14] * W_std[118] + theta[15] * W_std[119] + theta[16] * W_std[120] + theta[17] * W_std[121] + theta[18] * W_std[122] + theta[19] * W_std[123] + theta[20] * W_std[127] + theta[21] * W_std[128] + theta[22] * W_std[129] + theta[23] * W_std[130] + theta[24] * W_std[131] + theta[25] * W_std[132] + theta[26] * W_std[133] + theta[27] * W_std[134] + theta[28] * W_std[135] + theta[29] * W_std[136] + theta[30] * W_std[140] + theta[31] * W_std[141] + theta[32] * W_std[142] + theta[33] * W_std[143] + theta[34] * W_std[144] + theta[35] * W_std[145] + theta[36] * W_std[146] + theta[37] * W_std[147] + theta[38] * W_std[148] + theta[39] * W_std[149] + theta[40] * W_std[153] + theta[41] * W_std[154] + theta[42] * W_std[155] + theta[43] * W_std[156] + theta[44] * W_std[157] + theta[45] * W_std[158] + theta[46] * W_std[159] + theta[47] * W_std[160] + theta[48] * W_std[161] + theta[49] * W_std[162] + theta[50] * W_std[166] + theta[51] * W_std[167] + theta[52] * W_std[168] + theta[53] * W_std[169] + theta[54] * W_std[170] + theta[55] * W_std[171] + theta[56] * W_std[172] + theta[57] * W_std[173] + theta[58] * W_std[174] + theta[59] * W_std[175] + theta[60] * W_std[179] + theta[61] * W_std[180] + theta[62] * W_std[181] + theta[63] * W_std[182] + theta[64] * W_std[183] + theta[65] * W_std[184] + theta[66] * W_std[185] + theta[67] * W_std[186] + theta[68] * W_std[187] + theta[69] * W_std[188] + theta[70] * W_std[192] + theta[71] * W_std[193] + theta[72] * W_std[194] + theta[73] * W_std[195] + theta[74] * W_std[196] + theta[75] * W_std[197] + theta[76] * W_std[198] + theta[77] * W_std[199] + theta[78] * W_std[200] + theta[79] * W_std[201];
+  const double t8 = dq[1] * t7;
+  const double t9 = static_cast<double>((t8 > 0.0) - (t8 < 0.0));
+  const double t10 = -0.5 * t9;
+  const double t11 = 1.0 / theta[87];
+  const double t12 = 0.5 + 0.5 * t9;
+  const double t13 = theta[87] * (0.5 + t10) + t11 * t12;
+  tau_M[1] = ddq[1] * theta[84] + dq[1] * theta[85] + sg2 * theta[86] + t7 * t13;
+  const double t14 = theta[0] * W_std[202] + theta[1] * W_std[203] + theta[2] * W_std[204] + theta[3] * W_std[205] + theta[4] * W_std[206] + theta[5] * W_std[207] + theta[6] * W_std[208] + theta[7] * W_std[209] + theta[8] * W_std[210] + theta[9] * W_std[211] + theta[10] * W_std[215] + theta[11] * W_std[216] + theta[12] * W_std[217] + theta[13] * W_std[218] + theta[14] * W_std[219] + theta[15] * W_std[220] + theta[16] * W_std[221] + theta[17] * W_std[222] + theta[18] * W_std[223] + theta[19] * W_std[224] + theta[20] * W_std[228] + theta[21] * W_std[229] + theta[22] * W_std[230] + theta[23] * W_std[231] + theta[24] * W_std[232] + theta[25] * W_std[233] + theta[26] * W_std[234] + theta[27] * W_std[235] + theta[28] * W_std[236] + theta[29] * W_std[237] + theta[30] * W_std[241] + theta[31] * W_std[242] + theta[32] * W_std[243] + theta[33] * W_std[244] + theta[34] * W_std[245] + theta[35] * W_std[246] + theta[36] * W_std[247] + theta[37] * W_std[248] + theta[38] * W_std[249] + theta[39] * W_std[250] + theta[40] * W_std[254] + theta[41] * W_std[255] + theta[42] * W_std[256] + theta[43] * W_std[257] + theta[44] * W_std[258] + theta[45] * W_std[259] + theta[46] * W_std[260] + theta[47] * W_std[261] + theta[48] * W_std[262] + theta[49] * W_std[263] + theta[50] * W_std[267] + theta[51] * W_std[268] + theta[52] * W_std[269] + theta[53] * W_std[270] + theta[54] * W_std[271] + theta[55] * W_std[272] + theta[56] * W_std[273] + theta[57] * W_std[274] + theta[58] * W_std[275] + theta[59] * W_std[276] + theta[60] * W_std[280] + theta[61] * W_std[281] + theta[62] * W_std[282] + theta[63] * W_std[283] + theta[64] * W_std[284] + theta[65] * W_std[285] + theta[66] * W_std[286] + theta[67] * W_std[287] + theta[68] * W_std[288] + theta[69] * W_std[289] + theta[70] * W_std[293] + theta[71] * W_std[294] + theta[72] * W_std[295] + theta[73] * W_std[296] + theta[74] * W_std[297] + theta[75] * W_std[298] + theta[76] * W_std[299] + theta[77] * W_std[300] + theta[78] * W_std[301] + theta[79] * W_std[302];
+  const double t15 = dq[2] * t14;
+  const double t16 = static_cast<double>((t15 > 0.0) - (t15 < 0.0));
+  const double t17 = -0.5 * t16;
+  const double t18 = 1.0 / theta[91];
+  const double t19 = 0.5 + 0.5 * t16;
+  const double t20 = theta[91] * (0.5 + t17) + t18 * t19;
+  tau_M[2] = ddq[2] * theta[88] + dq[2] * theta[89] + sg3 * theta[90] + t14 * t20;
+  const double t21 = theta[0] * W_std[303] + theta[1] * W_std[304] + theta[2] * W_std[305] + theta[3] * W_std[306] + theta[4] * W_std[307] + theta[5] * W_std[308] + theta[6] * W_std[309] + theta[7] * W_std[310] + theta[8] * W_std[311] + theta[9] * W_std[312] + theta[10] * W_std[316] + theta[11] * W_std[317] + theta[12] * W_std[318] + theta[13] * W_std[319] + theta[14] * W_std[320] + theta[15] * W_std[321] + theta[16] * W_std[322] + theta[17] * W_std[323] + theta[18] * W_std[324] + theta[19] * W_std[325] + theta[20] * W_std[329] + theta[21] * W_std[330] + theta[22] * W_std[331] + theta[23] * W_std[332] + theta[24] * W_std[333] + theta[25] * W_std[334] + theta[26] * W_std[335] + theta[27] * W_std[336] + theta[28] * W_std[337] + theta[29] * W_std[338] + theta[30] * W_std[342] + theta[31] * W_std[343] + theta[32] * W_std[344] + theta[33] * W_std[345] + theta[34] * W_std[346] + theta[35] * W_std[347] + theta[36] * W_std[348] + theta[37] * W_std[349] + theta[38] * W_std[350] + theta[39] * W_std[351] + theta[40] * W_std[355] + theta[41] * W_std[356] + theta[42] * W_std[357] + theta[43] * W_std[358] + theta[44] * W_std[359] + theta[45] * W_std[360] + theta[46] * W_std[361] + theta[47] * W_std[362] + theta[48] * W_std[363] + theta[49] * W_std[364] + theta[50] * W_std[368] + theta[51] * W_std[369] + theta[52] * W_std[370] + theta[53] * W_std[371] + theta[54] * W_std[372] + theta[55] * W_std[373] + theta[56] * W_std[374] + theta[57] * W_std[375] + theta[58] * W_std[376] + theta[59] * W_std[377] + theta[60] * W_std[381] + theta[61] * W_std[382] + theta[62] * W_std[383] + theta[63] * W_std[384] + theta[64] * W_std[385] + theta[65] * W_std[386] + theta[66] * W_std[387] + theta[67] * W_std[388] + theta[68] * W_std[389] + theta[69] * W_std[390] + theta[70] * W_std[394] + theta[71] * W_std[395] + theta[72] * W_std[396] + theta[73] * W_std[397] + theta[74] * W_std[398] + theta[75] * W_std[399] + theta[76] * W_std[400] + theta[77] * W_std[401] + theta[78] * W_std[402] + theta[79] * W_std[403];
+  const double t22 = dq[3] * t21;
+  const double t23 = static_cast<double>((t22 > 0.0) - (t22 < 0.0));
+  const double t24 = -0.5 * t23;
+  const double t25 = 1.0 / theta[95];
+  const double t26 = 0.5 + 0.5 * t23;
+  const double t27 = theta[95] * (0.5 + t24) + t25 * t26;
+  tau_M[3] = ddq[3] * theta[92] + dq[3] * theta[93] + sg4 * theta[94] + t21 * t27;
+  const double t28 = theta[0] * W_std[404] + theta[1] * W_std[405] + theta[2] * W_std[406] + theta[3] * W_std[407] + theta[4] * W_std[408] + theta[5] * W_std[409] + theta[6] * W_std[410] + theta[7] * W_std[411] + theta[8] * W_std[412] + theta[9] * W_std[413] + theta[10] * W_std[417] + theta[11] * W_std[418] + theta[12] * W_std[419] + theta[13] * W_std[420] + theta[14] * W_std[421] + theta[15] * W_std[422] + theta[16] * W_std[423] + theta[17] * W_std[424] + theta[18] * W_std[425] + theta[19] * W_std[426] + theta[20] * W_std[430] + theta[21] * W_std[431] + theta[22] * W_std[432] + theta[23] * W_std[433] + theta[24] * W_std[434] + theta[25] * W_std[435] + theta[26] * W_std[436] + theta[27] * W_std[437] + theta[28] * W_std[438] + theta[29] * W_std[439] + theta[30] * W_std[443] + theta[31] * W_std[444] + theta[32] * W_std[445] + theta[33] * W_std[446] + theta[34] * W_std[447] + theta[35] * W_std[448] + theta[36] * W_std[449] + theta[37] * W_std[450] + theta[38] * W_std[451] + theta[39] * W_std[452] + theta[40] * W_std[456] + theta[41] * W_std[457] + theta[42] * W_std[458] + theta[43] * W_std[459] + theta[44] * W_std[460] + theta[45] * W_std[461] + theta[46] * W_std[462] + theta[47] * W_std[463] + theta[48] * W_std[464] + theta[49] * W_std[465] + theta[50] * W_std[469] + theta[51] * W_std[470] + theta[52] * W_std[471] + theta[53] * W_std[472] + theta[54] * W_std[473] + theta[55] * W_std[474] + theta[56] * W_std[475] + theta[57] * W_std[476] + theta[58] * W_std[477] + theta[59] * W_std[478] + theta[60] * W_std[482] + theta[61] * W_std[483] + theta[62] * W_std[484] + theta[63] * W_std[485] + theta[64] * W_std[486] + theta[65] * W_std[487] + theta[66] * W_std[488] + theta[67] * W_std[489] + theta[68] * W_std[490] + theta[69] * W_std[491] + theta[70] * W_std[495] + theta[71] * W_std[496] + theta[72] * W_std[497] + theta[73] * W_std[498] + theta[74] * W_std[499] + theta[75] * W_std[500] + theta[76] * W_std[501] + theta[77] * W_std[502] + theta[78] * W_std[503] + theta[79] * W_std[504];
+  const double t29 = dq[4] * t28;
+  const double t30 = static_cast<double>((t29 > 0.0) - (t29 < 0.0));
+  const double t31 = -0.5 * t30;
+  const double t32 = 1.0 / theta[99];
+  const double t33 = 0.5 + 0.5 * t30;
+  const double t34 = theta[99] * (0.5 + t31) + t32 * t33;
+  tau_M[4] = ddq[4] * theta[96] + dq[4] * theta[97] + sg5 * theta[98] + t28 * t34;
+  const double t35 = theta[0] * W_std[505] + theta[1] * W_std[506] + theta[2] * W_std[507] + theta[3] * W_std[508] + theta[4] * W_std[509] + theta[5] * W_std[510] + theta[6] * W_std[511] + theta[7] * W_std[512] + theta[8] * W_std[513] + theta[9] * W_std[514] + theta[10] * W_std[518] + theta[11] * W_std[519] + theta[12] * W_std[520] + theta[13] * W_std[521] + theta[14] * W_std[522] + theta[15] * W_std[523] + theta[16] * W_std[524] + theta[17] * W_std[525] + theta[18] * W_std[526] + theta[19] * W_std[527] + theta[20] * W_std[531] + theta[21] * W_std[532] + theta[22] * W_std[533] + theta[23] * W_std[534] + theta[24] * W_std[535] + theta[25] * W_std[536] + theta[26] * W_std[537] + theta[27] * W_std[538] + theta[28] * W_std[539] + theta[29] * W_std[540] + theta[30] * W_std[544] + theta[31] * W_std[545] + theta[32] * W_std[546] + theta[33] * W_std[547] + theta[34] * W_std[548] + theta[35] * W_std[549] + theta[36] * W_std[550] + theta[37] * W_std[551] + theta[38] * W_std[552] + theta[39] * W_std[553] + theta[40] * W_std[557] + theta[41] * W_std[558] + theta[42] * W_std[559] + theta[43] * W_std[560] + theta[44] * W_std[561] + theta[45] * W_std[562] + theta[46] * W_std[563] + theta[47] * W_std[564] + theta[48] * W_std[565] + theta[49] * W_std[566] + theta[50] * W_std[570] + theta[51] * W_std[571] + theta[52] * W_std[572] + theta[53] * W_std[573] + theta[54] * W_std[574] + theta[55] * W_std[575] + theta[56] * W_std[576] + theta[57] * W_std[577] + theta[58] * W_std[578] + theta[59] * W_std[579] + theta[60] * W_std[583] + theta[61] * W_std[584] + theta[62] * W_std[585] + theta[63] * W_std[586] + theta[64] * W_std[587] + theta[65] * W_std[588] + theta[66] * W_std[589] + theta[67] * W_std[590] + theta[68] * W_std[591] + theta[69] * W_std[592] + theta[70] * W_std[596] + theta[71] * W_std[597] + theta[72] * W_std[598] + theta[73] * W_std[599] + theta[74] * W_std[600] + theta[75] * W_std[601] + theta[76] * W_std[602] + theta[77] * W_std[603] + theta[78] * W_std[604] + theta[79] * W_std[605];
+  const double t36 = dq[5] * t35;
+  const double t37 = static_cast<double>((t36 > 0.0) - (t36 < 0.0));
+  const double t38 = -0.5 * t37;
+  const double t39 = 1.0 / theta[103];
+  const double t40 = 0.5 + 0.5 * t37;
+  const double t41 = theta[103] * (0.5 + t38) + t39 * t40;
+  tau_M[5] = ddq[5] * theta[100] + dq[5] * theta[101] + sg6 * theta[102] + t35 * t41;
+  const double t42 = theta[0] * W_std[606] + theta[1] * W_std[607] + theta[2] * W_std[608] + theta[3] * W_std[609] + theta[4] * W_std[610] + theta[5] * W_std[611] + theta[6] * W_std[612] + theta[7] * W_std[613] + theta[8] * W_std[614] + theta[9] * W_std[615] + theta[10] * W_std[619] + theta[11] * W_std[620] + theta[12] * W_std[621] + theta[13] * W_std[622] + theta[14] * W_std[623] + theta[15] * W_std[624] + theta[16] * W_std[625] + theta[17] * W_std[626] + theta[18] * W_std[627] + theta[19] * W_std[628] + theta[20] * W_std[632] + theta[21] * W_std[633] + theta[22] * W_std[634] + theta[23] * W_std[635] + theta[24] * W_std[636] + theta[25] * W_std[637] + theta[26] * W_std[638] + theta[27] * W_std[639] + theta[28] * W_std[640] + theta[29] * W_std[641] + theta[30] * W_std[645] + theta[31] * W_std[646] + theta[32] * W_std[647] + theta[33] * W_std[648] + theta[34] * W_std[649] + theta[35] * W_std[650] + theta[36] * W_std[651] + theta[37] * W_std[652] + theta[38] * W_std[653] + theta[39] * W_std[654] + theta[40] * W_std[658] + theta[41] * W_std[659] + theta[42] * W_std[660] + theta[43] * W_std[661] + theta[44] * W_std[662] + theta[45] * W_std[663] + theta[46] * W_std[664] + theta[47] * W_std[665] + theta[48] * W_std[666] + theta[49] * W_std[667] + theta[50] * W_std[671] + theta[51] * W_std[672] + theta[52] * W_std[673] + theta[53] * W_std[674] + theta[54] * W_std[675] + theta[55] * W_std[676] + theta[56] * W_std[677] + theta[57] * W_std[678] + theta[58] * W_std[679] + theta[59] * W_std[680] + theta[60] * W_std[684] + theta[61] * W_std[685] + theta[62] * W_std[686] + theta[63] * W_std[687] + theta[64] * W_std[688] + theta[65] * W_std[689] + theta[66] * W_std[690] + theta[67] * W_std[691] + theta[68] * W_std[692] + theta[69] * W_std[693] + theta[70] * W_std[697] + theta[71] * W_std[698] + theta[72] * W_std[699] + theta[73] * W_std[700] + theta[74] * W_std[701] + theta[75] * W_std[702] + theta[76] * W_std[703] + theta[77] * W_std[704] + theta[78] * W_std[705] + theta[79] * W_std[706];
+  const double t43 = dq[6] * t42;
+  const double t44 = static_cast<double>((t43 > 0.0) - (t43 < 0.0));
+  const double t45 = -0.5 * t44;
+  const double t46 = 1.0 / theta[107];
+  const double t47 = 0.5 + 0.5 * t44;
+  const double t48 = theta[107] * (0.5 + t45) + t46 * t47;
+  tau_M[6] = ddq[6] * theta[104] + dq[6] * theta[105] + sg7 * theta[106] + t42 * t48;
   J[0] = W_std[0] * t6;  // XX1
   J[1] = W_std[1] * t6;  // XY1
   J[2] = W_std[2] * t6;  // XZ1
@@ -13523,13 +13572,6 @@ void drive_torque_jacobian(const double* q, const double* dq, const double* ddq,
   J[105] = 0.0;  // Rv7
   J[106] = 0.0;  // Rc7
   J[107] = 0.0;  // Rz7
-  const double t7 = theta[0] * W_std[101] + theta[1] * W_std[102] + theta[2] * W_std[103] + theta[3] * W_std[104] + theta[4] * W_std[105] + theta[5] * W_std[106] + theta[6] * W_std[107] + theta[7] * W_std[108] + theta[8] * W_std[109] + theta[9] * W_std[110] + theta[10] * W_std[114] + theta[11] * W_std[115] + theta[12] * W_std[116] + theta[13] * W_std[117] + theta[14] * W_std[118] + theta[15] * W_std[119] + theta[16] * W_std[120] + theta[17] * W_std[121] + theta[18] * W_std[122] + theta[19] * W_std[123] + theta[20] * W_std[127] + theta[21] * W_std[128] + theta[22] * W_std[129] + theta[23] * W_std[130] + theta[24] * W_std[131] + theta[25] * W_std[132] + theta[26] * W_std[133] + theta[27] * W_std[134] + theta[28] * W_std[135] + theta[29] * W_std[136] + theta[30] * W_std[140] + theta[31] * W_std[141] + theta[32] * W_std[142] + theta[33] * W_std[143] + theta[34] * W_std[144] + theta[35] * W_std[145] + theta[36] * W_std[146] + theta[37] * W_std[147] + theta[38] * W_std[148] + theta[39] * W_std[149] + theta[40] * W_std[153] + theta[41] * W_std[154] + theta[42] * W_std[155] + theta[43] * W_std[156] + theta[44] * W_std[157] + theta[45] * W_std[158] + theta[46] * W_std[159] + theta[47] * W_std[160] + theta[48] * W_std[161] + theta[49] * W_std[162] + theta[50] * W_std[166] + theta[51] * W_std[167] + theta[52] * W_std[168] + theta[53] * W_std[169] + theta[54] * W_std[170] + theta[55] * W_std[171] + theta[56] * W_std[172] + theta[57] * W_std[173] + theta[58] * W_std[174] + theta[59] * W_std[175] + theta[60] * W_std[179] + theta[61] * W_std[180] + theta[62] * W_std[181] + theta[63] * W_std[182] + theta[64] * W_std[183] + theta[65] * W_std[184] + theta[66] * W_std[185] + theta[67] * W_std[186] + theta[68] * W_std[187] + theta[69] * W_std[188] + theta[70] * W_std[192] + theta[71] * W_std[193] + theta[72] * W_std[194] + theta[73] * W_std[195] + theta[74] * W_std[196] + theta[75] * W_std[197] + theta[76] * W_std[198] + theta[77] * W_std[199] + theta[78] * W_std[200] + theta[79] * W_std[201];
-  const double t8 = dq[1] * t7;
-  const double t9 = static_cast<double>((t8 > 0.0) - (t8 < 0.0));
-  const double t10 = -0.5 * t9;
-  const double t11 = 1.0 / theta[87];
-  const double t12 = 0.5 + 0.5 * t9;
-  const double t13 = theta[87] * (0.5 + t10) + t11 * t12;
   J[108] = W_std[101] * t13;
   J[109] = W_std[102] * t13;
   J[110] = W_std[103] * t13;
@@ -13638,13 +13680,6 @@ void drive_torque_jacobian(const double* q, const double* dq, const double* ddq,
   J[213] = 0.0;
   J[214] = 0.0;
   J[215] = 0.0;
-  const double t14 = theta[0] * W_std[202] + theta[1] * W_std[203] + theta[2] * W_std[204] + theta[3] * W_std[205] + theta[4] * W_std[206] + theta[5] * W_std[207] + theta[6] * W_std[208] + theta[7] * W_std[209] + theta[8] * W_std[210] + theta[9] * W_std[211] + theta[10] * W_std[215] + theta[11] * W_std[216] + theta[12] * W_std[217] + theta[13] * W_std[218] + theta[14] * W_std[219] + theta[15] * W_std[220] + theta[16] * W_std[221] + theta[17] * W_std[222] + theta[18] * W_std[223] + theta[19] * W_std[224] + theta[20] * W_std[228] + theta[21] * W_std[229] + theta[22] * W_std[230] + theta[23] * W_std[231] + theta[24] * W_std[232] + theta[25] * W_std[233] + theta[26] * W_std[234] + theta[27] * W_std[235] + theta[28] * W_std[236] + theta[29] * W_std[237] + theta[30] * W_std[241] + theta[31] * W_std[242] + theta[32] * W_std[243] + theta[33] * W_std[244] + theta[34] * W_std[245] + theta[35] * W_std[246] + theta[36] * W_std[247] + theta[37] * W_std[248] + theta[38] * W_std[249] + theta[39] * W_std[250] + theta[40] * W_std[254] + theta[41] * W_std[255] + theta[42] * W_std[256] + theta[43] * W_std[257] + theta[44] * W_std[258] + theta[45] * W_std[259] + theta[46] * W_std[260] + theta[47] * W_std[261] + theta[48] * W_std[262] + theta[49] * W_std[263] + theta[50] * W_std[267] + theta[51] * W_std[268] + theta[52] * W_std[269] + theta[53] * W_std[270] + theta[54] * W_std[271] + theta[55] * W_std[272] + theta[56] * W_std[273] + theta[57] * W_std[274] + theta[58] * W_std[275] + theta[59] * W_std[276] + theta[60] * W_std[280] + theta[61] * W_std[281] + theta[62] * W_std[282] + theta[63] * W_std[283] + theta[64] * W_std[284] + theta[65] * W_std[285] + theta[66] * W_std[286] + theta[67] * W_std[287] + theta[68] * W_std[288] + theta[69] * W_std[289] + theta[70] * W_std[293] + theta[71] * W_std[294] + theta[72] * W_std[295] + theta[73] * W_std[296] + theta[74] * W_std[297] + theta[75] * W_std[298] + theta[76] * W_std[299] + theta[77] * W_std[300] + theta[78] * W_std[301] + theta[79] * W_std[302];
-  const double t15 = dq[2] * t14;
-  const double t16 = static_cast<double>((t15 > 0.0) - (t15 < 0.0));
-  const double t17 = -0.5 * t16;
-  const double t18 = 1.0 / theta[91];
-  const double t19 = 0.5 + 0.5 * t16;
-  const double t20 = theta[91] * (0.5 + t17) + t18 * t19;
   J[216] = W_std[202] * t20;
   J[217] = W_std[203] * t20;
   J[218] = W_std[204] * t20;
@@ -13753,13 +13788,6 @@ void drive_torque_jacobian(const double* q, const double* dq, const double* ddq,
   J[321] = 0.0;
   J[322] = 0.0;
   J[323] = 0.0;
-  const double t21 = theta[0] * W_std[303] + theta[1] * W_std[304] + theta[2] * W_std[305] + theta[3] * W_std[306] + theta[4] * W_std[307] + theta[5] * W_std[308] + theta[6] * W_std[309] + theta[7] * W_std[310] + theta[8] * W_std[311] + theta[9] * W_std[312] + theta[10] * W_std[316] + theta[11] * W_std[317] + theta[12] * W_std[318] + theta[13] * W_std[319] + theta[14] * W_std[320] + theta[15] * W_std[321] + theta[16] * W_std[322] + theta[17] * W_std[323] + theta[18] * W_std[324] + theta[19] * W_std[325] + theta[20] * W_std[329] + theta[21] * W_std[330] + theta[22] * W_std[331] + theta[23] * W_std[332] + theta[24] * W_std[333] + theta[25] * W_std[334] + theta[26] * W_std[335] + theta[27] * W_std[336] + theta[28] * W_std[337] + theta[29] * W_std[338] + theta[30] * W_std[342] + theta[31] * W_std[343] + theta[32] * W_std[344] + theta[33] * W_std[345] + theta[34] * W_std[346] + theta[35] * W_std[347] + theta[36] * W_std[348] + theta[37] * W_std[349] + theta[38] * W_std[350] + theta[39] * W_std[351] + theta[40] * W_std[355] + theta[41] * W_std[356] + theta[42] * W_std[357] + theta[43] * W_std[358] + theta[44] * W_std[359] + theta[45] * W_std[360] + theta[46] * W_std[361] + theta[47] * W_std[362] + theta[48] * W_std[363] + theta[49] * W_std[364] + theta[50] * W_std[368] + theta[51] * W_std[369] + theta[52] * W_std[370] + theta[53] * W_std[371] + theta[54] * W_std[372] + theta[55] * W_std[373] + theta[56] * W_std[374] + theta[57] * W_std[375] + theta[58] * W_std[376] + theta[59] * W_std[377] + theta[60] * W_std[381] + theta[61] * W_std[382] + theta[62] * W_std[383] + theta[63] * W_std[384] + theta[64] * W_std[385] + theta[65] * W_std[386] + theta[66] * W_std[387] + theta[67] * W_std[388] + theta[68] * W_std[389] + theta[69] * W_std[390] + theta[70] * W_std[394] + theta[71] * W_std[395] + theta[72] * W_std[396] + theta[73] * W_std[397] + theta[74] * W_std[398] + theta[75] * W_std[399] + theta[76] * W_std[400] + theta[77] * W_std[401] + theta[78] * W_std[402] + theta[79] * W_std[403];
-  const double t22 = dq[3] * t21;
-  const double t23 = static_cast<double>((t22 > 0.0) - (t22 < 0.0));
-  const double t24 = -0.5 * t23;
-  const double t25 = 1.0 / theta[95];
-  const double t26 = 0.5 + 0.5 * t23;
-  const double t27 = theta[95] * (0.5 + t24) + t25 * t26;
   J[324] = W_std[303] * t27;
   J[325] = W_std[304] * t27;
   J[326] = W_std[305] * t27;
@@ -13868,13 +13896,6 @@ void drive_torque_jacobian(const double* q, const double* dq, const double* ddq,
   J[429] = 0.0;
   J[430] = 0.0;
   J[431] = 0.0;
-  const double t28 = theta[0] * W_std[404] + theta[1] * W_std[405] + theta[2] * W_std[406] + theta[3] * W_std[407] + theta[4] * W_std[408] + theta[5] * W_std[409] + theta[6] * W_std[410] + theta[7] * W_std[411] + theta[8] * W_std[412] + theta[9] * W_std[413] + theta[10] * W_std[417] + theta[11] * W_std[418] + theta[12] * W_std[419] + theta[13] * W_std[420] + theta[14] * W_std[421] + theta[15] * W_std[422] + theta[16] * W_std[423] + theta[17] * W_std[424] + theta[18] * W_std[425] + theta[19] * W_std[426] + theta[20] * W_std[430] + theta[21] * W_std[431] + theta[22] * W_std[432] + theta[23] * W_std[433] + theta[24] * W_std[434] + theta[25] * W_std[435] + theta[26] * W_std[436] + theta[27] * W_std[437] + theta[28] * W_std[438] + theta[29] * W_std[439] + theta[30] * W_std[443] + theta[31] * W_std[444] + theta[32] * W_std[445] + theta[33] * W_std[446] + theta[34] * W_std[447] + theta[35] * W_std[448] + theta[36] * W_std[449] + theta[37] * W_std[450] + theta[38] * W_std[451] + theta[39] * W_std[452] + theta[40] * W_std[456] + theta[41] * W_std[457] + theta[42] * W_std[458] + theta[43] * W_std[459] + theta[44] * W_std[460] + theta[45] * W_std[461] + theta[46] * W_std[462] + theta[47] * W_std[463] + theta[48] * W_std[464] + theta[49] * W_std[465] + theta[50] * W_std[469] + theta[51] * W_std[470] + theta[52] * W_std[471] + theta[53] * W_std[472] + theta[54] * W_std[473] + theta[55] * W_std[474] + theta[56] * W_std[475] + theta[57] * W_std[476] + theta[58] * W_std[477] + theta[59] * W_std[478] + theta[60] * W_std[482] + theta[61] * W_std[483] + theta[62] * W_std[484] + theta[63] * W_std[485] + theta[64] * W_std[486] + theta[65] * W_std[487] + theta[66] * W_std[488] + theta[67] * W_std[489] + theta[68] * W_std[490] + theta[69] * W_std[491] + theta[70] * W_std[495] + theta[71] * W_std[496] + theta[72] * W_std[497] + theta[73] * W_std[498] + theta[74] * W_std[499] + theta[75] * W_std[500] + theta[76] * W_std[501] + theta[77] * W_std[502] + theta[78] * W_std[503] + theta[79] * W_std[504];
-  const double t29 = dq[4] * t28;
-  const double t30 = static_cast<double>((t29 > 0.0) - (t29 < 0.0));
-  const double t31 = -0.5 * t30;
-  const double t32 = 1.0 / theta[99];
-  const double t33 = 0.5 + 0.5 * t30;
-  const double t34 = theta[99] * (0.5 + t31) + t32 * t33;
   J[432] = W_std[404] * t34;
   J[433] = W_std[405] * t34;
   J[434] = W_std[406] * t34;
@@ -13983,13 +14004,6 @@ void drive_torque_jacobian(const double* q, const double* dq, const double* ddq,
   J[537] = 0.0;
   J[538] = 0.0;
   J[539] = 0.0;
-  const double t35 = theta[0] * W_std[505] + theta[1] * W_std[506] + theta[2] * W_std[507] + theta[3] * W_std[508] + theta[4] * W_std[509] + theta[5] * W_std[510] + theta[6] * W_std[511] + theta[7] * W_std[512] + theta[8] * W_std[513] + theta[9] * W_std[514] + theta[10] * W_std[518] + theta[11] * W_std[519] + theta[12] * W_std[520] + theta[13] * W_std[521] + theta[14] * W_std[522] + theta[15] * W_std[523] + theta[16] * W_std[524] + theta[17] * W_std[525] + theta[18] * W_std[526] + theta[19] * W_std[527] + theta[20] * W_std[531] + theta[21] * W_std[532] + theta[22] * W_std[533] + theta[23] * W_std[534] + theta[24] * W_std[535] + theta[25] * W_std[536] + theta[26] * W_std[537] + theta[27] * W_std[538] + theta[28] * W_std[539] + theta[29] * W_std[540] + theta[30] * W_std[544] + theta[31] * W_std[545] + theta[32] * W_std[546] + theta[33] * W_std[547] + theta[34] * W_std[548] + theta[35] * W_std[549] + theta[36] * W_std[550] + theta[37] * W_std[551] + theta[38] * W_std[552] + theta[39] * W_std[553] + theta[40] * W_std[557] + theta[41] * W_std[558] + theta[42] * W_std[559] + theta[43] * W_std[560] + theta[44] * W_std[561] + theta[45] * W_std[562] + theta[46] * W_std[563] + theta[47] * W_std[564] + theta[48] * W_std[565] + theta[49] * W_std[566] + theta[50] * W_std[570] + theta[51] * W_std[571] + theta[52] * W_std[572] + theta[53] * W_std[573] + theta[54] * W_std[574] + theta[55] * W_std[575] + theta[56] * W_std[576] + theta[57] * W_std[577] + theta[58] * W_std[578] + theta[59] * W_std[579] + theta[60] * W_std[583] + theta[61] * W_std[584] + theta[62] * W_std[585] + theta[63] * W_std[586] + theta[64] * W_std[587] + theta[65] * W_std[588] + theta[66] * W_std[589] + theta[67] * W_std[590] + theta[68] * W_std[591] + theta[69] * W_std[592] + theta[70] * W_std[596] + theta[71] * W_std[597] + theta[72] * W_std[598] + theta[73] * W_std[599] + theta[74] * W_std[600] + theta[75] * W_std[601] + theta[76] * W_std[602] + theta[77] * W_std[603] + theta[78] * W_std[604] + theta[79] * W_std[605];
-  const double t36 = dq[5] * t35;
-  const double t37 = static_cast<double>((t36 > 0.0) - (t36 < 0.0));
-  const double t38 = -0.5 * t37;
-  const double t39 = 1.0 / theta[103];
-  const double t40 = 0.5 + 0.5 * t37;
-  const double t41 = theta[103] * (0.5 + t38) + t39 * t40;
   J[540] = W_std[505] * t41;
   J[541] = W_std[506] * t41;
   J[542] = W_std[507] * t41;
@@ -14098,13 +14112,6 @@ void drive_torque_jacobian(const double* q, const double* dq, const double* ddq,
   J[645] = 0.0;
   J[646] = 0.0;
   J[647] = 0.0;
-  const double t42 = theta[0] * W_std[606] + theta[1] * W_std[607] + theta[2] * W_std[608] + theta[3] * W_std[609] + theta[4] * W_std[610] + theta[5] * W_std[611] + theta[6] * W_std[612] + theta[7] * W_std[613] + theta[8] * W_std[614] + theta[9] * W_std[615] + theta[10] * W_std[619] + theta[11] * W_std[620] + theta[12] * W_std[621] + theta[13] * W_std[622] + theta[14] * W_std[623] + theta[15] * W_std[624] + theta[16] * W_std[625] + theta[17] * W_std[626] + theta[18] * W_std[627] + theta[19] * W_std[628] + theta[20] * W_std[632] + theta[21] * W_std[633] + theta[22] * W_std[634] + theta[23] * W_std[635] + theta[24] * W_std[636] + theta[25] * W_std[637] + theta[26] * W_std[638] + theta[27] * W_std[639] + theta[28] * W_std[640] + theta[29] * W_std[641] + theta[30] * W_std[645] + theta[31] * W_std[646] + theta[32] * W_std[647] + theta[33] * W_std[648] + theta[34] * W_std[649] + theta[35] * W_std[650] + theta[36] * W_std[651] + theta[37] * W_std[652] + theta[38] * W_std[653] + theta[39] * W_std[654] + theta[40] * W_std[658] + theta[41] * W_std[659] + theta[42] * W_std[660] + theta[43] * W_std[661] + theta[44] * W_std[662] + theta[45] * W_std[663] + theta[46] * W_std[664] + theta[47] * W_std[665] + theta[48] * W_std[666] + theta[49] * W_std[667] + theta[50] * W_std[671] + theta[51] * W_std[672] + theta[52] * W_std[673] + theta[53] * W_std[674] + theta[54] * W_std[675] + theta[55] * W_std[676] + theta[56] * W_std[677] + theta[57] * W_std[678] + theta[58] * W_std[679] + theta[59] * W_std[680] + theta[60] * W_std[684] + theta[61] * W_std[685] + theta[62] * W_std[686] + theta[63] * W_std[687] + theta[64] * W_std[688] + theta[65] * W_std[689] + theta[66] * W_std[690] + theta[67] * W_std[691] + theta[68] * W_std[692] + theta[69] * W_std[693] + theta[70] * W_std[697] + theta[71] * W_std[698] + theta[72] * W_std[699] + theta[73] * W_std[700] + theta[74] * W_std[701] + theta[75] * W_std[702] + theta[76] * W_std[703] + theta[77] * W_std[704] + theta[78] * W_std[705] + theta[79] * W_std[706];
-  const double t43 = dq[6] * t42;
-  const double t44 = static_cast<double>((t43 > 0.0) - (t43 < 0.0));
-  const double t45 = -0.5 * t44;
-  const double t46 = 1.0 / theta[107];
-  const double t47 = 0.5 + 0.5 * t44;
-  const double t48 = theta[107] * (0.5 + t45) + t46 * t47;
   J[648] = W_std[606] * t48;
   J[649] = W_std[607] * t48;
   J[650] = W_std[608] * t48;
@@ -14215,14 +14222,14 @@ void drive_torque_jacobian(const double* q, const double* dq, const double* ddq,
   J[755] = t42 * (0.5 + t45 - t46 * t46 * t47);
 }
 
-// Jacobian of drive_torque with respect to its parameters theta, for maximum-likelihood
-// estimation (Swevers et al. 2002 eq. 18): J is kDof x kDriveParams, row-major,
-// J[i * kDriveParams + k] = d tau_M_i / d theta_k. Inputs as for drive_torque. The efficiency
-// branch and the Coulomb friction sign count as constant: exact wherever no motor velocity and
-// no power flow tau'_G dq_M is zero. Calls idim_regressor_standard into a local array of
-// kDof * kStandardParams values (on the stack) and applies the chain rule to it.
+// drive_torque (tau_M, kDof values) with its Jacobian with respect to the parameters theta, for
+// maximum-likelihood estimation (Swevers et al. 2002 eq. 18): J is kDof x kDriveParams,
+// row-major, J[i * kDriveParams + k] = d tau_M_i / d theta_k. Inputs as for drive_torque. The
+// efficiency branch and the Coulomb friction sign count as constant: exact wherever no motor
+// velocity and no power flow tau'_G dq_M is zero. Calls idim_regressor_standard into a local
+// array of kDof * kStandardParams values (on the stack) and applies the chain rule to it.
 void drive_torque_jacobian(const float* q, const float* dq, const float* ddq,
-                           const float* theta, float* J) {
+                           const float* theta, float* tau_M, float* J) {
   float W_std[kDof * kStandardParams] = {};
   idim_regressor_standard(q, dq, ddq, W_std);
   const float sg1 = static_cast<float>((dq[0] > 0.0f) - (dq[0] < 0.0f));
@@ -14239,6 +14246,55 @@ void drive_torque_jacobian(const float* q, const float* dq, const float* ddq,
   const float t4 = 1.0f / theta[83];
   const float t5 = 0.5f + 0.5f * t2;
   const float t6 = theta[83] * (0.5f + t3) + t4 * t5;
+  tau_M[0] = ddq[0] * theta[80] + dq[0] * theta[81] + sg1 * theta[82] + t0 * t6;
+  const float t7 = theta[0] * W_std[101] + theta[1] * W_std[102] + theta[2] * W_std[103] + theta[3] * W_std[104] + theta[4] * W_std[105] + theta[5] * W_std[106] + theta[6] * W_std[107] + theta[7] * W_std[108] + theta[8] * W_std[109] + theta[9] * W_std[110] + theta[10] * W_std[114] + theta[11] * W_std[115] + theta[12] * W_std[116] + theta[13] * W_std[117] + theta[14] * W_std[118] + theta[15] * W_std[119] + theta[16] * W_std[120] + theta[17] * W_std[121] + theta[18] * W_std[122] + theta[19] * W_std[123] + theta[20] * W_std[127] + theta[21] * W_std[128] + theta[22] * W_std[129] + theta[23] * W_std[130] + theta[24] * W_std[131] + theta[25] * W_std[132] + theta[26] * W_std[133] + theta[27] * W_std[134] + theta[28] * W_std[135] + theta[29] * W_std[136] + theta[30] * W_std[140] + theta[31] * W_std[141] + theta[32] * W_std[142] + theta[33] * W_std[143] + theta[34] * W_std[144] + theta[35] * W_std[145] + theta[36] * W_std[146] + theta[37] * W_std[147] + theta[38] * W_std[148] + theta[39] * W_std[149] + theta[40] * W_std[153] + theta[41] * W_std[154] + theta[42] * W_std[155] + theta[43] * W_std[156] + theta[44] * W_std[157] + theta[45] * W_std[158] + theta[46] * W_std[159] + theta[47] * W_std[160] + theta[48] * W_std[161] + theta[49] * W_std[162] + theta[50] * W_std[166] + theta[51] * W_std[167] + theta[52] * W_std[168] + theta[53] * W_std[169] + theta[54] * W_std[170] + theta[55] * W_std[171] + theta[56] * W_std[172] + theta[57] * W_std[173] + theta[58] * W_std[174] + theta[59] * W_std[175] + theta[60] * W_std[179] + theta[61] * W_std[180] + theta[62] * W_std[181] + theta[63] * W_std[182] + theta[64] * W_std[183] + theta[65] * W_std[184] + theta[66] * W_std[185] + theta[67] * W_std[186] + theta[68] * W_std[187] + theta[69] * W_std[188] + theta[70] * W_std[192] + theta[71] * W_std[193] + theta[72] * W_std[194] + theta[73] * W_std[195] + theta[74] * W_std[196] + theta[75] * W_std[197] + theta[76] * W_std[198] + theta[77] * W_std[199] + theta[78] * W_std[200] + theta[79] * W_std[201];
+  const float t8 = dq[1] * t7;
+  const float t9 = static_cast<float>((t8 > 0.0f) - (t8 < 0.0f));
+  const float t10 = -0.5f * t9;
+  const float t11 = 1.0f / theta[87];
+  const float t12 = 0.5f + 0.5f * t9;
+  const float t13 = theta[87] * (0.5f + t10) + t11 * t12;
+  tau_M[1] = ddq[1] * theta[84] + dq[1] * theta[85] + sg2 * theta[86] + t7 * t13;
+  const float t14 = theta[0] * W_std[202] + theta[1] * W_std[203] + theta[2] * W_std[204] + theta[3] * W_std[205] + theta[4] * W_std[206] + theta[5] * W_std[207] + theta[6] * W_std[208] + theta[7] * W_std[209] + theta[8] * W_std[210] + theta[9] * W_std[211] + theta[10] * W_std[215] + theta[11] * W_std[216] + theta[12] * W_std[217] + theta[13] * W_std[218] + theta[14] * W_std[219] + theta[15] * W_std[220] + theta[16] * W_std[221] + theta[17] * W_std[222] + theta[18] * W_std[223] + theta[19] * W_std[224] + theta[20] * W_std[228] + theta[21] * W_std[229] + theta[22] * W_std[230] + theta[23] * W_std[231] + theta[24] * W_std[232] + theta[25] * W_std[233] + theta[26] * W_std[234] + theta[27] * W_std[235] + theta[28] * W_std[236] + theta[29] * W_std[237] + theta[30] * W_std[241] + theta[31] * W_std[242] + theta[32] * W_std[243] + theta[33] * W_std[244] + theta[34] * W_std[245] + theta[35] * W_std[246] + theta[36] * W_std[247] + theta[37] * W_std[248] + theta[38] * W_std[249] + theta[39] * W_std[250] + theta[40] * W_std[254] + theta[41] * W_std[255] + theta[42] * W_std[256] + theta[43] * W_std[257] + theta[44] * W_std[258] + theta[45] * W_std[259] + theta[46] * W_std[260] + theta[47] * W_std[261] + theta[48] * W_std[262] + theta[49] * W_std[263] + theta[50] * W_std[267] + theta[51] * W_std[268] + theta[52] * W_std[269] + theta[53] * W_std[270] + theta[54] * W_std[271] + theta[55] * W_std[272] + theta[56] * W_std[273] + theta[57] * W_std[274] + theta[58] * W_std[275] + theta[59] * W_std[276] + theta[60] * W_std[280] + theta[61] * W_std[281] + theta[62] * W_std[282] + theta[63] * W_std[283] + theta[64] * W_std[284] + theta[65] * W_std[285] + theta[66] * W_std[286] + theta[67] * W_std[287] + theta[68] * W_std[288] + theta[69] * W_std[289] + theta[70] * W_std[293] + theta[71] * W_std[294] + theta[72] * W_std[295] + theta[73] * W_std[296] + theta[74] * W_std[297] + theta[75] * W_std[298] + theta[76] * W_std[299] + theta[77] * W_std[300] + theta[78] * W_std[301] + theta[79] * W_std[302];
+  const float t15 = dq[2] * t14;
+  const float t16 = static_cast<float>((t15 > 0.0f) - (t15 < 0.0f));
+  const float t17 = -0.5f * t16;
+  const float t18 = 1.0f / theta[91];
+  const float t19 = 0.5f + 0.5f * t16;
+  const float t20 = theta[91] * (0.5f + t17) + t18 * t19;
+  tau_M[2] = ddq[2] * theta[88] + dq[2] * theta[89] + sg3 * theta[90] + t14 * t20;
+  const float t21 = theta[0] * W_std[303] + theta[1] * W_std[304] + theta[2] * W_std[305] + theta[3] * W_std[306] + theta[4] * W_std[307] + theta[5] * W_std[308] + theta[6] * W_std[309] + theta[7] * W_std[310] + theta[8] * W_std[311] + theta[9] * W_std[312] + theta[10] * W_std[316] + theta[11] * W_std[317] + theta[12] * W_std[318] + theta[13] * W_std[319] + theta[14] * W_std[320] + theta[15] * W_std[321] + theta[16] * W_std[322] + theta[17] * W_std[323] + theta[18] * W_std[324] + theta[19] * W_std[325] + theta[20] * W_std[329] + theta[21] * W_std[330] + theta[22] * W_std[331] + theta[23] * W_std[332] + theta[24] * W_std[333] + theta[25] * W_std[334] + theta[26] * W_std[335] + theta[27] * W_std[336] + theta[28] * W_std[337] + theta[29] * W_std[338] + theta[30] * W_std[342] + theta[31] * W_std[343] + theta[32] * W_std[344] + theta[33] * W_std[345] + theta[34] * W_std[346] + theta[35] * W_std[347] + theta[36] * W_std[348] + theta[37] * W_std[349] + theta[38] * W_std[350] + theta[39] * W_std[351] + theta[40] * W_std[355] + theta[41] * W_std[356] + theta[42] * W_std[357] + theta[43] * W_std[358] + theta[44] * W_std[359] + theta[45] * W_std[360] + theta[46] * W_std[361] + theta[47] * W_std[362] + theta[48] * W_std[363] + theta[49] * W_std[364] + theta[50] * W_std[368] + theta[51] * W_std[369] + theta[52] * W_std[370] + theta[53] * W_std[371] + theta[54] * W_std[372] + theta[55] * W_std[373] + theta[56] * W_std[374] + theta[57] * W_std[375] + theta[58] * W_std[376] + theta[59] * W_std[377] + theta[60] * W_std[381] + theta[61] * W_std[382] + theta[62] * W_std[383] + theta[63] * W_std[384] + theta[64] * W_std[385] + theta[65] * W_std[386] + theta[66] * W_std[387] + theta[67] * W_std[388] + theta[68] * W_std[389] + theta[69] * W_std[390] + theta[70] * W_std[394] + theta[71] * W_std[395] + theta[72] * W_std[396] + theta[73] * W_std[397] + theta[74] * W_std[398] + theta[75] * W_std[399] + theta[76] * W_std[400] + theta[77] * W_std[401] + theta[78] * W_std[402] + theta[79] * W_std[403];
+  const float t22 = dq[3] * t21;
+  const float t23 = static_cast<float>((t22 > 0.0f) - (t22 < 0.0f));
+  const float t24 = -0.5f * t23;
+  const float t25 = 1.0f / theta[95];
+  const float t26 = 0.5f + 0.5f * t23;
+  const float t27 = theta[95] * (0.5f + t24) + t25 * t26;
+  tau_M[3] = ddq[3] * theta[92] + dq[3] * theta[93] + sg4 * theta[94] + t21 * t27;
+  const float t28 = theta[0] * W_std[404] + theta[1] * W_std[405] + theta[2] * W_std[406] + theta[3] * W_std[407] + theta[4] * W_std[408] + theta[5] * W_std[409] + theta[6] * W_std[410] + theta[7] * W_std[411] + theta[8] * W_std[412] + theta[9] * W_std[413] + theta[10] * W_std[417] + theta[11] * W_std[418] + theta[12] * W_std[419] + theta[13] * W_std[420] + theta[14] * W_std[421] + theta[15] * W_std[422] + theta[16] * W_std[423] + theta[17] * W_std[424] + theta[18] * W_std[425] + theta[19] * W_std[426] + theta[20] * W_std[430] + theta[21] * W_std[431] + theta[22] * W_std[432] + theta[23] * W_std[433] + theta[24] * W_std[434] + theta[25] * W_std[435] + theta[26] * W_std[436] + theta[27] * W_std[437] + theta[28] * W_std[438] + theta[29] * W_std[439] + theta[30] * W_std[443] + theta[31] * W_std[444] + theta[32] * W_std[445] + theta[33] * W_std[446] + theta[34] * W_std[447] + theta[35] * W_std[448] + theta[36] * W_std[449] + theta[37] * W_std[450] + theta[38] * W_std[451] + theta[39] * W_std[452] + theta[40] * W_std[456] + theta[41] * W_std[457] + theta[42] * W_std[458] + theta[43] * W_std[459] + theta[44] * W_std[460] + theta[45] * W_std[461] + theta[46] * W_std[462] + theta[47] * W_std[463] + theta[48] * W_std[464] + theta[49] * W_std[465] + theta[50] * W_std[469] + theta[51] * W_std[470] + theta[52] * W_std[471] + theta[53] * W_std[472] + theta[54] * W_std[473] + theta[55] * W_std[474] + theta[56] * W_std[475] + theta[57] * W_std[476] + theta[58] * W_std[477] + theta[59] * W_std[478] + theta[60] * W_std[482] + theta[61] * W_std[483] + theta[62] * W_std[484] + theta[63] * W_std[485] + theta[64] * W_std[486] + theta[65] * W_std[487] + theta[66] * W_std[488] + theta[67] * W_std[489] + theta[68] * W_std[490] + theta[69] * W_std[491] + theta[70] * W_std[495] + theta[71] * W_std[496] + theta[72] * W_std[497] + theta[73] * W_std[498] + theta[74] * W_std[499] + theta[75] * W_std[500] + theta[76] * W_std[501] + theta[77] * W_std[502] + theta[78] * W_std[503] + theta[79] * W_std[504];
+  const float t29 = dq[4] * t28;
+  const float t30 = static_cast<float>((t29 > 0.0f) - (t29 < 0.0f));
+  const float t31 = -0.5f * t30;
+  const float t32 = 1.0f / theta[99];
+  const float t33 = 0.5f + 0.5f * t30;
+  const float t34 = theta[99] * (0.5f + t31) + t32 * t33;
+  tau_M[4] = ddq[4] * theta[96] + dq[4] * theta[97] + sg5 * theta[98] + t28 * t34;
+  const float t35 = theta[0] * W_std[505] + theta[1] * W_std[506] + theta[2] * W_std[507] + theta[3] * W_std[508] + theta[4] * W_std[509] + theta[5] * W_std[510] + theta[6] * W_std[511] + theta[7] * W_std[512] + theta[8] * W_std[513] + theta[9] * W_std[514] + theta[10] * W_std[518] + theta[11] * W_std[519] + theta[12] * W_std[520] + theta[13] * W_std[521] + theta[14] * W_std[522] + theta[15] * W_std[523] + theta[16] * W_std[524] + theta[17] * W_std[525] + theta[18] * W_std[526] + theta[19] * W_std[527] + theta[20] * W_std[531] + theta[21] * W_std[532] + theta[22] * W_std[533] + theta[23] * W_std[534] + theta[24] * W_std[535] + theta[25] * W_std[536] + theta[26] * W_std[537] + theta[27] * W_std[538] + theta[28] * W_std[539] + theta[29] * W_std[540] + theta[30] * W_std[544] + theta[31] * W_std[545] + theta[32] * W_std[546] + theta[33] * W_std[547] + theta[34] * W_std[548] + theta[35] * W_std[549] + theta[36] * W_std[550] + theta[37] * W_std[551] + theta[38] * W_std[552] + theta[39] * W_std[553] + theta[40] * W_std[557] + theta[41] * W_std[558] + theta[42] * W_std[559] + theta[43] * W_std[560] + theta[44] * W_std[561] + theta[45] * W_std[562] + theta[46] * W_std[563] + theta[47] * W_std[564] + theta[48] * W_std[565] + theta[49] * W_std[566] + theta[50] * W_std[570] + theta[51] * W_std[571] + theta[52] * W_std[572] + theta[53] * W_std[573] + theta[54] * W_std[574] + theta[55] * W_std[575] + theta[56] * W_std[576] + theta[57] * W_std[577] + theta[58] * W_std[578] + theta[59] * W_std[579] + theta[60] * W_std[583] + theta[61] * W_std[584] + theta[62] * W_std[585] + theta[63] * W_std[586] + theta[64] * W_std[587] + theta[65] * W_std[588] + theta[66] * W_std[589] + theta[67] * W_std[590] + theta[68] * W_std[591] + theta[69] * W_std[592] + theta[70] * W_std[596] + theta[71] * W_std[597] + theta[72] * W_std[598] + theta[73] * W_std[599] + theta[74] * W_std[600] + theta[75] * W_std[601] + theta[76] * W_std[602] + theta[77] * W_std[603] + theta[78] * W_std[604] + theta[79] * W_std[605];
+  const float t36 = dq[5] * t35;
+  const float t37 = static_cast<float>((t36 > 0.0f) - (t36 < 0.0f));
+  const float t38 = -0.5f * t37;
+  const float t39 = 1.0f / theta[103];
+  const float t40 = 0.5f + 0.5f * t37;
+  const float t41 = theta[103] * (0.5f + t38) + t39 * t40;
+  tau_M[5] = ddq[5] * theta[100] + dq[5] * theta[101] + sg6 * theta[102] + t35 * t41;
+  const float t42 = theta[0] * W_std[606] + theta[1] * W_std[607] + theta[2] * W_std[608] + theta[3] * W_std[609] + theta[4] * W_std[610] + theta[5] * W_std[611] + theta[6] * W_std[612] + theta[7] * W_std[613] + theta[8] * W_std[614] + theta[9] * W_std[615] + theta[10] * W_std[619] + theta[11] * W_std[620] + theta[12] * W_std[621] + theta[13] * W_std[622] + theta[14] * W_std[623] + theta[15] * W_std[624] + theta[16] * W_std[625] + theta[17] * W_std[626] + theta[18] * W_std[627] + theta[19] * W_std[628] + theta[20] * W_std[632] + theta[21] * W_std[633] + theta[22] * W_std[634] + theta[23] * W_std[635] + theta[24] * W_std[636] + theta[25] * W_std[637] + theta[26] * W_std[638] + theta[27] * W_std[639] + theta[28] * W_std[640] + theta[29] * W_std[641] + theta[30] * W_std[645] + theta[31] * W_std[646] + theta[32] * W_std[647] + theta[33] * W_std[648] + theta[34] * W_std[649] + theta[35] * W_std[650] + theta[36] * W_std[651] + theta[37] * W_std[652] + theta[38] * W_std[653] + theta[39] * W_std[654] + theta[40] * W_std[658] + theta[41] * W_std[659] + theta[42] * W_std[660] + theta[43] * W_std[661] + theta[44] * W_std[662] + theta[45] * W_std[663] + theta[46] * W_std[664] + theta[47] * W_std[665] + theta[48] * W_std[666] + theta[49] * W_std[667] + theta[50] * W_std[671] + theta[51] * W_std[672] + theta[52] * W_std[673] + theta[53] * W_std[674] + theta[54] * W_std[675] + theta[55] * W_std[676] + theta[56] * W_std[677] + theta[57] * W_std[678] + theta[58] * W_std[679] + theta[59] * W_std[680] + theta[60] * W_std[684] + theta[61] * W_std[685] + theta[62] * W_std[686] + theta[63] * W_std[687] + theta[64] * W_std[688] + theta[65] * W_std[689] + theta[66] * W_std[690] + theta[67] * W_std[691] + theta[68] * W_std[692] + theta[69] * W_std[693] + theta[70] * W_std[697] + theta[71] * W_std[698] + theta[72] * W_std[699] + theta[73] * W_std[700] + theta[74] * W_std[701] + theta[75] * W_std[702] + theta[76] * W_std[703] + theta[77] * W_std[704] + theta[78] * W_std[705] + theta[79] * W_std[706];
+  const float t43 = dq[6] * t42;
+  const float t44 = static_cast<float>((t43 > 0.0f) - (t43 < 0.0f));
+  const float t45 = -0.5f * t44;
+  const float t46 = 1.0f / theta[107];
+  const float t47 = 0.5f + 0.5f * t44;
+  const float t48 = theta[107] * (0.5f + t45) + t46 * t47;
+  tau_M[6] = ddq[6] * theta[104] + dq[6] * theta[105] + sg7 * theta[106] + t42 * t48;
   J[0] = W_std[0] * t6;  // XX1
   J[1] = W_std[1] * t6;  // XY1
   J[2] = W_std[2] * t6;  // XZ1
@@ -14347,13 +14403,6 @@ void drive_torque_jacobian(const float* q, const float* dq, const float* ddq,
   J[105] = 0.0f;  // Rv7
   J[106] = 0.0f;  // Rc7
   J[107] = 0.0f;  // Rz7
-  const float t7 = theta[0] * W_std[101] + theta[1] * W_std[102] + theta[2] * W_std[103] + theta[3] * W_std[104] + theta[4] * W_std[105] + theta[5] * W_std[106] + theta[6] * W_std[107] + theta[7] * W_std[108] + theta[8] * W_std[109] + theta[9] * W_std[110] + theta[10] * W_std[114] + theta[11] * W_std[115] + theta[12] * W_std[116] + theta[13] * W_std[117] + theta[14] * W_std[118] + theta[15] * W_std[119] + theta[16] * W_std[120] + theta[17] * W_std[121] + theta[18] * W_std[122] + theta[19] * W_std[123] + theta[20] * W_std[127] + theta[21] * W_std[128] + theta[22] * W_std[129] + theta[23] * W_std[130] + theta[24] * W_std[131] + theta[25] * W_std[132] + theta[26] * W_std[133] + theta[27] * W_std[134] + theta[28] * W_std[135] + theta[29] * W_std[136] + theta[30] * W_std[140] + theta[31] * W_std[141] + theta[32] * W_std[142] + theta[33] * W_std[143] + theta[34] * W_std[144] + theta[35] * W_std[145] + theta[36] * W_std[146] + theta[37] * W_std[147] + theta[38] * W_std[148] + theta[39] * W_std[149] + theta[40] * W_std[153] + theta[41] * W_std[154] + theta[42] * W_std[155] + theta[43] * W_std[156] + theta[44] * W_std[157] + theta[45] * W_std[158] + theta[46] * W_std[159] + theta[47] * W_std[160] + theta[48] * W_std[161] + theta[49] * W_std[162] + theta[50] * W_std[166] + theta[51] * W_std[167] + theta[52] * W_std[168] + theta[53] * W_std[169] + theta[54] * W_std[170] + theta[55] * W_std[171] + theta[56] * W_std[172] + theta[57] * W_std[173] + theta[58] * W_std[174] + theta[59] * W_std[175] + theta[60] * W_std[179] + theta[61] * W_std[180] + theta[62] * W_std[181] + theta[63] * W_std[182] + theta[64] * W_std[183] + theta[65] * W_std[184] + theta[66] * W_std[185] + theta[67] * W_std[186] + theta[68] * W_std[187] + theta[69] * W_std[188] + theta[70] * W_std[192] + theta[71] * W_std[193] + theta[72] * W_std[194] + theta[73] * W_std[195] + theta[74] * W_std[196] + theta[75] * W_std[197] + theta[76] * W_std[198] + theta[77] * W_std[199] + theta[78] * W_std[200] + theta[79] * W_std[201];
-  const float t8 = dq[1] * t7;
-  const float t9 = static_cast<float>((t8 > 0.0f) - (t8 < 0.0f));
-  const float t10 = -0.5f * t9;
-  const float t11 = 1.0f / theta[87];
-  const float t12 = 0.5f + 0.5f * t9;
-  const float t13 = theta[87] * (0.5f + t10) + t11 * t12;
   J[108] = W_std[101] * t13;
   J[109] = W_std[102] * t13;
   J[110] = W_std[103] * t13;
@@ -14462,13 +14511,6 @@ void drive_torque_jacobian(const float* q, const float* dq, const float* ddq,
   J[213] = 0.0f;
   J[214] = 0.0f;
   J[215] = 0.0f;
-  const float t14 = theta[0] * W_std[202] + theta[1] * W_std[203] + theta[2] * W_std[204] + theta[3] * W_std[205] + theta[4] * W_std[206] + theta[5] * W_std[207] + theta[6] * W_std[208] + theta[7] * W_std[209] + theta[8] * W_std[210] + theta[9] * W_std[211] + theta[10] * W_std[215] + theta[11] * W_std[216] + theta[12] * W_std[217] + theta[13] * W_std[218] + theta[14] * W_std[219] + theta[15] * W_std[220] + theta[16] * W_std[221] + theta[17] * W_std[222] + theta[18] * W_std[223] + theta[19] * W_std[224] + theta[20] * W_std[228] + theta[21] * W_std[229] + theta[22] * W_std[230] + theta[23] * W_std[231] + theta[24] * W_std[232] + theta[25] * W_std[233] + theta[26] * W_std[234] + theta[27] * W_std[235] + theta[28] * W_std[236] + theta[29] * W_std[237] + theta[30] * W_std[241] + theta[31] * W_std[242] + theta[32] * W_std[243] + theta[33] * W_std[244] + theta[34] * W_std[245] + theta[35] * W_std[246] + theta[36] * W_std[247] + theta[37] * W_std[248] + theta[38] * W_std[249] + theta[39] * W_std[250] + theta[40] * W_std[254] + theta[41] * W_std[255] + theta[42] * W_std[256] + theta[43] * W_std[257] + theta[44] * W_std[258] + theta[45] * W_std[259] + theta[46] * W_std[260] + theta[47] * W_std[261] + theta[48] * W_std[262] + theta[49] * W_std[263] + theta[50] * W_std[267] + theta[51] * W_std[268] + theta[52] * W_std[269] + theta[53] * W_std[270] + theta[54] * W_std[271] + theta[55] * W_std[272] + theta[56] * W_std[273] + theta[57] * W_std[274] + theta[58] * W_std[275] + theta[59] * W_std[276] + theta[60] * W_std[280] + theta[61] * W_std[281] + theta[62] * W_std[282] + theta[63] * W_std[283] + theta[64] * W_std[284] + theta[65] * W_std[285] + theta[66] * W_std[286] + theta[67] * W_std[287] + theta[68] * W_std[288] + theta[69] * W_std[289] + theta[70] * W_std[293] + theta[71] * W_std[294] + theta[72] * W_std[295] + theta[73] * W_std[296] + theta[74] * W_std[297] + theta[75] * W_std[298] + theta[76] * W_std[299] + theta[77] * W_std[300] + theta[78] * W_std[301] + theta[79] * W_std[302];
-  const float t15 = dq[2] * t14;
-  const float t16 = static_cast<float>((t15 > 0.0f) - (t15 < 0.0f));
-  const float t17 = -0.5f * t16;
-  const float t18 = 1.0f / theta[91];
-  const float t19 = 0.5f + 0.5f * t16;
-  const float t20 = theta[91] * (0.5f + t17) + t18 * t19;
   J[216] = W_std[202] * t20;
   J[217] = W_std[203] * t20;
   J[218] = W_std[204] * t20;
@@ -14577,13 +14619,6 @@ void drive_torque_jacobian(const float* q, const float* dq, const float* ddq,
   J[321] = 0.0f;
   J[322] = 0.0f;
   J[323] = 0.0f;
-  const float t21 = theta[0] * W_std[303] + theta[1] * W_std[304] + theta[2] * W_std[305] + theta[3] * W_std[306] + theta[4] * W_std[307] + theta[5] * W_std[308] + theta[6] * W_std[309] + theta[7] * W_std[310] + theta[8] * W_std[311] + theta[9] * W_std[312] + theta[10] * W_std[316] + theta[11] * W_std[317] + theta[12] * W_std[318] + theta[13] * W_std[319] + theta[14] * W_std[320] + theta[15] * W_std[321] + theta[16] * W_std[322] + theta[17] * W_std[323] + theta[18] * W_std[324] + theta[19] * W_std[325] + theta[20] * W_std[329] + theta[21] * W_std[330] + theta[22] * W_std[331] + theta[23] * W_std[332] + theta[24] * W_std[333] + theta[25] * W_std[334] + theta[26] * W_std[335] + theta[27] * W_std[336] + theta[28] * W_std[337] + theta[29] * W_std[338] + theta[30] * W_std[342] + theta[31] * W_std[343] + theta[32] * W_std[344] + theta[33] * W_std[345] + theta[34] * W_std[346] + theta[35] * W_std[347] + theta[36] * W_std[348] + theta[37] * W_std[349] + theta[38] * W_std[350] + theta[39] * W_std[351] + theta[40] * W_std[355] + theta[41] * W_std[356] + theta[42] * W_std[357] + theta[43] * W_std[358] + theta[44] * W_std[359] + theta[45] * W_std[360] + theta[46] * W_std[361] + theta[47] * W_std[362] + theta[48] * W_std[363] + theta[49] * W_std[364] + theta[50] * W_std[368] + theta[51] * W_std[369] + theta[52] * W_std[370] + theta[53] * W_std[371] + theta[54] * W_std[372] + theta[55] * W_std[373] + theta[56] * W_std[374] + theta[57] * W_std[375] + theta[58] * W_std[376] + theta[59] * W_std[377] + theta[60] * W_std[381] + theta[61] * W_std[382] + theta[62] * W_std[383] + theta[63] * W_std[384] + theta[64] * W_std[385] + theta[65] * W_std[386] + theta[66] * W_std[387] + theta[67] * W_std[388] + theta[68] * W_std[389] + theta[69] * W_std[390] + theta[70] * W_std[394] + theta[71] * W_std[395] + theta[72] * W_std[396] + theta[73] * W_std[397] + theta[74] * W_std[398] + theta[75] * W_std[399] + theta[76] * W_std[400] + theta[77] * W_std[401] + theta[78] * W_std[402] + theta[79] * W_std[403];
-  const float t22 = dq[3] * t21;
-  const float t23 = static_cast<float>((t22 > 0.0f) - (t22 < 0.0f));
-  const float t24 = -0.5f * t23;
-  const float t25 = 1.0f / theta[95];
-  const float t26 = 0.5f + 0.5f * t23;
-  const float t27 = theta[95] * (0.5f + t24) + t25 * t26;
   J[324] = W_std[303] * t27;
   J[325] = W_std[304] * t27;
   J[326] = W_std[305] * t27;
@@ -14692,13 +14727,6 @@ void drive_torque_jacobian(const float* q, const float* dq, const float* ddq,
   J[429] = 0.0f;
   J[430] = 0.0f;
   J[431] = 0.0f;
-  const float t28 = theta[0] * W_std[404] + theta[1] * W_std[405] + theta[2] * W_std[406] + theta[3] * W_std[407] + theta[4] * W_std[408] + theta[5] * W_std[409] + theta[6] * W_std[410] + theta[7] * W_std[411] + theta[8] * W_std[412] + theta[9] * W_std[413] + theta[10] * W_std[417] + theta[11] * W_std[418] + theta[12] * W_std[419] + theta[13] * W_std[420] + theta[14] * W_std[421] + theta[15] * W_std[422] + theta[16] * W_std[423] + theta[17] * W_std[424] + theta[18] * W_std[425] + theta[19] * W_std[426] + theta[20] * W_std[430] + theta[21] * W_std[431] + theta[22] * W_std[432] + theta[23] * W_std[433] + theta[24] * W_std[434] + theta[25] * W_std[435] + theta[26] * W_std[436] + theta[27] * W_std[437] + theta[28] * W_std[438] + theta[29] * W_std[439] + theta[30] * W_std[443] + theta[31] * W_std[444] + theta[32] * W_std[445] + theta[33] * W_std[446] + theta[34] * W_std[447] + theta[35] * W_std[448] + theta[36] * W_std[449] + theta[37] * W_std[450] + theta[38] * W_std[451] + theta[39] * W_std[452] + theta[40] * W_std[456] + theta[41] * W_std[457] + theta[42] * W_std[458] + theta[43] * W_std[459] + theta[44] * W_std[460] + theta[45] * W_std[461] + theta[46] * W_std[462] + theta[47] * W_std[463] + theta[48] * W_std[464] + theta[49] * W_std[465] + theta[50] * W_std[469] + theta[51] * W_std[470] + theta[52] * W_std[471] + theta[53] * W_std[472] + theta[54] * W_std[473] + theta[55] * W_std[474] + theta[56] * W_std[475] + theta[57] * W_std[476] + theta[58] * W_std[477] + theta[59] * W_std[478] + theta[60] * W_std[482] + theta[61] * W_std[483] + theta[62] * W_std[484] + theta[63] * W_std[485] + theta[64] * W_std[486] + theta[65] * W_std[487] + theta[66] * W_std[488] + theta[67] * W_std[489] + theta[68] * W_std[490] + theta[69] * W_std[491] + theta[70] * W_std[495] + theta[71] * W_std[496] + theta[72] * W_std[497] + theta[73] * W_std[498] + theta[74] * W_std[499] + theta[75] * W_std[500] + theta[76] * W_std[501] + theta[77] * W_std[502] + theta[78] * W_std[503] + theta[79] * W_std[504];
-  const float t29 = dq[4] * t28;
-  const float t30 = static_cast<float>((t29 > 0.0f) - (t29 < 0.0f));
-  const float t31 = -0.5f * t30;
-  const float t32 = 1.0f / theta[99];
-  const float t33 = 0.5f + 0.5f * t30;
-  const float t34 = theta[99] * (0.5f + t31) + t32 * t33;
   J[432] = W_std[404] * t34;
   J[433] = W_std[405] * t34;
   J[434] = W_std[406] * t34;
@@ -14807,13 +14835,6 @@ void drive_torque_jacobian(const float* q, const float* dq, const float* ddq,
   J[537] = 0.0f;
   J[538] = 0.0f;
   J[539] = 0.0f;
-  const float t35 = theta[0] * W_std[505] + theta[1] * W_std[506] + theta[2] * W_std[507] + theta[3] * W_std[508] + theta[4] * W_std[509] + theta[5] * W_std[510] + theta[6] * W_std[511] + theta[7] * W_std[512] + theta[8] * W_std[513] + theta[9] * W_std[514] + theta[10] * W_std[518] + theta[11] * W_std[519] + theta[12] * W_std[520] + theta[13] * W_std[521] + theta[14] * W_std[522] + theta[15] * W_std[523] + theta[16] * W_std[524] + theta[17] * W_std[525] + theta[18] * W_std[526] + theta[19] * W_std[527] + theta[20] * W_std[531] + theta[21] * W_std[532] + theta[22] * W_std[533] + theta[23] * W_std[534] + theta[24] * W_std[535] + theta[25] * W_std[536] + theta[26] * W_std[537] + theta[27] * W_std[538] + theta[28] * W_std[539] + theta[29] * W_std[540] + theta[30] * W_std[544] + theta[31] * W_std[545] + theta[32] * W_std[546] + theta[33] * W_std[547] + theta[34] * W_std[548] + theta[35] * W_std[549] + theta[36] * W_std[550] + theta[37] * W_std[551] + theta[38] * W_std[552] + theta[39] * W_std[553] + theta[40] * W_std[557] + theta[41] * W_std[558] + theta[42] * W_std[559] + theta[43] * W_std[560] + theta[44] * W_std[561] + theta[45] * W_std[562] + theta[46] * W_std[563] + theta[47] * W_std[564] + theta[48] * W_std[565] + theta[49] * W_std[566] + theta[50] * W_std[570] + theta[51] * W_std[571] + theta[52] * W_std[572] + theta[53] * W_std[573] + theta[54] * W_std[574] + theta[55] * W_std[575] + theta[56] * W_std[576] + theta[57] * W_std[577] + theta[58] * W_std[578] + theta[59] * W_std[579] + theta[60] * W_std[583] + theta[61] * W_std[584] + theta[62] * W_std[585] + theta[63] * W_std[586] + theta[64] * W_std[587] + theta[65] * W_std[588] + theta[66] * W_std[589] + theta[67] * W_std[590] + theta[68] * W_std[591] + theta[69] * W_std[592] + theta[70] * W_std[596] + theta[71] * W_std[597] + theta[72] * W_std[598] + theta[73] * W_std[599] + theta[74] * W_std[600] + theta[75] * W_std[601] + theta[76] * W_std[602] + theta[77] * W_std[603] + theta[78] * W_std[604] + theta[79] * W_std[605];
-  const float t36 = dq[5] * t35;
-  const float t37 = static_cast<float>((t36 > 0.0f) - (t36 < 0.0f));
-  const float t38 = -0.5f * t37;
-  const float t39 = 1.0f / theta[103];
-  const float t40 = 0.5f + 0.5f * t37;
-  const float t41 = theta[103] * (0.5f + t38) + t39 * t40;
   J[540] = W_std[505] * t41;
   J[541] = W_std[506] * t41;
   J[542] = W_std[507] * t41;
@@ -14922,13 +14943,6 @@ void drive_torque_jacobian(const float* q, const float* dq, const float* ddq,
   J[645] = 0.0f;
   J[646] = 0.0f;
   J[647] = 0.0f;
-  const float t42 = theta[0] * W_std[606] + theta[1] * W_std[607] + theta[2] * W_std[608] + theta[3] * W_std[609] + theta[4] * W_std[610] + theta[5] * W_std[611] + theta[6] * W_std[612] + theta[7] * W_std[613] + theta[8] * W_std[614] + theta[9] * W_std[615] + theta[10] * W_std[619] + theta[11] * W_std[620] + theta[12] * W_std[621] + theta[13] * W_std[622] + theta[14] * W_std[623] + theta[15] * W_std[624] + theta[16] * W_std[625] + theta[17] * W_std[626] + theta[18] * W_std[627] + theta[19] * W_std[628] + theta[20] * W_std[632] + theta[21] * W_std[633] + theta[22] * W_std[634] + theta[23] * W_std[635] + theta[24] * W_std[636] + theta[25] * W_std[637] + theta[26] * W_std[638] + theta[27] * W_std[639] + theta[28] * W_std[640] + theta[29] * W_std[641] + theta[30] * W_std[645] + theta[31] * W_std[646] + theta[32] * W_std[647] + theta[33] * W_std[648] + theta[34] * W_std[649] + theta[35] * W_std[650] + theta[36] * W_std[651] + theta[37] * W_std[652] + theta[38] * W_std[653] + theta[39] * W_std[654] + theta[40] * W_std[658] + theta[41] * W_std[659] + theta[42] * W_std[660] + theta[43] * W_std[661] + theta[44] * W_std[662] + theta[45] * W_std[663] + theta[46] * W_std[664] + theta[47] * W_std[665] + theta[48] * W_std[666] + theta[49] * W_std[667] + theta[50] * W_std[671] + theta[51] * W_std[672] + theta[52] * W_std[673] + theta[53] * W_std[674] + theta[54] * W_std[675] + theta[55] * W_std[676] + theta[56] * W_std[677] + theta[57] * W_std[678] + theta[58] * W_std[679] + theta[59] * W_std[680] + theta[60] * W_std[684] + theta[61] * W_std[685] + theta[62] * W_std[686] + theta[63] * W_std[687] + theta[64] * W_std[688] + theta[65] * W_std[689] + theta[66] * W_std[690] + theta[67] * W_std[691] + theta[68] * W_std[692] + theta[69] * W_std[693] + theta[70] * W_std[697] + theta[71] * W_std[698] + theta[72] * W_std[699] + theta[73] * W_std[700] + theta[74] * W_std[701] + theta[75] * W_std[702] + theta[76] * W_std[703] + theta[77] * W_std[704] + theta[78] * W_std[705] + theta[79] * W_std[706];
-  const float t43 = dq[6] * t42;
-  const float t44 = static_cast<float>((t43 > 0.0f) - (t43 < 0.0f));
-  const float t45 = -0.5f * t44;
-  const float t46 = 1.0f / theta[107];
-  const float t47 = 0.5f + 0.5f * t44;
-  const float t48 = theta[107] * (0.5f + t45) + t46 * t47;
   J[648] = W_std[606] * t48;
   J[649] = W_std[607] * t48;
   J[650] = W_std[608] * t48;

@@ -298,6 +298,11 @@ GeneratedModel emit_model(const RobotModel& model, const GenerationInput& input)
         derive_drive_torques(graph, model.drives.motor_from_joint, symbols, drive, tau_G);
     const std::vector<ExprId> J = jacobian(graph, torques.tau_M, drive.theta);
     FunctionSpec spec{"drive_torque_jacobian", {}, {"q", "dq", "ddq", "theta"}};
+    // The residual with its Jacobian (what a least-squares solver asks for at once): tau_M
+    // from the same W_std and intermediates, no second Newton-Euler pass.
+    for (int i = 0; i < dof; ++i) {
+      spec.outputs.push_back({"tau_M[" + std::to_string(i) + "]", torques.tau_M[i], ""});
+    }
     for (int i = 0; i < dof; ++i) {
       for (int k = 0; k < num_drive; ++k) {
         const int index = i * num_drive + k;

@@ -34,7 +34,7 @@ struct GeneratedModel {
 };
 
 /// Format of the generated interface; bump when the generated API changes incompatibly.
-inline constexpr int kFormatVersion = 2;
+inline constexpr int kFormatVersion = 3;
 
 GeneratedModel emit_model(const RobotModel& model, const GenerationInput& input);
 

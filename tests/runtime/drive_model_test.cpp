@@ -196,9 +196,8 @@ struct FakeGenerated {
     reference->torque(find(q), theta, tau);
   }
   static void drive_torque_jacobian(const double* q, const double*, const double*,
-                                    const double* theta, double* J) {
-    double tau[6];
-    reference->torque_jacobian(find(q), theta, tau, J);
+                                    const double* theta, double* tau_M, double* J) {
+    reference->torque_jacobian(find(q), theta, tau_M, J);
   }
 };
 const ReferenceDriveModel* FakeGenerated::reference = nullptr;

@@ -44,8 +44,8 @@ struct Kr150 {
     ::modelgen::kr150::drive_torque(q, dq, ddq, theta, tau_M);
   }
   static void drive_torque_jacobian_float(const float* q, const float* dq, const float* ddq,
-                                          const float* theta, float* J) {
-    ::modelgen::kr150::drive_torque_jacobian(q, dq, ddq, theta, J);
+                                          const float* theta, float* tau_M, float* J) {
+    ::modelgen::kr150::drive_torque_jacobian(q, dq, ddq, theta, tau_M, J);
   }
   static void drive_torque_state_jacobian_float(const float* q, const float* dq, const float* ddq,
                                                 const float* theta, float* J) {
@@ -62,8 +62,8 @@ struct Tx40 {
     ::modelgen::tx40::drive_torque(q, dq, ddq, theta, tau_M);
   }
   static void drive_torque_jacobian_float(const float* q, const float* dq, const float* ddq,
-                                          const float* theta, float* J) {
-    ::modelgen::tx40::drive_torque_jacobian(q, dq, ddq, theta, J);
+                                          const float* theta, float* tau_M, float* J) {
+    ::modelgen::tx40::drive_torque_jacobian(q, dq, ddq, theta, tau_M, J);
   }
   static void drive_torque_state_jacobian_float(const float* q, const float* dq, const float* ddq,
                                                 const float* theta, float* J) {
@@ -186,9 +186,14 @@ class DriveTorque : public testing::Test {
     return tau;
   }
 
-  RowMajor theta_jacobian(const Eigen::VectorXd& x, const Eigen::VectorXd& theta) const {
+  // d tau_M / d theta; `tau`, when not null, receives the torques the same call writes.
+  RowMajor theta_jacobian(const Eigen::VectorXd& x, const Eigen::VectorXd& theta,
+                          Eigen::VectorXd* tau = nullptr) const {
     RowMajor J(n, m);
-    Model::drive_torque_jacobian(x.data(), x.data() + n, x.data() + 2 * n, theta.data(), J.data());
+    Eigen::VectorXd tau_M(n);
+    Model::drive_torque_jacobian(x.data(), x.data() + n, x.data() + 2 * n, theta.data(),
+                                 tau_M.data(), J.data());
+    if (tau != nullptr) *tau = tau_M;
     return J;
   }
 
@@ -322,6 +327,23 @@ TYPED_TEST(DriveTorque, EqualsTheNumericModelOnBothEfficiencyBranches) {
   }
 }
 
+// drive_torque_jacobian writes the residual's torques with the Jacobian (one call per sample
+// in a least-squares fit): they are drive_torque's, and the numeric model's.
+TYPED_TEST(DriveTorque, JacobianCallWritesTheTorquesOfTheNumericModel) {
+  test::Random random(1377);
+  double worst = 0;
+  for (int s = 0; s < 100; ++s) {
+    const Eigen::VectorXd theta = this->random_theta(random);
+    const Eigen::VectorXd x = this->smooth_state(random, theta, 1e-3);
+    Eigen::VectorXd tau;
+    this->theta_jacobian(x, theta, &tau);
+    const Eigen::VectorXd expected = this->numeric(x, theta);
+    worst = std::max(worst, (tau - expected).norm() / expected.norm());
+    EXPECT_LT((tau - this->generated(x, theta)).norm(), 1e-12 * expected.norm());
+  }
+  EXPECT_LT(worst, 1e-12);
+}
+
 TYPED_TEST(DriveTorque, UsesTheMeanOfBothBranchesAtTheSwitch) {
   constexpr int n = TestFixture::n;
   test::Random random(1301);
@@ -364,8 +386,9 @@ TYPED_TEST(DriveTorque, FloatJacobiansAgreeWithDouble) {
     const Eigen::VectorXd x = this->smooth_state(random, theta, 1e-3);
     const Eigen::VectorXf xf = x.cast<float>(), thetaf = theta.cast<float>();
     RowMajorF J(n, m), S(n, 3 * n);
+    Eigen::VectorXf tau(n);
     TypeParam::drive_torque_jacobian_float(xf.data(), xf.data() + n, xf.data() + 2 * n,
-                                           thetaf.data(), J.data());
+                                           thetaf.data(), tau.data(), J.data());
     TypeParam::drive_torque_state_jacobian_float(xf.data(), xf.data() + n, xf.data() + 2 * n,
                                                  thetaf.data(), S.data());
     worst = std::max(worst, relative_difference(J.cast<double>(), this->theta_jacobian(x, theta)));

@@ -113,7 +113,7 @@ class ReferenceDriveModel final : public DriveModel {
 
 /// A generated drive model compiled in: GeneratedDriveModel<modelgen::kr150::Model>, using the
 /// generated kDof, kDriveParams, drive_param_names(), drive_torque(q, dq, ddq, theta, tau_M) and
-/// drive_torque_jacobian(q, dq, ddq, theta, J) (kDof x kDriveParams, row-major).
+/// drive_torque_jacobian(q, dq, ddq, theta, tau_M, J) (J kDof x kDriveParams, row-major).
 template <class Generated>
 class GeneratedDriveModel final : public DriveModel {
  public:
@@ -142,9 +142,8 @@ class GeneratedDriveModel final : public DriveModel {
   }
   void torque_jacobian(Eigen::Index s, const double* theta, double* tau_M,
                        double* J) const override {
-    torque(s, theta, tau_M);
     Generated::drive_torque_jacobian(q_.col(s).data(), dq_.col(s).data(), ddq_.col(s).data(), theta,
-                                     J);
+                                     tau_M, J);
   }
 
  private:

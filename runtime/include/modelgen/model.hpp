@@ -18,7 +18,7 @@ namespace modelgen {
 
 /// The format of generated code this runtime understands (the kFormatVersion of generated
 /// headers).
-constexpr int kGeneratedFormatVersion = 2;
+constexpr int kGeneratedFormatVersion = 3;
 
 class IdentificationModel {
  public:
