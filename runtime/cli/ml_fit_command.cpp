@@ -243,6 +243,8 @@ int run_fit_ml(const Arguments& args) {
         std::find(approaches.begin(), approaches.end(), 3) == approaches.end()) {
       continue;
     }
+    // Approach 1 estimates the rotor inertias.
+    if (name.compare(0, 2, "JM") == 0 && approaches == std::vector<int>{1}) continue;
     // Drive parameters of motors not fitted do not enter eq. 18.
     const int motor = drive_motor(name);
     if (motor > 0 && std::find(axes.begin(), axes.end(), motor - 1) == axes.end()) continue;
