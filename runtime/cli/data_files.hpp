@@ -7,8 +7,10 @@
 #include <string>
 #include <vector>
 
+#include "modelgen/data/trajectory.hpp"
+#include "modelgen/data/trajectory_csv.hpp"
 #include "modelgen/model.hpp"
-#include "modelgen/prepare.hpp"
+#include "modelgen/signal/prepare.hpp"
 #include "runtime/cli/arguments.hpp"
 
 namespace modelgen::internal {

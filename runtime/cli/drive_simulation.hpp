@@ -9,7 +9,7 @@
 #include <Eigen/Core>
 
 #include "generator/description/robot_model.hpp"
-#include "modelgen/data.hpp"
+#include "modelgen/data/trajectory.hpp"
 #include "modelgen/drive_model.hpp"
 #include "runtime/cli/progress.hpp"
 

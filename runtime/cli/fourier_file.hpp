@@ -6,7 +6,7 @@
 
 #include <string>
 
-#include "modelgen/excitation.hpp"
+#include "modelgen/excitation/fourier_trajectory.hpp"
 
 namespace modelgen::internal {
 

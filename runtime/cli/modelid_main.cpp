@@ -8,7 +8,7 @@
 #include <string>
 
 #include "generator/description/diagnostics.hpp"
-#include "modelgen/data.hpp"
+#include "modelgen/data/data_error.hpp"
 #include "modelgen/estimate.hpp"
 #include "runtime/cli/arguments.hpp"
 #include "runtime/cli/commands.hpp"

@@ -13,9 +13,10 @@
 #include <sstream>
 #include <vector>
 
-#include "modelgen/data.hpp"
+#include "modelgen/data/trajectory.hpp"
+#include "modelgen/data/trajectory_csv.hpp"
 #include "modelgen/drive_model.hpp"
-#include "modelgen/excitation.hpp"
+#include "modelgen/excitation/fourier_trajectory.hpp"
 #include "runtime/cli/commands.hpp"
 #include "runtime/cli/drive_simulation.hpp"
 #include "runtime/cli/fourier_file.hpp"

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "modelgen/data.hpp"
+#include "modelgen/data/trajectory.hpp"
 #include "runtime/cli/torque_prediction.hpp"
 
 namespace modelgen::internal {

@@ -8,8 +8,8 @@
 #include <limits>
 #include <stdexcept>
 
-#include "modelgen/prepare.hpp"
-#include "modelgen/preprocess.hpp"
+#include "modelgen/data/trajectory.hpp"
+#include "modelgen/signal/decimation.hpp"
 #include "runtime/cli/progress.hpp"
 #include "runtime/cli/text_format.hpp"
 

@@ -8,7 +8,7 @@
 
 #include <Eigen/Core>
 
-#include "modelgen/data.hpp"
+#include "modelgen/data/trajectory.hpp"
 #include "modelgen/model.hpp"
 
 namespace modelgen::internal {

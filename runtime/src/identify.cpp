@@ -12,7 +12,8 @@
 #include <atomic>
 #include <cmath>
 
-#include "modelgen/preprocess.hpp"
+#include "modelgen/data/trajectory.hpp"
+#include "modelgen/signal/decimation.hpp"
 #include "runtime/src/two_parts.hpp"
 
 namespace modelgen {

@@ -20,7 +20,8 @@
 #include <gtest/gtest.h>
 
 #include "modelgen/identify.hpp"
-#include "modelgen/prepare.hpp"
+#include "modelgen/data/trajectory.hpp"
+#include "modelgen/signal/prepare.hpp"
 #include "runtime/cli/shipped_models.hpp"
 #include "tests/support/test_support.hpp"
 

@@ -6,8 +6,11 @@
 
 #include <gtest/gtest.h>
 
-#include "modelgen/data.hpp"
-#include "modelgen/excitation.hpp"
+#include "modelgen/data/data_error.hpp"
+#include "modelgen/data/trajectory.hpp"
+#include "modelgen/data/trajectory_csv.hpp"
+#include "modelgen/excitation/fourier_trajectory.hpp"
+#include "modelgen/signal/differentiation.hpp"
 #include "tests/support/test_support.hpp"
 
 namespace modelgen {

@@ -10,10 +10,11 @@
 #include <gtest/gtest.h>
 
 #include "generated/tx40/tx40.hpp"
-#include "modelgen/excitation.hpp"
+#include "modelgen/data/trajectory.hpp"
+#include "modelgen/excitation/fourier_trajectory.hpp"
 #include "modelgen/identify.hpp"
 #include "modelgen/model.hpp"
-#include "modelgen/preprocess.hpp"
+#include "modelgen/signal/decimation.hpp"
 #include "tests/support/test_support.hpp"
 
 namespace modelgen {

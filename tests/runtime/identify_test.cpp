@@ -17,7 +17,8 @@
 
 #include "generated/tx40/tx40.hpp"
 #include "generator/description/load_robot.hpp"
-#include "modelgen/excitation.hpp"
+#include "modelgen/data/trajectory.hpp"
+#include "modelgen/excitation/fourier_trajectory.hpp"
 #include "modelgen/identify.hpp"
 #include "modelgen/model.hpp"
 #include "tests/support/kdl_oracle.hpp"

@@ -13,7 +13,9 @@
 #include <nlohmann/json.hpp>
 
 #include "generator/description/load_robot.hpp"
-#include "modelgen/excitation.hpp"
+#include "modelgen/data/trajectory.hpp"
+#include "modelgen/excitation/fourier_trajectory.hpp"
+#include "modelgen/signal/decimation.hpp"
 #include "modelgen/model.hpp"
 #include "runtime/cli/shipped_models.hpp"
 #include "tests/runtime/modelid_cli_support.hpp"

@@ -15,8 +15,10 @@
 #include <nlohmann/json.hpp>
 
 #include "generator/description/load_robot.hpp"
-#include "modelgen/data.hpp"
+#include "modelgen/data/trajectory.hpp"
+#include "modelgen/data/trajectory_csv.hpp"
 #include "modelgen/estimate.hpp"
+#include "modelgen/excitation/fourier_trajectory.hpp"
 #include "modelgen/model.hpp"
 #include "tests/runtime/modelid_cli_support.hpp"
 #include "tests/support/test_support.hpp"

@@ -14,7 +14,8 @@
 #include <Eigen/Core>
 
 #include "generator/description/load_robot.hpp"
-#include "modelgen/data.hpp"
+#include "modelgen/data/trajectory.hpp"
+#include "modelgen/data/trajectory_csv.hpp"
 #include "modelgen/reference_dynamics.hpp"
 #include "tests/runtime/modelid_cli_support.hpp"
 #include "tests/support/test_support.hpp"

@@ -1,14 +1,13 @@
 // Motor torque from current (Swevers 2002 eq. 4): closed-form values, odd symmetry, and the
 // errors for non-finite currents and a wrong number of polynomials.
 
-#include "modelgen/motor_current.hpp"
+#include "modelgen/data/motor_current.hpp"
+#include "modelgen/data/data_error.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <string>
-
-#include "modelgen/data.hpp"
 
 namespace modelgen {
 namespace {

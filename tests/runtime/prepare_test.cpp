@@ -6,7 +6,11 @@
 
 #include <gtest/gtest.h>
 
-#include "modelgen/prepare.hpp"
+#include "modelgen/data/data_error.hpp"
+#include "modelgen/data/trajectory.hpp"
+#include "modelgen/signal/decimation.hpp"
+#include "modelgen/signal/prepare.hpp"
+#include "modelgen/signal/sampling.hpp"
 #include "tests/support/test_support.hpp"
 
 namespace modelgen {

@@ -4,7 +4,15 @@
 // phase, derivatives of filtered signals against analytic ones, and the decimation's
 // linearity (Gautier & Briot eq. 13-14).
 
-#include "modelgen/preprocess.hpp"
+#include "modelgen/data/data_error.hpp"
+#include "modelgen/data/trajectory.hpp"
+#include "modelgen/excitation/fourier_trajectory.hpp"
+#include "modelgen/signal/decimation.hpp"
+#include "modelgen/signal/differentiation.hpp"
+#include "modelgen/signal/filter_plan.hpp"
+#include "modelgen/signal/fourier_fit.hpp"
+#include "modelgen/signal/lowpass.hpp"
+#include "modelgen/signal/period.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -18,8 +26,6 @@
 #include <gtest/gtest.h>
 #include <Eigen/QR>
 
-#include "modelgen/data.hpp"
-#include "modelgen/excitation.hpp"
 #include "tests/support/test_support.hpp"
 
 namespace modelgen {

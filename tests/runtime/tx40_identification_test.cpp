@@ -21,9 +21,9 @@
 #include <Eigen/Core>
 
 #include "generated/tx40/tx40.hpp"
-#include "modelgen/data.hpp"
+#include "modelgen/data/trajectory.hpp"
 #include "modelgen/estimate.hpp"
-#include "modelgen/excitation.hpp"
+#include "modelgen/excitation/fourier_trajectory.hpp"
 #include "modelgen/identify.hpp"
 #include "modelgen/model.hpp"
 #include "tests/support/test_support.hpp"

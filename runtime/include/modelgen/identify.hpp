@@ -10,7 +10,7 @@
 
 #include <Eigen/Core>
 
-#include "modelgen/data.hpp"
+#include "modelgen/data/trajectory.hpp"
 #include "modelgen/estimate.hpp"
 #include "modelgen/model.hpp"
 

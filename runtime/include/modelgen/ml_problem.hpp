@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "modelgen/drive_model.hpp"
-#include "modelgen/prepare.hpp"
+#include "modelgen/signal/prepare.hpp"
 #include "modelgen/transmission.hpp"
 
 namespace ceres {

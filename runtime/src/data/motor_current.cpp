@@ -1,11 +1,11 @@
 // Swevers et al. 2002, eq. 4: motor torque from current by a sign-symmetric cubic polynomial
 // in |I|, times the transmission ratio.
 
-#include "modelgen/motor_current.hpp"
+#include "modelgen/data/motor_current.hpp"
 
 #include <cmath>
 
-#include "modelgen/data.hpp"
+#include "modelgen/data/data_error.hpp"
 
 namespace modelgen {
 

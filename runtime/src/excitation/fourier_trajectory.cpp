@@ -1,6 +1,6 @@
 // Fourier excitation (Swevers et al. 2002, eq. 15-17).
 
-#include "modelgen/excitation.hpp"
+#include "modelgen/excitation/fourier_trajectory.hpp"
 
 #include <cmath>
 #include <numbers>

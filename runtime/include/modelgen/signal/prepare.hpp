@@ -10,8 +10,8 @@
 
 #include <Eigen/Core>
 
-#include "modelgen/data.hpp"
-#include "modelgen/preprocess.hpp"
+#include "modelgen/data/data_error.hpp"
+#include "modelgen/data/trajectory.hpp"
 #include "modelgen/transmission.hpp"
 
 namespace modelgen {
@@ -48,15 +48,5 @@ struct PreparedExperiment {
 /// cut-off above Nyquist, too few samples, ...).
 PreparedExperiment prepare_experiment(Trajectory raw, const Transmission& drive,
                                       const PreparationOptions& options);
-
-/// Decimates every column of q, dq, ddq and tau with the same zero-phase filter (decimate()
-/// of modelgen/preprocess.hpp) and keeps t at the kept rows: for comparing predicted and
-/// measured torques in the frequency range identify() fitted with the same factor. (identify()
-/// itself decimates W and Y, eq. 13-14, not the positions.) Factor 1 leaves x unchanged.
-void decimate_trajectory(Trajectory& x, int factor);
-
-/// Linear interpolation of q, tau (and dq, ddq when present) on t0, t0 + dt, ... up to the last
-/// time. Throws DataError naming the source for dt <= 0 or fewer than 2 samples.
-Trajectory resample_uniform(const Trajectory& x, double dt);
 
 }  // namespace modelgen

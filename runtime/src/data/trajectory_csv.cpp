@@ -1,6 +1,6 @@
 // CSV trajectories: header-driven column lookup, every field checked, errors positioned.
 
-#include "modelgen/data.hpp"
+#include "modelgen/data/trajectory_csv.hpp"
 
 #include <charconv>
 #include <cmath>
@@ -8,6 +8,8 @@
 #include <fstream>
 #include <map>
 #include <sstream>
+#include <string>
+#include <vector>
 
 namespace modelgen {
 
@@ -146,29 +148,6 @@ Trajectory read_trajectory_csv(const std::string& path, int dof, EffortColumns e
     }
   }
   return out;
-}
-
-void differentiate(Trajectory& x) {
-  const Eigen::Index n = x.t.size();
-  if (n < 3) throw DataError(x.source + ": error: fewer than 3 samples to differentiate");
-  const Eigen::Index dof = x.q.cols();
-  Eigen::MatrixXd dq(n - 2, dof), ddq(n - 2, dof);
-  for (Eigen::Index s = 1; s + 1 < n; ++s) {
-    const double h0 = x.t[s] - x.t[s - 1], h1 = x.t[s + 1] - x.t[s];
-    for (Eigen::Index j = 0; j < dof; ++j) {
-      const double a = x.q(s - 1, j), b = x.q(s, j), c = x.q(s + 1, j);
-      // Second-order differences on a non-uniform grid.
-      dq(s - 1, j) =
-          (-h1 / (h0 * (h0 + h1))) * a + ((h1 - h0) / (h0 * h1)) * b + (h0 / (h1 * (h0 + h1))) * c;
-      ddq(s - 1, j) = 2.0 * (a / (h0 * (h0 + h1)) - b / (h0 * h1) + c / (h1 * (h0 + h1)));
-    }
-  }
-  x.t = x.t.segment(1, n - 2).eval();
-  x.q = x.q.middleRows(1, n - 2).eval();
-  x.tau = x.tau.middleRows(1, n - 2).eval();
-  x.dq = dq;
-  x.ddq = ddq;
-  x.has_velocity = true;
 }
 
 void write_trajectory_csv(const std::string& path, const Trajectory& x) {

@@ -1,12 +1,18 @@
 // The two data-preparation routes, chosen by options and by what the file holds.
 
-#include "modelgen/prepare.hpp"
+#include "modelgen/signal/prepare.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
 #include <vector>
+
+#include "modelgen/signal/differentiation.hpp"
+#include "modelgen/signal/filter_plan.hpp"
+#include "modelgen/signal/fourier_fit.hpp"
+#include "modelgen/signal/period.hpp"
+#include "modelgen/signal/sampling.hpp"
 
 namespace modelgen {
 
@@ -43,46 +49,6 @@ bool is_uniform(const Eigen::VectorXd& t) {
 }
 
 }  // namespace
-
-Trajectory resample_uniform(const Trajectory& x, double dt) {
-  const Eigen::Index n = x.t.size();
-  if (n < 2 || !(dt > 0)) {
-    throw DataError(x.source + ": error: cannot resample " + std::to_string(n) +
-                    " samples with a sample time of " + number(dt) + " s");
-  }
-  const Eigen::Index m = static_cast<Eigen::Index>(std::floor((x.t[n - 1] - x.t[0]) / dt)) + 1;
-  Trajectory out;
-  out.source = x.source;
-  out.measured = x.measured;
-  out.has_velocity = x.has_velocity;
-  out.t.resize(m);
-  out.q.resize(m, x.q.cols());
-  out.dq.setZero(m, x.q.cols());
-  out.ddq.setZero(m, x.q.cols());
-  out.tau.resize(m, x.q.cols());
-  Eigen::Index k = 0;
-  for (Eigen::Index s = 0; s < m; ++s) {
-    const double t = x.t[0] + static_cast<double>(s) * dt;
-    while (k + 2 < n && x.t[k + 1] <= t) ++k;
-    const double w = std::clamp((t - x.t[k]) / (x.t[k + 1] - x.t[k]), 0.0, 1.0);
-    out.t[s] = t;
-    out.q.row(s) = (1 - w) * x.q.row(k) + w * x.q.row(k + 1);
-    out.tau.row(s) = (1 - w) * x.tau.row(k) + w * x.tau.row(k + 1);
-    if (x.has_velocity) {
-      out.dq.row(s) = (1 - w) * x.dq.row(k) + w * x.dq.row(k + 1);
-      out.ddq.row(s) = (1 - w) * x.ddq.row(k) + w * x.ddq.row(k + 1);
-    }
-  }
-  return out;
-}
-
-void decimate_trajectory(Trajectory& x, int factor) {
-  if (factor == 1) return;
-  Eigen::VectorXd t(decimated_rows(x.t.size(), factor));
-  for (Eigen::Index s = 0; s < t.size(); ++s) t[s] = x.t[s * factor];
-  x.t = t;
-  for (Eigen::MatrixXd* m : {&x.q, &x.dq, &x.ddq, &x.tau}) *m = decimate(*m, factor);
-}
 
 PreparedExperiment prepare_experiment(Trajectory raw, const Transmission& drive,
                                       const PreparationOptions& options) {

@@ -4,7 +4,7 @@
 
 #include <Eigen/Core>
 
-#include "modelgen/data.hpp"
+#include "modelgen/data/trajectory.hpp"
 
 namespace modelgen {
 

@@ -22,9 +22,9 @@ double motor_torque_from_current(double current, const CurrentTorquePolynomial& 
 
 /// Applies motor_torque_from_current to every sample: `currents` is samples x motors (A), one
 /// polynomial per motor; returns samples x motors torques (N m, link side).
-/// Throws DataError (modelgen/data.hpp) naming `source`, the sample (0-based row) and the column
-/// (i1..in) for a non-finite current, and for a number of polynomials that is not the number of
-/// columns.
+/// Throws DataError (modelgen/data/data_error.hpp) naming `source`, the sample (0-based row)
+/// and the column (i1..in) for a non-finite current, and for a number of polynomials that is not
+/// the number of columns.
 Eigen::MatrixXd motor_torques_from_currents(const Eigen::MatrixXd& currents,
                                             const std::vector<CurrentTorquePolynomial>& motors,
                                             const std::string& source);
