@@ -8,16 +8,21 @@
 #include <optional>
 #include <sstream>
 
-#include "modelgen/identify.hpp"
+#include "modelgen/data/trajectory.hpp"
+#include "modelgen/data/trajectory_csv.hpp"
+#include "modelgen/estimation/essential.hpp"
+#include "modelgen/estimation/identify.hpp"
+#include "modelgen/estimation/least_squares.hpp"
+#include "modelgen/estimation/predict.hpp"
 #include "runtime/cli/commands.hpp"
 #include "runtime/cli/data_files.hpp"
 #include "runtime/cli/estimate_file.hpp"
 #include "runtime/cli/model_source.hpp"
 #include "runtime/cli/parameter_file.hpp"
+#include "runtime/cli/prediction_output.hpp"
 #include "runtime/cli/progress.hpp"
 #include "runtime/cli/text_format.hpp"
 #include "runtime/cli/torque_plots.hpp"
-#include "runtime/cli/torque_prediction.hpp"
 
 namespace modelgen::internal {
 
@@ -123,7 +128,7 @@ EssentialEstimate essential_estimate(const IdentificationModel& model,
   // The torque error of the essential model, comparable with the full fit's whatever the
   // method (the PIM fits power equations, not torques).
   std::vector<Trajectory> compared = data;
-  out.rel_error_norm = predict_decimated(model, compared, beta, decimation).rel_error_norm;
+  out.rel_error_norm = predict_with_progress(model, compared, beta, decimation).rel_error_norm;
   return out;
 }
 
@@ -235,7 +240,7 @@ int run_fit(const Arguments& args) {
     // Torques compared where the fit compared them: after the parallel decimation's filter.
     std::vector<Trajectory> compared = data;
     const TorquePrediction prediction =
-        predict_decimated(model, compared, id.fit.value, experiments.decimation);
+        predict_with_progress(model, compared, id.fit.value, experiments.decimation);
     write_torque_plots(args.one("--plot"), model.name() + " " + method_name(method) + " fit",
                        compared, prediction, std::cout, std::cerr);
   }

@@ -17,12 +17,15 @@
 #include <set>
 #include <sstream>
 
+#include "modelgen/data/trajectory_csv.hpp"
 #include "modelgen/drive_model.hpp"
-#include "modelgen/estimate.hpp"
+#include "modelgen/estimation/estimation_error.hpp"
+#include "modelgen/estimation/identify.hpp"
 #include "modelgen/load_parameters.hpp"
 #include "modelgen/ml_fit.hpp"
 #include "modelgen/ml_linear_route.hpp"
 #include "modelgen/ml_problem.hpp"
+#include "modelgen/signal/prepare.hpp"
 #include "runtime/cli/commands.hpp"
 #include "runtime/cli/data_files.hpp"
 #include "runtime/cli/drive_parameter_file.hpp"

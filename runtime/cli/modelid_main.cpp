@@ -9,7 +9,8 @@
 
 #include "generator/description/diagnostics.hpp"
 #include "modelgen/data/data_error.hpp"
-#include "modelgen/estimate.hpp"
+#include "modelgen/estimation/estimation_error.hpp"
+#include "modelgen/estimation/identify.hpp"
 #include "runtime/cli/arguments.hpp"
 #include "runtime/cli/commands.hpp"
 

@@ -12,9 +12,9 @@
 #include "runtime/cli/estimate_file.hpp"
 #include "runtime/cli/model_source.hpp"
 #include "runtime/cli/parameter_file.hpp"
+#include "runtime/cli/prediction_output.hpp"
 #include "runtime/cli/text_format.hpp"
 #include "runtime/cli/torque_plots.hpp"
-#include "runtime/cli/torque_prediction.hpp"
 
 namespace modelgen::internal {
 
@@ -74,7 +74,7 @@ int run_predict(const Arguments& args) {
   }
   // Compared where identification compares them: after the parallel decimation's filter.
   const TorquePrediction prediction =
-      predict_decimated(model, experiments.data, beta, experiments.decimation);
+      predict_with_progress(model, experiments.data, beta, experiments.decimation);
   const std::vector<Trajectory>& data = experiments.data;
 
   std::cout << "modelid predict: " << model.name() << " on " << data.size() << " experiment(s), "

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "modelgen/data/trajectory.hpp"
-#include "runtime/cli/torque_prediction.hpp"
+#include "runtime/cli/prediction_output.hpp"
 
 namespace modelgen::internal {
 

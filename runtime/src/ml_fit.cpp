@@ -11,7 +11,7 @@
 #include <limits>
 #include <utility>
 
-#include "modelgen/estimate.hpp"
+#include "modelgen/estimation/estimation_error.hpp"
 #include "modelgen/ml_linear_route.hpp"
 
 namespace modelgen {

@@ -13,8 +13,10 @@
 #include <map>
 #include <utility>
 
-#include "modelgen/estimate.hpp"
+#include "modelgen/data/trajectory.hpp"
+#include "modelgen/estimation/estimation_error.hpp"
 #include "modelgen/load_parameters.hpp"
+#include "modelgen/signal/prepare.hpp"
 
 namespace modelgen {
 namespace {

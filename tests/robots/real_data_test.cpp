@@ -19,7 +19,7 @@
 
 #include <gtest/gtest.h>
 
-#include "modelgen/identify.hpp"
+#include "modelgen/estimation/identify.hpp"
 #include "modelgen/data/trajectory.hpp"
 #include "modelgen/signal/prepare.hpp"
 #include "runtime/cli/shipped_models.hpp"

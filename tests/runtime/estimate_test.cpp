@@ -17,7 +17,10 @@
 
 #include "generator/description/load_robot.hpp"
 #include "modelgen/base_parameters.hpp"
-#include "modelgen/estimate.hpp"
+#include "modelgen/estimation/accumulator.hpp"
+#include "modelgen/estimation/essential.hpp"
+#include "modelgen/estimation/estimation_error.hpp"
+#include "modelgen/estimation/least_squares.hpp"
 #include "modelgen/reference_dynamics.hpp"
 #include "tests/support/kdl_oracle.hpp"
 #include "tests/support/test_support.hpp"

@@ -11,8 +11,10 @@
 
 #include "generated/tx40/tx40.hpp"
 #include "modelgen/data/trajectory.hpp"
+#include "modelgen/estimation/estimation_error.hpp"
+#include "modelgen/estimation/identify.hpp"
+#include "modelgen/estimation/least_squares.hpp"
 #include "modelgen/excitation/fourier_trajectory.hpp"
-#include "modelgen/identify.hpp"
 #include "modelgen/model.hpp"
 #include "modelgen/signal/decimation.hpp"
 #include "tests/support/test_support.hpp"

@@ -19,10 +19,11 @@
 #include <vector>
 
 #include "modelgen/drive_model.hpp"
-#include "modelgen/estimate.hpp"
+#include "modelgen/estimation/estimation_error.hpp"
 #include "modelgen/load_parameters.hpp"
 #include "modelgen/ml_linear_route.hpp"
 #include "modelgen/ml_problem.hpp"
+#include "modelgen/signal/prepare.hpp"
 #include "tests/support/kr150_load_scenario.hpp"
 #include "tests/support/ml_residuals_direct.hpp"
 #include "tests/support/test_support.hpp"

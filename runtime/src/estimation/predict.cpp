@@ -2,18 +2,17 @@
 // (tau = W(q, dq, ddq) beta, Gautier & Briot eq. 4-6) and the error statistics of the
 // validation tables (Swevers 2002 Table 3, Gautier & Briot Tables III-IV).
 
-#include "runtime/cli/torque_prediction.hpp"
+#include "modelgen/estimation/predict.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <string>
 
-#include "modelgen/data/trajectory.hpp"
 #include "modelgen/signal/decimation.hpp"
-#include "runtime/cli/progress.hpp"
-#include "runtime/cli/text_format.hpp"
 
-namespace modelgen::internal {
+namespace modelgen {
 
 namespace {
 
@@ -52,7 +51,8 @@ TorquePrediction compare(const std::vector<Trajectory>& data,
 }  // namespace
 
 TorquePrediction predict_torques(const IdentificationModel& model,
-                                 const std::vector<Trajectory>& data, const Eigen::VectorXd& beta) {
+                                 const std::vector<Trajectory>& data, const Eigen::VectorXd& beta,
+                                 const ProgressCallback& progress) {
   const int n = model.dof();
   if (beta.size() != model.num_base_params()) {
     throw std::invalid_argument("predict_torques: " + std::to_string(beta.size()) +
@@ -70,28 +70,31 @@ TorquePrediction predict_torques(const IdentificationModel& model,
     }
     total += m;
   }
-  Progress progress("predicting torques", total);
+  const double per_sample = 1.0 / static_cast<double>(std::max(total, 1LL));
+  const auto report = [&](long long done) {
+    if (progress) progress(static_cast<double>(done) * per_sample);
+  };
   long long done = 0;
   std::vector<double> tau(n);
   std::vector<Eigen::MatrixXd> predicted;
   for (const Trajectory& x : data) {
     Eigen::MatrixXd tau_pred(x.t.size(), n);
     for (Eigen::Index s = 0; s < x.t.size(); ++s, ++done) {
-      if (done % 1024 == 0) progress.update(done);
+      if (done % 1024 == 0) report(done);
       const Eigen::VectorXd q = x.q.row(s), dq = x.dq.row(s), ddq = x.ddq.row(s);
       model.inverse_dynamics(q.data(), dq.data(), ddq.data(), beta.data(), tau.data());
       for (int j = 0; j < n; ++j) tau_pred(s, j) = tau[j];
     }
     predicted.push_back(std::move(tau_pred));
   }
-  progress.update(done);
+  report(done);
   return compare(data, std::move(predicted));
 }
 
 TorquePrediction predict_decimated(const IdentificationModel& model, std::vector<Trajectory>& data,
-                                   const Eigen::VectorXd& beta,
-                                   const std::vector<int>& decimation) {
-  TorquePrediction full = predict_torques(model, data, beta);
+                                   const Eigen::VectorXd& beta, const std::vector<int>& decimation,
+                                   const ProgressCallback& progress) {
+  TorquePrediction full = predict_torques(model, data, beta, progress);
   for (std::size_t e = 0; e < data.size() && e < decimation.size(); ++e) {
     if (decimation[e] == 1) continue;
     // Eq. 14: decimate(W) beta = decimate(W beta), the same filter on both sides.
@@ -101,32 +104,4 @@ TorquePrediction predict_decimated(const IdentificationModel& model, std::vector
   return compare(data, std::move(full.tau_pred));
 }
 
-std::string prediction_csv(const std::vector<Trajectory>& data, const TorquePrediction& prediction,
-                           bool with_positions, bool with_measured) {
-  const Eigen::Index n = data.empty() ? 0 : data.front().q.cols();
-  std::string text = "experiment,t";
-  std::vector<const char*> prefixes = {"tau", "tau_pred", "error"};
-  if (!with_measured) prefixes = {"tau_pred"};
-  if (with_positions) prefixes.insert(prefixes.begin(), "q");
-  for (const char* prefix : prefixes) {
-    for (Eigen::Index j = 0; j < n; ++j) text += "," + std::string(prefix) + std::to_string(j + 1);
-  }
-  text += "\n";
-  for (std::size_t e = 0; e < data.size(); ++e) {
-    const Trajectory& x = data[e];
-    std::vector<const Eigen::MatrixXd*> blocks = {&x.tau, &prediction.tau_pred[e],
-                                                  &prediction.error[e]};
-    if (!with_measured) blocks = {&prediction.tau_pred[e]};
-    if (with_positions) blocks.insert(blocks.begin(), &x.q);
-    for (Eigen::Index s = 0; s < x.t.size(); ++s) {
-      text += std::to_string(e + 1) + "," + shortest(x.t[s]);
-      for (const Eigen::MatrixXd* block : blocks) {
-        for (Eigen::Index j = 0; j < n; ++j) text += "," + shortest((*block)(s, j));
-      }
-      text += "\n";
-    }
-  }
-  return text;
-}
-
-}  // namespace modelgen::internal
+}  // namespace modelgen

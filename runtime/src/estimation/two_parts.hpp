@@ -6,7 +6,7 @@
 #include <system_error>
 #include <thread>
 
-namespace modelgen::internal {
+namespace modelgen::detail {
 
 /// Runs part(0, true) in the calling thread and part(1, false) in a second thread when
 /// `parallel`, else part(0, true) then part(1, true) here (also when no thread can be had).
@@ -42,4 +42,4 @@ void run_two_parts(bool parallel, const Part& part, const OnError& on_error) {
   }
 }
 
-}  // namespace modelgen::internal
+}  // namespace modelgen::detail

@@ -3,15 +3,15 @@
 // ||tau - tau_pred|| / ||tau|| (Gautier & Briot, Tables III-IV).
 #pragma once
 
-#include <string>
 #include <vector>
 
 #include <Eigen/Core>
 
 #include "modelgen/data/trajectory.hpp"
+#include "modelgen/estimation/progress.hpp"
 #include "modelgen/model.hpp"
 
-namespace modelgen::internal {
+namespace modelgen {
 
 struct TorquePrediction {
   /// Per experiment, samples x dof like its Trajectory: predicted torques (N m, N) and
@@ -28,25 +28,20 @@ struct TorquePrediction {
 
 /// tau_pred = model.inverse_dynamics(q, dq, ddq, beta) for every sample of every experiment
 /// (each with dq, ddq set and dof() columns); beta has num_base_params() entries.
-/// Throws std::invalid_argument on mismatched sizes.
+/// `progress`, when given, is called with the fraction of the samples done, every 1024 samples
+/// and once at the end. Throws std::invalid_argument on mismatched sizes.
 TorquePrediction predict_torques(const IdentificationModel& model,
-                                 const std::vector<Trajectory>& data, const Eigen::VectorXd& beta);
+                                 const std::vector<Trajectory>& data, const Eigen::VectorXd& beta,
+                                 const ProgressCallback& progress = nullptr);
 
 /// The comparison identification makes after the parallel decimation (Gautier & Briot eq.
 /// 13-14): torques predicted at the full rate, then for each experiment with a factor
 /// decimation[e] > 1 the measured and the predicted torques pass the same decimation filter
 /// (decimate(W) beta = decimate(W beta)); data[e] is replaced by its decimated trajectory
 /// (decimate_trajectory), so rows of the prediction and of data still match. Factors of 1, or
-/// missing, leave an experiment as it is.
+/// missing, leave an experiment as it is. `progress` as for predict_torques.
 TorquePrediction predict_decimated(const IdentificationModel& model, std::vector<Trajectory>& data,
-                                   const Eigen::VectorXd& beta, const std::vector<int>& decimation);
+                                   const Eigen::VectorXd& beta, const std::vector<int>& decimation,
+                                   const ProgressCallback& progress = nullptr);
 
-/// CSV of the prediction, one row per sample, experiments one after the other: columns
-/// experiment (1-based, in the order of `data`), t, then q1..qn when `with_positions`,
-/// tau1..taun (measured), tau_pred1..tau_predn, error1..errorn (measured - predicted); only
-/// tau_pred1..tau_predn without `with_measured` (data without torque columns).
-/// Numbers in shortest round-trip form.
-std::string prediction_csv(const std::vector<Trajectory>& data, const TorquePrediction& prediction,
-                           bool with_positions, bool with_measured = true);
-
-}  // namespace modelgen::internal
+}  // namespace modelgen

@@ -3,7 +3,6 @@
 // eq. 14-20), and the torque prediction errors per axis.
 #pragma once
 
-#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -11,7 +10,10 @@
 #include <Eigen/Core>
 
 #include "modelgen/data/trajectory.hpp"
-#include "modelgen/estimate.hpp"
+#include "modelgen/estimation/essential.hpp"
+#include "modelgen/estimation/estimation_error.hpp"
+#include "modelgen/estimation/least_squares.hpp"
+#include "modelgen/estimation/progress.hpp"
 #include "modelgen/model.hpp"
 
 namespace modelgen {
@@ -38,17 +40,15 @@ struct Identification {
   EssentialParameters essential;
 };
 
-/// Progress of a long identification: `fraction` of the work done, increasing from 0 to 1.
-using ProgressCallback = std::function<void(double fraction)>;
-
 /// What identify() does besides the plain fit.
 struct IdentifyOptions {
   /// Parallel decimation factor per experiment (Gautier & Briot eq. 13-14; empty: none). For an
   /// experiment with a factor n_d > 1, its W (samples x dof rows) and torque vector are built
   /// whole, every column of each joint's rows and the torques low-passed with the same
-  /// zero-phase filter and one sample in n_d kept (modelgen/preprocess.hpp decimate()); the
-  /// PIM's power rows and powers likewise. Memory then grows with that experiment's samples
-  /// times the base parameters for the duration of its reduction.
+  /// zero-phase filter and one sample in n_d kept (decimate() of
+  /// modelgen/signal/decimation.hpp); the PIM's power rows and powers likewise. Memory then
+  /// grows with that experiment's samples times the base parameters for the duration of its
+  /// reduction.
   std::vector<int> decimation;
   ProgressCallback progress;
   /// When set, also the essential parameters for this r_sigma (Identification::essential).

@@ -1,0 +1,211 @@
+// From trajectories to base-parameter estimates (Gautier & Briot eq. 14-20): the model's
+// regressor (IDIM, eq. 4-7: one equation per joint and sample) or power regressor (PIM,
+// eq. 9-10: one per sample) evaluated over blocks of samples into a small buffer and reduced at
+// once by a LeastSquaresAccumulator, the samples split in two threads; then OLS or WLS and the
+// torque errors per axis. Memory: the accumulators' factors and one block per thread, whatever
+// the number of samples; W is never stored.
+
+#include "modelgen/estimation/identify.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "modelgen/signal/decimation.hpp"
+#include "runtime/src/estimation/identify_equations.hpp"
+#include "runtime/src/estimation/two_parts.hpp"
+
+namespace modelgen {
+
+namespace {
+
+// From this many samples on, the two halves of the samples are processed in two threads.
+constexpr Eigen::Index kParallelSamples = 4000;
+
+using detail::build_decimated;
+using detail::build_equations;
+using detail::DecimatedExperiment;
+using detail::Piece;
+using detail::Progress;
+using detail::split_samples;
+using detail::torque_errors;
+
+// The first non-finite value of a trajectory, as an error naming source, sample and column.
+void check_finite(const Trajectory& x, int n) {
+  const std::pair<const Eigen::MatrixXd*, const char*> columns[] = {
+      {&x.q, "q"}, {&x.dq, "dq"}, {&x.ddq, "ddq"}, {&x.tau, "tau"}};
+  for (const auto& [a, name] : columns) {
+    if (a->allFinite()) continue;
+    for (Eigen::Index s = 0; s < a->rows(); ++s) {
+      for (int j = 0; j < n; ++j) {
+        const double v = (*a)(s, j);
+        if (std::isfinite(v)) continue;
+        throw EstimationError(x.source + ": sample " + std::to_string(s + 1) + ": '" + name +
+                              std::to_string(j + 1) + "' is " +
+                              (std::isnan(v) ? "nan"
+                               : v > 0       ? "inf"
+                                             : "-inf") +
+                              "; measured data must be finite");
+      }
+    }
+  }
+}
+
+}  // namespace
+
+Method parse_method(const std::string& text) {
+  if (text == "ols") return Method::kOls;
+  if (text == "wls") return Method::kWls;
+  if (text == "pim-wls") return Method::kPimWls;
+  throw EstimationError("unknown method '" + text + "': expected ols, wls or pim-wls");
+}
+
+Identification identify(const IdentificationModel& model, const std::vector<Trajectory>& data,
+                        Method method, const ProgressCallback& progress_callback) {
+  IdentifyOptions options;
+  options.progress = progress_callback;
+  return identify(model, data, method, options);
+}
+
+Identification identify(const IdentificationModel& model, const std::vector<Trajectory>& data,
+                        Method method, const IdentifyOptions& options) {
+  const int n = model.dof(), nb = model.num_base_params();
+  if (data.empty()) throw EstimationError("no trajectories: identification needs data");
+  std::vector<int> decimation = options.decimation;
+  if (decimation.empty()) decimation.assign(data.size(), 1);
+  if (decimation.size() != data.size()) {
+    throw EstimationError(std::to_string(decimation.size()) + " decimation factors for " +
+                          std::to_string(data.size()) + " experiments: give one per experiment");
+  }
+  for (std::size_t e = 0; e < data.size(); ++e) {
+    if (decimation[e] < 1) {
+      throw EstimationError(data[e].source + ": decimation factor " +
+                            std::to_string(decimation[e]) + ": it must be at least 1");
+    }
+    if (decimation[e] > 1 && decimated_rows(data[e].t.size(), decimation[e]) < 2) {
+      throw EstimationError(data[e].source + ": decimation by " + std::to_string(decimation[e]) +
+                            " leaves fewer than 2 of its " + std::to_string(data[e].t.size()) +
+                            " samples");
+    }
+  }
+  Eigen::Index samples = 0;
+  for (const Trajectory& x : data) {
+    if (x.q.cols() != n) {
+      throw EstimationError(x.source + ": " + std::to_string(x.q.cols()) +
+                            " joints, the model has " + std::to_string(n));
+    }
+    const Eigen::Index m = x.t.size();
+    if (m == 0) throw EstimationError(x.source + ": no samples");
+    for (const Eigen::MatrixXd* a : {&x.q, &x.dq, &x.ddq, &x.tau}) {
+      if (a->rows() != m || a->cols() != n) {
+        throw EstimationError(x.source + ": q, dq, ddq and tau need " + std::to_string(m) +
+                              " rows (one per time) and " + std::to_string(n) + " columns");
+      }
+    }
+    check_finite(x, n);
+    samples += m;
+  }
+  const bool power = method == Method::kPimWls;
+  const int groups = static_cast<int>(data.size()) * (power ? 1 : n);
+  const bool parallel = samples >= kParallelSamples;
+  const std::array<std::vector<Piece>, 2> parts = split_samples(data, decimation);
+  Progress progress(options.progress, samples);
+  progress.report(0.0);
+
+  std::array<LeastSquaresAccumulator, 2> equations = {LeastSquaresAccumulator(nb, groups),
+                                                      LeastSquaresAccumulator(nb, groups)};
+  detail::run_two_parts(
+      parallel,
+      [&](int part, bool caller) {
+        build_equations(model, data, parts[part], power, equations[part], progress, caller);
+      },
+      [&progress] { progress.stop(); });
+  equations[0].merge(std::move(equations[1]));
+  std::vector<std::string> labels;
+  for (const Trajectory& x : data) {
+    if (power) {
+      labels.push_back(x.source + " (power equations)");
+    } else {
+      for (int j = 0; j < n; ++j) labels.push_back(x.source + ", joint " + std::to_string(j + 1));
+    }
+  }
+  equations[0].name_groups(std::move(labels));
+  // Decimated experiments, one at a time: each needs its whole W before filtering.
+  std::vector<DecimatedExperiment> decimated;
+  Eigen::Index used_samples = 0;
+  for (std::size_t e = 0; e < data.size(); ++e) {
+    if (decimation[e] == 1) {
+      used_samples += data[e].t.size();
+      continue;
+    }
+    decimated.push_back(
+        build_decimated(model, data[e], e, decimation[e], power, equations[0], progress));
+    used_samples += decimated.back().W.rows() / n;
+  }
+
+  Identification out;
+  out.names = model.base_param_names();
+  out.samples = used_samples;
+  try {
+    out.fit =
+        method == Method::kOls ? equations[0].fit_ols(out.names) : equations[0].fit_wls(out.names);
+  } catch (const EstimationError& e) {
+    // Too few equations or an unexcited column may come from the decimation: say so.
+    std::string hint;
+    for (std::size_t k = 0; k < data.size(); ++k) {
+      if (decimation[k] > 1) {
+        hint += (hint.empty() ? " (decimated: " : ", ") + data[k].source + " by " +
+                std::to_string(decimation[k]);
+      }
+    }
+    if (hint.empty()) throw;
+    throw EstimationError(std::string(e.what()) + hint +
+                          "; a smaller decimation factor keeps more equations)");
+  }
+  Eigen::VectorXd error_squares = Eigen::VectorXd::Zero(n), torque_squares = error_squares;
+  if (power) {
+    progress.start_pass();
+    std::array<Eigen::VectorXd, 2> errors, torques;
+    detail::run_two_parts(
+        parallel,
+        [&](int part, bool caller) {
+          torque_errors(model, data, parts[part], out.fit.value, errors[part], torques[part],
+                        progress, caller);
+        },
+        [&progress] { progress.stop(); });
+    error_squares = errors[0] + errors[1];
+    torque_squares = torques[0] + torques[1];
+    // Decimated experiments: their decimated torques against their decimated IDIM rows.
+    for (const DecimatedExperiment& d : decimated) {
+      const Eigen::VectorXd residual = d.tau - d.W * out.fit.value;
+      for (Eigen::Index r = 0; r < residual.size(); ++r) {
+        error_squares[r % n] += residual[r] * residual[r];
+        torque_squares[r % n] += d.tau[r] * d.tau[r];
+      }
+    }
+  } else {
+    // The IDIM's groups are the torque equations of one joint and experiment: their residual
+    // norms come from the factors, ||tau_g - W_g beta|| = ||R_g [beta; -1]||.
+    for (int g = 0; g < groups; ++g) {
+      const double r = equations[0].residual_norm(g, out.fit.value), y = equations[0].y_norm(g);
+      error_squares[g % n] += r * r;
+      torque_squares[g % n] += y * y;
+    }
+  }
+  // Gautier & Briot Tables III-IV: the relative error norm over all torque equations.
+  out.torque_rel_error_norm =
+      std::sqrt(error_squares.sum()) / std::max(std::sqrt(torque_squares.sum()), 1e-300);
+  out.rms_error = (error_squares / static_cast<double>(used_samples)).cwiseSqrt();
+  out.rms_torque = (torque_squares / static_cast<double>(used_samples)).cwiseSqrt();
+  if (options.essential_r_sigma) {
+    out.essential = essential_parameters(equations[0], method != Method::kOls, out.names,
+                                         *options.essential_r_sigma);
+  }
+  progress.report(1.0);
+  return out;
+}
+
+}  // namespace modelgen

@@ -1,0 +1,218 @@
+// Least squares through orthogonal factorizations only, never W^T W. Rows are reduced block by
+// block per group (TSQR): the factor R_g of [W_g y_g] is the Householder QR of the previous
+// factor stacked on the next rows, over the columns the group has seen nonzero. The Reducer
+// holds the factors; LeastSquaresAccumulator, fit_ols, fit_wls and essential_parameters work
+// through it.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "modelgen/estimation/least_squares.hpp"
+
+namespace modelgen::detail {
+
+// Rows gathered below a group's factor before a reduction: the factor's own rows (at most
+// b + 1) are then a small part of each QR, and the block still fits in the core's L2 cache.
+// 1024 measured fastest among 256..2048 for the TX-40 (tests/benchmarks/README.md).
+constexpr Eigen::Index kBlockRows = 1024;
+// A group's first block; blocks double up to kBlockRows, so small groups need little memory.
+constexpr Eigen::Index kFirstBlockRows = 32;
+
+// One group's equations reduced so far. S has one column per position: columns[p] is the
+// column of W there, or params for the right-hand side y (always position 0). Its first
+// width() rows hold the factor (upper triangular), then `pending` rows not yet reduced.
+struct Group {
+  std::vector<int> columns;
+  std::vector<int> position;       // params + 1 entries: the position of each column, or -1
+  std::vector<double> column_max;  // params entries: the largest |W(i, k)| of the group
+  Eigen::MatrixXd S;
+  Eigen::Index pending = 0;
+  Eigen::Index rows = 0;
+  double y_squared = 0;
+
+  Eigen::Index width() const { return static_cast<Eigen::Index>(columns.size()); }
+  Eigen::Index capacity() const { return S.rows() - width(); }
+};
+
+// The machinery behind LeastSquaresAccumulator and fit_ols/fit_wls.
+class Reducer {
+ public:
+  Reducer(int params, int groups) : params_(params), groups_(static_cast<std::size_t>(groups)) {
+    for (Group& g : groups_) {
+      g.columns = {params};
+      g.position.assign(static_cast<std::size_t>(params) + 1, -1);
+      g.position[static_cast<std::size_t>(params)] = 0;
+      g.column_max.assign(static_cast<std::size_t>(params), 0.0);
+      g.S = Eigen::MatrixXd::Zero(1, 1);
+    }
+  }
+
+  int params() const { return params_; }
+  int groups() const { return static_cast<int>(groups_.size()); }
+  // How messages name group g: its label when the caller gave labels, else "group g".
+  void set_labels(std::vector<std::string> labels) { labels_ = std::move(labels); }
+  std::string label(std::size_t g) const {
+    return g < labels_.size() ? labels_[g] : "group " + std::to_string(g);
+  }
+  const Group& group(int g) const { return groups_[static_cast<std::size_t>(g)]; }
+  Eigen::Index rows() const {
+    Eigen::Index total = 0;
+    for (const Group& g : groups_) total += g.rows;
+    return total;
+  }
+
+  // Appends `count` equations to group g, y(i) = rhs(i). Their W(i, k), k < params, are
+  // row(i)[k] when `Source` is kRows (contiguous rows: the loops run along them), else
+  // entry(i, k) (kColumns: the loops run along columns). `original` is false for rows of
+  // another group's factor (merge): not counted as equations, no change to the statistics.
+  enum Source { kRows, kColumns };
+  template <Source source, class Access, class Rhs>
+  void append(int g, Eigen::Index count, const Access& access, const Rhs& rhs,
+              bool original = true) {
+    Group& group = groups_[static_cast<std::size_t>(g)];
+    for (Eigen::Index done = 0; done < count;) {
+      if (group.pending == group.capacity()) {
+        if (group.capacity() < kBlockRows) {
+          grow(group, std::clamp(2 * group.capacity(), kFirstBlockRows, kBlockRows));
+        } else {
+          reduce(group);
+        }
+      }
+      const Eigen::Index n = std::min(count - done, group.capacity() - group.pending);
+      add_new_columns<source>(group, done, n, access);
+      const Eigen::Index w = group.width(), ld = group.S.rows();
+      double* out = &group.S(w + group.pending, 0);
+      largest_.assign(static_cast<std::size_t>(w), 0.0);
+      double* largest = largest_.data();
+      const int* columns = group.columns.data();
+      double squares = 0;
+      for (Eigen::Index i = 0; i < n; ++i) {
+        out[i] = rhs(done + i);
+        squares += out[i] * out[i];
+      }
+      if constexpr (source == kRows) {
+        // The column maxima came with the scan for new columns (row_max_).
+        for (Eigen::Index i = 0; i < n; ++i) {
+          const double* r = access(done + i);
+          for (Eigen::Index p = 1; p < w; ++p) out[i + p * ld] = r[columns[p]];
+        }
+        for (Eigen::Index p = 1; p < w; ++p) largest[p] = row_max_[columns[p]];
+      } else {
+        for (Eigen::Index p = 1; p < w; ++p) {
+          double* column = out + p * ld;
+          for (Eigen::Index i = 0; i < n; ++i) {
+            column[i] = access(done + i, columns[p]);
+            largest[p] = std::max(largest[p], std::abs(column[i]));
+          }
+        }
+      }
+      if (original) {
+        group.y_squared += squares;
+        for (Eigen::Index p = 1; p < w; ++p) {
+          double& column_max = group.column_max[static_cast<std::size_t>(columns[p])];
+          column_max = std::max(column_max, largest[p]);
+        }
+        group.rows += n;
+      }
+      group.pending += n;
+      done += n;
+    }
+  }
+
+  // Adds the equations of `other` (same sizes): its factors' rows, which stand for them.
+  void merge(Reducer&& other);
+
+  // Reduces every pending row; afterwards each group's factor is S.topRows(width()).
+  void reduce_all();
+
+  // reduce_all(), and the row buffers freed: only the factors stay.
+  void compact();
+
+  // The first group whose factor holds NaN or infinity, or -1. Non-finite input always ends up
+  // there: Householder reflections spread NaN and turn infinity into NaN.
+  int first_non_finite();
+
+  // ||y_g - W_g beta|| of group g's equations, from its factor.
+  double residual_norm(int g, const Eigen::VectorXd& beta);
+
+  // The fit on the columns `kept` (ascending; `names` theirs, for messages), WLS over the
+  // groups when `weighted`, with every statistic of LeastSquaresResult (fit_statistics.cpp).
+  // Throws EstimationError for too few equations, non-finite values, a rank-deficient W.
+  LeastSquaresResult solve(const std::vector<int>& kept, const std::vector<std::string>& names,
+                           bool weighted);
+
+ private:
+  // A column joins a group's factor when it is first nonzero in the group's rows; until then
+  // those rows are zero there. Any set bit but the sign is nonzero: NaN counts, so that it
+  // reaches the factor and is reported; -0.0 does not.
+  template <Source source, class Access>
+  void add_new_columns(Group& group, Eigen::Index done, Eigen::Index n, const Access& access) {
+    if constexpr (source == kRows) {
+      // Contiguous rows: one vectorized pass over every column, which also finds the column
+      // maxima (row_max_) for the gather.
+      bits_.assign(static_cast<std::size_t>(params_), 0);
+      row_max_.assign(static_cast<std::size_t>(params_), 0.0);
+      std::uint64_t* bits = bits_.data();
+      double* largest = row_max_.data();
+      for (Eigen::Index i = 0; i < n; ++i) {
+        const double* r = access(done + i);
+        for (int k = 0; k < params_; ++k) {
+          std::uint64_t b;
+          std::memcpy(&b, r + k, sizeof b);
+          bits[k] |= b << 1;
+          largest[k] = std::max(largest[k], std::abs(r[k]));
+        }
+      }
+      for (int k = 0; k < params_; ++k) {
+        if (bits[k] != 0 && group.position[static_cast<std::size_t>(k)] < 0) add_column(group, k);
+      }
+    } else {
+      if (group.width() == params_ + 1) return;
+      for (int k = 0; k < params_; ++k) {
+        if (group.position[static_cast<std::size_t>(k)] >= 0) continue;
+        for (Eigen::Index i = 0; i < n; ++i) {
+          if (access(done + i, k) != 0.0) {
+            add_column(group, k);
+            break;
+          }
+        }
+      }
+    }
+  }
+
+  // A row buffer of `capacity` rows below the factor, pending rows kept.
+  static void grow(Group& g, Eigen::Index capacity);
+
+  // Column k of W joins the group's factor (zero in the rows so far).
+  void add_column(Group& g, int k);
+
+  // Householder QR in place of the factor stacked on the pending rows (Eigen's blocked
+  // HouseholderQR); R replaces the factor.
+  static void reduce(Group& g);
+
+  int params_;
+  std::vector<Group> groups_;
+  std::vector<std::string> labels_;
+  std::vector<std::uint64_t> bits_;  // scratch of add_new_columns()
+  std::vector<double> row_max_;      // scratch of add_new_columns()
+  std::vector<double> largest_;      // scratch of append()
+};
+
+/// Every column index 0..b-1, ascending: a fit on all columns.
+std::vector<int> all_columns(int b);
+
+/// W's rows reduced per group (one group if `group` is empty), the two halves of the rows in
+/// two threads for a large W. Checks everything fit_ols/fit_wls promise to check (sizes, groups,
+/// non-finite values named by row and column) and throws EstimationError.
+Reducer reduce_matrix(const Eigen::MatrixXd& W, const Eigen::VectorXd& y,
+                      const std::vector<int>& group, const std::vector<std::string>& names);
+
+}  // namespace modelgen::detail
