@@ -8,8 +8,10 @@
 #include <stdexcept>
 #include <vector>
 
-#include "modelgen/load_parameters.hpp"
-#include "modelgen/ml_problem.hpp"
+#include "modelgen/data/trajectory.hpp"
+#include "modelgen/ml/drive_model.hpp"
+#include "modelgen/ml/load_parameters.hpp"
+#include "modelgen/ml/problem.hpp"
 #include "runtime/cli/drive_parameter_file.hpp"
 #include "runtime/cli/text_format.hpp"
 

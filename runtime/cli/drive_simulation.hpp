@@ -10,7 +10,7 @@
 
 #include "generator/description/robot_model.hpp"
 #include "modelgen/data/trajectory.hpp"
-#include "modelgen/drive_model.hpp"
+#include "modelgen/ml/drive_model.hpp"
 #include "runtime/cli/progress.hpp"
 
 namespace modelgen::internal {

@@ -18,13 +18,13 @@
 #include <sstream>
 
 #include "modelgen/data/trajectory_csv.hpp"
-#include "modelgen/drive_model.hpp"
 #include "modelgen/estimation/estimation_error.hpp"
 #include "modelgen/estimation/identify.hpp"
-#include "modelgen/load_parameters.hpp"
-#include "modelgen/ml_fit.hpp"
-#include "modelgen/ml_linear_route.hpp"
-#include "modelgen/ml_problem.hpp"
+#include "modelgen/ml/drive_model.hpp"
+#include "modelgen/ml/fit.hpp"
+#include "modelgen/ml/linear_route.hpp"
+#include "modelgen/ml/load_parameters.hpp"
+#include "modelgen/ml/problem.hpp"
 #include "modelgen/signal/prepare.hpp"
 #include "runtime/cli/commands.hpp"
 #include "runtime/cli/data_files.hpp"

@@ -6,7 +6,9 @@
 #include <cmath>
 #include <vector>
 
-#include "modelgen/load_parameters.hpp"
+#include "modelgen/ml/fit.hpp"
+#include "modelgen/ml/identifiability.hpp"
+#include "modelgen/ml/load_parameters.hpp"
 #include "runtime/cli/text_format.hpp"
 
 namespace modelgen::internal {

@@ -9,7 +9,8 @@
 #include <ostream>
 #include <string>
 
-#include "modelgen/ml_fit.hpp"
+#include "modelgen/ml/fit.hpp"
+#include "modelgen/ml/linear_route.hpp"
 
 namespace modelgen::internal {
 

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "modelgen/drive_model.hpp"
+#include "modelgen/ml/drive_model.hpp"
 #include "modelgen/model.hpp"
 
 namespace modelgen::internal {

@@ -15,8 +15,8 @@
 
 #include "modelgen/data/trajectory.hpp"
 #include "modelgen/data/trajectory_csv.hpp"
-#include "modelgen/drive_model.hpp"
 #include "modelgen/excitation/fourier_trajectory.hpp"
+#include "modelgen/ml/drive_model.hpp"
 #include "runtime/cli/commands.hpp"
 #include "runtime/cli/drive_simulation.hpp"
 #include "runtime/cli/fourier_file.hpp"

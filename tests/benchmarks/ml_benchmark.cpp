@@ -23,12 +23,12 @@
 #include <Eigen/Core>
 
 #include "generated/kr150/kr150.hpp"
-#include "modelgen/drive_model.hpp"
-#include "modelgen/identifiability.hpp"
-#include "modelgen/load_parameters.hpp"
-#include "modelgen/ml_fit.hpp"
-#include "modelgen/ml_linear_route.hpp"
-#include "modelgen/ml_problem.hpp"
+#include "modelgen/ml/drive_model.hpp"
+#include "modelgen/ml/fit.hpp"
+#include "modelgen/ml/identifiability.hpp"
+#include "modelgen/ml/linear_route.hpp"
+#include "modelgen/ml/load_parameters.hpp"
+#include "modelgen/ml/problem.hpp"
 #include "tests/benchmarks/benchmark_summary.hpp"
 #include "tests/support/kr150_load_scenario.hpp"
 #include "tests/support/ml_residuals_direct.hpp"

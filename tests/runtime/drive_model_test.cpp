@@ -4,7 +4,7 @@
 // Ceres automatic differentiation (1e-12) and central differences (1e-8); the adapter for
 // generated drive models on a stand-in; bad drive chains.
 
-#include "modelgen/drive_model.hpp"
+#include "modelgen/ml/drive_model.hpp"
 
 #include <ceres/jet.h>
 #include <gtest/gtest.h>

@@ -8,7 +8,7 @@
 #include "generated/kr150/kr150.hpp"
 #include "generated/tx40/tx40.hpp"
 #include "generator/description/load_robot.hpp"
-#include "modelgen/drive_model.hpp"
+#include "modelgen/ml/drive_model.hpp"
 #include "modelgen/model.hpp"
 #include "tests/support/test_support.hpp"
 

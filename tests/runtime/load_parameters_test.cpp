@@ -3,7 +3,7 @@
 // Jacobian against Ceres automatic differentiation and central differences, and the
 // physical-consistency warnings on hand-made loads.
 
-#include "modelgen/load_parameters.hpp"
+#include "modelgen/ml/load_parameters.hpp"
 
 #include <ceres/jet.h>
 #include <gtest/gtest.h>

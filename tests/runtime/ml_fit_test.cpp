@@ -6,7 +6,11 @@
 // 22 unknowns, full rank; wrist only: 19 unknowns, rank 18, load mass named), and that approach 3
 // recovers the load within Table 2's approach-3 errors.
 
-#include "modelgen/ml_fit.hpp"
+#include "modelgen/ml/fit.hpp"
+#include "modelgen/ml/identifiability.hpp"
+#include "modelgen/ml/linear_route.hpp"
+#include "modelgen/ml/load_parameters.hpp"
+#include "modelgen/ml/problem.hpp"
 
 #include <ceres/jet.h>
 #include <gtest/gtest.h>
@@ -18,11 +22,7 @@
 #include <string>
 #include <vector>
 
-#include "modelgen/drive_model.hpp"
 #include "modelgen/estimation/estimation_error.hpp"
-#include "modelgen/load_parameters.hpp"
-#include "modelgen/ml_linear_route.hpp"
-#include "modelgen/ml_problem.hpp"
 #include "modelgen/signal/prepare.hpp"
 #include "tests/support/kr150_load_scenario.hpp"
 #include "tests/support/ml_residuals_direct.hpp"

@@ -18,8 +18,8 @@
 #include <vector>
 
 #include "generator/description/load_robot.hpp"
-#include "modelgen/drive_model.hpp"
-#include "modelgen/load_parameters.hpp"
+#include "modelgen/ml/drive_model.hpp"
+#include "modelgen/ml/load_parameters.hpp"
 #include "tests/runtime/modelid_cli_support.hpp"
 #include "tests/support/kdl_oracle.hpp"
 #include "tests/support/kr150_load_scenario.hpp"

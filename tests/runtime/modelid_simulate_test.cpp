@@ -18,7 +18,7 @@
 #include <nlohmann/json.hpp>
 
 #include "generator/description/load_robot.hpp"
-#include "modelgen/load_parameters.hpp"
+#include "modelgen/ml/load_parameters.hpp"
 #include "tests/runtime/modelid_cli_support.hpp"
 #include "tests/support/kdl_oracle.hpp"
 #include "tests/support/test_support.hpp"

@@ -12,9 +12,9 @@
 #include <Eigen/Core>
 
 #include "generator/description/robot_model.hpp"
-#include "modelgen/drive_model.hpp"
-#include "modelgen/load_parameters.hpp"
-#include "modelgen/ml_problem.hpp"
+#include "modelgen/ml/drive_model.hpp"
+#include "modelgen/ml/load_parameters.hpp"
+#include "modelgen/ml/problem.hpp"
 
 namespace modelgen::test {
 

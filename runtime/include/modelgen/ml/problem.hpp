@@ -2,8 +2,9 @@
 // (tau_M measured - F_i(theta1, theta2)) / sigma_i of the drive model F (eq. 12) over the
 // actuated axes, with the unknown parameters theta1 chosen by name and the rest known (theta2);
 // the load enters through its 10 parameters (eq. 3) as part of the payload link. Residuals and
-// their analytic Jacobian come from ceres::CostFunction blocks of samples (the ones fit_ml
-// hands to Levenberg-Marquardt), the Jacobian by the chain rule from the drive model's.
+// their analytic Jacobian come from cost blocks of samples (the ones fit_ml hands to
+// Levenberg-Marquardt; private to the library), the Jacobian by the chain rule from the drive
+// model's.
 #pragma once
 
 #include <Eigen/Core>
@@ -11,15 +12,17 @@
 #include <string>
 #include <vector>
 
-#include "modelgen/drive_model.hpp"
+#include "modelgen/estimation/estimation_error.hpp"
+#include "modelgen/ml/drive_model.hpp"
+#include "modelgen/ml/load_parameters.hpp"
 #include "modelgen/signal/prepare.hpp"
 #include "modelgen/transmission.hpp"
 
-namespace ceres {
-class CostFunction;
-}  // namespace ceres
-
 namespace modelgen {
+
+namespace detail {
+class MlProblemAccess;  // the library's own access to the cost blocks
+}  // namespace detail
 
 /// One experiment for the ML fit, typically the period average of a periodic experiment.
 struct MlExperiment {
@@ -29,15 +32,15 @@ struct MlExperiment {
   Eigen::VectorXd sigma;       ///< dof: standard deviation of the noise on tau_M per motor, N m
 };
 
-/// An MlExperiment from a periodic PreparedExperiment (modelgen/prepare.hpp; joint-side torques
-/// tau = K^T tau_M and their noise variance per axis): tau_M = K^-T tau, and
+/// An MlExperiment from a periodic PreparedExperiment (modelgen/signal/prepare.hpp; joint-side
+/// torques tau = K^T tau_M and their noise variance per axis): tau_M = K^-T tau, and
 /// sigma_i^2 = sum_j (K^-T)_ij^2 var_j (the joint-side noise taken as independent per axis).
-/// Throws EstimationError (modelgen/estimate.hpp) naming the source when the experiment has no
-/// noise variance (not prepared as periodic) or sizes differ from K.
+/// Throws EstimationError (modelgen/estimation/estimation_error.hpp) naming the source when the
+/// experiment has no noise variance (not prepared as periodic) or sizes differ from K.
 MlExperiment ml_experiment(const PreparedExperiment& prepared, const Transmission& drive);
 
 /// The parameters of the ML problem: model.param_names() (inertial and drive parameters), then
-/// load_param_names() (modelgen/load_parameters.hpp).
+/// load_param_names() (modelgen/ml/load_parameters.hpp).
 std::vector<std::string> ml_param_names(const DriveModel& model);
 
 /// What is unknown and what is fitted.
@@ -53,7 +56,7 @@ struct MlSetup {
   /// The axes (0-based motors) whose torques enter eq. 18 (the set the paper calls vartheta);
   /// empty: every motor whose velocity is not zero throughout the data.
   std::vector<int> axes;
-  int samples_per_block = 64;  ///< samples per ceres::CostFunction
+  int samples_per_block = 64;  ///< samples per cost block (one evaluation of the fit)
 };
 
 /// The residuals of eq. 18 over stacked experiments: residual index = (sample, axis) with the
@@ -108,11 +111,8 @@ class MlProblem {
   const Eigen::MatrixXd& measured() const;
   const Eigen::MatrixXd& sigma() const;
 
-  /// The cost functions (owned by this problem) whose residuals stack to evaluate()'s, each
-  /// with one parameter block: theta1, num_unknowns() values.
-  std::vector<ceres::CostFunction*> cost_functions() const;
-
  private:
+  friend class detail::MlProblemAccess;
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };

@@ -1,7 +1,7 @@
 // Rank, condition number and null-space directions of a column-scaled Jacobian (Swevers et al.
 // 2002, section 4.2), from the singular values of its triangular QR factor.
 
-#include "modelgen/identifiability.hpp"
+#include "modelgen/ml/identifiability.hpp"
 
 #include <Eigen/QR>
 #include <Eigen/SVD>

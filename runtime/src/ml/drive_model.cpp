@@ -2,7 +2,7 @@
 // numeric reference's standard regressor, computed once per sample, and the analytic Jacobian of
 // the motor torques with respect to the inertial and drive parameters.
 
-#include "modelgen/drive_model.hpp"
+#include "modelgen/ml/drive_model.hpp"
 
 #include <Eigen/LU>
 #include <algorithm>

@@ -11,7 +11,7 @@
 // poorly (section 4's reason 3 for approach 1's errors) count as little as they deserve. The load
 // comes from its ten standard parameters, load_from_standard (eq. 3 backwards).
 
-#include "modelgen/ml_linear_route.hpp"
+#include "modelgen/ml/linear_route.hpp"
 
 #include <Eigen/LU>
 #include <Eigen/QR>
@@ -21,7 +21,8 @@
 #include <limits>
 #include <stdexcept>
 
-#include "modelgen/load_parameters.hpp"
+#include "modelgen/ml/identifiability.hpp"
+#include "modelgen/ml/load_parameters.hpp"
 
 namespace modelgen {
 namespace {

@@ -8,9 +8,9 @@
 #include <string>
 #include <vector>
 
-#include "modelgen/identifiability.hpp"
-#include "modelgen/load_parameters.hpp"
-#include "modelgen/ml_problem.hpp"
+#include "modelgen/ml/identifiability.hpp"
+#include "modelgen/ml/load_parameters.hpp"
+#include "modelgen/ml/problem.hpp"
 
 namespace modelgen {
 

@@ -10,8 +10,8 @@
 #include <Eigen/Core>
 #include <string>
 
-#include "modelgen/ml_fit.hpp"
-#include "modelgen/ml_problem.hpp"
+#include "modelgen/ml/fit.hpp"
+#include "modelgen/ml/problem.hpp"
 
 namespace modelgen {
 

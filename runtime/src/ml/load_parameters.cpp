@@ -2,7 +2,7 @@
 // (Gautier & Briot eq. 3) by the parallel-axis theorem, the 10 x 10 Jacobian of that map, and the
 // physical-consistency checks of an estimated load.
 
-#include "modelgen/load_parameters.hpp"
+#include "modelgen/ml/load_parameters.hpp"
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>

@@ -2,7 +2,7 @@
 // (Levenberg-Marquardt, analytic Jacobians from MlProblem's cost functions), with the rank
 // analysis of section 4.2 at the initial guess and standard deviations at the optimum.
 
-#include "modelgen/ml_fit.hpp"
+#include "modelgen/ml/fit.hpp"
 
 #include <ceres/ceres.h>
 
@@ -12,7 +12,8 @@
 #include <utility>
 
 #include "modelgen/estimation/estimation_error.hpp"
-#include "modelgen/ml_linear_route.hpp"
+#include "modelgen/ml/linear_route.hpp"
+#include "runtime/src/ml/problem_impl.hpp"
 
 namespace modelgen {
 namespace {
@@ -73,7 +74,7 @@ MlFitResult fit_ml(MlProblem& problem, const MlFitOptions& options) {
   ceres::Problem::Options problem_options;
   problem_options.cost_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
   ceres::Problem solver_problem(problem_options);
-  for (ceres::CostFunction* cost : problem.cost_functions()) {
+  for (ceres::CostFunction* cost : detail::MlProblemAccess::cost_functions(problem)) {
     solver_problem.AddResidualBlock(cost, nullptr, theta1.data());
   }
   std::vector<int> held;

@@ -1,11 +1,7 @@
-// Swevers et al. 2002, eq. 18: weighted motor-torque residuals of the drive model F (eq. 12) as
-// ceres::CostFunctions over blocks of samples. The Jacobian is analytic: the drive model's
-// d tau_M / d theta columns of the unknowns, and for the load the payload link's columns times
-// the 10 x 10 Jacobian of standard_from_load (chain rule through eq. 3).
+// Swevers et al. 2002, eq. 18: the experiments stacked and checked, the unknowns resolved by
+// name, the fitted axes found, and the samples cut into cost blocks (block_cost.hpp).
 
-#include "modelgen/ml_problem.hpp"
-
-#include <ceres/cost_function.h>
+#include "modelgen/ml/problem.hpp"
 
 #include <Eigen/LU>
 #include <algorithm>
@@ -15,8 +11,9 @@
 
 #include "modelgen/data/trajectory.hpp"
 #include "modelgen/estimation/estimation_error.hpp"
-#include "modelgen/load_parameters.hpp"
-#include "modelgen/signal/prepare.hpp"
+#include "modelgen/ml/load_parameters.hpp"
+#include "runtime/src/ml/block_cost.hpp"
+#include "runtime/src/ml/problem_impl.hpp"
 
 namespace modelgen {
 namespace {
@@ -55,98 +52,6 @@ std::vector<std::string> ml_param_names(const DriveModel& model) {
   names.insert(names.end(), load_param_names().begin(), load_param_names().end());
   return names;
 }
-
-struct MlProblem::Impl {
-  class BlockCost;
-
-  DriveModel* model = nullptr;
-  MlSetup setup;
-  std::vector<std::string> names;  // ml_param_names
-  std::vector<int> unknown;        // indices into names
-  std::vector<int> payload;        // drive-parameter indices of XXj .. Mj
-  int P = 0;                       // drive model parameters
-  Eigen::VectorXd values;
-  Eigen::MatrixXd measured, sigma;  // stacked samples x dof
-  std::vector<std::unique_ptr<BlockCost>> blocks;
-  Eigen::Index residuals = 0;
-
-  bool unknown_load() const {
-    return std::any_of(unknown.begin(), unknown.end(), [&](int k) { return k >= P; });
-  }
-
-  Eigen::VectorXd drive_parameters(const Eigen::VectorXd& all) const {
-    Eigen::VectorXd theta = all.head(P);
-    if (!payload.empty()) {
-      double standard[10];
-      standard_from_load(all.data() + P, standard);
-      for (int m = 0; m < 10; ++m) theta[payload[m]] += standard[m];
-    }
-    return theta;
-  }
-
-  Eigen::VectorXd with_unknowns(const double* theta1) const {
-    Eigen::VectorXd all = values;
-    for (size_t u = 0; u < unknown.size(); ++u) all[unknown[u]] = theta1[u];
-    return all;
-  }
-};
-
-// Residuals of samples [begin, end): (tau_M measured - F) / sigma on the fitted axes.
-class MlProblem::Impl::BlockCost final : public ceres::CostFunction {
- public:
-  BlockCost(const Impl& problem, Eigen::Index begin, Eigen::Index end)
-      : problem_(problem), begin_(begin), end_(end) {
-    set_num_residuals(static_cast<int>((end - begin) * problem.setup.axes.size()));
-    mutable_parameter_block_sizes()->push_back(static_cast<int>(problem.unknown.size()));
-  }
-
-  bool Evaluate(double const* const* parameters, double* residuals,
-                double** jacobians) const override {
-    const Impl& p = problem_;
-    const int n = p.model->dof(), P = p.P, U = static_cast<int>(p.unknown.size());
-    const Eigen::VectorXd all = p.with_unknowns(parameters[0]);
-    const Eigen::VectorXd theta = p.drive_parameters(all);
-    double* jacobian = jacobians != nullptr ? jacobians[0] : nullptr;
-    // d standard / d load for the chain rule, once per block.
-    Eigen::MatrixXd S;
-    if (jacobian != nullptr && !p.payload.empty() && p.unknown_load()) {
-      S = standard_from_load_jacobian(LoadParameters::from_vector(all.data() + P));
-    }
-    std::vector<double> tau(n), J(jacobian != nullptr ? static_cast<size_t>(n) * P : 0);
-    int row = 0;
-    for (Eigen::Index s = begin_; s < end_; ++s) {
-      if (jacobian != nullptr) {
-        p.model->torque_jacobian(s, theta.data(), tau.data(), J.data());
-      } else {
-        p.model->torque(s, theta.data(), tau.data());
-      }
-      for (const int i : p.setup.axes) {
-        const double w = 1.0 / p.sigma(s, i);
-        residuals[row] = (p.measured(s, i) - tau[i]) * w;
-        if (jacobian != nullptr) {
-          const double* dF = &J[static_cast<size_t>(i) * P];
-          double* out = jacobian + static_cast<size_t>(row) * U;
-          for (int u = 0; u < U; ++u) {
-            const int k = p.unknown[u];
-            double d = 0;
-            if (k < P) {
-              d = dF[k];
-            } else {
-              for (int m = 0; m < 10; ++m) d += dF[p.payload[m]] * S(m, k - P);
-            }
-            out[u] = -w * d;
-          }
-        }
-        ++row;
-      }
-    }
-    return true;
-  }
-
- private:
-  const Impl& problem_;
-  Eigen::Index begin_, end_;
-};
 
 MlProblem::MlProblem(DriveModel& model, const std::vector<MlExperiment>& data, MlSetup setup,
                      const Eigen::VectorXd& values)
@@ -355,9 +260,10 @@ Eigen::MatrixXd MlProblem::torque_errors(const Eigen::VectorXd& all_values) cons
   return errors;
 }
 
-std::vector<ceres::CostFunction*> MlProblem::cost_functions() const {
+std::vector<ceres::CostFunction*> detail::MlProblemAccess::cost_functions(
+    const MlProblem& problem) {
   std::vector<ceres::CostFunction*> out;
-  for (const auto& block : impl_->blocks) out.push_back(block.get());
+  for (const auto& block : problem.impl_->blocks) out.push_back(block.get());
   return out;
 }
 
