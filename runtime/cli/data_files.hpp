@@ -1,5 +1,5 @@
 // The experiments of a modelid run: every --data file read, brought to the joint side and
-// prepared (modelgen/prepare.hpp) as the data options say.
+// prepared (modelgen/signal/prepare.hpp) as the data options say.
 #pragma once
 
 #include <map>

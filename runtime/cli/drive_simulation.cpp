@@ -1,5 +1,6 @@
 // The truth of `simulate --drive` from a drive-parameter file, the load added to the payload link
-// as MlProblem::drive_parameters does (ml_problem.cpp), and the drive model's motor torques.
+// as MlProblem::drive_parameters does (runtime/src/ml/problem_impl.hpp), and the drive model's
+// motor torques.
 
 #include "runtime/cli/drive_simulation.hpp"
 
