@@ -9,7 +9,7 @@
 
 #include "modelgen/data/trajectory.hpp"
 #include "modelgen/data/trajectory_csv.hpp"
-#include "modelgen/model.hpp"
+#include "modelgen/model/identification_model.hpp"
 #include "modelgen/signal/prepare.hpp"
 #include "runtime/cli/arguments.hpp"
 

@@ -7,10 +7,9 @@
 #include <stdexcept>
 #include <string>
 
-#include "generator/description/diagnostics.hpp"
 #include "modelgen/data/data_error.hpp"
 #include "modelgen/estimation/estimation_error.hpp"
-#include "modelgen/estimation/identify.hpp"
+#include "modelgen/model/error.hpp"
 #include "runtime/cli/arguments.hpp"
 #include "runtime/cli/commands.hpp"
 
@@ -67,7 +66,7 @@ int main(int argc, char** argv) {
   } catch (const UsageError& e) {
     std::cerr << "modelid: " << e.message << "\n\n" << kUsage;
     return 2;
-  } catch (const gen::InputError& e) {
+  } catch (const modelgen::InputError& e) {
     std::cerr << e.what() << "\n";
     return 1;
   } catch (const DataError& e) {

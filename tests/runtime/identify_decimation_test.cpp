@@ -15,7 +15,7 @@
 #include "modelgen/estimation/identify.hpp"
 #include "modelgen/estimation/least_squares.hpp"
 #include "modelgen/excitation/fourier_trajectory.hpp"
-#include "modelgen/model.hpp"
+#include "modelgen/model/identification_model.hpp"
 #include "modelgen/signal/decimation.hpp"
 #include "tests/support/test_support.hpp"
 

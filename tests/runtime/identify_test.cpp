@@ -16,12 +16,12 @@
 #include <Eigen/Cholesky>
 
 #include "generated/tx40/tx40.hpp"
-#include "generator/description/load_robot.hpp"
 #include "modelgen/data/trajectory.hpp"
 #include "modelgen/estimation/estimation_error.hpp"
 #include "modelgen/estimation/identify.hpp"
 #include "modelgen/excitation/fourier_trajectory.hpp"
-#include "modelgen/model.hpp"
+#include "modelgen/model/identification_model.hpp"
+#include "modelgen/model/load_robot.hpp"
 #include "tests/support/kdl_oracle.hpp"
 #include "tests/support/test_support.hpp"
 
@@ -41,7 +41,8 @@ double gaussian(test::Random& random) {
 class Tx40Identification : public testing::Test {
  protected:
   static void SetUpTestSuite() {
-    const gen::RobotModel description = gen::load_robot(test::source_path("robots/tx40.yaml"));
+    const modelgen::RobotModel description =
+        modelgen::load_robot(test::source_path("robots/tx40.yaml"));
     test::Random random(31);
     const Eigen::VectorXd p = test::random_physical_parameters(description.tree, random);
     beta_ = new Eigen::VectorXd(model_.num_base_params());

@@ -14,13 +14,13 @@
 #include <Eigen/Core>
 #include <nlohmann/json.hpp>
 
-#include "generator/description/load_robot.hpp"
 #include "modelgen/data/trajectory.hpp"
 #include "modelgen/data/trajectory_csv.hpp"
 #include "modelgen/estimation/identify.hpp"
 #include "modelgen/estimation/least_squares.hpp"
 #include "modelgen/excitation/fourier_trajectory.hpp"
-#include "modelgen/model.hpp"
+#include "modelgen/model/identification_model.hpp"
+#include "modelgen/model/load_robot.hpp"
 #include "tests/runtime/modelid_cli_support.hpp"
 #include "tests/support/test_support.hpp"
 
@@ -37,7 +37,8 @@ using test::quoted_source;
 const std::string kData = "robots/data/kr150/excitation.csv";
 
 ReferenceModel kr150_reference() {
-  const gen::RobotModel description = gen::load_robot(test::source_path("robots/kr150.yaml"));
+  const modelgen::RobotModel description =
+      modelgen::load_robot(test::source_path("robots/kr150.yaml"));
   return ReferenceModel(description.name, description.tree);
 }
 

@@ -25,7 +25,7 @@
 #include "modelgen/estimation/estimation_error.hpp"
 #include "modelgen/estimation/identify.hpp"
 #include "modelgen/excitation/fourier_trajectory.hpp"
-#include "modelgen/model.hpp"
+#include "modelgen/model/identification_model.hpp"
 #include "tests/support/test_support.hpp"
 
 namespace modelgen {

@@ -50,7 +50,7 @@ bool is_uniform(const Eigen::VectorXd& t) {
 
 }  // namespace
 
-PreparedExperiment prepare_experiment(Trajectory raw, const Transmission& drive,
+PreparedExperiment prepare_experiment(Trajectory raw, const DriveChain& drive,
                                       const PreparationOptions& options) {
   PreparedExperiment out;
   to_joint_side(raw, drive, options.side);

@@ -13,7 +13,7 @@ enum class EffortColumns { kRequired, kOptional };
 
 /// Reads a CSV file with a header row naming its columns: `t`, `q1`..`qn`, then either
 /// `tau1`..`taun` (torques) or `i1`..`in` (motor currents, converted by to_joint_side in
-/// modelgen/transmission.hpp), and optionally `dq1`..`dqn` and `ddq1`..`ddqn` (any order;
+/// modelgen/data/joint_side.hpp), and optionally `dq1`..`dqn` and `ddq1`..`ddqn` (any order;
 /// other columns are ignored). Comma separated, one sample per line, time strictly increasing,
 /// every value finite. With EffortColumns::kOptional a file without tau and i columns is
 /// accepted (Measured::kNothing).

@@ -14,7 +14,7 @@
 #include "modelgen/estimation/estimation_error.hpp"
 #include "modelgen/estimation/least_squares.hpp"
 #include "modelgen/estimation/progress.hpp"
-#include "modelgen/model.hpp"
+#include "modelgen/model/identification_model.hpp"
 
 namespace modelgen {
 

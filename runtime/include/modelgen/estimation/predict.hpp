@@ -9,7 +9,7 @@
 
 #include "modelgen/data/trajectory.hpp"
 #include "modelgen/estimation/progress.hpp"
-#include "modelgen/model.hpp"
+#include "modelgen/model/identification_model.hpp"
 
 namespace modelgen {
 

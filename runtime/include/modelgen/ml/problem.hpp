@@ -15,8 +15,8 @@
 #include "modelgen/estimation/estimation_error.hpp"
 #include "modelgen/ml/drive_model.hpp"
 #include "modelgen/ml/load_parameters.hpp"
+#include "modelgen/model/drive_chain.hpp"
 #include "modelgen/signal/prepare.hpp"
-#include "modelgen/transmission.hpp"
 
 namespace modelgen {
 
@@ -37,7 +37,7 @@ struct MlExperiment {
 /// sigma_i^2 = sum_j (K^-T)_ij^2 var_j (the joint-side noise taken as independent per axis).
 /// Throws EstimationError (modelgen/estimation/estimation_error.hpp) naming the source when the
 /// experiment has no noise variance (not prepared as periodic) or sizes differ from K.
-MlExperiment ml_experiment(const PreparedExperiment& prepared, const Transmission& drive);
+MlExperiment ml_experiment(const PreparedExperiment& prepared, const DriveChain& drive);
 
 /// The parameters of the ML problem: model.param_names() (inertial and drive parameters), then
 /// load_param_names() (modelgen/ml/load_parameters.hpp).

@@ -11,8 +11,9 @@
 #include <Eigen/Core>
 
 #include "modelgen/data/data_error.hpp"
+#include "modelgen/data/joint_side.hpp"
 #include "modelgen/data/trajectory.hpp"
-#include "modelgen/transmission.hpp"
+#include "modelgen/model/drive_chain.hpp"
 
 namespace modelgen {
 
@@ -46,7 +47,7 @@ struct PreparedExperiment {
 /// mean is more than 1% longer), and the summary says so.
 /// Throws DataError naming the file for anything the steps reject (no period found, a
 /// cut-off above Nyquist, too few samples, ...).
-PreparedExperiment prepare_experiment(Trajectory raw, const Transmission& drive,
+PreparedExperiment prepare_experiment(Trajectory raw, const DriveChain& drive,
                                       const PreparationOptions& options);
 
 }  // namespace modelgen

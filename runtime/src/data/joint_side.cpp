@@ -1,7 +1,7 @@
 // Motor side to joint side: one linear map for positions, its transpose for torques (the power
 // dq_motor . tau_motor = dq . tau is preserved, Gautier & Briot eq. 25-26).
 
-#include "modelgen/transmission.hpp"
+#include "modelgen/data/joint_side.hpp"
 
 #include <string>
 
@@ -9,12 +9,7 @@
 
 namespace modelgen {
 
-Transmission Transmission::identity(int dof) {
-  return {Eigen::MatrixXd::Identity(dof, dof), Eigen::VectorXd::Zero(dof),
-          Eigen::VectorXd::Zero(dof)};
-}
-
-void to_joint_side(Trajectory& x, const Transmission& drive, Side positions) {
+void to_joint_side(Trajectory& x, const DriveChain& drive, Side positions) {
   const Eigen::Index n = x.q.cols();
   if (drive.motor_from_joint.rows() != n || drive.motor_from_joint.cols() != n ||
       drive.torque_constant.size() != n || drive.joint_offset.size() != n) {
