@@ -29,8 +29,9 @@ Eigen::MatrixXd motor_torques_from_currents(const Eigen::MatrixXd& currents,
     for (Eigen::Index s = 0; s < currents.rows(); ++s) {
       const double current = currents(s, j);
       if (!std::isfinite(current)) {
-        throw DataError(source + ": sample " + std::to_string(s) + " (column i" +
-                        std::to_string(j + 1) + "): error: current is NaN or infinite");
+        throw DataError(SourceLocation{source, 0, 0, "i" + std::to_string(j + 1)},
+                        source + ": sample " + std::to_string(s) + " (column i" +
+                            std::to_string(j + 1) + "): error: current is NaN or infinite");
       }
       torque(s, j) = motor_torque_from_current(current, motors[j]);
     }

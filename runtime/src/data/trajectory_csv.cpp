@@ -22,7 +22,7 @@ namespace {
   std::string where = path;
   if (line > 0) where += ":" + std::to_string(line);
   if (!column.empty()) where += " (column " + column + ")";
-  throw DataError(where + ": error: " + message);
+  throw DataError(SourceLocation{path, line, 0, column}, where + ": error: " + message);
 }
 
 std::vector<std::string> split(const std::string& line) {
@@ -152,7 +152,7 @@ void write_trajectory_csv(const std::string& path, const Trajectory& x) {
   // Written beside the destination and renamed at the end: never a half-written file.
   const std::string temporary = path + ".tmp-modelid";
   std::ofstream out(temporary);
-  if (!out) throw DataError(path + ": error: cannot write the file");
+  if (!out) throw DataError(SourceLocation{path}, path + ": error: cannot write the file");
   const Eigen::Index dof = x.q.cols();
   out << "t";
   for (const char* prefix : {"q", "dq", "ddq", "tau"}) {
@@ -169,7 +169,7 @@ void write_trajectory_csv(const std::string& path, const Trajectory& x) {
   out.close();
   if (!out || std::rename(temporary.c_str(), path.c_str()) != 0) {
     std::remove(temporary.c_str());
-    throw DataError(path + ": error: cannot write the file");
+    throw DataError(SourceLocation{path}, path + ": error: cannot write the file");
   }
 }
 

@@ -43,12 +43,14 @@ void check_finite(const Trajectory& x, int n) {
       for (int j = 0; j < n; ++j) {
         const double v = (*a)(s, j);
         if (std::isfinite(v)) continue;
-        throw EstimationError(x.source + ": sample " + std::to_string(s + 1) + ": '" + name +
-                              std::to_string(j + 1) + "' is " +
-                              (std::isnan(v) ? "nan"
-                               : v > 0       ? "inf"
-                                             : "-inf") +
-                              "; measured data must be finite");
+        const std::string column = name + std::to_string(j + 1);
+        throw EstimationError(SourceLocation{x.source, 0, 0, column},
+                              x.source + ": sample " + std::to_string(s + 1) + ": '" + column +
+                                  "' is " +
+                                  (std::isnan(v) ? "nan"
+                                   : v > 0       ? "inf"
+                                                 : "-inf") +
+                                  "; measured data must be finite");
       }
     }
   }

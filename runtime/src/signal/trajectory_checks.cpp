@@ -14,7 +14,8 @@ std::string format(double value) {
 }
 
 void fail(const Trajectory& x, const std::string& message) {
-  throw DataError((x.source.empty() ? "trajectory" : x.source) + ": error: " + message);
+  throw DataError(SourceLocation{x.source},
+                  (x.source.empty() ? "trajectory" : x.source) + ": error: " + message);
 }
 
 void check_shapes(const Trajectory& x, bool torque) {
