@@ -3496,8 +3496,8 @@ void inverse_dynamics_standard(const double* q, const double* dq, const double* 
 // joint positions q, velocities dq and accelerations ddq (kDof each) and the standard
 // parameters p (kStandardParams, in the order of kStandardParamNames). Includes gravity, drive
 // inertia, friction and offsets as the description enables them.
-void inverse_dynamics_standard(const float* q, const float* dq, const float* ddq,
-                               const float* p, float* tau) {
+void inverse_dynamics_standard(const float* q, const float* dq, const float* ddq, const float* p,
+                               float* tau) {
   const float sg1 = static_cast<float>((dq[0] > 0.0f) - (dq[0] < 0.0f));
   const float s2 = std::sin(q[1]);
   const float c2 = std::cos(q[1]);
@@ -6983,9 +6983,9 @@ void idim_regressor_standard_sincos(const float* q, const float* sin_q, const fl
 
 // inverse_dynamics_standard with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
 // computing them; identical results.
-void inverse_dynamics_standard_sincos(const double* q, const double* sin_q,
-                                      const double* cos_q, const double* dq,
-                                      const double* ddq, const double* p, double* tau) {
+void inverse_dynamics_standard_sincos(const double* q, const double* sin_q, const double* cos_q,
+                                      const double* dq, const double* ddq, const double* p,
+                                      double* tau) {
   const double sg1 = static_cast<double>((dq[0] > 0.0) - (dq[0] < 0.0));
   const double s2 = sin_q[1];
   const double c2 = cos_q[1];
@@ -7191,9 +7191,9 @@ void inverse_dynamics_standard_sincos(const double* q, const double* sin_q,
 
 // inverse_dynamics_standard with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
 // computing them; identical results.
-void inverse_dynamics_standard_sincos(const float* q, const float* sin_q,
-                                      const float* cos_q, const float* dq,
-                                      const float* ddq, const float* p, float* tau) {
+void inverse_dynamics_standard_sincos(const float* q, const float* sin_q, const float* cos_q,
+                                      const float* dq, const float* ddq, const float* p,
+                                      float* tau) {
   const float sg1 = static_cast<float>((dq[0] > 0.0f) - (dq[0] < 0.0f));
   const float s2 = sin_q[1];
   const float c2 = cos_q[1];
@@ -9932,8 +9932,8 @@ void idim_regressor(const float* q, const float* dq, const float* ddq, float* W)
 // Inverse dynamics on the base parameters (customized Newton-Euler with the regrouped
 // parameters): joint torques tau (kDof) for q, dq, ddq (kDof each) and beta (kBaseParams, in the
 // order of kBaseParamNames; base_from_standard computes it from standard parameters).
-void inverse_dynamics(const double* q, const double* dq, const double* ddq,
-                      const double* beta, double* tau) {
+void inverse_dynamics(const double* q, const double* dq, const double* ddq, const double* beta,
+                      double* tau) {
   const double sg1 = static_cast<double>((dq[0] > 0.0) - (dq[0] < 0.0));
   const double s2 = std::sin(q[1]);
   const double c2 = std::cos(q[1]);
@@ -10134,8 +10134,8 @@ void inverse_dynamics(const double* q, const double* dq, const double* ddq,
 // Inverse dynamics on the base parameters (customized Newton-Euler with the regrouped
 // parameters): joint torques tau (kDof) for q, dq, ddq (kDof each) and beta (kBaseParams, in the
 // order of kBaseParamNames; base_from_standard computes it from standard parameters).
-void inverse_dynamics(const float* q, const float* dq, const float* ddq,
-                      const float* beta, float* tau) {
+void inverse_dynamics(const float* q, const float* dq, const float* ddq, const float* beta,
+                      float* tau) {
   const float sg1 = static_cast<float>((dq[0] > 0.0f) - (dq[0] < 0.0f));
   const float s2 = std::sin(q[1]);
   const float c2 = std::cos(q[1]);
@@ -10333,8 +10333,8 @@ void inverse_dynamics(const float* q, const float* dq, const float* ddq,
   tau[8] = beta[84] + ddq[8] * beta[81] + dq[8] * beta[82] + sg9 * beta[83] - t89;
 }
 
-// idim_regressor with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of computing
-// them; identical results.
+// idim_regressor with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
+// computing them; identical results.
 void idim_regressor_sincos(const double* q, const double* sin_q, const double* cos_q,
                            const double* dq, const double* ddq, double* W) {
   const double sg1 = static_cast<double>((dq[0] > 0.0) - (dq[0] < 0.0));
@@ -11491,8 +11491,8 @@ void idim_regressor_sincos(const double* q, const double* sin_q, const double* c
   W[764] = 1.0;
 }
 
-// idim_regressor with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of computing
-// them; identical results.
+// idim_regressor with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
+// computing them; identical results.
 void idim_regressor_sincos(const float* q, const float* sin_q, const float* cos_q,
                            const float* dq, const float* ddq, float* W) {
   const float sg1 = static_cast<float>((dq[0] > 0.0f) - (dq[0] < 0.0f));
@@ -12649,11 +12649,10 @@ void idim_regressor_sincos(const float* q, const float* sin_q, const float* cos_
   W[764] = 1.0f;
 }
 
-// inverse_dynamics with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of computing
-// them; identical results.
+// inverse_dynamics with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
+// computing them; identical results.
 void inverse_dynamics_sincos(const double* q, const double* sin_q, const double* cos_q,
-                             const double* dq, const double* ddq, const double* beta,
-                             double* tau) {
+                             const double* dq, const double* ddq, const double* beta, double* tau) {
   const double sg1 = static_cast<double>((dq[0] > 0.0) - (dq[0] < 0.0));
   const double s2 = sin_q[1];
   const double c2 = cos_q[1];
@@ -12851,11 +12850,10 @@ void inverse_dynamics_sincos(const double* q, const double* sin_q, const double*
   tau[8] = beta[84] + ddq[8] * beta[81] + dq[8] * beta[82] + sg9 * beta[83] - t89;
 }
 
-// inverse_dynamics with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of computing
-// them; identical results.
+// inverse_dynamics with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
+// computing them; identical results.
 void inverse_dynamics_sincos(const float* q, const float* sin_q, const float* cos_q,
-                             const float* dq, const float* ddq, const float* beta,
-                             float* tau) {
+                             const float* dq, const float* ddq, const float* beta, float* tau) {
   const float sg1 = static_cast<float>((dq[0] > 0.0f) - (dq[0] < 0.0f));
   const float s2 = sin_q[1];
   const float c2 = cos_q[1];
@@ -19451,7 +19449,8 @@ void power_regressor(const float* q, const float* dq, const float* ddq, float* d
   dh[84] = dq[8];  // OFF9
 }
 
-// energy_regressor with sin_q, cos_q (kDof each) from joint_sincos(q, ...); identical results.
+// energy_regressor with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
+// computing them; identical results.
 void energy_regressor_sincos(const double* q, const double* sin_q, const double* cos_q,
                              const double* dq, double* h) {
   const double s2 = sin_q[1];
@@ -19616,7 +19615,8 @@ void energy_regressor_sincos(const double* q, const double* sin_q, const double*
   h[84] = 0.0;  // OFF9
 }
 
-// energy_regressor with sin_q, cos_q (kDof each) from joint_sincos(q, ...); identical results.
+// energy_regressor with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
+// computing them; identical results.
 void energy_regressor_sincos(const float* q, const float* sin_q, const float* cos_q,
                              const float* dq, float* h) {
   const float s2 = sin_q[1];
@@ -19781,7 +19781,8 @@ void energy_regressor_sincos(const float* q, const float* sin_q, const float* co
   h[84] = 0.0f;  // OFF9
 }
 
-// power_regressor with sin_q, cos_q (kDof each) from joint_sincos(q, ...); identical results.
+// power_regressor with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
+// computing them; identical results.
 void power_regressor_sincos(const double* q, const double* sin_q, const double* cos_q,
                             const double* dq, const double* ddq, double* dh) {
   const double sg1 = static_cast<double>((dq[0] > 0.0) - (dq[0] < 0.0));
@@ -20013,7 +20014,8 @@ void power_regressor_sincos(const double* q, const double* sin_q, const double* 
   dh[84] = dq[8];  // OFF9
 }
 
-// power_regressor with sin_q, cos_q (kDof each) from joint_sincos(q, ...); identical results.
+// power_regressor with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
+// computing them; identical results.
 void power_regressor_sincos(const float* q, const float* sin_q, const float* cos_q,
                             const float* dq, const float* ddq, float* dh) {
   const float sg1 = static_cast<float>((dq[0] > 0.0f) - (dq[0] < 0.0f));
@@ -20253,8 +20255,8 @@ void power_regressor_sincos(const float* q, const float* sin_q, const float* cos
 // < 0 and the mean of both if 0 (eq. 8), tau_M = tau_T + JM ddq_M + Rv dq_M + Rc sign(dq_M)
 // (eq. 7). Units follow K: N m on the motor side when K holds gear ratios, on the link side
 // (as in the paper) when it is the coupling alone. Every Rz must be non-zero.
-void drive_torque(const double* q, const double* dq, const double* ddq,
-                  const double* theta, double* tau_M) {
+void drive_torque(const double* q, const double* dq, const double* ddq, const double* theta,
+                  double* tau_M) {
   const double sg1 = static_cast<double>((dq[0] > 0.0) - (dq[0] < 0.0));
   const double s2 = std::sin(q[1]);
   const double c2 = std::cos(q[1]);
@@ -20486,8 +20488,8 @@ void drive_torque(const double* q, const double* dq, const double* ddq,
 // < 0 and the mean of both if 0 (eq. 8), tau_M = tau_T + JM ddq_M + Rv dq_M + Rc sign(dq_M)
 // (eq. 7). Units follow K: N m on the motor side when K holds gear ratios, on the link side
 // (as in the paper) when it is the coupling alone. Every Rz must be non-zero.
-void drive_torque(const float* q, const float* dq, const float* ddq,
-                  const float* theta, float* tau_M) {
+void drive_torque(const float* q, const float* dq, const float* ddq, const float* theta,
+                  float* tau_M) {
   const float sg1 = static_cast<float>((dq[0] > 0.0f) - (dq[0] < 0.0f));
   const float s2 = std::sin(q[1]);
   const float c2 = std::cos(q[1]);
@@ -21944,8 +21946,8 @@ void drive_torque_jacobian(const double* q, const double* dq, const double* ddq,
 // efficiency branch and the Coulomb friction sign count as constant: exact wherever no motor
 // velocity and no power flow tau'_G dq_M is zero. Calls idim_regressor_standard into a local
 // array of kDof * kStandardParams values (on the stack) and applies the chain rule to it.
-void drive_torque_jacobian(const float* q, const float* dq, const float* ddq,
-                           const float* theta, float* tau_M, float* J) {
+void drive_torque_jacobian(const float* q, const float* dq, const float* ddq, const float* theta,
+                           float* tau_M, float* J) {
   float W_std[kDof * kStandardParams] = {};
   idim_regressor_standard(q, dq, ddq, W_std);
   const float sg1 = static_cast<float>((dq[0] > 0.0f) - (dq[0] < 0.0f));

@@ -1724,8 +1724,8 @@ void inverse_dynamics_standard(const double* q, const double* dq, const double* 
 // joint positions q, velocities dq and accelerations ddq (kDof each) and the standard
 // parameters p (kStandardParams, in the order of kStandardParamNames). Includes gravity, drive
 // inertia, friction and offsets as the description enables them.
-void inverse_dynamics_standard(const float* q, const float* dq, const float* ddq,
-                               const float* p, float* tau) {
+void inverse_dynamics_standard(const float* q, const float* dq, const float* ddq, const float* p,
+                               float* tau) {
   const float sg1 = static_cast<float>((dq[0] > 0.0f) - (dq[0] < 0.0f));
   const float s2 = std::sin(q[1]);
   const float c2 = std::cos(q[1]);
@@ -3428,9 +3428,9 @@ void idim_regressor_standard_sincos(const float* q, const float* sin_q, const fl
 
 // inverse_dynamics_standard with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
 // computing them; identical results.
-void inverse_dynamics_standard_sincos(const double* q, const double* sin_q,
-                                      const double* cos_q, const double* dq,
-                                      const double* ddq, const double* p, double* tau) {
+void inverse_dynamics_standard_sincos(const double* q, const double* sin_q, const double* cos_q,
+                                      const double* dq, const double* ddq, const double* p,
+                                      double* tau) {
   static_cast<void>(q);
   const double sg1 = static_cast<double>((dq[0] > 0.0) - (dq[0] < 0.0));
   const double s2 = sin_q[1];
@@ -3560,9 +3560,9 @@ void inverse_dynamics_standard_sincos(const double* q, const double* sin_q,
 
 // inverse_dynamics_standard with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
 // computing them; identical results.
-void inverse_dynamics_standard_sincos(const float* q, const float* sin_q,
-                                      const float* cos_q, const float* dq,
-                                      const float* ddq, const float* p, float* tau) {
+void inverse_dynamics_standard_sincos(const float* q, const float* sin_q, const float* cos_q,
+                                      const float* dq, const float* ddq, const float* p,
+                                      float* tau) {
   static_cast<void>(q);
   const float sg1 = static_cast<float>((dq[0] > 0.0f) - (dq[0] < 0.0f));
   const float s2 = sin_q[1];
@@ -4995,8 +4995,8 @@ void idim_regressor(const float* q, const float* dq, const float* ddq, float* W)
 // Inverse dynamics on the base parameters (customized Newton-Euler with the regrouped
 // parameters): joint torques tau (kDof) for q, dq, ddq (kDof each) and beta (kBaseParams, in the
 // order of kBaseParamNames; base_from_standard computes it from standard parameters).
-void inverse_dynamics(const double* q, const double* dq, const double* ddq,
-                      const double* beta, double* tau) {
+void inverse_dynamics(const double* q, const double* dq, const double* ddq, const double* beta,
+                      double* tau) {
   const double sg1 = static_cast<double>((dq[0] > 0.0) - (dq[0] < 0.0));
   const double s2 = std::sin(q[1]);
   const double c2 = std::cos(q[1]);
@@ -5124,8 +5124,8 @@ void inverse_dynamics(const double* q, const double* dq, const double* ddq,
 // Inverse dynamics on the base parameters (customized Newton-Euler with the regrouped
 // parameters): joint torques tau (kDof) for q, dq, ddq (kDof each) and beta (kBaseParams, in the
 // order of kBaseParamNames; base_from_standard computes it from standard parameters).
-void inverse_dynamics(const float* q, const float* dq, const float* ddq,
-                      const float* beta, float* tau) {
+void inverse_dynamics(const float* q, const float* dq, const float* ddq, const float* beta,
+                      float* tau) {
   const float sg1 = static_cast<float>((dq[0] > 0.0f) - (dq[0] < 0.0f));
   const float s2 = std::sin(q[1]);
   const float c2 = std::cos(q[1]);
@@ -5250,8 +5250,8 @@ void inverse_dynamics(const float* q, const float* dq, const float* ddq,
   tau[5] = beta[57] + ddq[5] * beta[54] + dq[5] * beta[55] + sg6 * beta[56] - t79;
 }
 
-// idim_regressor with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of computing
-// them; identical results.
+// idim_regressor with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
+// computing them; identical results.
 void idim_regressor_sincos(const double* q, const double* sin_q, const double* cos_q,
                            const double* dq, const double* ddq, double* W) {
   static_cast<void>(q);
@@ -5829,8 +5829,8 @@ void idim_regressor_sincos(const double* q, const double* sin_q, const double* c
   W[347] = 1.0;
 }
 
-// idim_regressor with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of computing
-// them; identical results.
+// idim_regressor with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
+// computing them; identical results.
 void idim_regressor_sincos(const float* q, const float* sin_q, const float* cos_q,
                            const float* dq, const float* ddq, float* W) {
   static_cast<void>(q);
@@ -6408,11 +6408,10 @@ void idim_regressor_sincos(const float* q, const float* sin_q, const float* cos_
   W[347] = 1.0f;
 }
 
-// inverse_dynamics with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of computing
-// them; identical results.
+// inverse_dynamics with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
+// computing them; identical results.
 void inverse_dynamics_sincos(const double* q, const double* sin_q, const double* cos_q,
-                             const double* dq, const double* ddq, const double* beta,
-                             double* tau) {
+                             const double* dq, const double* ddq, const double* beta, double* tau) {
   static_cast<void>(q);
   const double sg1 = static_cast<double>((dq[0] > 0.0) - (dq[0] < 0.0));
   const double s2 = sin_q[1];
@@ -6538,11 +6537,10 @@ void inverse_dynamics_sincos(const double* q, const double* sin_q, const double*
   tau[5] = beta[57] + ddq[5] * beta[54] + dq[5] * beta[55] + sg6 * beta[56] - t79;
 }
 
-// inverse_dynamics with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of computing
-// them; identical results.
+// inverse_dynamics with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
+// computing them; identical results.
 void inverse_dynamics_sincos(const float* q, const float* sin_q, const float* cos_q,
-                             const float* dq, const float* ddq, const float* beta,
-                             float* tau) {
+                             const float* dq, const float* ddq, const float* beta, float* tau) {
   static_cast<void>(q);
   const float sg1 = static_cast<float>((dq[0] > 0.0f) - (dq[0] < 0.0f));
   const float s2 = sin_q[1];
@@ -9520,7 +9518,8 @@ void power_regressor(const float* q, const float* dq, const float* ddq, float* d
   dh[57] = dq[5];  // OFF6
 }
 
-// energy_regressor with sin_q, cos_q (kDof each) from joint_sincos(q, ...); identical results.
+// energy_regressor with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
+// computing them; identical results.
 void energy_regressor_sincos(const double* q, const double* sin_q, const double* cos_q,
                              const double* dq, double* h) {
   static_cast<void>(q);
@@ -9626,7 +9625,8 @@ void energy_regressor_sincos(const double* q, const double* sin_q, const double*
   h[57] = 0.0;  // OFF6
 }
 
-// energy_regressor with sin_q, cos_q (kDof each) from joint_sincos(q, ...); identical results.
+// energy_regressor with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
+// computing them; identical results.
 void energy_regressor_sincos(const float* q, const float* sin_q, const float* cos_q,
                              const float* dq, float* h) {
   static_cast<void>(q);
@@ -9732,7 +9732,8 @@ void energy_regressor_sincos(const float* q, const float* sin_q, const float* co
   h[57] = 0.0f;  // OFF6
 }
 
-// power_regressor with sin_q, cos_q (kDof each) from joint_sincos(q, ...); identical results.
+// power_regressor with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
+// computing them; identical results.
 void power_regressor_sincos(const double* q, const double* sin_q, const double* cos_q,
                             const double* dq, const double* ddq, double* dh) {
   static_cast<void>(q);
@@ -9876,7 +9877,8 @@ void power_regressor_sincos(const double* q, const double* sin_q, const double* 
   dh[57] = dq[5];  // OFF6
 }
 
-// power_regressor with sin_q, cos_q (kDof each) from joint_sincos(q, ...); identical results.
+// power_regressor with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
+// computing them; identical results.
 void power_regressor_sincos(const float* q, const float* sin_q, const float* cos_q,
                             const float* dq, const float* ddq, float* dh) {
   static_cast<void>(q);
@@ -10028,8 +10030,8 @@ void power_regressor_sincos(const float* q, const float* sin_q, const float* cos
 // < 0 and the mean of both if 0 (eq. 8), tau_M = tau_T + JM ddq_M + Rv dq_M + Rc sign(dq_M)
 // (eq. 7). Units follow K: N m on the motor side when K holds gear ratios, on the link side
 // (as in the paper) when it is the coupling alone. Every Rz must be non-zero.
-void drive_torque(const double* q, const double* dq, const double* ddq,
-                  const double* theta, double* tau_M) {
+void drive_torque(const double* q, const double* dq, const double* ddq, const double* theta,
+                  double* tau_M) {
   const double sg1 = static_cast<double>((dq[0] > 0.0) - (dq[0] < 0.0));
   const double s2 = std::sin(q[1]);
   const double c2 = std::cos(q[1]);
@@ -10178,8 +10180,8 @@ void drive_torque(const double* q, const double* dq, const double* ddq,
 // < 0 and the mean of both if 0 (eq. 8), tau_M = tau_T + JM ddq_M + Rv dq_M + Rc sign(dq_M)
 // (eq. 7). Units follow K: N m on the motor side when K holds gear ratios, on the link side
 // (as in the paper) when it is the coupling alone. Every Rz must be non-zero.
-void drive_torque(const float* q, const float* dq, const float* ddq,
-                  const float* theta, float* tau_M) {
+void drive_torque(const float* q, const float* dq, const float* ddq, const float* theta,
+                  float* tau_M) {
   const float sg1 = static_cast<float>((dq[0] > 0.0f) - (dq[0] < 0.0f));
   const float s2 = std::sin(q[1]);
   const float c2 = std::cos(q[1]);
@@ -10896,8 +10898,8 @@ void drive_torque_jacobian(const double* q, const double* dq, const double* ddq,
 // efficiency branch and the Coulomb friction sign count as constant: exact wherever no motor
 // velocity and no power flow tau'_G dq_M is zero. Calls idim_regressor_standard into a local
 // array of kDof * kStandardParams values (on the stack) and applies the chain rule to it.
-void drive_torque_jacobian(const float* q, const float* dq, const float* ddq,
-                           const float* theta, float* tau_M, float* J) {
+void drive_torque_jacobian(const float* q, const float* dq, const float* ddq, const float* theta,
+                           float* tau_M, float* J) {
   float W_std[kDof * kStandardParams] = {};
   idim_regressor_standard(q, dq, ddq, W_std);
   const float sg1 = static_cast<float>((dq[0] > 0.0f) - (dq[0] < 0.0f));

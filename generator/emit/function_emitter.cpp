@@ -46,14 +46,20 @@ std::vector<Built> run_builders(const RobotModel& model, const BaseParameterSet&
 // The entry point of `built` (plain or _sincos) with its statements for every scalar type.
 EmittedFunction emit(const Built& built, bool sincos, const ExprGraph& graph,
                      const std::vector<Scalar>& scalars) {
-  EmittedFunction function{built.entry->name,      built.entry, sincos, {},
-                           built.definition.calls, {},          {}};
-  for (const ArraySpec& array : built.entry->inputs) function.inputs.push_back(array.name);
-  if (sincos) {
-    function.name += "_sincos";
-    function.inputs.push_back("sin_q");
-    function.inputs.push_back("cos_q");
+  EmittedFunction function;
+  function.name = std::string(built.entry->name) + (sincos ? "_sincos" : "");
+  function.entry = built.entry;
+  function.sincos = sincos;
+  function.calls = built.definition.calls;
+  for (const ArraySpec& array : built.entry->inputs) {
+    function.inputs.push_back(array.name);
+    // The variant reads sin(q) and cos(q) from the caller (joint_sincos) in place of computing.
+    if (sincos && std::string(array.name) == "q") {
+      function.inputs.push_back("sin_q");
+      function.inputs.push_back("cos_q");
+    }
   }
+  for (const ArraySpec& array : built.entry->outputs) function.outputs.push_back(array.name);
   const FunctionDefinition& definition = built.definition;
   for (Scalar scalar : scalars) {
     FunctionBody body = write_statements(graph, definition.outputs, scalar,

@@ -17,8 +17,9 @@ struct EmittedFunction {
   std::string name;  ///< the entry point: the registry name, suffixed _sincos for a variant
   const FunctionEntry* entry = nullptr;
   bool sincos = false;
-  /// The input arrays a body may leave unused, in the order they are checked.
+  /// The input arrays, in the order of the parameter list (a variant's sin_q, cos_q after q).
   std::vector<std::string> inputs;
+  std::vector<std::string> outputs;  ///< the output arrays, after the inputs
   std::vector<std::string> calls;    ///< entry points the body calls, which come before it
   std::vector<FunctionBody> bodies;  ///< one per scalar type asked for, in that order
   OpCounts counts;                   ///< of the body, plus those of the entry points it calls

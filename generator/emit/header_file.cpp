@@ -68,10 +68,10 @@ void write_declarations(const RenderInput& in, CodeWriter& out) {
   for (std::size_t i = 0; i < in.functions.size(); ++i) {
     if (i > 0) out.blank();
     for (std::size_t s = 0; s < in.input.scalars.size(); ++s) {
-      out.lines_of(Printer(embedded_template("function_declaration"))
-                       .set("signature",
-                            function_prototype(in.functions[i].name, in.input.scalars[s], s == 0))
-                       .render());
+      out.lines_of(
+          Printer(embedded_template("function_declaration"))
+              .set("signature", function_prototype(in.functions[i], in.input.scalars[s], s == 0))
+              .render());
     }
   }
 }

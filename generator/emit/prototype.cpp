@@ -1,4 +1,4 @@
-// Prototypes from templates, parameter lists from the registry, and their line breaking.
+// Prototypes: documentation from templates, parameter lists from the registry, line breaking.
 
 #include "generator/emit/prototype.hpp"
 
@@ -6,13 +6,34 @@
 
 namespace modelgen::gen {
 
-std::string function_prototype(const std::string& name, Scalar scalar, bool documented) {
+namespace {
+
+// Prototypes, declared with ';' and defined with ' {', stay within 100 columns either way.
+constexpr std::size_t kPrototypeWidth = 98;
+
+std::string documentation(const EmittedFunction& function) {
+  if (!function.sincos) {
+    return Printer(embedded_template(std::string("functions/") + function.entry->name)).render();
+  }
+  return Printer(embedded_template("sincos_variant"))
+      .set("function", function.entry->name)
+      .render();
+}
+
+}  // namespace
+
+std::string function_prototype(const EmittedFunction& function, Scalar scalar, bool documented) {
   const std::string text = without_final_newline(
-      Printer(embedded_template("functions/" + name)).set("scalar", scalar_name(scalar)).render());
-  if (documented) return text;
-  std::size_t start = 0;
-  while (text.compare(start, 2, "//") == 0) start = text.find('\n', start) + 1;
-  return text.substr(start);
+      Printer(embedded_template("prototype"))
+          .set_block("documentation",
+                     [&](CodeWriter& out) {
+                       if (documented) out.lines_of(documentation(function));
+                     })
+          .set("function", function.name)
+          .set("parameters", parameter_list(function.inputs, function.outputs, scalar))
+          .render());
+  const std::size_t last_line = text.rfind('\n') + 1;  // 0 when there is no documentation
+  return text.substr(0, last_line) + wrap_parameters(text.substr(last_line), kPrototypeWidth);
 }
 
 std::string parameter_list(const std::vector<std::string>& inputs,

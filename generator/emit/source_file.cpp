@@ -38,7 +38,7 @@ bool uses_array(const FunctionBody& body, const std::string& array) {
 std::string definition(const EmittedFunction& function, std::size_t s, Scalar scalar) {
   const FunctionBody& body = function.bodies[s];
   return Printer(embedded_template("function_definition"))
-      .set("signature", function_prototype(function.name, scalar, true))
+      .set("signature", function_prototype(function, scalar, true))
       .set_block(
           "unused",
           [&](CodeWriter& out) {

@@ -1,11 +1,13 @@
-// Parameter lists of generated entry points and their line breaking (generator/emit/prototype):
-// literal expected text, as the generated headers show it.
+// Prototypes of generated entry points (generator/emit/prototype): parameter lists, their line
+// breaking and the documentation of a _sincos variant, as literal text.
 
 #include "generator/emit/prototype.hpp"
 
 #include <string>
 
 #include <gtest/gtest.h>
+
+#include "generator/functions/registry.hpp"
 
 namespace modelgen::gen {
 namespace {
@@ -39,6 +41,26 @@ TEST(Prototype, ParameterLongerThanTheWidthGetsItsOwnLine) {
             "f(a,\n"
             "  bbbbbbbbbbbbbbbb,\n"
             "  c)");
+}
+
+TEST(Prototype, SincosVariantIsDocumentedAsAVariantAndWrapped) {
+  EmittedFunction variant;
+  for (const FunctionEntry& entry : function_registry()) {
+    if (std::string(entry.name) == "idim_regressor") variant.entry = &entry;
+  }
+  ASSERT_NE(variant.entry, nullptr);
+  variant.name = "idim_regressor_sincos";
+  variant.sincos = true;
+  variant.inputs = {"q", "sin_q", "cos_q", "dq", "ddq"};
+  variant.outputs = {"W"};
+  EXPECT_EQ(function_prototype(variant, Scalar::kDouble, true),
+            "// idim_regressor with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of\n"
+            "// computing them; identical results.\n"
+            "void idim_regressor_sincos(const double* q, const double* sin_q, const double* cos_q,\n"
+            "                           const double* dq, const double* ddq, double* W)");
+  EXPECT_EQ(function_prototype(variant, Scalar::kFloat, false),
+            "void idim_regressor_sincos(const float* q, const float* sin_q, const float* cos_q,\n"
+            "                           const float* dq, const float* ddq, float* W)");
 }
 
 }  // namespace
