@@ -12,8 +12,10 @@
 // base_from_standard                     61    106        0
 // idim_regressor                        800    622       12
 // inverse_dynamics                      415    345       12
+// mass_matrix                           775    686       12
 // idim_regressor_sincos                 800    622        0
 // inverse_dynamics_sincos               415    345        0
+// mass_matrix_sincos                    775    686        0
 // inverse_dynamics_state_jacobian      4325   3974       12
 // energy_regressor                      141     76       12
 // power_regressor                       385    233       12
@@ -119,6 +121,14 @@ void inverse_dynamics(const double* q, const double* dq, const double* ddq, cons
 void inverse_dynamics(const float* q, const float* dq, const float* ddq, const float* beta,
                       float* tau);
 
+// Joint-space inertia matrix M(q) on the base parameters: inverse_dynamics is tau = M(q) ddq +
+// terms without ddq (velocity, gravity, friction, offsets), for forward dynamics
+// ddq = M^-1 (tau - inverse_dynamics(q, dq, 0, beta)). Inputs q (kDof) and beta (kBaseParams,
+// as for inverse_dynamics). Output M: kDof x kDof, row-major, M[i * kDof + k] = d tau_i / d ddq_k
+// (drive inertias included; symmetric, and positive definite for physical parameters).
+void mass_matrix(const double* q, const double* beta, double* M);
+void mass_matrix(const float* q, const float* beta, float* M);
+
 // idim_regressor with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
 // computing them; identical results.
 void idim_regressor_sincos(const double* q, const double* sin_q, const double* cos_q,
@@ -132,6 +142,13 @@ void inverse_dynamics_sincos(const double* q, const double* sin_q, const double*
                              const double* dq, const double* ddq, const double* beta, double* tau);
 void inverse_dynamics_sincos(const float* q, const float* sin_q, const float* cos_q,
                              const float* dq, const float* ddq, const float* beta, float* tau);
+
+// mass_matrix with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
+// computing them; identical results.
+void mass_matrix_sincos(const double* q, const double* sin_q, const double* cos_q,
+                        const double* beta, double* M);
+void mass_matrix_sincos(const float* q, const float* sin_q, const float* cos_q, const float* beta,
+                        float* M);
 
 // Jacobian of inverse_dynamics with respect to the state x = [q, dq, ddq] (3 kDof values), for
 // maximum likelihood with errors in variables (Bona & Curatella eq. 15-16): J is kDof x 3 kDof,
@@ -252,6 +269,9 @@ struct Model {
   }
   static void power_regressor(const double* q, const double* dq, const double* ddq, double* dh) {
     ::modelgen::panda_arm::power_regressor(q, dq, ddq, dh);
+  }
+  static void mass_matrix(const double* q, const double* beta, double* M) {
+    ::modelgen::panda_arm::mass_matrix(q, beta, M);
   }
 };
 

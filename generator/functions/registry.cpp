@@ -18,6 +18,7 @@ FunctionDefinition build_drive_torque_jacobian(BuildContext& context);
 FunctionDefinition build_drive_torque_state_jacobian(BuildContext& context);
 FunctionDefinition build_energy_regressor(BuildContext& context);
 FunctionDefinition build_power_regressor(BuildContext& context);
+FunctionDefinition build_mass_matrix(BuildContext& context);
 
 namespace {
 
@@ -60,6 +61,8 @@ const std::vector<FunctionEntry> kRegistry = {
      {kQ, kDq}, {{"h", E::kBaseParams}}, build_energy_regressor},
     {"power_regressor", S::kPowerModel, Variants::kSincos, InModelStruct::kYes,
      {kQ, kDq, kDdq}, {{"dh", E::kBaseParams}}, build_power_regressor},
+    {"mass_matrix", S::kBase, Variants::kSincos, InModelStruct::kYes,
+     {kQ, {"beta", E::kBaseParams}}, {{"M", E::kDof, E::kDof}}, build_mass_matrix},
 };
 // clang-format on
 
