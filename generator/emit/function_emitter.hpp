@@ -5,11 +5,11 @@
 #include <string>
 #include <vector>
 
-#include "generator/description/robot_model.hpp"
 #include "generator/emit/statement_writer.hpp"
 #include "generator/functions/function_entry.hpp"
 #include "generator/symbolic/expr.hpp"
-#include "modelgen/base_parameters.hpp"
+#include "modelgen/model/base_parameters.hpp"
+#include "modelgen/model/robot_model.hpp"
 
 namespace modelgen::gen {
 

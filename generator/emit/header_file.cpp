@@ -7,10 +7,10 @@
 #include <cctype>
 
 #include "generator/emit/banner.hpp"
-#include "generator/emit/format_version.hpp"
 #include "generator/emit/printer.hpp"
 #include "generator/emit/prototype.hpp"
 #include "generator/functions/registry.hpp"
+#include "modelgen/model/generated_format.hpp"
 
 namespace modelgen::gen {
 
@@ -83,7 +83,7 @@ std::string render_header(const RenderInput& in) {
       .set("banner", render_banner(in.header_name(), in))
       .set("include_guard", include_guard(in.model.name))
       .set("robot", in.model.name)
-      .set("format_version", kFormatVersion)
+      .set("format_version", kGeneratedFormatVersion)
       // The drive-chain constants take the first scalar type asked for.
       .set("scalar", scalar_name(in.input.scalars.front()))
       .set("dof", in.model.dof())

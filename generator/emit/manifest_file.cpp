@@ -7,9 +7,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "generator/emit/format_version.hpp"
 #include "generator/emit/number_format.hpp"
 #include "generator/version.hpp"
+#include "modelgen/model/generated_format.hpp"
 
 namespace modelgen::gen {
 
@@ -82,7 +82,7 @@ std::string render_manifest(const RenderInput& in) {
   Json document;
   document["generator"] = "modelgen";
   document["generator_version"] = kVersion;
-  document["format_version"] = kFormatVersion;
+  document["format_version"] = kGeneratedFormatVersion;
   document["robot"] = in.model.name;
   document["input"] = in.input.input_name;
   document["input_sha256"] = in.sha256;

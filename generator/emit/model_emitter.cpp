@@ -9,8 +9,8 @@
 #include "generator/emit/manifest_file.hpp"
 #include "generator/emit/render_input.hpp"
 #include "generator/emit/source_file.hpp"
-#include "generator/output/sha256.hpp"
-#include "modelgen/base_parameters.hpp"
+#include "modelgen/model/base_parameters.hpp"
+#include "modelgen/model/sha256.hpp"
 
 namespace modelgen::gen {
 

@@ -5,11 +5,10 @@
 #include <string>
 #include <vector>
 
-#include "generator/description/robot_model.hpp"
-#include "generator/emit/format_version.hpp"
 #include "generator/emit/generation_input.hpp"
 #include "generator/emit/statement_writer.hpp"
 #include "generator/output/file_set.hpp"
+#include "modelgen/model/robot_model.hpp"
 
 namespace modelgen::gen {
 

@@ -5,10 +5,10 @@
 #include <string>
 #include <vector>
 
-#include "generator/description/robot_model.hpp"
 #include "generator/emit/function_emitter.hpp"
 #include "generator/emit/generation_input.hpp"
-#include "modelgen/base_parameters.hpp"
+#include "modelgen/model/base_parameters.hpp"
+#include "modelgen/model/robot_model.hpp"
 
 namespace modelgen::gen {
 

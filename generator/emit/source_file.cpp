@@ -66,6 +66,8 @@ void write_definitions(const RenderInput& in, CodeWriter& out) {
   }
 }
 
+std::vector<double> as_vector(const Eigen::VectorXd& v) { return {v.data(), v.data() + v.size()}; }
+
 void write_matrix_rows(const Eigen::MatrixXd& matrix, Scalar scalar, CodeWriter& out) {
   // One row per line, so the matrix reads as written.
   for (Eigen::Index r = 0; r < matrix.rows(); ++r) {
@@ -97,9 +99,12 @@ std::string render_source(const RenderInput& in) {
       .set_block("motor_from_joint",
                  [&](CodeWriter& out) { write_matrix_rows(drives.motor_from_joint, scalar, out); })
       .set_block("torque_constant",
-                 [&](CodeWriter& out) { write_number_list(drives.torque_constant, scalar, out); })
-      .set_block("joint_offset",
-                 [&](CodeWriter& out) { write_number_list(drives.joint_offset, scalar, out); })
+                 [&](CodeWriter& out) {
+                   write_number_list(as_vector(drives.torque_constant), scalar, out);
+                 })
+      .set_block(
+          "joint_offset",
+          [&](CodeWriter& out) { write_number_list(as_vector(drives.joint_offset), scalar, out); })
       .set_block("definitions", [&](CodeWriter& out) { write_definitions(in, out); })
       .render();
 }

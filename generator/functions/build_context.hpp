@@ -7,11 +7,11 @@
 #include <string>
 #include <vector>
 
-#include "generator/description/robot_model.hpp"
 #include "generator/dynamics/newton_euler.hpp"
 #include "generator/functions/function_entry.hpp"
 #include "generator/symbolic/expr.hpp"
-#include "modelgen/base_parameters.hpp"
+#include "modelgen/model/base_parameters.hpp"
+#include "modelgen/model/robot_model.hpp"
 
 namespace modelgen::gen {
 

@@ -9,7 +9,7 @@
 
 #include <gtest/gtest.h>
 
-#include "generator/description/load_robot.hpp"
+#include "modelgen/model/load_robot.hpp"
 #include "tests/support/test_support.hpp"
 
 namespace modelgen::gen {

@@ -13,8 +13,8 @@
 #include <gtest/gtest.h>
 
 #include MODELGEN_ROBOT_HEADER
-#include "generator/description/load_robot.hpp"
-#include "modelgen/reference_dynamics.hpp"
+#include "modelgen/model/load_robot.hpp"
+#include "modelgen/model/reference_dynamics.hpp"
 #include "tests/support/kdl_oracle.hpp"
 #include "tests/support/test_support.hpp"
 
@@ -36,7 +36,7 @@ RigidBodyTree without_gravity(RigidBodyTree tree) {
 class GeneratedMassMatrix : public testing::Test {
  protected:
   GeneratedMassMatrix()
-      : description_(gen::load_robot(test::source_path(MODELGEN_ROBOT_DESCRIPTION))),
+      : description_(load_robot(test::source_path(MODELGEN_ROBOT_DESCRIPTION))),
         reference_(without_gravity(description_.tree)) {}
 
   Eigen::MatrixXd reference_mass_matrix(const Eigen::VectorXd& q, const Eigen::VectorXd& p) const {
@@ -50,7 +50,7 @@ class GeneratedMassMatrix : public testing::Test {
     return M;
   }
 
-  gen::RobotModel description_;
+  RobotModel description_;
   ReferenceDynamics reference_;  // without gravity
 };
 

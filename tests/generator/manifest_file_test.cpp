@@ -9,10 +9,10 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "generator/description/load_robot.hpp"
-#include "generator/emit/format_version.hpp"
 #include "generator/generate.hpp"
-#include "modelgen/base_parameters.hpp"
+#include "modelgen/model/base_parameters.hpp"
+#include "modelgen/model/generated_format.hpp"
+#include "modelgen/model/load_robot.hpp"
 #include "tests/support/test_support.hpp"
 
 namespace modelgen::gen {
@@ -26,7 +26,7 @@ TEST(ManifestFile, ReadsBackAsTheFactsOfTheGeneration) {
   const nlohmann::json manifest = nlohmann::json::parse(text);
 
   const RobotModel model = load_robot(path);
-  EXPECT_EQ(manifest["format_version"], kFormatVersion);
+  EXPECT_EQ(manifest["format_version"], kGeneratedFormatVersion);
   EXPECT_EQ(manifest["robot"], "kr150");
   EXPECT_EQ(manifest["input"], "kr150.yaml");
   EXPECT_EQ(manifest["dof"], model.dof());

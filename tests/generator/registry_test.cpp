@@ -10,10 +10,10 @@
 
 #include <gtest/gtest.h>
 
-#include "generator/description/load_robot.hpp"
 #include "generator/emit/function_emitter.hpp"
 #include "generator/emit/template.hpp"
 #include "generator/generate.hpp"
+#include "modelgen/model/load_robot.hpp"
 #include "tests/support/test_support.hpp"
 
 namespace modelgen::gen {
