@@ -4,7 +4,7 @@
 
 #include <string>
 
-#include "generator/description/load_robot.hpp"
+#include "modelgen/model/load_robot.hpp"
 #include "generator/emit/model_emitter.hpp"
 
 namespace modelgen::gen {

@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "generator/description/describe.hpp"
-#include "generator/description/load_robot.hpp"
+#include "generator/describe.hpp"
+#include "modelgen/model/load_robot.hpp"
 #include "generator/dynamics/base_report.hpp"
 #include "generator/generate.hpp"
 #include "generator/version.hpp"
@@ -40,7 +40,7 @@ struct Arguments {
   std::string robot;
   std::string output_dir;
   std::string scalar = "both";
-  modelgen::gen::LoadOptions load;
+  modelgen::LoadOptions load;
 };
 
 Arguments parse(int argc, char** argv) {
@@ -100,9 +100,9 @@ int main(int argc, char** argv) {
   try {
     const Arguments args = parse(argc, argv);
     if (args.command == "describe") {
-      std::cout << modelgen::gen::describe(modelgen::gen::load_robot(args.robot, args.load));
+      std::cout << modelgen::gen::describe(modelgen::load_robot(args.robot, args.load));
     } else if (args.command == "base") {
-      const modelgen::gen::RobotModel model = modelgen::gen::load_robot(args.robot, args.load);
+      const modelgen::RobotModel model = modelgen::load_robot(args.robot, args.load);
       const auto closed = modelgen::gen::derive_closed_form_relations(model);
       std::cout << modelgen::gen::describe_base_parameters(
           model, modelgen::derive_base_parameters(model.tree), closed ? &*closed : nullptr);
@@ -113,7 +113,7 @@ int main(int argc, char** argv) {
   } catch (const UsageError& e) {
     std::cerr << "modelgen: " << e.message << "\n\n" << kUsage;
     return 2;
-  } catch (const modelgen::gen::InputError& e) {
+  } catch (const modelgen::InputError& e) {
     std::cerr << e.what() << "\n";
     return 1;
   } catch (const std::exception& e) {

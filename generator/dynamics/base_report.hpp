@@ -4,8 +4,8 @@
 
 #include <string>
 
-#include "generator/description/robot_model.hpp"
-#include "modelgen/base_parameters.hpp"
+#include "modelgen/model/robot_model.hpp"
+#include "modelgen/model/base_parameters.hpp"
 #include "generator/dynamics/closed_form_base.hpp"
 
 namespace modelgen::gen {

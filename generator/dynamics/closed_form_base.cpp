@@ -9,7 +9,7 @@
 #include <cmath>
 #include <sstream>
 
-#include "generator/description/describe.hpp"
+#include "generator/describe.hpp"
 
 namespace modelgen::gen {
 

@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "generator/description/robot_model.hpp"
+#include "modelgen/model/robot_model.hpp"
 #include "generator/symbolic/expr.hpp"
 
 namespace modelgen::gen {

@@ -8,7 +8,7 @@
 
 #include "generator/dynamics/symbolic_vectors.hpp"
 #include "generator/symbolic/expr.hpp"
-#include "modelgen/rigid_body_tree.hpp"
+#include "modelgen/model/rigid_body_tree.hpp"
 
 namespace modelgen::gen {
 

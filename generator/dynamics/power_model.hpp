@@ -7,7 +7,7 @@
 
 #include "generator/dynamics/newton_euler.hpp"
 #include "generator/symbolic/expr.hpp"
-#include "modelgen/rigid_body_tree.hpp"
+#include "modelgen/model/rigid_body_tree.hpp"
 
 namespace modelgen::gen {
 

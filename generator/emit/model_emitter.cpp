@@ -8,12 +8,12 @@
 #include <functional>
 #include <stdexcept>
 
-#include "modelgen/base_parameters.hpp"
+#include "modelgen/model/base_parameters.hpp"
 #include "generator/dynamics/drive_model.hpp"
 #include "generator/dynamics/newton_euler.hpp"
 #include "generator/dynamics/power_model.hpp"
 #include "generator/emit/printer.hpp"
-#include "generator/output/sha256.hpp"
+#include "modelgen/model/sha256.hpp"
 #include "generator/symbolic/derivative.hpp"
 #include "generator/version.hpp"
 
@@ -115,6 +115,8 @@ void write_name_list(const std::vector<std::string>& names, CodeWriter& out) {
   for (const std::string& name : names) quoted.push_back(json_string(name));
   write_list(quoted, out);
 }
+
+std::vector<double> as_vector(const Eigen::VectorXd& v) { return {v.data(), v.data() + v.size()}; }
 
 void write_number_list(const std::vector<double>& values, Scalar scalar, CodeWriter& out) {
   std::vector<std::string> literals;
@@ -558,9 +560,9 @@ GeneratedModel emit_model(const RobotModel& model, const GenerationInput& input)
                        }
                      })
           .set_block("torque_constant",
-                     [&](CodeWriter& out) { write_number_list(model.drives.torque_constant, input.scalars.front(), out); })
+                     [&](CodeWriter& out) { write_number_list(as_vector(model.drives.torque_constant), input.scalars.front(), out); })
           .set_block("joint_offset",
-                     [&](CodeWriter& out) { write_number_list(model.drives.joint_offset, input.scalars.front(), out); })
+                     [&](CodeWriter& out) { write_number_list(as_vector(model.drives.joint_offset), input.scalars.front(), out); })
           .set_block("definitions",
                      [&](CodeWriter& out) {
                        bool first = true;

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "generator/description/robot_model.hpp"
+#include "modelgen/model/robot_model.hpp"
 #include "generator/emit/statement_writer.hpp"
 #include "generator/output/file_set.hpp"
 

@@ -8,7 +8,7 @@
 
 #include <unistd.h>
 
-#include "generator/description/diagnostics.hpp"
+#include "modelgen/model/error.hpp"
 
 namespace modelgen::gen {
 

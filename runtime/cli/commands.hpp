@@ -1,5 +1,5 @@
 // The modelid commands, one source file each; main dispatches to them. Each returns the exit
-// code and throws UsageError, gen::InputError, DataError, EstimationError or
+// code and throws UsageError, modelgen::InputError, DataError, EstimationError or
 // std::runtime_error for main to report.
 #pragma once
 

@@ -82,7 +82,7 @@ Experiments read_experiments(const std::vector<std::string>& paths,
   for (const std::string& path : paths) {
     progress.update(static_cast<long long>(out.data.size()), path);
     PreparedExperiment prepared = prepare_experiment(read_trajectory_csv(path, model.dof(), effort),
-                                                     model.transmission(), options);
+                                                     model.drive_chain(), options);
     report << "  " << path << ": " << prepared.summary << "\n";
     if (!prepared.warning.empty()) std::cerr << prepared.warning << "\n";
     out.data.push_back(std::move(prepared.data));

@@ -86,7 +86,7 @@ std::string defaulted_note(const std::string& path, const std::vector<std::strin
 
 }  // namespace
 
-DriveTruth read_drive_truth(const std::string& path, const gen::RobotModel& description,
+DriveTruth read_drive_truth(const std::string& path, const modelgen::RobotModel& description,
                             const DriveModel& model) {
   const std::vector<std::string> names = ml_param_names(model);
   const std::map<std::string, double> values = read_drive_parameter_values(path, names);

@@ -8,7 +8,7 @@
 
 #include <Eigen/Core>
 
-#include "generator/description/robot_model.hpp"
+#include "modelgen/model/robot_model.hpp"
 #include "modelgen/data.hpp"
 #include "modelgen/drive_model.hpp"
 #include "runtime/cli/progress.hpp"
@@ -30,7 +30,7 @@ struct DriveTruth {
 /// unknown name, an efficiency Rzj that is not positive, a load (any load_* given) when
 /// `description` names no payload link or the load is physically inconsistent
 /// (physical_consistency_warnings, listed).
-DriveTruth read_drive_truth(const std::string& path, const gen::RobotModel& description,
+DriveTruth read_drive_truth(const std::string& path, const modelgen::RobotModel& description,
                             const DriveModel& model);
 
 /// Motor torques tau_M (samples x dof, N m, link side) of `model` at `theta` for every sample

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "modelgen/model.hpp"
+#include "modelgen/model/identification_model.hpp"
 
 namespace modelgen::internal {
 

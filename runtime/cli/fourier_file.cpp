@@ -1,5 +1,5 @@
 // Fourier trajectory YAML through yaml-cpp; every yaml-cpp error becomes a positioned
-// gen::InputError.
+// modelgen::InputError.
 
 #include "runtime/cli/fourier_file.hpp"
 
@@ -10,7 +10,7 @@
 
 #include <yaml-cpp/yaml.h>
 
-#include "generator/description/diagnostics.hpp"
+#include "modelgen/model/error.hpp"
 
 namespace modelgen::internal {
 
@@ -21,30 +21,30 @@ FourierTrajectory read_fourier_checked(const std::string& path, int dof) {
   try {
     root = YAML::LoadFile(path);
   } catch (const YAML::Exception& e) {
-    throw gen::InputError({path, e.mark.line + 1, e.mark.column + 1}, e.msg);
+    throw modelgen::InputError({path, e.mark.line + 1, e.mark.column + 1}, e.msg);
   }
-  auto at = [&](const YAML::Node& node) -> gen::SourceLocation {
+  auto at = [&](const YAML::Node& node) -> modelgen::SourceLocation {
     return {path, node.Mark().line + 1, node.Mark().column + 1};
   };
   FourierTrajectory f;
   if (!root["period"] || !root["joints"] || !root["joints"].IsSequence()) {
-    throw gen::InputError({path},
+    throw modelgen::InputError({path},
                           "a trajectory needs 'period' (s) and 'joints' (one entry per "
                           "joint with q0 and a, b or terms)");
   }
   f.period = root["period"].as<double>();
-  if (!(f.period > 0)) throw gen::InputError(at(root["period"]), "'period' must be positive (s)");
+  if (!(f.period > 0)) throw modelgen::InputError(at(root["period"]), "'period' must be positive (s)");
   std::string form = "velocity";
   if (root["form"]) form = root["form"].as<std::string>();
   if (form != "velocity" && form != "position") {
-    throw gen::InputError(at(root["form"]),
+    throw modelgen::InputError(at(root["form"]),
                           "'form' is 'velocity' (a/(l w) sin - b/(l w) cos, Swevers 1997) or "
                           "'position' (a sin + b cos, Swevers 2002 eq. 15), not '" +
                               form + "'");
   }
   const YAML::Node joints = root["joints"];
   if (static_cast<int>(joints.size()) != dof) {
-    throw gen::InputError(at(joints), "'joints' has " + std::to_string(joints.size()) +
+    throw modelgen::InputError(at(joints), "'joints' has " + std::to_string(joints.size()) +
                                           " entries, the robot has " + std::to_string(dof) +
                                           " joints");
   }
@@ -59,21 +59,21 @@ FourierTrajectory read_fourier_checked(const std::string& path, int dof) {
     auto& terms = written[static_cast<std::size_t>(j)];
     if (joint["terms"]) {
       if (joint["a"] || joint["b"]) {
-        throw gen::InputError(at(joint), "joint " + std::to_string(j + 1) +
+        throw modelgen::InputError(at(joint), "joint " + std::to_string(j + 1) +
                                              ": give either 'a' and 'b' or 'terms', not both");
       }
       for (const YAML::Node& term : joint["terms"]) {
         if (!term["l"] || !term["a"] || !term["b"]) {
-          throw gen::InputError(at(term), "a term needs 'l' (harmonic, 1 or more), 'a' and 'b'");
+          throw modelgen::InputError(at(term), "a term needs 'l' (harmonic, 1 or more), 'a' and 'b'");
         }
         const int l = term["l"].as<int>();
-        if (l < 1) throw gen::InputError(at(term["l"]), "harmonic 'l' must be 1 or more");
+        if (l < 1) throw modelgen::InputError(at(term["l"]), "harmonic 'l' must be 1 or more");
         terms.push_back({static_cast<double>(l), term["a"].as<double>(), term["b"].as<double>()});
         harmonics = std::max(harmonics, l);
       }
     } else {
       if (!joint["a"] || !joint["b"] || joint["a"].size() != joint["b"].size()) {
-        throw gen::InputError(at(joint), "joint " + std::to_string(j + 1) +
+        throw modelgen::InputError(at(joint), "joint " + std::to_string(j + 1) +
                                              " needs 'a' and 'b' with as many coefficients "
                                              "each, or 'terms'");
       }
@@ -110,7 +110,7 @@ FourierTrajectory read_fourier(const std::string& path, int dof) {
   try {
     return read_fourier_checked(path, dof);
   } catch (const YAML::Exception& e) {
-    throw gen::InputError({path, e.mark.line + 1, e.mark.column + 1}, e.msg);
+    throw modelgen::InputError({path, e.mark.line + 1, e.mark.column + 1}, e.msg);
   }
 }
 

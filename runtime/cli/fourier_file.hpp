@@ -13,7 +13,7 @@ namespace modelgen::internal {
 /// Reads {period: S, form: velocity|position (default velocity), joints: [{q0: .., a: [..],
 /// b: [..]} or {q0: .., terms: [{l: 25, a: .., b: ..}, ...]}, ...]} with one entry per joint:
 /// dense lists give harmonics 1, 2, ..., sparse terms name theirs; the rest are zero.
-/// Throws gen::InputError naming the file, line and column for a syntax error, a missing key,
+/// Throws modelgen::InputError naming the file, line and column for a syntax error, a missing key,
 /// an unknown form, a non-positive period or harmonic, a joint count that differs from `dof`.
 FourierTrajectory read_fourier(const std::string& path, int dof);
 

@@ -75,7 +75,7 @@ std::set<std::string> parse_unknown_groups(const Arguments& args) {
 // diagonal K the two models then agree on tau_joint = K^T tau_M). Friction Fv/Fc is not mapped:
 // the drive model's Rv/Rc are motor-side and usually unknown. Without a value: Rzj 1 (no loss),
 // everything else 0; those names are reported.
-Eigen::VectorXd prior_values(const gen::RobotModel& description, const Transmission& drive,
+Eigen::VectorXd prior_values(const modelgen::RobotModel& description, const DriveChain& drive,
                              const std::vector<std::string>& names,
                              const std::map<std::string, double>& overrides,
                              std::vector<std::string>& missing) {
@@ -112,7 +112,7 @@ Eigen::VectorXd prior_values(const gen::RobotModel& description, const Transmiss
 // The motors (0-based) that move: max |dq_M,i| (dq_M = K dq, eq. 9) above 1e-6 times the
 // largest motor speed. Not an exact zero test: the periodic route's Fourier re-estimation
 // leaves rounding-level velocities on axes held still.
-std::vector<int> moving_axes(const std::vector<MlExperiment>& data, const Transmission& drive) {
+std::vector<int> moving_axes(const std::vector<MlExperiment>& data, const DriveChain& drive) {
   const Eigen::Index dof = drive.motor_from_joint.rows();
   Eigen::VectorXd speed = Eigen::VectorXd::Zero(dof);
   for (const MlExperiment& x : data) {
@@ -154,7 +154,7 @@ int run_fit_ml(const Arguments& args) {
         "a-priori link values come from its 'known:' section, not '" +
         args.one("--robot") + "'"};
   }
-  const gen::RobotModel& description = *source.description;
+  const modelgen::RobotModel& description = *source.description;
   const IdentificationModel& model = *source.model;
   if (!args.has("--data")) throw UsageError{"fit needs at least one --data file"};
   if (!args.has("--periodic")) {
@@ -173,7 +173,7 @@ int run_fit_ml(const Arguments& args) {
   std::unique_ptr<DriveModel> drive_model =
       make_shipped_drive_model(model.description_sha256(), &generated_name);
   if (drive_model == nullptr) {
-    drive_model = std::make_unique<ReferenceDriveModel>(description.tree, model.transmission());
+    drive_model = std::make_unique<ReferenceDriveModel>(description.tree, model.drive_chain());
   }
   const std::vector<std::string> names = ml_param_names(*drive_model);
   std::map<std::string, double> overrides;
@@ -193,13 +193,13 @@ int run_fit_ml(const Arguments& args) {
     PreparedExperiment prepared;
     prepared.data = experiments.data[e];
     prepared.tau_noise_variance = experiments.tau_noise_variance[e];
-    data.push_back(ml_experiment(prepared, model.transmission()));
+    data.push_back(ml_experiment(prepared, model.drive_chain()));
   }
 
   std::vector<std::string> missing;
   const Eigen::VectorXd priors =
-      prior_values(description, model.transmission(), names, overrides, missing);
-  const std::vector<int> axes = moving_axes(data, model.transmission());
+      prior_values(description, model.drive_chain(), names, overrides, missing);
+  const std::vector<int> axes = moving_axes(data, model.drive_chain());
   if (axes.empty()) throw EstimationError("maximum likelihood: no motor moves in the data");
   const int payload_link = description.payload_body >= 0 ? description.payload_body + 1 : 0;
 

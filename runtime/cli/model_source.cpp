@@ -5,8 +5,8 @@
 #include <filesystem>
 #include <stdexcept>
 
-#include "generator/description/load_robot.hpp"
-#include "generator/output/sha256.hpp"
+#include "modelgen/model/load_robot.hpp"
+#include "modelgen/model/sha256.hpp"
 #include "runtime/cli/shipped_models.hpp"
 
 namespace modelgen::internal {
@@ -14,15 +14,10 @@ namespace modelgen::internal {
 ModelSource load_model_source(const std::string& robot) {
   ModelSource source;
   if (std::filesystem::exists(robot)) {
-    source.description = gen::load_robot(robot);
-    const gen::DriveChain& drives = source.description->drives;
-    const int dof = source.description->dof();
-    Transmission drive{drives.motor_from_joint,
-                       Eigen::Map<const Eigen::VectorXd>(drives.torque_constant.data(), dof),
-                       Eigen::Map<const Eigen::VectorXd>(drives.joint_offset.data(), dof)};
+    source.description = modelgen::load_robot(robot);
     source.model = std::make_unique<ReferenceModel>(
         source.description->name, source.description->tree,
-        gen::sha256_hex(gen::read_source_file(robot)), std::move(drive));
+        sha256_hex(read_source_file(robot)), source.description->drives);
     return source;
   }
   source.model = make_shipped_model(robot);

@@ -6,17 +6,17 @@
 #include <optional>
 #include <string>
 
-#include "generator/description/robot_model.hpp"
-#include "modelgen/model.hpp"
+#include "modelgen/model/robot_model.hpp"
+#include "modelgen/model/identification_model.hpp"
 
 namespace modelgen::internal {
 
 struct ModelSource {
   std::unique_ptr<IdentificationModel> model;
-  std::optional<gen::RobotModel> description;  ///< when --robot was a file
+  std::optional<modelgen::RobotModel> description;  ///< when --robot was a file
 };
 
-/// Throws gen::InputError for a file that does not load, std::invalid_argument for a name
+/// Throws modelgen::InputError for a file that does not load, std::invalid_argument for a name
 /// that is neither a file nor a compiled-in model (the message lists the compiled-in ones).
 ModelSource load_model_source(const std::string& robot);
 

@@ -7,7 +7,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "generator/description/diagnostics.hpp"
+#include "modelgen/model/error.hpp"
 #include "modelgen/data.hpp"
 #include "modelgen/estimate.hpp"
 #include "runtime/cli/arguments.hpp"
@@ -66,7 +66,7 @@ int main(int argc, char** argv) {
   } catch (const UsageError& e) {
     std::cerr << "modelid: " << e.message << "\n\n" << kUsage;
     return 2;
-  } catch (const gen::InputError& e) {
+  } catch (const modelgen::InputError& e) {
     std::cerr << e.what() << "\n";
     return 1;
   } catch (const DataError& e) {

@@ -6,7 +6,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "generator/description/diagnostics.hpp"
+#include "modelgen/model/error.hpp"
 #include "runtime/cli/json_file.hpp"
 
 namespace modelgen::internal {
@@ -19,7 +19,7 @@ int index_of(const std::vector<std::string>& names, const std::string& name,
     if (names[k] == name) return static_cast<int>(k);
   }
   throw std::runtime_error(path + ": error: '" + name + "' is not a " + kind + " parameter of " +
-                           "this model" + gen::did_you_mean(name, names));
+                           "this model" + modelgen::did_you_mean(name, names));
 }
 
 double number(const nlohmann::json& value, const std::string& path, const std::string& name) {

@@ -6,7 +6,7 @@
 
 #include <Eigen/Core>
 
-#include "modelgen/model.hpp"
+#include "modelgen/model/identification_model.hpp"
 
 namespace modelgen::internal {
 

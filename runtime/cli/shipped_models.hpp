@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "modelgen/drive_model.hpp"
-#include "modelgen/model.hpp"
+#include "modelgen/model/identification_model.hpp"
 
 namespace modelgen::internal {
 

@@ -101,7 +101,7 @@ int run_simulate(const Arguments& args) {
   std::optional<ReferenceDriveModel> drive_model;
   DriveTruth truth;
   if (drive_mode) {
-    drive_model.emplace(source.description->tree, model.transmission());
+    drive_model.emplace(source.description->tree, model.drive_chain());
     truth = read_drive_truth(args.one("--drive"), *source.description, *drive_model);
     if (!truth.note.empty()) std::cerr << "modelid simulate: note: " << truth.note << "\n";
   }
@@ -134,7 +134,7 @@ int run_simulate(const Arguments& args) {
   }
   // Swevers eq. 10 / power balance: the joint torques the motor torques produce,
   // tau = K^T tau_M, which `fit --method ml` maps back by tau_M = K^-T tau (ml_experiment).
-  if (drive_mode) x.tau = x.tau * model.transmission().motor_from_joint;
+  if (drive_mode) x.tau = x.tau * model.drive_chain().motor_from_joint;
   progress.update(x.t.size());
   progress.finish();
   write_trajectory_csv(output, x);

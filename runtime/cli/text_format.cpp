@@ -2,16 +2,13 @@
 
 #include "runtime/cli/text_format.hpp"
 
-#include <charconv>
+#include "modelgen/model/number_text.hpp"
+
 #include <cstdio>
 
 namespace modelgen::internal {
 
-std::string shortest(double value) {
-  char buffer[32];
-  auto [end, ec] = std::to_chars(buffer, buffer + sizeof buffer, value);
-  return std::string(buffer, end);
-}
+std::string shortest(double value) { return shortest_text(value); }
 
 std::string fixed(double value, int width, int precision) {
   char text[64];

@@ -9,7 +9,7 @@
 #include <Eigen/Core>
 
 #include "modelgen/data.hpp"
-#include "modelgen/model.hpp"
+#include "modelgen/model/identification_model.hpp"
 
 namespace modelgen::internal {
 

@@ -9,6 +9,8 @@
 #include <map>
 #include <sstream>
 
+#include "modelgen/model/number_text.hpp"
+
 namespace modelgen {
 
 namespace {
@@ -34,11 +36,7 @@ std::vector<std::string> split(const std::string& line) {
   return fields;
 }
 
-std::string format(double value) {
-  char buffer[32];
-  auto [end, ec] = std::to_chars(buffer, buffer + sizeof buffer, value);
-  return std::string(buffer, end);
-}
+std::string format(double value) { return shortest_text(value); }
 
 }  // namespace
 

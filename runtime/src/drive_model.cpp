@@ -44,7 +44,7 @@ RigidBodyTree rigid_body_part(const RigidBodyTree& tree) {
 
 }  // namespace
 
-ReferenceDriveModel::ReferenceDriveModel(const RigidBodyTree& tree, const Transmission& drive)
+ReferenceDriveModel::ReferenceDriveModel(const RigidBodyTree& tree, const DriveChain& drive)
     : dof_(tree.dof), rigid_(rigid_body_part(tree)) {
   inertial_ = rigid_.num_params();
   for (const StandardParam& param : rigid_.tree().params) names_.push_back(param.name);

@@ -23,7 +23,7 @@ namespace {
 
 }  // namespace
 
-MlExperiment ml_experiment(const PreparedExperiment& prepared, const Transmission& drive) {
+MlExperiment ml_experiment(const PreparedExperiment& prepared, const DriveChain& drive) {
   const Trajectory& x = prepared.data;
   const Eigen::Index n = x.q.cols();
   if (prepared.tau_noise_variance.size() == 0) {

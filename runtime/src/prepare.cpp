@@ -84,7 +84,7 @@ void decimate_trajectory(Trajectory& x, int factor) {
   for (Eigen::MatrixXd* m : {&x.q, &x.dq, &x.ddq, &x.tau}) *m = decimate(*m, factor);
 }
 
-PreparedExperiment prepare_experiment(Trajectory raw, const Transmission& drive,
+PreparedExperiment prepare_experiment(Trajectory raw, const DriveChain& drive,
                                       const PreparationOptions& options) {
   PreparedExperiment out;
   to_joint_side(raw, drive, options.side);

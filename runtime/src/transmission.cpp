@@ -9,12 +9,7 @@
 
 namespace modelgen {
 
-Transmission Transmission::identity(int dof) {
-  return {Eigen::MatrixXd::Identity(dof, dof), Eigen::VectorXd::Zero(dof),
-          Eigen::VectorXd::Zero(dof)};
-}
-
-void to_joint_side(Trajectory& x, const Transmission& drive, Side positions) {
+void to_joint_side(Trajectory& x, const DriveChain& drive, Side positions) {
   const Eigen::Index n = x.q.cols();
   if (drive.motor_from_joint.rows() != n || drive.motor_from_joint.cols() != n ||
       drive.torque_constant.size() != n || drive.joint_offset.size() != n) {

@@ -18,12 +18,12 @@
 
 #include "generated/kr150/kr150.hpp"
 #include "generated/tx40/tx40.hpp"
-#include "generator/description/load_robot.hpp"
+#include "modelgen/model/load_robot.hpp"
 #include "modelgen/data.hpp"
 #include "modelgen/estimate.hpp"
 #include "modelgen/excitation.hpp"
 #include "modelgen/identify.hpp"
-#include "modelgen/model.hpp"
+#include "modelgen/model/identification_model.hpp"
 #include "modelgen/prepare.hpp"
 #include "tests/benchmarks/benchmark_summary.hpp"
 #include "tests/support/kdl_oracle.hpp"
@@ -83,7 +83,7 @@ struct Workload {
   std::vector<Trajectory> data, reference_data;
 
   Workload() {
-    const gen::RobotModel description = gen::load_robot(test::source_path("robots/tx40.yaml"));
+    const modelgen::RobotModel description = modelgen::load_robot(test::source_path("robots/tx40.yaml"));
     reference = std::make_unique<ReferenceModel>(description.name, description.tree);
     test::Random random(2024);
     const Eigen::VectorXd p = test::random_physical_parameters(description.tree, random);
@@ -215,7 +215,7 @@ void BM_kr150_bundled_pipeline(benchmark::State& state) {
   const std::string path = test::source_path("robots/data/kr150/excitation.csv");
   for (auto _ : state) {
     PreparedExperiment prepared = prepare_experiment(read_trajectory_csv(path, model.dof()),
-                                                     model.transmission(), PreparationOptions());
+                                                     model.drive_chain(), PreparationOptions());
     Identification id = identify(model, {prepared.data}, Method::kWls);
     benchmark::DoNotOptimize(id.fit.value.data());
   }

@@ -20,7 +20,7 @@
 #include <kdl/rotationalinertia.hpp>
 #include <kdl/segment.hpp>
 
-#include "modelgen/rigid_body_tree.hpp"
+#include "modelgen/model/rigid_body_tree.hpp"
 #include "tests/support/kdl_oracle.hpp"
 
 namespace modelgen::bench {

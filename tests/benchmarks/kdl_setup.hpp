@@ -10,7 +10,7 @@
 #include <kdl/chainidsolver_recursive_newton_euler.hpp>
 #include <kdl/jntarray.hpp>
 
-#include "modelgen/rigid_body_tree.hpp"
+#include "modelgen/model/rigid_body_tree.hpp"
 
 namespace modelgen::bench {
 

@@ -24,10 +24,10 @@
 #include "generated/kr150/kr150.hpp"
 #include "generated/kuka_iiwa14_drake/kuka_iiwa14_drake.hpp"
 #include "generated/tx40/tx40.hpp"
-#include "generator/description/load_robot.hpp"
-#include "generator/description/robot_model.hpp"
+#include "modelgen/model/load_robot.hpp"
+#include "modelgen/model/robot_model.hpp"
 #include "generator/generate.hpp"
-#include "modelgen/reference_dynamics.hpp"
+#include "modelgen/model/reference_dynamics.hpp"
 #include "tests/benchmarks/benchmark_summary.hpp"
 #include "tests/benchmarks/kdl_setup.hpp"
 #include "tests/support/kdl_oracle.hpp"
@@ -149,7 +149,7 @@ struct Iiwa14 {
 struct Workload {
   Workload(const std::string& description, int generated_dof, int generated_params);
 
-  gen::RobotModel model;
+  modelgen::RobotModel model;
   ReferenceDynamics reference;
   Eigen::VectorXd p;                     // random physical standard parameters
   std::vector<float> p_float;            // the same, rounded
@@ -185,7 +185,7 @@ void check_kdl(const Workload& w, KdlRne& kdl, const char* what) {
 }
 
 Workload::Workload(const std::string& description, int generated_dof, int generated_params)
-    : model(gen::load_robot(test::source_path(description))), reference(model.tree) {
+    : model(modelgen::load_robot(test::source_path(description))), reference(model.tree) {
   const int n = model.dof();
   if (n != generated_dof || reference.num_params() != generated_params) {
     throw std::runtime_error(description + " does not match its generated code: regenerate");

@@ -13,11 +13,12 @@ run(${CMAKE_COMMAND} --install ${BUILD_DIR} --prefix ${WORK_DIR}/prefix)
 run(${CMAKE_COMMAND} -S ${SOURCE_DIR}/tests/downstream -B ${WORK_DIR}/build
     -DCMAKE_PREFIX_PATH=${WORK_DIR}/prefix -DCMAKE_BUILD_TYPE=Release)
 run(${CMAKE_COMMAND} --build ${WORK_DIR}/build)
-run(${WORK_DIR}/build/controller)
+run(${WORK_DIR}/build/controller ${SOURCE_DIR}/robots/kr150.yaml)
 # At q = 0 link 2 points along the base x axis and its joint axis z2 is the base y axis. A unit
 # first moment along x under gravity (0, 0, -9.81) has moment (x, 0, 0) x (0, 0, -g) = (0, g, 0)
-# about the joint: +9.81 N m about z2, so holding it takes tau2 = -9.81 N m.
-if(NOT last_output MATCHES "^MX2 -9\\.810000")
+# about the joint: +9.81 N m about z2, so holding it takes tau2 = -9.81 N m; the reference
+# dynamics of the description loaded at run time must agree to 1e-12.
+if(NOT last_output MATCHES "^MX2 -9\\.810000 reference -9\\.810000 difference ([0-9.]+e-(1[2-9]|[2-9][0-9])|0\\.0e\\+00)")
   message(FATAL_ERROR "unexpected consumer output: '${last_output}'")
 endif()
 message(STATUS "downstream consumer printed: ${last_output}")

@@ -9,8 +9,8 @@
 #include <gtest/gtest.h>
 
 #include MODELGEN_ROBOT_HEADER
-#include "generator/description/load_robot.hpp"
-#include "modelgen/reference_dynamics.hpp"
+#include "modelgen/model/load_robot.hpp"
+#include "modelgen/model/reference_dynamics.hpp"
 #include "tests/support/kdl_oracle.hpp"
 #include "tests/support/test_support.hpp"
 
@@ -24,10 +24,10 @@ constexpr int kStates = 10000;
 class GeneratedModel : public testing::Test {
  protected:
   GeneratedModel()
-      : description_(gen::load_robot(test::source_path(MODELGEN_ROBOT_DESCRIPTION))),
+      : description_(modelgen::load_robot(test::source_path(MODELGEN_ROBOT_DESCRIPTION))),
         reference_(description_.tree) {}
 
-  gen::RobotModel description_;
+  modelgen::RobotModel description_;
   ReferenceDynamics reference_;
 };
 

@@ -14,8 +14,8 @@
 #include <gtest/gtest.h>
 
 #include MODELGEN_ROBOT_HEADER
-#include "generator/description/load_robot.hpp"
-#include "modelgen/reference_dynamics.hpp"
+#include "modelgen/model/load_robot.hpp"
+#include "modelgen/model/reference_dynamics.hpp"
 #include "tests/support/kdl_oracle.hpp"
 #include "tests/support/test_support.hpp"
 
@@ -47,7 +47,7 @@ Eigen::MatrixXd differences(const TorqueFunction& tau, const Eigen::VectorXd& x,
 class GeneratedStateJacobian : public testing::Test {
  protected:
   GeneratedStateJacobian()
-      : description_(gen::load_robot(test::source_path(MODELGEN_ROBOT_DESCRIPTION))),
+      : description_(modelgen::load_robot(test::source_path(MODELGEN_ROBOT_DESCRIPTION))),
         reference_(description_.tree) {}
 
   // A random state whose joint velocities and motor velocities (K dq, for the Coulomb friction
@@ -79,7 +79,7 @@ class GeneratedStateJacobian : public testing::Test {
     return J;
   }
 
-  gen::RobotModel description_;
+  modelgen::RobotModel description_;
   ReferenceDynamics reference_;
 };
 

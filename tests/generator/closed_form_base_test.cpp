@@ -7,11 +7,11 @@
 #include <Eigen/QR>
 #include <gtest/gtest.h>
 
-#include "generator/description/load_robot.hpp"
-#include "generator/description/mdh_yaml_loader.hpp"
-#include "modelgen/base_parameters.hpp"
+#include "modelgen/model/load_robot.hpp"
+#include "runtime/model/mdh_yaml_loader.hpp"
+#include "modelgen/model/base_parameters.hpp"
 #include "generator/dynamics/closed_form_base.hpp"
-#include "modelgen/reference_dynamics.hpp"
+#include "modelgen/model/reference_dynamics.hpp"
 #include "tests/support/test_support.hpp"
 
 namespace modelgen::gen {

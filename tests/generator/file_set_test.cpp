@@ -18,7 +18,7 @@
 
 #include <gtest/gtest.h>
 
-#include "generator/description/diagnostics.hpp"
+#include "modelgen/model/error.hpp"
 
 namespace modelgen::gen {
 namespace {

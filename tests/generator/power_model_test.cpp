@@ -6,9 +6,10 @@
 
 #include <gtest/gtest.h>
 
-#include "generator/description/load_robot.hpp"
+#include "modelgen/model/load_robot.hpp"
 #include "generator/dynamics/power_model.hpp"
-#include "modelgen/reference_dynamics.hpp"
+#include "modelgen/model/reference_dynamics.hpp"
+#include "tests/support/symbol_values.hpp"
 #include "tests/support/test_support.hpp"
 
 namespace modelgen::gen {

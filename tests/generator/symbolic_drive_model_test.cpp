@@ -15,7 +15,7 @@
 #include <Eigen/Core>
 #include <Eigen/LU>
 
-#include "generator/description/load_robot.hpp"
+#include "modelgen/model/load_robot.hpp"
 #include "tests/support/test_support.hpp"
 
 namespace modelgen::gen {

@@ -14,8 +14,8 @@
 #include <Eigen/Dense>
 #include <gtest/gtest.h>
 
-#include "generator/description/load_robot.hpp"
-#include "generator/description/urdf_loader.hpp"
+#include "modelgen/model/load_robot.hpp"
+#include "runtime/model/urdf_loader.hpp"
 #include "tests/support/test_support.hpp"
 
 namespace modelgen::gen {

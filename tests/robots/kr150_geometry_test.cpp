@@ -7,8 +7,8 @@
 
 #include <Eigen/Dense>
 
-#include "generator/description/load_robot.hpp"
-#include "modelgen/reference_dynamics.hpp"
+#include "modelgen/model/load_robot.hpp"
+#include "modelgen/model/reference_dynamics.hpp"
 #include "tests/support/test_support.hpp"
 
 namespace modelgen {
@@ -22,8 +22,8 @@ Eigen::Vector3d translation(const Frame& f) {
 }
 
 TEST(Kr150Geometry, MdhTableMatchesUrdfByForwardKinematics) {
-  const gen::RobotModel mdh = gen::load_robot(test::source_path("robots/kr150.yaml"));
-  const gen::RobotModel urdf = gen::load_robot(test::source_path("robots/urdf/kuka_kr150_2.urdf"));
+  const modelgen::RobotModel mdh = modelgen::load_robot(test::source_path("robots/kr150.yaml"));
+  const modelgen::RobotModel urdf = modelgen::load_robot(test::source_path("robots/urdf/kuka_kr150_2.urdf"));
   ASSERT_EQ(mdh.dof(), 6);
   ASSERT_EQ(urdf.dof(), 6);
   ASSERT_EQ(urdf.tree.bodies.size(), 6u);  // flange and tool0 are fixed, merged into link_6

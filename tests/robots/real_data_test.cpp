@@ -89,7 +89,7 @@ TEST(RealData, Tx40IdimWlsMatchesGautierBriotTables) {
   PreparationOptions options;
   options.side = Side::kMotor;
   const PreparedExperiment prepared = prepare_experiment(
-      positions_and_torques("tx40-figaroh", t, q, tau), model->transmission(), options);
+      positions_and_torques("tx40-figaroh", t, q, tau), model->drive_chain(), options);
   std::cout << "TX-40: " << prepared.summary << "\n";
 
   IdentifyOptions identify_options;
@@ -140,7 +140,7 @@ TEST(RealData, PandaTorquesArePredictedPerJoint) {
   // (see its documentation), so the bandwidth is given: 1 Hz covers the excitation.
   PreparationOptions options;
   options.bandwidth_hz = 1.0;
-  const PreparedExperiment prepared = prepare_experiment(raw, model->transmission(), options);
+  const PreparedExperiment prepared = prepare_experiment(raw, model->drive_chain(), options);
   std::cout << "Panda: " << prepared.summary << "\n";
   IdentifyOptions identify_options;
   identify_options.decimation = {prepared.decimation};

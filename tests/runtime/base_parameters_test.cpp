@@ -8,10 +8,10 @@
 #include <Eigen/SVD>
 #include <gtest/gtest.h>
 
-#include "generator/description/load_robot.hpp"
-#include "generator/description/mdh_yaml_loader.hpp"
-#include "modelgen/base_parameters.hpp"
-#include "modelgen/reference_dynamics.hpp"
+#include "modelgen/model/load_robot.hpp"
+#include "runtime/model/mdh_yaml_loader.hpp"
+#include "modelgen/model/base_parameters.hpp"
+#include "modelgen/model/reference_dynamics.hpp"
 #include "tests/support/test_support.hpp"
 
 namespace modelgen::gen {

@@ -16,8 +16,8 @@
 #include <string>
 #include <vector>
 
-#include "generator/description/load_robot.hpp"
-#include "modelgen/reference_dynamics.hpp"
+#include "modelgen/model/load_robot.hpp"
+#include "modelgen/model/reference_dynamics.hpp"
 #include "tests/support/kdl_oracle.hpp"
 #include "tests/support/test_support.hpp"
 
@@ -25,9 +25,9 @@ namespace modelgen {
 namespace {
 
 struct Kr150 {
-  gen::RobotModel description = gen::load_robot(test::source_path("robots/kr150.yaml"));
-  Transmission drive() const {
-    Transmission t = Transmission::identity(description.dof());
+  modelgen::RobotModel description = modelgen::load_robot(test::source_path("robots/kr150.yaml"));
+  DriveChain drive() const {
+    DriveChain t = DriveChain::identity(description.dof());
     t.motor_from_joint = description.drives.motor_from_joint;
     return t;
   }
@@ -228,7 +228,7 @@ TEST(GeneratedDriveModel, AdapterPassesEachSamplesStateAndParameters) {
 
 TEST(ReferenceDriveModel, BadDriveChains) {
   const Kr150 robot;
-  Transmission singular = robot.drive();
+  DriveChain singular = robot.drive();
   singular.motor_from_joint.row(5) = singular.motor_from_joint.row(4);
   try {
     ReferenceDriveModel model(robot.description.tree, singular);
@@ -237,7 +237,7 @@ TEST(ReferenceDriveModel, BadDriveChains) {
     EXPECT_NE(std::string(error.what()).find("singular (rank 5 of 6)"), std::string::npos)
         << error.what();
   }
-  Transmission wrong = Transmission::identity(5);
+  DriveChain wrong = DriveChain::identity(5);
   EXPECT_THROW(ReferenceDriveModel(robot.description.tree, wrong), std::invalid_argument);
   ReferenceDriveModel model(robot.description.tree, robot.drive());
   EXPECT_THROW(model.set_samples(Eigen::MatrixXd::Zero(3, 6), Eigen::MatrixXd::Zero(3, 5),

@@ -21,9 +21,9 @@
 #include <Eigen/LU>
 #include <nlohmann/json.hpp>
 
-#include "generator/description/load_robot.hpp"
+#include "modelgen/model/load_robot.hpp"
 #include "kr150.hpp"
-#include "modelgen/reference_dynamics.hpp"
+#include "modelgen/model/reference_dynamics.hpp"
 #include "tests/support/kdl_oracle.hpp"
 #include "tests/support/test_support.hpp"
 #include "tx40.hpp"
@@ -123,7 +123,7 @@ class DriveTorque : public testing::Test {
   static constexpr int m = Model::kDriveParams;
 
   DriveTorque()
-      : description_(gen::load_robot(test::source_path(Robot::kDescription))),
+      : description_(modelgen::load_robot(test::source_path(Robot::kDescription))),
         reference_(description_.tree),
         K_(Eigen::Map<const RowMajor>(Model::motor_from_joint(), n, n)) {
     // theta's layout as documented: inertial standard parameters in tree order, then per
@@ -252,7 +252,7 @@ class DriveTorque : public testing::Test {
     }
   }
 
-  gen::RobotModel description_;
+  modelgen::RobotModel description_;
   ReferenceDynamics reference_;
   Eigen::MatrixXd K_;
   std::vector<int> inertial_;

@@ -15,10 +15,10 @@
 #include <Eigen/Cholesky>
 #include <Eigen/SVD>
 
-#include "generator/description/load_robot.hpp"
-#include "modelgen/base_parameters.hpp"
+#include "modelgen/model/load_robot.hpp"
+#include "modelgen/model/base_parameters.hpp"
 #include "modelgen/estimate.hpp"
-#include "modelgen/reference_dynamics.hpp"
+#include "modelgen/model/reference_dynamics.hpp"
 #include "tests/support/kdl_oracle.hpp"
 #include "tests/support/test_support.hpp"
 
@@ -35,7 +35,7 @@ class SimulatedTx40 : public testing::Test {
  protected:
   static void SetUpTestSuite() {
     data_ = new Data();
-    const gen::RobotModel model = gen::load_robot(test::source_path("robots/tx40.yaml"));
+    const modelgen::RobotModel model = modelgen::load_robot(test::source_path("robots/tx40.yaml"));
     const ReferenceDynamics reference(model.tree);
     const BaseParameterSet base = derive_base_parameters(model.tree);
     for (const BaseParameter& b : base.params) data_->names.push_back(b.name);

@@ -7,9 +7,9 @@
 
 #include "generated/kr150/kr150.hpp"
 #include "generated/tx40/tx40.hpp"
-#include "generator/description/load_robot.hpp"
+#include "modelgen/model/load_robot.hpp"
 #include "modelgen/drive_model.hpp"
-#include "modelgen/model.hpp"
+#include "modelgen/model/identification_model.hpp"
 #include "tests/support/test_support.hpp"
 
 namespace modelgen {
@@ -17,9 +17,9 @@ namespace {
 
 template <class Model>
 void expect_equal_models(const std::string& description_path) {
-  const gen::RobotModel description = gen::load_robot(test::source_path(description_path));
+  const modelgen::RobotModel description = modelgen::load_robot(test::source_path(description_path));
   const GeneratedModel<Model> base;  // for the drive chain
-  ReferenceDriveModel reference(description.tree, base.transmission());
+  ReferenceDriveModel reference(description.tree, base.drive_chain());
   GeneratedDriveModel<Model> generated;
   ASSERT_EQ(generated.param_names(), reference.param_names()) << description_path;
   const int n = generated.dof(), p = generated.num_params();

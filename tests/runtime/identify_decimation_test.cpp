@@ -12,7 +12,7 @@
 #include "generated/tx40/tx40.hpp"
 #include "modelgen/excitation.hpp"
 #include "modelgen/identify.hpp"
-#include "modelgen/model.hpp"
+#include "modelgen/model/identification_model.hpp"
 #include "modelgen/preprocess.hpp"
 #include "tests/support/test_support.hpp"
 

@@ -16,10 +16,10 @@
 #include <Eigen/Cholesky>
 
 #include "generated/tx40/tx40.hpp"
-#include "generator/description/load_robot.hpp"
+#include "modelgen/model/load_robot.hpp"
 #include "modelgen/excitation.hpp"
 #include "modelgen/identify.hpp"
-#include "modelgen/model.hpp"
+#include "modelgen/model/identification_model.hpp"
 #include "tests/support/kdl_oracle.hpp"
 #include "tests/support/test_support.hpp"
 
@@ -39,7 +39,7 @@ double gaussian(test::Random& random) {
 class Tx40Identification : public testing::Test {
  protected:
   static void SetUpTestSuite() {
-    const gen::RobotModel description = gen::load_robot(test::source_path("robots/tx40.yaml"));
+    const modelgen::RobotModel description = modelgen::load_robot(test::source_path("robots/tx40.yaml"));
     test::Random random(31);
     const Eigen::VectorXd p = test::random_physical_parameters(description.tree, random);
     beta_ = new Eigen::VectorXd(model_.num_base_params());

@@ -1,5 +1,5 @@
 // Load parameters (Swevers 2002 eq. 3) <-> standard parameters: against the generator's
-// independent parallel-axis conversion (gen::standard_from_inertial), round trips, the 10 x 10
+// independent parallel-axis conversion (modelgen::standard_from_inertial), round trips, the 10 x 10
 // Jacobian against Ceres automatic differentiation and central differences, and the
 // physical-consistency warnings on hand-made loads.
 
@@ -12,7 +12,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "generator/description/robot_model.hpp"
+#include "modelgen/model/robot_model.hpp"
 #include "tests/support/kr150_load_scenario.hpp"
 #include "tests/support/test_support.hpp"
 
@@ -33,8 +33,8 @@ TEST(LoadParameters, StandardParametersMatchTheGeneratorsParallelAxisTheorem) {
   for (int trial = 0; trial < 50; ++trial) {
     const LoadParameters load = random_load(random);
     const auto& I = load.inertia;
-    // gen::standard_from_inertial takes xx xy xz yy yz zz.
-    const std::array<double, 10> expected = gen::standard_from_inertial(
+    // modelgen::standard_from_inertial takes xx xy xz yy yz zz.
+    const std::array<double, 10> expected = modelgen::standard_from_inertial(
         load.mass, load.com, {1, 0, 0, 0, 1, 0, 0, 0, 1}, {I[0], I[3], I[4], I[1], I[5], I[2]});
     const std::array<double, 10> actual = standard_from_load(load);
     for (int k = 0; k < 10; ++k) EXPECT_NEAR(actual[k], expected[k], 1e-12 * 200) << k;

@@ -214,7 +214,7 @@ TEST(MlProblem, BadSetupsAreNamed) {
 TEST(MlExperiment, FromPeriodicPreparedExperiment) {
   // K = diag(2, 4): tau_joint = K^T tau_M, so tau_M = tau_joint / ratio and its noise standard
   // deviation the joint-side one over the ratio.
-  Transmission drive = Transmission::identity(2);
+  DriveChain drive = DriveChain::identity(2);
   drive.motor_from_joint = Eigen::Vector2d(2, 4).asDiagonal();
   PreparedExperiment prepared;
   prepared.data.source = "run.csv";

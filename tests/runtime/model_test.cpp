@@ -3,8 +3,8 @@
 
 #include <gtest/gtest.h>
 
-#include "generator/description/load_robot.hpp"
-#include "modelgen/model.hpp"
+#include "modelgen/model/load_robot.hpp"
+#include "modelgen/model/identification_model.hpp"
 #include "runtime/cli/shipped_models.hpp"
 #include "tests/support/kdl_oracle.hpp"
 #include "tests/support/test_support.hpp"
@@ -29,7 +29,7 @@ TEST(IdentificationModel, GeneratedEqualsReferenceForEveryShippedRobot) {
   for (const Case& c : cases) {
     const std::unique_ptr<IdentificationModel> generated = internal::make_shipped_model(c.name);
     ASSERT_NE(generated, nullptr) << c.name;
-    const gen::RobotModel description = gen::load_robot(test::source_path(c.description));
+    const modelgen::RobotModel description = modelgen::load_robot(test::source_path(c.description));
     const ReferenceModel reference(description.name, description.tree);
     EXPECT_EQ(generated->name(), reference.name());
     EXPECT_EQ(generated->standard_param_names(), reference.standard_param_names()) << c.name;

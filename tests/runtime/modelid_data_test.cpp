@@ -12,9 +12,9 @@
 #include <Eigen/LU>
 #include <nlohmann/json.hpp>
 
-#include "generator/description/load_robot.hpp"
+#include "modelgen/model/load_robot.hpp"
 #include "modelgen/excitation.hpp"
-#include "modelgen/model.hpp"
+#include "modelgen/model/identification_model.hpp"
 #include "runtime/cli/shipped_models.hpp"
 #include "tests/runtime/modelid_cli_support.hpp"
 #include "tests/support/kdl_oracle.hpp"
@@ -31,7 +31,7 @@ using test::quoted;
 // of all joints (period 4 s).
 struct Tx40Case {
   Tx40Case() : model(internal::make_shipped_model("tx40")) {
-    const gen::RobotModel description = gen::load_robot(test::source_path("robots/tx40.yaml"));
+    const modelgen::RobotModel description = modelgen::load_robot(test::source_path("robots/tx40.yaml"));
     test::Random random(31);
     const Eigen::VectorXd p = test::random_physical_parameters(description.tree, random);
     beta.resize(model->num_base_params());
@@ -97,7 +97,7 @@ TEST(ModelidData, MotorSideFilesGiveTheJointSideEstimate) {
   const fs::path dir = test::test_folder();
   const Tx40Case tx40;
   const Trajectory x = tx40.sampled(0.004, 8.0);
-  const Eigen::MatrixXd& K = tx40.model->transmission().motor_from_joint;
+  const Eigen::MatrixXd& K = tx40.model->drive_chain().motor_from_joint;
   // Motor side, independently: q_motor = K q (offsets are zero for tx40), tau_motor solves
   // K^T tau_motor = tau.
   const Eigen::MatrixXd q_motor = x.q * K.transpose();
@@ -137,7 +137,7 @@ TEST(ModelidData, MotorCurrentsGoThroughTheTorqueConstants) {
                anchor + "  torque_constant: [0.9, 0.9, 0.6, 0.35, 0.3, 0.25]\n");
   test::write_text(dir / "tx40.yaml", yaml);
   const Eigen::VectorXd kt = (Eigen::VectorXd(6) << 0.9, 0.9, 0.6, 0.35, 0.3, 0.25).finished();
-  const Eigen::MatrixXd& K = tx40.model->transmission().motor_from_joint;
+  const Eigen::MatrixXd& K = tx40.model->drive_chain().motor_from_joint;
   const Eigen::MatrixXd tau_motor =
       K.transpose().partialPivLu().solve(x.tau.transpose()).transpose();
   const Eigen::MatrixXd currents = tau_motor * kt.cwiseInverse().asDiagonal();

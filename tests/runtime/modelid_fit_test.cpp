@@ -14,10 +14,10 @@
 #include <Eigen/Core>
 #include <nlohmann/json.hpp>
 
-#include "generator/description/load_robot.hpp"
+#include "modelgen/model/load_robot.hpp"
 #include "modelgen/data.hpp"
 #include "modelgen/estimate.hpp"
-#include "modelgen/model.hpp"
+#include "modelgen/model/identification_model.hpp"
 #include "tests/runtime/modelid_cli_support.hpp"
 #include "tests/support/test_support.hpp"
 
@@ -34,7 +34,7 @@ using test::quoted_source;
 const std::string kData = "robots/data/kr150/excitation.csv";
 
 ReferenceModel kr150_reference() {
-  const gen::RobotModel description = gen::load_robot(test::source_path("robots/kr150.yaml"));
+  const modelgen::RobotModel description = modelgen::load_robot(test::source_path("robots/kr150.yaml"));
   return ReferenceModel(description.name, description.tree);
 }
 

@@ -17,7 +17,7 @@
 #include <string>
 #include <vector>
 
-#include "generator/description/load_robot.hpp"
+#include "modelgen/model/load_robot.hpp"
 #include "modelgen/drive_model.hpp"
 #include "modelgen/load_parameters.hpp"
 #include "tests/runtime/modelid_cli_support.hpp"
@@ -49,7 +49,7 @@ std::string number(double value) {
 // data.csv (t, q1..q6, tau1..tau6, joint side).
 void write_scenario(const std::filesystem::path& dir) {
   const std::string description_text = read_text(source_path("robots/kr150.yaml"));
-  const gen::RobotModel description = gen::load_robot(source_path("robots/kr150.yaml"));
+  const modelgen::RobotModel description = modelgen::load_robot(source_path("robots/kr150.yaml"));
   Random random(2002);
   const Eigen::VectorXd p = random_physical_parameters(description.tree, random);
   std::map<std::string, double> known;
@@ -76,7 +76,7 @@ void write_scenario(const std::filesystem::path& dir) {
   write_text(dir / "known.json", json + "}");
 
   // Motor torques of the true model: links' own values plus the load on link 7.
-  Transmission drive = Transmission::identity(6);
+  DriveChain drive = DriveChain::identity(6);
   drive.motor_from_joint = description.drives.motor_from_joint;
   ReferenceDriveModel model(description.tree, drive);
   const std::vector<std::string>& names = model.param_names();

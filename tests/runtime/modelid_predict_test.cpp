@@ -13,9 +13,9 @@
 #include <gtest/gtest.h>
 #include <Eigen/Core>
 
-#include "generator/description/load_robot.hpp"
+#include "modelgen/model/load_robot.hpp"
 #include "modelgen/data.hpp"
-#include "modelgen/reference_dynamics.hpp"
+#include "modelgen/model/reference_dynamics.hpp"
 #include "tests/runtime/modelid_cli_support.hpp"
 #include "tests/support/test_support.hpp"
 
@@ -56,7 +56,7 @@ std::string standard_json(const std::map<std::string, double>& parameters) {
 // The numeric reference of the TX-40 description with its standard parameter vector.
 struct Reference {
   ReferenceDynamics dynamics;
-  Reference() : dynamics(gen::load_robot(test::source_path("robots/tx40.yaml")).tree) {}
+  Reference() : dynamics(modelgen::load_robot(test::source_path("robots/tx40.yaml")).tree) {}
 
   Eigen::VectorXd parameters(const std::map<std::string, double>& named) const {
     Eigen::VectorXd p = Eigen::VectorXd::Zero(dynamics.num_params());

@@ -17,7 +17,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "generator/description/load_robot.hpp"
+#include "modelgen/model/load_robot.hpp"
 #include "modelgen/load_parameters.hpp"
 #include "tests/runtime/modelid_cli_support.hpp"
 #include "tests/support/kdl_oracle.hpp"
@@ -61,7 +61,7 @@ std::string ratio_drives() {
 }
 
 // Inertial parameters XXj..Mj of every body, physically meaningful (KDL oracle's generator).
-std::map<std::string, double> link_values(const gen::RobotModel& description, std::uint64_t seed) {
+std::map<std::string, double> link_values(const modelgen::RobotModel& description, std::uint64_t seed) {
   Random random(seed);
   const Eigen::VectorXd p = random_physical_parameters(description.tree, random);
   std::map<std::string, double> values;
@@ -155,7 +155,7 @@ TEST(ModelidSimulate, DriveTorquesEqualTheStandardModelWithGearRatios) {
   const fs::path dir = test_folder();
   write_text(dir / "robot.yaml", kr150_with_drives(ratio_drives()));
   write_text(dir / "traj.yaml", trajectory_text());
-  const gen::RobotModel description = gen::load_robot((dir / "robot.yaml").string());
+  const modelgen::RobotModel description = modelgen::load_robot((dir / "robot.yaml").string());
   ASSERT_EQ(description.drives.motor_from_joint(1, 1), -2.0);
   const std::map<std::string, double> links = link_values(description, 11);
 
@@ -187,7 +187,7 @@ TEST(ModelidSimulate, DriveTorquesEqualTheStandardModelOnTheCoupledWrist) {
   const fs::path dir = test_folder();
   write_text(dir / "traj.yaml", trajectory_text());
   const fs::path robot = source_path("robots/kr150.yaml");
-  const gen::RobotModel description = gen::load_robot(robot.string());
+  const modelgen::RobotModel description = modelgen::load_robot(robot.string());
   const std::map<std::string, double> links = link_values(description, 12);
 
   nlohmann::json theta(links);
@@ -217,7 +217,7 @@ TEST(ModelidSimulate, EfficiencyFollowsEquation8) {
   const fs::path dir = test_folder();
   write_text(dir / "robot.yaml", kr150_with_drives(ratio_drives()));
   write_text(dir / "traj.yaml", trajectory_text());
-  const gen::RobotModel description = gen::load_robot((dir / "robot.yaml").string());
+  const modelgen::RobotModel description = modelgen::load_robot((dir / "robot.yaml").string());
   const std::map<std::string, double> links = link_values(description, 13);
   constexpr double kRz[kDof] = {0.8, 0.9, 0.85, 0.7, 0.9, 0.6};
 
@@ -275,7 +275,7 @@ TEST(ModelidSimulate, LoadAddsItsTorqueOnThePayloadLink) {
   const fs::path dir = test_folder();
   write_text(dir / "traj.yaml", trajectory_text());
   const fs::path robot = source_path("robots/kr150.yaml");
-  const gen::RobotModel description = gen::load_robot(robot.string());
+  const modelgen::RobotModel description = modelgen::load_robot(robot.string());
   ASSERT_EQ(description.payload_body, 6);
   nlohmann::json theta(link_values(description, 14));
   for (int j = 0; j < kDof; ++j) theta["Rv" + std::to_string(j + 1)] = kRv[j];
@@ -346,7 +346,7 @@ TEST(ModelidSimulate, NoiseIsPerMotorOnTheMotorSide) {
   const fs::path dir = test_folder();
   write_text(dir / "traj.yaml", trajectory_text());
   const fs::path robot = source_path("robots/kr150.yaml");
-  const gen::RobotModel description = gen::load_robot(robot.string());
+  const modelgen::RobotModel description = modelgen::load_robot(robot.string());
   write_json(dir / "theta.json", nlohmann::json(link_values(description, 15)));
   ASSERT_EQ(
       simulate(robot, "--drive", dir / "theta.json", dir / "traj.yaml", "0", dir / "clean.csv")

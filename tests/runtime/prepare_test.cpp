@@ -48,7 +48,7 @@ TEST(Prepare, JitteredStampsAreResampledBeforeFiltering) {
   Trajectory x = jittered(4001, 0.001, 0.0003);
   PreparationOptions options;
   options.bandwidth_hz = 1.0;
-  const PreparedExperiment prepared = prepare_experiment(x, Transmission::identity(1), options);
+  const PreparedExperiment prepared = prepare_experiment(x, DriveChain::identity(1), options);
   EXPECT_NE(prepared.summary.find("resampled on a uniform grid of 1 ms"), std::string::npos)
       << prepared.summary;
   EXPECT_NE(prepared.summary.find("parallel decimation by 200"), std::string::npos)

@@ -7,15 +7,15 @@
 
 #include <gtest/gtest.h>
 
-#include "generator/description/load_robot.hpp"
-#include "generator/description/mdh_yaml_loader.hpp"
-#include "modelgen/reference_dynamics.hpp"
+#include "modelgen/model/load_robot.hpp"
+#include "runtime/model/mdh_yaml_loader.hpp"
+#include "modelgen/model/reference_dynamics.hpp"
 #include "tests/support/test_support.hpp"
 
 namespace modelgen {
 namespace {
 
-using gen::RobotModel;
+using modelgen::RobotModel;
 
 Eigen::VectorXd parameters(const RobotModel& model,
                            const std::vector<std::pair<std::string, double>>& values) {
@@ -30,7 +30,7 @@ Eigen::VectorXd parameters(const RobotModel& model,
 
 TEST(ReferenceDynamics, PlanarTwoLinkArmMatchesClosedForm) {
   // Two parallel revolute axes along z, link lengths L1 along x1; gravity in the plane (-y).
-  const RobotModel model = gen::load_mdh_yaml(
+  const RobotModel model = modelgen::load_mdh_yaml(
       "planar.yaml",
       "name: planar\n"
       "gravity: [0, -9.81, 0]\n"
@@ -69,7 +69,7 @@ TEST(ReferenceDynamics, PrismaticLiftMatchesClosedForm) {
   // A vertical prismatic joint at radius d on a vertical revolute base, carrying a point mass
   // at its frame origin plus a rotational inertia ZZ2 about z2. The radius never changes, so:
   // tau1 = (m2 d^2 + ZZ2) ddq1 and tau2 = m2 (ddq2 + g).
-  const RobotModel model = gen::load_mdh_yaml(
+  const RobotModel model = modelgen::load_mdh_yaml(
       "lift.yaml",
       "name: lift\n"
       "joints:\n"
@@ -90,7 +90,7 @@ TEST(ReferenceDynamics, PrismaticLiftMatchesClosedForm) {
 class ShippedRobot : public testing::TestWithParam<std::string> {};
 
 TEST_P(ShippedRobot, RegressorTimesParametersIsInverseDynamics) {
-  const RobotModel model = gen::load_robot(GetParam());
+  const RobotModel model = modelgen::load_robot(GetParam());
   const ReferenceDynamics dynamics(model.tree);
   test::Random random(1);
   const int n = dynamics.dof();
@@ -105,7 +105,7 @@ TEST_P(ShippedRobot, RegressorTimesParametersIsInverseDynamics) {
 }
 
 TEST_P(ShippedRobot, PowerEqualsTimeDerivativeOfEnergy) {
-  const RobotModel model = gen::load_robot(GetParam());
+  const RobotModel model = modelgen::load_robot(GetParam());
   const ReferenceDynamics dynamics(model.tree);
   const int n = dynamics.dof();
   test::Random random(3);

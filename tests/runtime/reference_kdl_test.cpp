@@ -16,10 +16,10 @@
 #include <Eigen/Core>
 #include <gtest/gtest.h>
 
-#include "generator/description/load_robot.hpp"
-#include "generator/description/robot_model.hpp"
-#include "modelgen/reference_dynamics.hpp"
-#include "modelgen/rigid_body_tree.hpp"
+#include "modelgen/model/load_robot.hpp"
+#include "modelgen/model/robot_model.hpp"
+#include "modelgen/model/reference_dynamics.hpp"
+#include "modelgen/model/rigid_body_tree.hpp"
 #include "tests/support/kdl_oracle.hpp"
 #include "tests/support/test_support.hpp"
 
@@ -46,7 +46,7 @@ int body_of_dof(const RigidBodyTree& tree, int dof_index) {
   return -1;
 }
 
-Comparison compare_with_kdl(const gen::RobotModel& model, std::uint64_t seed) {
+Comparison compare_with_kdl(const modelgen::RobotModel& model, std::uint64_t seed) {
   const RigidBodyTree& tree = model.tree;
   const ReferenceDynamics reference(tree);
   test::Random rng(seed);
@@ -133,9 +133,9 @@ class ReferenceKdlTest : public ::testing::TestWithParam<RobotCase> {};
 
 TEST_P(ReferenceKdlTest, InverseDynamicsMatchesKdlRne) {
   const RobotCase& robot = GetParam();
-  gen::LoadOptions options;
+  modelgen::LoadOptions options;
   options.tip_link = robot.tip_link;
-  const gen::RobotModel model = gen::load_robot(test::source_path(robot.file), options);
+  const modelgen::RobotModel model = modelgen::load_robot(test::source_path(robot.file), options);
   ASSERT_EQ(model.dof(), robot.dof);
   ASSERT_TRUE(test::is_serial(model.tree)) << robot.file << " is not a serial chain";
   expect_agreement(robot.label, compare_with_kdl(model, robot.seed));
@@ -155,7 +155,7 @@ TEST(ReferenceKdlSyntheticTest, PrismaticJointsSkewAxesAndAsymmetricFriction) {
   const JointType kTypes[] = {JointType::kRevolute, JointType::kPrismatic, JointType::kRevolute,
                               JointType::kFixed,    JointType::kPrismatic, JointType::kRevolute,
                               JointType::kRevolute};
-  gen::RobotModel model;
+  modelgen::RobotModel model;
   model.name = "synthetic";
   model.tree.gravity = {1.5, -2.0, -9.3};
   for (JointType type : kTypes) {
@@ -178,7 +178,7 @@ TEST(ReferenceKdlSyntheticTest, PrismaticJointsSkewAxesAndAsymmetricFriction) {
   }
   model.joints.resize(model.tree.bodies.size());
   model.friction.asymmetric = true;
-  gen::build_standard_parameters(model);
+  modelgen::build_standard_parameters(model);
   expect_agreement("synthetic", compare_with_kdl(model, 0x4b444c11));
 }
 

@@ -8,8 +8,8 @@
 #include <gtest/gtest.h>
 #include <Eigen/LU>
 
-#include "generator/description/load_robot.hpp"
-#include "modelgen/model.hpp"
+#include "modelgen/model/load_robot.hpp"
+#include "modelgen/model/identification_model.hpp"
 #include "modelgen/transmission.hpp"
 #include "runtime/cli/shipped_models.hpp"
 #include "tests/support/test_support.hpp"
@@ -18,8 +18,8 @@ namespace modelgen {
 namespace {
 
 // The TX-40 drive chain (robots/tx40.yaml, coupled 5-6) with made-up constants and offsets.
-Transmission tx40_like() {
-  Transmission drive = Transmission::identity(6);
+DriveChain tx40_like() {
+  DriveChain drive = DriveChain::identity(6);
   drive.motor_from_joint.diagonal() << 32, 32, 45, -48, 45, 32;
   drive.motor_from_joint(5, 4) = 32;
   drive.torque_constant << 0.9, 0.9, 0.6, 0.35, 0.3, 0.25;
@@ -46,8 +46,8 @@ Trajectory random_joint_side(int samples) {
   return x;
 }
 
-TEST(Transmission, MotorSidePositionsAndTorquesComeBackToTheJointSide) {
-  const Transmission drive = tx40_like();
+TEST(DriveChain, MotorSidePositionsAndTorquesComeBackToTheJointSide) {
+  const DriveChain drive = tx40_like();
   const Trajectory joint = random_joint_side(40);
   const Eigen::MatrixXd& K = drive.motor_from_joint;
   Trajectory motor = joint;
@@ -69,8 +69,8 @@ TEST(Transmission, MotorSidePositionsAndTorquesComeBackToTheJointSide) {
   EXPECT_LT((motor.tau - joint.tau).cwiseAbs().maxCoeff(), 1e-11);
 }
 
-TEST(Transmission, CurrentsGoThroughTheTorqueConstantsThenTheCoupling) {
-  const Transmission drive = tx40_like();
+TEST(DriveChain, CurrentsGoThroughTheTorqueConstantsThenTheCoupling) {
+  const DriveChain drive = tx40_like();
   const Trajectory joint = random_joint_side(20);
   Trajectory measured = joint;  // joint-side encoders, motor currents
   measured.measured = Measured::kCurrent;
@@ -85,8 +85,8 @@ TEST(Transmission, CurrentsGoThroughTheTorqueConstantsThenTheCoupling) {
   EXPECT_LT((measured.tau - joint.tau).cwiseAbs().maxCoeff(), 1e-11);
 }
 
-TEST(Transmission, CurrentsWithoutATorqueConstantAreRefused) {
-  Transmission drive = tx40_like();
+TEST(DriveChain, CurrentsWithoutATorqueConstantAreRefused) {
+  DriveChain drive = tx40_like();
   drive.torque_constant[2] = 0;
   Trajectory x = random_joint_side(5);
   x.measured = Measured::kCurrent;
@@ -102,14 +102,14 @@ TEST(Transmission, CurrentsWithoutATorqueConstantAreRefused) {
 }
 
 // The generated models carry the drive chain of their description, as the loader read it.
-TEST(Transmission, GeneratedModelsCarryTheDescriptionsDriveChain) {
+TEST(DriveChain, GeneratedModelsCarryTheDescriptionsDriveChain) {
   const std::pair<const char*, const char*> cases[] = {{"tx40", "robots/tx40.yaml"},
                                                        {"kr150", "robots/kr150.yaml"}};
   for (const auto& [name, path] : cases) {
-    const gen::RobotModel description = gen::load_robot(test::source_path(path));
+    const modelgen::RobotModel description = modelgen::load_robot(test::source_path(path));
     const std::unique_ptr<IdentificationModel> model = internal::make_shipped_model(name);
     ASSERT_NE(model, nullptr);
-    const Transmission& drive = model->transmission();
+    const DriveChain& drive = model->drive_chain();
     EXPECT_LT((drive.motor_from_joint - description.drives.motor_from_joint).cwiseAbs().maxCoeff(),
               1e-15)
         << name;
@@ -120,8 +120,8 @@ TEST(Transmission, GeneratedModelsCarryTheDescriptionsDriveChain) {
   }
   // The TX-40's eq. 25 coupling: motor 6 turns with joints 5 and 6.
   const std::unique_ptr<IdentificationModel> tx40 = internal::make_shipped_model("tx40");
-  EXPECT_EQ(tx40->transmission().motor_from_joint(5, 4), 32.0);
-  EXPECT_EQ(tx40->transmission().motor_from_joint(3, 3), -48.0);
+  EXPECT_EQ(tx40->drive_chain().motor_from_joint(5, 4), 32.0);
+  EXPECT_EQ(tx40->drive_chain().motor_from_joint(3, 3), -48.0);
 }
 
 }  // namespace

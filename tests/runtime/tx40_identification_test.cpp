@@ -25,7 +25,7 @@
 #include "modelgen/estimate.hpp"
 #include "modelgen/excitation.hpp"
 #include "modelgen/identify.hpp"
-#include "modelgen/model.hpp"
+#include "modelgen/model/identification_model.hpp"
 #include "tests/support/test_support.hpp"
 
 namespace modelgen {

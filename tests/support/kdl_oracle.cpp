@@ -23,8 +23,8 @@
 #include <kdl/rotationalinertia.hpp>
 #include <kdl/segment.hpp>
 
-#include "generator/description/robot_model.hpp"
-#include "modelgen/rigid_body_tree.hpp"
+#include "modelgen/model/robot_model.hpp"
+#include "modelgen/model/rigid_body_tree.hpp"
 #include "tests/support/test_support.hpp"
 
 namespace modelgen::test {
@@ -249,7 +249,7 @@ Eigen::VectorXd random_physical_parameters(const RigidBodyTree& tree, Random& rn
     const double c = std::abs(a - b) + (a + b - std::abs(a - b)) * rng.uniform(0.05, 0.95);
     const Eigen::Matrix3d R = random_rotation(rng);
     const Eigen::Matrix3d I = R * Eigen::Vector3d(a, b, c).asDiagonal() * R.transpose();
-    s = gen::standard_from_inertial(mass, com, identity,
+    s = modelgen::standard_from_inertial(mass, com, identity,
                                     {I(0, 0), I(0, 1), I(0, 2), I(1, 1), I(1, 2), I(2, 2)});
   }
   Eigen::VectorXd p(tree.params.size());
@@ -261,7 +261,7 @@ Eigen::VectorXd random_physical_parameters(const RigidBodyTree& tree, Random& rn
   return p;
 }
 
-JointState random_state(const gen::RobotModel& model, Random& rng) {
+JointState random_state(const modelgen::RobotModel& model, Random& rng) {
   const RigidBodyTree& tree = model.tree;
   JointState s;
   s.q.resize(tree.dof);
@@ -271,7 +271,7 @@ JointState random_state(const gen::RobotModel& model, Random& rng) {
     const double range = body.type == JointType::kRevolute ? kPi : 0.5;
     double lo = -range, hi = range;
     if (j < model.joints.size()) {
-      const gen::JointLimits& limits = model.joints[j].limits;
+      const modelgen::JointLimits& limits = model.joints[j].limits;
       if (limits.q_lower && limits.q_upper) {
         lo = *limits.q_lower;
         hi = *limits.q_upper;

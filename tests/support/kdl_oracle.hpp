@@ -6,8 +6,8 @@
 
 #include <Eigen/Core>
 
-#include "generator/description/robot_model.hpp"
-#include "modelgen/rigid_body_tree.hpp"
+#include "modelgen/model/robot_model.hpp"
+#include "modelgen/model/rigid_body_tree.hpp"
 #include "tests/support/test_support.hpp"
 
 namespace modelgen::test {
@@ -21,7 +21,7 @@ bool is_serial(const RigidBodyTree& tree);
 bool is_inertial(ParamKind kind);
 
 /// Position of an inertial parameter in XX XY XZ YY YZ ZZ MX MY MZ M order (the order of
-/// gen::standard_from_inertial), -1 for a drive parameter.
+/// modelgen::standard_from_inertial), -1 for a drive parameter.
 int inertial_slot(ParamKind kind);
 
 /// Joint torques (N m, N for prismatic joints), tree.dof entries in modelgen's dof order, by
@@ -54,6 +54,6 @@ struct JointState {
 /// model.joints, index-aligned with model.tree.bodies), else in [-pi, pi] rad (revolute) or
 /// [-0.5, 0.5] m (prismatic); dq uniform in [-3, 3] rad/s or m/s, ddq in [-10, 10] rad/s^2 or
 /// m/s^2.
-JointState random_state(const gen::RobotModel& model, Random& rng);
+JointState random_state(const modelgen::RobotModel& model, Random& rng);
 
 }  // namespace modelgen::test

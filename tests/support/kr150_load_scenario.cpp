@@ -9,7 +9,7 @@
 #include <map>
 #include <numbers>
 
-#include "generator/description/load_robot.hpp"
+#include "modelgen/model/load_robot.hpp"
 #include "tests/support/kdl_oracle.hpp"
 #include "tests/support/test_support.hpp"
 
@@ -49,8 +49,8 @@ LoadParameters table2_load() {
 }
 
 Kr150LoadScenario::Kr150LoadScenario(bool move_axis3, int samples)
-    : description(gen::load_robot(source_path("robots/kr150.yaml"))) {
-  Transmission drive = Transmission::identity(6);
+    : description(modelgen::load_robot(source_path("robots/kr150.yaml"))) {
+  DriveChain drive = DriveChain::identity(6);
   drive.motor_from_joint = description.drives.motor_from_joint;
   model = std::make_unique<ReferenceDriveModel>(description.tree, drive);
   names = ml_param_names(*model);

@@ -11,7 +11,7 @@
 
 #include <Eigen/Core>
 
-#include "generator/description/robot_model.hpp"
+#include "modelgen/model/robot_model.hpp"
 #include "modelgen/drive_model.hpp"
 #include "modelgen/load_parameters.hpp"
 #include "modelgen/ml_problem.hpp"
@@ -38,7 +38,7 @@ struct Kr150LoadScenario {
   static constexpr double kRc[6] = {150, 150, 90, 30, 25, 20};
   static constexpr double kRz[6] = {0.9, 0.9, 0.85, 0.88, 0.9, 0.87};
 
-  gen::RobotModel description;                 ///< robots/kr150.yaml
+  modelgen::RobotModel description;                 ///< robots/kr150.yaml
   std::unique_ptr<ReferenceDriveModel> model;  ///< the drive model the torques come from
   std::vector<std::string> names;              ///< ml_param_names(*model)
   /// Every ml_param_names() value: known link parameters physical and random (seed 2002), link

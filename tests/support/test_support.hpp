@@ -11,7 +11,6 @@
 #include <Eigen/Core>
 #include <gtest/gtest.h>
 
-#include "generator/symbolic/expr.hpp"
 
 namespace modelgen::test {
 
@@ -42,13 +41,5 @@ double relative_error(const Eigen::VectorXd& a, const Eigen::VectorXd& b, double
 
 /// A test name from a robot description path: "robots/tx40.yaml" -> "tx40_yaml".
 std::string robot_test_name(const testing::TestParamInfo<std::string>& info);
-
-/// Values of the leaves of the symbolic models at a state: inputs by their C++ text (q[i],
-/// dq[i], ddq[i], p[k]), derived leaves (sin, cos, sign, ...) from their input. The vectors are
-/// captured by reference.
-std::function<double(const gen::Symbol&)> symbol_values(const Eigen::VectorXd& q,
-                                                        const Eigen::VectorXd& dq,
-                                                        const Eigen::VectorXd& ddq,
-                                                        const Eigen::VectorXd& p);
 
 }  // namespace modelgen::test

@@ -11,8 +11,8 @@
 #include <string>
 #include <vector>
 
-#include "modelgen/reference_dynamics.hpp"
-#include "modelgen/rigid_body_tree.hpp"
+#include "modelgen/model/reference_dynamics.hpp"
+#include "modelgen/model/rigid_body_tree.hpp"
 #include "modelgen/transmission.hpp"
 
 namespace modelgen {
@@ -74,7 +74,7 @@ class ReferenceDriveModel final : public DriveModel {
  public:
   /// `drive.motor_from_joint` must be dof x dof and invertible. Throws std::invalid_argument for
   /// a malformed tree or drive chain.
-  ReferenceDriveModel(const RigidBodyTree& tree, const Transmission& drive);
+  ReferenceDriveModel(const RigidBodyTree& tree, const DriveChain& drive);
 
   int dof() const override { return dof_; }
   const std::vector<std::string>& param_names() const override { return names_; }

@@ -12,7 +12,7 @@
 
 #include "modelgen/data.hpp"
 #include "modelgen/estimate.hpp"
-#include "modelgen/model.hpp"
+#include "modelgen/model/identification_model.hpp"
 
 namespace modelgen {
 

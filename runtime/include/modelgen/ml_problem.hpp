@@ -34,7 +34,7 @@ struct MlExperiment {
 /// sigma_i^2 = sum_j (K^-T)_ij^2 var_j (the joint-side noise taken as independent per axis).
 /// Throws EstimationError (modelgen/estimate.hpp) naming the source when the experiment has no
 /// noise variance (not prepared as periodic) or sizes differ from K.
-MlExperiment ml_experiment(const PreparedExperiment& prepared, const Transmission& drive);
+MlExperiment ml_experiment(const PreparedExperiment& prepared, const DriveChain& drive);
 
 /// The parameters of the ML problem: model.param_names() (inertial and drive parameters), then
 /// load_param_names() (modelgen/load_parameters.hpp).

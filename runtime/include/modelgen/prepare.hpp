@@ -46,7 +46,7 @@ struct PreparedExperiment {
 /// mean is more than 1% longer), and the summary says so.
 /// Throws DataError naming the file for anything the steps reject (no period found, a
 /// cut-off above Nyquist, too few samples, ...).
-PreparedExperiment prepare_experiment(Trajectory raw, const Transmission& drive,
+PreparedExperiment prepare_experiment(Trajectory raw, const DriveChain& drive,
                                       const PreparationOptions& options);
 
 /// Decimates every column of q, dq, ddq and tau with the same zero-phase filter (decimate()

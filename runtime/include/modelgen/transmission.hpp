@@ -1,26 +1,12 @@
-// The drive chain between motors and joints, for data measured on the motor side: coupling
+// Data measured on the motor side brought to the joint side through the drive chain: coupling
 // (Gautier & Briot eq. 25; Swevers et al. eq. 9-11 in the form K = diag(ratio) V^-1), motor
 // torque constants for current measurements and encoder offsets.
 #pragma once
 
-#include <Eigen/Core>
-
 #include "modelgen/data.hpp"
+#include "modelgen/model/drive_chain.hpp"
 
 namespace modelgen {
-
-struct Transmission {
-  /// K, dof x dof: dq_motor = K dq_joint; by power balance tau_joint = K^T tau_motor.
-  Eigen::MatrixXd motor_from_joint;
-  /// Per motor, N m/A: tau_motor = torque_constant * current; 0 where unknown.
-  Eigen::VectorXd torque_constant;
-  /// Per joint, rad or m: q_joint = K^-1 q_motor + joint_offset.
-  Eigen::VectorXd joint_offset;
-
-  /// The identity drive chain of `dof` joints (motor and joint sides coincide), no torque
-  /// constants, no offsets.
-  static Transmission identity(int dof);
-};
 
 /// Where the positions (and their derivatives) and the torques of a data file were measured.
 enum class Side { kJoint, kMotor };
@@ -32,6 +18,6 @@ enum class Side { kJoint, kMotor };
 ///   quantities); with Measured::kTorque and `positions` kMotor, tau = K^T tau_motor.
 /// Sets x.measured to kTorque. Throws DataError naming x.source when a torque constant needed
 /// is not positive (0: not given), K is singular, or the sizes do not match.
-void to_joint_side(Trajectory& x, const Transmission& drive, Side positions);
+void to_joint_side(Trajectory& x, const DriveChain& drive, Side positions);
 
 }  // namespace modelgen

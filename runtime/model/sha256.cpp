@@ -1,12 +1,12 @@
 // SHA-256 through OpenSSL's EVP interface.
 
-#include "generator/output/sha256.hpp"
+#include "modelgen/model/sha256.hpp"
 
 #include <stdexcept>
 
 #include <openssl/evp.h>
 
-namespace modelgen::gen {
+namespace modelgen {
 
 std::string sha256_hex(std::string_view bytes) {
   unsigned char digest[EVP_MAX_MD_SIZE];
@@ -23,4 +23,4 @@ std::string sha256_hex(std::string_view bytes) {
   return out;
 }
 
-}  // namespace modelgen::gen
+}  // namespace modelgen

@@ -9,16 +9,13 @@
 #include <string>
 #include <vector>
 
-#include "modelgen/base_parameters.hpp"
-#include "modelgen/reference_dynamics.hpp"
-#include "modelgen/rigid_body_tree.hpp"
-#include "modelgen/transmission.hpp"
+#include "modelgen/model/base_parameters.hpp"
+#include "modelgen/model/reference_dynamics.hpp"
+#include "modelgen/model/rigid_body_tree.hpp"
+#include "modelgen/model/drive_chain.hpp"
+#include "modelgen/model/generated_format.hpp"
 
 namespace modelgen {
-
-/// The format of generated code this runtime understands (the kFormatVersion of generated
-/// headers).
-constexpr int kGeneratedFormatVersion = 3;
 
 class IdentificationModel {
  public:
@@ -47,7 +44,7 @@ class IdentificationModel {
   /// (num_standard_params()).
   virtual void base_from_standard(const double* p_standard, double* beta) const = 0;
   /// The description's drive chain, for motor-side data and current measurements.
-  virtual const Transmission& transmission() const = 0;
+  virtual const DriveChain& drive_chain() const = 0;
 };
 
 /// The numeric reference as an identification model: any description, slower than generated
@@ -58,7 +55,7 @@ class ReferenceModel final : public IdentificationModel {
   /// malformed tree.
   /// `drive` defaults to the identity drive chain.
   ReferenceModel(std::string name, RigidBodyTree tree, std::string description_sha256 = "",
-                 std::optional<Transmission> drive = std::nullopt);
+                 std::optional<DriveChain> drive = std::nullopt);
 
   std::string name() const override { return name_; }
   std::string description_sha256() const override { return sha256_; }
@@ -71,14 +68,14 @@ class ReferenceModel final : public IdentificationModel {
   void inverse_dynamics(const double* q, const double* dq, const double* ddq, const double* beta,
                         double* tau) const override;
   void base_from_standard(const double* p_standard, double* beta) const override;
-  const Transmission& transmission() const override { return drive_; }
+  const DriveChain& drive_chain() const override { return drive_; }
 
   const BaseParameterSet& base() const { return base_; }
 
  private:
   std::string name_;
   std::string sha256_;
-  Transmission drive_;
+  DriveChain drive_;
   ReferenceDynamics dynamics_;
   BaseParameterSet base_;
   std::vector<std::string> standard_, base_names_;
@@ -123,11 +120,11 @@ class GeneratedModel final : public IdentificationModel {
   void base_from_standard(const double* p_standard, double* beta) const override {
     Generated::base_from_standard(p_standard, beta);
   }
-  const Transmission& transmission() const override { return drive_; }
+  const DriveChain& drive_chain() const override { return drive_; }
 
  private:
   std::vector<std::string> standard_, base_;
-  Transmission drive_;
+  DriveChain drive_;
 };
 
 }  // namespace modelgen

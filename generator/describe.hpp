@@ -4,7 +4,7 @@
 
 #include <string>
 
-#include "generator/description/robot_model.hpp"
+#include "modelgen/model/robot_model.hpp"
 
 namespace modelgen::gen {
 

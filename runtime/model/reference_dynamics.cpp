@@ -3,7 +3,7 @@
 // linear in the standard parameters; Gautier & Briot eq. 2-4). Written for clarity: it is the
 // oracle, not the product.
 
-#include "modelgen/reference_dynamics.hpp"
+#include "modelgen/model/reference_dynamics.hpp"
 
 #include <cmath>
 #include <stdexcept>

@@ -1,18 +1,16 @@
 // Renders a RobotModel as aligned text tables for `modelgen describe`.
 
-#include "generator/description/describe.hpp"
+#include "generator/describe.hpp"
 
-#include <charconv>
 #include <cmath>
 #include <sstream>
+
+#include "modelgen/model/number_text.hpp"
 
 namespace modelgen::gen {
 
 std::string format_number(double value) {
-  if (value == 0) return "0";  // also folds -0
-  char buffer[64];
-  auto [end, ec] = std::to_chars(buffer, buffer + sizeof buffer, value);
-  return ec == std::errc() ? std::string(buffer, end) : std::string("?");
+  return value == 0 ? "0" : shortest_text(value);  // also folds -0
 }
 
 namespace {
@@ -155,12 +153,7 @@ std::string describe(const RobotModel& model) {
     out << "  motor_from_joint K (dq_motor = K dq_joint, tau_joint = K^T tau_motor):\n";
     print_matrix(out, drives.motor_from_joint, "    ");
   }
-  auto any_nonzero = [](const std::vector<double>& v) {
-    for (double x : v) {
-      if (x != 0) return true;
-    }
-    return false;
-  };
+  auto any_nonzero = [](const Eigen::VectorXd& v) { return (v.array() != 0).any(); };
   if (any_nonzero(drives.torque_constant)) {
     out << "  torque constant (N m/A, motor side): "
         << vector_text(drives.torque_constant.data(), static_cast<int>(drives.torque_constant.size()))

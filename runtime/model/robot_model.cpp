@@ -1,6 +1,6 @@
 // Parameter list construction, angle parsing and name rules shared by the description loaders.
 
-#include "generator/description/robot_model.hpp"
+#include "modelgen/model/robot_model.hpp"
 
 #include <cctype>
 #include <charconv>
@@ -9,14 +9,14 @@
 #include <numeric>
 #include <set>
 
-namespace modelgen::gen {
+#include "modelgen/model/number_text.hpp"
+
+namespace modelgen {
 
 Angle Angle::from_radians(double radians) {
   Angle a;
   a.value = radians;
-  char buffer[32];
-  const auto result = std::to_chars(buffer, buffer + sizeof buffer, radians);
-  a.text.assign(buffer, result.ptr);
+  a.text = shortest_text(radians);
   return a;
 }
 
@@ -249,4 +249,4 @@ std::array<double, 10> standard_from_inertial(double mass, const std::array<doub
           mass * c.x(), mass * c.y(), mass * c.z(), mass};
 }
 
-}  // namespace modelgen::gen
+}  // namespace modelgen

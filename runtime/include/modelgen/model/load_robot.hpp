@@ -3,9 +3,9 @@
 
 #include <string>
 
-#include "generator/description/robot_model.hpp"
+#include "modelgen/model/robot_model.hpp"
 
-namespace modelgen::gen {
+namespace modelgen {
 
 struct LoadOptions {
   std::string base_link;  ///< URDF: root of the kinematic tree to model; empty = URDF root
@@ -20,4 +20,4 @@ RobotModel load_robot(const std::string& path, const LoadOptions& options = {});
 /// The whole file as bytes; InputError if it cannot be read.
 std::string read_source_file(const std::string& path);
 
-}  // namespace modelgen::gen
+}  // namespace modelgen

@@ -1,7 +1,7 @@
 // Invariant checks on RigidBodyTree: everything downstream (reference dynamics, symbolic
 // derivation, code emission) may then assume a well-formed tree.
 
-#include "modelgen/rigid_body_tree.hpp"
+#include "modelgen/model/rigid_body_tree.hpp"
 
 #include <cmath>
 #include <set>

@@ -7,7 +7,7 @@
 
 #include <Eigen/Core>
 
-#include "modelgen/rigid_body_tree.hpp"
+#include "modelgen/model/rigid_body_tree.hpp"
 
 namespace modelgen {
 

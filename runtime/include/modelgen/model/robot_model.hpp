@@ -1,6 +1,6 @@
 // The validated robot description: joints as the user wrote them (MDH parameters or URDF
 // transforms, limits, where in the file), the RigidBodyTree the dynamics compute on, the drive
-// chain (gear ratios, motor/joint coupling), the friction options and a-priori parameter values.
+// chain (gear ratios, motor/joint coupling; drive_chain.hpp), the friction options and a-priori parameter values.
 #pragma once
 
 #include <array>
@@ -11,10 +11,11 @@
 
 #include <Eigen/Core>
 
-#include "generator/description/diagnostics.hpp"
-#include "modelgen/rigid_body_tree.hpp"
+#include "modelgen/model/drive_chain.hpp"
+#include "modelgen/model/error.hpp"
+#include "modelgen/model/rigid_body_tree.hpp"
 
-namespace modelgen::gen {
+namespace modelgen {
 
 /// An angle as written: its value, and when it was written as a rational multiple of pi
 /// ("-pi/2", "3*pi/4") that fraction, so symbolic code can use exact sines and cosines.
@@ -60,24 +61,6 @@ struct JointDescription {
   std::optional<MdhParameters> mdh;    ///< set for MDH descriptions
   JointLimits limits;
   SourceLocation where;
-};
-
-/// How motor and joint quantities relate. Stored in one canonical form, K = motor_from_joint
-/// (dq_motor = K dq_joint, Gautier & Briot eq. 25; tau_joint = K^T tau_motor by power balance).
-/// The Swevers form (eq. 9: q_G = V q_M with q_M the motor angles divided by the gear ratios)
-/// converts as K = diag(ratio) V^-1.
-struct DriveChain {
-  std::vector<double> ratio;        ///< gear ratio per moving joint; empty when not given
-  std::string coupling_form;        ///< "joint_from_motor", "motor_from_joint" or empty
-  Eigen::MatrixXd coupling_as_written;  ///< the matrix the user gave (block of coupled joints)
-  std::vector<int> coupled_joints;  ///< 0-based dof indices the written block acts on
-  Eigen::MatrixXd motor_from_joint; ///< dof x dof; identity scaled by ratio when no coupling
-  /// Motor torque constant per motor, N m/A (tau_motor = k i); 0 where not given.
-  std::vector<double> torque_constant;
-  /// Joint position at motor position zero, per joint: q = K^-1 q_motor + joint_offset.
-  std::vector<double> joint_offset;
-
-  bool has_coupling() const { return !coupling_form.empty(); }
 };
 
 struct FrictionOptions {
@@ -128,4 +111,4 @@ std::array<double, 10> standard_from_inertial(double mass, const std::array<doub
                                               const std::array<double, 9>& R_inertial,
                                               const std::array<double, 6>& I_com);
 
-}  // namespace modelgen::gen
+}  // namespace modelgen

@@ -5,12 +5,12 @@
 
 #include <string>
 
-#include "generator/description/load_robot.hpp"
-#include "generator/description/robot_model.hpp"
+#include "modelgen/model/load_robot.hpp"
+#include "modelgen/model/robot_model.hpp"
 
-namespace modelgen::gen {
+namespace modelgen {
 
 /// Parses `text` read from `path` (the path is only used in messages).
 RobotModel load_urdf(const std::string& path, const std::string& text, const LoadOptions& options);
 
-}  // namespace modelgen::gen
+}  // namespace modelgen

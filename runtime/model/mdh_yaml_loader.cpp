@@ -1,124 +1,22 @@
 // Reads the YAML description (modified DH table, drive chain, friction options, a-priori
 // values) with yaml-cpp, checking every key and value and reporting positions from yaml-cpp's
-// marks. Frame j from frame a(j): Rot_x(alpha) Trans_x(d) Rot_z(theta) Trans_z(r) (DESIGN.md).
+// marks (yaml_reader.hpp). Frame j from frame a(j): Rot_x(alpha) Trans_x(d) Rot_z(theta)
+// Trans_z(r) (DESIGN.md).
 
-#include "generator/description/mdh_yaml_loader.hpp"
+#include "runtime/model/mdh_yaml_loader.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <set>
-#include <sstream>
 
 #include <Eigen/LU>
 #include <yaml-cpp/yaml.h>
 
-namespace modelgen::gen {
+#include "runtime/model/yaml_reader.hpp"
+
+namespace modelgen {
 
 namespace {
-
-class YamlReader {
- public:
-  explicit YamlReader(const std::string& path) : path_(path) {}
-
-  SourceLocation at(const YAML::Node& node) const {
-    const YAML::Mark mark = node.Mark();
-    if (mark.is_null()) return {path_};
-    return {path_, mark.line + 1, mark.column + 1};
-  }
-
-  [[noreturn]] void fail(const YAML::Node& node, const std::string& message) const {
-    throw InputError(at(node), message);
-  }
-
-  // Rejects keys outside `allowed` (suggesting the closest) and duplicate keys.
-  void check_keys(const YAML::Node& map, const std::vector<std::string>& allowed,
-                  const std::string& context) const {
-    if (!map.IsMap()) fail(map, context + " must be a mapping of keys to values");
-    std::set<std::string> seen;
-    for (const auto& entry : map) {
-      const std::string key = entry.first.Scalar();
-      if (std::find(allowed.begin(), allowed.end(), key) == allowed.end()) {
-        std::string valid;
-        for (const std::string& a : allowed) valid += (valid.empty() ? "" : ", ") + a;
-        fail(entry.first, "unknown key '" + key + "' in " + context + did_you_mean(key, allowed) +
-                              "; valid keys: " + valid);
-      }
-      if (!seen.insert(key).second) fail(entry.first, "duplicate key '" + key + "' in " + context);
-    }
-  }
-
-  YAML::Node require(const YAML::Node& map, const std::string& key,
-                     const std::string& context) const {
-    YAML::Node value = map[key];
-    if (!value) fail(map, "missing field '" + key + "' in " + context);
-    return value;
-  }
-
-  double number(const YAML::Node& node, const std::string& field) const {
-    if (!node.IsScalar()) fail(node, "'" + field + "' must be a number");
-    std::istringstream in(node.Scalar());
-    in.imbue(std::locale::classic());
-    double value = 0;
-    in >> value;
-    if (in.fail() || !in.eof() || !std::isfinite(value)) {
-      fail(node, "'" + field + "' must be a number, got '" + node.Scalar() + "'");
-    }
-    return value;
-  }
-
-  double positive(const YAML::Node& node, const std::string& field) const {
-    const double value = number(node, field);
-    if (value <= 0) fail(node, "'" + field + "' must be positive, got " + node.Scalar());
-    return value;
-  }
-
-  long integer(const YAML::Node& node, const std::string& field) const {
-    const double value = number(node, field);
-    if (value != std::floor(value) || std::abs(value) > 1e9) {
-      fail(node, "'" + field + "' must be an integer, got '" + node.Scalar() + "'");
-    }
-    return static_cast<long>(value);
-  }
-
-  bool boolean(const YAML::Node& node, const std::string& field) const {
-    if (node.IsScalar()) {
-      const std::string& s = node.Scalar();
-      if (s == "true" || s == "True" || s == "yes") return true;
-      if (s == "false" || s == "False" || s == "no") return false;
-    }
-    fail(node, "'" + field + "' must be true or false");
-  }
-
-  std::string text(const YAML::Node& node, const std::string& field) const {
-    if (!node.IsScalar() || node.Scalar().empty()) fail(node, "'" + field + "' must be a string");
-    return node.Scalar();
-  }
-
-  Angle angle(const YAML::Node& node, const std::string& field) const {
-    if (!node.IsScalar()) fail(node, "'" + field + "' must be an angle");
-    auto parsed = parse_angle(node.Scalar());
-    if (!parsed) {
-      fail(node, "'" + field + "' must be an angle in radians: a number or an expression of pi "
-                               "such as pi/2, -pi/2, 3*pi/4; got '" + node.Scalar() + "'");
-    }
-    return *parsed;
-  }
-
-  std::vector<double> numbers(const YAML::Node& node, const std::string& field,
-                              std::size_t expected) const {
-    if (!node.IsSequence() || node.size() != expected) {
-      fail(node, "'" + field + "' must be a list of " + std::to_string(expected) + " numbers");
-    }
-    std::vector<double> out;
-    for (const auto& item : node) out.push_back(number(item, field));
-    return out;
-  }
-
-  const std::string& path() const { return path_; }
-
- private:
-  std::string path_;
-};
 
 Eigen::Matrix3d rot_x(const Angle& a) {
   Eigen::Matrix3d R;
@@ -363,12 +261,13 @@ class MdhYamlLoader {
     DriveChain& drives = model_.drives;
     const int n = model_.dof();
     drives.motor_from_joint = Eigen::MatrixXd::Identity(n, n);
-    drives.torque_constant.assign(n, 0.0);
-    drives.joint_offset.assign(n, 0.0);
+    drives.torque_constant = Eigen::VectorXd::Zero(n);
+    drives.joint_offset = Eigen::VectorXd::Zero(n);
     if (!node) return;
     in_.check_keys(node, {"ratio", "coupling", "torque_constant", "joint_offset"}, "drives");
     if (node["torque_constant"]) {
-      drives.torque_constant = in_.numbers(node["torque_constant"], "torque_constant", n);
+      const std::vector<double> constants = in_.numbers(node["torque_constant"], "torque_constant", n);
+      drives.torque_constant = Eigen::Map<const Eigen::VectorXd>(constants.data(), n);
       for (int i = 0; i < n; ++i) {
         if (!(drives.torque_constant[i] > 0)) {
           in_.fail(node["torque_constant"][i], "a torque constant must be positive (N m/A)");
@@ -497,4 +396,4 @@ RobotModel load_mdh_yaml(const std::string& path, const std::string& text) {
   }
 }
 
-}  // namespace modelgen::gen
+}  // namespace modelgen

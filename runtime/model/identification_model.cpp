@@ -1,17 +1,17 @@
 // The numeric reference behind the IdentificationModel interface: the base regressor is the
 // standard one restricted to the independent columns, and dh = dq^T W (the power balance).
 
-#include "modelgen/model.hpp"
+#include "modelgen/model/identification_model.hpp"
 
 #include <Eigen/Core>
 
 namespace modelgen {
 
 ReferenceModel::ReferenceModel(std::string name, RigidBodyTree tree, std::string description_sha256,
-                               std::optional<Transmission> drive)
+                               std::optional<DriveChain> drive)
     : name_(std::move(name)),
       sha256_(std::move(description_sha256)),
-      drive_(drive ? std::move(*drive) : Transmission::identity(tree.dof)),
+      drive_(drive ? std::move(*drive) : DriveChain::identity(tree.dof)),
       dynamics_(std::move(tree)),
       base_(derive_base_parameters(dynamics_.tree())) {
   for (const StandardParam& p : dynamics_.tree().params) standard_.push_back(p.name);

@@ -1,15 +1,15 @@
 // Chooses the description loader by file extension and reads files whole.
 
-#include "generator/description/load_robot.hpp"
+#include "modelgen/model/load_robot.hpp"
 
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 
-#include "generator/description/mdh_yaml_loader.hpp"
-#include "generator/description/urdf_loader.hpp"
+#include "runtime/model/mdh_yaml_loader.hpp"
+#include "runtime/model/urdf_loader.hpp"
 
-namespace modelgen::gen {
+namespace modelgen {
 
 std::string read_source_file(const std::string& path) {
   std::error_code ec;
@@ -44,4 +44,4 @@ RobotModel load_robot(const std::string& path, const LoadOptions& options) {
                                "': expected .yaml/.yml (modified DH) or .urdf");
 }
 
-}  // namespace modelgen::gen
+}  // namespace modelgen

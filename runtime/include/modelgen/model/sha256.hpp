@@ -4,9 +4,9 @@
 #include <string>
 #include <string_view>
 
-namespace modelgen::gen {
+namespace modelgen {
 
 /// The 64 lowercase hex digits of SHA-256(bytes).
 std::string sha256_hex(std::string_view bytes);
 
-}  // namespace modelgen::gen
+}  // namespace modelgen

@@ -2,7 +2,7 @@
 // stacked standard regressor, independent columns chosen greedily left to right by
 // Gram-Schmidt with reorthogonalization, regrouping coefficients from a least-squares solve.
 
-#include "modelgen/base_parameters.hpp"
+#include "modelgen/model/base_parameters.hpp"
 
 #include <cmath>
 #include <cstdio>
@@ -13,7 +13,7 @@
 
 #include <Eigen/QR>
 
-#include "modelgen/reference_dynamics.hpp"
+#include "modelgen/model/reference_dynamics.hpp"
 
 namespace modelgen {
 

@@ -4,13 +4,13 @@
 
 #include <string>
 
-#include "generator/description/robot_model.hpp"
+#include "modelgen/model/robot_model.hpp"
 
-namespace modelgen::gen {
+namespace modelgen {
 
 /// Parses `text` read from `path` (the path is only used in messages). Throws InputError with
 /// file, line and column for syntax errors, unknown keys (with the closest valid key), wrong
 /// types, missing fields, bad coupling matrices and antecedent cycles.
 RobotModel load_mdh_yaml(const std::string& path, const std::string& text);
 
-}  // namespace modelgen::gen
+}  // namespace modelgen

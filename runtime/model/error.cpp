@@ -1,11 +1,11 @@
-// Error formatting and typo suggestions for description loaders.
+// Error formatting, and typo suggestions for description loaders.
 
-#include "generator/description/diagnostics.hpp"
+#include "modelgen/model/error.hpp"
 
 #include <algorithm>
 #include <cctype>
 
-namespace modelgen::gen {
+namespace modelgen {
 
 std::string SourceLocation::to_string() const {
   std::string out = file.empty() ? "<input>" : file;
@@ -22,9 +22,7 @@ std::string SourceLocation::to_string() const {
 }
 
 InputError::InputError(SourceLocation where, const std::string& message)
-    : std::runtime_error(where.to_string() + ": error: " + message),
-      where_(std::move(where)),
-      message_(message) {}
+    : Error(where, where.to_string() + ": error: " + message), message_(message) {}
 
 namespace {
 
@@ -69,4 +67,4 @@ std::string did_you_mean(std::string_view word, const std::vector<std::string>& 
   return best.empty() ? std::string() : " (did you mean '" + best + "'?)";
 }
 
-}  // namespace modelgen::gen
+}  // namespace modelgen
