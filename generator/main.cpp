@@ -7,10 +7,11 @@
 #include <vector>
 
 #include "generator/describe.hpp"
-#include "modelgen/model/load_robot.hpp"
 #include "generator/dynamics/base_report.hpp"
 #include "generator/generate.hpp"
 #include "generator/version.hpp"
+#include "modelgen/model/command_line.hpp"
+#include "modelgen/model/load_robot.hpp"
 
 namespace {
 
@@ -31,10 +32,6 @@ constexpr const char* kUsage =
     "  --tip LINK    URDF: keep only the chain from the base to this link\n"
     "  --name NAME   robot name (C++ namespace of generated code; default: from the file)\n";
 
-struct UsageError {
-  std::string message;
-};
-
 struct Arguments {
   std::string command;  // "describe", "base" or "generate"
   std::string robot;
@@ -44,43 +41,34 @@ struct Arguments {
 };
 
 Arguments parse(int argc, char** argv) {
+  using modelgen::OptionKind;
+  using modelgen::UsageError;
+  const modelgen::CommandLine line = modelgen::parse_command_line(
+      argc, argv, 1, "",
+      {{"--base", OptionKind::kOnce}, {"--tip", OptionKind::kOnce}, {"--name", OptionKind::kOnce},
+       {"--scalar", OptionKind::kOnce}, {"-o", OptionKind::kOnce}, {"--output", OptionKind::kOnce}});
   Arguments args;
-  std::vector<std::string> positional;
-  for (int i = 1; i < argc; ++i) {
-    const std::string arg = argv[i];
-    auto value = [&](const char* flag) {
-      if (i + 1 >= argc) throw UsageError{std::string(flag) + " needs a value"};
-      return std::string(argv[++i]);
-    };
-    if (arg == "--base") {
-      args.load.base_link = value("--base");
-    } else if (arg == "--tip") {
-      args.load.tip_link = value("--tip");
-    } else if (arg == "--name") {
-      args.load.name = value("--name");
-    } else if (arg == "--scalar") {
-      args.scalar = value("--scalar");
-      if (args.scalar != "double" && args.scalar != "float" && args.scalar != "both") {
-        throw UsageError{"--scalar must be double, float or both, not '" + args.scalar + "'"};
-      }
-    } else if (arg == "-o" || arg == "--output") {
-      args.output_dir = value("-o");
-    } else if (arg.size() > 1 && arg[0] == '-') {
-      throw UsageError{"unknown option '" + arg + "'"};
-    } else {
-      positional.push_back(arg);
-    }
+  args.load.base_link = line.one_or("--base", "");
+  args.load.tip_link = line.one_or("--tip", "");
+  args.load.name = line.one_or("--name", "");
+  args.scalar = line.one_or("--scalar", "both");
+  if (args.scalar != "double" && args.scalar != "float" && args.scalar != "both") {
+    throw UsageError("--scalar must be double, float or both, not '" + args.scalar + "'");
   }
-  if (positional.empty()) throw UsageError{"no robot description given"};
+  if (line.has("-o") && line.has("--output")) throw UsageError("-o and --output given together");
+  args.output_dir = line.one_or("-o", line.one_or("--output", ""));
+
+  const std::vector<std::string>& positional = line.positional;
+  if (positional.empty()) throw UsageError("no robot description given");
   if (positional[0] == "describe" || positional[0] == "base") {
     args.command = positional[0];
-    if (positional.size() != 2) throw UsageError{args.command + " takes exactly one ROBOT file"};
-    if (!args.output_dir.empty()) throw UsageError{args.command + " writes no files; drop -o"};
+    if (positional.size() != 2) throw UsageError(args.command + " takes exactly one ROBOT file");
+    if (!args.output_dir.empty()) throw UsageError(args.command + " writes no files; drop -o");
     args.robot = positional[1];
     return args;
   }
-  if (positional.size() != 1) throw UsageError{"give exactly one ROBOT file"};
-  if (args.output_dir.empty()) throw UsageError{"no output directory: add -o DIR"};
+  if (positional.size() != 1) throw UsageError("give exactly one ROBOT file");
+  if (args.output_dir.empty()) throw UsageError("no output directory: add -o DIR");
   args.command = "generate";
   args.robot = positional[0];
   return args;
@@ -110,8 +98,8 @@ int main(int argc, char** argv) {
       modelgen::gen::generate_from_file(args.robot, args.load, args.scalar).files.write_to(args.output_dir);
     }
     return 0;
-  } catch (const UsageError& e) {
-    std::cerr << "modelgen: " << e.message << "\n\n" << kUsage;
+  } catch (const modelgen::UsageError& e) {
+    std::cerr << "modelgen: " << e.what() << "\n\n" << kUsage;
     return 2;
   } catch (const modelgen::InputError& e) {
     std::cerr << e.what() << "\n";

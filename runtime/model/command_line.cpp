@@ -1,0 +1,66 @@
+// Option parsing shared by modelgen and modelid.
+
+#include "modelgen/model/command_line.hpp"
+
+#include <charconv>
+#include <cmath>
+
+namespace modelgen {
+
+const std::string& CommandLine::one(const std::string& name) const {
+  auto found = options.find(name);
+  if (found == options.end()) {
+    throw UsageError((command.empty() ? std::string("missing ") : command + " needs ") + name);
+  }
+  if (found->second.size() != 1) throw UsageError(name + " given more than once");
+  return found->second.front();
+}
+
+std::string CommandLine::one_or(const std::string& name, const std::string& fallback) const {
+  return has(name) ? one(name) : fallback;
+}
+
+const std::vector<std::string>& CommandLine::all(const std::string& name) const {
+  static const std::vector<std::string> kNone;
+  auto found = options.find(name);
+  return found == options.end() ? kNone : found->second;
+}
+
+CommandLine parse_command_line(int argc, char** argv, int first, const std::string& command,
+                               const std::map<std::string, OptionKind>& allowed) {
+  CommandLine line;
+  line.command = command;
+  for (int i = first; i < argc; ++i) {
+    const std::string arg = argv[i];
+    if (arg.size() > 1 && arg[0] == '-') {
+      auto found = allowed.find(arg);
+      if (found == allowed.end()) {
+        throw UsageError("unknown option '" + arg + "'" + (command.empty() ? "" : " for " + command));
+      }
+      std::vector<std::string>& values = line.options[arg];
+      if (found->second == OptionKind::kFlag) {
+        values.emplace_back();
+      } else {
+        if (i + 1 >= argc) throw UsageError(arg + " needs a value");
+        values.push_back(argv[++i]);
+      }
+      if (found->second != OptionKind::kRepeated && values.size() > 1) {
+        throw UsageError(arg + " given twice");
+      }
+    } else {
+      line.positional.push_back(arg);
+    }
+  }
+  return line;
+}
+
+double parse_number(const std::string& text, const std::string& option) {
+  double value = 0;
+  auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (ec != std::errc() || end != text.data() + text.size() || !std::isfinite(value)) {
+    throw UsageError(option + " must be a number, not '" + text + "'");
+  }
+  return value;
+}
+
+}  // namespace modelgen
