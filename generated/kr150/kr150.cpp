@@ -12,8 +12,10 @@
 // base_from_standard                     49     81        0
 // idim_regressor                        477    390       10
 // inverse_dynamics                      379    304       10
+// mass_matrix                           419    393       10
 // idim_regressor_sincos                 477    390        0
 // inverse_dynamics_sincos               379    304        0
+// mass_matrix_sincos                    419    393        0
 // inverse_dynamics_state_jacobian      2606   2524       10
 // energy_regressor                      132     61       10
 // power_regressor                       325    186       10
@@ -1927,8 +1929,8 @@ void inverse_dynamics_standard(const double* q, const double* dq, const double* 
 // joint positions q, velocities dq and accelerations ddq (kDof each) and the standard
 // parameters p (kStandardParams, in the order of kStandardParamNames). Includes gravity, drive
 // inertia, friction and offsets as the description enables them.
-void inverse_dynamics_standard(const float* q, const float* dq, const float* ddq,
-                               const float* p, float* tau) {
+void inverse_dynamics_standard(const float* q, const float* dq, const float* ddq, const float* p,
+                               float* tau) {
   const float sg1 = static_cast<float>((dq[0] > 0.0f) - (dq[0] < 0.0f));
   const float s2 = std::sin(q[1]);
   const float c2 = std::cos(q[1]);
@@ -3832,9 +3834,9 @@ void idim_regressor_standard_sincos(const float* q, const float* sin_q, const fl
 
 // inverse_dynamics_standard with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
 // computing them; identical results.
-void inverse_dynamics_standard_sincos(const double* q, const double* sin_q,
-                                      const double* cos_q, const double* dq,
-                                      const double* ddq, const double* p, double* tau) {
+void inverse_dynamics_standard_sincos(const double* q, const double* sin_q, const double* cos_q,
+                                      const double* dq, const double* ddq, const double* p,
+                                      double* tau) {
   static_cast<void>(q);
   const double sg1 = static_cast<double>((dq[0] > 0.0) - (dq[0] < 0.0));
   const double s2 = sin_q[1];
@@ -3973,9 +3975,9 @@ void inverse_dynamics_standard_sincos(const double* q, const double* sin_q,
 
 // inverse_dynamics_standard with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
 // computing them; identical results.
-void inverse_dynamics_standard_sincos(const float* q, const float* sin_q,
-                                      const float* cos_q, const float* dq,
-                                      const float* ddq, const float* p, float* tau) {
+void inverse_dynamics_standard_sincos(const float* q, const float* sin_q, const float* cos_q,
+                                      const float* dq, const float* ddq, const float* p,
+                                      float* tau) {
   static_cast<void>(q);
   const float sg1 = static_cast<float>((dq[0] > 0.0f) - (dq[0] < 0.0f));
   const float s2 = sin_q[1];
@@ -5377,8 +5379,8 @@ void idim_regressor(const float* q, const float* dq, const float* ddq, float* W)
 // Inverse dynamics on the base parameters (customized Newton-Euler with the regrouped
 // parameters): joint torques tau (kDof) for q, dq, ddq (kDof each) and beta (kBaseParams, in the
 // order of kBaseParamNames; base_from_standard computes it from standard parameters).
-void inverse_dynamics(const double* q, const double* dq, const double* ddq,
-                      const double* beta, double* tau) {
+void inverse_dynamics(const double* q, const double* dq, const double* ddq, const double* beta,
+                      double* tau) {
   const double sg1 = static_cast<double>((dq[0] > 0.0) - (dq[0] < 0.0));
   const double s2 = std::sin(q[1]);
   const double c2 = std::cos(q[1]);
@@ -5504,8 +5506,8 @@ void inverse_dynamics(const double* q, const double* dq, const double* ddq,
 // Inverse dynamics on the base parameters (customized Newton-Euler with the regrouped
 // parameters): joint torques tau (kDof) for q, dq, ddq (kDof each) and beta (kBaseParams, in the
 // order of kBaseParamNames; base_from_standard computes it from standard parameters).
-void inverse_dynamics(const float* q, const float* dq, const float* ddq,
-                      const float* beta, float* tau) {
+void inverse_dynamics(const float* q, const float* dq, const float* ddq, const float* beta,
+                      float* tau) {
   const float sg1 = static_cast<float>((dq[0] > 0.0f) - (dq[0] < 0.0f));
   const float s2 = std::sin(q[1]);
   const float c2 = std::cos(q[1]);
@@ -5628,8 +5630,446 @@ void inverse_dynamics(const float* q, const float* dq, const float* ddq,
   tau[5] = ddq[5] * beta[52] + dq[5] * beta[53] + sg6 * beta[54] + t95 * beta[55] + t96 * beta[56] + t97 * beta[57] + t77;
 }
 
-// idim_regressor with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of computing
-// them; identical results.
+// Joint-space inertia matrix M(q) on the base parameters: inverse_dynamics is tau = M(q) ddq +
+// terms without ddq (velocity, gravity, friction, offsets), for forward dynamics
+// ddq = M^-1 (tau - inverse_dynamics(q, dq, 0, beta)). Inputs q (kDof) and beta (kBaseParams,
+// as for inverse_dynamics). Output M: kDof x kDof, row-major, M[i * kDof + k] = d tau_i / d ddq_k
+// (drive inertias included; symmetric, and positive definite for physical parameters).
+void mass_matrix(const double* q, const double* beta, double* M) {
+  const double s2 = std::sin(q[1]);
+  const double c2 = std::cos(q[1]);
+  const double s3 = std::sin(q[2]);
+  const double c3 = std::cos(q[2]);
+  const double s4 = std::sin(q[3]);
+  const double c4 = std::cos(q[3]);
+  const double s5 = std::sin(q[4]);
+  const double c5 = std::cos(q[4]);
+  const double s6 = std::sin(q[5]);
+  const double c6 = std::cos(q[5]);
+  const double t0 = -s2 * s3 + c2 * c3;
+  const double t1 = -s2 * c3 - c2 * s3;
+  const double t2 = c4 * t0;
+  const double t3 = -s5 * t2 + c5 * t1;
+  const double t4 = c5 * t2 + s5 * t1;
+  const double t5 = t3 * beta[50];
+  const double t6 = -t3 * beta[51];
+  const double t7 = t1 * beta[27] + t3 * beta[37] - t4 * beta[38] + c6 * t5 + s6 * t6;
+  const double t8 = -s4 * t0;
+  const double t9 = -s6 * t4 + c6 * t8;
+  const double t10 = c6 * t4 + s6 * t8;
+  const double t11 = -t9 * beta[50] + t10 * beta[51] - t8 * beta[37];
+  const double t12 = t8 * beta[38] - s6 * t5 + c6 * t6;
+  const double t13 = -t1 * beta[28] - s5 * t11 + c5 * t12;
+  const double t14 = -c4 * t7 - s4 * t13;
+  const double t15 = -0.35 - 1.25 * c2;
+  const double t16 = t15 - 1.1 * t0 - 0.055 * t1;
+  const double t17 = -s4 * t16;
+  const double t18 = c5 * t17;
+  const double t19 = -c4 * t16;
+  const double t20 = t3 * beta[49] + t9 * beta[48] + t10 * beta[47] - (c6 * t18 + s6 * t19) * beta[51] + (-s6 * t18 + c6 * t19) * beta[50];
+  const double t21 = -t8 * beta[35] + t4 * beta[33] + t20 + t19 * beta[37];
+  const double t22 = -s5 * t17;
+  const double t23 = t3 * beta[48] + t10 * beta[46] - t22 * beta[50];
+  const double t24 = t3 * beta[47] + t9 * beta[46] + t10 * beta[45] + t22 * beta[51];
+  const double t25 = -t8 * beta[34] + t3 * beta[33] + t4 * beta[32] - s6 * t23 + c6 * t24 - t19 * beta[38];
+  const double t26 = t1 * beta[26] + t8 * beta[25] + t2 * beta[24] + c5 * t21 + s5 * t25 - t17 * beta[28] + t19 * beta[27];
+  const double t27 = t0 * beta[13] - 0.055 * t14 + t26 - t15 * beta[17];
+  const double t28 = -t8 * beta[36] + t3 * beta[35] + t4 * beta[34] - c6 * t23 - s6 * t24 - t18 * beta[38] + t22 * beta[37];
+  const double t29 = t1 * beta[25] + t2 * beta[23] - t28;
+  const double t30 = t1 * beta[24] + t8 * beta[23] + t2 * beta[22] - s5 * t21 + c5 * t25;
+  const double t31 = t1 * beta[13] + t0 * beta[12] - s4 * t29 + c4 * t30 - 1.1 * t14 + t15 * beta[18];
+  const double t32 = -t1 * beta[17] + t0 * beta[18] + t14;
+  M[0] = beta[0] + c2 * (s2 * beta[4] - s3 * t27 + c3 * t31 - 1.25 * t32 + 0.35 * beta[8]) + s2 * (c2 * beta[4] + s2 * beta[3] - c3 * t27 - s3 * t31 - 0.35 * beta[9]) - 0.35 * (t32 - c2 * beta[8] + s2 * beta[9]);
+  const double t33 = s4 * s5;
+  const double t34 = -s4 * c5;
+  const double t35 = t33 * beta[50];
+  const double t36 = -t33 * beta[51];
+  const double t37 = -t33 * beta[37] + t34 * beta[38] - c6 * t35 - s6 * t36;
+  const double t38 = -s6 * t34 - c4 * c6;
+  const double t39 = c6 * t34 - c4 * s6;
+  const double t40 = -t38 * beta[50] + t39 * beta[51] + c4 * beta[37];
+  const double t41 = -c4 * beta[38] - s6 * t35 + c6 * t36;
+  const double t42 = -s5 * t40 + c5 * t41;
+  const double t43 = c4 * t37 - s4 * t42;
+  const double t44 = -0.055 * t43;
+  const double t45 = -c4 * beta[25];
+  const double t46 = -s4 * beta[24];
+  const double t47 = c4 * beta[35];
+  const double t48 = t34 * beta[33];
+  const double t49 = t33 * beta[49];
+  const double t50 = t38 * beta[48];
+  const double t51 = t39 * beta[47];
+  const double t52 = 1.1 + 1.25 * c3;
+  const double t53 = c4 * t52;
+  const double t54 = 0.055 - 1.25 * s3;
+  const double t55 = c5 * t53 + s5 * t54;
+  const double t56 = -s4 * t52;
+  const double t57 = t49 + t50 + t51 - (c6 * t55 + s6 * t56) * beta[51] + (-s6 * t55 + c6 * t56) * beta[50];
+  const double t58 = t47 + t48 + t57 + t56 * beta[37];
+  const double t59 = c4 * beta[34];
+  const double t60 = t33 * beta[33];
+  const double t61 = t34 * beta[32];
+  const double t62 = t33 * beta[48];
+  const double t63 = t39 * beta[46];
+  const double t64 = -s5 * t53 + c5 * t54;
+  const double t65 = t62 + t63 - t64 * beta[50];
+  const double t66 = t33 * beta[47];
+  const double t67 = t38 * beta[46];
+  const double t68 = t39 * beta[45];
+  const double t69 = t66 + t67 + t68 + t64 * beta[51];
+  const double t70 = t59 + t60 + t61 - s6 * t65 + c6 * t69 - t56 * beta[38];
+  const double t71 = t45 + t46 + c5 * t58 + s5 * t70 - t53 * beta[28] + t56 * beta[27];
+  const double t72 = beta[15] + t44 + t71;
+  const double t73 = -s4 * beta[23];
+  const double t74 = c4 * beta[36];
+  const double t75 = t33 * beta[35];
+  const double t76 = t34 * beta[34];
+  const double t77 = t74 + t75 + t76 - c6 * t65 - s6 * t69 - t55 * beta[38] + t64 * beta[37];
+  const double t78 = t73 - t77 - t54 * beta[27];
+  const double t79 = -c4 * beta[23];
+  const double t80 = -s4 * beta[22];
+  const double t81 = t79 + t80 - s5 * t58 + c5 * t70 + t54 * beta[28];
+  const double t82 = -1.1 * t43;
+  const double t83 = beta[14] - s4 * t78 + c4 * t81 + t82;
+  const double t84 = -1.25 * t43;
+  const double t85 = -0.35 * t43;
+  M[1] = c2 * (beta[6] - s3 * t72 + c3 * t83 + t84) + s2 * (beta[5] - c3 * t72 - s3 * t83) + t85;
+  const double t86 = 1.1 * c4 * c5 + 0.055 * s5;
+  const double t87 = t49 + t50 + t51 - (c6 * t86 - 1.1 * s4 * s6) * beta[51] + (-s6 * t86 - 1.1 * s4 * c6) * beta[50];
+  const double t88 = t47 + t48 + t87 - 1.1 * s4 * beta[37];
+  const double t89 = -1.1 * c4 * s5 + 0.055 * c5;
+  const double t90 = t62 + t63 - t89 * beta[50];
+  const double t91 = t66 + t67 + t68 + t89 * beta[51];
+  const double t92 = t59 + t60 + t61 - s6 * t90 + c6 * t91 + 1.1 * s4 * beta[38];
+  const double t93 = t45 + t46 + c5 * t88 + s5 * t92 - 1.1 * c4 * beta[28] - 1.1 * s4 * beta[27];
+  const double t94 = beta[15] + t44 + t93;
+  const double t95 = t74 + t75 + t76 - c6 * t90 - s6 * t91 - t86 * beta[38] + t89 * beta[37];
+  const double t96 = t73 - t95 - 0.055 * beta[27];
+  const double t97 = t79 + t80 - s5 * t88 + c5 * t92 + 0.055 * beta[28];
+  const double t98 = beta[14] + t82 - s4 * t96 + c4 * t97;
+  M[2] = t85 + c2 * (t84 - s3 * t94 + c3 * t98) + s2 * (-c3 * t94 - s3 * t98);
+  const double t99 = c5 * beta[50];
+  const double t100 = -c5 * beta[51];
+  const double t101 = beta[27] + c5 * beta[37] - s5 * beta[38] + c6 * t99 + s6 * t100;
+  const double t102 = -s5 * s6;
+  const double t103 = s5 * c6;
+  const double t104 = -t102 * beta[50] + t103 * beta[51];
+  const double t105 = -s6 * t99 + c6 * t100;
+  const double t106 = -beta[28] - s5 * t104 + c5 * t105;
+  const double t107 = -c4 * t101 - s4 * t106;
+  const double t108 = c5 * beta[49];
+  const double t109 = t108 + t102 * beta[48] + t103 * beta[47];
+  const double t110 = t109 + s5 * beta[33];
+  const double t111 = c5 * beta[48] + t103 * beta[46];
+  const double t112 = c5 * beta[47] + t102 * beta[46] + t103 * beta[45];
+  const double t113 = c5 * beta[33] + s5 * beta[32] - s6 * t111 + c6 * t112;
+  const double t114 = beta[26] + c5 * t110 + s5 * t113;
+  const double t115 = -0.055 * t107 + t114;
+  const double t116 = c5 * beta[35] + s5 * beta[34] - c6 * t111 - s6 * t112;
+  const double t117 = beta[25] - t116;
+  const double t118 = beta[24] - s5 * t110 + c5 * t113;
+  const double t119 = -s4 * t117 + c4 * t118 - 1.1 * t107;
+  M[3] = c2 * (-s3 * t115 + c3 * t119 - 1.25 * t107) + s2 * (-c3 * t115 - s3 * t119) - 0.35 * t107;
+  const double t120 = beta[37] + c6 * beta[50] - s6 * beta[51];
+  const double t121 = -s5 * t120 - c5 * beta[38];
+  const double t122 = -s4 * t121;
+  const double t123 = -c6 * beta[48] - s6 * beta[47];
+  const double t124 = beta[35] + t123;
+  const double t125 = -s6 * beta[46];
+  const double t126 = -c6 * beta[46] - s6 * beta[45];
+  const double t127 = beta[34] - s6 * t125 + c6 * t126;
+  const double t128 = c5 * t124 + s5 * t127;
+  const double t129 = -0.055 * t122 + t128;
+  const double t130 = beta[36] - c6 * t125 - s6 * t126;
+  const double t131 = -s5 * t124 + c5 * t127;
+  const double t132 = s4 * t130 + c4 * t131 - 1.1 * t122;
+  M[4] = c2 * (-s3 * t129 + c3 * t132 - 1.25 * t122) + s2 * (-c3 * t129 - s3 * t132) - 0.35 * t122;
+  const double t133 = s6 * beta[51] - c6 * beta[50];
+  const double t134 = -s6 * beta[50] - c6 * beta[51];
+  const double t135 = c5 * t134;
+  const double t136 = c4 * t133 - s4 * t135;
+  const double t137 = -s6 * beta[48] + c6 * beta[47];
+  const double t138 = t108 + s5 * t137;
+  const double t139 = -0.055 * t136 + t138;
+  const double t140 = -s5 * beta[49] + c5 * t137;
+  const double t141 = s4 * t123 + c4 * t140 - 1.1 * t136;
+  M[5] = c2 * (-s3 * t139 + c3 * t141 - 1.25 * t136) + s2 * (-c3 * t139 - s3 * t141) - 0.35 * t136;
+  const double t142 = -t8 * beta[27] + t2 * beta[28] + c5 * t11 + s5 * t12;
+  const double t143 = -s4 * t7 + c4 * t13;
+  const double t144 = t1 * beta[15] + t0 * beta[14] - c4 * t29 - s4 * t30 + 1.1 * t143 + 0.055 * t142;
+  M[6] = c2 * beta[6] + s2 * beta[5] + 1.25 * (-s3 * t142 + c3 * t143) + t144;
+  const double t145 = c4 * beta[27] - s4 * beta[28] + c5 * t40 + s5 * t41;
+  const double t146 = s4 * t37 + c4 * t42;
+  const double t147 = 1.25 * (-s3 * (beta[17] + t145) + c3 * (-beta[18] + t146));
+  const double t148 = 1.1 * t146;
+  const double t149 = 0.055 * t145;
+  const double t150 = beta[16] - c4 * t78 - s4 * t81 + t148 + t149 - 1.25 * c3 * beta[18] - 1.25 * s3 * beta[17];
+  M[7] = beta[7] + t147 + t150;
+  const double t151 = beta[16] + t148 + t149 - c4 * t96 - s4 * t97;
+  M[8] = t147 + t151;
+  const double t152 = c5 * t104 + s5 * t105;
+  const double t153 = -s4 * t101 + c4 * t106;
+  const double t154 = -c4 * t117 - s4 * t118 + 1.1 * t153 + 0.055 * t152;
+  M[9] = 1.25 * (-s3 * t152 + c3 * t153) + t154;
+  const double t155 = c5 * t120 - s5 * beta[38];
+  const double t156 = c4 * t121;
+  const double t157 = c4 * t130 - s4 * t131 + 1.1 * t156 + 0.055 * t155;
+  M[10] = 1.25 * (-s3 * t155 + c3 * t156) + t157;
+  const double t158 = s5 * t134;
+  const double t159 = s4 * t133 + c4 * t135;
+  const double t160 = c4 * t123 - s4 * t140 + 1.1 * t159 + 0.055 * t158;
+  M[11] = 1.25 * (-s3 * t158 + c3 * t159) + t160;
+  M[12] = t144;
+  M[13] = t150;
+  M[14] = beta[19] + t151;
+  M[15] = t154;
+  M[16] = t157;
+  M[17] = t160;
+  M[18] = t26;
+  M[19] = t71;
+  M[20] = t93;
+  M[21] = beta[29] + t114 + 0.00019405047204 * beta[55] + 8.648999999999998e-05 * beta[42];
+  const double t161 = -0.00019502280000000002 * beta[55];
+  const double t162 = -0.0093 * beta[42];
+  M[22] = t161 + t162 + t128;
+  const double t163 = -0.0139302 * beta[55];
+  M[23] = t163 + t138;
+  M[24] = t28;
+  M[25] = t77;
+  M[26] = t95;
+  M[27] = t116 + t161 + t162;
+  M[28] = beta[39] + beta[42] + t130 + 0.00019600000000000002 * beta[55];
+  const double t164 = t123 + 0.014 * beta[55];
+  M[29] = t164;
+  M[30] = t20;
+  M[31] = t57;
+  M[32] = t87;
+  M[33] = t109 + t163;
+  M[34] = t164;
+  M[35] = beta[49] + beta[52] + beta[55];
+}
+
+// Joint-space inertia matrix M(q) on the base parameters: inverse_dynamics is tau = M(q) ddq +
+// terms without ddq (velocity, gravity, friction, offsets), for forward dynamics
+// ddq = M^-1 (tau - inverse_dynamics(q, dq, 0, beta)). Inputs q (kDof) and beta (kBaseParams,
+// as for inverse_dynamics). Output M: kDof x kDof, row-major, M[i * kDof + k] = d tau_i / d ddq_k
+// (drive inertias included; symmetric, and positive definite for physical parameters).
+void mass_matrix(const float* q, const float* beta, float* M) {
+  const float s2 = std::sin(q[1]);
+  const float c2 = std::cos(q[1]);
+  const float s3 = std::sin(q[2]);
+  const float c3 = std::cos(q[2]);
+  const float s4 = std::sin(q[3]);
+  const float c4 = std::cos(q[3]);
+  const float s5 = std::sin(q[4]);
+  const float c5 = std::cos(q[4]);
+  const float s6 = std::sin(q[5]);
+  const float c6 = std::cos(q[5]);
+  const float t0 = -s2 * s3 + c2 * c3;
+  const float t1 = -s2 * c3 - c2 * s3;
+  const float t2 = c4 * t0;
+  const float t3 = -s5 * t2 + c5 * t1;
+  const float t4 = c5 * t2 + s5 * t1;
+  const float t5 = t3 * beta[50];
+  const float t6 = -t3 * beta[51];
+  const float t7 = t1 * beta[27] + t3 * beta[37] - t4 * beta[38] + c6 * t5 + s6 * t6;
+  const float t8 = -s4 * t0;
+  const float t9 = -s6 * t4 + c6 * t8;
+  const float t10 = c6 * t4 + s6 * t8;
+  const float t11 = -t9 * beta[50] + t10 * beta[51] - t8 * beta[37];
+  const float t12 = t8 * beta[38] - s6 * t5 + c6 * t6;
+  const float t13 = -t1 * beta[28] - s5 * t11 + c5 * t12;
+  const float t14 = -c4 * t7 - s4 * t13;
+  const float t15 = -0.35f - 1.25f * c2;
+  const float t16 = t15 - 1.1f * t0 - 0.055f * t1;
+  const float t17 = -s4 * t16;
+  const float t18 = c5 * t17;
+  const float t19 = -c4 * t16;
+  const float t20 = t3 * beta[49] + t9 * beta[48] + t10 * beta[47] - (c6 * t18 + s6 * t19) * beta[51] + (-s6 * t18 + c6 * t19) * beta[50];
+  const float t21 = -t8 * beta[35] + t4 * beta[33] + t20 + t19 * beta[37];
+  const float t22 = -s5 * t17;
+  const float t23 = t3 * beta[48] + t10 * beta[46] - t22 * beta[50];
+  const float t24 = t3 * beta[47] + t9 * beta[46] + t10 * beta[45] + t22 * beta[51];
+  const float t25 = -t8 * beta[34] + t3 * beta[33] + t4 * beta[32] - s6 * t23 + c6 * t24 - t19 * beta[38];
+  const float t26 = t1 * beta[26] + t8 * beta[25] + t2 * beta[24] + c5 * t21 + s5 * t25 - t17 * beta[28] + t19 * beta[27];
+  const float t27 = t0 * beta[13] - 0.055f * t14 + t26 - t15 * beta[17];
+  const float t28 = -t8 * beta[36] + t3 * beta[35] + t4 * beta[34] - c6 * t23 - s6 * t24 - t18 * beta[38] + t22 * beta[37];
+  const float t29 = t1 * beta[25] + t2 * beta[23] - t28;
+  const float t30 = t1 * beta[24] + t8 * beta[23] + t2 * beta[22] - s5 * t21 + c5 * t25;
+  const float t31 = t1 * beta[13] + t0 * beta[12] - s4 * t29 + c4 * t30 - 1.1f * t14 + t15 * beta[18];
+  const float t32 = -t1 * beta[17] + t0 * beta[18] + t14;
+  M[0] = beta[0] + c2 * (s2 * beta[4] - s3 * t27 + c3 * t31 - 1.25f * t32 + 0.35f * beta[8]) + s2 * (c2 * beta[4] + s2 * beta[3] - c3 * t27 - s3 * t31 - 0.35f * beta[9]) - 0.35f * (t32 - c2 * beta[8] + s2 * beta[9]);
+  const float t33 = s4 * s5;
+  const float t34 = -s4 * c5;
+  const float t35 = t33 * beta[50];
+  const float t36 = -t33 * beta[51];
+  const float t37 = -t33 * beta[37] + t34 * beta[38] - c6 * t35 - s6 * t36;
+  const float t38 = -s6 * t34 - c4 * c6;
+  const float t39 = c6 * t34 - c4 * s6;
+  const float t40 = -t38 * beta[50] + t39 * beta[51] + c4 * beta[37];
+  const float t41 = -c4 * beta[38] - s6 * t35 + c6 * t36;
+  const float t42 = -s5 * t40 + c5 * t41;
+  const float t43 = c4 * t37 - s4 * t42;
+  const float t44 = -0.055f * t43;
+  const float t45 = -c4 * beta[25];
+  const float t46 = -s4 * beta[24];
+  const float t47 = c4 * beta[35];
+  const float t48 = t34 * beta[33];
+  const float t49 = t33 * beta[49];
+  const float t50 = t38 * beta[48];
+  const float t51 = t39 * beta[47];
+  const float t52 = 1.1f + 1.25f * c3;
+  const float t53 = c4 * t52;
+  const float t54 = 0.055f - 1.25f * s3;
+  const float t55 = c5 * t53 + s5 * t54;
+  const float t56 = -s4 * t52;
+  const float t57 = t49 + t50 + t51 - (c6 * t55 + s6 * t56) * beta[51] + (-s6 * t55 + c6 * t56) * beta[50];
+  const float t58 = t47 + t48 + t57 + t56 * beta[37];
+  const float t59 = c4 * beta[34];
+  const float t60 = t33 * beta[33];
+  const float t61 = t34 * beta[32];
+  const float t62 = t33 * beta[48];
+  const float t63 = t39 * beta[46];
+  const float t64 = -s5 * t53 + c5 * t54;
+  const float t65 = t62 + t63 - t64 * beta[50];
+  const float t66 = t33 * beta[47];
+  const float t67 = t38 * beta[46];
+  const float t68 = t39 * beta[45];
+  const float t69 = t66 + t67 + t68 + t64 * beta[51];
+  const float t70 = t59 + t60 + t61 - s6 * t65 + c6 * t69 - t56 * beta[38];
+  const float t71 = t45 + t46 + c5 * t58 + s5 * t70 - t53 * beta[28] + t56 * beta[27];
+  const float t72 = beta[15] + t44 + t71;
+  const float t73 = -s4 * beta[23];
+  const float t74 = c4 * beta[36];
+  const float t75 = t33 * beta[35];
+  const float t76 = t34 * beta[34];
+  const float t77 = t74 + t75 + t76 - c6 * t65 - s6 * t69 - t55 * beta[38] + t64 * beta[37];
+  const float t78 = t73 - t77 - t54 * beta[27];
+  const float t79 = -c4 * beta[23];
+  const float t80 = -s4 * beta[22];
+  const float t81 = t79 + t80 - s5 * t58 + c5 * t70 + t54 * beta[28];
+  const float t82 = -1.1f * t43;
+  const float t83 = beta[14] - s4 * t78 + c4 * t81 + t82;
+  const float t84 = -1.25f * t43;
+  const float t85 = -0.35f * t43;
+  M[1] = c2 * (beta[6] - s3 * t72 + c3 * t83 + t84) + s2 * (beta[5] - c3 * t72 - s3 * t83) + t85;
+  const float t86 = 1.1f * c4 * c5 + 0.055f * s5;
+  const float t87 = t49 + t50 + t51 - (c6 * t86 - 1.1f * s4 * s6) * beta[51] + (-s6 * t86 - 1.1f * s4 * c6) * beta[50];
+  const float t88 = t47 + t48 + t87 - 1.1f * s4 * beta[37];
+  const float t89 = -1.1f * c4 * s5 + 0.055f * c5;
+  const float t90 = t62 + t63 - t89 * beta[50];
+  const float t91 = t66 + t67 + t68 + t89 * beta[51];
+  const float t92 = t59 + t60 + t61 - s6 * t90 + c6 * t91 + 1.1f * s4 * beta[38];
+  const float t93 = t45 + t46 + c5 * t88 + s5 * t92 - 1.1f * c4 * beta[28] - 1.1f * s4 * beta[27];
+  const float t94 = beta[15] + t44 + t93;
+  const float t95 = t74 + t75 + t76 - c6 * t90 - s6 * t91 - t86 * beta[38] + t89 * beta[37];
+  const float t96 = t73 - t95 - 0.055f * beta[27];
+  const float t97 = t79 + t80 - s5 * t88 + c5 * t92 + 0.055f * beta[28];
+  const float t98 = beta[14] + t82 - s4 * t96 + c4 * t97;
+  M[2] = t85 + c2 * (t84 - s3 * t94 + c3 * t98) + s2 * (-c3 * t94 - s3 * t98);
+  const float t99 = c5 * beta[50];
+  const float t100 = -c5 * beta[51];
+  const float t101 = beta[27] + c5 * beta[37] - s5 * beta[38] + c6 * t99 + s6 * t100;
+  const float t102 = -s5 * s6;
+  const float t103 = s5 * c6;
+  const float t104 = -t102 * beta[50] + t103 * beta[51];
+  const float t105 = -s6 * t99 + c6 * t100;
+  const float t106 = -beta[28] - s5 * t104 + c5 * t105;
+  const float t107 = -c4 * t101 - s4 * t106;
+  const float t108 = c5 * beta[49];
+  const float t109 = t108 + t102 * beta[48] + t103 * beta[47];
+  const float t110 = t109 + s5 * beta[33];
+  const float t111 = c5 * beta[48] + t103 * beta[46];
+  const float t112 = c5 * beta[47] + t102 * beta[46] + t103 * beta[45];
+  const float t113 = c5 * beta[33] + s5 * beta[32] - s6 * t111 + c6 * t112;
+  const float t114 = beta[26] + c5 * t110 + s5 * t113;
+  const float t115 = -0.055f * t107 + t114;
+  const float t116 = c5 * beta[35] + s5 * beta[34] - c6 * t111 - s6 * t112;
+  const float t117 = beta[25] - t116;
+  const float t118 = beta[24] - s5 * t110 + c5 * t113;
+  const float t119 = -s4 * t117 + c4 * t118 - 1.1f * t107;
+  M[3] = c2 * (-s3 * t115 + c3 * t119 - 1.25f * t107) + s2 * (-c3 * t115 - s3 * t119) - 0.35f * t107;
+  const float t120 = beta[37] + c6 * beta[50] - s6 * beta[51];
+  const float t121 = -s5 * t120 - c5 * beta[38];
+  const float t122 = -s4 * t121;
+  const float t123 = -c6 * beta[48] - s6 * beta[47];
+  const float t124 = beta[35] + t123;
+  const float t125 = -s6 * beta[46];
+  const float t126 = -c6 * beta[46] - s6 * beta[45];
+  const float t127 = beta[34] - s6 * t125 + c6 * t126;
+  const float t128 = c5 * t124 + s5 * t127;
+  const float t129 = -0.055f * t122 + t128;
+  const float t130 = beta[36] - c6 * t125 - s6 * t126;
+  const float t131 = -s5 * t124 + c5 * t127;
+  const float t132 = s4 * t130 + c4 * t131 - 1.1f * t122;
+  M[4] = c2 * (-s3 * t129 + c3 * t132 - 1.25f * t122) + s2 * (-c3 * t129 - s3 * t132) - 0.35f * t122;
+  const float t133 = s6 * beta[51] - c6 * beta[50];
+  const float t134 = -s6 * beta[50] - c6 * beta[51];
+  const float t135 = c5 * t134;
+  const float t136 = c4 * t133 - s4 * t135;
+  const float t137 = -s6 * beta[48] + c6 * beta[47];
+  const float t138 = t108 + s5 * t137;
+  const float t139 = -0.055f * t136 + t138;
+  const float t140 = -s5 * beta[49] + c5 * t137;
+  const float t141 = s4 * t123 + c4 * t140 - 1.1f * t136;
+  M[5] = c2 * (-s3 * t139 + c3 * t141 - 1.25f * t136) + s2 * (-c3 * t139 - s3 * t141) - 0.35f * t136;
+  const float t142 = -t8 * beta[27] + t2 * beta[28] + c5 * t11 + s5 * t12;
+  const float t143 = -s4 * t7 + c4 * t13;
+  const float t144 = t1 * beta[15] + t0 * beta[14] - c4 * t29 - s4 * t30 + 1.1f * t143 + 0.055f * t142;
+  M[6] = c2 * beta[6] + s2 * beta[5] + 1.25f * (-s3 * t142 + c3 * t143) + t144;
+  const float t145 = c4 * beta[27] - s4 * beta[28] + c5 * t40 + s5 * t41;
+  const float t146 = s4 * t37 + c4 * t42;
+  const float t147 = 1.25f * (-s3 * (beta[17] + t145) + c3 * (-beta[18] + t146));
+  const float t148 = 1.1f * t146;
+  const float t149 = 0.055f * t145;
+  const float t150 = beta[16] - c4 * t78 - s4 * t81 + t148 + t149 - 1.25f * c3 * beta[18] - 1.25f * s3 * beta[17];
+  M[7] = beta[7] + t147 + t150;
+  const float t151 = beta[16] + t148 + t149 - c4 * t96 - s4 * t97;
+  M[8] = t147 + t151;
+  const float t152 = c5 * t104 + s5 * t105;
+  const float t153 = -s4 * t101 + c4 * t106;
+  const float t154 = -c4 * t117 - s4 * t118 + 1.1f * t153 + 0.055f * t152;
+  M[9] = 1.25f * (-s3 * t152 + c3 * t153) + t154;
+  const float t155 = c5 * t120 - s5 * beta[38];
+  const float t156 = c4 * t121;
+  const float t157 = c4 * t130 - s4 * t131 + 1.1f * t156 + 0.055f * t155;
+  M[10] = 1.25f * (-s3 * t155 + c3 * t156) + t157;
+  const float t158 = s5 * t134;
+  const float t159 = s4 * t133 + c4 * t135;
+  const float t160 = c4 * t123 - s4 * t140 + 1.1f * t159 + 0.055f * t158;
+  M[11] = 1.25f * (-s3 * t158 + c3 * t159) + t160;
+  M[12] = t144;
+  M[13] = t150;
+  M[14] = beta[19] + t151;
+  M[15] = t154;
+  M[16] = t157;
+  M[17] = t160;
+  M[18] = t26;
+  M[19] = t71;
+  M[20] = t93;
+  M[21] = beta[29] + t114 + 0.00019405047f * beta[55] + 8.649e-05f * beta[42];
+  const float t161 = -0.0001950228f * beta[55];
+  const float t162 = -0.0093f * beta[42];
+  M[22] = t161 + t162 + t128;
+  const float t163 = -0.0139302f * beta[55];
+  M[23] = t163 + t138;
+  M[24] = t28;
+  M[25] = t77;
+  M[26] = t95;
+  M[27] = t116 + t161 + t162;
+  M[28] = beta[39] + beta[42] + t130 + 0.000196f * beta[55];
+  const float t164 = t123 + 0.014f * beta[55];
+  M[29] = t164;
+  M[30] = t20;
+  M[31] = t57;
+  M[32] = t87;
+  M[33] = t109 + t163;
+  M[34] = t164;
+  M[35] = beta[49] + beta[52] + beta[55];
+}
+
+// idim_regressor with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
+// computing them; identical results.
 void idim_regressor_sincos(const double* q, const double* sin_q, const double* cos_q,
                            const double* dq, const double* ddq, double* W) {
   static_cast<void>(q);
@@ -6192,8 +6632,8 @@ void idim_regressor_sincos(const double* q, const double* sin_q, const double* c
   W[347] = t192;
 }
 
-// idim_regressor with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of computing
-// them; identical results.
+// idim_regressor with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
+// computing them; identical results.
 void idim_regressor_sincos(const float* q, const float* sin_q, const float* cos_q,
                            const float* dq, const float* ddq, float* W) {
   static_cast<void>(q);
@@ -6756,11 +7196,10 @@ void idim_regressor_sincos(const float* q, const float* sin_q, const float* cos_
   W[347] = t192;
 }
 
-// inverse_dynamics with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of computing
-// them; identical results.
+// inverse_dynamics with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
+// computing them; identical results.
 void inverse_dynamics_sincos(const double* q, const double* sin_q, const double* cos_q,
-                             const double* dq, const double* ddq, const double* beta,
-                             double* tau) {
+                             const double* dq, const double* ddq, const double* beta, double* tau) {
   static_cast<void>(q);
   const double sg1 = static_cast<double>((dq[0] > 0.0) - (dq[0] < 0.0));
   const double s2 = sin_q[1];
@@ -6884,11 +7323,10 @@ void inverse_dynamics_sincos(const double* q, const double* sin_q, const double*
   tau[5] = ddq[5] * beta[52] + dq[5] * beta[53] + sg6 * beta[54] + t95 * beta[55] + t96 * beta[56] + t97 * beta[57] + t77;
 }
 
-// inverse_dynamics with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of computing
-// them; identical results.
+// inverse_dynamics with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
+// computing them; identical results.
 void inverse_dynamics_sincos(const float* q, const float* sin_q, const float* cos_q,
-                             const float* dq, const float* ddq, const float* beta,
-                             float* tau) {
+                             const float* dq, const float* ddq, const float* beta, float* tau) {
   static_cast<void>(q);
   const float sg1 = static_cast<float>((dq[0] > 0.0f) - (dq[0] < 0.0f));
   const float s2 = sin_q[1];
@@ -7010,6 +7448,442 @@ void inverse_dynamics_sincos(const float* q, const float* sin_q, const float* co
   tau[3] = ddq[3] * beta[29] + dq[3] * beta[30] + sg4 * beta[31] - 0.0093f * t92 * beta[42] - 0.0093f * t93 * beta[43] - 0.0093f * t94 * beta[44] - 0.0139302f * t95 * beta[55] - 0.0139302f * t96 * beta[56] - 0.0139302f * t97 * beta[57] + t85;
   tau[4] = ddq[4] * beta[39] + dq[4] * beta[40] + sg5 * beta[41] + t92 * beta[42] + t93 * beta[43] + t94 * beta[44] + 0.014f * t95 * beta[55] + 0.014f * t96 * beta[56] + 0.014f * t97 * beta[57] + t81;
   tau[5] = ddq[5] * beta[52] + dq[5] * beta[53] + sg6 * beta[54] + t95 * beta[55] + t96 * beta[56] + t97 * beta[57] + t77;
+}
+
+// mass_matrix with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
+// computing them; identical results.
+void mass_matrix_sincos(const double* q, const double* sin_q, const double* cos_q,
+                        const double* beta, double* M) {
+  static_cast<void>(q);
+  const double s2 = sin_q[1];
+  const double c2 = cos_q[1];
+  const double s3 = sin_q[2];
+  const double c3 = cos_q[2];
+  const double s4 = sin_q[3];
+  const double c4 = cos_q[3];
+  const double s5 = sin_q[4];
+  const double c5 = cos_q[4];
+  const double s6 = sin_q[5];
+  const double c6 = cos_q[5];
+  const double t0 = -s2 * s3 + c2 * c3;
+  const double t1 = -s2 * c3 - c2 * s3;
+  const double t2 = c4 * t0;
+  const double t3 = -s5 * t2 + c5 * t1;
+  const double t4 = c5 * t2 + s5 * t1;
+  const double t5 = t3 * beta[50];
+  const double t6 = -t3 * beta[51];
+  const double t7 = t1 * beta[27] + t3 * beta[37] - t4 * beta[38] + c6 * t5 + s6 * t6;
+  const double t8 = -s4 * t0;
+  const double t9 = -s6 * t4 + c6 * t8;
+  const double t10 = c6 * t4 + s6 * t8;
+  const double t11 = -t9 * beta[50] + t10 * beta[51] - t8 * beta[37];
+  const double t12 = t8 * beta[38] - s6 * t5 + c6 * t6;
+  const double t13 = -t1 * beta[28] - s5 * t11 + c5 * t12;
+  const double t14 = -c4 * t7 - s4 * t13;
+  const double t15 = -0.35 - 1.25 * c2;
+  const double t16 = t15 - 1.1 * t0 - 0.055 * t1;
+  const double t17 = -s4 * t16;
+  const double t18 = c5 * t17;
+  const double t19 = -c4 * t16;
+  const double t20 = t3 * beta[49] + t9 * beta[48] + t10 * beta[47] - (c6 * t18 + s6 * t19) * beta[51] + (-s6 * t18 + c6 * t19) * beta[50];
+  const double t21 = -t8 * beta[35] + t4 * beta[33] + t20 + t19 * beta[37];
+  const double t22 = -s5 * t17;
+  const double t23 = t3 * beta[48] + t10 * beta[46] - t22 * beta[50];
+  const double t24 = t3 * beta[47] + t9 * beta[46] + t10 * beta[45] + t22 * beta[51];
+  const double t25 = -t8 * beta[34] + t3 * beta[33] + t4 * beta[32] - s6 * t23 + c6 * t24 - t19 * beta[38];
+  const double t26 = t1 * beta[26] + t8 * beta[25] + t2 * beta[24] + c5 * t21 + s5 * t25 - t17 * beta[28] + t19 * beta[27];
+  const double t27 = t0 * beta[13] - 0.055 * t14 + t26 - t15 * beta[17];
+  const double t28 = -t8 * beta[36] + t3 * beta[35] + t4 * beta[34] - c6 * t23 - s6 * t24 - t18 * beta[38] + t22 * beta[37];
+  const double t29 = t1 * beta[25] + t2 * beta[23] - t28;
+  const double t30 = t1 * beta[24] + t8 * beta[23] + t2 * beta[22] - s5 * t21 + c5 * t25;
+  const double t31 = t1 * beta[13] + t0 * beta[12] - s4 * t29 + c4 * t30 - 1.1 * t14 + t15 * beta[18];
+  const double t32 = -t1 * beta[17] + t0 * beta[18] + t14;
+  M[0] = beta[0] + c2 * (s2 * beta[4] - s3 * t27 + c3 * t31 - 1.25 * t32 + 0.35 * beta[8]) + s2 * (c2 * beta[4] + s2 * beta[3] - c3 * t27 - s3 * t31 - 0.35 * beta[9]) - 0.35 * (t32 - c2 * beta[8] + s2 * beta[9]);
+  const double t33 = s4 * s5;
+  const double t34 = -s4 * c5;
+  const double t35 = t33 * beta[50];
+  const double t36 = -t33 * beta[51];
+  const double t37 = -t33 * beta[37] + t34 * beta[38] - c6 * t35 - s6 * t36;
+  const double t38 = -s6 * t34 - c4 * c6;
+  const double t39 = c6 * t34 - c4 * s6;
+  const double t40 = -t38 * beta[50] + t39 * beta[51] + c4 * beta[37];
+  const double t41 = -c4 * beta[38] - s6 * t35 + c6 * t36;
+  const double t42 = -s5 * t40 + c5 * t41;
+  const double t43 = c4 * t37 - s4 * t42;
+  const double t44 = -0.055 * t43;
+  const double t45 = -c4 * beta[25];
+  const double t46 = -s4 * beta[24];
+  const double t47 = c4 * beta[35];
+  const double t48 = t34 * beta[33];
+  const double t49 = t33 * beta[49];
+  const double t50 = t38 * beta[48];
+  const double t51 = t39 * beta[47];
+  const double t52 = 1.1 + 1.25 * c3;
+  const double t53 = c4 * t52;
+  const double t54 = 0.055 - 1.25 * s3;
+  const double t55 = c5 * t53 + s5 * t54;
+  const double t56 = -s4 * t52;
+  const double t57 = t49 + t50 + t51 - (c6 * t55 + s6 * t56) * beta[51] + (-s6 * t55 + c6 * t56) * beta[50];
+  const double t58 = t47 + t48 + t57 + t56 * beta[37];
+  const double t59 = c4 * beta[34];
+  const double t60 = t33 * beta[33];
+  const double t61 = t34 * beta[32];
+  const double t62 = t33 * beta[48];
+  const double t63 = t39 * beta[46];
+  const double t64 = -s5 * t53 + c5 * t54;
+  const double t65 = t62 + t63 - t64 * beta[50];
+  const double t66 = t33 * beta[47];
+  const double t67 = t38 * beta[46];
+  const double t68 = t39 * beta[45];
+  const double t69 = t66 + t67 + t68 + t64 * beta[51];
+  const double t70 = t59 + t60 + t61 - s6 * t65 + c6 * t69 - t56 * beta[38];
+  const double t71 = t45 + t46 + c5 * t58 + s5 * t70 - t53 * beta[28] + t56 * beta[27];
+  const double t72 = beta[15] + t44 + t71;
+  const double t73 = -s4 * beta[23];
+  const double t74 = c4 * beta[36];
+  const double t75 = t33 * beta[35];
+  const double t76 = t34 * beta[34];
+  const double t77 = t74 + t75 + t76 - c6 * t65 - s6 * t69 - t55 * beta[38] + t64 * beta[37];
+  const double t78 = t73 - t77 - t54 * beta[27];
+  const double t79 = -c4 * beta[23];
+  const double t80 = -s4 * beta[22];
+  const double t81 = t79 + t80 - s5 * t58 + c5 * t70 + t54 * beta[28];
+  const double t82 = -1.1 * t43;
+  const double t83 = beta[14] - s4 * t78 + c4 * t81 + t82;
+  const double t84 = -1.25 * t43;
+  const double t85 = -0.35 * t43;
+  M[1] = c2 * (beta[6] - s3 * t72 + c3 * t83 + t84) + s2 * (beta[5] - c3 * t72 - s3 * t83) + t85;
+  const double t86 = 1.1 * c4 * c5 + 0.055 * s5;
+  const double t87 = t49 + t50 + t51 - (c6 * t86 - 1.1 * s4 * s6) * beta[51] + (-s6 * t86 - 1.1 * s4 * c6) * beta[50];
+  const double t88 = t47 + t48 + t87 - 1.1 * s4 * beta[37];
+  const double t89 = -1.1 * c4 * s5 + 0.055 * c5;
+  const double t90 = t62 + t63 - t89 * beta[50];
+  const double t91 = t66 + t67 + t68 + t89 * beta[51];
+  const double t92 = t59 + t60 + t61 - s6 * t90 + c6 * t91 + 1.1 * s4 * beta[38];
+  const double t93 = t45 + t46 + c5 * t88 + s5 * t92 - 1.1 * c4 * beta[28] - 1.1 * s4 * beta[27];
+  const double t94 = beta[15] + t44 + t93;
+  const double t95 = t74 + t75 + t76 - c6 * t90 - s6 * t91 - t86 * beta[38] + t89 * beta[37];
+  const double t96 = t73 - t95 - 0.055 * beta[27];
+  const double t97 = t79 + t80 - s5 * t88 + c5 * t92 + 0.055 * beta[28];
+  const double t98 = beta[14] + t82 - s4 * t96 + c4 * t97;
+  M[2] = t85 + c2 * (t84 - s3 * t94 + c3 * t98) + s2 * (-c3 * t94 - s3 * t98);
+  const double t99 = c5 * beta[50];
+  const double t100 = -c5 * beta[51];
+  const double t101 = beta[27] + c5 * beta[37] - s5 * beta[38] + c6 * t99 + s6 * t100;
+  const double t102 = -s5 * s6;
+  const double t103 = s5 * c6;
+  const double t104 = -t102 * beta[50] + t103 * beta[51];
+  const double t105 = -s6 * t99 + c6 * t100;
+  const double t106 = -beta[28] - s5 * t104 + c5 * t105;
+  const double t107 = -c4 * t101 - s4 * t106;
+  const double t108 = c5 * beta[49];
+  const double t109 = t108 + t102 * beta[48] + t103 * beta[47];
+  const double t110 = t109 + s5 * beta[33];
+  const double t111 = c5 * beta[48] + t103 * beta[46];
+  const double t112 = c5 * beta[47] + t102 * beta[46] + t103 * beta[45];
+  const double t113 = c5 * beta[33] + s5 * beta[32] - s6 * t111 + c6 * t112;
+  const double t114 = beta[26] + c5 * t110 + s5 * t113;
+  const double t115 = -0.055 * t107 + t114;
+  const double t116 = c5 * beta[35] + s5 * beta[34] - c6 * t111 - s6 * t112;
+  const double t117 = beta[25] - t116;
+  const double t118 = beta[24] - s5 * t110 + c5 * t113;
+  const double t119 = -s4 * t117 + c4 * t118 - 1.1 * t107;
+  M[3] = c2 * (-s3 * t115 + c3 * t119 - 1.25 * t107) + s2 * (-c3 * t115 - s3 * t119) - 0.35 * t107;
+  const double t120 = beta[37] + c6 * beta[50] - s6 * beta[51];
+  const double t121 = -s5 * t120 - c5 * beta[38];
+  const double t122 = -s4 * t121;
+  const double t123 = -c6 * beta[48] - s6 * beta[47];
+  const double t124 = beta[35] + t123;
+  const double t125 = -s6 * beta[46];
+  const double t126 = -c6 * beta[46] - s6 * beta[45];
+  const double t127 = beta[34] - s6 * t125 + c6 * t126;
+  const double t128 = c5 * t124 + s5 * t127;
+  const double t129 = -0.055 * t122 + t128;
+  const double t130 = beta[36] - c6 * t125 - s6 * t126;
+  const double t131 = -s5 * t124 + c5 * t127;
+  const double t132 = s4 * t130 + c4 * t131 - 1.1 * t122;
+  M[4] = c2 * (-s3 * t129 + c3 * t132 - 1.25 * t122) + s2 * (-c3 * t129 - s3 * t132) - 0.35 * t122;
+  const double t133 = s6 * beta[51] - c6 * beta[50];
+  const double t134 = -s6 * beta[50] - c6 * beta[51];
+  const double t135 = c5 * t134;
+  const double t136 = c4 * t133 - s4 * t135;
+  const double t137 = -s6 * beta[48] + c6 * beta[47];
+  const double t138 = t108 + s5 * t137;
+  const double t139 = -0.055 * t136 + t138;
+  const double t140 = -s5 * beta[49] + c5 * t137;
+  const double t141 = s4 * t123 + c4 * t140 - 1.1 * t136;
+  M[5] = c2 * (-s3 * t139 + c3 * t141 - 1.25 * t136) + s2 * (-c3 * t139 - s3 * t141) - 0.35 * t136;
+  const double t142 = -t8 * beta[27] + t2 * beta[28] + c5 * t11 + s5 * t12;
+  const double t143 = -s4 * t7 + c4 * t13;
+  const double t144 = t1 * beta[15] + t0 * beta[14] - c4 * t29 - s4 * t30 + 1.1 * t143 + 0.055 * t142;
+  M[6] = c2 * beta[6] + s2 * beta[5] + 1.25 * (-s3 * t142 + c3 * t143) + t144;
+  const double t145 = c4 * beta[27] - s4 * beta[28] + c5 * t40 + s5 * t41;
+  const double t146 = s4 * t37 + c4 * t42;
+  const double t147 = 1.25 * (-s3 * (beta[17] + t145) + c3 * (-beta[18] + t146));
+  const double t148 = 1.1 * t146;
+  const double t149 = 0.055 * t145;
+  const double t150 = beta[16] - c4 * t78 - s4 * t81 + t148 + t149 - 1.25 * c3 * beta[18] - 1.25 * s3 * beta[17];
+  M[7] = beta[7] + t147 + t150;
+  const double t151 = beta[16] + t148 + t149 - c4 * t96 - s4 * t97;
+  M[8] = t147 + t151;
+  const double t152 = c5 * t104 + s5 * t105;
+  const double t153 = -s4 * t101 + c4 * t106;
+  const double t154 = -c4 * t117 - s4 * t118 + 1.1 * t153 + 0.055 * t152;
+  M[9] = 1.25 * (-s3 * t152 + c3 * t153) + t154;
+  const double t155 = c5 * t120 - s5 * beta[38];
+  const double t156 = c4 * t121;
+  const double t157 = c4 * t130 - s4 * t131 + 1.1 * t156 + 0.055 * t155;
+  M[10] = 1.25 * (-s3 * t155 + c3 * t156) + t157;
+  const double t158 = s5 * t134;
+  const double t159 = s4 * t133 + c4 * t135;
+  const double t160 = c4 * t123 - s4 * t140 + 1.1 * t159 + 0.055 * t158;
+  M[11] = 1.25 * (-s3 * t158 + c3 * t159) + t160;
+  M[12] = t144;
+  M[13] = t150;
+  M[14] = beta[19] + t151;
+  M[15] = t154;
+  M[16] = t157;
+  M[17] = t160;
+  M[18] = t26;
+  M[19] = t71;
+  M[20] = t93;
+  M[21] = beta[29] + t114 + 0.00019405047204 * beta[55] + 8.648999999999998e-05 * beta[42];
+  const double t161 = -0.00019502280000000002 * beta[55];
+  const double t162 = -0.0093 * beta[42];
+  M[22] = t161 + t162 + t128;
+  const double t163 = -0.0139302 * beta[55];
+  M[23] = t163 + t138;
+  M[24] = t28;
+  M[25] = t77;
+  M[26] = t95;
+  M[27] = t116 + t161 + t162;
+  M[28] = beta[39] + beta[42] + t130 + 0.00019600000000000002 * beta[55];
+  const double t164 = t123 + 0.014 * beta[55];
+  M[29] = t164;
+  M[30] = t20;
+  M[31] = t57;
+  M[32] = t87;
+  M[33] = t109 + t163;
+  M[34] = t164;
+  M[35] = beta[49] + beta[52] + beta[55];
+}
+
+// mass_matrix with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
+// computing them; identical results.
+void mass_matrix_sincos(const float* q, const float* sin_q, const float* cos_q, const float* beta,
+                        float* M) {
+  static_cast<void>(q);
+  const float s2 = sin_q[1];
+  const float c2 = cos_q[1];
+  const float s3 = sin_q[2];
+  const float c3 = cos_q[2];
+  const float s4 = sin_q[3];
+  const float c4 = cos_q[3];
+  const float s5 = sin_q[4];
+  const float c5 = cos_q[4];
+  const float s6 = sin_q[5];
+  const float c6 = cos_q[5];
+  const float t0 = -s2 * s3 + c2 * c3;
+  const float t1 = -s2 * c3 - c2 * s3;
+  const float t2 = c4 * t0;
+  const float t3 = -s5 * t2 + c5 * t1;
+  const float t4 = c5 * t2 + s5 * t1;
+  const float t5 = t3 * beta[50];
+  const float t6 = -t3 * beta[51];
+  const float t7 = t1 * beta[27] + t3 * beta[37] - t4 * beta[38] + c6 * t5 + s6 * t6;
+  const float t8 = -s4 * t0;
+  const float t9 = -s6 * t4 + c6 * t8;
+  const float t10 = c6 * t4 + s6 * t8;
+  const float t11 = -t9 * beta[50] + t10 * beta[51] - t8 * beta[37];
+  const float t12 = t8 * beta[38] - s6 * t5 + c6 * t6;
+  const float t13 = -t1 * beta[28] - s5 * t11 + c5 * t12;
+  const float t14 = -c4 * t7 - s4 * t13;
+  const float t15 = -0.35f - 1.25f * c2;
+  const float t16 = t15 - 1.1f * t0 - 0.055f * t1;
+  const float t17 = -s4 * t16;
+  const float t18 = c5 * t17;
+  const float t19 = -c4 * t16;
+  const float t20 = t3 * beta[49] + t9 * beta[48] + t10 * beta[47] - (c6 * t18 + s6 * t19) * beta[51] + (-s6 * t18 + c6 * t19) * beta[50];
+  const float t21 = -t8 * beta[35] + t4 * beta[33] + t20 + t19 * beta[37];
+  const float t22 = -s5 * t17;
+  const float t23 = t3 * beta[48] + t10 * beta[46] - t22 * beta[50];
+  const float t24 = t3 * beta[47] + t9 * beta[46] + t10 * beta[45] + t22 * beta[51];
+  const float t25 = -t8 * beta[34] + t3 * beta[33] + t4 * beta[32] - s6 * t23 + c6 * t24 - t19 * beta[38];
+  const float t26 = t1 * beta[26] + t8 * beta[25] + t2 * beta[24] + c5 * t21 + s5 * t25 - t17 * beta[28] + t19 * beta[27];
+  const float t27 = t0 * beta[13] - 0.055f * t14 + t26 - t15 * beta[17];
+  const float t28 = -t8 * beta[36] + t3 * beta[35] + t4 * beta[34] - c6 * t23 - s6 * t24 - t18 * beta[38] + t22 * beta[37];
+  const float t29 = t1 * beta[25] + t2 * beta[23] - t28;
+  const float t30 = t1 * beta[24] + t8 * beta[23] + t2 * beta[22] - s5 * t21 + c5 * t25;
+  const float t31 = t1 * beta[13] + t0 * beta[12] - s4 * t29 + c4 * t30 - 1.1f * t14 + t15 * beta[18];
+  const float t32 = -t1 * beta[17] + t0 * beta[18] + t14;
+  M[0] = beta[0] + c2 * (s2 * beta[4] - s3 * t27 + c3 * t31 - 1.25f * t32 + 0.35f * beta[8]) + s2 * (c2 * beta[4] + s2 * beta[3] - c3 * t27 - s3 * t31 - 0.35f * beta[9]) - 0.35f * (t32 - c2 * beta[8] + s2 * beta[9]);
+  const float t33 = s4 * s5;
+  const float t34 = -s4 * c5;
+  const float t35 = t33 * beta[50];
+  const float t36 = -t33 * beta[51];
+  const float t37 = -t33 * beta[37] + t34 * beta[38] - c6 * t35 - s6 * t36;
+  const float t38 = -s6 * t34 - c4 * c6;
+  const float t39 = c6 * t34 - c4 * s6;
+  const float t40 = -t38 * beta[50] + t39 * beta[51] + c4 * beta[37];
+  const float t41 = -c4 * beta[38] - s6 * t35 + c6 * t36;
+  const float t42 = -s5 * t40 + c5 * t41;
+  const float t43 = c4 * t37 - s4 * t42;
+  const float t44 = -0.055f * t43;
+  const float t45 = -c4 * beta[25];
+  const float t46 = -s4 * beta[24];
+  const float t47 = c4 * beta[35];
+  const float t48 = t34 * beta[33];
+  const float t49 = t33 * beta[49];
+  const float t50 = t38 * beta[48];
+  const float t51 = t39 * beta[47];
+  const float t52 = 1.1f + 1.25f * c3;
+  const float t53 = c4 * t52;
+  const float t54 = 0.055f - 1.25f * s3;
+  const float t55 = c5 * t53 + s5 * t54;
+  const float t56 = -s4 * t52;
+  const float t57 = t49 + t50 + t51 - (c6 * t55 + s6 * t56) * beta[51] + (-s6 * t55 + c6 * t56) * beta[50];
+  const float t58 = t47 + t48 + t57 + t56 * beta[37];
+  const float t59 = c4 * beta[34];
+  const float t60 = t33 * beta[33];
+  const float t61 = t34 * beta[32];
+  const float t62 = t33 * beta[48];
+  const float t63 = t39 * beta[46];
+  const float t64 = -s5 * t53 + c5 * t54;
+  const float t65 = t62 + t63 - t64 * beta[50];
+  const float t66 = t33 * beta[47];
+  const float t67 = t38 * beta[46];
+  const float t68 = t39 * beta[45];
+  const float t69 = t66 + t67 + t68 + t64 * beta[51];
+  const float t70 = t59 + t60 + t61 - s6 * t65 + c6 * t69 - t56 * beta[38];
+  const float t71 = t45 + t46 + c5 * t58 + s5 * t70 - t53 * beta[28] + t56 * beta[27];
+  const float t72 = beta[15] + t44 + t71;
+  const float t73 = -s4 * beta[23];
+  const float t74 = c4 * beta[36];
+  const float t75 = t33 * beta[35];
+  const float t76 = t34 * beta[34];
+  const float t77 = t74 + t75 + t76 - c6 * t65 - s6 * t69 - t55 * beta[38] + t64 * beta[37];
+  const float t78 = t73 - t77 - t54 * beta[27];
+  const float t79 = -c4 * beta[23];
+  const float t80 = -s4 * beta[22];
+  const float t81 = t79 + t80 - s5 * t58 + c5 * t70 + t54 * beta[28];
+  const float t82 = -1.1f * t43;
+  const float t83 = beta[14] - s4 * t78 + c4 * t81 + t82;
+  const float t84 = -1.25f * t43;
+  const float t85 = -0.35f * t43;
+  M[1] = c2 * (beta[6] - s3 * t72 + c3 * t83 + t84) + s2 * (beta[5] - c3 * t72 - s3 * t83) + t85;
+  const float t86 = 1.1f * c4 * c5 + 0.055f * s5;
+  const float t87 = t49 + t50 + t51 - (c6 * t86 - 1.1f * s4 * s6) * beta[51] + (-s6 * t86 - 1.1f * s4 * c6) * beta[50];
+  const float t88 = t47 + t48 + t87 - 1.1f * s4 * beta[37];
+  const float t89 = -1.1f * c4 * s5 + 0.055f * c5;
+  const float t90 = t62 + t63 - t89 * beta[50];
+  const float t91 = t66 + t67 + t68 + t89 * beta[51];
+  const float t92 = t59 + t60 + t61 - s6 * t90 + c6 * t91 + 1.1f * s4 * beta[38];
+  const float t93 = t45 + t46 + c5 * t88 + s5 * t92 - 1.1f * c4 * beta[28] - 1.1f * s4 * beta[27];
+  const float t94 = beta[15] + t44 + t93;
+  const float t95 = t74 + t75 + t76 - c6 * t90 - s6 * t91 - t86 * beta[38] + t89 * beta[37];
+  const float t96 = t73 - t95 - 0.055f * beta[27];
+  const float t97 = t79 + t80 - s5 * t88 + c5 * t92 + 0.055f * beta[28];
+  const float t98 = beta[14] + t82 - s4 * t96 + c4 * t97;
+  M[2] = t85 + c2 * (t84 - s3 * t94 + c3 * t98) + s2 * (-c3 * t94 - s3 * t98);
+  const float t99 = c5 * beta[50];
+  const float t100 = -c5 * beta[51];
+  const float t101 = beta[27] + c5 * beta[37] - s5 * beta[38] + c6 * t99 + s6 * t100;
+  const float t102 = -s5 * s6;
+  const float t103 = s5 * c6;
+  const float t104 = -t102 * beta[50] + t103 * beta[51];
+  const float t105 = -s6 * t99 + c6 * t100;
+  const float t106 = -beta[28] - s5 * t104 + c5 * t105;
+  const float t107 = -c4 * t101 - s4 * t106;
+  const float t108 = c5 * beta[49];
+  const float t109 = t108 + t102 * beta[48] + t103 * beta[47];
+  const float t110 = t109 + s5 * beta[33];
+  const float t111 = c5 * beta[48] + t103 * beta[46];
+  const float t112 = c5 * beta[47] + t102 * beta[46] + t103 * beta[45];
+  const float t113 = c5 * beta[33] + s5 * beta[32] - s6 * t111 + c6 * t112;
+  const float t114 = beta[26] + c5 * t110 + s5 * t113;
+  const float t115 = -0.055f * t107 + t114;
+  const float t116 = c5 * beta[35] + s5 * beta[34] - c6 * t111 - s6 * t112;
+  const float t117 = beta[25] - t116;
+  const float t118 = beta[24] - s5 * t110 + c5 * t113;
+  const float t119 = -s4 * t117 + c4 * t118 - 1.1f * t107;
+  M[3] = c2 * (-s3 * t115 + c3 * t119 - 1.25f * t107) + s2 * (-c3 * t115 - s3 * t119) - 0.35f * t107;
+  const float t120 = beta[37] + c6 * beta[50] - s6 * beta[51];
+  const float t121 = -s5 * t120 - c5 * beta[38];
+  const float t122 = -s4 * t121;
+  const float t123 = -c6 * beta[48] - s6 * beta[47];
+  const float t124 = beta[35] + t123;
+  const float t125 = -s6 * beta[46];
+  const float t126 = -c6 * beta[46] - s6 * beta[45];
+  const float t127 = beta[34] - s6 * t125 + c6 * t126;
+  const float t128 = c5 * t124 + s5 * t127;
+  const float t129 = -0.055f * t122 + t128;
+  const float t130 = beta[36] - c6 * t125 - s6 * t126;
+  const float t131 = -s5 * t124 + c5 * t127;
+  const float t132 = s4 * t130 + c4 * t131 - 1.1f * t122;
+  M[4] = c2 * (-s3 * t129 + c3 * t132 - 1.25f * t122) + s2 * (-c3 * t129 - s3 * t132) - 0.35f * t122;
+  const float t133 = s6 * beta[51] - c6 * beta[50];
+  const float t134 = -s6 * beta[50] - c6 * beta[51];
+  const float t135 = c5 * t134;
+  const float t136 = c4 * t133 - s4 * t135;
+  const float t137 = -s6 * beta[48] + c6 * beta[47];
+  const float t138 = t108 + s5 * t137;
+  const float t139 = -0.055f * t136 + t138;
+  const float t140 = -s5 * beta[49] + c5 * t137;
+  const float t141 = s4 * t123 + c4 * t140 - 1.1f * t136;
+  M[5] = c2 * (-s3 * t139 + c3 * t141 - 1.25f * t136) + s2 * (-c3 * t139 - s3 * t141) - 0.35f * t136;
+  const float t142 = -t8 * beta[27] + t2 * beta[28] + c5 * t11 + s5 * t12;
+  const float t143 = -s4 * t7 + c4 * t13;
+  const float t144 = t1 * beta[15] + t0 * beta[14] - c4 * t29 - s4 * t30 + 1.1f * t143 + 0.055f * t142;
+  M[6] = c2 * beta[6] + s2 * beta[5] + 1.25f * (-s3 * t142 + c3 * t143) + t144;
+  const float t145 = c4 * beta[27] - s4 * beta[28] + c5 * t40 + s5 * t41;
+  const float t146 = s4 * t37 + c4 * t42;
+  const float t147 = 1.25f * (-s3 * (beta[17] + t145) + c3 * (-beta[18] + t146));
+  const float t148 = 1.1f * t146;
+  const float t149 = 0.055f * t145;
+  const float t150 = beta[16] - c4 * t78 - s4 * t81 + t148 + t149 - 1.25f * c3 * beta[18] - 1.25f * s3 * beta[17];
+  M[7] = beta[7] + t147 + t150;
+  const float t151 = beta[16] + t148 + t149 - c4 * t96 - s4 * t97;
+  M[8] = t147 + t151;
+  const float t152 = c5 * t104 + s5 * t105;
+  const float t153 = -s4 * t101 + c4 * t106;
+  const float t154 = -c4 * t117 - s4 * t118 + 1.1f * t153 + 0.055f * t152;
+  M[9] = 1.25f * (-s3 * t152 + c3 * t153) + t154;
+  const float t155 = c5 * t120 - s5 * beta[38];
+  const float t156 = c4 * t121;
+  const float t157 = c4 * t130 - s4 * t131 + 1.1f * t156 + 0.055f * t155;
+  M[10] = 1.25f * (-s3 * t155 + c3 * t156) + t157;
+  const float t158 = s5 * t134;
+  const float t159 = s4 * t133 + c4 * t135;
+  const float t160 = c4 * t123 - s4 * t140 + 1.1f * t159 + 0.055f * t158;
+  M[11] = 1.25f * (-s3 * t158 + c3 * t159) + t160;
+  M[12] = t144;
+  M[13] = t150;
+  M[14] = beta[19] + t151;
+  M[15] = t154;
+  M[16] = t157;
+  M[17] = t160;
+  M[18] = t26;
+  M[19] = t71;
+  M[20] = t93;
+  M[21] = beta[29] + t114 + 0.00019405047f * beta[55] + 8.649e-05f * beta[42];
+  const float t161 = -0.0001950228f * beta[55];
+  const float t162 = -0.0093f * beta[42];
+  M[22] = t161 + t162 + t128;
+  const float t163 = -0.0139302f * beta[55];
+  M[23] = t163 + t138;
+  M[24] = t28;
+  M[25] = t77;
+  M[26] = t95;
+  M[27] = t116 + t161 + t162;
+  M[28] = beta[39] + beta[42] + t130 + 0.000196f * beta[55];
+  const float t164 = t123 + 0.014f * beta[55];
+  M[29] = t164;
+  M[30] = t20;
+  M[31] = t57;
+  M[32] = t87;
+  M[33] = t109 + t163;
+  M[34] = t164;
+  M[35] = beta[49] + beta[52] + beta[55];
 }
 
 // Jacobian of inverse_dynamics with respect to the state x = [q, dq, ddq] (3 kDof values), for
@@ -9660,7 +10534,8 @@ void power_regressor(const float* q, const float* dq, const float* ddq, float* d
   dh[57] = t60 * t61;  // Fcm6
 }
 
-// energy_regressor with sin_q, cos_q (kDof each) from joint_sincos(q, ...); identical results.
+// energy_regressor with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
+// computing them; identical results.
 void energy_regressor_sincos(const double* q, const double* sin_q, const double* cos_q,
                              const double* dq, double* h) {
   static_cast<void>(q);
@@ -9765,7 +10640,8 @@ void energy_regressor_sincos(const double* q, const double* sin_q, const double*
   h[57] = 0.0;  // Fcm6
 }
 
-// energy_regressor with sin_q, cos_q (kDof each) from joint_sincos(q, ...); identical results.
+// energy_regressor with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
+// computing them; identical results.
 void energy_regressor_sincos(const float* q, const float* sin_q, const float* cos_q,
                              const float* dq, float* h) {
   static_cast<void>(q);
@@ -9870,7 +10746,8 @@ void energy_regressor_sincos(const float* q, const float* sin_q, const float* co
   h[57] = 0.0f;  // Fcm6
 }
 
-// power_regressor with sin_q, cos_q (kDof each) from joint_sincos(q, ...); identical results.
+// power_regressor with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
+// computing them; identical results.
 void power_regressor_sincos(const double* q, const double* sin_q, const double* cos_q,
                             const double* dq, const double* ddq, double* dh) {
   static_cast<void>(q);
@@ -10012,7 +10889,8 @@ void power_regressor_sincos(const double* q, const double* sin_q, const double* 
   dh[57] = t60 * t61;  // Fcm6
 }
 
-// power_regressor with sin_q, cos_q (kDof each) from joint_sincos(q, ...); identical results.
+// power_regressor with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
+// computing them; identical results.
 void power_regressor_sincos(const float* q, const float* sin_q, const float* cos_q,
                             const float* dq, const float* ddq, float* dh) {
   static_cast<void>(q);
@@ -10162,8 +11040,8 @@ void power_regressor_sincos(const float* q, const float* sin_q, const float* cos
 // < 0 and the mean of both if 0 (eq. 8), tau_M = tau_T + JM ddq_M + Rv dq_M + Rc sign(dq_M)
 // (eq. 7). Units follow K: N m on the motor side when K holds gear ratios, on the link side
 // (as in the paper) when it is the coupling alone. Every Rz must be non-zero.
-void drive_torque(const double* q, const double* dq, const double* ddq,
-                  const double* theta, double* tau_M) {
+void drive_torque(const double* q, const double* dq, const double* ddq, const double* theta,
+                  double* tau_M) {
   const double sg1 = static_cast<double>((dq[0] > 0.0) - (dq[0] < 0.0));
   const double s2 = std::sin(q[1]);
   const double c2 = std::cos(q[1]);
@@ -10319,8 +11197,8 @@ void drive_torque(const double* q, const double* dq, const double* ddq,
 // < 0 and the mean of both if 0 (eq. 8), tau_M = tau_T + JM ddq_M + Rv dq_M + Rc sign(dq_M)
 // (eq. 7). Units follow K: N m on the motor side when K holds gear ratios, on the link side
 // (as in the paper) when it is the coupling alone. Every Rz must be non-zero.
-void drive_torque(const float* q, const float* dq, const float* ddq,
-                  const float* theta, float* tau_M) {
+void drive_torque(const float* q, const float* dq, const float* ddq, const float* theta,
+                  float* tau_M) {
   const float sg1 = static_cast<float>((dq[0] > 0.0f) - (dq[0] < 0.0f));
   const float s2 = std::sin(q[1]);
   const float c2 = std::cos(q[1]);
@@ -11109,8 +11987,8 @@ void drive_torque_jacobian(const double* q, const double* dq, const double* ddq,
 // efficiency branch and the Coulomb friction sign count as constant: exact wherever no motor
 // velocity and no power flow tau'_G dq_M is zero. Calls idim_regressor_standard into a local
 // array of kDof * kStandardParams values (on the stack) and applies the chain rule to it.
-void drive_torque_jacobian(const float* q, const float* dq, const float* ddq,
-                           const float* theta, float* tau_M, float* J) {
+void drive_torque_jacobian(const float* q, const float* dq, const float* ddq, const float* theta,
+                           float* tau_M, float* J) {
   float W_std[kDof * kStandardParams] = {};
   idim_regressor_standard(q, dq, ddq, W_std);
   const float sg1 = static_cast<float>((dq[0] > 0.0f) - (dq[0] < 0.0f));

@@ -12,8 +12,10 @@
 // base_from_standard                     23     59        0
 // idim_regressor                        798    591       12
 // inverse_dynamics                      422    347       12
+// mass_matrix                           750    638       12
 // idim_regressor_sincos                 798    591        0
 // inverse_dynamics_sincos               422    347        0
+// mass_matrix_sincos                    750    638        0
 // inverse_dynamics_state_jacobian      4349   3781       12
 // energy_regressor                      148     70       12
 // power_regressor                       378    210       12
@@ -2191,8 +2193,8 @@ void inverse_dynamics_standard(const double* q, const double* dq, const double* 
 // joint positions q, velocities dq and accelerations ddq (kDof each) and the standard
 // parameters p (kStandardParams, in the order of kStandardParamNames). Includes gravity, drive
 // inertia, friction and offsets as the description enables them.
-void inverse_dynamics_standard(const float* q, const float* dq, const float* ddq,
-                               const float* p, float* tau) {
+void inverse_dynamics_standard(const float* q, const float* dq, const float* ddq, const float* p,
+                               float* tau) {
   const float sg1 = static_cast<float>((dq[0] > 0.0f) - (dq[0] < 0.0f));
   const float s2 = std::sin(q[1]);
   const float c2 = std::cos(q[1]);
@@ -4366,9 +4368,9 @@ void idim_regressor_standard_sincos(const float* q, const float* sin_q, const fl
 
 // inverse_dynamics_standard with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
 // computing them; identical results.
-void inverse_dynamics_standard_sincos(const double* q, const double* sin_q,
-                                      const double* cos_q, const double* dq,
-                                      const double* ddq, const double* p, double* tau) {
+void inverse_dynamics_standard_sincos(const double* q, const double* sin_q, const double* cos_q,
+                                      const double* dq, const double* ddq, const double* p,
+                                      double* tau) {
   static_cast<void>(q);
   const double sg1 = static_cast<double>((dq[0] > 0.0) - (dq[0] < 0.0));
   const double s2 = sin_q[1];
@@ -4521,9 +4523,9 @@ void inverse_dynamics_standard_sincos(const double* q, const double* sin_q,
 
 // inverse_dynamics_standard with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
 // computing them; identical results.
-void inverse_dynamics_standard_sincos(const float* q, const float* sin_q,
-                                      const float* cos_q, const float* dq,
-                                      const float* ddq, const float* p, float* tau) {
+void inverse_dynamics_standard_sincos(const float* q, const float* sin_q, const float* cos_q,
+                                      const float* dq, const float* ddq, const float* p,
+                                      float* tau) {
   static_cast<void>(q);
   const float sg1 = static_cast<float>((dq[0] > 0.0f) - (dq[0] < 0.0f));
   const float s2 = sin_q[1];
@@ -6367,8 +6369,8 @@ void idim_regressor(const float* q, const float* dq, const float* ddq, float* W)
 // Inverse dynamics on the base parameters (customized Newton-Euler with the regrouped
 // parameters): joint torques tau (kDof) for q, dq, ddq (kDof each) and beta (kBaseParams, in the
 // order of kBaseParamNames; base_from_standard computes it from standard parameters).
-void inverse_dynamics(const double* q, const double* dq, const double* ddq,
-                      const double* beta, double* tau) {
+void inverse_dynamics(const double* q, const double* dq, const double* ddq, const double* beta,
+                      double* tau) {
   const double sg1 = static_cast<double>((dq[0] > 0.0) - (dq[0] < 0.0));
   const double s2 = std::sin(q[1]);
   const double c2 = std::cos(q[1]);
@@ -6519,8 +6521,8 @@ void inverse_dynamics(const double* q, const double* dq, const double* ddq,
 // Inverse dynamics on the base parameters (customized Newton-Euler with the regrouped
 // parameters): joint torques tau (kDof) for q, dq, ddq (kDof each) and beta (kBaseParams, in the
 // order of kBaseParamNames; base_from_standard computes it from standard parameters).
-void inverse_dynamics(const float* q, const float* dq, const float* ddq,
-                      const float* beta, float* tau) {
+void inverse_dynamics(const float* q, const float* dq, const float* ddq, const float* beta,
+                      float* tau) {
   const float sg1 = static_cast<float>((dq[0] > 0.0f) - (dq[0] < 0.0f));
   const float s2 = std::sin(q[1]);
   const float c2 = std::cos(q[1]);
@@ -6668,8 +6670,648 @@ void inverse_dynamics(const float* q, const float* dq, const float* ddq,
   tau[6] = beta[68] + ddq[6] * beta[65] + dq[6] * beta[66] + sg7 * beta[67] + t103;
 }
 
-// idim_regressor with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of computing
-// them; identical results.
+// Joint-space inertia matrix M(q) on the base parameters: inverse_dynamics is tau = M(q) ddq +
+// terms without ddq (velocity, gravity, friction, offsets), for forward dynamics
+// ddq = M^-1 (tau - inverse_dynamics(q, dq, 0, beta)). Inputs q (kDof) and beta (kBaseParams,
+// as for inverse_dynamics). Output M: kDof x kDof, row-major, M[i * kDof + k] = d tau_i / d ddq_k
+// (drive inertias included; symmetric, and positive definite for physical parameters).
+void mass_matrix(const double* q, const double* beta, double* M) {
+  const double s2 = std::sin(q[1]);
+  const double c2 = std::cos(q[1]);
+  const double s3 = std::sin(q[2]);
+  const double c3 = std::cos(q[2]);
+  const double s4 = std::sin(q[3]);
+  const double c4 = std::cos(q[3]);
+  const double s5 = std::sin(q[4]);
+  const double c5 = std::cos(q[4]);
+  const double s6 = std::sin(q[5]);
+  const double c6 = std::cos(q[5]);
+  const double s7 = std::sin(q[6]);
+  const double c7 = std::cos(q[6]);
+  const double t0 = s2 * s3;
+  const double t1 = -s2 * c3;
+  const double t2 = c4 * t1 + c2 * s4;
+  const double t3 = -s4 * t1 + c2 * c4;
+  const double t4 = s5 * t2 - c5 * t0;
+  const double t5 = -c5 * t2 - s5 * t0;
+  const double t6 = c6 * t5 + s6 * t3;
+  const double t7 = -s6 * t5 + c6 * t3;
+  const double t8 = s7 * t6 - c7 * t4;
+  const double t9 = -c7 * t6 - s7 * t4;
+  const double t10 = 0.2045 * s2 * s3;
+  const double t11 = t10 + 0.2155 * t0;
+  const double t12 = c4 * t11;
+  const double t13 = t12 + 0.1845 * t0;
+  const double t14 = 0.2045 * s2 * c3;
+  const double t15 = 0.2155 * t1 - t14;
+  const double t16 = t15 + 0.1845 * t2;
+  const double t17 = -c5 * t13 + s5 * t16;
+  const double t18 = t17 + 0.2155 * t4;
+  const double t19 = -s4 * t11;
+  const double t20 = c6 * t18 + s6 * t19;
+  const double t21 = t20 + 0.081 * t4;
+  const double t22 = s5 * t13 + c5 * t16;
+  const double t23 = 0.2155 * t5 - t22;
+  const double t24 = t23 + 0.081 * t6;
+  const double t25 = t7 * beta[62] + t8 * beta[61] + t9 * beta[60] - (-c7 * t21 + s7 * t24) * beta[64] + (s7 * t21 + c7 * t24) * beta[63];
+  const double t26 = -t4 * beta[50] + t6 * beta[48] + t25 - t23 * beta[52];
+  const double t27 = -s6 * t18 + c6 * t19;
+  const double t28 = t7 * beta[61] + t9 * beta[59] - t27 * beta[63];
+  const double t29 = t7 * beta[60] + t8 * beta[59] + t9 * beta[58] + t27 * beta[64];
+  const double t30 = t7 * beta[63];
+  const double t31 = -t7 * beta[64];
+  const double t32 = c7 * t30 + s7 * t31;
+  const double t33 = -t4 * beta[49] + t7 * beta[48] + t6 * beta[47] + s7 * t28 - c7 * t29 + 0.081 * t32 + t23 * beta[53];
+  const double t34 = t3 * beta[40] + t4 * beta[39] + t5 * beta[38] + c6 * t26 + s6 * t33 - t17 * beta[42] + t22 * beta[41];
+  const double t35 = -t0 * beta[28] + t2 * beta[26] + t34 - t15 * beta[30];
+  const double t36 = s7 * t30 - c7 * t31;
+  const double t37 = -t4 * beta[51] + t7 * beta[50] + t6 * beta[49] + c7 * t28 + s7 * t29 - 0.081 * t36 - t20 * beta[53] + t27 * beta[52];
+  const double t38 = -t8 * beta[63] + t9 * beta[64] - t4 * beta[52];
+  const double t39 = t4 * beta[53] + t36;
+  const double t40 = -s6 * t38 + c6 * t39;
+  const double t41 = t3 * beta[39] + t5 * beta[37] - t37 + 0.2155 * t40 - t19 * beta[41];
+  const double t42 = -t7 * beta[52] + t6 * beta[53] + t32;
+  const double t43 = t3 * beta[38] + t4 * beta[37] + t5 * beta[36] - s6 * t26 + c6 * t33 + 0.2155 * t42 + t19 * beta[42];
+  const double t44 = t3 * beta[41] - t42;
+  const double t45 = -t3 * beta[42] + t40;
+  const double t46 = c5 * t44 + s5 * t45;
+  const double t47 = -t0 * beta[27] + t3 * beta[26] + t2 * beta[25] + s5 * t41 - c5 * t43 + 0.1845 * t46 + t15 * beta[31];
+  const double t48 = c2 * beta[18] + t0 * beta[17] + t1 * beta[16] + c4 * t35 + s4 * t47 - t10 * beta[20] + t14 * beta[19];
+  const double t49 = s5 * t44 - c5 * t45;
+  const double t50 = -t0 * beta[29] + t3 * beta[28] + t2 * beta[27] + c5 * t41 + s5 * t43 - 0.1845 * t49 - t12 * beta[31] + t19 * beta[30];
+  const double t51 = -s4 * (-t0 * beta[30] - t4 * beta[41] + t5 * beta[42] + c6 * t38 + s6 * t39) + c4 * (t0 * beta[31] + t49);
+  const double t52 = c2 * beta[17] + t1 * beta[15] - t50 + 0.2155 * t51;
+  const double t53 = -t3 * beta[30] + t2 * beta[31] + t46;
+  const double t54 = c2 * beta[16] + t0 * beta[15] + t1 * beta[14] - s4 * t35 + c4 * t47 + 0.2155 * t53;
+  const double t55 = c2 * beta[19] - t53;
+  const double t56 = -c2 * beta[20] + t51;
+  M[0] = beta[0] + c2 * (s2 * beta[5] + t48) + s2 * (c2 * beta[5] + s2 * beta[4] + s3 * t52 - c3 * t54 + 0.2045 * (c3 * t55 + s3 * t56));
+  const double t57 = s3 * c4;
+  const double t58 = -s3 * s4;
+  const double t59 = s5 * t57 - c3 * c5;
+  const double t60 = -c5 * t57 - c3 * s5;
+  const double t61 = c6 * t60 + s6 * t58;
+  const double t62 = -s6 * t60 + c6 * t58;
+  const double t63 = s7 * t61 - c7 * t59;
+  const double t64 = -c7 * t61 - s7 * t59;
+  const double t65 = 0.42 * c3 * c4;
+  const double t66 = t65 + 0.1845 * c3;
+  const double t67 = 0.42 * s3 + 0.1845 * t57;
+  const double t68 = -c5 * t66 + s5 * t67;
+  const double t69 = t68 + 0.2155 * t59;
+  const double t70 = -0.42 * c3 * s4;
+  const double t71 = c6 * t69 + s6 * t70;
+  const double t72 = t71 + 0.081 * t59;
+  const double t73 = s5 * t66 + c5 * t67;
+  const double t74 = 0.2155 * t60 - t73;
+  const double t75 = t74 + 0.081 * t61;
+  const double t76 = t62 * beta[62] + t63 * beta[61] + t64 * beta[60] - (-c7 * t72 + s7 * t75) * beta[64] + (s7 * t72 + c7 * t75) * beta[63];
+  const double t77 = -t59 * beta[50] + t61 * beta[48] + t76 - t74 * beta[52];
+  const double t78 = -s6 * t69 + c6 * t70;
+  const double t79 = t62 * beta[61] + t64 * beta[59] - t78 * beta[63];
+  const double t80 = t62 * beta[60] + t63 * beta[59] + t64 * beta[58] + t78 * beta[64];
+  const double t81 = t62 * beta[63];
+  const double t82 = -t62 * beta[64];
+  const double t83 = c7 * t81 + s7 * t82;
+  const double t84 = -t59 * beta[49] + t62 * beta[48] + t61 * beta[47] + s7 * t79 - c7 * t80 + 0.081 * t83 + t74 * beta[53];
+  const double t85 = t58 * beta[40] + t59 * beta[39] + t60 * beta[38] + c6 * t77 + s6 * t84 - t68 * beta[42] + t73 * beta[41];
+  const double t86 = -c3 * beta[28] + t57 * beta[26] + t85 - 0.42 * s3 * beta[30];
+  const double t87 = s7 * t81 - c7 * t82;
+  const double t88 = -t59 * beta[51] + t62 * beta[50] + t61 * beta[49] + c7 * t79 + s7 * t80 - 0.081 * t87 - t71 * beta[53] + t78 * beta[52];
+  const double t89 = -t63 * beta[63] + t64 * beta[64] - t59 * beta[52];
+  const double t90 = t59 * beta[53] + t87;
+  const double t91 = -s6 * t89 + c6 * t90;
+  const double t92 = t58 * beta[39] + t60 * beta[37] - t88 + 0.2155 * t91 - t70 * beta[41];
+  const double t93 = -t62 * beta[52] + t61 * beta[53] + t83;
+  const double t94 = t58 * beta[38] + t59 * beta[37] + t60 * beta[36] - s6 * t77 + c6 * t84 + 0.2155 * t93 + t70 * beta[42];
+  const double t95 = t58 * beta[41] - t93;
+  const double t96 = -t58 * beta[42] + t91;
+  const double t97 = c5 * t95 + s5 * t96;
+  const double t98 = -c3 * beta[27] + t58 * beta[26] + t57 * beta[25] + s5 * t92 - c5 * t94 + 0.1845 * t97 + 0.42 * s3 * beta[31];
+  const double t99 = c3 * beta[17] + s3 * beta[16] + c4 * t86 + s4 * t98 - 0.2045 * c3 * beta[20] - 0.2045 * s3 * beta[19];
+  const double t100 = s5 * t95 - c5 * t96;
+  const double t101 = -c3 * beta[29] + t58 * beta[28] + t57 * beta[27] + c5 * t92 + s5 * t94 - 0.1845 * t100 - t65 * beta[31] + t70 * beta[30];
+  const double t102 = -s4 * (-c3 * beta[30] - t59 * beta[41] + t60 * beta[42] + c6 * t89 + s6 * t90) + c4 * (c3 * beta[31] + t100);
+  const double t103 = s3 * beta[15] - t101 + 0.2155 * t102;
+  const double t104 = -t58 * beta[30] + t57 * beta[31] + t97;
+  const double t105 = c3 * beta[15] + s3 * beta[14] - s4 * t86 + c4 * t98 + 0.2155 * t104;
+  M[1] = c2 * (beta[7] + t99) + s2 * (beta[6] + s3 * t103 - c3 * t105 + 0.2045 * (-c3 * t104 + s3 * t102));
+  const double t106 = s4 * s5;
+  const double t107 = -s4 * c5;
+  const double t108 = c6 * t107 + c4 * s6;
+  const double t109 = -s6 * t107 + c4 * c6;
+  const double t110 = s7 * t108 - c7 * t106;
+  const double t111 = -c7 * t108 - s7 * t106;
+  const double t112 = 0.1845 * s4 * s5;
+  const double t113 = t112 + 0.2155 * t106;
+  const double t114 = c6 * t113;
+  const double t115 = t114 + 0.081 * t106;
+  const double t116 = 0.1845 * s4 * c5;
+  const double t117 = 0.2155 * t107 - t116;
+  const double t118 = t117 + 0.081 * t108;
+  const double t119 = t109 * beta[62] + t110 * beta[61] + t111 * beta[60] - (-c7 * t115 + s7 * t118) * beta[64] + (s7 * t115 + c7 * t118) * beta[63];
+  const double t120 = -t106 * beta[50] + t108 * beta[48] + t119 - t117 * beta[52];
+  const double t121 = -s6 * t113;
+  const double t122 = t109 * beta[61] + t111 * beta[59] - t121 * beta[63];
+  const double t123 = t109 * beta[60] + t110 * beta[59] + t111 * beta[58] + t121 * beta[64];
+  const double t124 = t109 * beta[63];
+  const double t125 = -t109 * beta[64];
+  const double t126 = c7 * t124 + s7 * t125;
+  const double t127 = -t106 * beta[49] + t109 * beta[48] + t108 * beta[47] + s7 * t122 - c7 * t123 + 0.081 * t126 + t117 * beta[53];
+  const double t128 = c4 * beta[40] + t106 * beta[39] + t107 * beta[38] + c6 * t120 + s6 * t127 - t112 * beta[42] + t116 * beta[41];
+  const double t129 = s4 * beta[26] + t128;
+  const double t130 = s7 * t124 - c7 * t125;
+  const double t131 = -t106 * beta[51] + t109 * beta[50] + t108 * beta[49] + c7 * t122 + s7 * t123 - 0.081 * t130 - t114 * beta[53] + t121 * beta[52];
+  const double t132 = -t110 * beta[63] + t111 * beta[64] - t106 * beta[52];
+  const double t133 = t106 * beta[53] + t130;
+  const double t134 = -s6 * t132 + c6 * t133;
+  const double t135 = c4 * beta[39] + t107 * beta[37] - t131 + 0.2155 * t134;
+  const double t136 = -t109 * beta[52] + t108 * beta[53] + t126;
+  const double t137 = c4 * beta[38] + t106 * beta[37] + t107 * beta[36] - s6 * t120 + c6 * t127 + 0.2155 * t136;
+  const double t138 = c4 * beta[41] - t136;
+  const double t139 = -c4 * beta[42] + t134;
+  const double t140 = c5 * t138 + s5 * t139;
+  const double t141 = c4 * beta[26] + s4 * beta[25] + s5 * t135 - c5 * t137 + 0.1845 * t140;
+  const double t142 = beta[18] + c4 * t129 + s4 * t141;
+  const double t143 = s5 * t138 - c5 * t139;
+  const double t144 = c4 * beta[28] + s4 * beta[27] + c5 * t135 + s5 * t137 - 0.1845 * t143;
+  const double t145 = -s4 * (-t106 * beta[41] + t107 * beta[42] + c6 * t132 + s6 * t133) + c4 * t143;
+  const double t146 = beta[17] - t144 + 0.2155 * t145;
+  const double t147 = -c4 * beta[30] + s4 * beta[31] + t140;
+  const double t148 = beta[16] - s4 * t129 + c4 * t141 + 0.2155 * t147;
+  const double t149 = beta[19] - t147;
+  const double t150 = -beta[20] + t145;
+  M[2] = c2 * t142 + s2 * (s3 * t146 - c3 * t148 + 0.2045 * (c3 * t149 + s3 * t150));
+  const double t151 = s5 * c6;
+  const double t152 = -s5 * s6;
+  const double t153 = s7 * t151 - c5 * c7;
+  const double t154 = -c7 * t151 - c5 * s7;
+  const double t155 = 0.4 * c5 * c6;
+  const double t156 = t155 + 0.081 * c5;
+  const double t157 = 0.4 * s5 + 0.081 * t151;
+  const double t158 = t152 * beta[62] + t153 * beta[61] + t154 * beta[60] - (-c7 * t156 + s7 * t157) * beta[64] + (s7 * t156 + c7 * t157) * beta[63];
+  const double t159 = -c5 * beta[50] + t151 * beta[48] + t158 - 0.4 * s5 * beta[52];
+  const double t160 = -0.4 * c5 * s6;
+  const double t161 = t152 * beta[61] + t154 * beta[59] - t160 * beta[63];
+  const double t162 = t152 * beta[60] + t153 * beta[59] + t154 * beta[58] + t160 * beta[64];
+  const double t163 = t152 * beta[63];
+  const double t164 = -t152 * beta[64];
+  const double t165 = c7 * t163 + s7 * t164;
+  const double t166 = -c5 * beta[49] + t152 * beta[48] + t151 * beta[47] + s7 * t161 - c7 * t162 + 0.081 * t165 + 0.4 * s5 * beta[53];
+  const double t167 = c5 * beta[39] + s5 * beta[38] + c6 * t159 + s6 * t166 - 0.1845 * c5 * beta[42] - 0.1845 * s5 * beta[41];
+  const double t168 = beta[28] + t167;
+  const double t169 = s7 * t163 - c7 * t164;
+  const double t170 = -c5 * beta[51] + t152 * beta[50] + t151 * beta[49] + c7 * t161 + s7 * t162 - 0.081 * t169 - t155 * beta[53] + t160 * beta[52];
+  const double t171 = -t153 * beta[63] + t154 * beta[64] - c5 * beta[52];
+  const double t172 = c5 * beta[53] + t169;
+  const double t173 = -s6 * t171 + c6 * t172;
+  const double t174 = s5 * beta[37] - t170 + 0.2155 * t173;
+  const double t175 = -t152 * beta[52] + t151 * beta[53] + t165;
+  const double t176 = c5 * beta[37] + s5 * beta[36] - s6 * t159 + c6 * t166 + 0.2155 * t175;
+  const double t177 = -c5 * t175 + s5 * t173;
+  const double t178 = beta[27] + s5 * t174 - c5 * t176 + 0.1845 * t177;
+  const double t179 = c4 * t168 + s4 * t178;
+  const double t180 = -s5 * t175 - c5 * t173;
+  const double t181 = beta[29] + c5 * t174 + s5 * t176 - 0.1845 * t180;
+  const double t182 = -s4 * (beta[30] - c5 * beta[41] + s5 * beta[42] + c6 * t171 + s6 * t172) + c4 * (-beta[31] + t180);
+  const double t183 = -t181 + 0.2155 * t182;
+  const double t184 = -s4 * t168 + c4 * t178 + 0.2155 * t177;
+  M[3] = c2 * t179 + s2 * (s3 * t183 - c3 * t184 + 0.2045 * (-c3 * t177 + s3 * t182));
+  const double t185 = c6 * beta[62];
+  const double t186 = s6 * s7;
+  const double t187 = -s6 * c7;
+  const double t188 = t185 + t186 * beta[61] + t187 * beta[60] - 0.081 * s6 * s7 * beta[64] + 0.081 * s6 * c7 * beta[63];
+  const double t189 = s6 * beta[48] + t188;
+  const double t190 = c6 * beta[61] + t187 * beta[59];
+  const double t191 = c6 * beta[60] + t186 * beta[59] + t187 * beta[58];
+  const double t192 = c6 * beta[63];
+  const double t193 = -c6 * beta[64];
+  const double t194 = c7 * t192 + s7 * t193;
+  const double t195 = c6 * beta[48] + s6 * beta[47] + s7 * t190 - c7 * t191 + 0.081 * t194;
+  const double t196 = beta[40] + c6 * t189 + s6 * t195;
+  const double t197 = s7 * t192 - c7 * t193;
+  const double t198 = c6 * beta[50] + s6 * beta[49] + c7 * t190 + s7 * t191 - 0.081 * t197;
+  const double t199 = -t186 * beta[63] + t187 * beta[64];
+  const double t200 = -s6 * t199 + c6 * t197;
+  const double t201 = beta[39] - t198 + 0.2155 * t200;
+  const double t202 = -c6 * beta[52] + s6 * beta[53] + t194;
+  const double t203 = beta[38] - s6 * t189 + c6 * t195 + 0.2155 * t202;
+  const double t204 = beta[41] - t202;
+  const double t205 = -beta[42] + t200;
+  const double t206 = c5 * t204 + s5 * t205;
+  const double t207 = s5 * t201 - c5 * t203 + 0.1845 * t206;
+  const double t208 = c4 * t196 + s4 * t207;
+  const double t209 = s5 * t204 - c5 * t205;
+  const double t210 = c5 * t201 + s5 * t203 - 0.1845 * t209;
+  const double t211 = -s4 * (c6 * t199 + s6 * t197) + c4 * t209;
+  const double t212 = -t210 + 0.2155 * t211;
+  const double t213 = -s4 * t196 + c4 * t207 + 0.2155 * t206;
+  M[4] = c2 * t208 + s2 * (s3 * t212 - c3 * t213 + 0.2045 * (-c3 * t206 + s3 * t211));
+  const double t214 = c7 * beta[61];
+  const double t215 = s7 * beta[60];
+  const double t216 = t214 + t215 - 0.081 * c7 * beta[64] - 0.081 * s7 * beta[63];
+  const double t217 = beta[50] + t216;
+  const double t218 = s7 * beta[59];
+  const double t219 = c7 * beta[59] + s7 * beta[58];
+  const double t220 = beta[49] + s7 * t218 - c7 * t219;
+  const double t221 = c6 * t217 + s6 * t220;
+  const double t222 = beta[51] + c7 * t218 + s7 * t219;
+  const double t223 = beta[52] - c7 * beta[63] + s7 * beta[64];
+  const double t224 = -s6 * t223 - c6 * beta[53];
+  const double t225 = -t222 + 0.2155 * t224;
+  const double t226 = -s6 * t217 + c6 * t220;
+  const double t227 = s5 * t224;
+  const double t228 = s5 * t225 - c5 * t226 + 0.1845 * t227;
+  const double t229 = c4 * t221 + s4 * t228;
+  const double t230 = -c5 * t224;
+  const double t231 = c5 * t225 + s5 * t226 - 0.1845 * t230;
+  const double t232 = -s4 * (c6 * t223 - s6 * beta[53]) + c4 * t230;
+  const double t233 = -t231 + 0.2155 * t232;
+  const double t234 = -s4 * t221 + c4 * t228 + 0.2155 * t227;
+  M[5] = c2 * t229 + s2 * (s3 * t233 - c3 * t234 + 0.2045 * (-c3 * t227 + s3 * t232));
+  const double t235 = c7 * beta[63] - s7 * beta[64];
+  const double t236 = s7 * beta[61] - c7 * beta[60] + 0.081 * t235;
+  const double t237 = t185 + s6 * t236;
+  const double t238 = c7 * beta[64] + s7 * beta[63];
+  const double t239 = t214 + t215 - 0.081 * t238;
+  const double t240 = c6 * t238;
+  const double t241 = -t239 + 0.2155 * t240;
+  const double t242 = -s6 * beta[62] + c6 * t236 + 0.2155 * t235;
+  const double t243 = -c5 * t235 + s5 * t240;
+  const double t244 = s5 * t241 - c5 * t242 + 0.1845 * t243;
+  const double t245 = c4 * t237 + s4 * t244;
+  const double t246 = -s5 * t235 - c5 * t240;
+  const double t247 = c5 * t241 + s5 * t242 - 0.1845 * t246;
+  const double t248 = -s4 * s6 * t238 + c4 * t246;
+  const double t249 = -t247 + 0.2155 * t248;
+  const double t250 = -s4 * t237 + c4 * t244 + 0.2155 * t243;
+  M[6] = c2 * t245 + s2 * (s3 * t249 - c3 * t250 + 0.2045 * (-c3 * t243 + s3 * t248));
+  M[7] = c2 * beta[7] + s2 * beta[6] + c3 * t52 + s3 * t54 - 0.2045 * (s3 * t55 - c3 * t56);
+  M[8] = beta[8] + c3 * t103 + s3 * t105 - 0.2045 * (-s3 * t104 - c3 * t102);
+  M[9] = c3 * t146 + s3 * t148 - 0.2045 * (s3 * t149 - c3 * t150);
+  M[10] = c3 * t183 + s3 * t184 - 0.2045 * (-s3 * t177 - c3 * t182);
+  M[11] = c3 * t212 + s3 * t213 - 0.2045 * (-s3 * t206 - c3 * t211);
+  M[12] = c3 * t233 + s3 * t234 - 0.2045 * (-s3 * t227 - c3 * t232);
+  M[13] = c3 * t249 + s3 * t250 - 0.2045 * (-s3 * t243 - c3 * t248);
+  M[14] = t48;
+  M[15] = t99;
+  M[16] = beta[21] + t142;
+  M[17] = t179;
+  M[18] = t208;
+  M[19] = t229;
+  M[20] = t245;
+  M[21] = t50;
+  M[22] = t101;
+  M[23] = t144;
+  M[24] = beta[32] + t181;
+  M[25] = t210;
+  M[26] = t231;
+  M[27] = t247;
+  M[28] = t34;
+  M[29] = t85;
+  M[30] = t128;
+  M[31] = t167;
+  M[32] = beta[43] + t196;
+  M[33] = t221;
+  M[34] = t237;
+  M[35] = t37;
+  M[36] = t88;
+  M[37] = t131;
+  M[38] = t170;
+  M[39] = t198;
+  M[40] = beta[54] + t222;
+  M[41] = t239;
+  M[42] = t25;
+  M[43] = t76;
+  M[44] = t119;
+  M[45] = t158;
+  M[46] = t188;
+  M[47] = t216;
+  M[48] = beta[62] + beta[65];
+}
+
+// Joint-space inertia matrix M(q) on the base parameters: inverse_dynamics is tau = M(q) ddq +
+// terms without ddq (velocity, gravity, friction, offsets), for forward dynamics
+// ddq = M^-1 (tau - inverse_dynamics(q, dq, 0, beta)). Inputs q (kDof) and beta (kBaseParams,
+// as for inverse_dynamics). Output M: kDof x kDof, row-major, M[i * kDof + k] = d tau_i / d ddq_k
+// (drive inertias included; symmetric, and positive definite for physical parameters).
+void mass_matrix(const float* q, const float* beta, float* M) {
+  const float s2 = std::sin(q[1]);
+  const float c2 = std::cos(q[1]);
+  const float s3 = std::sin(q[2]);
+  const float c3 = std::cos(q[2]);
+  const float s4 = std::sin(q[3]);
+  const float c4 = std::cos(q[3]);
+  const float s5 = std::sin(q[4]);
+  const float c5 = std::cos(q[4]);
+  const float s6 = std::sin(q[5]);
+  const float c6 = std::cos(q[5]);
+  const float s7 = std::sin(q[6]);
+  const float c7 = std::cos(q[6]);
+  const float t0 = s2 * s3;
+  const float t1 = -s2 * c3;
+  const float t2 = c4 * t1 + c2 * s4;
+  const float t3 = -s4 * t1 + c2 * c4;
+  const float t4 = s5 * t2 - c5 * t0;
+  const float t5 = -c5 * t2 - s5 * t0;
+  const float t6 = c6 * t5 + s6 * t3;
+  const float t7 = -s6 * t5 + c6 * t3;
+  const float t8 = s7 * t6 - c7 * t4;
+  const float t9 = -c7 * t6 - s7 * t4;
+  const float t10 = 0.2045f * s2 * s3;
+  const float t11 = t10 + 0.2155f * t0;
+  const float t12 = c4 * t11;
+  const float t13 = t12 + 0.1845f * t0;
+  const float t14 = 0.2045f * s2 * c3;
+  const float t15 = 0.2155f * t1 - t14;
+  const float t16 = t15 + 0.1845f * t2;
+  const float t17 = -c5 * t13 + s5 * t16;
+  const float t18 = t17 + 0.2155f * t4;
+  const float t19 = -s4 * t11;
+  const float t20 = c6 * t18 + s6 * t19;
+  const float t21 = t20 + 0.081f * t4;
+  const float t22 = s5 * t13 + c5 * t16;
+  const float t23 = 0.2155f * t5 - t22;
+  const float t24 = t23 + 0.081f * t6;
+  const float t25 = t7 * beta[62] + t8 * beta[61] + t9 * beta[60] - (-c7 * t21 + s7 * t24) * beta[64] + (s7 * t21 + c7 * t24) * beta[63];
+  const float t26 = -t4 * beta[50] + t6 * beta[48] + t25 - t23 * beta[52];
+  const float t27 = -s6 * t18 + c6 * t19;
+  const float t28 = t7 * beta[61] + t9 * beta[59] - t27 * beta[63];
+  const float t29 = t7 * beta[60] + t8 * beta[59] + t9 * beta[58] + t27 * beta[64];
+  const float t30 = t7 * beta[63];
+  const float t31 = -t7 * beta[64];
+  const float t32 = c7 * t30 + s7 * t31;
+  const float t33 = -t4 * beta[49] + t7 * beta[48] + t6 * beta[47] + s7 * t28 - c7 * t29 + 0.081f * t32 + t23 * beta[53];
+  const float t34 = t3 * beta[40] + t4 * beta[39] + t5 * beta[38] + c6 * t26 + s6 * t33 - t17 * beta[42] + t22 * beta[41];
+  const float t35 = -t0 * beta[28] + t2 * beta[26] + t34 - t15 * beta[30];
+  const float t36 = s7 * t30 - c7 * t31;
+  const float t37 = -t4 * beta[51] + t7 * beta[50] + t6 * beta[49] + c7 * t28 + s7 * t29 - 0.081f * t36 - t20 * beta[53] + t27 * beta[52];
+  const float t38 = -t8 * beta[63] + t9 * beta[64] - t4 * beta[52];
+  const float t39 = t4 * beta[53] + t36;
+  const float t40 = -s6 * t38 + c6 * t39;
+  const float t41 = t3 * beta[39] + t5 * beta[37] - t37 + 0.2155f * t40 - t19 * beta[41];
+  const float t42 = -t7 * beta[52] + t6 * beta[53] + t32;
+  const float t43 = t3 * beta[38] + t4 * beta[37] + t5 * beta[36] - s6 * t26 + c6 * t33 + 0.2155f * t42 + t19 * beta[42];
+  const float t44 = t3 * beta[41] - t42;
+  const float t45 = -t3 * beta[42] + t40;
+  const float t46 = c5 * t44 + s5 * t45;
+  const float t47 = -t0 * beta[27] + t3 * beta[26] + t2 * beta[25] + s5 * t41 - c5 * t43 + 0.1845f * t46 + t15 * beta[31];
+  const float t48 = c2 * beta[18] + t0 * beta[17] + t1 * beta[16] + c4 * t35 + s4 * t47 - t10 * beta[20] + t14 * beta[19];
+  const float t49 = s5 * t44 - c5 * t45;
+  const float t50 = -t0 * beta[29] + t3 * beta[28] + t2 * beta[27] + c5 * t41 + s5 * t43 - 0.1845f * t49 - t12 * beta[31] + t19 * beta[30];
+  const float t51 = -s4 * (-t0 * beta[30] - t4 * beta[41] + t5 * beta[42] + c6 * t38 + s6 * t39) + c4 * (t0 * beta[31] + t49);
+  const float t52 = c2 * beta[17] + t1 * beta[15] - t50 + 0.2155f * t51;
+  const float t53 = -t3 * beta[30] + t2 * beta[31] + t46;
+  const float t54 = c2 * beta[16] + t0 * beta[15] + t1 * beta[14] - s4 * t35 + c4 * t47 + 0.2155f * t53;
+  const float t55 = c2 * beta[19] - t53;
+  const float t56 = -c2 * beta[20] + t51;
+  M[0] = beta[0] + c2 * (s2 * beta[5] + t48) + s2 * (c2 * beta[5] + s2 * beta[4] + s3 * t52 - c3 * t54 + 0.2045f * (c3 * t55 + s3 * t56));
+  const float t57 = s3 * c4;
+  const float t58 = -s3 * s4;
+  const float t59 = s5 * t57 - c3 * c5;
+  const float t60 = -c5 * t57 - c3 * s5;
+  const float t61 = c6 * t60 + s6 * t58;
+  const float t62 = -s6 * t60 + c6 * t58;
+  const float t63 = s7 * t61 - c7 * t59;
+  const float t64 = -c7 * t61 - s7 * t59;
+  const float t65 = 0.42f * c3 * c4;
+  const float t66 = t65 + 0.1845f * c3;
+  const float t67 = 0.42f * s3 + 0.1845f * t57;
+  const float t68 = -c5 * t66 + s5 * t67;
+  const float t69 = t68 + 0.2155f * t59;
+  const float t70 = -0.42f * c3 * s4;
+  const float t71 = c6 * t69 + s6 * t70;
+  const float t72 = t71 + 0.081f * t59;
+  const float t73 = s5 * t66 + c5 * t67;
+  const float t74 = 0.2155f * t60 - t73;
+  const float t75 = t74 + 0.081f * t61;
+  const float t76 = t62 * beta[62] + t63 * beta[61] + t64 * beta[60] - (-c7 * t72 + s7 * t75) * beta[64] + (s7 * t72 + c7 * t75) * beta[63];
+  const float t77 = -t59 * beta[50] + t61 * beta[48] + t76 - t74 * beta[52];
+  const float t78 = -s6 * t69 + c6 * t70;
+  const float t79 = t62 * beta[61] + t64 * beta[59] - t78 * beta[63];
+  const float t80 = t62 * beta[60] + t63 * beta[59] + t64 * beta[58] + t78 * beta[64];
+  const float t81 = t62 * beta[63];
+  const float t82 = -t62 * beta[64];
+  const float t83 = c7 * t81 + s7 * t82;
+  const float t84 = -t59 * beta[49] + t62 * beta[48] + t61 * beta[47] + s7 * t79 - c7 * t80 + 0.081f * t83 + t74 * beta[53];
+  const float t85 = t58 * beta[40] + t59 * beta[39] + t60 * beta[38] + c6 * t77 + s6 * t84 - t68 * beta[42] + t73 * beta[41];
+  const float t86 = -c3 * beta[28] + t57 * beta[26] + t85 - 0.42f * s3 * beta[30];
+  const float t87 = s7 * t81 - c7 * t82;
+  const float t88 = -t59 * beta[51] + t62 * beta[50] + t61 * beta[49] + c7 * t79 + s7 * t80 - 0.081f * t87 - t71 * beta[53] + t78 * beta[52];
+  const float t89 = -t63 * beta[63] + t64 * beta[64] - t59 * beta[52];
+  const float t90 = t59 * beta[53] + t87;
+  const float t91 = -s6 * t89 + c6 * t90;
+  const float t92 = t58 * beta[39] + t60 * beta[37] - t88 + 0.2155f * t91 - t70 * beta[41];
+  const float t93 = -t62 * beta[52] + t61 * beta[53] + t83;
+  const float t94 = t58 * beta[38] + t59 * beta[37] + t60 * beta[36] - s6 * t77 + c6 * t84 + 0.2155f * t93 + t70 * beta[42];
+  const float t95 = t58 * beta[41] - t93;
+  const float t96 = -t58 * beta[42] + t91;
+  const float t97 = c5 * t95 + s5 * t96;
+  const float t98 = -c3 * beta[27] + t58 * beta[26] + t57 * beta[25] + s5 * t92 - c5 * t94 + 0.1845f * t97 + 0.42f * s3 * beta[31];
+  const float t99 = c3 * beta[17] + s3 * beta[16] + c4 * t86 + s4 * t98 - 0.2045f * c3 * beta[20] - 0.2045f * s3 * beta[19];
+  const float t100 = s5 * t95 - c5 * t96;
+  const float t101 = -c3 * beta[29] + t58 * beta[28] + t57 * beta[27] + c5 * t92 + s5 * t94 - 0.1845f * t100 - t65 * beta[31] + t70 * beta[30];
+  const float t102 = -s4 * (-c3 * beta[30] - t59 * beta[41] + t60 * beta[42] + c6 * t89 + s6 * t90) + c4 * (c3 * beta[31] + t100);
+  const float t103 = s3 * beta[15] - t101 + 0.2155f * t102;
+  const float t104 = -t58 * beta[30] + t57 * beta[31] + t97;
+  const float t105 = c3 * beta[15] + s3 * beta[14] - s4 * t86 + c4 * t98 + 0.2155f * t104;
+  M[1] = c2 * (beta[7] + t99) + s2 * (beta[6] + s3 * t103 - c3 * t105 + 0.2045f * (-c3 * t104 + s3 * t102));
+  const float t106 = s4 * s5;
+  const float t107 = -s4 * c5;
+  const float t108 = c6 * t107 + c4 * s6;
+  const float t109 = -s6 * t107 + c4 * c6;
+  const float t110 = s7 * t108 - c7 * t106;
+  const float t111 = -c7 * t108 - s7 * t106;
+  const float t112 = 0.1845f * s4 * s5;
+  const float t113 = t112 + 0.2155f * t106;
+  const float t114 = c6 * t113;
+  const float t115 = t114 + 0.081f * t106;
+  const float t116 = 0.1845f * s4 * c5;
+  const float t117 = 0.2155f * t107 - t116;
+  const float t118 = t117 + 0.081f * t108;
+  const float t119 = t109 * beta[62] + t110 * beta[61] + t111 * beta[60] - (-c7 * t115 + s7 * t118) * beta[64] + (s7 * t115 + c7 * t118) * beta[63];
+  const float t120 = -t106 * beta[50] + t108 * beta[48] + t119 - t117 * beta[52];
+  const float t121 = -s6 * t113;
+  const float t122 = t109 * beta[61] + t111 * beta[59] - t121 * beta[63];
+  const float t123 = t109 * beta[60] + t110 * beta[59] + t111 * beta[58] + t121 * beta[64];
+  const float t124 = t109 * beta[63];
+  const float t125 = -t109 * beta[64];
+  const float t126 = c7 * t124 + s7 * t125;
+  const float t127 = -t106 * beta[49] + t109 * beta[48] + t108 * beta[47] + s7 * t122 - c7 * t123 + 0.081f * t126 + t117 * beta[53];
+  const float t128 = c4 * beta[40] + t106 * beta[39] + t107 * beta[38] + c6 * t120 + s6 * t127 - t112 * beta[42] + t116 * beta[41];
+  const float t129 = s4 * beta[26] + t128;
+  const float t130 = s7 * t124 - c7 * t125;
+  const float t131 = -t106 * beta[51] + t109 * beta[50] + t108 * beta[49] + c7 * t122 + s7 * t123 - 0.081f * t130 - t114 * beta[53] + t121 * beta[52];
+  const float t132 = -t110 * beta[63] + t111 * beta[64] - t106 * beta[52];
+  const float t133 = t106 * beta[53] + t130;
+  const float t134 = -s6 * t132 + c6 * t133;
+  const float t135 = c4 * beta[39] + t107 * beta[37] - t131 + 0.2155f * t134;
+  const float t136 = -t109 * beta[52] + t108 * beta[53] + t126;
+  const float t137 = c4 * beta[38] + t106 * beta[37] + t107 * beta[36] - s6 * t120 + c6 * t127 + 0.2155f * t136;
+  const float t138 = c4 * beta[41] - t136;
+  const float t139 = -c4 * beta[42] + t134;
+  const float t140 = c5 * t138 + s5 * t139;
+  const float t141 = c4 * beta[26] + s4 * beta[25] + s5 * t135 - c5 * t137 + 0.1845f * t140;
+  const float t142 = beta[18] + c4 * t129 + s4 * t141;
+  const float t143 = s5 * t138 - c5 * t139;
+  const float t144 = c4 * beta[28] + s4 * beta[27] + c5 * t135 + s5 * t137 - 0.1845f * t143;
+  const float t145 = -s4 * (-t106 * beta[41] + t107 * beta[42] + c6 * t132 + s6 * t133) + c4 * t143;
+  const float t146 = beta[17] - t144 + 0.2155f * t145;
+  const float t147 = -c4 * beta[30] + s4 * beta[31] + t140;
+  const float t148 = beta[16] - s4 * t129 + c4 * t141 + 0.2155f * t147;
+  const float t149 = beta[19] - t147;
+  const float t150 = -beta[20] + t145;
+  M[2] = c2 * t142 + s2 * (s3 * t146 - c3 * t148 + 0.2045f * (c3 * t149 + s3 * t150));
+  const float t151 = s5 * c6;
+  const float t152 = -s5 * s6;
+  const float t153 = s7 * t151 - c5 * c7;
+  const float t154 = -c7 * t151 - c5 * s7;
+  const float t155 = 0.4f * c5 * c6;
+  const float t156 = t155 + 0.081f * c5;
+  const float t157 = 0.4f * s5 + 0.081f * t151;
+  const float t158 = t152 * beta[62] + t153 * beta[61] + t154 * beta[60] - (-c7 * t156 + s7 * t157) * beta[64] + (s7 * t156 + c7 * t157) * beta[63];
+  const float t159 = -c5 * beta[50] + t151 * beta[48] + t158 - 0.4f * s5 * beta[52];
+  const float t160 = -0.4f * c5 * s6;
+  const float t161 = t152 * beta[61] + t154 * beta[59] - t160 * beta[63];
+  const float t162 = t152 * beta[60] + t153 * beta[59] + t154 * beta[58] + t160 * beta[64];
+  const float t163 = t152 * beta[63];
+  const float t164 = -t152 * beta[64];
+  const float t165 = c7 * t163 + s7 * t164;
+  const float t166 = -c5 * beta[49] + t152 * beta[48] + t151 * beta[47] + s7 * t161 - c7 * t162 + 0.081f * t165 + 0.4f * s5 * beta[53];
+  const float t167 = c5 * beta[39] + s5 * beta[38] + c6 * t159 + s6 * t166 - 0.1845f * c5 * beta[42] - 0.1845f * s5 * beta[41];
+  const float t168 = beta[28] + t167;
+  const float t169 = s7 * t163 - c7 * t164;
+  const float t170 = -c5 * beta[51] + t152 * beta[50] + t151 * beta[49] + c7 * t161 + s7 * t162 - 0.081f * t169 - t155 * beta[53] + t160 * beta[52];
+  const float t171 = -t153 * beta[63] + t154 * beta[64] - c5 * beta[52];
+  const float t172 = c5 * beta[53] + t169;
+  const float t173 = -s6 * t171 + c6 * t172;
+  const float t174 = s5 * beta[37] - t170 + 0.2155f * t173;
+  const float t175 = -t152 * beta[52] + t151 * beta[53] + t165;
+  const float t176 = c5 * beta[37] + s5 * beta[36] - s6 * t159 + c6 * t166 + 0.2155f * t175;
+  const float t177 = -c5 * t175 + s5 * t173;
+  const float t178 = beta[27] + s5 * t174 - c5 * t176 + 0.1845f * t177;
+  const float t179 = c4 * t168 + s4 * t178;
+  const float t180 = -s5 * t175 - c5 * t173;
+  const float t181 = beta[29] + c5 * t174 + s5 * t176 - 0.1845f * t180;
+  const float t182 = -s4 * (beta[30] - c5 * beta[41] + s5 * beta[42] + c6 * t171 + s6 * t172) + c4 * (-beta[31] + t180);
+  const float t183 = -t181 + 0.2155f * t182;
+  const float t184 = -s4 * t168 + c4 * t178 + 0.2155f * t177;
+  M[3] = c2 * t179 + s2 * (s3 * t183 - c3 * t184 + 0.2045f * (-c3 * t177 + s3 * t182));
+  const float t185 = c6 * beta[62];
+  const float t186 = s6 * s7;
+  const float t187 = -s6 * c7;
+  const float t188 = t185 + t186 * beta[61] + t187 * beta[60] - 0.081f * s6 * s7 * beta[64] + 0.081f * s6 * c7 * beta[63];
+  const float t189 = s6 * beta[48] + t188;
+  const float t190 = c6 * beta[61] + t187 * beta[59];
+  const float t191 = c6 * beta[60] + t186 * beta[59] + t187 * beta[58];
+  const float t192 = c6 * beta[63];
+  const float t193 = -c6 * beta[64];
+  const float t194 = c7 * t192 + s7 * t193;
+  const float t195 = c6 * beta[48] + s6 * beta[47] + s7 * t190 - c7 * t191 + 0.081f * t194;
+  const float t196 = beta[40] + c6 * t189 + s6 * t195;
+  const float t197 = s7 * t192 - c7 * t193;
+  const float t198 = c6 * beta[50] + s6 * beta[49] + c7 * t190 + s7 * t191 - 0.081f * t197;
+  const float t199 = -t186 * beta[63] + t187 * beta[64];
+  const float t200 = -s6 * t199 + c6 * t197;
+  const float t201 = beta[39] - t198 + 0.2155f * t200;
+  const float t202 = -c6 * beta[52] + s6 * beta[53] + t194;
+  const float t203 = beta[38] - s6 * t189 + c6 * t195 + 0.2155f * t202;
+  const float t204 = beta[41] - t202;
+  const float t205 = -beta[42] + t200;
+  const float t206 = c5 * t204 + s5 * t205;
+  const float t207 = s5 * t201 - c5 * t203 + 0.1845f * t206;
+  const float t208 = c4 * t196 + s4 * t207;
+  const float t209 = s5 * t204 - c5 * t205;
+  const float t210 = c5 * t201 + s5 * t203 - 0.1845f * t209;
+  const float t211 = -s4 * (c6 * t199 + s6 * t197) + c4 * t209;
+  const float t212 = -t210 + 0.2155f * t211;
+  const float t213 = -s4 * t196 + c4 * t207 + 0.2155f * t206;
+  M[4] = c2 * t208 + s2 * (s3 * t212 - c3 * t213 + 0.2045f * (-c3 * t206 + s3 * t211));
+  const float t214 = c7 * beta[61];
+  const float t215 = s7 * beta[60];
+  const float t216 = t214 + t215 - 0.081f * c7 * beta[64] - 0.081f * s7 * beta[63];
+  const float t217 = beta[50] + t216;
+  const float t218 = s7 * beta[59];
+  const float t219 = c7 * beta[59] + s7 * beta[58];
+  const float t220 = beta[49] + s7 * t218 - c7 * t219;
+  const float t221 = c6 * t217 + s6 * t220;
+  const float t222 = beta[51] + c7 * t218 + s7 * t219;
+  const float t223 = beta[52] - c7 * beta[63] + s7 * beta[64];
+  const float t224 = -s6 * t223 - c6 * beta[53];
+  const float t225 = -t222 + 0.2155f * t224;
+  const float t226 = -s6 * t217 + c6 * t220;
+  const float t227 = s5 * t224;
+  const float t228 = s5 * t225 - c5 * t226 + 0.1845f * t227;
+  const float t229 = c4 * t221 + s4 * t228;
+  const float t230 = -c5 * t224;
+  const float t231 = c5 * t225 + s5 * t226 - 0.1845f * t230;
+  const float t232 = -s4 * (c6 * t223 - s6 * beta[53]) + c4 * t230;
+  const float t233 = -t231 + 0.2155f * t232;
+  const float t234 = -s4 * t221 + c4 * t228 + 0.2155f * t227;
+  M[5] = c2 * t229 + s2 * (s3 * t233 - c3 * t234 + 0.2045f * (-c3 * t227 + s3 * t232));
+  const float t235 = c7 * beta[63] - s7 * beta[64];
+  const float t236 = s7 * beta[61] - c7 * beta[60] + 0.081f * t235;
+  const float t237 = t185 + s6 * t236;
+  const float t238 = c7 * beta[64] + s7 * beta[63];
+  const float t239 = t214 + t215 - 0.081f * t238;
+  const float t240 = c6 * t238;
+  const float t241 = -t239 + 0.2155f * t240;
+  const float t242 = -s6 * beta[62] + c6 * t236 + 0.2155f * t235;
+  const float t243 = -c5 * t235 + s5 * t240;
+  const float t244 = s5 * t241 - c5 * t242 + 0.1845f * t243;
+  const float t245 = c4 * t237 + s4 * t244;
+  const float t246 = -s5 * t235 - c5 * t240;
+  const float t247 = c5 * t241 + s5 * t242 - 0.1845f * t246;
+  const float t248 = -s4 * s6 * t238 + c4 * t246;
+  const float t249 = -t247 + 0.2155f * t248;
+  const float t250 = -s4 * t237 + c4 * t244 + 0.2155f * t243;
+  M[6] = c2 * t245 + s2 * (s3 * t249 - c3 * t250 + 0.2045f * (-c3 * t243 + s3 * t248));
+  M[7] = c2 * beta[7] + s2 * beta[6] + c3 * t52 + s3 * t54 - 0.2045f * (s3 * t55 - c3 * t56);
+  M[8] = beta[8] + c3 * t103 + s3 * t105 - 0.2045f * (-s3 * t104 - c3 * t102);
+  M[9] = c3 * t146 + s3 * t148 - 0.2045f * (s3 * t149 - c3 * t150);
+  M[10] = c3 * t183 + s3 * t184 - 0.2045f * (-s3 * t177 - c3 * t182);
+  M[11] = c3 * t212 + s3 * t213 - 0.2045f * (-s3 * t206 - c3 * t211);
+  M[12] = c3 * t233 + s3 * t234 - 0.2045f * (-s3 * t227 - c3 * t232);
+  M[13] = c3 * t249 + s3 * t250 - 0.2045f * (-s3 * t243 - c3 * t248);
+  M[14] = t48;
+  M[15] = t99;
+  M[16] = beta[21] + t142;
+  M[17] = t179;
+  M[18] = t208;
+  M[19] = t229;
+  M[20] = t245;
+  M[21] = t50;
+  M[22] = t101;
+  M[23] = t144;
+  M[24] = beta[32] + t181;
+  M[25] = t210;
+  M[26] = t231;
+  M[27] = t247;
+  M[28] = t34;
+  M[29] = t85;
+  M[30] = t128;
+  M[31] = t167;
+  M[32] = beta[43] + t196;
+  M[33] = t221;
+  M[34] = t237;
+  M[35] = t37;
+  M[36] = t88;
+  M[37] = t131;
+  M[38] = t170;
+  M[39] = t198;
+  M[40] = beta[54] + t222;
+  M[41] = t239;
+  M[42] = t25;
+  M[43] = t76;
+  M[44] = t119;
+  M[45] = t158;
+  M[46] = t188;
+  M[47] = t216;
+  M[48] = beta[62] + beta[65];
+}
+
+// idim_regressor with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
+// computing them; identical results.
 void idim_regressor_sincos(const double* q, const double* sin_q, const double* cos_q,
                            const double* dq, const double* ddq, double* W) {
   static_cast<void>(q);
@@ -7426,8 +8068,8 @@ void idim_regressor_sincos(const double* q, const double* sin_q, const double* c
   W[482] = 1.0;
 }
 
-// idim_regressor with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of computing
-// them; identical results.
+// idim_regressor with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
+// computing them; identical results.
 void idim_regressor_sincos(const float* q, const float* sin_q, const float* cos_q,
                            const float* dq, const float* ddq, float* W) {
   static_cast<void>(q);
@@ -8184,11 +8826,10 @@ void idim_regressor_sincos(const float* q, const float* sin_q, const float* cos_
   W[482] = 1.0f;
 }
 
-// inverse_dynamics with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of computing
-// them; identical results.
+// inverse_dynamics with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
+// computing them; identical results.
 void inverse_dynamics_sincos(const double* q, const double* sin_q, const double* cos_q,
-                             const double* dq, const double* ddq, const double* beta,
-                             double* tau) {
+                             const double* dq, const double* ddq, const double* beta, double* tau) {
   static_cast<void>(q);
   const double sg1 = static_cast<double>((dq[0] > 0.0) - (dq[0] < 0.0));
   const double s2 = sin_q[1];
@@ -8337,11 +8978,10 @@ void inverse_dynamics_sincos(const double* q, const double* sin_q, const double*
   tau[6] = beta[68] + ddq[6] * beta[65] + dq[6] * beta[66] + sg7 * beta[67] + t103;
 }
 
-// inverse_dynamics with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of computing
-// them; identical results.
+// inverse_dynamics with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
+// computing them; identical results.
 void inverse_dynamics_sincos(const float* q, const float* sin_q, const float* cos_q,
-                             const float* dq, const float* ddq, const float* beta,
-                             float* tau) {
+                             const float* dq, const float* ddq, const float* beta, float* tau) {
   static_cast<void>(q);
   const float sg1 = static_cast<float>((dq[0] > 0.0f) - (dq[0] < 0.0f));
   const float s2 = sin_q[1];
@@ -8488,6 +9128,644 @@ void inverse_dynamics_sincos(const float* q, const float* sin_q, const float* co
   tau[4] = beta[46] + ddq[4] * beta[43] + dq[4] * beta[44] + sg5 * beta[45] + t111;
   tau[5] = beta[57] + ddq[5] * beta[54] + dq[5] * beta[55] + sg6 * beta[56] + t107;
   tau[6] = beta[68] + ddq[6] * beta[65] + dq[6] * beta[66] + sg7 * beta[67] + t103;
+}
+
+// mass_matrix with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
+// computing them; identical results.
+void mass_matrix_sincos(const double* q, const double* sin_q, const double* cos_q,
+                        const double* beta, double* M) {
+  static_cast<void>(q);
+  const double s2 = sin_q[1];
+  const double c2 = cos_q[1];
+  const double s3 = sin_q[2];
+  const double c3 = cos_q[2];
+  const double s4 = sin_q[3];
+  const double c4 = cos_q[3];
+  const double s5 = sin_q[4];
+  const double c5 = cos_q[4];
+  const double s6 = sin_q[5];
+  const double c6 = cos_q[5];
+  const double s7 = sin_q[6];
+  const double c7 = cos_q[6];
+  const double t0 = s2 * s3;
+  const double t1 = -s2 * c3;
+  const double t2 = c4 * t1 + c2 * s4;
+  const double t3 = -s4 * t1 + c2 * c4;
+  const double t4 = s5 * t2 - c5 * t0;
+  const double t5 = -c5 * t2 - s5 * t0;
+  const double t6 = c6 * t5 + s6 * t3;
+  const double t7 = -s6 * t5 + c6 * t3;
+  const double t8 = s7 * t6 - c7 * t4;
+  const double t9 = -c7 * t6 - s7 * t4;
+  const double t10 = 0.2045 * s2 * s3;
+  const double t11 = t10 + 0.2155 * t0;
+  const double t12 = c4 * t11;
+  const double t13 = t12 + 0.1845 * t0;
+  const double t14 = 0.2045 * s2 * c3;
+  const double t15 = 0.2155 * t1 - t14;
+  const double t16 = t15 + 0.1845 * t2;
+  const double t17 = -c5 * t13 + s5 * t16;
+  const double t18 = t17 + 0.2155 * t4;
+  const double t19 = -s4 * t11;
+  const double t20 = c6 * t18 + s6 * t19;
+  const double t21 = t20 + 0.081 * t4;
+  const double t22 = s5 * t13 + c5 * t16;
+  const double t23 = 0.2155 * t5 - t22;
+  const double t24 = t23 + 0.081 * t6;
+  const double t25 = t7 * beta[62] + t8 * beta[61] + t9 * beta[60] - (-c7 * t21 + s7 * t24) * beta[64] + (s7 * t21 + c7 * t24) * beta[63];
+  const double t26 = -t4 * beta[50] + t6 * beta[48] + t25 - t23 * beta[52];
+  const double t27 = -s6 * t18 + c6 * t19;
+  const double t28 = t7 * beta[61] + t9 * beta[59] - t27 * beta[63];
+  const double t29 = t7 * beta[60] + t8 * beta[59] + t9 * beta[58] + t27 * beta[64];
+  const double t30 = t7 * beta[63];
+  const double t31 = -t7 * beta[64];
+  const double t32 = c7 * t30 + s7 * t31;
+  const double t33 = -t4 * beta[49] + t7 * beta[48] + t6 * beta[47] + s7 * t28 - c7 * t29 + 0.081 * t32 + t23 * beta[53];
+  const double t34 = t3 * beta[40] + t4 * beta[39] + t5 * beta[38] + c6 * t26 + s6 * t33 - t17 * beta[42] + t22 * beta[41];
+  const double t35 = -t0 * beta[28] + t2 * beta[26] + t34 - t15 * beta[30];
+  const double t36 = s7 * t30 - c7 * t31;
+  const double t37 = -t4 * beta[51] + t7 * beta[50] + t6 * beta[49] + c7 * t28 + s7 * t29 - 0.081 * t36 - t20 * beta[53] + t27 * beta[52];
+  const double t38 = -t8 * beta[63] + t9 * beta[64] - t4 * beta[52];
+  const double t39 = t4 * beta[53] + t36;
+  const double t40 = -s6 * t38 + c6 * t39;
+  const double t41 = t3 * beta[39] + t5 * beta[37] - t37 + 0.2155 * t40 - t19 * beta[41];
+  const double t42 = -t7 * beta[52] + t6 * beta[53] + t32;
+  const double t43 = t3 * beta[38] + t4 * beta[37] + t5 * beta[36] - s6 * t26 + c6 * t33 + 0.2155 * t42 + t19 * beta[42];
+  const double t44 = t3 * beta[41] - t42;
+  const double t45 = -t3 * beta[42] + t40;
+  const double t46 = c5 * t44 + s5 * t45;
+  const double t47 = -t0 * beta[27] + t3 * beta[26] + t2 * beta[25] + s5 * t41 - c5 * t43 + 0.1845 * t46 + t15 * beta[31];
+  const double t48 = c2 * beta[18] + t0 * beta[17] + t1 * beta[16] + c4 * t35 + s4 * t47 - t10 * beta[20] + t14 * beta[19];
+  const double t49 = s5 * t44 - c5 * t45;
+  const double t50 = -t0 * beta[29] + t3 * beta[28] + t2 * beta[27] + c5 * t41 + s5 * t43 - 0.1845 * t49 - t12 * beta[31] + t19 * beta[30];
+  const double t51 = -s4 * (-t0 * beta[30] - t4 * beta[41] + t5 * beta[42] + c6 * t38 + s6 * t39) + c4 * (t0 * beta[31] + t49);
+  const double t52 = c2 * beta[17] + t1 * beta[15] - t50 + 0.2155 * t51;
+  const double t53 = -t3 * beta[30] + t2 * beta[31] + t46;
+  const double t54 = c2 * beta[16] + t0 * beta[15] + t1 * beta[14] - s4 * t35 + c4 * t47 + 0.2155 * t53;
+  const double t55 = c2 * beta[19] - t53;
+  const double t56 = -c2 * beta[20] + t51;
+  M[0] = beta[0] + c2 * (s2 * beta[5] + t48) + s2 * (c2 * beta[5] + s2 * beta[4] + s3 * t52 - c3 * t54 + 0.2045 * (c3 * t55 + s3 * t56));
+  const double t57 = s3 * c4;
+  const double t58 = -s3 * s4;
+  const double t59 = s5 * t57 - c3 * c5;
+  const double t60 = -c5 * t57 - c3 * s5;
+  const double t61 = c6 * t60 + s6 * t58;
+  const double t62 = -s6 * t60 + c6 * t58;
+  const double t63 = s7 * t61 - c7 * t59;
+  const double t64 = -c7 * t61 - s7 * t59;
+  const double t65 = 0.42 * c3 * c4;
+  const double t66 = t65 + 0.1845 * c3;
+  const double t67 = 0.42 * s3 + 0.1845 * t57;
+  const double t68 = -c5 * t66 + s5 * t67;
+  const double t69 = t68 + 0.2155 * t59;
+  const double t70 = -0.42 * c3 * s4;
+  const double t71 = c6 * t69 + s6 * t70;
+  const double t72 = t71 + 0.081 * t59;
+  const double t73 = s5 * t66 + c5 * t67;
+  const double t74 = 0.2155 * t60 - t73;
+  const double t75 = t74 + 0.081 * t61;
+  const double t76 = t62 * beta[62] + t63 * beta[61] + t64 * beta[60] - (-c7 * t72 + s7 * t75) * beta[64] + (s7 * t72 + c7 * t75) * beta[63];
+  const double t77 = -t59 * beta[50] + t61 * beta[48] + t76 - t74 * beta[52];
+  const double t78 = -s6 * t69 + c6 * t70;
+  const double t79 = t62 * beta[61] + t64 * beta[59] - t78 * beta[63];
+  const double t80 = t62 * beta[60] + t63 * beta[59] + t64 * beta[58] + t78 * beta[64];
+  const double t81 = t62 * beta[63];
+  const double t82 = -t62 * beta[64];
+  const double t83 = c7 * t81 + s7 * t82;
+  const double t84 = -t59 * beta[49] + t62 * beta[48] + t61 * beta[47] + s7 * t79 - c7 * t80 + 0.081 * t83 + t74 * beta[53];
+  const double t85 = t58 * beta[40] + t59 * beta[39] + t60 * beta[38] + c6 * t77 + s6 * t84 - t68 * beta[42] + t73 * beta[41];
+  const double t86 = -c3 * beta[28] + t57 * beta[26] + t85 - 0.42 * s3 * beta[30];
+  const double t87 = s7 * t81 - c7 * t82;
+  const double t88 = -t59 * beta[51] + t62 * beta[50] + t61 * beta[49] + c7 * t79 + s7 * t80 - 0.081 * t87 - t71 * beta[53] + t78 * beta[52];
+  const double t89 = -t63 * beta[63] + t64 * beta[64] - t59 * beta[52];
+  const double t90 = t59 * beta[53] + t87;
+  const double t91 = -s6 * t89 + c6 * t90;
+  const double t92 = t58 * beta[39] + t60 * beta[37] - t88 + 0.2155 * t91 - t70 * beta[41];
+  const double t93 = -t62 * beta[52] + t61 * beta[53] + t83;
+  const double t94 = t58 * beta[38] + t59 * beta[37] + t60 * beta[36] - s6 * t77 + c6 * t84 + 0.2155 * t93 + t70 * beta[42];
+  const double t95 = t58 * beta[41] - t93;
+  const double t96 = -t58 * beta[42] + t91;
+  const double t97 = c5 * t95 + s5 * t96;
+  const double t98 = -c3 * beta[27] + t58 * beta[26] + t57 * beta[25] + s5 * t92 - c5 * t94 + 0.1845 * t97 + 0.42 * s3 * beta[31];
+  const double t99 = c3 * beta[17] + s3 * beta[16] + c4 * t86 + s4 * t98 - 0.2045 * c3 * beta[20] - 0.2045 * s3 * beta[19];
+  const double t100 = s5 * t95 - c5 * t96;
+  const double t101 = -c3 * beta[29] + t58 * beta[28] + t57 * beta[27] + c5 * t92 + s5 * t94 - 0.1845 * t100 - t65 * beta[31] + t70 * beta[30];
+  const double t102 = -s4 * (-c3 * beta[30] - t59 * beta[41] + t60 * beta[42] + c6 * t89 + s6 * t90) + c4 * (c3 * beta[31] + t100);
+  const double t103 = s3 * beta[15] - t101 + 0.2155 * t102;
+  const double t104 = -t58 * beta[30] + t57 * beta[31] + t97;
+  const double t105 = c3 * beta[15] + s3 * beta[14] - s4 * t86 + c4 * t98 + 0.2155 * t104;
+  M[1] = c2 * (beta[7] + t99) + s2 * (beta[6] + s3 * t103 - c3 * t105 + 0.2045 * (-c3 * t104 + s3 * t102));
+  const double t106 = s4 * s5;
+  const double t107 = -s4 * c5;
+  const double t108 = c6 * t107 + c4 * s6;
+  const double t109 = -s6 * t107 + c4 * c6;
+  const double t110 = s7 * t108 - c7 * t106;
+  const double t111 = -c7 * t108 - s7 * t106;
+  const double t112 = 0.1845 * s4 * s5;
+  const double t113 = t112 + 0.2155 * t106;
+  const double t114 = c6 * t113;
+  const double t115 = t114 + 0.081 * t106;
+  const double t116 = 0.1845 * s4 * c5;
+  const double t117 = 0.2155 * t107 - t116;
+  const double t118 = t117 + 0.081 * t108;
+  const double t119 = t109 * beta[62] + t110 * beta[61] + t111 * beta[60] - (-c7 * t115 + s7 * t118) * beta[64] + (s7 * t115 + c7 * t118) * beta[63];
+  const double t120 = -t106 * beta[50] + t108 * beta[48] + t119 - t117 * beta[52];
+  const double t121 = -s6 * t113;
+  const double t122 = t109 * beta[61] + t111 * beta[59] - t121 * beta[63];
+  const double t123 = t109 * beta[60] + t110 * beta[59] + t111 * beta[58] + t121 * beta[64];
+  const double t124 = t109 * beta[63];
+  const double t125 = -t109 * beta[64];
+  const double t126 = c7 * t124 + s7 * t125;
+  const double t127 = -t106 * beta[49] + t109 * beta[48] + t108 * beta[47] + s7 * t122 - c7 * t123 + 0.081 * t126 + t117 * beta[53];
+  const double t128 = c4 * beta[40] + t106 * beta[39] + t107 * beta[38] + c6 * t120 + s6 * t127 - t112 * beta[42] + t116 * beta[41];
+  const double t129 = s4 * beta[26] + t128;
+  const double t130 = s7 * t124 - c7 * t125;
+  const double t131 = -t106 * beta[51] + t109 * beta[50] + t108 * beta[49] + c7 * t122 + s7 * t123 - 0.081 * t130 - t114 * beta[53] + t121 * beta[52];
+  const double t132 = -t110 * beta[63] + t111 * beta[64] - t106 * beta[52];
+  const double t133 = t106 * beta[53] + t130;
+  const double t134 = -s6 * t132 + c6 * t133;
+  const double t135 = c4 * beta[39] + t107 * beta[37] - t131 + 0.2155 * t134;
+  const double t136 = -t109 * beta[52] + t108 * beta[53] + t126;
+  const double t137 = c4 * beta[38] + t106 * beta[37] + t107 * beta[36] - s6 * t120 + c6 * t127 + 0.2155 * t136;
+  const double t138 = c4 * beta[41] - t136;
+  const double t139 = -c4 * beta[42] + t134;
+  const double t140 = c5 * t138 + s5 * t139;
+  const double t141 = c4 * beta[26] + s4 * beta[25] + s5 * t135 - c5 * t137 + 0.1845 * t140;
+  const double t142 = beta[18] + c4 * t129 + s4 * t141;
+  const double t143 = s5 * t138 - c5 * t139;
+  const double t144 = c4 * beta[28] + s4 * beta[27] + c5 * t135 + s5 * t137 - 0.1845 * t143;
+  const double t145 = -s4 * (-t106 * beta[41] + t107 * beta[42] + c6 * t132 + s6 * t133) + c4 * t143;
+  const double t146 = beta[17] - t144 + 0.2155 * t145;
+  const double t147 = -c4 * beta[30] + s4 * beta[31] + t140;
+  const double t148 = beta[16] - s4 * t129 + c4 * t141 + 0.2155 * t147;
+  const double t149 = beta[19] - t147;
+  const double t150 = -beta[20] + t145;
+  M[2] = c2 * t142 + s2 * (s3 * t146 - c3 * t148 + 0.2045 * (c3 * t149 + s3 * t150));
+  const double t151 = s5 * c6;
+  const double t152 = -s5 * s6;
+  const double t153 = s7 * t151 - c5 * c7;
+  const double t154 = -c7 * t151 - c5 * s7;
+  const double t155 = 0.4 * c5 * c6;
+  const double t156 = t155 + 0.081 * c5;
+  const double t157 = 0.4 * s5 + 0.081 * t151;
+  const double t158 = t152 * beta[62] + t153 * beta[61] + t154 * beta[60] - (-c7 * t156 + s7 * t157) * beta[64] + (s7 * t156 + c7 * t157) * beta[63];
+  const double t159 = -c5 * beta[50] + t151 * beta[48] + t158 - 0.4 * s5 * beta[52];
+  const double t160 = -0.4 * c5 * s6;
+  const double t161 = t152 * beta[61] + t154 * beta[59] - t160 * beta[63];
+  const double t162 = t152 * beta[60] + t153 * beta[59] + t154 * beta[58] + t160 * beta[64];
+  const double t163 = t152 * beta[63];
+  const double t164 = -t152 * beta[64];
+  const double t165 = c7 * t163 + s7 * t164;
+  const double t166 = -c5 * beta[49] + t152 * beta[48] + t151 * beta[47] + s7 * t161 - c7 * t162 + 0.081 * t165 + 0.4 * s5 * beta[53];
+  const double t167 = c5 * beta[39] + s5 * beta[38] + c6 * t159 + s6 * t166 - 0.1845 * c5 * beta[42] - 0.1845 * s5 * beta[41];
+  const double t168 = beta[28] + t167;
+  const double t169 = s7 * t163 - c7 * t164;
+  const double t170 = -c5 * beta[51] + t152 * beta[50] + t151 * beta[49] + c7 * t161 + s7 * t162 - 0.081 * t169 - t155 * beta[53] + t160 * beta[52];
+  const double t171 = -t153 * beta[63] + t154 * beta[64] - c5 * beta[52];
+  const double t172 = c5 * beta[53] + t169;
+  const double t173 = -s6 * t171 + c6 * t172;
+  const double t174 = s5 * beta[37] - t170 + 0.2155 * t173;
+  const double t175 = -t152 * beta[52] + t151 * beta[53] + t165;
+  const double t176 = c5 * beta[37] + s5 * beta[36] - s6 * t159 + c6 * t166 + 0.2155 * t175;
+  const double t177 = -c5 * t175 + s5 * t173;
+  const double t178 = beta[27] + s5 * t174 - c5 * t176 + 0.1845 * t177;
+  const double t179 = c4 * t168 + s4 * t178;
+  const double t180 = -s5 * t175 - c5 * t173;
+  const double t181 = beta[29] + c5 * t174 + s5 * t176 - 0.1845 * t180;
+  const double t182 = -s4 * (beta[30] - c5 * beta[41] + s5 * beta[42] + c6 * t171 + s6 * t172) + c4 * (-beta[31] + t180);
+  const double t183 = -t181 + 0.2155 * t182;
+  const double t184 = -s4 * t168 + c4 * t178 + 0.2155 * t177;
+  M[3] = c2 * t179 + s2 * (s3 * t183 - c3 * t184 + 0.2045 * (-c3 * t177 + s3 * t182));
+  const double t185 = c6 * beta[62];
+  const double t186 = s6 * s7;
+  const double t187 = -s6 * c7;
+  const double t188 = t185 + t186 * beta[61] + t187 * beta[60] - 0.081 * s6 * s7 * beta[64] + 0.081 * s6 * c7 * beta[63];
+  const double t189 = s6 * beta[48] + t188;
+  const double t190 = c6 * beta[61] + t187 * beta[59];
+  const double t191 = c6 * beta[60] + t186 * beta[59] + t187 * beta[58];
+  const double t192 = c6 * beta[63];
+  const double t193 = -c6 * beta[64];
+  const double t194 = c7 * t192 + s7 * t193;
+  const double t195 = c6 * beta[48] + s6 * beta[47] + s7 * t190 - c7 * t191 + 0.081 * t194;
+  const double t196 = beta[40] + c6 * t189 + s6 * t195;
+  const double t197 = s7 * t192 - c7 * t193;
+  const double t198 = c6 * beta[50] + s6 * beta[49] + c7 * t190 + s7 * t191 - 0.081 * t197;
+  const double t199 = -t186 * beta[63] + t187 * beta[64];
+  const double t200 = -s6 * t199 + c6 * t197;
+  const double t201 = beta[39] - t198 + 0.2155 * t200;
+  const double t202 = -c6 * beta[52] + s6 * beta[53] + t194;
+  const double t203 = beta[38] - s6 * t189 + c6 * t195 + 0.2155 * t202;
+  const double t204 = beta[41] - t202;
+  const double t205 = -beta[42] + t200;
+  const double t206 = c5 * t204 + s5 * t205;
+  const double t207 = s5 * t201 - c5 * t203 + 0.1845 * t206;
+  const double t208 = c4 * t196 + s4 * t207;
+  const double t209 = s5 * t204 - c5 * t205;
+  const double t210 = c5 * t201 + s5 * t203 - 0.1845 * t209;
+  const double t211 = -s4 * (c6 * t199 + s6 * t197) + c4 * t209;
+  const double t212 = -t210 + 0.2155 * t211;
+  const double t213 = -s4 * t196 + c4 * t207 + 0.2155 * t206;
+  M[4] = c2 * t208 + s2 * (s3 * t212 - c3 * t213 + 0.2045 * (-c3 * t206 + s3 * t211));
+  const double t214 = c7 * beta[61];
+  const double t215 = s7 * beta[60];
+  const double t216 = t214 + t215 - 0.081 * c7 * beta[64] - 0.081 * s7 * beta[63];
+  const double t217 = beta[50] + t216;
+  const double t218 = s7 * beta[59];
+  const double t219 = c7 * beta[59] + s7 * beta[58];
+  const double t220 = beta[49] + s7 * t218 - c7 * t219;
+  const double t221 = c6 * t217 + s6 * t220;
+  const double t222 = beta[51] + c7 * t218 + s7 * t219;
+  const double t223 = beta[52] - c7 * beta[63] + s7 * beta[64];
+  const double t224 = -s6 * t223 - c6 * beta[53];
+  const double t225 = -t222 + 0.2155 * t224;
+  const double t226 = -s6 * t217 + c6 * t220;
+  const double t227 = s5 * t224;
+  const double t228 = s5 * t225 - c5 * t226 + 0.1845 * t227;
+  const double t229 = c4 * t221 + s4 * t228;
+  const double t230 = -c5 * t224;
+  const double t231 = c5 * t225 + s5 * t226 - 0.1845 * t230;
+  const double t232 = -s4 * (c6 * t223 - s6 * beta[53]) + c4 * t230;
+  const double t233 = -t231 + 0.2155 * t232;
+  const double t234 = -s4 * t221 + c4 * t228 + 0.2155 * t227;
+  M[5] = c2 * t229 + s2 * (s3 * t233 - c3 * t234 + 0.2045 * (-c3 * t227 + s3 * t232));
+  const double t235 = c7 * beta[63] - s7 * beta[64];
+  const double t236 = s7 * beta[61] - c7 * beta[60] + 0.081 * t235;
+  const double t237 = t185 + s6 * t236;
+  const double t238 = c7 * beta[64] + s7 * beta[63];
+  const double t239 = t214 + t215 - 0.081 * t238;
+  const double t240 = c6 * t238;
+  const double t241 = -t239 + 0.2155 * t240;
+  const double t242 = -s6 * beta[62] + c6 * t236 + 0.2155 * t235;
+  const double t243 = -c5 * t235 + s5 * t240;
+  const double t244 = s5 * t241 - c5 * t242 + 0.1845 * t243;
+  const double t245 = c4 * t237 + s4 * t244;
+  const double t246 = -s5 * t235 - c5 * t240;
+  const double t247 = c5 * t241 + s5 * t242 - 0.1845 * t246;
+  const double t248 = -s4 * s6 * t238 + c4 * t246;
+  const double t249 = -t247 + 0.2155 * t248;
+  const double t250 = -s4 * t237 + c4 * t244 + 0.2155 * t243;
+  M[6] = c2 * t245 + s2 * (s3 * t249 - c3 * t250 + 0.2045 * (-c3 * t243 + s3 * t248));
+  M[7] = c2 * beta[7] + s2 * beta[6] + c3 * t52 + s3 * t54 - 0.2045 * (s3 * t55 - c3 * t56);
+  M[8] = beta[8] + c3 * t103 + s3 * t105 - 0.2045 * (-s3 * t104 - c3 * t102);
+  M[9] = c3 * t146 + s3 * t148 - 0.2045 * (s3 * t149 - c3 * t150);
+  M[10] = c3 * t183 + s3 * t184 - 0.2045 * (-s3 * t177 - c3 * t182);
+  M[11] = c3 * t212 + s3 * t213 - 0.2045 * (-s3 * t206 - c3 * t211);
+  M[12] = c3 * t233 + s3 * t234 - 0.2045 * (-s3 * t227 - c3 * t232);
+  M[13] = c3 * t249 + s3 * t250 - 0.2045 * (-s3 * t243 - c3 * t248);
+  M[14] = t48;
+  M[15] = t99;
+  M[16] = beta[21] + t142;
+  M[17] = t179;
+  M[18] = t208;
+  M[19] = t229;
+  M[20] = t245;
+  M[21] = t50;
+  M[22] = t101;
+  M[23] = t144;
+  M[24] = beta[32] + t181;
+  M[25] = t210;
+  M[26] = t231;
+  M[27] = t247;
+  M[28] = t34;
+  M[29] = t85;
+  M[30] = t128;
+  M[31] = t167;
+  M[32] = beta[43] + t196;
+  M[33] = t221;
+  M[34] = t237;
+  M[35] = t37;
+  M[36] = t88;
+  M[37] = t131;
+  M[38] = t170;
+  M[39] = t198;
+  M[40] = beta[54] + t222;
+  M[41] = t239;
+  M[42] = t25;
+  M[43] = t76;
+  M[44] = t119;
+  M[45] = t158;
+  M[46] = t188;
+  M[47] = t216;
+  M[48] = beta[62] + beta[65];
+}
+
+// mass_matrix with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
+// computing them; identical results.
+void mass_matrix_sincos(const float* q, const float* sin_q, const float* cos_q, const float* beta,
+                        float* M) {
+  static_cast<void>(q);
+  const float s2 = sin_q[1];
+  const float c2 = cos_q[1];
+  const float s3 = sin_q[2];
+  const float c3 = cos_q[2];
+  const float s4 = sin_q[3];
+  const float c4 = cos_q[3];
+  const float s5 = sin_q[4];
+  const float c5 = cos_q[4];
+  const float s6 = sin_q[5];
+  const float c6 = cos_q[5];
+  const float s7 = sin_q[6];
+  const float c7 = cos_q[6];
+  const float t0 = s2 * s3;
+  const float t1 = -s2 * c3;
+  const float t2 = c4 * t1 + c2 * s4;
+  const float t3 = -s4 * t1 + c2 * c4;
+  const float t4 = s5 * t2 - c5 * t0;
+  const float t5 = -c5 * t2 - s5 * t0;
+  const float t6 = c6 * t5 + s6 * t3;
+  const float t7 = -s6 * t5 + c6 * t3;
+  const float t8 = s7 * t6 - c7 * t4;
+  const float t9 = -c7 * t6 - s7 * t4;
+  const float t10 = 0.2045f * s2 * s3;
+  const float t11 = t10 + 0.2155f * t0;
+  const float t12 = c4 * t11;
+  const float t13 = t12 + 0.1845f * t0;
+  const float t14 = 0.2045f * s2 * c3;
+  const float t15 = 0.2155f * t1 - t14;
+  const float t16 = t15 + 0.1845f * t2;
+  const float t17 = -c5 * t13 + s5 * t16;
+  const float t18 = t17 + 0.2155f * t4;
+  const float t19 = -s4 * t11;
+  const float t20 = c6 * t18 + s6 * t19;
+  const float t21 = t20 + 0.081f * t4;
+  const float t22 = s5 * t13 + c5 * t16;
+  const float t23 = 0.2155f * t5 - t22;
+  const float t24 = t23 + 0.081f * t6;
+  const float t25 = t7 * beta[62] + t8 * beta[61] + t9 * beta[60] - (-c7 * t21 + s7 * t24) * beta[64] + (s7 * t21 + c7 * t24) * beta[63];
+  const float t26 = -t4 * beta[50] + t6 * beta[48] + t25 - t23 * beta[52];
+  const float t27 = -s6 * t18 + c6 * t19;
+  const float t28 = t7 * beta[61] + t9 * beta[59] - t27 * beta[63];
+  const float t29 = t7 * beta[60] + t8 * beta[59] + t9 * beta[58] + t27 * beta[64];
+  const float t30 = t7 * beta[63];
+  const float t31 = -t7 * beta[64];
+  const float t32 = c7 * t30 + s7 * t31;
+  const float t33 = -t4 * beta[49] + t7 * beta[48] + t6 * beta[47] + s7 * t28 - c7 * t29 + 0.081f * t32 + t23 * beta[53];
+  const float t34 = t3 * beta[40] + t4 * beta[39] + t5 * beta[38] + c6 * t26 + s6 * t33 - t17 * beta[42] + t22 * beta[41];
+  const float t35 = -t0 * beta[28] + t2 * beta[26] + t34 - t15 * beta[30];
+  const float t36 = s7 * t30 - c7 * t31;
+  const float t37 = -t4 * beta[51] + t7 * beta[50] + t6 * beta[49] + c7 * t28 + s7 * t29 - 0.081f * t36 - t20 * beta[53] + t27 * beta[52];
+  const float t38 = -t8 * beta[63] + t9 * beta[64] - t4 * beta[52];
+  const float t39 = t4 * beta[53] + t36;
+  const float t40 = -s6 * t38 + c6 * t39;
+  const float t41 = t3 * beta[39] + t5 * beta[37] - t37 + 0.2155f * t40 - t19 * beta[41];
+  const float t42 = -t7 * beta[52] + t6 * beta[53] + t32;
+  const float t43 = t3 * beta[38] + t4 * beta[37] + t5 * beta[36] - s6 * t26 + c6 * t33 + 0.2155f * t42 + t19 * beta[42];
+  const float t44 = t3 * beta[41] - t42;
+  const float t45 = -t3 * beta[42] + t40;
+  const float t46 = c5 * t44 + s5 * t45;
+  const float t47 = -t0 * beta[27] + t3 * beta[26] + t2 * beta[25] + s5 * t41 - c5 * t43 + 0.1845f * t46 + t15 * beta[31];
+  const float t48 = c2 * beta[18] + t0 * beta[17] + t1 * beta[16] + c4 * t35 + s4 * t47 - t10 * beta[20] + t14 * beta[19];
+  const float t49 = s5 * t44 - c5 * t45;
+  const float t50 = -t0 * beta[29] + t3 * beta[28] + t2 * beta[27] + c5 * t41 + s5 * t43 - 0.1845f * t49 - t12 * beta[31] + t19 * beta[30];
+  const float t51 = -s4 * (-t0 * beta[30] - t4 * beta[41] + t5 * beta[42] + c6 * t38 + s6 * t39) + c4 * (t0 * beta[31] + t49);
+  const float t52 = c2 * beta[17] + t1 * beta[15] - t50 + 0.2155f * t51;
+  const float t53 = -t3 * beta[30] + t2 * beta[31] + t46;
+  const float t54 = c2 * beta[16] + t0 * beta[15] + t1 * beta[14] - s4 * t35 + c4 * t47 + 0.2155f * t53;
+  const float t55 = c2 * beta[19] - t53;
+  const float t56 = -c2 * beta[20] + t51;
+  M[0] = beta[0] + c2 * (s2 * beta[5] + t48) + s2 * (c2 * beta[5] + s2 * beta[4] + s3 * t52 - c3 * t54 + 0.2045f * (c3 * t55 + s3 * t56));
+  const float t57 = s3 * c4;
+  const float t58 = -s3 * s4;
+  const float t59 = s5 * t57 - c3 * c5;
+  const float t60 = -c5 * t57 - c3 * s5;
+  const float t61 = c6 * t60 + s6 * t58;
+  const float t62 = -s6 * t60 + c6 * t58;
+  const float t63 = s7 * t61 - c7 * t59;
+  const float t64 = -c7 * t61 - s7 * t59;
+  const float t65 = 0.42f * c3 * c4;
+  const float t66 = t65 + 0.1845f * c3;
+  const float t67 = 0.42f * s3 + 0.1845f * t57;
+  const float t68 = -c5 * t66 + s5 * t67;
+  const float t69 = t68 + 0.2155f * t59;
+  const float t70 = -0.42f * c3 * s4;
+  const float t71 = c6 * t69 + s6 * t70;
+  const float t72 = t71 + 0.081f * t59;
+  const float t73 = s5 * t66 + c5 * t67;
+  const float t74 = 0.2155f * t60 - t73;
+  const float t75 = t74 + 0.081f * t61;
+  const float t76 = t62 * beta[62] + t63 * beta[61] + t64 * beta[60] - (-c7 * t72 + s7 * t75) * beta[64] + (s7 * t72 + c7 * t75) * beta[63];
+  const float t77 = -t59 * beta[50] + t61 * beta[48] + t76 - t74 * beta[52];
+  const float t78 = -s6 * t69 + c6 * t70;
+  const float t79 = t62 * beta[61] + t64 * beta[59] - t78 * beta[63];
+  const float t80 = t62 * beta[60] + t63 * beta[59] + t64 * beta[58] + t78 * beta[64];
+  const float t81 = t62 * beta[63];
+  const float t82 = -t62 * beta[64];
+  const float t83 = c7 * t81 + s7 * t82;
+  const float t84 = -t59 * beta[49] + t62 * beta[48] + t61 * beta[47] + s7 * t79 - c7 * t80 + 0.081f * t83 + t74 * beta[53];
+  const float t85 = t58 * beta[40] + t59 * beta[39] + t60 * beta[38] + c6 * t77 + s6 * t84 - t68 * beta[42] + t73 * beta[41];
+  const float t86 = -c3 * beta[28] + t57 * beta[26] + t85 - 0.42f * s3 * beta[30];
+  const float t87 = s7 * t81 - c7 * t82;
+  const float t88 = -t59 * beta[51] + t62 * beta[50] + t61 * beta[49] + c7 * t79 + s7 * t80 - 0.081f * t87 - t71 * beta[53] + t78 * beta[52];
+  const float t89 = -t63 * beta[63] + t64 * beta[64] - t59 * beta[52];
+  const float t90 = t59 * beta[53] + t87;
+  const float t91 = -s6 * t89 + c6 * t90;
+  const float t92 = t58 * beta[39] + t60 * beta[37] - t88 + 0.2155f * t91 - t70 * beta[41];
+  const float t93 = -t62 * beta[52] + t61 * beta[53] + t83;
+  const float t94 = t58 * beta[38] + t59 * beta[37] + t60 * beta[36] - s6 * t77 + c6 * t84 + 0.2155f * t93 + t70 * beta[42];
+  const float t95 = t58 * beta[41] - t93;
+  const float t96 = -t58 * beta[42] + t91;
+  const float t97 = c5 * t95 + s5 * t96;
+  const float t98 = -c3 * beta[27] + t58 * beta[26] + t57 * beta[25] + s5 * t92 - c5 * t94 + 0.1845f * t97 + 0.42f * s3 * beta[31];
+  const float t99 = c3 * beta[17] + s3 * beta[16] + c4 * t86 + s4 * t98 - 0.2045f * c3 * beta[20] - 0.2045f * s3 * beta[19];
+  const float t100 = s5 * t95 - c5 * t96;
+  const float t101 = -c3 * beta[29] + t58 * beta[28] + t57 * beta[27] + c5 * t92 + s5 * t94 - 0.1845f * t100 - t65 * beta[31] + t70 * beta[30];
+  const float t102 = -s4 * (-c3 * beta[30] - t59 * beta[41] + t60 * beta[42] + c6 * t89 + s6 * t90) + c4 * (c3 * beta[31] + t100);
+  const float t103 = s3 * beta[15] - t101 + 0.2155f * t102;
+  const float t104 = -t58 * beta[30] + t57 * beta[31] + t97;
+  const float t105 = c3 * beta[15] + s3 * beta[14] - s4 * t86 + c4 * t98 + 0.2155f * t104;
+  M[1] = c2 * (beta[7] + t99) + s2 * (beta[6] + s3 * t103 - c3 * t105 + 0.2045f * (-c3 * t104 + s3 * t102));
+  const float t106 = s4 * s5;
+  const float t107 = -s4 * c5;
+  const float t108 = c6 * t107 + c4 * s6;
+  const float t109 = -s6 * t107 + c4 * c6;
+  const float t110 = s7 * t108 - c7 * t106;
+  const float t111 = -c7 * t108 - s7 * t106;
+  const float t112 = 0.1845f * s4 * s5;
+  const float t113 = t112 + 0.2155f * t106;
+  const float t114 = c6 * t113;
+  const float t115 = t114 + 0.081f * t106;
+  const float t116 = 0.1845f * s4 * c5;
+  const float t117 = 0.2155f * t107 - t116;
+  const float t118 = t117 + 0.081f * t108;
+  const float t119 = t109 * beta[62] + t110 * beta[61] + t111 * beta[60] - (-c7 * t115 + s7 * t118) * beta[64] + (s7 * t115 + c7 * t118) * beta[63];
+  const float t120 = -t106 * beta[50] + t108 * beta[48] + t119 - t117 * beta[52];
+  const float t121 = -s6 * t113;
+  const float t122 = t109 * beta[61] + t111 * beta[59] - t121 * beta[63];
+  const float t123 = t109 * beta[60] + t110 * beta[59] + t111 * beta[58] + t121 * beta[64];
+  const float t124 = t109 * beta[63];
+  const float t125 = -t109 * beta[64];
+  const float t126 = c7 * t124 + s7 * t125;
+  const float t127 = -t106 * beta[49] + t109 * beta[48] + t108 * beta[47] + s7 * t122 - c7 * t123 + 0.081f * t126 + t117 * beta[53];
+  const float t128 = c4 * beta[40] + t106 * beta[39] + t107 * beta[38] + c6 * t120 + s6 * t127 - t112 * beta[42] + t116 * beta[41];
+  const float t129 = s4 * beta[26] + t128;
+  const float t130 = s7 * t124 - c7 * t125;
+  const float t131 = -t106 * beta[51] + t109 * beta[50] + t108 * beta[49] + c7 * t122 + s7 * t123 - 0.081f * t130 - t114 * beta[53] + t121 * beta[52];
+  const float t132 = -t110 * beta[63] + t111 * beta[64] - t106 * beta[52];
+  const float t133 = t106 * beta[53] + t130;
+  const float t134 = -s6 * t132 + c6 * t133;
+  const float t135 = c4 * beta[39] + t107 * beta[37] - t131 + 0.2155f * t134;
+  const float t136 = -t109 * beta[52] + t108 * beta[53] + t126;
+  const float t137 = c4 * beta[38] + t106 * beta[37] + t107 * beta[36] - s6 * t120 + c6 * t127 + 0.2155f * t136;
+  const float t138 = c4 * beta[41] - t136;
+  const float t139 = -c4 * beta[42] + t134;
+  const float t140 = c5 * t138 + s5 * t139;
+  const float t141 = c4 * beta[26] + s4 * beta[25] + s5 * t135 - c5 * t137 + 0.1845f * t140;
+  const float t142 = beta[18] + c4 * t129 + s4 * t141;
+  const float t143 = s5 * t138 - c5 * t139;
+  const float t144 = c4 * beta[28] + s4 * beta[27] + c5 * t135 + s5 * t137 - 0.1845f * t143;
+  const float t145 = -s4 * (-t106 * beta[41] + t107 * beta[42] + c6 * t132 + s6 * t133) + c4 * t143;
+  const float t146 = beta[17] - t144 + 0.2155f * t145;
+  const float t147 = -c4 * beta[30] + s4 * beta[31] + t140;
+  const float t148 = beta[16] - s4 * t129 + c4 * t141 + 0.2155f * t147;
+  const float t149 = beta[19] - t147;
+  const float t150 = -beta[20] + t145;
+  M[2] = c2 * t142 + s2 * (s3 * t146 - c3 * t148 + 0.2045f * (c3 * t149 + s3 * t150));
+  const float t151 = s5 * c6;
+  const float t152 = -s5 * s6;
+  const float t153 = s7 * t151 - c5 * c7;
+  const float t154 = -c7 * t151 - c5 * s7;
+  const float t155 = 0.4f * c5 * c6;
+  const float t156 = t155 + 0.081f * c5;
+  const float t157 = 0.4f * s5 + 0.081f * t151;
+  const float t158 = t152 * beta[62] + t153 * beta[61] + t154 * beta[60] - (-c7 * t156 + s7 * t157) * beta[64] + (s7 * t156 + c7 * t157) * beta[63];
+  const float t159 = -c5 * beta[50] + t151 * beta[48] + t158 - 0.4f * s5 * beta[52];
+  const float t160 = -0.4f * c5 * s6;
+  const float t161 = t152 * beta[61] + t154 * beta[59] - t160 * beta[63];
+  const float t162 = t152 * beta[60] + t153 * beta[59] + t154 * beta[58] + t160 * beta[64];
+  const float t163 = t152 * beta[63];
+  const float t164 = -t152 * beta[64];
+  const float t165 = c7 * t163 + s7 * t164;
+  const float t166 = -c5 * beta[49] + t152 * beta[48] + t151 * beta[47] + s7 * t161 - c7 * t162 + 0.081f * t165 + 0.4f * s5 * beta[53];
+  const float t167 = c5 * beta[39] + s5 * beta[38] + c6 * t159 + s6 * t166 - 0.1845f * c5 * beta[42] - 0.1845f * s5 * beta[41];
+  const float t168 = beta[28] + t167;
+  const float t169 = s7 * t163 - c7 * t164;
+  const float t170 = -c5 * beta[51] + t152 * beta[50] + t151 * beta[49] + c7 * t161 + s7 * t162 - 0.081f * t169 - t155 * beta[53] + t160 * beta[52];
+  const float t171 = -t153 * beta[63] + t154 * beta[64] - c5 * beta[52];
+  const float t172 = c5 * beta[53] + t169;
+  const float t173 = -s6 * t171 + c6 * t172;
+  const float t174 = s5 * beta[37] - t170 + 0.2155f * t173;
+  const float t175 = -t152 * beta[52] + t151 * beta[53] + t165;
+  const float t176 = c5 * beta[37] + s5 * beta[36] - s6 * t159 + c6 * t166 + 0.2155f * t175;
+  const float t177 = -c5 * t175 + s5 * t173;
+  const float t178 = beta[27] + s5 * t174 - c5 * t176 + 0.1845f * t177;
+  const float t179 = c4 * t168 + s4 * t178;
+  const float t180 = -s5 * t175 - c5 * t173;
+  const float t181 = beta[29] + c5 * t174 + s5 * t176 - 0.1845f * t180;
+  const float t182 = -s4 * (beta[30] - c5 * beta[41] + s5 * beta[42] + c6 * t171 + s6 * t172) + c4 * (-beta[31] + t180);
+  const float t183 = -t181 + 0.2155f * t182;
+  const float t184 = -s4 * t168 + c4 * t178 + 0.2155f * t177;
+  M[3] = c2 * t179 + s2 * (s3 * t183 - c3 * t184 + 0.2045f * (-c3 * t177 + s3 * t182));
+  const float t185 = c6 * beta[62];
+  const float t186 = s6 * s7;
+  const float t187 = -s6 * c7;
+  const float t188 = t185 + t186 * beta[61] + t187 * beta[60] - 0.081f * s6 * s7 * beta[64] + 0.081f * s6 * c7 * beta[63];
+  const float t189 = s6 * beta[48] + t188;
+  const float t190 = c6 * beta[61] + t187 * beta[59];
+  const float t191 = c6 * beta[60] + t186 * beta[59] + t187 * beta[58];
+  const float t192 = c6 * beta[63];
+  const float t193 = -c6 * beta[64];
+  const float t194 = c7 * t192 + s7 * t193;
+  const float t195 = c6 * beta[48] + s6 * beta[47] + s7 * t190 - c7 * t191 + 0.081f * t194;
+  const float t196 = beta[40] + c6 * t189 + s6 * t195;
+  const float t197 = s7 * t192 - c7 * t193;
+  const float t198 = c6 * beta[50] + s6 * beta[49] + c7 * t190 + s7 * t191 - 0.081f * t197;
+  const float t199 = -t186 * beta[63] + t187 * beta[64];
+  const float t200 = -s6 * t199 + c6 * t197;
+  const float t201 = beta[39] - t198 + 0.2155f * t200;
+  const float t202 = -c6 * beta[52] + s6 * beta[53] + t194;
+  const float t203 = beta[38] - s6 * t189 + c6 * t195 + 0.2155f * t202;
+  const float t204 = beta[41] - t202;
+  const float t205 = -beta[42] + t200;
+  const float t206 = c5 * t204 + s5 * t205;
+  const float t207 = s5 * t201 - c5 * t203 + 0.1845f * t206;
+  const float t208 = c4 * t196 + s4 * t207;
+  const float t209 = s5 * t204 - c5 * t205;
+  const float t210 = c5 * t201 + s5 * t203 - 0.1845f * t209;
+  const float t211 = -s4 * (c6 * t199 + s6 * t197) + c4 * t209;
+  const float t212 = -t210 + 0.2155f * t211;
+  const float t213 = -s4 * t196 + c4 * t207 + 0.2155f * t206;
+  M[4] = c2 * t208 + s2 * (s3 * t212 - c3 * t213 + 0.2045f * (-c3 * t206 + s3 * t211));
+  const float t214 = c7 * beta[61];
+  const float t215 = s7 * beta[60];
+  const float t216 = t214 + t215 - 0.081f * c7 * beta[64] - 0.081f * s7 * beta[63];
+  const float t217 = beta[50] + t216;
+  const float t218 = s7 * beta[59];
+  const float t219 = c7 * beta[59] + s7 * beta[58];
+  const float t220 = beta[49] + s7 * t218 - c7 * t219;
+  const float t221 = c6 * t217 + s6 * t220;
+  const float t222 = beta[51] + c7 * t218 + s7 * t219;
+  const float t223 = beta[52] - c7 * beta[63] + s7 * beta[64];
+  const float t224 = -s6 * t223 - c6 * beta[53];
+  const float t225 = -t222 + 0.2155f * t224;
+  const float t226 = -s6 * t217 + c6 * t220;
+  const float t227 = s5 * t224;
+  const float t228 = s5 * t225 - c5 * t226 + 0.1845f * t227;
+  const float t229 = c4 * t221 + s4 * t228;
+  const float t230 = -c5 * t224;
+  const float t231 = c5 * t225 + s5 * t226 - 0.1845f * t230;
+  const float t232 = -s4 * (c6 * t223 - s6 * beta[53]) + c4 * t230;
+  const float t233 = -t231 + 0.2155f * t232;
+  const float t234 = -s4 * t221 + c4 * t228 + 0.2155f * t227;
+  M[5] = c2 * t229 + s2 * (s3 * t233 - c3 * t234 + 0.2045f * (-c3 * t227 + s3 * t232));
+  const float t235 = c7 * beta[63] - s7 * beta[64];
+  const float t236 = s7 * beta[61] - c7 * beta[60] + 0.081f * t235;
+  const float t237 = t185 + s6 * t236;
+  const float t238 = c7 * beta[64] + s7 * beta[63];
+  const float t239 = t214 + t215 - 0.081f * t238;
+  const float t240 = c6 * t238;
+  const float t241 = -t239 + 0.2155f * t240;
+  const float t242 = -s6 * beta[62] + c6 * t236 + 0.2155f * t235;
+  const float t243 = -c5 * t235 + s5 * t240;
+  const float t244 = s5 * t241 - c5 * t242 + 0.1845f * t243;
+  const float t245 = c4 * t237 + s4 * t244;
+  const float t246 = -s5 * t235 - c5 * t240;
+  const float t247 = c5 * t241 + s5 * t242 - 0.1845f * t246;
+  const float t248 = -s4 * s6 * t238 + c4 * t246;
+  const float t249 = -t247 + 0.2155f * t248;
+  const float t250 = -s4 * t237 + c4 * t244 + 0.2155f * t243;
+  M[6] = c2 * t245 + s2 * (s3 * t249 - c3 * t250 + 0.2045f * (-c3 * t243 + s3 * t248));
+  M[7] = c2 * beta[7] + s2 * beta[6] + c3 * t52 + s3 * t54 - 0.2045f * (s3 * t55 - c3 * t56);
+  M[8] = beta[8] + c3 * t103 + s3 * t105 - 0.2045f * (-s3 * t104 - c3 * t102);
+  M[9] = c3 * t146 + s3 * t148 - 0.2045f * (s3 * t149 - c3 * t150);
+  M[10] = c3 * t183 + s3 * t184 - 0.2045f * (-s3 * t177 - c3 * t182);
+  M[11] = c3 * t212 + s3 * t213 - 0.2045f * (-s3 * t206 - c3 * t211);
+  M[12] = c3 * t233 + s3 * t234 - 0.2045f * (-s3 * t227 - c3 * t232);
+  M[13] = c3 * t249 + s3 * t250 - 0.2045f * (-s3 * t243 - c3 * t248);
+  M[14] = t48;
+  M[15] = t99;
+  M[16] = beta[21] + t142;
+  M[17] = t179;
+  M[18] = t208;
+  M[19] = t229;
+  M[20] = t245;
+  M[21] = t50;
+  M[22] = t101;
+  M[23] = t144;
+  M[24] = beta[32] + t181;
+  M[25] = t210;
+  M[26] = t231;
+  M[27] = t247;
+  M[28] = t34;
+  M[29] = t85;
+  M[30] = t128;
+  M[31] = t167;
+  M[32] = beta[43] + t196;
+  M[33] = t221;
+  M[34] = t237;
+  M[35] = t37;
+  M[36] = t88;
+  M[37] = t131;
+  M[38] = t170;
+  M[39] = t198;
+  M[40] = beta[54] + t222;
+  M[41] = t239;
+  M[42] = t25;
+  M[43] = t76;
+  M[44] = t119;
+  M[45] = t158;
+  M[46] = t188;
+  M[47] = t216;
+  M[48] = beta[62] + beta[65];
 }
 
 // Jacobian of inverse_dynamics with respect to the state x = [q, dq, ddq] (3 kDof values), for
@@ -12316,7 +13594,8 @@ void power_regressor(const float* q, const float* dq, const float* ddq, float* d
   dh[68] = dq[6];  // OFF7
 }
 
-// energy_regressor with sin_q, cos_q (kDof each) from joint_sincos(q, ...); identical results.
+// energy_regressor with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
+// computing them; identical results.
 void energy_regressor_sincos(const double* q, const double* sin_q, const double* cos_q,
                              const double* dq, double* h) {
   static_cast<void>(q);
@@ -12443,7 +13722,8 @@ void energy_regressor_sincos(const double* q, const double* sin_q, const double*
   h[68] = 0.0;  // OFF7
 }
 
-// energy_regressor with sin_q, cos_q (kDof each) from joint_sincos(q, ...); identical results.
+// energy_regressor with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
+// computing them; identical results.
 void energy_regressor_sincos(const float* q, const float* sin_q, const float* cos_q,
                              const float* dq, float* h) {
   static_cast<void>(q);
@@ -12570,7 +13850,8 @@ void energy_regressor_sincos(const float* q, const float* sin_q, const float* co
   h[68] = 0.0f;  // OFF7
 }
 
-// power_regressor with sin_q, cos_q (kDof each) from joint_sincos(q, ...); identical results.
+// power_regressor with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
+// computing them; identical results.
 void power_regressor_sincos(const double* q, const double* sin_q, const double* cos_q,
                             const double* dq, const double* ddq, double* dh) {
   static_cast<void>(q);
@@ -12744,7 +14025,8 @@ void power_regressor_sincos(const double* q, const double* sin_q, const double* 
   dh[68] = dq[6];  // OFF7
 }
 
-// power_regressor with sin_q, cos_q (kDof each) from joint_sincos(q, ...); identical results.
+// power_regressor with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
+// computing them; identical results.
 void power_regressor_sincos(const float* q, const float* sin_q, const float* cos_q,
                             const float* dq, const float* ddq, float* dh) {
   static_cast<void>(q);
@@ -12926,8 +14208,8 @@ void power_regressor_sincos(const float* q, const float* sin_q, const float* cos
 // < 0 and the mean of both if 0 (eq. 8), tau_M = tau_T + JM ddq_M + Rv dq_M + Rc sign(dq_M)
 // (eq. 7). Units follow K: N m on the motor side when K holds gear ratios, on the link side
 // (as in the paper) when it is the coupling alone. Every Rz must be non-zero.
-void drive_torque(const double* q, const double* dq, const double* ddq,
-                  const double* theta, double* tau_M) {
+void drive_torque(const double* q, const double* dq, const double* ddq, const double* theta,
+                  double* tau_M) {
   const double sg1 = static_cast<double>((dq[0] > 0.0) - (dq[0] < 0.0));
   const double s2 = std::sin(q[1]);
   const double c2 = std::cos(q[1]);
@@ -13101,8 +14383,8 @@ void drive_torque(const double* q, const double* dq, const double* ddq,
 // < 0 and the mean of both if 0 (eq. 8), tau_M = tau_T + JM ddq_M + Rv dq_M + Rc sign(dq_M)
 // (eq. 7). Units follow K: N m on the motor side when K holds gear ratios, on the link side
 // (as in the paper) when it is the coupling alone. Every Rz must be non-zero.
-void drive_torque(const float* q, const float* dq, const float* ddq,
-                  const float* theta, float* tau_M) {
+void drive_torque(const float* q, const float* dq, const float* ddq, const float* theta,
+                  float* tau_M) {
   const float sg1 = static_cast<float>((dq[0] > 0.0f) - (dq[0] < 0.0f));
   const float s2 = std::sin(q[1]);
   const float c2 = std::cos(q[1]);
@@ -14035,8 +15317,8 @@ void drive_torque_jacobian(const double* q, const double* dq, const double* ddq,
 // efficiency branch and the Coulomb friction sign count as constant: exact wherever no motor
 // velocity and no power flow tau'_G dq_M is zero. Calls idim_regressor_standard into a local
 // array of kDof * kStandardParams values (on the stack) and applies the chain rule to it.
-void drive_torque_jacobian(const float* q, const float* dq, const float* ddq,
-                           const float* theta, float* tau_M, float* J) {
+void drive_torque_jacobian(const float* q, const float* dq, const float* ddq, const float* theta,
+                           float* tau_M, float* J) {
   float W_std[kDof * kStandardParams] = {};
   idim_regressor_standard(q, dq, ddq, W_std);
   const float sg1 = static_cast<float>((dq[0] > 0.0f) - (dq[0] < 0.0f));

@@ -12,8 +12,10 @@
 // base_from_standard                     37     75        0
 // idim_regressor                        490    385       10
 // inverse_dynamics                      365    287       10
+// mass_matrix                           430    385       10
 // idim_regressor_sincos                 490    385        0
 // inverse_dynamics_sincos               365    287        0
+// mass_matrix_sincos                    430    385        0
 // inverse_dynamics_state_jacobian      2816   2563       10
 // energy_regressor                      127     51       10
 // power_regressor                       317    168       10
@@ -1724,8 +1726,8 @@ void inverse_dynamics_standard(const double* q, const double* dq, const double* 
 // joint positions q, velocities dq and accelerations ddq (kDof each) and the standard
 // parameters p (kStandardParams, in the order of kStandardParamNames). Includes gravity, drive
 // inertia, friction and offsets as the description enables them.
-void inverse_dynamics_standard(const float* q, const float* dq, const float* ddq,
-                               const float* p, float* tau) {
+void inverse_dynamics_standard(const float* q, const float* dq, const float* ddq, const float* p,
+                               float* tau) {
   const float sg1 = static_cast<float>((dq[0] > 0.0f) - (dq[0] < 0.0f));
   const float s2 = std::sin(q[1]);
   const float c2 = std::cos(q[1]);
@@ -3428,9 +3430,9 @@ void idim_regressor_standard_sincos(const float* q, const float* sin_q, const fl
 
 // inverse_dynamics_standard with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
 // computing them; identical results.
-void inverse_dynamics_standard_sincos(const double* q, const double* sin_q,
-                                      const double* cos_q, const double* dq,
-                                      const double* ddq, const double* p, double* tau) {
+void inverse_dynamics_standard_sincos(const double* q, const double* sin_q, const double* cos_q,
+                                      const double* dq, const double* ddq, const double* p,
+                                      double* tau) {
   static_cast<void>(q);
   const double sg1 = static_cast<double>((dq[0] > 0.0) - (dq[0] < 0.0));
   const double s2 = sin_q[1];
@@ -3560,9 +3562,9 @@ void inverse_dynamics_standard_sincos(const double* q, const double* sin_q,
 
 // inverse_dynamics_standard with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
 // computing them; identical results.
-void inverse_dynamics_standard_sincos(const float* q, const float* sin_q,
-                                      const float* cos_q, const float* dq,
-                                      const float* ddq, const float* p, float* tau) {
+void inverse_dynamics_standard_sincos(const float* q, const float* sin_q, const float* cos_q,
+                                      const float* dq, const float* ddq, const float* p,
+                                      float* tau) {
   static_cast<void>(q);
   const float sg1 = static_cast<float>((dq[0] > 0.0f) - (dq[0] < 0.0f));
   const float s2 = sin_q[1];
@@ -4995,8 +4997,8 @@ void idim_regressor(const float* q, const float* dq, const float* ddq, float* W)
 // Inverse dynamics on the base parameters (customized Newton-Euler with the regrouped
 // parameters): joint torques tau (kDof) for q, dq, ddq (kDof each) and beta (kBaseParams, in the
 // order of kBaseParamNames; base_from_standard computes it from standard parameters).
-void inverse_dynamics(const double* q, const double* dq, const double* ddq,
-                      const double* beta, double* tau) {
+void inverse_dynamics(const double* q, const double* dq, const double* ddq, const double* beta,
+                      double* tau) {
   const double sg1 = static_cast<double>((dq[0] > 0.0) - (dq[0] < 0.0));
   const double s2 = std::sin(q[1]);
   const double c2 = std::cos(q[1]);
@@ -5124,8 +5126,8 @@ void inverse_dynamics(const double* q, const double* dq, const double* ddq,
 // Inverse dynamics on the base parameters (customized Newton-Euler with the regrouped
 // parameters): joint torques tau (kDof) for q, dq, ddq (kDof each) and beta (kBaseParams, in the
 // order of kBaseParamNames; base_from_standard computes it from standard parameters).
-void inverse_dynamics(const float* q, const float* dq, const float* ddq,
-                      const float* beta, float* tau) {
+void inverse_dynamics(const float* q, const float* dq, const float* ddq, const float* beta,
+                      float* tau) {
   const float sg1 = static_cast<float>((dq[0] > 0.0f) - (dq[0] < 0.0f));
   const float s2 = std::sin(q[1]);
   const float c2 = std::cos(q[1]);
@@ -5250,8 +5252,482 @@ void inverse_dynamics(const float* q, const float* dq, const float* ddq,
   tau[5] = beta[57] + ddq[5] * beta[54] + dq[5] * beta[55] + sg6 * beta[56] - t79;
 }
 
-// idim_regressor with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of computing
-// them; identical results.
+// Joint-space inertia matrix M(q) on the base parameters: inverse_dynamics is tau = M(q) ddq +
+// terms without ddq (velocity, gravity, friction, offsets), for forward dynamics
+// ddq = M^-1 (tau - inverse_dynamics(q, dq, 0, beta)). Inputs q (kDof) and beta (kBaseParams,
+// as for inverse_dynamics). Output M: kDof x kDof, row-major, M[i * kDof + k] = d tau_i / d ddq_k
+// (drive inertias included; symmetric, and positive definite for physical parameters).
+void mass_matrix(const double* q, const double* beta, double* M) {
+  const double s2 = std::sin(q[1]);
+  const double c2 = std::cos(q[1]);
+  const double s3 = std::sin(q[2]);
+  const double c3 = std::cos(q[2]);
+  const double s4 = std::sin(q[3]);
+  const double c4 = std::cos(q[3]);
+  const double s5 = std::sin(q[4]);
+  const double c5 = std::cos(q[4]);
+  const double s6 = std::sin(q[5]);
+  const double c6 = std::cos(q[5]);
+  const double t0 = s2 * c3 + c2 * s3;
+  const double t1 = s2 * s3 - c2 * c3;
+  const double t2 = -s4 * t1;
+  const double t3 = c4 * t1;
+  const double t4 = c5 * t0 - s5 * t3;
+  const double t5 = s5 * t0 + c5 * t3;
+  const double t6 = c6 * t2 - s6 * t5;
+  const double t7 = -0.35 - 1.25 * c2;
+  const double t8 = t7 + 0.055 * t0;
+  const double t9 = s4 * t8;
+  const double t10 = t9 - 1.1 * t2;
+  const double t11 = -s5 * t10;
+  const double t12 = t6 * beta[51] + t4 * beta[49] - t11 * beta[52];
+  const double t13 = s6 * t2 + c6 * t5;
+  const double t14 = t13 * beta[51] + t6 * beta[50] + t4 * beta[48] + t11 * beta[53];
+  const double t15 = t4 * beta[52];
+  const double t16 = -t4 * beta[53];
+  const double t17 = s6 * t15 + c6 * t16;
+  const double t18 = c4 * t8;
+  const double t19 = t18 + 1.1 * t3;
+  const double t20 = t2 * beta[40] + t4 * beta[38] + c6 * t12 - s6 * t14 + 0.23 * t17 + t19 * beta[41];
+  const double t21 = t19 + 0.23 * t5;
+  const double t22 = c5 * t10;
+  const double t23 = t22 - 0.23 * t2;
+  const double t24 = t13 * beta[49] + t6 * beta[48] + t4 * beta[47] - (c6 * t21 - s6 * t23) * beta[53] + (s6 * t21 + c6 * t23) * beta[52];
+  const double t25 = t5 * beta[38] + t2 * beta[37] + t4 * beta[36] + t24 - t19 * beta[42];
+  const double t26 = -t4 * beta[42] + t5 * beta[41] + t17;
+  const double t27 = t2 * beta[29] + t0 * beta[27] + c5 * t20 - s5 * t25 + 1.1 * t26;
+  const double t28 = c6 * t15 - s6 * t16;
+  const double t29 = -t2 * beta[41] + t28;
+  const double t30 = -t13 * beta[52] + t6 * beta[53] + t2 * beta[42];
+  const double t31 = c5 * t29 - s5 * t30;
+  const double t32 = t5 * beta[40] + t2 * beta[39] + t4 * beta[37] + s6 * t12 + c6 * t14 - 0.23 * t28 - t22 * beta[41] + t11 * beta[42];
+  const double t33 = t3 * beta[29] + t2 * beta[28] + t0 * beta[26] - 1.1 * t31 + t32;
+  const double t34 = t0 * beta[16] + c4 * t27 - s4 * t33 + t7 * beta[19];
+  const double t35 = t0 * beta[30] + t31;
+  const double t36 = -t0 * beta[31] + t26;
+  const double t37 = s4 * t35 + c4 * t36;
+  const double t38 = t3 * beta[27] + t2 * beta[26] + t0 * beta[25] + s5 * t20 + c5 * t25 - t18 * beta[31] + t9 * beta[30];
+  const double t39 = t1 * beta[16] + t0 * beta[14] + 0.055 * t37 + t38 - t7 * beta[20];
+  const double t40 = -t0 * beta[20] + t1 * beta[19] + t37;
+  M[0] = -(c2 * (s2 * beta[6] + c3 * t34 - s3 * t39 + 1.25 * t40 - 0.35 * beta[9]) - s2 * (-c2 * beta[6] + s2 * beta[4] + s3 * t34 + c3 * t39 + 0.35 * beta[10]) + 0.35 * (t40 - s2 * beta[10] - c2 * beta[9]) - beta[0]);
+  const double t41 = c4 * beta[29];
+  const double t42 = c4 * beta[40];
+  const double t43 = -s4 * s5;
+  const double t44 = t43 * beta[38];
+  const double t45 = s4 * c5;
+  const double t46 = c4 * c6 - s6 * t45;
+  const double t47 = t46 * beta[51];
+  const double t48 = t43 * beta[49];
+  const double t49 = -0.055 + 1.25 * s3;
+  const double t50 = -1.25 * c3 * c4;
+  const double t51 = t50 - 1.1 * c4;
+  const double t52 = c5 * t49 - s5 * t51;
+  const double t53 = t47 + t48 - t52 * beta[52];
+  const double t54 = c4 * s6 + c6 * t45;
+  const double t55 = t54 * beta[51];
+  const double t56 = t46 * beta[50];
+  const double t57 = t43 * beta[48];
+  const double t58 = t55 + t56 + t57 + t52 * beta[53];
+  const double t59 = t43 * beta[52];
+  const double t60 = -t43 * beta[53];
+  const double t61 = s6 * t59 + c6 * t60;
+  const double t62 = 0.23 * t61;
+  const double t63 = 1.25 * c3 * s4;
+  const double t64 = 1.1 * s4;
+  const double t65 = t63 + t64;
+  const double t66 = t42 + t44 + c6 * t53 - s6 * t58 + t62 + t65 * beta[41];
+  const double t67 = t45 * beta[38];
+  const double t68 = c4 * beta[37];
+  const double t69 = t43 * beta[36];
+  const double t70 = t54 * beta[49];
+  const double t71 = t46 * beta[48];
+  const double t72 = t43 * beta[47];
+  const double t73 = 0.23 * t45;
+  const double t74 = t65 + t73;
+  const double t75 = s5 * t49 + c5 * t51;
+  const double t76 = -0.23 * c4;
+  const double t77 = t75 + t76;
+  const double t78 = t70 + t71 + t72 - (c6 * t74 - s6 * t77) * beta[53] + (s6 * t74 + c6 * t77) * beta[52];
+  const double t79 = t67 + t68 + t69 + t78 - t65 * beta[42];
+  const double t80 = -t43 * beta[42] + t45 * beta[41] + t61;
+  const double t81 = 1.1 * t80;
+  const double t82 = t41 + c5 * t66 - s5 * t79 + t81 - t49 * beta[30];
+  const double t83 = s4 * beta[29];
+  const double t84 = c4 * beta[28];
+  const double t85 = c6 * t59 - s6 * t60;
+  const double t86 = -c4 * beta[41] + t85;
+  const double t87 = -t54 * beta[52] + t46 * beta[53] + c4 * beta[42];
+  const double t88 = c5 * t86 - s5 * t87;
+  const double t89 = -1.1 * t88;
+  const double t90 = t45 * beta[40];
+  const double t91 = c4 * beta[39];
+  const double t92 = t43 * beta[37];
+  const double t93 = -0.23 * t85;
+  const double t94 = t90 + t91 + t92 + s6 * t53 + c6 * t58 + t93 - t75 * beta[41] + t52 * beta[42];
+  const double t95 = t83 + t84 + t89 + t94 + t49 * beta[31];
+  const double t96 = beta[18] + c4 * t82 - s4 * t95;
+  const double t97 = s4 * t88 + c4 * t80;
+  const double t98 = 0.055 * t97;
+  const double t99 = s4 * beta[27];
+  const double t100 = c4 * beta[26];
+  const double t101 = t99 + t100 + s5 * t66 + c5 * t79 - t63 * beta[31] + t50 * beta[30];
+  const double t102 = beta[15] + t98 + t101;
+  const double t103 = 1.25 * t97;
+  const double t104 = 0.35 * t97;
+  M[1] = -(c2 * (beta[8] + c3 * t96 - s3 * t102 + t103) - s2 * (beta[5] + s3 * t96 + c3 * t102) + t104);
+  const double t105 = -0.055 * c5 + 1.1 * c4 * s5;
+  const double t106 = t47 + t48 - t105 * beta[52];
+  const double t107 = t55 + t56 + t57 + t105 * beta[53];
+  const double t108 = t42 + t44 + t62 + c6 * t106 - s6 * t107 + 1.1 * s4 * beta[41];
+  const double t109 = t64 + t73;
+  const double t110 = -0.055 * s5 - 1.1 * c4 * c5;
+  const double t111 = t76 + t110;
+  const double t112 = t70 + t71 + t72 - (c6 * t109 - s6 * t111) * beta[53] + (s6 * t109 + c6 * t111) * beta[52];
+  const double t113 = t67 + t68 + t69 + t112 - 1.1 * s4 * beta[42];
+  const double t114 = t41 + t81 + c5 * t108 - s5 * t113 + 0.055 * beta[30];
+  const double t115 = t90 + t91 + t92 + t93 + s6 * t106 + c6 * t107 - t110 * beta[41] + t105 * beta[42];
+  const double t116 = t83 + t84 + t89 + t115 - 0.055 * beta[31];
+  const double t117 = beta[18] + c4 * t114 - s4 * t116;
+  const double t118 = t99 + t100 + s5 * t108 + c5 * t113;
+  const double t119 = beta[15] + t98 + t118;
+  M[2] = -(t104 + c2 * (t103 + c3 * t117 - s3 * t119) - s2 * (s3 * t117 + c3 * t119));
+  const double t120 = s5 * s6;
+  const double t121 = t120 * beta[51] - c5 * beta[49];
+  const double t122 = -s5 * c6;
+  const double t123 = t122 * beta[51] + t120 * beta[50] - c5 * beta[48];
+  const double t124 = -c5 * beta[52];
+  const double t125 = c5 * beta[53];
+  const double t126 = s6 * t124 + c6 * t125;
+  const double t127 = -c5 * beta[38] + c6 * t121 - s6 * t123 + 0.23 * t126;
+  const double t128 = -c5 * beta[47];
+  const double t129 = t122 * beta[49] + t120 * beta[48] + t128 - (-0.23 * s5 * c6) * beta[53] + (-0.23 * s5 * s6) * beta[52];
+  const double t130 = -s5 * beta[38] - c5 * beta[36] + t129;
+  const double t131 = -s5 * beta[41];
+  const double t132 = c5 * beta[42] + t131 + t126;
+  const double t133 = -beta[27] + c5 * t127 - s5 * t130 + 1.1 * t132;
+  const double t134 = c6 * t124 - s6 * t125;
+  const double t135 = -t122 * beta[52] + t120 * beta[53];
+  const double t136 = c5 * t134 - s5 * t135;
+  const double t137 = -s5 * beta[40] - c5 * beta[37] + s6 * t121 + c6 * t123 - 0.23 * t134;
+  const double t138 = -beta[26] - 1.1 * t136 + t137;
+  const double t139 = c4 * t133 - s4 * t138;
+  const double t140 = -beta[30] + t136;
+  const double t141 = beta[31] + t132;
+  const double t142 = s4 * t140 + c4 * t141;
+  const double t143 = -beta[25] + s5 * t127 + c5 * t130;
+  const double t144 = 0.055 * t142 + t143;
+  M[3] = -(c2 * (c3 * t139 - s3 * t144 + 1.25 * t142) - s2 * (s3 * t139 + c3 * t144) + 0.35 * t142);
+  const double t145 = c6 * beta[51];
+  const double t146 = s6 * beta[51] + c6 * beta[50];
+  const double t147 = beta[40] + c6 * t145 - s6 * t146;
+  const double t148 = s6 * beta[49] + c6 * beta[48] - 0.23 * s6 * beta[53] - 0.23 * c6 * beta[52];
+  const double t149 = beta[37] + t148;
+  const double t150 = c5 * t147 - s5 * t149;
+  const double t151 = -s6 * beta[52] + c6 * beta[53];
+  const double t152 = beta[42] + t151;
+  const double t153 = -c5 * beta[41] - s5 * t152;
+  const double t154 = beta[39] + s6 * t145 + c6 * t146;
+  const double t155 = -1.1 * t153 + t154;
+  const double t156 = c4 * t150 - s4 * t155;
+  const double t157 = s4 * t153;
+  const double t158 = s5 * t147 + c5 * t149;
+  const double t159 = 0.055 * t157 + t158;
+  M[4] = -(c2 * (c3 * t156 - s3 * t159 + 1.25 * t157) - s2 * (s3 * t156 + c3 * t159) + 0.35 * t157);
+  const double t160 = -c6 * beta[49] + s6 * beta[48] + 0.23 * t151;
+  const double t161 = c5 * t160 + s5 * beta[47] + 1.1 * t151;
+  const double t162 = -c6 * beta[52] - s6 * beta[53];
+  const double t163 = c5 * t162;
+  const double t164 = -s6 * beta[49] - c6 * beta[48] - 0.23 * t162;
+  const double t165 = -1.1 * t163 + t164;
+  const double t166 = c4 * t161 - s4 * t165;
+  const double t167 = s4 * t163 + c4 * t151;
+  const double t168 = t128 + s5 * t160;
+  const double t169 = 0.055 * t167 + t168;
+  M[5] = -(c2 * (c3 * t166 - s3 * t169 + 1.25 * t167) - s2 * (s3 * t166 + c3 * t169) + 0.35 * t167);
+  const double t170 = -t3 * beta[30] + t2 * beta[31] + s5 * t29 + c5 * t30;
+  const double t171 = t1 * beta[18] + t0 * beta[15] + s4 * t27 + c4 * t33 - 0.055 * t170;
+  M[6] = -c2 * beta[8] + s2 * beta[5] - 1.25 * (c3 * (c4 * t35 - s4 * t36) - s3 * t170) + t171;
+  const double t172 = -s4 * beta[30] + c4 * beta[31] + s5 * t86 + c5 * t87;
+  const double t173 = -1.25 * (c3 * (-beta[19] + c4 * t88 - s4 * t80) - s3 * (beta[20] + t172));
+  const double t174 = -0.055 * t172;
+  const double t175 = beta[17] + s4 * t82 + c4 * t95 + t174 + 1.25 * c3 * beta[19] + 1.25 * s3 * beta[20];
+  M[7] = beta[7] + t173 + t175;
+  const double t176 = beta[17] + t174 + s4 * t114 + c4 * t116;
+  M[8] = t173 + t176;
+  const double t177 = s5 * t134 + c5 * t135;
+  const double t178 = s4 * t133 + c4 * t138 - 0.055 * t177;
+  M[9] = -1.25 * (c3 * (c4 * t140 - s4 * t141) - s3 * t177) + t178;
+  const double t179 = t131 + c5 * t152;
+  const double t180 = s4 * t150 + c4 * t155 - 0.055 * t179;
+  M[10] = -1.25 * (c3 * c4 * t153 - s3 * t179) + t180;
+  const double t181 = s5 * t162;
+  const double t182 = s4 * t161 + c4 * t165 - 0.055 * t181;
+  M[11] = -1.25 * (c3 * (c4 * t163 - s4 * t151) - s3 * t181) + t182;
+  M[12] = t171;
+  M[13] = t175;
+  M[14] = beta[21] + t176;
+  M[15] = t178;
+  M[16] = t180;
+  M[17] = t182;
+  M[18] = -t38;
+  M[19] = -t101;
+  M[20] = -t118;
+  M[21] = beta[32] - t143;
+  M[22] = -t158;
+  M[23] = -t168;
+  M[24] = t32;
+  M[25] = t94;
+  M[26] = t115;
+  M[27] = t137;
+  M[28] = beta[43] + t154;
+  M[29] = t164;
+  M[30] = -t24;
+  M[31] = -t78;
+  M[32] = -t112;
+  M[33] = -t129;
+  M[34] = -t148;
+  M[35] = beta[47] + beta[54];
+}
+
+// Joint-space inertia matrix M(q) on the base parameters: inverse_dynamics is tau = M(q) ddq +
+// terms without ddq (velocity, gravity, friction, offsets), for forward dynamics
+// ddq = M^-1 (tau - inverse_dynamics(q, dq, 0, beta)). Inputs q (kDof) and beta (kBaseParams,
+// as for inverse_dynamics). Output M: kDof x kDof, row-major, M[i * kDof + k] = d tau_i / d ddq_k
+// (drive inertias included; symmetric, and positive definite for physical parameters).
+void mass_matrix(const float* q, const float* beta, float* M) {
+  const float s2 = std::sin(q[1]);
+  const float c2 = std::cos(q[1]);
+  const float s3 = std::sin(q[2]);
+  const float c3 = std::cos(q[2]);
+  const float s4 = std::sin(q[3]);
+  const float c4 = std::cos(q[3]);
+  const float s5 = std::sin(q[4]);
+  const float c5 = std::cos(q[4]);
+  const float s6 = std::sin(q[5]);
+  const float c6 = std::cos(q[5]);
+  const float t0 = s2 * c3 + c2 * s3;
+  const float t1 = s2 * s3 - c2 * c3;
+  const float t2 = -s4 * t1;
+  const float t3 = c4 * t1;
+  const float t4 = c5 * t0 - s5 * t3;
+  const float t5 = s5 * t0 + c5 * t3;
+  const float t6 = c6 * t2 - s6 * t5;
+  const float t7 = -0.35f - 1.25f * c2;
+  const float t8 = t7 + 0.055f * t0;
+  const float t9 = s4 * t8;
+  const float t10 = t9 - 1.1f * t2;
+  const float t11 = -s5 * t10;
+  const float t12 = t6 * beta[51] + t4 * beta[49] - t11 * beta[52];
+  const float t13 = s6 * t2 + c6 * t5;
+  const float t14 = t13 * beta[51] + t6 * beta[50] + t4 * beta[48] + t11 * beta[53];
+  const float t15 = t4 * beta[52];
+  const float t16 = -t4 * beta[53];
+  const float t17 = s6 * t15 + c6 * t16;
+  const float t18 = c4 * t8;
+  const float t19 = t18 + 1.1f * t3;
+  const float t20 = t2 * beta[40] + t4 * beta[38] + c6 * t12 - s6 * t14 + 0.23f * t17 + t19 * beta[41];
+  const float t21 = t19 + 0.23f * t5;
+  const float t22 = c5 * t10;
+  const float t23 = t22 - 0.23f * t2;
+  const float t24 = t13 * beta[49] + t6 * beta[48] + t4 * beta[47] - (c6 * t21 - s6 * t23) * beta[53] + (s6 * t21 + c6 * t23) * beta[52];
+  const float t25 = t5 * beta[38] + t2 * beta[37] + t4 * beta[36] + t24 - t19 * beta[42];
+  const float t26 = -t4 * beta[42] + t5 * beta[41] + t17;
+  const float t27 = t2 * beta[29] + t0 * beta[27] + c5 * t20 - s5 * t25 + 1.1f * t26;
+  const float t28 = c6 * t15 - s6 * t16;
+  const float t29 = -t2 * beta[41] + t28;
+  const float t30 = -t13 * beta[52] + t6 * beta[53] + t2 * beta[42];
+  const float t31 = c5 * t29 - s5 * t30;
+  const float t32 = t5 * beta[40] + t2 * beta[39] + t4 * beta[37] + s6 * t12 + c6 * t14 - 0.23f * t28 - t22 * beta[41] + t11 * beta[42];
+  const float t33 = t3 * beta[29] + t2 * beta[28] + t0 * beta[26] - 1.1f * t31 + t32;
+  const float t34 = t0 * beta[16] + c4 * t27 - s4 * t33 + t7 * beta[19];
+  const float t35 = t0 * beta[30] + t31;
+  const float t36 = -t0 * beta[31] + t26;
+  const float t37 = s4 * t35 + c4 * t36;
+  const float t38 = t3 * beta[27] + t2 * beta[26] + t0 * beta[25] + s5 * t20 + c5 * t25 - t18 * beta[31] + t9 * beta[30];
+  const float t39 = t1 * beta[16] + t0 * beta[14] + 0.055f * t37 + t38 - t7 * beta[20];
+  const float t40 = -t0 * beta[20] + t1 * beta[19] + t37;
+  M[0] = -(c2 * (s2 * beta[6] + c3 * t34 - s3 * t39 + 1.25f * t40 - 0.35f * beta[9]) - s2 * (-c2 * beta[6] + s2 * beta[4] + s3 * t34 + c3 * t39 + 0.35f * beta[10]) + 0.35f * (t40 - s2 * beta[10] - c2 * beta[9]) - beta[0]);
+  const float t41 = c4 * beta[29];
+  const float t42 = c4 * beta[40];
+  const float t43 = -s4 * s5;
+  const float t44 = t43 * beta[38];
+  const float t45 = s4 * c5;
+  const float t46 = c4 * c6 - s6 * t45;
+  const float t47 = t46 * beta[51];
+  const float t48 = t43 * beta[49];
+  const float t49 = -0.055f + 1.25f * s3;
+  const float t50 = -1.25f * c3 * c4;
+  const float t51 = t50 - 1.1f * c4;
+  const float t52 = c5 * t49 - s5 * t51;
+  const float t53 = t47 + t48 - t52 * beta[52];
+  const float t54 = c4 * s6 + c6 * t45;
+  const float t55 = t54 * beta[51];
+  const float t56 = t46 * beta[50];
+  const float t57 = t43 * beta[48];
+  const float t58 = t55 + t56 + t57 + t52 * beta[53];
+  const float t59 = t43 * beta[52];
+  const float t60 = -t43 * beta[53];
+  const float t61 = s6 * t59 + c6 * t60;
+  const float t62 = 0.23f * t61;
+  const float t63 = 1.25f * c3 * s4;
+  const float t64 = 1.1f * s4;
+  const float t65 = t63 + t64;
+  const float t66 = t42 + t44 + c6 * t53 - s6 * t58 + t62 + t65 * beta[41];
+  const float t67 = t45 * beta[38];
+  const float t68 = c4 * beta[37];
+  const float t69 = t43 * beta[36];
+  const float t70 = t54 * beta[49];
+  const float t71 = t46 * beta[48];
+  const float t72 = t43 * beta[47];
+  const float t73 = 0.23f * t45;
+  const float t74 = t65 + t73;
+  const float t75 = s5 * t49 + c5 * t51;
+  const float t76 = -0.23f * c4;
+  const float t77 = t75 + t76;
+  const float t78 = t70 + t71 + t72 - (c6 * t74 - s6 * t77) * beta[53] + (s6 * t74 + c6 * t77) * beta[52];
+  const float t79 = t67 + t68 + t69 + t78 - t65 * beta[42];
+  const float t80 = -t43 * beta[42] + t45 * beta[41] + t61;
+  const float t81 = 1.1f * t80;
+  const float t82 = t41 + c5 * t66 - s5 * t79 + t81 - t49 * beta[30];
+  const float t83 = s4 * beta[29];
+  const float t84 = c4 * beta[28];
+  const float t85 = c6 * t59 - s6 * t60;
+  const float t86 = -c4 * beta[41] + t85;
+  const float t87 = -t54 * beta[52] + t46 * beta[53] + c4 * beta[42];
+  const float t88 = c5 * t86 - s5 * t87;
+  const float t89 = -1.1f * t88;
+  const float t90 = t45 * beta[40];
+  const float t91 = c4 * beta[39];
+  const float t92 = t43 * beta[37];
+  const float t93 = -0.23f * t85;
+  const float t94 = t90 + t91 + t92 + s6 * t53 + c6 * t58 + t93 - t75 * beta[41] + t52 * beta[42];
+  const float t95 = t83 + t84 + t89 + t94 + t49 * beta[31];
+  const float t96 = beta[18] + c4 * t82 - s4 * t95;
+  const float t97 = s4 * t88 + c4 * t80;
+  const float t98 = 0.055f * t97;
+  const float t99 = s4 * beta[27];
+  const float t100 = c4 * beta[26];
+  const float t101 = t99 + t100 + s5 * t66 + c5 * t79 - t63 * beta[31] + t50 * beta[30];
+  const float t102 = beta[15] + t98 + t101;
+  const float t103 = 1.25f * t97;
+  const float t104 = 0.35f * t97;
+  M[1] = -(c2 * (beta[8] + c3 * t96 - s3 * t102 + t103) - s2 * (beta[5] + s3 * t96 + c3 * t102) + t104);
+  const float t105 = -0.055f * c5 + 1.1f * c4 * s5;
+  const float t106 = t47 + t48 - t105 * beta[52];
+  const float t107 = t55 + t56 + t57 + t105 * beta[53];
+  const float t108 = t42 + t44 + t62 + c6 * t106 - s6 * t107 + 1.1f * s4 * beta[41];
+  const float t109 = t64 + t73;
+  const float t110 = -0.055f * s5 - 1.1f * c4 * c5;
+  const float t111 = t76 + t110;
+  const float t112 = t70 + t71 + t72 - (c6 * t109 - s6 * t111) * beta[53] + (s6 * t109 + c6 * t111) * beta[52];
+  const float t113 = t67 + t68 + t69 + t112 - 1.1f * s4 * beta[42];
+  const float t114 = t41 + t81 + c5 * t108 - s5 * t113 + 0.055f * beta[30];
+  const float t115 = t90 + t91 + t92 + t93 + s6 * t106 + c6 * t107 - t110 * beta[41] + t105 * beta[42];
+  const float t116 = t83 + t84 + t89 + t115 - 0.055f * beta[31];
+  const float t117 = beta[18] + c4 * t114 - s4 * t116;
+  const float t118 = t99 + t100 + s5 * t108 + c5 * t113;
+  const float t119 = beta[15] + t98 + t118;
+  M[2] = -(t104 + c2 * (t103 + c3 * t117 - s3 * t119) - s2 * (s3 * t117 + c3 * t119));
+  const float t120 = s5 * s6;
+  const float t121 = t120 * beta[51] - c5 * beta[49];
+  const float t122 = -s5 * c6;
+  const float t123 = t122 * beta[51] + t120 * beta[50] - c5 * beta[48];
+  const float t124 = -c5 * beta[52];
+  const float t125 = c5 * beta[53];
+  const float t126 = s6 * t124 + c6 * t125;
+  const float t127 = -c5 * beta[38] + c6 * t121 - s6 * t123 + 0.23f * t126;
+  const float t128 = -c5 * beta[47];
+  const float t129 = t122 * beta[49] + t120 * beta[48] + t128 - (-0.23f * s5 * c6) * beta[53] + (-0.23f * s5 * s6) * beta[52];
+  const float t130 = -s5 * beta[38] - c5 * beta[36] + t129;
+  const float t131 = -s5 * beta[41];
+  const float t132 = c5 * beta[42] + t131 + t126;
+  const float t133 = -beta[27] + c5 * t127 - s5 * t130 + 1.1f * t132;
+  const float t134 = c6 * t124 - s6 * t125;
+  const float t135 = -t122 * beta[52] + t120 * beta[53];
+  const float t136 = c5 * t134 - s5 * t135;
+  const float t137 = -s5 * beta[40] - c5 * beta[37] + s6 * t121 + c6 * t123 - 0.23f * t134;
+  const float t138 = -beta[26] - 1.1f * t136 + t137;
+  const float t139 = c4 * t133 - s4 * t138;
+  const float t140 = -beta[30] + t136;
+  const float t141 = beta[31] + t132;
+  const float t142 = s4 * t140 + c4 * t141;
+  const float t143 = -beta[25] + s5 * t127 + c5 * t130;
+  const float t144 = 0.055f * t142 + t143;
+  M[3] = -(c2 * (c3 * t139 - s3 * t144 + 1.25f * t142) - s2 * (s3 * t139 + c3 * t144) + 0.35f * t142);
+  const float t145 = c6 * beta[51];
+  const float t146 = s6 * beta[51] + c6 * beta[50];
+  const float t147 = beta[40] + c6 * t145 - s6 * t146;
+  const float t148 = s6 * beta[49] + c6 * beta[48] - 0.23f * s6 * beta[53] - 0.23f * c6 * beta[52];
+  const float t149 = beta[37] + t148;
+  const float t150 = c5 * t147 - s5 * t149;
+  const float t151 = -s6 * beta[52] + c6 * beta[53];
+  const float t152 = beta[42] + t151;
+  const float t153 = -c5 * beta[41] - s5 * t152;
+  const float t154 = beta[39] + s6 * t145 + c6 * t146;
+  const float t155 = -1.1f * t153 + t154;
+  const float t156 = c4 * t150 - s4 * t155;
+  const float t157 = s4 * t153;
+  const float t158 = s5 * t147 + c5 * t149;
+  const float t159 = 0.055f * t157 + t158;
+  M[4] = -(c2 * (c3 * t156 - s3 * t159 + 1.25f * t157) - s2 * (s3 * t156 + c3 * t159) + 0.35f * t157);
+  const float t160 = -c6 * beta[49] + s6 * beta[48] + 0.23f * t151;
+  const float t161 = c5 * t160 + s5 * beta[47] + 1.1f * t151;
+  const float t162 = -c6 * beta[52] - s6 * beta[53];
+  const float t163 = c5 * t162;
+  const float t164 = -s6 * beta[49] - c6 * beta[48] - 0.23f * t162;
+  const float t165 = -1.1f * t163 + t164;
+  const float t166 = c4 * t161 - s4 * t165;
+  const float t167 = s4 * t163 + c4 * t151;
+  const float t168 = t128 + s5 * t160;
+  const float t169 = 0.055f * t167 + t168;
+  M[5] = -(c2 * (c3 * t166 - s3 * t169 + 1.25f * t167) - s2 * (s3 * t166 + c3 * t169) + 0.35f * t167);
+  const float t170 = -t3 * beta[30] + t2 * beta[31] + s5 * t29 + c5 * t30;
+  const float t171 = t1 * beta[18] + t0 * beta[15] + s4 * t27 + c4 * t33 - 0.055f * t170;
+  M[6] = -c2 * beta[8] + s2 * beta[5] - 1.25f * (c3 * (c4 * t35 - s4 * t36) - s3 * t170) + t171;
+  const float t172 = -s4 * beta[30] + c4 * beta[31] + s5 * t86 + c5 * t87;
+  const float t173 = -1.25f * (c3 * (-beta[19] + c4 * t88 - s4 * t80) - s3 * (beta[20] + t172));
+  const float t174 = -0.055f * t172;
+  const float t175 = beta[17] + s4 * t82 + c4 * t95 + t174 + 1.25f * c3 * beta[19] + 1.25f * s3 * beta[20];
+  M[7] = beta[7] + t173 + t175;
+  const float t176 = beta[17] + t174 + s4 * t114 + c4 * t116;
+  M[8] = t173 + t176;
+  const float t177 = s5 * t134 + c5 * t135;
+  const float t178 = s4 * t133 + c4 * t138 - 0.055f * t177;
+  M[9] = -1.25f * (c3 * (c4 * t140 - s4 * t141) - s3 * t177) + t178;
+  const float t179 = t131 + c5 * t152;
+  const float t180 = s4 * t150 + c4 * t155 - 0.055f * t179;
+  M[10] = -1.25f * (c3 * c4 * t153 - s3 * t179) + t180;
+  const float t181 = s5 * t162;
+  const float t182 = s4 * t161 + c4 * t165 - 0.055f * t181;
+  M[11] = -1.25f * (c3 * (c4 * t163 - s4 * t151) - s3 * t181) + t182;
+  M[12] = t171;
+  M[13] = t175;
+  M[14] = beta[21] + t176;
+  M[15] = t178;
+  M[16] = t180;
+  M[17] = t182;
+  M[18] = -t38;
+  M[19] = -t101;
+  M[20] = -t118;
+  M[21] = beta[32] - t143;
+  M[22] = -t158;
+  M[23] = -t168;
+  M[24] = t32;
+  M[25] = t94;
+  M[26] = t115;
+  M[27] = t137;
+  M[28] = beta[43] + t154;
+  M[29] = t164;
+  M[30] = -t24;
+  M[31] = -t78;
+  M[32] = -t112;
+  M[33] = -t129;
+  M[34] = -t148;
+  M[35] = beta[47] + beta[54];
+}
+
+// idim_regressor with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
+// computing them; identical results.
 void idim_regressor_sincos(const double* q, const double* sin_q, const double* cos_q,
                            const double* dq, const double* ddq, double* W) {
   static_cast<void>(q);
@@ -5829,8 +6305,8 @@ void idim_regressor_sincos(const double* q, const double* sin_q, const double* c
   W[347] = 1.0;
 }
 
-// idim_regressor with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of computing
-// them; identical results.
+// idim_regressor with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
+// computing them; identical results.
 void idim_regressor_sincos(const float* q, const float* sin_q, const float* cos_q,
                            const float* dq, const float* ddq, float* W) {
   static_cast<void>(q);
@@ -6408,11 +6884,10 @@ void idim_regressor_sincos(const float* q, const float* sin_q, const float* cos_
   W[347] = 1.0f;
 }
 
-// inverse_dynamics with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of computing
-// them; identical results.
+// inverse_dynamics with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
+// computing them; identical results.
 void inverse_dynamics_sincos(const double* q, const double* sin_q, const double* cos_q,
-                             const double* dq, const double* ddq, const double* beta,
-                             double* tau) {
+                             const double* dq, const double* ddq, const double* beta, double* tau) {
   static_cast<void>(q);
   const double sg1 = static_cast<double>((dq[0] > 0.0) - (dq[0] < 0.0));
   const double s2 = sin_q[1];
@@ -6538,11 +7013,10 @@ void inverse_dynamics_sincos(const double* q, const double* sin_q, const double*
   tau[5] = beta[57] + ddq[5] * beta[54] + dq[5] * beta[55] + sg6 * beta[56] - t79;
 }
 
-// inverse_dynamics with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of computing
-// them; identical results.
+// inverse_dynamics with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
+// computing them; identical results.
 void inverse_dynamics_sincos(const float* q, const float* sin_q, const float* cos_q,
-                             const float* dq, const float* ddq, const float* beta,
-                             float* tau) {
+                             const float* dq, const float* ddq, const float* beta, float* tau) {
   static_cast<void>(q);
   const float sg1 = static_cast<float>((dq[0] > 0.0f) - (dq[0] < 0.0f));
   const float s2 = sin_q[1];
@@ -6666,6 +7140,478 @@ void inverse_dynamics_sincos(const float* q, const float* sin_q, const float* co
   tau[3] = beta[35] + ddq[3] * beta[32] + dq[3] * beta[33] + sg4 * beta[34] - t88;
   tau[4] = beta[46] + ddq[4] * beta[43] + dq[4] * beta[44] + sg5 * beta[45] + t92;
   tau[5] = beta[57] + ddq[5] * beta[54] + dq[5] * beta[55] + sg6 * beta[56] - t79;
+}
+
+// mass_matrix with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
+// computing them; identical results.
+void mass_matrix_sincos(const double* q, const double* sin_q, const double* cos_q,
+                        const double* beta, double* M) {
+  static_cast<void>(q);
+  const double s2 = sin_q[1];
+  const double c2 = cos_q[1];
+  const double s3 = sin_q[2];
+  const double c3 = cos_q[2];
+  const double s4 = sin_q[3];
+  const double c4 = cos_q[3];
+  const double s5 = sin_q[4];
+  const double c5 = cos_q[4];
+  const double s6 = sin_q[5];
+  const double c6 = cos_q[5];
+  const double t0 = s2 * c3 + c2 * s3;
+  const double t1 = s2 * s3 - c2 * c3;
+  const double t2 = -s4 * t1;
+  const double t3 = c4 * t1;
+  const double t4 = c5 * t0 - s5 * t3;
+  const double t5 = s5 * t0 + c5 * t3;
+  const double t6 = c6 * t2 - s6 * t5;
+  const double t7 = -0.35 - 1.25 * c2;
+  const double t8 = t7 + 0.055 * t0;
+  const double t9 = s4 * t8;
+  const double t10 = t9 - 1.1 * t2;
+  const double t11 = -s5 * t10;
+  const double t12 = t6 * beta[51] + t4 * beta[49] - t11 * beta[52];
+  const double t13 = s6 * t2 + c6 * t5;
+  const double t14 = t13 * beta[51] + t6 * beta[50] + t4 * beta[48] + t11 * beta[53];
+  const double t15 = t4 * beta[52];
+  const double t16 = -t4 * beta[53];
+  const double t17 = s6 * t15 + c6 * t16;
+  const double t18 = c4 * t8;
+  const double t19 = t18 + 1.1 * t3;
+  const double t20 = t2 * beta[40] + t4 * beta[38] + c6 * t12 - s6 * t14 + 0.23 * t17 + t19 * beta[41];
+  const double t21 = t19 + 0.23 * t5;
+  const double t22 = c5 * t10;
+  const double t23 = t22 - 0.23 * t2;
+  const double t24 = t13 * beta[49] + t6 * beta[48] + t4 * beta[47] - (c6 * t21 - s6 * t23) * beta[53] + (s6 * t21 + c6 * t23) * beta[52];
+  const double t25 = t5 * beta[38] + t2 * beta[37] + t4 * beta[36] + t24 - t19 * beta[42];
+  const double t26 = -t4 * beta[42] + t5 * beta[41] + t17;
+  const double t27 = t2 * beta[29] + t0 * beta[27] + c5 * t20 - s5 * t25 + 1.1 * t26;
+  const double t28 = c6 * t15 - s6 * t16;
+  const double t29 = -t2 * beta[41] + t28;
+  const double t30 = -t13 * beta[52] + t6 * beta[53] + t2 * beta[42];
+  const double t31 = c5 * t29 - s5 * t30;
+  const double t32 = t5 * beta[40] + t2 * beta[39] + t4 * beta[37] + s6 * t12 + c6 * t14 - 0.23 * t28 - t22 * beta[41] + t11 * beta[42];
+  const double t33 = t3 * beta[29] + t2 * beta[28] + t0 * beta[26] - 1.1 * t31 + t32;
+  const double t34 = t0 * beta[16] + c4 * t27 - s4 * t33 + t7 * beta[19];
+  const double t35 = t0 * beta[30] + t31;
+  const double t36 = -t0 * beta[31] + t26;
+  const double t37 = s4 * t35 + c4 * t36;
+  const double t38 = t3 * beta[27] + t2 * beta[26] + t0 * beta[25] + s5 * t20 + c5 * t25 - t18 * beta[31] + t9 * beta[30];
+  const double t39 = t1 * beta[16] + t0 * beta[14] + 0.055 * t37 + t38 - t7 * beta[20];
+  const double t40 = -t0 * beta[20] + t1 * beta[19] + t37;
+  M[0] = -(c2 * (s2 * beta[6] + c3 * t34 - s3 * t39 + 1.25 * t40 - 0.35 * beta[9]) - s2 * (-c2 * beta[6] + s2 * beta[4] + s3 * t34 + c3 * t39 + 0.35 * beta[10]) + 0.35 * (t40 - s2 * beta[10] - c2 * beta[9]) - beta[0]);
+  const double t41 = c4 * beta[29];
+  const double t42 = c4 * beta[40];
+  const double t43 = -s4 * s5;
+  const double t44 = t43 * beta[38];
+  const double t45 = s4 * c5;
+  const double t46 = c4 * c6 - s6 * t45;
+  const double t47 = t46 * beta[51];
+  const double t48 = t43 * beta[49];
+  const double t49 = -0.055 + 1.25 * s3;
+  const double t50 = -1.25 * c3 * c4;
+  const double t51 = t50 - 1.1 * c4;
+  const double t52 = c5 * t49 - s5 * t51;
+  const double t53 = t47 + t48 - t52 * beta[52];
+  const double t54 = c4 * s6 + c6 * t45;
+  const double t55 = t54 * beta[51];
+  const double t56 = t46 * beta[50];
+  const double t57 = t43 * beta[48];
+  const double t58 = t55 + t56 + t57 + t52 * beta[53];
+  const double t59 = t43 * beta[52];
+  const double t60 = -t43 * beta[53];
+  const double t61 = s6 * t59 + c6 * t60;
+  const double t62 = 0.23 * t61;
+  const double t63 = 1.25 * c3 * s4;
+  const double t64 = 1.1 * s4;
+  const double t65 = t63 + t64;
+  const double t66 = t42 + t44 + c6 * t53 - s6 * t58 + t62 + t65 * beta[41];
+  const double t67 = t45 * beta[38];
+  const double t68 = c4 * beta[37];
+  const double t69 = t43 * beta[36];
+  const double t70 = t54 * beta[49];
+  const double t71 = t46 * beta[48];
+  const double t72 = t43 * beta[47];
+  const double t73 = 0.23 * t45;
+  const double t74 = t65 + t73;
+  const double t75 = s5 * t49 + c5 * t51;
+  const double t76 = -0.23 * c4;
+  const double t77 = t75 + t76;
+  const double t78 = t70 + t71 + t72 - (c6 * t74 - s6 * t77) * beta[53] + (s6 * t74 + c6 * t77) * beta[52];
+  const double t79 = t67 + t68 + t69 + t78 - t65 * beta[42];
+  const double t80 = -t43 * beta[42] + t45 * beta[41] + t61;
+  const double t81 = 1.1 * t80;
+  const double t82 = t41 + c5 * t66 - s5 * t79 + t81 - t49 * beta[30];
+  const double t83 = s4 * beta[29];
+  const double t84 = c4 * beta[28];
+  const double t85 = c6 * t59 - s6 * t60;
+  const double t86 = -c4 * beta[41] + t85;
+  const double t87 = -t54 * beta[52] + t46 * beta[53] + c4 * beta[42];
+  const double t88 = c5 * t86 - s5 * t87;
+  const double t89 = -1.1 * t88;
+  const double t90 = t45 * beta[40];
+  const double t91 = c4 * beta[39];
+  const double t92 = t43 * beta[37];
+  const double t93 = -0.23 * t85;
+  const double t94 = t90 + t91 + t92 + s6 * t53 + c6 * t58 + t93 - t75 * beta[41] + t52 * beta[42];
+  const double t95 = t83 + t84 + t89 + t94 + t49 * beta[31];
+  const double t96 = beta[18] + c4 * t82 - s4 * t95;
+  const double t97 = s4 * t88 + c4 * t80;
+  const double t98 = 0.055 * t97;
+  const double t99 = s4 * beta[27];
+  const double t100 = c4 * beta[26];
+  const double t101 = t99 + t100 + s5 * t66 + c5 * t79 - t63 * beta[31] + t50 * beta[30];
+  const double t102 = beta[15] + t98 + t101;
+  const double t103 = 1.25 * t97;
+  const double t104 = 0.35 * t97;
+  M[1] = -(c2 * (beta[8] + c3 * t96 - s3 * t102 + t103) - s2 * (beta[5] + s3 * t96 + c3 * t102) + t104);
+  const double t105 = -0.055 * c5 + 1.1 * c4 * s5;
+  const double t106 = t47 + t48 - t105 * beta[52];
+  const double t107 = t55 + t56 + t57 + t105 * beta[53];
+  const double t108 = t42 + t44 + t62 + c6 * t106 - s6 * t107 + 1.1 * s4 * beta[41];
+  const double t109 = t64 + t73;
+  const double t110 = -0.055 * s5 - 1.1 * c4 * c5;
+  const double t111 = t76 + t110;
+  const double t112 = t70 + t71 + t72 - (c6 * t109 - s6 * t111) * beta[53] + (s6 * t109 + c6 * t111) * beta[52];
+  const double t113 = t67 + t68 + t69 + t112 - 1.1 * s4 * beta[42];
+  const double t114 = t41 + t81 + c5 * t108 - s5 * t113 + 0.055 * beta[30];
+  const double t115 = t90 + t91 + t92 + t93 + s6 * t106 + c6 * t107 - t110 * beta[41] + t105 * beta[42];
+  const double t116 = t83 + t84 + t89 + t115 - 0.055 * beta[31];
+  const double t117 = beta[18] + c4 * t114 - s4 * t116;
+  const double t118 = t99 + t100 + s5 * t108 + c5 * t113;
+  const double t119 = beta[15] + t98 + t118;
+  M[2] = -(t104 + c2 * (t103 + c3 * t117 - s3 * t119) - s2 * (s3 * t117 + c3 * t119));
+  const double t120 = s5 * s6;
+  const double t121 = t120 * beta[51] - c5 * beta[49];
+  const double t122 = -s5 * c6;
+  const double t123 = t122 * beta[51] + t120 * beta[50] - c5 * beta[48];
+  const double t124 = -c5 * beta[52];
+  const double t125 = c5 * beta[53];
+  const double t126 = s6 * t124 + c6 * t125;
+  const double t127 = -c5 * beta[38] + c6 * t121 - s6 * t123 + 0.23 * t126;
+  const double t128 = -c5 * beta[47];
+  const double t129 = t122 * beta[49] + t120 * beta[48] + t128 - (-0.23 * s5 * c6) * beta[53] + (-0.23 * s5 * s6) * beta[52];
+  const double t130 = -s5 * beta[38] - c5 * beta[36] + t129;
+  const double t131 = -s5 * beta[41];
+  const double t132 = c5 * beta[42] + t131 + t126;
+  const double t133 = -beta[27] + c5 * t127 - s5 * t130 + 1.1 * t132;
+  const double t134 = c6 * t124 - s6 * t125;
+  const double t135 = -t122 * beta[52] + t120 * beta[53];
+  const double t136 = c5 * t134 - s5 * t135;
+  const double t137 = -s5 * beta[40] - c5 * beta[37] + s6 * t121 + c6 * t123 - 0.23 * t134;
+  const double t138 = -beta[26] - 1.1 * t136 + t137;
+  const double t139 = c4 * t133 - s4 * t138;
+  const double t140 = -beta[30] + t136;
+  const double t141 = beta[31] + t132;
+  const double t142 = s4 * t140 + c4 * t141;
+  const double t143 = -beta[25] + s5 * t127 + c5 * t130;
+  const double t144 = 0.055 * t142 + t143;
+  M[3] = -(c2 * (c3 * t139 - s3 * t144 + 1.25 * t142) - s2 * (s3 * t139 + c3 * t144) + 0.35 * t142);
+  const double t145 = c6 * beta[51];
+  const double t146 = s6 * beta[51] + c6 * beta[50];
+  const double t147 = beta[40] + c6 * t145 - s6 * t146;
+  const double t148 = s6 * beta[49] + c6 * beta[48] - 0.23 * s6 * beta[53] - 0.23 * c6 * beta[52];
+  const double t149 = beta[37] + t148;
+  const double t150 = c5 * t147 - s5 * t149;
+  const double t151 = -s6 * beta[52] + c6 * beta[53];
+  const double t152 = beta[42] + t151;
+  const double t153 = -c5 * beta[41] - s5 * t152;
+  const double t154 = beta[39] + s6 * t145 + c6 * t146;
+  const double t155 = -1.1 * t153 + t154;
+  const double t156 = c4 * t150 - s4 * t155;
+  const double t157 = s4 * t153;
+  const double t158 = s5 * t147 + c5 * t149;
+  const double t159 = 0.055 * t157 + t158;
+  M[4] = -(c2 * (c3 * t156 - s3 * t159 + 1.25 * t157) - s2 * (s3 * t156 + c3 * t159) + 0.35 * t157);
+  const double t160 = -c6 * beta[49] + s6 * beta[48] + 0.23 * t151;
+  const double t161 = c5 * t160 + s5 * beta[47] + 1.1 * t151;
+  const double t162 = -c6 * beta[52] - s6 * beta[53];
+  const double t163 = c5 * t162;
+  const double t164 = -s6 * beta[49] - c6 * beta[48] - 0.23 * t162;
+  const double t165 = -1.1 * t163 + t164;
+  const double t166 = c4 * t161 - s4 * t165;
+  const double t167 = s4 * t163 + c4 * t151;
+  const double t168 = t128 + s5 * t160;
+  const double t169 = 0.055 * t167 + t168;
+  M[5] = -(c2 * (c3 * t166 - s3 * t169 + 1.25 * t167) - s2 * (s3 * t166 + c3 * t169) + 0.35 * t167);
+  const double t170 = -t3 * beta[30] + t2 * beta[31] + s5 * t29 + c5 * t30;
+  const double t171 = t1 * beta[18] + t0 * beta[15] + s4 * t27 + c4 * t33 - 0.055 * t170;
+  M[6] = -c2 * beta[8] + s2 * beta[5] - 1.25 * (c3 * (c4 * t35 - s4 * t36) - s3 * t170) + t171;
+  const double t172 = -s4 * beta[30] + c4 * beta[31] + s5 * t86 + c5 * t87;
+  const double t173 = -1.25 * (c3 * (-beta[19] + c4 * t88 - s4 * t80) - s3 * (beta[20] + t172));
+  const double t174 = -0.055 * t172;
+  const double t175 = beta[17] + s4 * t82 + c4 * t95 + t174 + 1.25 * c3 * beta[19] + 1.25 * s3 * beta[20];
+  M[7] = beta[7] + t173 + t175;
+  const double t176 = beta[17] + t174 + s4 * t114 + c4 * t116;
+  M[8] = t173 + t176;
+  const double t177 = s5 * t134 + c5 * t135;
+  const double t178 = s4 * t133 + c4 * t138 - 0.055 * t177;
+  M[9] = -1.25 * (c3 * (c4 * t140 - s4 * t141) - s3 * t177) + t178;
+  const double t179 = t131 + c5 * t152;
+  const double t180 = s4 * t150 + c4 * t155 - 0.055 * t179;
+  M[10] = -1.25 * (c3 * c4 * t153 - s3 * t179) + t180;
+  const double t181 = s5 * t162;
+  const double t182 = s4 * t161 + c4 * t165 - 0.055 * t181;
+  M[11] = -1.25 * (c3 * (c4 * t163 - s4 * t151) - s3 * t181) + t182;
+  M[12] = t171;
+  M[13] = t175;
+  M[14] = beta[21] + t176;
+  M[15] = t178;
+  M[16] = t180;
+  M[17] = t182;
+  M[18] = -t38;
+  M[19] = -t101;
+  M[20] = -t118;
+  M[21] = beta[32] - t143;
+  M[22] = -t158;
+  M[23] = -t168;
+  M[24] = t32;
+  M[25] = t94;
+  M[26] = t115;
+  M[27] = t137;
+  M[28] = beta[43] + t154;
+  M[29] = t164;
+  M[30] = -t24;
+  M[31] = -t78;
+  M[32] = -t112;
+  M[33] = -t129;
+  M[34] = -t148;
+  M[35] = beta[47] + beta[54];
+}
+
+// mass_matrix with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
+// computing them; identical results.
+void mass_matrix_sincos(const float* q, const float* sin_q, const float* cos_q, const float* beta,
+                        float* M) {
+  static_cast<void>(q);
+  const float s2 = sin_q[1];
+  const float c2 = cos_q[1];
+  const float s3 = sin_q[2];
+  const float c3 = cos_q[2];
+  const float s4 = sin_q[3];
+  const float c4 = cos_q[3];
+  const float s5 = sin_q[4];
+  const float c5 = cos_q[4];
+  const float s6 = sin_q[5];
+  const float c6 = cos_q[5];
+  const float t0 = s2 * c3 + c2 * s3;
+  const float t1 = s2 * s3 - c2 * c3;
+  const float t2 = -s4 * t1;
+  const float t3 = c4 * t1;
+  const float t4 = c5 * t0 - s5 * t3;
+  const float t5 = s5 * t0 + c5 * t3;
+  const float t6 = c6 * t2 - s6 * t5;
+  const float t7 = -0.35f - 1.25f * c2;
+  const float t8 = t7 + 0.055f * t0;
+  const float t9 = s4 * t8;
+  const float t10 = t9 - 1.1f * t2;
+  const float t11 = -s5 * t10;
+  const float t12 = t6 * beta[51] + t4 * beta[49] - t11 * beta[52];
+  const float t13 = s6 * t2 + c6 * t5;
+  const float t14 = t13 * beta[51] + t6 * beta[50] + t4 * beta[48] + t11 * beta[53];
+  const float t15 = t4 * beta[52];
+  const float t16 = -t4 * beta[53];
+  const float t17 = s6 * t15 + c6 * t16;
+  const float t18 = c4 * t8;
+  const float t19 = t18 + 1.1f * t3;
+  const float t20 = t2 * beta[40] + t4 * beta[38] + c6 * t12 - s6 * t14 + 0.23f * t17 + t19 * beta[41];
+  const float t21 = t19 + 0.23f * t5;
+  const float t22 = c5 * t10;
+  const float t23 = t22 - 0.23f * t2;
+  const float t24 = t13 * beta[49] + t6 * beta[48] + t4 * beta[47] - (c6 * t21 - s6 * t23) * beta[53] + (s6 * t21 + c6 * t23) * beta[52];
+  const float t25 = t5 * beta[38] + t2 * beta[37] + t4 * beta[36] + t24 - t19 * beta[42];
+  const float t26 = -t4 * beta[42] + t5 * beta[41] + t17;
+  const float t27 = t2 * beta[29] + t0 * beta[27] + c5 * t20 - s5 * t25 + 1.1f * t26;
+  const float t28 = c6 * t15 - s6 * t16;
+  const float t29 = -t2 * beta[41] + t28;
+  const float t30 = -t13 * beta[52] + t6 * beta[53] + t2 * beta[42];
+  const float t31 = c5 * t29 - s5 * t30;
+  const float t32 = t5 * beta[40] + t2 * beta[39] + t4 * beta[37] + s6 * t12 + c6 * t14 - 0.23f * t28 - t22 * beta[41] + t11 * beta[42];
+  const float t33 = t3 * beta[29] + t2 * beta[28] + t0 * beta[26] - 1.1f * t31 + t32;
+  const float t34 = t0 * beta[16] + c4 * t27 - s4 * t33 + t7 * beta[19];
+  const float t35 = t0 * beta[30] + t31;
+  const float t36 = -t0 * beta[31] + t26;
+  const float t37 = s4 * t35 + c4 * t36;
+  const float t38 = t3 * beta[27] + t2 * beta[26] + t0 * beta[25] + s5 * t20 + c5 * t25 - t18 * beta[31] + t9 * beta[30];
+  const float t39 = t1 * beta[16] + t0 * beta[14] + 0.055f * t37 + t38 - t7 * beta[20];
+  const float t40 = -t0 * beta[20] + t1 * beta[19] + t37;
+  M[0] = -(c2 * (s2 * beta[6] + c3 * t34 - s3 * t39 + 1.25f * t40 - 0.35f * beta[9]) - s2 * (-c2 * beta[6] + s2 * beta[4] + s3 * t34 + c3 * t39 + 0.35f * beta[10]) + 0.35f * (t40 - s2 * beta[10] - c2 * beta[9]) - beta[0]);
+  const float t41 = c4 * beta[29];
+  const float t42 = c4 * beta[40];
+  const float t43 = -s4 * s5;
+  const float t44 = t43 * beta[38];
+  const float t45 = s4 * c5;
+  const float t46 = c4 * c6 - s6 * t45;
+  const float t47 = t46 * beta[51];
+  const float t48 = t43 * beta[49];
+  const float t49 = -0.055f + 1.25f * s3;
+  const float t50 = -1.25f * c3 * c4;
+  const float t51 = t50 - 1.1f * c4;
+  const float t52 = c5 * t49 - s5 * t51;
+  const float t53 = t47 + t48 - t52 * beta[52];
+  const float t54 = c4 * s6 + c6 * t45;
+  const float t55 = t54 * beta[51];
+  const float t56 = t46 * beta[50];
+  const float t57 = t43 * beta[48];
+  const float t58 = t55 + t56 + t57 + t52 * beta[53];
+  const float t59 = t43 * beta[52];
+  const float t60 = -t43 * beta[53];
+  const float t61 = s6 * t59 + c6 * t60;
+  const float t62 = 0.23f * t61;
+  const float t63 = 1.25f * c3 * s4;
+  const float t64 = 1.1f * s4;
+  const float t65 = t63 + t64;
+  const float t66 = t42 + t44 + c6 * t53 - s6 * t58 + t62 + t65 * beta[41];
+  const float t67 = t45 * beta[38];
+  const float t68 = c4 * beta[37];
+  const float t69 = t43 * beta[36];
+  const float t70 = t54 * beta[49];
+  const float t71 = t46 * beta[48];
+  const float t72 = t43 * beta[47];
+  const float t73 = 0.23f * t45;
+  const float t74 = t65 + t73;
+  const float t75 = s5 * t49 + c5 * t51;
+  const float t76 = -0.23f * c4;
+  const float t77 = t75 + t76;
+  const float t78 = t70 + t71 + t72 - (c6 * t74 - s6 * t77) * beta[53] + (s6 * t74 + c6 * t77) * beta[52];
+  const float t79 = t67 + t68 + t69 + t78 - t65 * beta[42];
+  const float t80 = -t43 * beta[42] + t45 * beta[41] + t61;
+  const float t81 = 1.1f * t80;
+  const float t82 = t41 + c5 * t66 - s5 * t79 + t81 - t49 * beta[30];
+  const float t83 = s4 * beta[29];
+  const float t84 = c4 * beta[28];
+  const float t85 = c6 * t59 - s6 * t60;
+  const float t86 = -c4 * beta[41] + t85;
+  const float t87 = -t54 * beta[52] + t46 * beta[53] + c4 * beta[42];
+  const float t88 = c5 * t86 - s5 * t87;
+  const float t89 = -1.1f * t88;
+  const float t90 = t45 * beta[40];
+  const float t91 = c4 * beta[39];
+  const float t92 = t43 * beta[37];
+  const float t93 = -0.23f * t85;
+  const float t94 = t90 + t91 + t92 + s6 * t53 + c6 * t58 + t93 - t75 * beta[41] + t52 * beta[42];
+  const float t95 = t83 + t84 + t89 + t94 + t49 * beta[31];
+  const float t96 = beta[18] + c4 * t82 - s4 * t95;
+  const float t97 = s4 * t88 + c4 * t80;
+  const float t98 = 0.055f * t97;
+  const float t99 = s4 * beta[27];
+  const float t100 = c4 * beta[26];
+  const float t101 = t99 + t100 + s5 * t66 + c5 * t79 - t63 * beta[31] + t50 * beta[30];
+  const float t102 = beta[15] + t98 + t101;
+  const float t103 = 1.25f * t97;
+  const float t104 = 0.35f * t97;
+  M[1] = -(c2 * (beta[8] + c3 * t96 - s3 * t102 + t103) - s2 * (beta[5] + s3 * t96 + c3 * t102) + t104);
+  const float t105 = -0.055f * c5 + 1.1f * c4 * s5;
+  const float t106 = t47 + t48 - t105 * beta[52];
+  const float t107 = t55 + t56 + t57 + t105 * beta[53];
+  const float t108 = t42 + t44 + t62 + c6 * t106 - s6 * t107 + 1.1f * s4 * beta[41];
+  const float t109 = t64 + t73;
+  const float t110 = -0.055f * s5 - 1.1f * c4 * c5;
+  const float t111 = t76 + t110;
+  const float t112 = t70 + t71 + t72 - (c6 * t109 - s6 * t111) * beta[53] + (s6 * t109 + c6 * t111) * beta[52];
+  const float t113 = t67 + t68 + t69 + t112 - 1.1f * s4 * beta[42];
+  const float t114 = t41 + t81 + c5 * t108 - s5 * t113 + 0.055f * beta[30];
+  const float t115 = t90 + t91 + t92 + t93 + s6 * t106 + c6 * t107 - t110 * beta[41] + t105 * beta[42];
+  const float t116 = t83 + t84 + t89 + t115 - 0.055f * beta[31];
+  const float t117 = beta[18] + c4 * t114 - s4 * t116;
+  const float t118 = t99 + t100 + s5 * t108 + c5 * t113;
+  const float t119 = beta[15] + t98 + t118;
+  M[2] = -(t104 + c2 * (t103 + c3 * t117 - s3 * t119) - s2 * (s3 * t117 + c3 * t119));
+  const float t120 = s5 * s6;
+  const float t121 = t120 * beta[51] - c5 * beta[49];
+  const float t122 = -s5 * c6;
+  const float t123 = t122 * beta[51] + t120 * beta[50] - c5 * beta[48];
+  const float t124 = -c5 * beta[52];
+  const float t125 = c5 * beta[53];
+  const float t126 = s6 * t124 + c6 * t125;
+  const float t127 = -c5 * beta[38] + c6 * t121 - s6 * t123 + 0.23f * t126;
+  const float t128 = -c5 * beta[47];
+  const float t129 = t122 * beta[49] + t120 * beta[48] + t128 - (-0.23f * s5 * c6) * beta[53] + (-0.23f * s5 * s6) * beta[52];
+  const float t130 = -s5 * beta[38] - c5 * beta[36] + t129;
+  const float t131 = -s5 * beta[41];
+  const float t132 = c5 * beta[42] + t131 + t126;
+  const float t133 = -beta[27] + c5 * t127 - s5 * t130 + 1.1f * t132;
+  const float t134 = c6 * t124 - s6 * t125;
+  const float t135 = -t122 * beta[52] + t120 * beta[53];
+  const float t136 = c5 * t134 - s5 * t135;
+  const float t137 = -s5 * beta[40] - c5 * beta[37] + s6 * t121 + c6 * t123 - 0.23f * t134;
+  const float t138 = -beta[26] - 1.1f * t136 + t137;
+  const float t139 = c4 * t133 - s4 * t138;
+  const float t140 = -beta[30] + t136;
+  const float t141 = beta[31] + t132;
+  const float t142 = s4 * t140 + c4 * t141;
+  const float t143 = -beta[25] + s5 * t127 + c5 * t130;
+  const float t144 = 0.055f * t142 + t143;
+  M[3] = -(c2 * (c3 * t139 - s3 * t144 + 1.25f * t142) - s2 * (s3 * t139 + c3 * t144) + 0.35f * t142);
+  const float t145 = c6 * beta[51];
+  const float t146 = s6 * beta[51] + c6 * beta[50];
+  const float t147 = beta[40] + c6 * t145 - s6 * t146;
+  const float t148 = s6 * beta[49] + c6 * beta[48] - 0.23f * s6 * beta[53] - 0.23f * c6 * beta[52];
+  const float t149 = beta[37] + t148;
+  const float t150 = c5 * t147 - s5 * t149;
+  const float t151 = -s6 * beta[52] + c6 * beta[53];
+  const float t152 = beta[42] + t151;
+  const float t153 = -c5 * beta[41] - s5 * t152;
+  const float t154 = beta[39] + s6 * t145 + c6 * t146;
+  const float t155 = -1.1f * t153 + t154;
+  const float t156 = c4 * t150 - s4 * t155;
+  const float t157 = s4 * t153;
+  const float t158 = s5 * t147 + c5 * t149;
+  const float t159 = 0.055f * t157 + t158;
+  M[4] = -(c2 * (c3 * t156 - s3 * t159 + 1.25f * t157) - s2 * (s3 * t156 + c3 * t159) + 0.35f * t157);
+  const float t160 = -c6 * beta[49] + s6 * beta[48] + 0.23f * t151;
+  const float t161 = c5 * t160 + s5 * beta[47] + 1.1f * t151;
+  const float t162 = -c6 * beta[52] - s6 * beta[53];
+  const float t163 = c5 * t162;
+  const float t164 = -s6 * beta[49] - c6 * beta[48] - 0.23f * t162;
+  const float t165 = -1.1f * t163 + t164;
+  const float t166 = c4 * t161 - s4 * t165;
+  const float t167 = s4 * t163 + c4 * t151;
+  const float t168 = t128 + s5 * t160;
+  const float t169 = 0.055f * t167 + t168;
+  M[5] = -(c2 * (c3 * t166 - s3 * t169 + 1.25f * t167) - s2 * (s3 * t166 + c3 * t169) + 0.35f * t167);
+  const float t170 = -t3 * beta[30] + t2 * beta[31] + s5 * t29 + c5 * t30;
+  const float t171 = t1 * beta[18] + t0 * beta[15] + s4 * t27 + c4 * t33 - 0.055f * t170;
+  M[6] = -c2 * beta[8] + s2 * beta[5] - 1.25f * (c3 * (c4 * t35 - s4 * t36) - s3 * t170) + t171;
+  const float t172 = -s4 * beta[30] + c4 * beta[31] + s5 * t86 + c5 * t87;
+  const float t173 = -1.25f * (c3 * (-beta[19] + c4 * t88 - s4 * t80) - s3 * (beta[20] + t172));
+  const float t174 = -0.055f * t172;
+  const float t175 = beta[17] + s4 * t82 + c4 * t95 + t174 + 1.25f * c3 * beta[19] + 1.25f * s3 * beta[20];
+  M[7] = beta[7] + t173 + t175;
+  const float t176 = beta[17] + t174 + s4 * t114 + c4 * t116;
+  M[8] = t173 + t176;
+  const float t177 = s5 * t134 + c5 * t135;
+  const float t178 = s4 * t133 + c4 * t138 - 0.055f * t177;
+  M[9] = -1.25f * (c3 * (c4 * t140 - s4 * t141) - s3 * t177) + t178;
+  const float t179 = t131 + c5 * t152;
+  const float t180 = s4 * t150 + c4 * t155 - 0.055f * t179;
+  M[10] = -1.25f * (c3 * c4 * t153 - s3 * t179) + t180;
+  const float t181 = s5 * t162;
+  const float t182 = s4 * t161 + c4 * t165 - 0.055f * t181;
+  M[11] = -1.25f * (c3 * (c4 * t163 - s4 * t151) - s3 * t181) + t182;
+  M[12] = t171;
+  M[13] = t175;
+  M[14] = beta[21] + t176;
+  M[15] = t178;
+  M[16] = t180;
+  M[17] = t182;
+  M[18] = -t38;
+  M[19] = -t101;
+  M[20] = -t118;
+  M[21] = beta[32] - t143;
+  M[22] = -t158;
+  M[23] = -t168;
+  M[24] = t32;
+  M[25] = t94;
+  M[26] = t115;
+  M[27] = t137;
+  M[28] = beta[43] + t154;
+  M[29] = t164;
+  M[30] = -t24;
+  M[31] = -t78;
+  M[32] = -t112;
+  M[33] = -t129;
+  M[34] = -t148;
+  M[35] = beta[47] + beta[54];
 }
 
 // Jacobian of inverse_dynamics with respect to the state x = [q, dq, ddq] (3 kDof values), for
@@ -9520,7 +10466,8 @@ void power_regressor(const float* q, const float* dq, const float* ddq, float* d
   dh[57] = dq[5];  // OFF6
 }
 
-// energy_regressor with sin_q, cos_q (kDof each) from joint_sincos(q, ...); identical results.
+// energy_regressor with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
+// computing them; identical results.
 void energy_regressor_sincos(const double* q, const double* sin_q, const double* cos_q,
                              const double* dq, double* h) {
   static_cast<void>(q);
@@ -9626,7 +10573,8 @@ void energy_regressor_sincos(const double* q, const double* sin_q, const double*
   h[57] = 0.0;  // OFF6
 }
 
-// energy_regressor with sin_q, cos_q (kDof each) from joint_sincos(q, ...); identical results.
+// energy_regressor with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
+// computing them; identical results.
 void energy_regressor_sincos(const float* q, const float* sin_q, const float* cos_q,
                              const float* dq, float* h) {
   static_cast<void>(q);
@@ -9732,7 +10680,8 @@ void energy_regressor_sincos(const float* q, const float* sin_q, const float* co
   h[57] = 0.0f;  // OFF6
 }
 
-// power_regressor with sin_q, cos_q (kDof each) from joint_sincos(q, ...); identical results.
+// power_regressor with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
+// computing them; identical results.
 void power_regressor_sincos(const double* q, const double* sin_q, const double* cos_q,
                             const double* dq, const double* ddq, double* dh) {
   static_cast<void>(q);
@@ -9876,7 +10825,8 @@ void power_regressor_sincos(const double* q, const double* sin_q, const double* 
   dh[57] = dq[5];  // OFF6
 }
 
-// power_regressor with sin_q, cos_q (kDof each) from joint_sincos(q, ...); identical results.
+// power_regressor with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
+// computing them; identical results.
 void power_regressor_sincos(const float* q, const float* sin_q, const float* cos_q,
                             const float* dq, const float* ddq, float* dh) {
   static_cast<void>(q);
@@ -10028,8 +10978,8 @@ void power_regressor_sincos(const float* q, const float* sin_q, const float* cos
 // < 0 and the mean of both if 0 (eq. 8), tau_M = tau_T + JM ddq_M + Rv dq_M + Rc sign(dq_M)
 // (eq. 7). Units follow K: N m on the motor side when K holds gear ratios, on the link side
 // (as in the paper) when it is the coupling alone. Every Rz must be non-zero.
-void drive_torque(const double* q, const double* dq, const double* ddq,
-                  const double* theta, double* tau_M) {
+void drive_torque(const double* q, const double* dq, const double* ddq, const double* theta,
+                  double* tau_M) {
   const double sg1 = static_cast<double>((dq[0] > 0.0) - (dq[0] < 0.0));
   const double s2 = std::sin(q[1]);
   const double c2 = std::cos(q[1]);
@@ -10178,8 +11128,8 @@ void drive_torque(const double* q, const double* dq, const double* ddq,
 // < 0 and the mean of both if 0 (eq. 8), tau_M = tau_T + JM ddq_M + Rv dq_M + Rc sign(dq_M)
 // (eq. 7). Units follow K: N m on the motor side when K holds gear ratios, on the link side
 // (as in the paper) when it is the coupling alone. Every Rz must be non-zero.
-void drive_torque(const float* q, const float* dq, const float* ddq,
-                  const float* theta, float* tau_M) {
+void drive_torque(const float* q, const float* dq, const float* ddq, const float* theta,
+                  float* tau_M) {
   const float sg1 = static_cast<float>((dq[0] > 0.0f) - (dq[0] < 0.0f));
   const float s2 = std::sin(q[1]);
   const float c2 = std::cos(q[1]);
@@ -10896,8 +11846,8 @@ void drive_torque_jacobian(const double* q, const double* dq, const double* ddq,
 // efficiency branch and the Coulomb friction sign count as constant: exact wherever no motor
 // velocity and no power flow tau'_G dq_M is zero. Calls idim_regressor_standard into a local
 // array of kDof * kStandardParams values (on the stack) and applies the chain rule to it.
-void drive_torque_jacobian(const float* q, const float* dq, const float* ddq,
-                           const float* theta, float* tau_M, float* J) {
+void drive_torque_jacobian(const float* q, const float* dq, const float* ddq, const float* theta,
+                           float* tau_M, float* J) {
   float W_std[kDof * kStandardParams] = {};
   idim_regressor_standard(q, dq, ddq, W_std);
   const float sg1 = static_cast<float>((dq[0] > 0.0f) - (dq[0] < 0.0f));

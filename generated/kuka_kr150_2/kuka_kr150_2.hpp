@@ -12,8 +12,10 @@
 // base_from_standard                     37     75        0
 // idim_regressor                        490    385       10
 // inverse_dynamics                      365    287       10
+// mass_matrix                           430    385       10
 // idim_regressor_sincos                 490    385        0
 // inverse_dynamics_sincos               365    287        0
+// mass_matrix_sincos                    430    385        0
 // inverse_dynamics_state_jacobian      2816   2563       10
 // energy_regressor                      127     51       10
 // power_regressor                       317    168       10
@@ -73,8 +75,8 @@ void idim_regressor_standard(const float* q, const float* dq, const float* ddq, 
 // inertia, friction and offsets as the description enables them.
 void inverse_dynamics_standard(const double* q, const double* dq, const double* ddq,
                                const double* p, double* tau);
-void inverse_dynamics_standard(const float* q, const float* dq, const float* ddq,
-                               const float* p, float* tau);
+void inverse_dynamics_standard(const float* q, const float* dq, const float* ddq, const float* p,
+                               float* tau);
 
 // sin and cos of every joint variable, for the *_sincos entry points: a caller evaluating
 // several functions at one state pays for the trigonometry once. Input q: kDof joint
@@ -91,12 +93,12 @@ void idim_regressor_standard_sincos(const float* q, const float* sin_q, const fl
 
 // inverse_dynamics_standard with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
 // computing them; identical results.
-void inverse_dynamics_standard_sincos(const double* q, const double* sin_q,
-                                      const double* cos_q, const double* dq,
-                                      const double* ddq, const double* p, double* tau);
-void inverse_dynamics_standard_sincos(const float* q, const float* sin_q,
-                                      const float* cos_q, const float* dq,
-                                      const float* ddq, const float* p, float* tau);
+void inverse_dynamics_standard_sincos(const double* q, const double* sin_q, const double* cos_q,
+                                      const double* dq, const double* ddq, const double* p,
+                                      double* tau);
+void inverse_dynamics_standard_sincos(const float* q, const float* sin_q, const float* cos_q,
+                                      const float* dq, const float* ddq, const float* p,
+                                      float* tau);
 
 // The base parameters from the standard ones: the regrouping relations beta = K * p_standard.
 // Input p_standard: kStandardParams values in the order of kStandardParamNames.
@@ -114,26 +116,39 @@ void idim_regressor(const float* q, const float* dq, const float* ddq, float* W)
 // Inverse dynamics on the base parameters (customized Newton-Euler with the regrouped
 // parameters): joint torques tau (kDof) for q, dq, ddq (kDof each) and beta (kBaseParams, in the
 // order of kBaseParamNames; base_from_standard computes it from standard parameters).
-void inverse_dynamics(const double* q, const double* dq, const double* ddq,
-                      const double* beta, double* tau);
-void inverse_dynamics(const float* q, const float* dq, const float* ddq,
-                      const float* beta, float* tau);
+void inverse_dynamics(const double* q, const double* dq, const double* ddq, const double* beta,
+                      double* tau);
+void inverse_dynamics(const float* q, const float* dq, const float* ddq, const float* beta,
+                      float* tau);
 
-// idim_regressor with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of computing
-// them; identical results.
+// Joint-space inertia matrix M(q) on the base parameters: inverse_dynamics is tau = M(q) ddq +
+// terms without ddq (velocity, gravity, friction, offsets), for forward dynamics
+// ddq = M^-1 (tau - inverse_dynamics(q, dq, 0, beta)). Inputs q (kDof) and beta (kBaseParams,
+// as for inverse_dynamics). Output M: kDof x kDof, row-major, M[i * kDof + k] = d tau_i / d ddq_k
+// (drive inertias included; symmetric, and positive definite for physical parameters).
+void mass_matrix(const double* q, const double* beta, double* M);
+void mass_matrix(const float* q, const float* beta, float* M);
+
+// idim_regressor with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
+// computing them; identical results.
 void idim_regressor_sincos(const double* q, const double* sin_q, const double* cos_q,
                            const double* dq, const double* ddq, double* W);
 void idim_regressor_sincos(const float* q, const float* sin_q, const float* cos_q,
                            const float* dq, const float* ddq, float* W);
 
-// inverse_dynamics with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of computing
-// them; identical results.
+// inverse_dynamics with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
+// computing them; identical results.
 void inverse_dynamics_sincos(const double* q, const double* sin_q, const double* cos_q,
-                             const double* dq, const double* ddq, const double* beta,
-                             double* tau);
+                             const double* dq, const double* ddq, const double* beta, double* tau);
 void inverse_dynamics_sincos(const float* q, const float* sin_q, const float* cos_q,
-                             const float* dq, const float* ddq, const float* beta,
-                             float* tau);
+                             const float* dq, const float* ddq, const float* beta, float* tau);
+
+// mass_matrix with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
+// computing them; identical results.
+void mass_matrix_sincos(const double* q, const double* sin_q, const double* cos_q,
+                        const double* beta, double* M);
+void mass_matrix_sincos(const float* q, const float* sin_q, const float* cos_q, const float* beta,
+                        float* M);
 
 // Jacobian of inverse_dynamics with respect to the state x = [q, dq, ddq] (3 kDof values), for
 // maximum likelihood with errors in variables (Bona & Curatella eq. 15-16): J is kDof x 3 kDof,
@@ -159,13 +174,15 @@ void energy_regressor(const float* q, const float* dq, float* h);
 void power_regressor(const double* q, const double* dq, const double* ddq, double* dh);
 void power_regressor(const float* q, const float* dq, const float* ddq, float* dh);
 
-// energy_regressor with sin_q, cos_q (kDof each) from joint_sincos(q, ...); identical results.
+// energy_regressor with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
+// computing them; identical results.
 void energy_regressor_sincos(const double* q, const double* sin_q, const double* cos_q,
                              const double* dq, double* h);
 void energy_regressor_sincos(const float* q, const float* sin_q, const float* cos_q,
                              const float* dq, float* h);
 
-// power_regressor with sin_q, cos_q (kDof each) from joint_sincos(q, ...); identical results.
+// power_regressor with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
+// computing them; identical results.
 void power_regressor_sincos(const double* q, const double* sin_q, const double* cos_q,
                             const double* dq, const double* ddq, double* dh);
 void power_regressor_sincos(const float* q, const float* sin_q, const float* cos_q,
@@ -179,10 +196,10 @@ void power_regressor_sincos(const float* q, const float* sin_q, const float* cos
 // < 0 and the mean of both if 0 (eq. 8), tau_M = tau_T + JM ddq_M + Rv dq_M + Rc sign(dq_M)
 // (eq. 7). Units follow K: N m on the motor side when K holds gear ratios, on the link side
 // (as in the paper) when it is the coupling alone. Every Rz must be non-zero.
-void drive_torque(const double* q, const double* dq, const double* ddq,
-                  const double* theta, double* tau_M);
-void drive_torque(const float* q, const float* dq, const float* ddq,
-                  const float* theta, float* tau_M);
+void drive_torque(const double* q, const double* dq, const double* ddq, const double* theta,
+                  double* tau_M);
+void drive_torque(const float* q, const float* dq, const float* ddq, const float* theta,
+                  float* tau_M);
 
 // drive_torque (tau_M, kDof values) with its Jacobian with respect to the parameters theta, for
 // maximum-likelihood estimation (Swevers et al. 2002 eq. 18): J is kDof x kDriveParams,
@@ -192,8 +209,8 @@ void drive_torque(const float* q, const float* dq, const float* ddq,
 // array of kDof * kStandardParams values (on the stack) and applies the chain rule to it.
 void drive_torque_jacobian(const double* q, const double* dq, const double* ddq,
                            const double* theta, double* tau_M, double* J);
-void drive_torque_jacobian(const float* q, const float* dq, const float* ddq,
-                           const float* theta, float* tau_M, float* J);
+void drive_torque_jacobian(const float* q, const float* dq, const float* ddq, const float* theta,
+                           float* tau_M, float* J);
 
 // Jacobian of drive_torque with respect to the state x = [q, dq, ddq] (3 kDof values), for
 // maximum likelihood with errors in variables (Bona & Curatella eq. 13-16): J is
@@ -252,6 +269,9 @@ struct Model {
   }
   static void power_regressor(const double* q, const double* dq, const double* ddq, double* dh) {
     ::modelgen::kuka_kr150_2::power_regressor(q, dq, ddq, dh);
+  }
+  static void mass_matrix(const double* q, const double* beta, double* M) {
+    ::modelgen::kuka_kr150_2::mass_matrix(q, beta, M);
   }
 };
 

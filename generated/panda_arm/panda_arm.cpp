@@ -12,8 +12,10 @@
 // base_from_standard                     61    106        0
 // idim_regressor                        800    622       12
 // inverse_dynamics                      415    345       12
+// mass_matrix                           775    686       12
 // idim_regressor_sincos                 800    622        0
 // inverse_dynamics_sincos               415    345        0
+// mass_matrix_sincos                    775    686        0
 // inverse_dynamics_state_jacobian      4325   3974       12
 // energy_regressor                      141     76       12
 // power_regressor                       385    233       12
@@ -2367,8 +2369,8 @@ void inverse_dynamics_standard(const double* q, const double* dq, const double* 
 // joint positions q, velocities dq and accelerations ddq (kDof each) and the standard
 // parameters p (kStandardParams, in the order of kStandardParamNames). Includes gravity, drive
 // inertia, friction and offsets as the description enables them.
-void inverse_dynamics_standard(const float* q, const float* dq, const float* ddq,
-                               const float* p, float* tau) {
+void inverse_dynamics_standard(const float* q, const float* dq, const float* ddq, const float* p,
+                               float* tau) {
   const float sg1 = static_cast<float>((dq[0] > 0.0f) - (dq[0] < 0.0f));
   const float s2 = std::sin(q[1]);
   const float c2 = std::cos(q[1]);
@@ -4717,9 +4719,9 @@ void idim_regressor_standard_sincos(const float* q, const float* sin_q, const fl
 
 // inverse_dynamics_standard with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
 // computing them; identical results.
-void inverse_dynamics_standard_sincos(const double* q, const double* sin_q,
-                                      const double* cos_q, const double* dq,
-                                      const double* ddq, const double* p, double* tau) {
+void inverse_dynamics_standard_sincos(const double* q, const double* sin_q, const double* cos_q,
+                                      const double* dq, const double* ddq, const double* p,
+                                      double* tau) {
   static_cast<void>(q);
   const double sg1 = static_cast<double>((dq[0] > 0.0) - (dq[0] < 0.0));
   const double s2 = sin_q[1];
@@ -4881,9 +4883,9 @@ void inverse_dynamics_standard_sincos(const double* q, const double* sin_q,
 
 // inverse_dynamics_standard with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
 // computing them; identical results.
-void inverse_dynamics_standard_sincos(const float* q, const float* sin_q,
-                                      const float* cos_q, const float* dq,
-                                      const float* ddq, const float* p, float* tau) {
+void inverse_dynamics_standard_sincos(const float* q, const float* sin_q, const float* cos_q,
+                                      const float* dq, const float* ddq, const float* p,
+                                      float* tau) {
   static_cast<void>(q);
   const float sg1 = static_cast<float>((dq[0] > 0.0f) - (dq[0] < 0.0f));
   const float s2 = sin_q[1];
@@ -6642,8 +6644,8 @@ void idim_regressor(const float* q, const float* dq, const float* ddq, float* W)
 // Inverse dynamics on the base parameters (customized Newton-Euler with the regrouped
 // parameters): joint torques tau (kDof) for q, dq, ddq (kDof each) and beta (kBaseParams, in the
 // order of kBaseParamNames; base_from_standard computes it from standard parameters).
-void inverse_dynamics(const double* q, const double* dq, const double* ddq,
-                      const double* beta, double* tau) {
+void inverse_dynamics(const double* q, const double* dq, const double* ddq, const double* beta,
+                      double* tau) {
   const double sg1 = static_cast<double>((dq[0] > 0.0) - (dq[0] < 0.0));
   const double s2 = std::sin(q[1]);
   const double c2 = std::cos(q[1]);
@@ -6792,8 +6794,8 @@ void inverse_dynamics(const double* q, const double* dq, const double* ddq,
 // Inverse dynamics on the base parameters (customized Newton-Euler with the regrouped
 // parameters): joint torques tau (kDof) for q, dq, ddq (kDof each) and beta (kBaseParams, in the
 // order of kBaseParamNames; base_from_standard computes it from standard parameters).
-void inverse_dynamics(const float* q, const float* dq, const float* ddq,
-                      const float* beta, float* tau) {
+void inverse_dynamics(const float* q, const float* dq, const float* ddq, const float* beta,
+                      float* tau) {
   const float sg1 = static_cast<float>((dq[0] > 0.0f) - (dq[0] < 0.0f));
   const float s2 = std::sin(q[1]);
   const float c2 = std::cos(q[1]);
@@ -6939,8 +6941,644 @@ void inverse_dynamics(const float* q, const float* dq, const float* ddq,
   tau[6] = beta[63] + dq[6] * beta[61] + sg7 * beta[62] + t101;
 }
 
-// idim_regressor with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of computing
-// them; identical results.
+// Joint-space inertia matrix M(q) on the base parameters: inverse_dynamics is tau = M(q) ddq +
+// terms without ddq (velocity, gravity, friction, offsets), for forward dynamics
+// ddq = M^-1 (tau - inverse_dynamics(q, dq, 0, beta)). Inputs q (kDof) and beta (kBaseParams,
+// as for inverse_dynamics). Output M: kDof x kDof, row-major, M[i * kDof + k] = d tau_i / d ddq_k
+// (drive inertias included; symmetric, and positive definite for physical parameters).
+void mass_matrix(const double* q, const double* beta, double* M) {
+  const double s2 = std::sin(q[1]);
+  const double c2 = std::cos(q[1]);
+  const double s3 = std::sin(q[2]);
+  const double c3 = std::cos(q[2]);
+  const double s4 = std::sin(q[3]);
+  const double c4 = std::cos(q[3]);
+  const double s5 = std::sin(q[4]);
+  const double c5 = std::cos(q[4]);
+  const double s6 = std::sin(q[5]);
+  const double c6 = std::cos(q[5]);
+  const double s7 = std::sin(q[6]);
+  const double c7 = std::cos(q[6]);
+  const double t0 = s2 * s3;
+  const double t1 = -s2 * c3;
+  const double t2 = c4 * t1 + c2 * s4;
+  const double t3 = -s4 * t1 + c2 * c4;
+  const double t4 = c5 * t2 + s5 * t0;
+  const double t5 = -s6 * t4 + c6 * t3;
+  const double t6 = c6 * t4 + s6 * t3;
+  const double t7 = -t5 * beta[59];
+  const double t8 = t5 * beta[60];
+  const double t9 = c7 * t7 + s7 * t8;
+  const double t10 = t3 * beta[39] + t5 * beta[49] - t6 * beta[50] - t9;
+  const double t11 = -s5 * t2 + c5 * t0;
+  const double t12 = -s7 * t6 - c7 * t11;
+  const double t13 = c7 * t6 - s7 * t11;
+  const double t14 = -t12 * beta[59] + t13 * beta[60];
+  const double t15 = -t11 * beta[49] - t14;
+  const double t16 = t11 * beta[50] - s7 * t7 + c7 * t8;
+  const double t17 = -t3 * beta[40] - s6 * t15 + c6 * t16;
+  const double t18 = -c5 * t10 - s5 * t17;
+  const double t19 = 0.316 * s2 * s3;
+  const double t20 = c4 * t19 - 0.0825 * s4 * t0;
+  const double t21 = t20 + 0.384 * t0;
+  const double t22 = 0.316 * s2 * c3;
+  const double t23 = -t22 - 0.0825 * c2;
+  const double t24 = t23 + 0.384 * t2 + 0.0825 * t3;
+  const double t25 = c5 * t21 - s5 * t24;
+  const double t26 = -s4 * t19 - 0.0825 * c4 * t0;
+  const double t27 = 0.0825 * t0 + t26;
+  const double t28 = c6 * t25 + s6 * t27;
+  const double t29 = -s5 * t21 - c5 * t24;
+  const double t30 = -t29 - 0.088 * t5;
+  const double t31 = -t5 * beta[58] + t12 * beta[57] + t13 * beta[56] - (c7 * t28 + s7 * t30) * beta[60] + (-s7 * t28 + c7 * t30) * beta[59];
+  const double t32 = -t11 * beta[47] + t6 * beta[45] - t31 - 0.088 * t9 + t29 * beta[49];
+  const double t33 = -s6 * t25 + c6 * t27;
+  const double t34 = -t33 + 0.088 * t11;
+  const double t35 = -t5 * beta[57] + t13 * beta[55] - t34 * beta[59];
+  const double t36 = -t5 * beta[56] + t12 * beta[55] + t13 * beta[54] + t34 * beta[60];
+  const double t37 = -t11 * beta[46] + t5 * beta[45] + t6 * beta[44] - s7 * t35 + c7 * t36 - t29 * beta[50];
+  const double t38 = t3 * beta[38] + t11 * beta[37] + t4 * beta[36] + c6 * t32 + s6 * t37 - t25 * beta[40] + t29 * beta[39];
+  const double t39 = -t0 * beta[27] + t2 * beta[25] + 0.0825 * t18 + t38 - t23 * beta[29];
+  const double t40 = -t11 * beta[48] + t5 * beta[47] + t6 * beta[46] + c7 * t35 + s7 * t36 - 0.088 * t14 - t28 * beta[50] + t33 * beta[49];
+  const double t41 = t3 * beta[37] + t4 * beta[35] - t40 - t27 * beta[39];
+  const double t42 = t3 * beta[36] + t11 * beta[35] + t4 * beta[34] - s6 * t32 + c6 * t37 + t27 * beta[40];
+  const double t43 = -t0 * beta[26] + t3 * beta[25] + t2 * beta[24] - s5 * t41 + c5 * t42 + 0.384 * t18 + t23 * beta[30];
+  const double t44 = -t3 * beta[29] + t2 * beta[30] + t18;
+  const double t45 = c2 * beta[18] + t0 * beta[17] + t1 * beta[16] + c4 * t39 + s4 * t43 - 0.0825 * t44 - t19 * beta[20] + t22 * beta[19];
+  const double t46 = -s5 * t10 + c5 * t17;
+  const double t47 = -t11 * beta[39] + t4 * beta[40] + c6 * t15 + s6 * t16;
+  const double t48 = -t0 * beta[28] + t3 * beta[27] + t2 * beta[26] - c5 * t41 - s5 * t42 - 0.384 * t46 - 0.0825 * t47 - t20 * beta[30] + t26 * beta[29];
+  const double t49 = -t0 * beta[29] + t47;
+  const double t50 = t0 * beta[30] + t46;
+  const double t51 = c2 * beta[17] + t1 * beta[15] - t48 - 0.0825 * (c4 * t49 + s4 * t50);
+  const double t52 = c2 * beta[16] + t0 * beta[15] + t1 * beta[14] - s4 * t39 + c4 * t43;
+  const double t53 = c2 * beta[19] - t44;
+  const double t54 = -c2 * beta[20] - s4 * t49 + c4 * t50;
+  M[0] = beta[0] - c2 * (-s2 * beta[5] - t45) - s2 * (-c2 * beta[5] - s2 * beta[4] - s3 * t51 + c3 * t52 - 0.316 * (c3 * t53 + s3 * t54));
+  const double t55 = s3 * c4;
+  const double t56 = -s3 * s4;
+  const double t57 = c5 * t55 + c3 * s5;
+  const double t58 = -s6 * t57 + c6 * t56;
+  const double t59 = c6 * t57 + s6 * t56;
+  const double t60 = -t58 * beta[59];
+  const double t61 = t58 * beta[60];
+  const double t62 = c7 * t60 + s7 * t61;
+  const double t63 = t56 * beta[39] + t58 * beta[49] - t59 * beta[50] - t62;
+  const double t64 = -s5 * t55 + c3 * c5;
+  const double t65 = -s7 * t59 - c7 * t64;
+  const double t66 = c7 * t59 - s7 * t64;
+  const double t67 = -t65 * beta[59] + t66 * beta[60];
+  const double t68 = -t64 * beta[49] - t67;
+  const double t69 = t64 * beta[50] - s7 * t60 + c7 * t61;
+  const double t70 = -t56 * beta[40] - s6 * t68 + c6 * t69;
+  const double t71 = -c5 * t63 - s5 * t70;
+  const double t72 = 0.316 * c3 * c4 - 0.0825 * c3 * s4;
+  const double t73 = t72 + 0.384 * c3;
+  const double t74 = 0.316 * s3 + 0.384 * t55 + 0.0825 * t56;
+  const double t75 = c5 * t73 - s5 * t74;
+  const double t76 = -0.316 * c3 * s4 - 0.0825 * c3 * c4;
+  const double t77 = 0.0825 * c3 + t76;
+  const double t78 = c6 * t75 + s6 * t77;
+  const double t79 = -s5 * t73 - c5 * t74;
+  const double t80 = -t79 - 0.088 * t58;
+  const double t81 = -t58 * beta[58] + t65 * beta[57] + t66 * beta[56] - (c7 * t78 + s7 * t80) * beta[60] + (-s7 * t78 + c7 * t80) * beta[59];
+  const double t82 = -t64 * beta[47] + t59 * beta[45] - t81 - 0.088 * t62 + t79 * beta[49];
+  const double t83 = -s6 * t75 + c6 * t77;
+  const double t84 = -t83 + 0.088 * t64;
+  const double t85 = -t58 * beta[57] + t66 * beta[55] - t84 * beta[59];
+  const double t86 = -t58 * beta[56] + t65 * beta[55] + t66 * beta[54] + t84 * beta[60];
+  const double t87 = -t64 * beta[46] + t58 * beta[45] + t59 * beta[44] - s7 * t85 + c7 * t86 - t79 * beta[50];
+  const double t88 = t56 * beta[38] + t64 * beta[37] + t57 * beta[36] + c6 * t82 + s6 * t87 - t75 * beta[40] + t79 * beta[39];
+  const double t89 = -c3 * beta[27] + t55 * beta[25] + 0.0825 * t71 + t88 - 0.316 * s3 * beta[29];
+  const double t90 = -t64 * beta[48] + t58 * beta[47] + t59 * beta[46] + c7 * t85 + s7 * t86 - 0.088 * t67 - t78 * beta[50] + t83 * beta[49];
+  const double t91 = t56 * beta[37] + t57 * beta[35] - t90 - t77 * beta[39];
+  const double t92 = t56 * beta[36] + t64 * beta[35] + t57 * beta[34] - s6 * t82 + c6 * t87 + t77 * beta[40];
+  const double t93 = -c3 * beta[26] + t56 * beta[25] + t55 * beta[24] - s5 * t91 + c5 * t92 + 0.384 * t71 + 0.316 * s3 * beta[30];
+  const double t94 = -t56 * beta[29] + t55 * beta[30] + t71;
+  const double t95 = c3 * beta[17] + s3 * beta[16] + c4 * t89 + s4 * t93 - 0.0825 * t94 - 0.316 * c3 * beta[20] - 0.316 * s3 * beta[19];
+  const double t96 = -s5 * t63 + c5 * t70;
+  const double t97 = -t64 * beta[39] + t57 * beta[40] + c6 * t68 + s6 * t69;
+  const double t98 = -c3 * beta[28] + t56 * beta[27] + t55 * beta[26] - c5 * t91 - s5 * t92 - 0.384 * t96 - 0.0825 * t97 - t72 * beta[30] + t76 * beta[29];
+  const double t99 = -c3 * beta[29] + t97;
+  const double t100 = c3 * beta[30] + t96;
+  const double t101 = s3 * beta[15] - t98 - 0.0825 * (c4 * t99 + s4 * t100);
+  const double t102 = c3 * beta[15] + s3 * beta[14] - s4 * t89 + c4 * t93;
+  const double t103 = -s4 * t99 + c4 * t100;
+  M[1] = -c2 * (beta[7] - t95) - s2 * (beta[6] - s3 * t101 + c3 * t102 - 0.316 * (-c3 * t94 + s3 * t103));
+  const double t104 = s4 * c5;
+  const double t105 = -s6 * t104 + c4 * c6;
+  const double t106 = c6 * t104 + c4 * s6;
+  const double t107 = -t105 * beta[59];
+  const double t108 = t105 * beta[60];
+  const double t109 = c7 * t107 + s7 * t108;
+  const double t110 = c4 * beta[39] + t105 * beta[49] - t106 * beta[50] - t109;
+  const double t111 = -s4 * s5;
+  const double t112 = -s7 * t106 - c7 * t111;
+  const double t113 = c7 * t106 - s7 * t111;
+  const double t114 = -t112 * beta[59] + t113 * beta[60];
+  const double t115 = -t111 * beta[49] - t114;
+  const double t116 = t111 * beta[50] - s7 * t107 + c7 * t108;
+  const double t117 = -c4 * beta[40] - s6 * t115 + c6 * t116;
+  const double t118 = -c5 * t110 - s5 * t117;
+  const double t119 = -0.0825 + 0.384 * s4 + 0.0825 * c4;
+  const double t120 = -s5 * t119;
+  const double t121 = c6 * t120;
+  const double t122 = -c5 * t119;
+  const double t123 = -t122 - 0.088 * t105;
+  const double t124 = -t105 * beta[58] + t112 * beta[57] + t113 * beta[56] - (c7 * t121 + s7 * t123) * beta[60] + (-s7 * t121 + c7 * t123) * beta[59];
+  const double t125 = -t111 * beta[47] + t106 * beta[45] - t124 - 0.088 * t109 + t122 * beta[49];
+  const double t126 = -s6 * t120;
+  const double t127 = -t126 + 0.088 * t111;
+  const double t128 = -t105 * beta[57] + t113 * beta[55] - t127 * beta[59];
+  const double t129 = -t105 * beta[56] + t112 * beta[55] + t113 * beta[54] + t127 * beta[60];
+  const double t130 = -t111 * beta[46] + t105 * beta[45] + t106 * beta[44] - s7 * t128 + c7 * t129 - t122 * beta[50];
+  const double t131 = c4 * beta[38] + t111 * beta[37] + t104 * beta[36] + c6 * t125 + s6 * t130 - t120 * beta[40] + t122 * beta[39];
+  const double t132 = s4 * beta[25] + 0.0825 * t118 + t131 + 0.0825 * beta[29];
+  const double t133 = -t111 * beta[48] + t105 * beta[47] + t106 * beta[46] + c7 * t128 + s7 * t129 - 0.088 * t114 - t121 * beta[50] + t126 * beta[49];
+  const double t134 = c4 * beta[37] + t104 * beta[35] - t133;
+  const double t135 = c4 * beta[36] + t111 * beta[35] + t104 * beta[34] - s6 * t125 + c6 * t130;
+  const double t136 = c4 * beta[25] + s4 * beta[24] - s5 * t134 + c5 * t135 + 0.384 * t118 - 0.0825 * beta[30];
+  const double t137 = -c4 * beta[29] + s4 * beta[30] + t118;
+  const double t138 = beta[18] + c4 * t132 + s4 * t136 - 0.0825 * t137;
+  const double t139 = -s5 * t110 + c5 * t117;
+  const double t140 = -t111 * beta[39] + t104 * beta[40] + c6 * t115 + s6 * t116;
+  const double t141 = c4 * beta[27] + s4 * beta[26] - c5 * t134 - s5 * t135 - 0.384 * t139 - 0.0825 * t140;
+  const double t142 = beta[17] - t141 - 0.0825 * (c4 * t140 + s4 * t139);
+  const double t143 = beta[16] - s4 * t132 + c4 * t136;
+  const double t144 = beta[19] - t137;
+  const double t145 = -beta[20] - s4 * t140 + c4 * t139;
+  M[2] = c2 * t138 - s2 * (-s3 * t142 + c3 * t143 - 0.316 * (c3 * t144 + s3 * t145));
+  const double t146 = s5 * s6;
+  const double t147 = -s5 * c6;
+  const double t148 = -t146 * beta[59];
+  const double t149 = t146 * beta[60];
+  const double t150 = c7 * t148 + s7 * t149;
+  const double t151 = -t146 * beta[49] + t147 * beta[50] + t150;
+  const double t152 = -s7 * t147 + c5 * c7;
+  const double t153 = c7 * t147 + c5 * s7;
+  const double t154 = -t152 * beta[59] + t153 * beta[60];
+  const double t155 = c5 * beta[49] - t154;
+  const double t156 = -c5 * beta[50] - s7 * t148 + c7 * t149;
+  const double t157 = -s6 * t155 + c6 * t156;
+  const double t158 = c5 * t151 - s5 * t157;
+  const double t159 = -0.384 * c5 * c6 - 0.0825 * s6;
+  const double t160 = -0.384 * s5 - 0.088 * t146;
+  const double t161 = -t146 * beta[58] + t152 * beta[57] + t153 * beta[56] - (c7 * t159 + s7 * t160) * beta[60] + (-s7 * t159 + c7 * t160) * beta[59];
+  const double t162 = c5 * beta[47] + t147 * beta[45] - t161 - 0.088 * t150 + 0.384 * s5 * beta[49];
+  const double t163 = 0.384 * c5 * s6 - 0.0825 * c6;
+  const double t164 = -t163 - 0.088 * c5;
+  const double t165 = -t146 * beta[57] + t153 * beta[55] - t164 * beta[59];
+  const double t166 = -t146 * beta[56] + t152 * beta[55] + t153 * beta[54] + t164 * beta[60];
+  const double t167 = c5 * beta[46] + t146 * beta[45] + t147 * beta[44] - s7 * t165 + c7 * t166 - 0.384 * s5 * beta[50];
+  const double t168 = -c5 * beta[37] - s5 * beta[36] + c6 * t162 + s6 * t167 + 0.384 * c5 * beta[40] + 0.384 * s5 * beta[39];
+  const double t169 = beta[27] + 0.0825 * t158 + t168;
+  const double t170 = c5 * beta[48] + t146 * beta[47] + t147 * beta[46] + c7 * t165 + s7 * t166 - 0.088 * t154 - t159 * beta[50] + t163 * beta[49];
+  const double t171 = -s5 * beta[35] - t170 + 0.0825 * beta[39];
+  const double t172 = -c5 * beta[35] - s5 * beta[34] - s6 * t162 + c6 * t167 - 0.0825 * beta[40];
+  const double t173 = beta[26] - s5 * t171 + c5 * t172 + 0.384 * t158;
+  const double t174 = c4 * t169 + s4 * t173 - 0.0825 * t158;
+  const double t175 = s5 * t151 + c5 * t157;
+  const double t176 = c5 * beta[39] - s5 * beta[40] + c6 * t155 + s6 * t156;
+  const double t177 = beta[28] - c5 * t171 - s5 * t172 - 0.384 * t175 - 0.0825 * t176;
+  const double t178 = beta[29] + t176;
+  const double t179 = -beta[30] + t175;
+  const double t180 = -t177 - 0.0825 * (c4 * t178 + s4 * t179);
+  const double t181 = -s4 * t169 + c4 * t173;
+  const double t182 = -s4 * t178 + c4 * t179;
+  M[3] = c2 * t174 - s2 * (-s3 * t180 + c3 * t181 - 0.316 * (-c3 * t158 + s3 * t182));
+  const double t183 = -c6 * beta[59];
+  const double t184 = c6 * beta[60];
+  const double t185 = c7 * t183 + s7 * t184;
+  const double t186 = beta[39] + c6 * beta[49] - s6 * beta[50] - t185;
+  const double t187 = -s6 * s7;
+  const double t188 = s6 * c7;
+  const double t189 = -t187 * beta[59] + t188 * beta[60];
+  const double t190 = -s7 * t183 + c7 * t184;
+  const double t191 = -beta[40] + s6 * t189 + c6 * t190;
+  const double t192 = -c5 * t186 - s5 * t191;
+  const double t193 = -c6 * beta[58] + t187 * beta[57] + t188 * beta[56] - (-0.088 * c6 * s7) * beta[60] + (-0.088 * c6 * c7) * beta[59];
+  const double t194 = s6 * beta[45] - t193 - 0.088 * t185;
+  const double t195 = -c6 * beta[57] + t188 * beta[55];
+  const double t196 = -c6 * beta[56] + t187 * beta[55] + t188 * beta[54];
+  const double t197 = c6 * beta[45] + s6 * beta[44] - s7 * t195 + c7 * t196;
+  const double t198 = beta[38] + c6 * t194 + s6 * t197;
+  const double t199 = 0.0825 * t192 + t198;
+  const double t200 = c6 * beta[47] + s6 * beta[46] + c7 * t195 + s7 * t196 - 0.088 * t189;
+  const double t201 = beta[37] - t200;
+  const double t202 = beta[36] - s6 * t194 + c6 * t197;
+  const double t203 = -s5 * t201 + c5 * t202 + 0.384 * t192;
+  const double t204 = c4 * t199 + s4 * t203 - 0.0825 * t192;
+  const double t205 = -s5 * t186 + c5 * t191;
+  const double t206 = -c6 * t189 + s6 * t190;
+  const double t207 = -c5 * t201 - s5 * t202 - 0.384 * t205 - 0.0825 * t206;
+  const double t208 = -t207 - 0.0825 * (c4 * t206 + s4 * t205);
+  const double t209 = -s4 * t199 + c4 * t203;
+  const double t210 = -s4 * t206 + c4 * t205;
+  M[4] = c2 * t204 - s2 * (-s3 * t208 + c3 * t209 - 0.316 * (-c3 * t192 + s3 * t210));
+  const double t211 = -c7 * beta[59] + s7 * beta[60];
+  const double t212 = beta[49] - t211;
+  const double t213 = -s6 * t212 - c6 * beta[50];
+  const double t214 = -s5 * t213;
+  const double t215 = c7 * beta[57] + s7 * beta[56];
+  const double t216 = beta[47] - t215;
+  const double t217 = s7 * beta[55] + 0.088 * beta[59];
+  const double t218 = c7 * beta[55] + s7 * beta[54] - 0.088 * beta[60];
+  const double t219 = beta[46] - s7 * t217 + c7 * t218;
+  const double t220 = c6 * t216 + s6 * t219;
+  const double t221 = 0.0825 * t214 + t220;
+  const double t222 = beta[48] + c7 * t217 + s7 * t218 - 0.088 * t211;
+  const double t223 = -s6 * t216 + c6 * t219;
+  const double t224 = s5 * t222 + c5 * t223 + 0.384 * t214;
+  const double t225 = c4 * t221 + s4 * t224 - 0.0825 * t214;
+  const double t226 = c5 * t213;
+  const double t227 = c6 * t212 - s6 * beta[50];
+  const double t228 = c5 * t222 - s5 * t223 - 0.384 * t226 - 0.0825 * t227;
+  const double t229 = -t228 - 0.0825 * (c4 * t227 + s4 * t226);
+  const double t230 = -s4 * t221 + c4 * t224;
+  const double t231 = -s4 * t227 + c4 * t226;
+  M[5] = c2 * t225 - s2 * (-s3 * t229 + c3 * t230 - 0.316 * (-c3 * t214 + s3 * t231));
+  const double t232 = c7 * beta[59] - s7 * beta[60];
+  const double t233 = -s7 * beta[59] - c7 * beta[60];
+  const double t234 = c6 * t233;
+  const double t235 = c5 * t232 - s5 * t234;
+  const double t236 = -beta[58] - 0.088 * t232;
+  const double t237 = -s7 * beta[57] + c7 * beta[56];
+  const double t238 = c6 * t236 + s6 * t237;
+  const double t239 = 0.0825 * t235 + t238;
+  const double t240 = -s6 * t236 + c6 * t237;
+  const double t241 = s5 * t215 + c5 * t240 + 0.384 * t235;
+  const double t242 = c4 * t239 + s4 * t241 - 0.0825 * t235;
+  const double t243 = s5 * t232 + c5 * t234;
+  const double t244 = s6 * t233;
+  const double t245 = c5 * t215 - s5 * t240 - 0.384 * t243 - 0.0825 * t244;
+  const double t246 = -t245 - 0.0825 * (c4 * t244 + s4 * t243);
+  const double t247 = -s4 * t239 + c4 * t241;
+  const double t248 = -s4 * t244 + c4 * t243;
+  M[6] = c2 * t242 - s2 * (-s3 * t246 + c3 * t247 - 0.316 * (-c3 * t235 + s3 * t248));
+  M[7] = -c2 * beta[7] - s2 * beta[6] + c3 * t51 + s3 * t52 + 0.316 * (-s3 * t53 + c3 * t54);
+  M[8] = beta[8] + c3 * t101 + s3 * t102 + 0.316 * (s3 * t94 + c3 * t103);
+  M[9] = c3 * t142 + s3 * t143 + 0.316 * (-s3 * t144 + c3 * t145);
+  M[10] = c3 * t180 + s3 * t181 + 0.316 * (s3 * t158 + c3 * t182);
+  M[11] = c3 * t208 + s3 * t209 + 0.316 * (s3 * t192 + c3 * t210);
+  M[12] = c3 * t229 + s3 * t230 + 0.316 * (s3 * t214 + c3 * t231);
+  M[13] = c3 * t246 + s3 * t247 + 0.316 * (s3 * t235 + c3 * t248);
+  M[14] = t45;
+  M[15] = t95;
+  M[16] = t138;
+  M[17] = t174;
+  M[18] = t204;
+  M[19] = t225;
+  M[20] = t242;
+  M[21] = t48;
+  M[22] = t98;
+  M[23] = t141;
+  M[24] = t177;
+  M[25] = t207;
+  M[26] = t228;
+  M[27] = t245;
+  M[28] = t38;
+  M[29] = t88;
+  M[30] = t131;
+  M[31] = t168;
+  M[32] = t198;
+  M[33] = t220;
+  M[34] = t238;
+  M[35] = t40;
+  M[36] = t90;
+  M[37] = t133;
+  M[38] = t170;
+  M[39] = t200;
+  M[40] = t222;
+  M[41] = t215;
+  M[42] = t31;
+  M[43] = t81;
+  M[44] = t124;
+  M[45] = t161;
+  M[46] = t193;
+  M[47] = t215;
+  M[48] = beta[58];
+}
+
+// Joint-space inertia matrix M(q) on the base parameters: inverse_dynamics is tau = M(q) ddq +
+// terms without ddq (velocity, gravity, friction, offsets), for forward dynamics
+// ddq = M^-1 (tau - inverse_dynamics(q, dq, 0, beta)). Inputs q (kDof) and beta (kBaseParams,
+// as for inverse_dynamics). Output M: kDof x kDof, row-major, M[i * kDof + k] = d tau_i / d ddq_k
+// (drive inertias included; symmetric, and positive definite for physical parameters).
+void mass_matrix(const float* q, const float* beta, float* M) {
+  const float s2 = std::sin(q[1]);
+  const float c2 = std::cos(q[1]);
+  const float s3 = std::sin(q[2]);
+  const float c3 = std::cos(q[2]);
+  const float s4 = std::sin(q[3]);
+  const float c4 = std::cos(q[3]);
+  const float s5 = std::sin(q[4]);
+  const float c5 = std::cos(q[4]);
+  const float s6 = std::sin(q[5]);
+  const float c6 = std::cos(q[5]);
+  const float s7 = std::sin(q[6]);
+  const float c7 = std::cos(q[6]);
+  const float t0 = s2 * s3;
+  const float t1 = -s2 * c3;
+  const float t2 = c4 * t1 + c2 * s4;
+  const float t3 = -s4 * t1 + c2 * c4;
+  const float t4 = c5 * t2 + s5 * t0;
+  const float t5 = -s6 * t4 + c6 * t3;
+  const float t6 = c6 * t4 + s6 * t3;
+  const float t7 = -t5 * beta[59];
+  const float t8 = t5 * beta[60];
+  const float t9 = c7 * t7 + s7 * t8;
+  const float t10 = t3 * beta[39] + t5 * beta[49] - t6 * beta[50] - t9;
+  const float t11 = -s5 * t2 + c5 * t0;
+  const float t12 = -s7 * t6 - c7 * t11;
+  const float t13 = c7 * t6 - s7 * t11;
+  const float t14 = -t12 * beta[59] + t13 * beta[60];
+  const float t15 = -t11 * beta[49] - t14;
+  const float t16 = t11 * beta[50] - s7 * t7 + c7 * t8;
+  const float t17 = -t3 * beta[40] - s6 * t15 + c6 * t16;
+  const float t18 = -c5 * t10 - s5 * t17;
+  const float t19 = 0.316f * s2 * s3;
+  const float t20 = c4 * t19 - 0.0825f * s4 * t0;
+  const float t21 = t20 + 0.384f * t0;
+  const float t22 = 0.316f * s2 * c3;
+  const float t23 = -t22 - 0.0825f * c2;
+  const float t24 = t23 + 0.384f * t2 + 0.0825f * t3;
+  const float t25 = c5 * t21 - s5 * t24;
+  const float t26 = -s4 * t19 - 0.0825f * c4 * t0;
+  const float t27 = 0.0825f * t0 + t26;
+  const float t28 = c6 * t25 + s6 * t27;
+  const float t29 = -s5 * t21 - c5 * t24;
+  const float t30 = -t29 - 0.088f * t5;
+  const float t31 = -t5 * beta[58] + t12 * beta[57] + t13 * beta[56] - (c7 * t28 + s7 * t30) * beta[60] + (-s7 * t28 + c7 * t30) * beta[59];
+  const float t32 = -t11 * beta[47] + t6 * beta[45] - t31 - 0.088f * t9 + t29 * beta[49];
+  const float t33 = -s6 * t25 + c6 * t27;
+  const float t34 = -t33 + 0.088f * t11;
+  const float t35 = -t5 * beta[57] + t13 * beta[55] - t34 * beta[59];
+  const float t36 = -t5 * beta[56] + t12 * beta[55] + t13 * beta[54] + t34 * beta[60];
+  const float t37 = -t11 * beta[46] + t5 * beta[45] + t6 * beta[44] - s7 * t35 + c7 * t36 - t29 * beta[50];
+  const float t38 = t3 * beta[38] + t11 * beta[37] + t4 * beta[36] + c6 * t32 + s6 * t37 - t25 * beta[40] + t29 * beta[39];
+  const float t39 = -t0 * beta[27] + t2 * beta[25] + 0.0825f * t18 + t38 - t23 * beta[29];
+  const float t40 = -t11 * beta[48] + t5 * beta[47] + t6 * beta[46] + c7 * t35 + s7 * t36 - 0.088f * t14 - t28 * beta[50] + t33 * beta[49];
+  const float t41 = t3 * beta[37] + t4 * beta[35] - t40 - t27 * beta[39];
+  const float t42 = t3 * beta[36] + t11 * beta[35] + t4 * beta[34] - s6 * t32 + c6 * t37 + t27 * beta[40];
+  const float t43 = -t0 * beta[26] + t3 * beta[25] + t2 * beta[24] - s5 * t41 + c5 * t42 + 0.384f * t18 + t23 * beta[30];
+  const float t44 = -t3 * beta[29] + t2 * beta[30] + t18;
+  const float t45 = c2 * beta[18] + t0 * beta[17] + t1 * beta[16] + c4 * t39 + s4 * t43 - 0.0825f * t44 - t19 * beta[20] + t22 * beta[19];
+  const float t46 = -s5 * t10 + c5 * t17;
+  const float t47 = -t11 * beta[39] + t4 * beta[40] + c6 * t15 + s6 * t16;
+  const float t48 = -t0 * beta[28] + t3 * beta[27] + t2 * beta[26] - c5 * t41 - s5 * t42 - 0.384f * t46 - 0.0825f * t47 - t20 * beta[30] + t26 * beta[29];
+  const float t49 = -t0 * beta[29] + t47;
+  const float t50 = t0 * beta[30] + t46;
+  const float t51 = c2 * beta[17] + t1 * beta[15] - t48 - 0.0825f * (c4 * t49 + s4 * t50);
+  const float t52 = c2 * beta[16] + t0 * beta[15] + t1 * beta[14] - s4 * t39 + c4 * t43;
+  const float t53 = c2 * beta[19] - t44;
+  const float t54 = -c2 * beta[20] - s4 * t49 + c4 * t50;
+  M[0] = beta[0] - c2 * (-s2 * beta[5] - t45) - s2 * (-c2 * beta[5] - s2 * beta[4] - s3 * t51 + c3 * t52 - 0.316f * (c3 * t53 + s3 * t54));
+  const float t55 = s3 * c4;
+  const float t56 = -s3 * s4;
+  const float t57 = c5 * t55 + c3 * s5;
+  const float t58 = -s6 * t57 + c6 * t56;
+  const float t59 = c6 * t57 + s6 * t56;
+  const float t60 = -t58 * beta[59];
+  const float t61 = t58 * beta[60];
+  const float t62 = c7 * t60 + s7 * t61;
+  const float t63 = t56 * beta[39] + t58 * beta[49] - t59 * beta[50] - t62;
+  const float t64 = -s5 * t55 + c3 * c5;
+  const float t65 = -s7 * t59 - c7 * t64;
+  const float t66 = c7 * t59 - s7 * t64;
+  const float t67 = -t65 * beta[59] + t66 * beta[60];
+  const float t68 = -t64 * beta[49] - t67;
+  const float t69 = t64 * beta[50] - s7 * t60 + c7 * t61;
+  const float t70 = -t56 * beta[40] - s6 * t68 + c6 * t69;
+  const float t71 = -c5 * t63 - s5 * t70;
+  const float t72 = 0.316f * c3 * c4 - 0.0825f * c3 * s4;
+  const float t73 = t72 + 0.384f * c3;
+  const float t74 = 0.316f * s3 + 0.384f * t55 + 0.0825f * t56;
+  const float t75 = c5 * t73 - s5 * t74;
+  const float t76 = -0.316f * c3 * s4 - 0.0825f * c3 * c4;
+  const float t77 = 0.0825f * c3 + t76;
+  const float t78 = c6 * t75 + s6 * t77;
+  const float t79 = -s5 * t73 - c5 * t74;
+  const float t80 = -t79 - 0.088f * t58;
+  const float t81 = -t58 * beta[58] + t65 * beta[57] + t66 * beta[56] - (c7 * t78 + s7 * t80) * beta[60] + (-s7 * t78 + c7 * t80) * beta[59];
+  const float t82 = -t64 * beta[47] + t59 * beta[45] - t81 - 0.088f * t62 + t79 * beta[49];
+  const float t83 = -s6 * t75 + c6 * t77;
+  const float t84 = -t83 + 0.088f * t64;
+  const float t85 = -t58 * beta[57] + t66 * beta[55] - t84 * beta[59];
+  const float t86 = -t58 * beta[56] + t65 * beta[55] + t66 * beta[54] + t84 * beta[60];
+  const float t87 = -t64 * beta[46] + t58 * beta[45] + t59 * beta[44] - s7 * t85 + c7 * t86 - t79 * beta[50];
+  const float t88 = t56 * beta[38] + t64 * beta[37] + t57 * beta[36] + c6 * t82 + s6 * t87 - t75 * beta[40] + t79 * beta[39];
+  const float t89 = -c3 * beta[27] + t55 * beta[25] + 0.0825f * t71 + t88 - 0.316f * s3 * beta[29];
+  const float t90 = -t64 * beta[48] + t58 * beta[47] + t59 * beta[46] + c7 * t85 + s7 * t86 - 0.088f * t67 - t78 * beta[50] + t83 * beta[49];
+  const float t91 = t56 * beta[37] + t57 * beta[35] - t90 - t77 * beta[39];
+  const float t92 = t56 * beta[36] + t64 * beta[35] + t57 * beta[34] - s6 * t82 + c6 * t87 + t77 * beta[40];
+  const float t93 = -c3 * beta[26] + t56 * beta[25] + t55 * beta[24] - s5 * t91 + c5 * t92 + 0.384f * t71 + 0.316f * s3 * beta[30];
+  const float t94 = -t56 * beta[29] + t55 * beta[30] + t71;
+  const float t95 = c3 * beta[17] + s3 * beta[16] + c4 * t89 + s4 * t93 - 0.0825f * t94 - 0.316f * c3 * beta[20] - 0.316f * s3 * beta[19];
+  const float t96 = -s5 * t63 + c5 * t70;
+  const float t97 = -t64 * beta[39] + t57 * beta[40] + c6 * t68 + s6 * t69;
+  const float t98 = -c3 * beta[28] + t56 * beta[27] + t55 * beta[26] - c5 * t91 - s5 * t92 - 0.384f * t96 - 0.0825f * t97 - t72 * beta[30] + t76 * beta[29];
+  const float t99 = -c3 * beta[29] + t97;
+  const float t100 = c3 * beta[30] + t96;
+  const float t101 = s3 * beta[15] - t98 - 0.0825f * (c4 * t99 + s4 * t100);
+  const float t102 = c3 * beta[15] + s3 * beta[14] - s4 * t89 + c4 * t93;
+  const float t103 = -s4 * t99 + c4 * t100;
+  M[1] = -c2 * (beta[7] - t95) - s2 * (beta[6] - s3 * t101 + c3 * t102 - 0.316f * (-c3 * t94 + s3 * t103));
+  const float t104 = s4 * c5;
+  const float t105 = -s6 * t104 + c4 * c6;
+  const float t106 = c6 * t104 + c4 * s6;
+  const float t107 = -t105 * beta[59];
+  const float t108 = t105 * beta[60];
+  const float t109 = c7 * t107 + s7 * t108;
+  const float t110 = c4 * beta[39] + t105 * beta[49] - t106 * beta[50] - t109;
+  const float t111 = -s4 * s5;
+  const float t112 = -s7 * t106 - c7 * t111;
+  const float t113 = c7 * t106 - s7 * t111;
+  const float t114 = -t112 * beta[59] + t113 * beta[60];
+  const float t115 = -t111 * beta[49] - t114;
+  const float t116 = t111 * beta[50] - s7 * t107 + c7 * t108;
+  const float t117 = -c4 * beta[40] - s6 * t115 + c6 * t116;
+  const float t118 = -c5 * t110 - s5 * t117;
+  const float t119 = -0.0825f + 0.384f * s4 + 0.0825f * c4;
+  const float t120 = -s5 * t119;
+  const float t121 = c6 * t120;
+  const float t122 = -c5 * t119;
+  const float t123 = -t122 - 0.088f * t105;
+  const float t124 = -t105 * beta[58] + t112 * beta[57] + t113 * beta[56] - (c7 * t121 + s7 * t123) * beta[60] + (-s7 * t121 + c7 * t123) * beta[59];
+  const float t125 = -t111 * beta[47] + t106 * beta[45] - t124 - 0.088f * t109 + t122 * beta[49];
+  const float t126 = -s6 * t120;
+  const float t127 = -t126 + 0.088f * t111;
+  const float t128 = -t105 * beta[57] + t113 * beta[55] - t127 * beta[59];
+  const float t129 = -t105 * beta[56] + t112 * beta[55] + t113 * beta[54] + t127 * beta[60];
+  const float t130 = -t111 * beta[46] + t105 * beta[45] + t106 * beta[44] - s7 * t128 + c7 * t129 - t122 * beta[50];
+  const float t131 = c4 * beta[38] + t111 * beta[37] + t104 * beta[36] + c6 * t125 + s6 * t130 - t120 * beta[40] + t122 * beta[39];
+  const float t132 = s4 * beta[25] + 0.0825f * t118 + t131 + 0.0825f * beta[29];
+  const float t133 = -t111 * beta[48] + t105 * beta[47] + t106 * beta[46] + c7 * t128 + s7 * t129 - 0.088f * t114 - t121 * beta[50] + t126 * beta[49];
+  const float t134 = c4 * beta[37] + t104 * beta[35] - t133;
+  const float t135 = c4 * beta[36] + t111 * beta[35] + t104 * beta[34] - s6 * t125 + c6 * t130;
+  const float t136 = c4 * beta[25] + s4 * beta[24] - s5 * t134 + c5 * t135 + 0.384f * t118 - 0.0825f * beta[30];
+  const float t137 = -c4 * beta[29] + s4 * beta[30] + t118;
+  const float t138 = beta[18] + c4 * t132 + s4 * t136 - 0.0825f * t137;
+  const float t139 = -s5 * t110 + c5 * t117;
+  const float t140 = -t111 * beta[39] + t104 * beta[40] + c6 * t115 + s6 * t116;
+  const float t141 = c4 * beta[27] + s4 * beta[26] - c5 * t134 - s5 * t135 - 0.384f * t139 - 0.0825f * t140;
+  const float t142 = beta[17] - t141 - 0.0825f * (c4 * t140 + s4 * t139);
+  const float t143 = beta[16] - s4 * t132 + c4 * t136;
+  const float t144 = beta[19] - t137;
+  const float t145 = -beta[20] - s4 * t140 + c4 * t139;
+  M[2] = c2 * t138 - s2 * (-s3 * t142 + c3 * t143 - 0.316f * (c3 * t144 + s3 * t145));
+  const float t146 = s5 * s6;
+  const float t147 = -s5 * c6;
+  const float t148 = -t146 * beta[59];
+  const float t149 = t146 * beta[60];
+  const float t150 = c7 * t148 + s7 * t149;
+  const float t151 = -t146 * beta[49] + t147 * beta[50] + t150;
+  const float t152 = -s7 * t147 + c5 * c7;
+  const float t153 = c7 * t147 + c5 * s7;
+  const float t154 = -t152 * beta[59] + t153 * beta[60];
+  const float t155 = c5 * beta[49] - t154;
+  const float t156 = -c5 * beta[50] - s7 * t148 + c7 * t149;
+  const float t157 = -s6 * t155 + c6 * t156;
+  const float t158 = c5 * t151 - s5 * t157;
+  const float t159 = -0.384f * c5 * c6 - 0.0825f * s6;
+  const float t160 = -0.384f * s5 - 0.088f * t146;
+  const float t161 = -t146 * beta[58] + t152 * beta[57] + t153 * beta[56] - (c7 * t159 + s7 * t160) * beta[60] + (-s7 * t159 + c7 * t160) * beta[59];
+  const float t162 = c5 * beta[47] + t147 * beta[45] - t161 - 0.088f * t150 + 0.384f * s5 * beta[49];
+  const float t163 = 0.384f * c5 * s6 - 0.0825f * c6;
+  const float t164 = -t163 - 0.088f * c5;
+  const float t165 = -t146 * beta[57] + t153 * beta[55] - t164 * beta[59];
+  const float t166 = -t146 * beta[56] + t152 * beta[55] + t153 * beta[54] + t164 * beta[60];
+  const float t167 = c5 * beta[46] + t146 * beta[45] + t147 * beta[44] - s7 * t165 + c7 * t166 - 0.384f * s5 * beta[50];
+  const float t168 = -c5 * beta[37] - s5 * beta[36] + c6 * t162 + s6 * t167 + 0.384f * c5 * beta[40] + 0.384f * s5 * beta[39];
+  const float t169 = beta[27] + 0.0825f * t158 + t168;
+  const float t170 = c5 * beta[48] + t146 * beta[47] + t147 * beta[46] + c7 * t165 + s7 * t166 - 0.088f * t154 - t159 * beta[50] + t163 * beta[49];
+  const float t171 = -s5 * beta[35] - t170 + 0.0825f * beta[39];
+  const float t172 = -c5 * beta[35] - s5 * beta[34] - s6 * t162 + c6 * t167 - 0.0825f * beta[40];
+  const float t173 = beta[26] - s5 * t171 + c5 * t172 + 0.384f * t158;
+  const float t174 = c4 * t169 + s4 * t173 - 0.0825f * t158;
+  const float t175 = s5 * t151 + c5 * t157;
+  const float t176 = c5 * beta[39] - s5 * beta[40] + c6 * t155 + s6 * t156;
+  const float t177 = beta[28] - c5 * t171 - s5 * t172 - 0.384f * t175 - 0.0825f * t176;
+  const float t178 = beta[29] + t176;
+  const float t179 = -beta[30] + t175;
+  const float t180 = -t177 - 0.0825f * (c4 * t178 + s4 * t179);
+  const float t181 = -s4 * t169 + c4 * t173;
+  const float t182 = -s4 * t178 + c4 * t179;
+  M[3] = c2 * t174 - s2 * (-s3 * t180 + c3 * t181 - 0.316f * (-c3 * t158 + s3 * t182));
+  const float t183 = -c6 * beta[59];
+  const float t184 = c6 * beta[60];
+  const float t185 = c7 * t183 + s7 * t184;
+  const float t186 = beta[39] + c6 * beta[49] - s6 * beta[50] - t185;
+  const float t187 = -s6 * s7;
+  const float t188 = s6 * c7;
+  const float t189 = -t187 * beta[59] + t188 * beta[60];
+  const float t190 = -s7 * t183 + c7 * t184;
+  const float t191 = -beta[40] + s6 * t189 + c6 * t190;
+  const float t192 = -c5 * t186 - s5 * t191;
+  const float t193 = -c6 * beta[58] + t187 * beta[57] + t188 * beta[56] - (-0.088f * c6 * s7) * beta[60] + (-0.088f * c6 * c7) * beta[59];
+  const float t194 = s6 * beta[45] - t193 - 0.088f * t185;
+  const float t195 = -c6 * beta[57] + t188 * beta[55];
+  const float t196 = -c6 * beta[56] + t187 * beta[55] + t188 * beta[54];
+  const float t197 = c6 * beta[45] + s6 * beta[44] - s7 * t195 + c7 * t196;
+  const float t198 = beta[38] + c6 * t194 + s6 * t197;
+  const float t199 = 0.0825f * t192 + t198;
+  const float t200 = c6 * beta[47] + s6 * beta[46] + c7 * t195 + s7 * t196 - 0.088f * t189;
+  const float t201 = beta[37] - t200;
+  const float t202 = beta[36] - s6 * t194 + c6 * t197;
+  const float t203 = -s5 * t201 + c5 * t202 + 0.384f * t192;
+  const float t204 = c4 * t199 + s4 * t203 - 0.0825f * t192;
+  const float t205 = -s5 * t186 + c5 * t191;
+  const float t206 = -c6 * t189 + s6 * t190;
+  const float t207 = -c5 * t201 - s5 * t202 - 0.384f * t205 - 0.0825f * t206;
+  const float t208 = -t207 - 0.0825f * (c4 * t206 + s4 * t205);
+  const float t209 = -s4 * t199 + c4 * t203;
+  const float t210 = -s4 * t206 + c4 * t205;
+  M[4] = c2 * t204 - s2 * (-s3 * t208 + c3 * t209 - 0.316f * (-c3 * t192 + s3 * t210));
+  const float t211 = -c7 * beta[59] + s7 * beta[60];
+  const float t212 = beta[49] - t211;
+  const float t213 = -s6 * t212 - c6 * beta[50];
+  const float t214 = -s5 * t213;
+  const float t215 = c7 * beta[57] + s7 * beta[56];
+  const float t216 = beta[47] - t215;
+  const float t217 = s7 * beta[55] + 0.088f * beta[59];
+  const float t218 = c7 * beta[55] + s7 * beta[54] - 0.088f * beta[60];
+  const float t219 = beta[46] - s7 * t217 + c7 * t218;
+  const float t220 = c6 * t216 + s6 * t219;
+  const float t221 = 0.0825f * t214 + t220;
+  const float t222 = beta[48] + c7 * t217 + s7 * t218 - 0.088f * t211;
+  const float t223 = -s6 * t216 + c6 * t219;
+  const float t224 = s5 * t222 + c5 * t223 + 0.384f * t214;
+  const float t225 = c4 * t221 + s4 * t224 - 0.0825f * t214;
+  const float t226 = c5 * t213;
+  const float t227 = c6 * t212 - s6 * beta[50];
+  const float t228 = c5 * t222 - s5 * t223 - 0.384f * t226 - 0.0825f * t227;
+  const float t229 = -t228 - 0.0825f * (c4 * t227 + s4 * t226);
+  const float t230 = -s4 * t221 + c4 * t224;
+  const float t231 = -s4 * t227 + c4 * t226;
+  M[5] = c2 * t225 - s2 * (-s3 * t229 + c3 * t230 - 0.316f * (-c3 * t214 + s3 * t231));
+  const float t232 = c7 * beta[59] - s7 * beta[60];
+  const float t233 = -s7 * beta[59] - c7 * beta[60];
+  const float t234 = c6 * t233;
+  const float t235 = c5 * t232 - s5 * t234;
+  const float t236 = -beta[58] - 0.088f * t232;
+  const float t237 = -s7 * beta[57] + c7 * beta[56];
+  const float t238 = c6 * t236 + s6 * t237;
+  const float t239 = 0.0825f * t235 + t238;
+  const float t240 = -s6 * t236 + c6 * t237;
+  const float t241 = s5 * t215 + c5 * t240 + 0.384f * t235;
+  const float t242 = c4 * t239 + s4 * t241 - 0.0825f * t235;
+  const float t243 = s5 * t232 + c5 * t234;
+  const float t244 = s6 * t233;
+  const float t245 = c5 * t215 - s5 * t240 - 0.384f * t243 - 0.0825f * t244;
+  const float t246 = -t245 - 0.0825f * (c4 * t244 + s4 * t243);
+  const float t247 = -s4 * t239 + c4 * t241;
+  const float t248 = -s4 * t244 + c4 * t243;
+  M[6] = c2 * t242 - s2 * (-s3 * t246 + c3 * t247 - 0.316f * (-c3 * t235 + s3 * t248));
+  M[7] = -c2 * beta[7] - s2 * beta[6] + c3 * t51 + s3 * t52 + 0.316f * (-s3 * t53 + c3 * t54);
+  M[8] = beta[8] + c3 * t101 + s3 * t102 + 0.316f * (s3 * t94 + c3 * t103);
+  M[9] = c3 * t142 + s3 * t143 + 0.316f * (-s3 * t144 + c3 * t145);
+  M[10] = c3 * t180 + s3 * t181 + 0.316f * (s3 * t158 + c3 * t182);
+  M[11] = c3 * t208 + s3 * t209 + 0.316f * (s3 * t192 + c3 * t210);
+  M[12] = c3 * t229 + s3 * t230 + 0.316f * (s3 * t214 + c3 * t231);
+  M[13] = c3 * t246 + s3 * t247 + 0.316f * (s3 * t235 + c3 * t248);
+  M[14] = t45;
+  M[15] = t95;
+  M[16] = t138;
+  M[17] = t174;
+  M[18] = t204;
+  M[19] = t225;
+  M[20] = t242;
+  M[21] = t48;
+  M[22] = t98;
+  M[23] = t141;
+  M[24] = t177;
+  M[25] = t207;
+  M[26] = t228;
+  M[27] = t245;
+  M[28] = t38;
+  M[29] = t88;
+  M[30] = t131;
+  M[31] = t168;
+  M[32] = t198;
+  M[33] = t220;
+  M[34] = t238;
+  M[35] = t40;
+  M[36] = t90;
+  M[37] = t133;
+  M[38] = t170;
+  M[39] = t200;
+  M[40] = t222;
+  M[41] = t215;
+  M[42] = t31;
+  M[43] = t81;
+  M[44] = t124;
+  M[45] = t161;
+  M[46] = t193;
+  M[47] = t215;
+  M[48] = beta[58];
+}
+
+// idim_regressor with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
+// computing them; identical results.
 void idim_regressor_sincos(const double* q, const double* sin_q, const double* cos_q,
                            const double* dq, const double* ddq, double* W) {
   static_cast<void>(q);
@@ -7656,8 +8294,8 @@ void idim_regressor_sincos(const double* q, const double* sin_q, const double* c
   W[447] = 1.0;
 }
 
-// idim_regressor with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of computing
-// them; identical results.
+// idim_regressor with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
+// computing them; identical results.
 void idim_regressor_sincos(const float* q, const float* sin_q, const float* cos_q,
                            const float* dq, const float* ddq, float* W) {
   static_cast<void>(q);
@@ -8373,11 +9011,10 @@ void idim_regressor_sincos(const float* q, const float* sin_q, const float* cos_
   W[447] = 1.0f;
 }
 
-// inverse_dynamics with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of computing
-// them; identical results.
+// inverse_dynamics with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
+// computing them; identical results.
 void inverse_dynamics_sincos(const double* q, const double* sin_q, const double* cos_q,
-                             const double* dq, const double* ddq, const double* beta,
-                             double* tau) {
+                             const double* dq, const double* ddq, const double* beta, double* tau) {
   static_cast<void>(q);
   const double sg1 = static_cast<double>((dq[0] > 0.0) - (dq[0] < 0.0));
   const double s2 = sin_q[1];
@@ -8524,11 +9161,10 @@ void inverse_dynamics_sincos(const double* q, const double* sin_q, const double*
   tau[6] = beta[63] + dq[6] * beta[61] + sg7 * beta[62] + t101;
 }
 
-// inverse_dynamics with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of computing
-// them; identical results.
+// inverse_dynamics with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
+// computing them; identical results.
 void inverse_dynamics_sincos(const float* q, const float* sin_q, const float* cos_q,
-                             const float* dq, const float* ddq, const float* beta,
-                             float* tau) {
+                             const float* dq, const float* ddq, const float* beta, float* tau) {
   static_cast<void>(q);
   const float sg1 = static_cast<float>((dq[0] > 0.0f) - (dq[0] < 0.0f));
   const float s2 = sin_q[1];
@@ -8673,6 +9309,640 @@ void inverse_dynamics_sincos(const float* q, const float* sin_q, const float* co
   tau[4] = beta[43] + dq[4] * beta[41] + sg5 * beta[42] + t109;
   tau[5] = beta[53] + dq[5] * beta[51] + sg6 * beta[52] + t105;
   tau[6] = beta[63] + dq[6] * beta[61] + sg7 * beta[62] + t101;
+}
+
+// mass_matrix with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
+// computing them; identical results.
+void mass_matrix_sincos(const double* q, const double* sin_q, const double* cos_q,
+                        const double* beta, double* M) {
+  static_cast<void>(q);
+  const double s2 = sin_q[1];
+  const double c2 = cos_q[1];
+  const double s3 = sin_q[2];
+  const double c3 = cos_q[2];
+  const double s4 = sin_q[3];
+  const double c4 = cos_q[3];
+  const double s5 = sin_q[4];
+  const double c5 = cos_q[4];
+  const double s6 = sin_q[5];
+  const double c6 = cos_q[5];
+  const double s7 = sin_q[6];
+  const double c7 = cos_q[6];
+  const double t0 = s2 * s3;
+  const double t1 = -s2 * c3;
+  const double t2 = c4 * t1 + c2 * s4;
+  const double t3 = -s4 * t1 + c2 * c4;
+  const double t4 = c5 * t2 + s5 * t0;
+  const double t5 = -s6 * t4 + c6 * t3;
+  const double t6 = c6 * t4 + s6 * t3;
+  const double t7 = -t5 * beta[59];
+  const double t8 = t5 * beta[60];
+  const double t9 = c7 * t7 + s7 * t8;
+  const double t10 = t3 * beta[39] + t5 * beta[49] - t6 * beta[50] - t9;
+  const double t11 = -s5 * t2 + c5 * t0;
+  const double t12 = -s7 * t6 - c7 * t11;
+  const double t13 = c7 * t6 - s7 * t11;
+  const double t14 = -t12 * beta[59] + t13 * beta[60];
+  const double t15 = -t11 * beta[49] - t14;
+  const double t16 = t11 * beta[50] - s7 * t7 + c7 * t8;
+  const double t17 = -t3 * beta[40] - s6 * t15 + c6 * t16;
+  const double t18 = -c5 * t10 - s5 * t17;
+  const double t19 = 0.316 * s2 * s3;
+  const double t20 = c4 * t19 - 0.0825 * s4 * t0;
+  const double t21 = t20 + 0.384 * t0;
+  const double t22 = 0.316 * s2 * c3;
+  const double t23 = -t22 - 0.0825 * c2;
+  const double t24 = t23 + 0.384 * t2 + 0.0825 * t3;
+  const double t25 = c5 * t21 - s5 * t24;
+  const double t26 = -s4 * t19 - 0.0825 * c4 * t0;
+  const double t27 = 0.0825 * t0 + t26;
+  const double t28 = c6 * t25 + s6 * t27;
+  const double t29 = -s5 * t21 - c5 * t24;
+  const double t30 = -t29 - 0.088 * t5;
+  const double t31 = -t5 * beta[58] + t12 * beta[57] + t13 * beta[56] - (c7 * t28 + s7 * t30) * beta[60] + (-s7 * t28 + c7 * t30) * beta[59];
+  const double t32 = -t11 * beta[47] + t6 * beta[45] - t31 - 0.088 * t9 + t29 * beta[49];
+  const double t33 = -s6 * t25 + c6 * t27;
+  const double t34 = -t33 + 0.088 * t11;
+  const double t35 = -t5 * beta[57] + t13 * beta[55] - t34 * beta[59];
+  const double t36 = -t5 * beta[56] + t12 * beta[55] + t13 * beta[54] + t34 * beta[60];
+  const double t37 = -t11 * beta[46] + t5 * beta[45] + t6 * beta[44] - s7 * t35 + c7 * t36 - t29 * beta[50];
+  const double t38 = t3 * beta[38] + t11 * beta[37] + t4 * beta[36] + c6 * t32 + s6 * t37 - t25 * beta[40] + t29 * beta[39];
+  const double t39 = -t0 * beta[27] + t2 * beta[25] + 0.0825 * t18 + t38 - t23 * beta[29];
+  const double t40 = -t11 * beta[48] + t5 * beta[47] + t6 * beta[46] + c7 * t35 + s7 * t36 - 0.088 * t14 - t28 * beta[50] + t33 * beta[49];
+  const double t41 = t3 * beta[37] + t4 * beta[35] - t40 - t27 * beta[39];
+  const double t42 = t3 * beta[36] + t11 * beta[35] + t4 * beta[34] - s6 * t32 + c6 * t37 + t27 * beta[40];
+  const double t43 = -t0 * beta[26] + t3 * beta[25] + t2 * beta[24] - s5 * t41 + c5 * t42 + 0.384 * t18 + t23 * beta[30];
+  const double t44 = -t3 * beta[29] + t2 * beta[30] + t18;
+  const double t45 = c2 * beta[18] + t0 * beta[17] + t1 * beta[16] + c4 * t39 + s4 * t43 - 0.0825 * t44 - t19 * beta[20] + t22 * beta[19];
+  const double t46 = -s5 * t10 + c5 * t17;
+  const double t47 = -t11 * beta[39] + t4 * beta[40] + c6 * t15 + s6 * t16;
+  const double t48 = -t0 * beta[28] + t3 * beta[27] + t2 * beta[26] - c5 * t41 - s5 * t42 - 0.384 * t46 - 0.0825 * t47 - t20 * beta[30] + t26 * beta[29];
+  const double t49 = -t0 * beta[29] + t47;
+  const double t50 = t0 * beta[30] + t46;
+  const double t51 = c2 * beta[17] + t1 * beta[15] - t48 - 0.0825 * (c4 * t49 + s4 * t50);
+  const double t52 = c2 * beta[16] + t0 * beta[15] + t1 * beta[14] - s4 * t39 + c4 * t43;
+  const double t53 = c2 * beta[19] - t44;
+  const double t54 = -c2 * beta[20] - s4 * t49 + c4 * t50;
+  M[0] = beta[0] - c2 * (-s2 * beta[5] - t45) - s2 * (-c2 * beta[5] - s2 * beta[4] - s3 * t51 + c3 * t52 - 0.316 * (c3 * t53 + s3 * t54));
+  const double t55 = s3 * c4;
+  const double t56 = -s3 * s4;
+  const double t57 = c5 * t55 + c3 * s5;
+  const double t58 = -s6 * t57 + c6 * t56;
+  const double t59 = c6 * t57 + s6 * t56;
+  const double t60 = -t58 * beta[59];
+  const double t61 = t58 * beta[60];
+  const double t62 = c7 * t60 + s7 * t61;
+  const double t63 = t56 * beta[39] + t58 * beta[49] - t59 * beta[50] - t62;
+  const double t64 = -s5 * t55 + c3 * c5;
+  const double t65 = -s7 * t59 - c7 * t64;
+  const double t66 = c7 * t59 - s7 * t64;
+  const double t67 = -t65 * beta[59] + t66 * beta[60];
+  const double t68 = -t64 * beta[49] - t67;
+  const double t69 = t64 * beta[50] - s7 * t60 + c7 * t61;
+  const double t70 = -t56 * beta[40] - s6 * t68 + c6 * t69;
+  const double t71 = -c5 * t63 - s5 * t70;
+  const double t72 = 0.316 * c3 * c4 - 0.0825 * c3 * s4;
+  const double t73 = t72 + 0.384 * c3;
+  const double t74 = 0.316 * s3 + 0.384 * t55 + 0.0825 * t56;
+  const double t75 = c5 * t73 - s5 * t74;
+  const double t76 = -0.316 * c3 * s4 - 0.0825 * c3 * c4;
+  const double t77 = 0.0825 * c3 + t76;
+  const double t78 = c6 * t75 + s6 * t77;
+  const double t79 = -s5 * t73 - c5 * t74;
+  const double t80 = -t79 - 0.088 * t58;
+  const double t81 = -t58 * beta[58] + t65 * beta[57] + t66 * beta[56] - (c7 * t78 + s7 * t80) * beta[60] + (-s7 * t78 + c7 * t80) * beta[59];
+  const double t82 = -t64 * beta[47] + t59 * beta[45] - t81 - 0.088 * t62 + t79 * beta[49];
+  const double t83 = -s6 * t75 + c6 * t77;
+  const double t84 = -t83 + 0.088 * t64;
+  const double t85 = -t58 * beta[57] + t66 * beta[55] - t84 * beta[59];
+  const double t86 = -t58 * beta[56] + t65 * beta[55] + t66 * beta[54] + t84 * beta[60];
+  const double t87 = -t64 * beta[46] + t58 * beta[45] + t59 * beta[44] - s7 * t85 + c7 * t86 - t79 * beta[50];
+  const double t88 = t56 * beta[38] + t64 * beta[37] + t57 * beta[36] + c6 * t82 + s6 * t87 - t75 * beta[40] + t79 * beta[39];
+  const double t89 = -c3 * beta[27] + t55 * beta[25] + 0.0825 * t71 + t88 - 0.316 * s3 * beta[29];
+  const double t90 = -t64 * beta[48] + t58 * beta[47] + t59 * beta[46] + c7 * t85 + s7 * t86 - 0.088 * t67 - t78 * beta[50] + t83 * beta[49];
+  const double t91 = t56 * beta[37] + t57 * beta[35] - t90 - t77 * beta[39];
+  const double t92 = t56 * beta[36] + t64 * beta[35] + t57 * beta[34] - s6 * t82 + c6 * t87 + t77 * beta[40];
+  const double t93 = -c3 * beta[26] + t56 * beta[25] + t55 * beta[24] - s5 * t91 + c5 * t92 + 0.384 * t71 + 0.316 * s3 * beta[30];
+  const double t94 = -t56 * beta[29] + t55 * beta[30] + t71;
+  const double t95 = c3 * beta[17] + s3 * beta[16] + c4 * t89 + s4 * t93 - 0.0825 * t94 - 0.316 * c3 * beta[20] - 0.316 * s3 * beta[19];
+  const double t96 = -s5 * t63 + c5 * t70;
+  const double t97 = -t64 * beta[39] + t57 * beta[40] + c6 * t68 + s6 * t69;
+  const double t98 = -c3 * beta[28] + t56 * beta[27] + t55 * beta[26] - c5 * t91 - s5 * t92 - 0.384 * t96 - 0.0825 * t97 - t72 * beta[30] + t76 * beta[29];
+  const double t99 = -c3 * beta[29] + t97;
+  const double t100 = c3 * beta[30] + t96;
+  const double t101 = s3 * beta[15] - t98 - 0.0825 * (c4 * t99 + s4 * t100);
+  const double t102 = c3 * beta[15] + s3 * beta[14] - s4 * t89 + c4 * t93;
+  const double t103 = -s4 * t99 + c4 * t100;
+  M[1] = -c2 * (beta[7] - t95) - s2 * (beta[6] - s3 * t101 + c3 * t102 - 0.316 * (-c3 * t94 + s3 * t103));
+  const double t104 = s4 * c5;
+  const double t105 = -s6 * t104 + c4 * c6;
+  const double t106 = c6 * t104 + c4 * s6;
+  const double t107 = -t105 * beta[59];
+  const double t108 = t105 * beta[60];
+  const double t109 = c7 * t107 + s7 * t108;
+  const double t110 = c4 * beta[39] + t105 * beta[49] - t106 * beta[50] - t109;
+  const double t111 = -s4 * s5;
+  const double t112 = -s7 * t106 - c7 * t111;
+  const double t113 = c7 * t106 - s7 * t111;
+  const double t114 = -t112 * beta[59] + t113 * beta[60];
+  const double t115 = -t111 * beta[49] - t114;
+  const double t116 = t111 * beta[50] - s7 * t107 + c7 * t108;
+  const double t117 = -c4 * beta[40] - s6 * t115 + c6 * t116;
+  const double t118 = -c5 * t110 - s5 * t117;
+  const double t119 = -0.0825 + 0.384 * s4 + 0.0825 * c4;
+  const double t120 = -s5 * t119;
+  const double t121 = c6 * t120;
+  const double t122 = -c5 * t119;
+  const double t123 = -t122 - 0.088 * t105;
+  const double t124 = -t105 * beta[58] + t112 * beta[57] + t113 * beta[56] - (c7 * t121 + s7 * t123) * beta[60] + (-s7 * t121 + c7 * t123) * beta[59];
+  const double t125 = -t111 * beta[47] + t106 * beta[45] - t124 - 0.088 * t109 + t122 * beta[49];
+  const double t126 = -s6 * t120;
+  const double t127 = -t126 + 0.088 * t111;
+  const double t128 = -t105 * beta[57] + t113 * beta[55] - t127 * beta[59];
+  const double t129 = -t105 * beta[56] + t112 * beta[55] + t113 * beta[54] + t127 * beta[60];
+  const double t130 = -t111 * beta[46] + t105 * beta[45] + t106 * beta[44] - s7 * t128 + c7 * t129 - t122 * beta[50];
+  const double t131 = c4 * beta[38] + t111 * beta[37] + t104 * beta[36] + c6 * t125 + s6 * t130 - t120 * beta[40] + t122 * beta[39];
+  const double t132 = s4 * beta[25] + 0.0825 * t118 + t131 + 0.0825 * beta[29];
+  const double t133 = -t111 * beta[48] + t105 * beta[47] + t106 * beta[46] + c7 * t128 + s7 * t129 - 0.088 * t114 - t121 * beta[50] + t126 * beta[49];
+  const double t134 = c4 * beta[37] + t104 * beta[35] - t133;
+  const double t135 = c4 * beta[36] + t111 * beta[35] + t104 * beta[34] - s6 * t125 + c6 * t130;
+  const double t136 = c4 * beta[25] + s4 * beta[24] - s5 * t134 + c5 * t135 + 0.384 * t118 - 0.0825 * beta[30];
+  const double t137 = -c4 * beta[29] + s4 * beta[30] + t118;
+  const double t138 = beta[18] + c4 * t132 + s4 * t136 - 0.0825 * t137;
+  const double t139 = -s5 * t110 + c5 * t117;
+  const double t140 = -t111 * beta[39] + t104 * beta[40] + c6 * t115 + s6 * t116;
+  const double t141 = c4 * beta[27] + s4 * beta[26] - c5 * t134 - s5 * t135 - 0.384 * t139 - 0.0825 * t140;
+  const double t142 = beta[17] - t141 - 0.0825 * (c4 * t140 + s4 * t139);
+  const double t143 = beta[16] - s4 * t132 + c4 * t136;
+  const double t144 = beta[19] - t137;
+  const double t145 = -beta[20] - s4 * t140 + c4 * t139;
+  M[2] = c2 * t138 - s2 * (-s3 * t142 + c3 * t143 - 0.316 * (c3 * t144 + s3 * t145));
+  const double t146 = s5 * s6;
+  const double t147 = -s5 * c6;
+  const double t148 = -t146 * beta[59];
+  const double t149 = t146 * beta[60];
+  const double t150 = c7 * t148 + s7 * t149;
+  const double t151 = -t146 * beta[49] + t147 * beta[50] + t150;
+  const double t152 = -s7 * t147 + c5 * c7;
+  const double t153 = c7 * t147 + c5 * s7;
+  const double t154 = -t152 * beta[59] + t153 * beta[60];
+  const double t155 = c5 * beta[49] - t154;
+  const double t156 = -c5 * beta[50] - s7 * t148 + c7 * t149;
+  const double t157 = -s6 * t155 + c6 * t156;
+  const double t158 = c5 * t151 - s5 * t157;
+  const double t159 = -0.384 * c5 * c6 - 0.0825 * s6;
+  const double t160 = -0.384 * s5 - 0.088 * t146;
+  const double t161 = -t146 * beta[58] + t152 * beta[57] + t153 * beta[56] - (c7 * t159 + s7 * t160) * beta[60] + (-s7 * t159 + c7 * t160) * beta[59];
+  const double t162 = c5 * beta[47] + t147 * beta[45] - t161 - 0.088 * t150 + 0.384 * s5 * beta[49];
+  const double t163 = 0.384 * c5 * s6 - 0.0825 * c6;
+  const double t164 = -t163 - 0.088 * c5;
+  const double t165 = -t146 * beta[57] + t153 * beta[55] - t164 * beta[59];
+  const double t166 = -t146 * beta[56] + t152 * beta[55] + t153 * beta[54] + t164 * beta[60];
+  const double t167 = c5 * beta[46] + t146 * beta[45] + t147 * beta[44] - s7 * t165 + c7 * t166 - 0.384 * s5 * beta[50];
+  const double t168 = -c5 * beta[37] - s5 * beta[36] + c6 * t162 + s6 * t167 + 0.384 * c5 * beta[40] + 0.384 * s5 * beta[39];
+  const double t169 = beta[27] + 0.0825 * t158 + t168;
+  const double t170 = c5 * beta[48] + t146 * beta[47] + t147 * beta[46] + c7 * t165 + s7 * t166 - 0.088 * t154 - t159 * beta[50] + t163 * beta[49];
+  const double t171 = -s5 * beta[35] - t170 + 0.0825 * beta[39];
+  const double t172 = -c5 * beta[35] - s5 * beta[34] - s6 * t162 + c6 * t167 - 0.0825 * beta[40];
+  const double t173 = beta[26] - s5 * t171 + c5 * t172 + 0.384 * t158;
+  const double t174 = c4 * t169 + s4 * t173 - 0.0825 * t158;
+  const double t175 = s5 * t151 + c5 * t157;
+  const double t176 = c5 * beta[39] - s5 * beta[40] + c6 * t155 + s6 * t156;
+  const double t177 = beta[28] - c5 * t171 - s5 * t172 - 0.384 * t175 - 0.0825 * t176;
+  const double t178 = beta[29] + t176;
+  const double t179 = -beta[30] + t175;
+  const double t180 = -t177 - 0.0825 * (c4 * t178 + s4 * t179);
+  const double t181 = -s4 * t169 + c4 * t173;
+  const double t182 = -s4 * t178 + c4 * t179;
+  M[3] = c2 * t174 - s2 * (-s3 * t180 + c3 * t181 - 0.316 * (-c3 * t158 + s3 * t182));
+  const double t183 = -c6 * beta[59];
+  const double t184 = c6 * beta[60];
+  const double t185 = c7 * t183 + s7 * t184;
+  const double t186 = beta[39] + c6 * beta[49] - s6 * beta[50] - t185;
+  const double t187 = -s6 * s7;
+  const double t188 = s6 * c7;
+  const double t189 = -t187 * beta[59] + t188 * beta[60];
+  const double t190 = -s7 * t183 + c7 * t184;
+  const double t191 = -beta[40] + s6 * t189 + c6 * t190;
+  const double t192 = -c5 * t186 - s5 * t191;
+  const double t193 = -c6 * beta[58] + t187 * beta[57] + t188 * beta[56] - (-0.088 * c6 * s7) * beta[60] + (-0.088 * c6 * c7) * beta[59];
+  const double t194 = s6 * beta[45] - t193 - 0.088 * t185;
+  const double t195 = -c6 * beta[57] + t188 * beta[55];
+  const double t196 = -c6 * beta[56] + t187 * beta[55] + t188 * beta[54];
+  const double t197 = c6 * beta[45] + s6 * beta[44] - s7 * t195 + c7 * t196;
+  const double t198 = beta[38] + c6 * t194 + s6 * t197;
+  const double t199 = 0.0825 * t192 + t198;
+  const double t200 = c6 * beta[47] + s6 * beta[46] + c7 * t195 + s7 * t196 - 0.088 * t189;
+  const double t201 = beta[37] - t200;
+  const double t202 = beta[36] - s6 * t194 + c6 * t197;
+  const double t203 = -s5 * t201 + c5 * t202 + 0.384 * t192;
+  const double t204 = c4 * t199 + s4 * t203 - 0.0825 * t192;
+  const double t205 = -s5 * t186 + c5 * t191;
+  const double t206 = -c6 * t189 + s6 * t190;
+  const double t207 = -c5 * t201 - s5 * t202 - 0.384 * t205 - 0.0825 * t206;
+  const double t208 = -t207 - 0.0825 * (c4 * t206 + s4 * t205);
+  const double t209 = -s4 * t199 + c4 * t203;
+  const double t210 = -s4 * t206 + c4 * t205;
+  M[4] = c2 * t204 - s2 * (-s3 * t208 + c3 * t209 - 0.316 * (-c3 * t192 + s3 * t210));
+  const double t211 = -c7 * beta[59] + s7 * beta[60];
+  const double t212 = beta[49] - t211;
+  const double t213 = -s6 * t212 - c6 * beta[50];
+  const double t214 = -s5 * t213;
+  const double t215 = c7 * beta[57] + s7 * beta[56];
+  const double t216 = beta[47] - t215;
+  const double t217 = s7 * beta[55] + 0.088 * beta[59];
+  const double t218 = c7 * beta[55] + s7 * beta[54] - 0.088 * beta[60];
+  const double t219 = beta[46] - s7 * t217 + c7 * t218;
+  const double t220 = c6 * t216 + s6 * t219;
+  const double t221 = 0.0825 * t214 + t220;
+  const double t222 = beta[48] + c7 * t217 + s7 * t218 - 0.088 * t211;
+  const double t223 = -s6 * t216 + c6 * t219;
+  const double t224 = s5 * t222 + c5 * t223 + 0.384 * t214;
+  const double t225 = c4 * t221 + s4 * t224 - 0.0825 * t214;
+  const double t226 = c5 * t213;
+  const double t227 = c6 * t212 - s6 * beta[50];
+  const double t228 = c5 * t222 - s5 * t223 - 0.384 * t226 - 0.0825 * t227;
+  const double t229 = -t228 - 0.0825 * (c4 * t227 + s4 * t226);
+  const double t230 = -s4 * t221 + c4 * t224;
+  const double t231 = -s4 * t227 + c4 * t226;
+  M[5] = c2 * t225 - s2 * (-s3 * t229 + c3 * t230 - 0.316 * (-c3 * t214 + s3 * t231));
+  const double t232 = c7 * beta[59] - s7 * beta[60];
+  const double t233 = -s7 * beta[59] - c7 * beta[60];
+  const double t234 = c6 * t233;
+  const double t235 = c5 * t232 - s5 * t234;
+  const double t236 = -beta[58] - 0.088 * t232;
+  const double t237 = -s7 * beta[57] + c7 * beta[56];
+  const double t238 = c6 * t236 + s6 * t237;
+  const double t239 = 0.0825 * t235 + t238;
+  const double t240 = -s6 * t236 + c6 * t237;
+  const double t241 = s5 * t215 + c5 * t240 + 0.384 * t235;
+  const double t242 = c4 * t239 + s4 * t241 - 0.0825 * t235;
+  const double t243 = s5 * t232 + c5 * t234;
+  const double t244 = s6 * t233;
+  const double t245 = c5 * t215 - s5 * t240 - 0.384 * t243 - 0.0825 * t244;
+  const double t246 = -t245 - 0.0825 * (c4 * t244 + s4 * t243);
+  const double t247 = -s4 * t239 + c4 * t241;
+  const double t248 = -s4 * t244 + c4 * t243;
+  M[6] = c2 * t242 - s2 * (-s3 * t246 + c3 * t247 - 0.316 * (-c3 * t235 + s3 * t248));
+  M[7] = -c2 * beta[7] - s2 * beta[6] + c3 * t51 + s3 * t52 + 0.316 * (-s3 * t53 + c3 * t54);
+  M[8] = beta[8] + c3 * t101 + s3 * t102 + 0.316 * (s3 * t94 + c3 * t103);
+  M[9] = c3 * t142 + s3 * t143 + 0.316 * (-s3 * t144 + c3 * t145);
+  M[10] = c3 * t180 + s3 * t181 + 0.316 * (s3 * t158 + c3 * t182);
+  M[11] = c3 * t208 + s3 * t209 + 0.316 * (s3 * t192 + c3 * t210);
+  M[12] = c3 * t229 + s3 * t230 + 0.316 * (s3 * t214 + c3 * t231);
+  M[13] = c3 * t246 + s3 * t247 + 0.316 * (s3 * t235 + c3 * t248);
+  M[14] = t45;
+  M[15] = t95;
+  M[16] = t138;
+  M[17] = t174;
+  M[18] = t204;
+  M[19] = t225;
+  M[20] = t242;
+  M[21] = t48;
+  M[22] = t98;
+  M[23] = t141;
+  M[24] = t177;
+  M[25] = t207;
+  M[26] = t228;
+  M[27] = t245;
+  M[28] = t38;
+  M[29] = t88;
+  M[30] = t131;
+  M[31] = t168;
+  M[32] = t198;
+  M[33] = t220;
+  M[34] = t238;
+  M[35] = t40;
+  M[36] = t90;
+  M[37] = t133;
+  M[38] = t170;
+  M[39] = t200;
+  M[40] = t222;
+  M[41] = t215;
+  M[42] = t31;
+  M[43] = t81;
+  M[44] = t124;
+  M[45] = t161;
+  M[46] = t193;
+  M[47] = t215;
+  M[48] = beta[58];
+}
+
+// mass_matrix with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
+// computing them; identical results.
+void mass_matrix_sincos(const float* q, const float* sin_q, const float* cos_q, const float* beta,
+                        float* M) {
+  static_cast<void>(q);
+  const float s2 = sin_q[1];
+  const float c2 = cos_q[1];
+  const float s3 = sin_q[2];
+  const float c3 = cos_q[2];
+  const float s4 = sin_q[3];
+  const float c4 = cos_q[3];
+  const float s5 = sin_q[4];
+  const float c5 = cos_q[4];
+  const float s6 = sin_q[5];
+  const float c6 = cos_q[5];
+  const float s7 = sin_q[6];
+  const float c7 = cos_q[6];
+  const float t0 = s2 * s3;
+  const float t1 = -s2 * c3;
+  const float t2 = c4 * t1 + c2 * s4;
+  const float t3 = -s4 * t1 + c2 * c4;
+  const float t4 = c5 * t2 + s5 * t0;
+  const float t5 = -s6 * t4 + c6 * t3;
+  const float t6 = c6 * t4 + s6 * t3;
+  const float t7 = -t5 * beta[59];
+  const float t8 = t5 * beta[60];
+  const float t9 = c7 * t7 + s7 * t8;
+  const float t10 = t3 * beta[39] + t5 * beta[49] - t6 * beta[50] - t9;
+  const float t11 = -s5 * t2 + c5 * t0;
+  const float t12 = -s7 * t6 - c7 * t11;
+  const float t13 = c7 * t6 - s7 * t11;
+  const float t14 = -t12 * beta[59] + t13 * beta[60];
+  const float t15 = -t11 * beta[49] - t14;
+  const float t16 = t11 * beta[50] - s7 * t7 + c7 * t8;
+  const float t17 = -t3 * beta[40] - s6 * t15 + c6 * t16;
+  const float t18 = -c5 * t10 - s5 * t17;
+  const float t19 = 0.316f * s2 * s3;
+  const float t20 = c4 * t19 - 0.0825f * s4 * t0;
+  const float t21 = t20 + 0.384f * t0;
+  const float t22 = 0.316f * s2 * c3;
+  const float t23 = -t22 - 0.0825f * c2;
+  const float t24 = t23 + 0.384f * t2 + 0.0825f * t3;
+  const float t25 = c5 * t21 - s5 * t24;
+  const float t26 = -s4 * t19 - 0.0825f * c4 * t0;
+  const float t27 = 0.0825f * t0 + t26;
+  const float t28 = c6 * t25 + s6 * t27;
+  const float t29 = -s5 * t21 - c5 * t24;
+  const float t30 = -t29 - 0.088f * t5;
+  const float t31 = -t5 * beta[58] + t12 * beta[57] + t13 * beta[56] - (c7 * t28 + s7 * t30) * beta[60] + (-s7 * t28 + c7 * t30) * beta[59];
+  const float t32 = -t11 * beta[47] + t6 * beta[45] - t31 - 0.088f * t9 + t29 * beta[49];
+  const float t33 = -s6 * t25 + c6 * t27;
+  const float t34 = -t33 + 0.088f * t11;
+  const float t35 = -t5 * beta[57] + t13 * beta[55] - t34 * beta[59];
+  const float t36 = -t5 * beta[56] + t12 * beta[55] + t13 * beta[54] + t34 * beta[60];
+  const float t37 = -t11 * beta[46] + t5 * beta[45] + t6 * beta[44] - s7 * t35 + c7 * t36 - t29 * beta[50];
+  const float t38 = t3 * beta[38] + t11 * beta[37] + t4 * beta[36] + c6 * t32 + s6 * t37 - t25 * beta[40] + t29 * beta[39];
+  const float t39 = -t0 * beta[27] + t2 * beta[25] + 0.0825f * t18 + t38 - t23 * beta[29];
+  const float t40 = -t11 * beta[48] + t5 * beta[47] + t6 * beta[46] + c7 * t35 + s7 * t36 - 0.088f * t14 - t28 * beta[50] + t33 * beta[49];
+  const float t41 = t3 * beta[37] + t4 * beta[35] - t40 - t27 * beta[39];
+  const float t42 = t3 * beta[36] + t11 * beta[35] + t4 * beta[34] - s6 * t32 + c6 * t37 + t27 * beta[40];
+  const float t43 = -t0 * beta[26] + t3 * beta[25] + t2 * beta[24] - s5 * t41 + c5 * t42 + 0.384f * t18 + t23 * beta[30];
+  const float t44 = -t3 * beta[29] + t2 * beta[30] + t18;
+  const float t45 = c2 * beta[18] + t0 * beta[17] + t1 * beta[16] + c4 * t39 + s4 * t43 - 0.0825f * t44 - t19 * beta[20] + t22 * beta[19];
+  const float t46 = -s5 * t10 + c5 * t17;
+  const float t47 = -t11 * beta[39] + t4 * beta[40] + c6 * t15 + s6 * t16;
+  const float t48 = -t0 * beta[28] + t3 * beta[27] + t2 * beta[26] - c5 * t41 - s5 * t42 - 0.384f * t46 - 0.0825f * t47 - t20 * beta[30] + t26 * beta[29];
+  const float t49 = -t0 * beta[29] + t47;
+  const float t50 = t0 * beta[30] + t46;
+  const float t51 = c2 * beta[17] + t1 * beta[15] - t48 - 0.0825f * (c4 * t49 + s4 * t50);
+  const float t52 = c2 * beta[16] + t0 * beta[15] + t1 * beta[14] - s4 * t39 + c4 * t43;
+  const float t53 = c2 * beta[19] - t44;
+  const float t54 = -c2 * beta[20] - s4 * t49 + c4 * t50;
+  M[0] = beta[0] - c2 * (-s2 * beta[5] - t45) - s2 * (-c2 * beta[5] - s2 * beta[4] - s3 * t51 + c3 * t52 - 0.316f * (c3 * t53 + s3 * t54));
+  const float t55 = s3 * c4;
+  const float t56 = -s3 * s4;
+  const float t57 = c5 * t55 + c3 * s5;
+  const float t58 = -s6 * t57 + c6 * t56;
+  const float t59 = c6 * t57 + s6 * t56;
+  const float t60 = -t58 * beta[59];
+  const float t61 = t58 * beta[60];
+  const float t62 = c7 * t60 + s7 * t61;
+  const float t63 = t56 * beta[39] + t58 * beta[49] - t59 * beta[50] - t62;
+  const float t64 = -s5 * t55 + c3 * c5;
+  const float t65 = -s7 * t59 - c7 * t64;
+  const float t66 = c7 * t59 - s7 * t64;
+  const float t67 = -t65 * beta[59] + t66 * beta[60];
+  const float t68 = -t64 * beta[49] - t67;
+  const float t69 = t64 * beta[50] - s7 * t60 + c7 * t61;
+  const float t70 = -t56 * beta[40] - s6 * t68 + c6 * t69;
+  const float t71 = -c5 * t63 - s5 * t70;
+  const float t72 = 0.316f * c3 * c4 - 0.0825f * c3 * s4;
+  const float t73 = t72 + 0.384f * c3;
+  const float t74 = 0.316f * s3 + 0.384f * t55 + 0.0825f * t56;
+  const float t75 = c5 * t73 - s5 * t74;
+  const float t76 = -0.316f * c3 * s4 - 0.0825f * c3 * c4;
+  const float t77 = 0.0825f * c3 + t76;
+  const float t78 = c6 * t75 + s6 * t77;
+  const float t79 = -s5 * t73 - c5 * t74;
+  const float t80 = -t79 - 0.088f * t58;
+  const float t81 = -t58 * beta[58] + t65 * beta[57] + t66 * beta[56] - (c7 * t78 + s7 * t80) * beta[60] + (-s7 * t78 + c7 * t80) * beta[59];
+  const float t82 = -t64 * beta[47] + t59 * beta[45] - t81 - 0.088f * t62 + t79 * beta[49];
+  const float t83 = -s6 * t75 + c6 * t77;
+  const float t84 = -t83 + 0.088f * t64;
+  const float t85 = -t58 * beta[57] + t66 * beta[55] - t84 * beta[59];
+  const float t86 = -t58 * beta[56] + t65 * beta[55] + t66 * beta[54] + t84 * beta[60];
+  const float t87 = -t64 * beta[46] + t58 * beta[45] + t59 * beta[44] - s7 * t85 + c7 * t86 - t79 * beta[50];
+  const float t88 = t56 * beta[38] + t64 * beta[37] + t57 * beta[36] + c6 * t82 + s6 * t87 - t75 * beta[40] + t79 * beta[39];
+  const float t89 = -c3 * beta[27] + t55 * beta[25] + 0.0825f * t71 + t88 - 0.316f * s3 * beta[29];
+  const float t90 = -t64 * beta[48] + t58 * beta[47] + t59 * beta[46] + c7 * t85 + s7 * t86 - 0.088f * t67 - t78 * beta[50] + t83 * beta[49];
+  const float t91 = t56 * beta[37] + t57 * beta[35] - t90 - t77 * beta[39];
+  const float t92 = t56 * beta[36] + t64 * beta[35] + t57 * beta[34] - s6 * t82 + c6 * t87 + t77 * beta[40];
+  const float t93 = -c3 * beta[26] + t56 * beta[25] + t55 * beta[24] - s5 * t91 + c5 * t92 + 0.384f * t71 + 0.316f * s3 * beta[30];
+  const float t94 = -t56 * beta[29] + t55 * beta[30] + t71;
+  const float t95 = c3 * beta[17] + s3 * beta[16] + c4 * t89 + s4 * t93 - 0.0825f * t94 - 0.316f * c3 * beta[20] - 0.316f * s3 * beta[19];
+  const float t96 = -s5 * t63 + c5 * t70;
+  const float t97 = -t64 * beta[39] + t57 * beta[40] + c6 * t68 + s6 * t69;
+  const float t98 = -c3 * beta[28] + t56 * beta[27] + t55 * beta[26] - c5 * t91 - s5 * t92 - 0.384f * t96 - 0.0825f * t97 - t72 * beta[30] + t76 * beta[29];
+  const float t99 = -c3 * beta[29] + t97;
+  const float t100 = c3 * beta[30] + t96;
+  const float t101 = s3 * beta[15] - t98 - 0.0825f * (c4 * t99 + s4 * t100);
+  const float t102 = c3 * beta[15] + s3 * beta[14] - s4 * t89 + c4 * t93;
+  const float t103 = -s4 * t99 + c4 * t100;
+  M[1] = -c2 * (beta[7] - t95) - s2 * (beta[6] - s3 * t101 + c3 * t102 - 0.316f * (-c3 * t94 + s3 * t103));
+  const float t104 = s4 * c5;
+  const float t105 = -s6 * t104 + c4 * c6;
+  const float t106 = c6 * t104 + c4 * s6;
+  const float t107 = -t105 * beta[59];
+  const float t108 = t105 * beta[60];
+  const float t109 = c7 * t107 + s7 * t108;
+  const float t110 = c4 * beta[39] + t105 * beta[49] - t106 * beta[50] - t109;
+  const float t111 = -s4 * s5;
+  const float t112 = -s7 * t106 - c7 * t111;
+  const float t113 = c7 * t106 - s7 * t111;
+  const float t114 = -t112 * beta[59] + t113 * beta[60];
+  const float t115 = -t111 * beta[49] - t114;
+  const float t116 = t111 * beta[50] - s7 * t107 + c7 * t108;
+  const float t117 = -c4 * beta[40] - s6 * t115 + c6 * t116;
+  const float t118 = -c5 * t110 - s5 * t117;
+  const float t119 = -0.0825f + 0.384f * s4 + 0.0825f * c4;
+  const float t120 = -s5 * t119;
+  const float t121 = c6 * t120;
+  const float t122 = -c5 * t119;
+  const float t123 = -t122 - 0.088f * t105;
+  const float t124 = -t105 * beta[58] + t112 * beta[57] + t113 * beta[56] - (c7 * t121 + s7 * t123) * beta[60] + (-s7 * t121 + c7 * t123) * beta[59];
+  const float t125 = -t111 * beta[47] + t106 * beta[45] - t124 - 0.088f * t109 + t122 * beta[49];
+  const float t126 = -s6 * t120;
+  const float t127 = -t126 + 0.088f * t111;
+  const float t128 = -t105 * beta[57] + t113 * beta[55] - t127 * beta[59];
+  const float t129 = -t105 * beta[56] + t112 * beta[55] + t113 * beta[54] + t127 * beta[60];
+  const float t130 = -t111 * beta[46] + t105 * beta[45] + t106 * beta[44] - s7 * t128 + c7 * t129 - t122 * beta[50];
+  const float t131 = c4 * beta[38] + t111 * beta[37] + t104 * beta[36] + c6 * t125 + s6 * t130 - t120 * beta[40] + t122 * beta[39];
+  const float t132 = s4 * beta[25] + 0.0825f * t118 + t131 + 0.0825f * beta[29];
+  const float t133 = -t111 * beta[48] + t105 * beta[47] + t106 * beta[46] + c7 * t128 + s7 * t129 - 0.088f * t114 - t121 * beta[50] + t126 * beta[49];
+  const float t134 = c4 * beta[37] + t104 * beta[35] - t133;
+  const float t135 = c4 * beta[36] + t111 * beta[35] + t104 * beta[34] - s6 * t125 + c6 * t130;
+  const float t136 = c4 * beta[25] + s4 * beta[24] - s5 * t134 + c5 * t135 + 0.384f * t118 - 0.0825f * beta[30];
+  const float t137 = -c4 * beta[29] + s4 * beta[30] + t118;
+  const float t138 = beta[18] + c4 * t132 + s4 * t136 - 0.0825f * t137;
+  const float t139 = -s5 * t110 + c5 * t117;
+  const float t140 = -t111 * beta[39] + t104 * beta[40] + c6 * t115 + s6 * t116;
+  const float t141 = c4 * beta[27] + s4 * beta[26] - c5 * t134 - s5 * t135 - 0.384f * t139 - 0.0825f * t140;
+  const float t142 = beta[17] - t141 - 0.0825f * (c4 * t140 + s4 * t139);
+  const float t143 = beta[16] - s4 * t132 + c4 * t136;
+  const float t144 = beta[19] - t137;
+  const float t145 = -beta[20] - s4 * t140 + c4 * t139;
+  M[2] = c2 * t138 - s2 * (-s3 * t142 + c3 * t143 - 0.316f * (c3 * t144 + s3 * t145));
+  const float t146 = s5 * s6;
+  const float t147 = -s5 * c6;
+  const float t148 = -t146 * beta[59];
+  const float t149 = t146 * beta[60];
+  const float t150 = c7 * t148 + s7 * t149;
+  const float t151 = -t146 * beta[49] + t147 * beta[50] + t150;
+  const float t152 = -s7 * t147 + c5 * c7;
+  const float t153 = c7 * t147 + c5 * s7;
+  const float t154 = -t152 * beta[59] + t153 * beta[60];
+  const float t155 = c5 * beta[49] - t154;
+  const float t156 = -c5 * beta[50] - s7 * t148 + c7 * t149;
+  const float t157 = -s6 * t155 + c6 * t156;
+  const float t158 = c5 * t151 - s5 * t157;
+  const float t159 = -0.384f * c5 * c6 - 0.0825f * s6;
+  const float t160 = -0.384f * s5 - 0.088f * t146;
+  const float t161 = -t146 * beta[58] + t152 * beta[57] + t153 * beta[56] - (c7 * t159 + s7 * t160) * beta[60] + (-s7 * t159 + c7 * t160) * beta[59];
+  const float t162 = c5 * beta[47] + t147 * beta[45] - t161 - 0.088f * t150 + 0.384f * s5 * beta[49];
+  const float t163 = 0.384f * c5 * s6 - 0.0825f * c6;
+  const float t164 = -t163 - 0.088f * c5;
+  const float t165 = -t146 * beta[57] + t153 * beta[55] - t164 * beta[59];
+  const float t166 = -t146 * beta[56] + t152 * beta[55] + t153 * beta[54] + t164 * beta[60];
+  const float t167 = c5 * beta[46] + t146 * beta[45] + t147 * beta[44] - s7 * t165 + c7 * t166 - 0.384f * s5 * beta[50];
+  const float t168 = -c5 * beta[37] - s5 * beta[36] + c6 * t162 + s6 * t167 + 0.384f * c5 * beta[40] + 0.384f * s5 * beta[39];
+  const float t169 = beta[27] + 0.0825f * t158 + t168;
+  const float t170 = c5 * beta[48] + t146 * beta[47] + t147 * beta[46] + c7 * t165 + s7 * t166 - 0.088f * t154 - t159 * beta[50] + t163 * beta[49];
+  const float t171 = -s5 * beta[35] - t170 + 0.0825f * beta[39];
+  const float t172 = -c5 * beta[35] - s5 * beta[34] - s6 * t162 + c6 * t167 - 0.0825f * beta[40];
+  const float t173 = beta[26] - s5 * t171 + c5 * t172 + 0.384f * t158;
+  const float t174 = c4 * t169 + s4 * t173 - 0.0825f * t158;
+  const float t175 = s5 * t151 + c5 * t157;
+  const float t176 = c5 * beta[39] - s5 * beta[40] + c6 * t155 + s6 * t156;
+  const float t177 = beta[28] - c5 * t171 - s5 * t172 - 0.384f * t175 - 0.0825f * t176;
+  const float t178 = beta[29] + t176;
+  const float t179 = -beta[30] + t175;
+  const float t180 = -t177 - 0.0825f * (c4 * t178 + s4 * t179);
+  const float t181 = -s4 * t169 + c4 * t173;
+  const float t182 = -s4 * t178 + c4 * t179;
+  M[3] = c2 * t174 - s2 * (-s3 * t180 + c3 * t181 - 0.316f * (-c3 * t158 + s3 * t182));
+  const float t183 = -c6 * beta[59];
+  const float t184 = c6 * beta[60];
+  const float t185 = c7 * t183 + s7 * t184;
+  const float t186 = beta[39] + c6 * beta[49] - s6 * beta[50] - t185;
+  const float t187 = -s6 * s7;
+  const float t188 = s6 * c7;
+  const float t189 = -t187 * beta[59] + t188 * beta[60];
+  const float t190 = -s7 * t183 + c7 * t184;
+  const float t191 = -beta[40] + s6 * t189 + c6 * t190;
+  const float t192 = -c5 * t186 - s5 * t191;
+  const float t193 = -c6 * beta[58] + t187 * beta[57] + t188 * beta[56] - (-0.088f * c6 * s7) * beta[60] + (-0.088f * c6 * c7) * beta[59];
+  const float t194 = s6 * beta[45] - t193 - 0.088f * t185;
+  const float t195 = -c6 * beta[57] + t188 * beta[55];
+  const float t196 = -c6 * beta[56] + t187 * beta[55] + t188 * beta[54];
+  const float t197 = c6 * beta[45] + s6 * beta[44] - s7 * t195 + c7 * t196;
+  const float t198 = beta[38] + c6 * t194 + s6 * t197;
+  const float t199 = 0.0825f * t192 + t198;
+  const float t200 = c6 * beta[47] + s6 * beta[46] + c7 * t195 + s7 * t196 - 0.088f * t189;
+  const float t201 = beta[37] - t200;
+  const float t202 = beta[36] - s6 * t194 + c6 * t197;
+  const float t203 = -s5 * t201 + c5 * t202 + 0.384f * t192;
+  const float t204 = c4 * t199 + s4 * t203 - 0.0825f * t192;
+  const float t205 = -s5 * t186 + c5 * t191;
+  const float t206 = -c6 * t189 + s6 * t190;
+  const float t207 = -c5 * t201 - s5 * t202 - 0.384f * t205 - 0.0825f * t206;
+  const float t208 = -t207 - 0.0825f * (c4 * t206 + s4 * t205);
+  const float t209 = -s4 * t199 + c4 * t203;
+  const float t210 = -s4 * t206 + c4 * t205;
+  M[4] = c2 * t204 - s2 * (-s3 * t208 + c3 * t209 - 0.316f * (-c3 * t192 + s3 * t210));
+  const float t211 = -c7 * beta[59] + s7 * beta[60];
+  const float t212 = beta[49] - t211;
+  const float t213 = -s6 * t212 - c6 * beta[50];
+  const float t214 = -s5 * t213;
+  const float t215 = c7 * beta[57] + s7 * beta[56];
+  const float t216 = beta[47] - t215;
+  const float t217 = s7 * beta[55] + 0.088f * beta[59];
+  const float t218 = c7 * beta[55] + s7 * beta[54] - 0.088f * beta[60];
+  const float t219 = beta[46] - s7 * t217 + c7 * t218;
+  const float t220 = c6 * t216 + s6 * t219;
+  const float t221 = 0.0825f * t214 + t220;
+  const float t222 = beta[48] + c7 * t217 + s7 * t218 - 0.088f * t211;
+  const float t223 = -s6 * t216 + c6 * t219;
+  const float t224 = s5 * t222 + c5 * t223 + 0.384f * t214;
+  const float t225 = c4 * t221 + s4 * t224 - 0.0825f * t214;
+  const float t226 = c5 * t213;
+  const float t227 = c6 * t212 - s6 * beta[50];
+  const float t228 = c5 * t222 - s5 * t223 - 0.384f * t226 - 0.0825f * t227;
+  const float t229 = -t228 - 0.0825f * (c4 * t227 + s4 * t226);
+  const float t230 = -s4 * t221 + c4 * t224;
+  const float t231 = -s4 * t227 + c4 * t226;
+  M[5] = c2 * t225 - s2 * (-s3 * t229 + c3 * t230 - 0.316f * (-c3 * t214 + s3 * t231));
+  const float t232 = c7 * beta[59] - s7 * beta[60];
+  const float t233 = -s7 * beta[59] - c7 * beta[60];
+  const float t234 = c6 * t233;
+  const float t235 = c5 * t232 - s5 * t234;
+  const float t236 = -beta[58] - 0.088f * t232;
+  const float t237 = -s7 * beta[57] + c7 * beta[56];
+  const float t238 = c6 * t236 + s6 * t237;
+  const float t239 = 0.0825f * t235 + t238;
+  const float t240 = -s6 * t236 + c6 * t237;
+  const float t241 = s5 * t215 + c5 * t240 + 0.384f * t235;
+  const float t242 = c4 * t239 + s4 * t241 - 0.0825f * t235;
+  const float t243 = s5 * t232 + c5 * t234;
+  const float t244 = s6 * t233;
+  const float t245 = c5 * t215 - s5 * t240 - 0.384f * t243 - 0.0825f * t244;
+  const float t246 = -t245 - 0.0825f * (c4 * t244 + s4 * t243);
+  const float t247 = -s4 * t239 + c4 * t241;
+  const float t248 = -s4 * t244 + c4 * t243;
+  M[6] = c2 * t242 - s2 * (-s3 * t246 + c3 * t247 - 0.316f * (-c3 * t235 + s3 * t248));
+  M[7] = -c2 * beta[7] - s2 * beta[6] + c3 * t51 + s3 * t52 + 0.316f * (-s3 * t53 + c3 * t54);
+  M[8] = beta[8] + c3 * t101 + s3 * t102 + 0.316f * (s3 * t94 + c3 * t103);
+  M[9] = c3 * t142 + s3 * t143 + 0.316f * (-s3 * t144 + c3 * t145);
+  M[10] = c3 * t180 + s3 * t181 + 0.316f * (s3 * t158 + c3 * t182);
+  M[11] = c3 * t208 + s3 * t209 + 0.316f * (s3 * t192 + c3 * t210);
+  M[12] = c3 * t229 + s3 * t230 + 0.316f * (s3 * t214 + c3 * t231);
+  M[13] = c3 * t246 + s3 * t247 + 0.316f * (s3 * t235 + c3 * t248);
+  M[14] = t45;
+  M[15] = t95;
+  M[16] = t138;
+  M[17] = t174;
+  M[18] = t204;
+  M[19] = t225;
+  M[20] = t242;
+  M[21] = t48;
+  M[22] = t98;
+  M[23] = t141;
+  M[24] = t177;
+  M[25] = t207;
+  M[26] = t228;
+  M[27] = t245;
+  M[28] = t38;
+  M[29] = t88;
+  M[30] = t131;
+  M[31] = t168;
+  M[32] = t198;
+  M[33] = t220;
+  M[34] = t238;
+  M[35] = t40;
+  M[36] = t90;
+  M[37] = t133;
+  M[38] = t170;
+  M[39] = t200;
+  M[40] = t222;
+  M[41] = t215;
+  M[42] = t31;
+  M[43] = t81;
+  M[44] = t124;
+  M[45] = t161;
+  M[46] = t193;
+  M[47] = t215;
+  M[48] = beta[58];
 }
 
 // Jacobian of inverse_dynamics with respect to the state x = [q, dq, ddq] (3 kDof values), for
@@ -12453,7 +13723,8 @@ void power_regressor(const float* q, const float* dq, const float* ddq, float* d
   dh[63] = dq[6];  // OFF7
 }
 
-// energy_regressor with sin_q, cos_q (kDof each) from joint_sincos(q, ...); identical results.
+// energy_regressor with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
+// computing them; identical results.
 void energy_regressor_sincos(const double* q, const double* sin_q, const double* cos_q,
                              const double* dq, double* h) {
   static_cast<void>(q);
@@ -12573,7 +13844,8 @@ void energy_regressor_sincos(const double* q, const double* sin_q, const double*
   h[63] = 0.0;  // OFF7
 }
 
-// energy_regressor with sin_q, cos_q (kDof each) from joint_sincos(q, ...); identical results.
+// energy_regressor with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
+// computing them; identical results.
 void energy_regressor_sincos(const float* q, const float* sin_q, const float* cos_q,
                              const float* dq, float* h) {
   static_cast<void>(q);
@@ -12693,7 +13965,8 @@ void energy_regressor_sincos(const float* q, const float* sin_q, const float* co
   h[63] = 0.0f;  // OFF7
 }
 
-// power_regressor with sin_q, cos_q (kDof each) from joint_sincos(q, ...); identical results.
+// power_regressor with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
+// computing them; identical results.
 void power_regressor_sincos(const double* q, const double* sin_q, const double* cos_q,
                             const double* dq, const double* ddq, double* dh) {
   static_cast<void>(q);
@@ -12858,7 +14131,8 @@ void power_regressor_sincos(const double* q, const double* sin_q, const double* 
   dh[63] = dq[6];  // OFF7
 }
 
-// power_regressor with sin_q, cos_q (kDof each) from joint_sincos(q, ...); identical results.
+// power_regressor with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
+// computing them; identical results.
 void power_regressor_sincos(const float* q, const float* sin_q, const float* cos_q,
                             const float* dq, const float* ddq, float* dh) {
   static_cast<void>(q);
@@ -13031,8 +14305,8 @@ void power_regressor_sincos(const float* q, const float* sin_q, const float* cos
 // < 0 and the mean of both if 0 (eq. 8), tau_M = tau_T + JM ddq_M + Rv dq_M + Rc sign(dq_M)
 // (eq. 7). Units follow K: N m on the motor side when K holds gear ratios, on the link side
 // (as in the paper) when it is the coupling alone. Every Rz must be non-zero.
-void drive_torque(const double* q, const double* dq, const double* ddq,
-                  const double* theta, double* tau_M) {
+void drive_torque(const double* q, const double* dq, const double* ddq, const double* theta,
+                  double* tau_M) {
   const double sg1 = static_cast<double>((dq[0] > 0.0) - (dq[0] < 0.0));
   const double s2 = std::sin(q[1]);
   const double c2 = std::cos(q[1]);
@@ -13215,8 +14489,8 @@ void drive_torque(const double* q, const double* dq, const double* ddq,
 // < 0 and the mean of both if 0 (eq. 8), tau_M = tau_T + JM ddq_M + Rv dq_M + Rc sign(dq_M)
 // (eq. 7). Units follow K: N m on the motor side when K holds gear ratios, on the link side
 // (as in the paper) when it is the coupling alone. Every Rz must be non-zero.
-void drive_torque(const float* q, const float* dq, const float* ddq,
-                  const float* theta, float* tau_M) {
+void drive_torque(const float* q, const float* dq, const float* ddq, const float* theta,
+                  float* tau_M) {
   const float sg1 = static_cast<float>((dq[0] > 0.0f) - (dq[0] < 0.0f));
   const float s2 = std::sin(q[1]);
   const float c2 = std::cos(q[1]);
@@ -14228,8 +15502,8 @@ void drive_torque_jacobian(const double* q, const double* dq, const double* ddq,
 // efficiency branch and the Coulomb friction sign count as constant: exact wherever no motor
 // velocity and no power flow tau'_G dq_M is zero. Calls idim_regressor_standard into a local
 // array of kDof * kStandardParams values (on the stack) and applies the chain rule to it.
-void drive_torque_jacobian(const float* q, const float* dq, const float* ddq,
-                           const float* theta, float* tau_M, float* J) {
+void drive_torque_jacobian(const float* q, const float* dq, const float* ddq, const float* theta,
+                           float* tau_M, float* J) {
   float W_std[kDof * kStandardParams] = {};
   idim_regressor_standard(q, dq, ddq, W_std);
   const float sg1 = static_cast<float>((dq[0] > 0.0f) - (dq[0] < 0.0f));

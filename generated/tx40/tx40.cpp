@@ -12,8 +12,10 @@
 // base_from_standard                     32     70        0
 // idim_regressor                        468    381       10
 // inverse_dynamics                      338    289       10
+// mass_matrix                           425    379       10
 // idim_regressor_sincos                 468    381        0
 // inverse_dynamics_sincos               338    289        0
+// mass_matrix_sincos                    425    379        0
 // inverse_dynamics_state_jacobian      2588   2507       10
 // energy_regressor                      126     59       10
 // power_regressor                       318    181       10
@@ -1939,8 +1941,8 @@ void inverse_dynamics_standard(const double* q, const double* dq, const double* 
 // joint positions q, velocities dq and accelerations ddq (kDof each) and the standard
 // parameters p (kStandardParams, in the order of kStandardParamNames). Includes gravity, drive
 // inertia, friction and offsets as the description enables them.
-void inverse_dynamics_standard(const float* q, const float* dq, const float* ddq,
-                               const float* p, float* tau) {
+void inverse_dynamics_standard(const float* q, const float* dq, const float* ddq, const float* p,
+                               float* tau) {
   const float sg1 = static_cast<float>((dq[0] > 0.0f) - (dq[0] < 0.0f));
   const float s2 = std::sin(q[1]);
   const float c2 = std::cos(q[1]);
@@ -3855,9 +3857,9 @@ void idim_regressor_standard_sincos(const float* q, const float* sin_q, const fl
 
 // inverse_dynamics_standard with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
 // computing them; identical results.
-void inverse_dynamics_standard_sincos(const double* q, const double* sin_q,
-                                      const double* cos_q, const double* dq,
-                                      const double* ddq, const double* p, double* tau) {
+void inverse_dynamics_standard_sincos(const double* q, const double* sin_q, const double* cos_q,
+                                      const double* dq, const double* ddq, const double* p,
+                                      double* tau) {
   static_cast<void>(q);
   const double sg1 = static_cast<double>((dq[0] > 0.0) - (dq[0] < 0.0));
   const double s2 = sin_q[1];
@@ -3989,9 +3991,9 @@ void inverse_dynamics_standard_sincos(const double* q, const double* sin_q,
 
 // inverse_dynamics_standard with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
 // computing them; identical results.
-void inverse_dynamics_standard_sincos(const float* q, const float* sin_q,
-                                      const float* cos_q, const float* dq,
-                                      const float* ddq, const float* p, float* tau) {
+void inverse_dynamics_standard_sincos(const float* q, const float* sin_q, const float* cos_q,
+                                      const float* dq, const float* ddq, const float* p,
+                                      float* tau) {
   static_cast<void>(q);
   const float sg1 = static_cast<float>((dq[0] > 0.0f) - (dq[0] < 0.0f));
   const float s2 = sin_q[1];
@@ -5430,8 +5432,8 @@ void idim_regressor(const float* q, const float* dq, const float* ddq, float* W)
 // Inverse dynamics on the base parameters (customized Newton-Euler with the regrouped
 // parameters): joint torques tau (kDof) for q, dq, ddq (kDof each) and beta (kBaseParams, in the
 // order of kBaseParamNames; base_from_standard computes it from standard parameters).
-void inverse_dynamics(const double* q, const double* dq, const double* ddq,
-                      const double* beta, double* tau) {
+void inverse_dynamics(const double* q, const double* dq, const double* ddq, const double* beta,
+                      double* tau) {
   const double sg1 = static_cast<double>((dq[0] > 0.0) - (dq[0] < 0.0));
   const double s2 = std::sin(q[1]);
   const double c2 = std::cos(q[1]);
@@ -5555,8 +5557,8 @@ void inverse_dynamics(const double* q, const double* dq, const double* ddq,
 // Inverse dynamics on the base parameters (customized Newton-Euler with the regrouped
 // parameters): joint torques tau (kDof) for q, dq, ddq (kDof each) and beta (kBaseParams, in the
 // order of kBaseParamNames; base_from_standard computes it from standard parameters).
-void inverse_dynamics(const float* q, const float* dq, const float* ddq,
-                      const float* beta, float* tau) {
+void inverse_dynamics(const float* q, const float* dq, const float* ddq, const float* beta,
+                      float* tau) {
   const float sg1 = static_cast<float>((dq[0] > 0.0f) - (dq[0] < 0.0f));
   const float s2 = std::sin(q[1]);
   const float c2 = std::cos(q[1]);
@@ -5677,8 +5679,438 @@ void inverse_dynamics(const float* q, const float* dq, const float* ddq,
   tau[5] = beta[57] + ddq[5] * beta[54] + dq[5] * beta[55] + sg6 * beta[56] + t91 + t93 + t95 + t79;
 }
 
-// idim_regressor with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of computing
-// them; identical results.
+// Joint-space inertia matrix M(q) on the base parameters: inverse_dynamics is tau = M(q) ddq +
+// terms without ddq (velocity, gravity, friction, offsets), for forward dynamics
+// ddq = M^-1 (tau - inverse_dynamics(q, dq, 0, beta)). Inputs q (kDof) and beta (kBaseParams,
+// as for inverse_dynamics). Output M: kDof x kDof, row-major, M[i * kDof + k] = d tau_i / d ddq_k
+// (drive inertias included; symmetric, and positive definite for physical parameters).
+void mass_matrix(const double* q, const double* beta, double* M) {
+  const double s2 = std::sin(q[1]);
+  const double c2 = std::cos(q[1]);
+  const double s3 = std::sin(q[2]);
+  const double c3 = std::cos(q[2]);
+  const double s4 = std::sin(q[3]);
+  const double c4 = std::cos(q[3]);
+  const double s5 = std::sin(q[4]);
+  const double c5 = std::cos(q[4]);
+  const double s6 = std::sin(q[5]);
+  const double c6 = std::cos(q[5]);
+  const double t0 = -c2 * s3 - s2 * c3;
+  const double t1 = -c2 * c3 + s2 * s3;
+  const double t2 = -s4 * t0;
+  const double t3 = c4 * t0;
+  const double t4 = c5 * t3 + s5 * t1;
+  const double t5 = -s5 * t3 + c5 * t1;
+  const double t6 = -s6 * t4 + c6 * t2;
+  const double t7 = c6 * t4 + s6 * t2;
+  const double t8 = 0.035 * s2 * s3 - 0.035 * c2 * c3;
+  const double t9 = 0.225 * s2 - 0.225 * t0;
+  const double t10 = c4 * t8 + s4 * t9;
+  const double t11 = 0.035 * s2 * c3 + 0.035 * c2 * s3;
+  const double t12 = c5 * t10 + s5 * t11;
+  const double t13 = -s4 * t8 + c4 * t9;
+  const double t14 = -t5 * beta[51] + t6 * beta[50] + t7 * beta[49] - (c6 * t12 + s6 * t13) * beta[53] + (-s6 * t12 + c6 * t13) * beta[52];
+  const double t15 = t2 * beta[39] + t4 * beta[37] - t14 - t13 * beta[41];
+  const double t16 = -s5 * t10 + c5 * t11;
+  const double t17 = -t5 * beta[50] + t7 * beta[48] + t16 * beta[52];
+  const double t18 = -t5 * beta[49] + t6 * beta[48] + t7 * beta[47] - t16 * beta[53];
+  const double t19 = t2 * beta[38] + t5 * beta[37] + t4 * beta[36] - s6 * t17 + c6 * t18 + t13 * beta[42];
+  const double t20 = -t1 * beta[29] + t2 * beta[28] + t3 * beta[27] - c5 * t15 - s5 * t19 - t10 * beta[31] + t13 * beta[30];
+  const double t21 = t0 * beta[15] - t20 - 0.225 * s2 * beta[19];
+  const double t22 = t2 * beta[40] + t5 * beta[39] + t4 * beta[38] + c6 * t17 + s6 * t18 - t12 * beta[42] + t16 * beta[41];
+  const double t23 = -t1 * beta[28] + t3 * beta[26] + t22 + t11 * beta[30];
+  const double t24 = -t1 * beta[27] + t2 * beta[26] + t3 * beta[25] - s5 * t15 + c5 * t19 - t11 * beta[31];
+  const double t25 = -t5 * beta[52];
+  const double t26 = t5 * beta[53];
+  const double t27 = -t1 * beta[30] - t5 * beta[41] + t4 * beta[42] + c6 * t25 + s6 * t26;
+  const double t28 = t2 * beta[41] + t6 * beta[52] - t7 * beta[53];
+  const double t29 = -t2 * beta[42] - s6 * t25 + c6 * t26;
+  const double t30 = t1 * beta[31] - s5 * t28 + c5 * t29;
+  const double t31 = c4 * t27 + s4 * t30;
+  const double t32 = t1 * beta[15] + t0 * beta[14] - s4 * t23 + c4 * t24 - 0.225 * t31 + 0.225 * s2 * beta[20];
+  const double t33 = -t2 * beta[30] + t3 * beta[31] - c5 * t28 - s5 * t29;
+  const double t34 = -s4 * t27 + c4 * t30;
+  const double t35 = s3 * t33 + c3 * t34;
+  M[0] = beta[0] - s2 * (c2 * beta[5] - s3 * t21 + c3 * t32 - 0.225 * (-t1 * beta[19] + t0 * beta[20] + t31) + 0.035 * (c3 * t33 - s3 * t34)) + c2 * (-s2 * beta[5] + c2 * beta[4] - c3 * t21 - s3 * t32 - 0.035 * t35);
+  const double t36 = c4 * beta[28];
+  const double t37 = s4 * beta[27];
+  const double t38 = c4 * beta[39];
+  const double t39 = s4 * c5;
+  const double t40 = t39 * beta[37];
+  const double t41 = -s4 * s5;
+  const double t42 = -t41 * beta[51];
+  const double t43 = -s6 * t39 + c4 * c6;
+  const double t44 = t43 * beta[50];
+  const double t45 = c6 * t39 + c4 * s6;
+  const double t46 = t45 * beta[49];
+  const double t47 = 0.225 + 0.225 * c3;
+  const double t48 = c4 * t47;
+  const double t49 = c5 * t48 - 0.225 * s3 * s5;
+  const double t50 = -s4 * t47;
+  const double t51 = t42 + t44 + t46 - (c6 * t49 + s6 * t50) * beta[53] + (-s6 * t49 + c6 * t50) * beta[52];
+  const double t52 = t38 + t40 - t51 - t50 * beta[41];
+  const double t53 = c4 * beta[38];
+  const double t54 = t41 * beta[37];
+  const double t55 = t39 * beta[36];
+  const double t56 = -t41 * beta[50];
+  const double t57 = t45 * beta[48];
+  const double t58 = -s5 * t48 - 0.225 * s3 * c5;
+  const double t59 = t56 + t57 + t58 * beta[52];
+  const double t60 = -t41 * beta[49];
+  const double t61 = t43 * beta[48];
+  const double t62 = t45 * beta[47];
+  const double t63 = t60 + t61 + t62 - t58 * beta[53];
+  const double t64 = t53 + t54 + t55 - s6 * t59 + c6 * t63 + t50 * beta[42];
+  const double t65 = t36 + t37 - c5 * t52 - s5 * t64 - t48 * beta[31] + t50 * beta[30];
+  const double t66 = beta[17] - t65;
+  const double t67 = -t41 * beta[52];
+  const double t68 = t41 * beta[53];
+  const double t69 = -t41 * beta[41] + t39 * beta[42] + c6 * t67 + s6 * t68;
+  const double t70 = c4 * beta[41] + t43 * beta[52] - t45 * beta[53];
+  const double t71 = -c4 * beta[42] - s6 * t67 + c6 * t68;
+  const double t72 = -s5 * t70 + c5 * t71;
+  const double t73 = -0.225 * (c4 * t69 + s4 * t72);
+  const double t74 = s4 * beta[26];
+  const double t75 = c4 * beta[40];
+  const double t76 = t41 * beta[39];
+  const double t77 = t39 * beta[38];
+  const double t78 = t75 + t76 + t77 + c6 * t59 + s6 * t63 - t49 * beta[42] + t58 * beta[41];
+  const double t79 = t74 + t78 - 0.225 * s3 * beta[30];
+  const double t80 = c4 * beta[26];
+  const double t81 = s4 * beta[25];
+  const double t82 = t80 + t81 - s5 * t52 + c5 * t64 + 0.225 * s3 * beta[31];
+  const double t83 = beta[16] - s4 * t79 + c4 * t82 + t73;
+  const double t84 = beta[19] + c4 * beta[30] - s4 * beta[31] + c5 * t70 + s5 * t71;
+  const double t85 = -s4 * t69 + c4 * t72;
+  const double t86 = -beta[20] + t85;
+  const double t87 = 0.035 * (-c3 * t84 - s3 * t86);
+  const double t88 = -s3 * t84 + c3 * t86;
+  const double t89 = -0.035 * t88;
+  M[1] = -s2 * (beta[7] - s3 * t66 + t73 + c3 * t83 + t87) + c2 * (beta[6] - c3 * t66 - s3 * t83 + t89);
+  const double t90 = 0.225 * c4 * c5;
+  const double t91 = t42 + t44 + t46 - (c6 * t90 - 0.225 * s4 * s6) * beta[53] + (-s6 * t90 - 0.225 * s4 * c6) * beta[52];
+  const double t92 = t38 + t40 - t91 + 0.225 * s4 * beta[41];
+  const double t93 = -0.225 * c4 * s5;
+  const double t94 = t56 + t57 + t93 * beta[52];
+  const double t95 = t60 + t61 + t62 - t93 * beta[53];
+  const double t96 = t53 + t54 + t55 - s6 * t94 + c6 * t95 - 0.225 * s4 * beta[42];
+  const double t97 = t36 + t37 - c5 * t92 - s5 * t96 - 0.225 * c4 * beta[31] - 0.225 * s4 * beta[30];
+  const double t98 = beta[17] - t97;
+  const double t99 = t75 + t76 + t77 + c6 * t94 + s6 * t95 - t90 * beta[42] + t93 * beta[41];
+  const double t100 = t74 + t99;
+  const double t101 = t80 + t81 - s5 * t92 + c5 * t96;
+  const double t102 = beta[16] + t73 - s4 * t100 + c4 * t101;
+  M[2] = -s2 * (t73 + t87 - s3 * t98 + c3 * t102) + c2 * (t89 - c3 * t98 - s3 * t102);
+  const double t103 = c5 * beta[51];
+  const double t104 = s5 * s6;
+  const double t105 = -s5 * c6;
+  const double t106 = t103 + t104 * beta[50] + t105 * beta[49];
+  const double t107 = -s5 * beta[37] - t106;
+  const double t108 = c5 * beta[50] + t105 * beta[48];
+  const double t109 = c5 * beta[49] + t104 * beta[48] + t105 * beta[47];
+  const double t110 = -c5 * beta[37] - s5 * beta[36] - s6 * t108 + c6 * t109;
+  const double t111 = beta[29] - c5 * t107 - s5 * t110;
+  const double t112 = c5 * beta[52];
+  const double t113 = -c5 * beta[53];
+  const double t114 = beta[30] + c5 * beta[41] - s5 * beta[42] + c6 * t112 + s6 * t113;
+  const double t115 = -t104 * beta[52] + t105 * beta[53];
+  const double t116 = -s6 * t112 + c6 * t113;
+  const double t117 = -beta[31] + s5 * t115 + c5 * t116;
+  const double t118 = -0.225 * (c4 * t114 + s4 * t117);
+  const double t119 = -c5 * beta[39] - s5 * beta[38] + c6 * t108 + s6 * t109;
+  const double t120 = beta[28] + t119;
+  const double t121 = beta[27] - s5 * t107 + c5 * t110;
+  const double t122 = -s4 * t120 + c4 * t121 + t118;
+  const double t123 = c5 * t115 - s5 * t116;
+  const double t124 = -s4 * t114 + c4 * t117;
+  const double t125 = s3 * t123 + c3 * t124;
+  M[3] = -s2 * (s3 * t111 + t118 + c3 * t122 + 0.035 * (c3 * t123 - s3 * t124)) + c2 * (c3 * t111 - s3 * t122 - 0.035 * t125);
+  const double t126 = c6 * beta[50] + s6 * beta[49];
+  const double t127 = beta[39] - t126;
+  const double t128 = s6 * beta[48];
+  const double t129 = c6 * beta[48] + s6 * beta[47];
+  const double t130 = beta[38] - s6 * t128 + c6 * t129;
+  const double t131 = -c5 * t127 - s5 * t130;
+  const double t132 = beta[41] + c6 * beta[52] - s6 * beta[53];
+  const double t133 = -s5 * t132 - c5 * beta[42];
+  const double t134 = -0.225 * s4 * t133;
+  const double t135 = beta[40] + c6 * t128 + s6 * t129;
+  const double t136 = -s5 * t127 + c5 * t130;
+  const double t137 = -s4 * t135 + c4 * t136 + t134;
+  const double t138 = s5 * beta[42] - c5 * t132;
+  const double t139 = c4 * t133;
+  const double t140 = s3 * t138 + c3 * t139;
+  M[4] = -s2 * (s3 * t131 + t134 + c3 * t137 + 0.035 * (c3 * t138 - s3 * t139)) + c2 * (c3 * t131 - s3 * t137 - 0.035 * t140);
+  const double t141 = -s6 * beta[50] + c6 * beta[49];
+  const double t142 = t103 - s5 * t141;
+  const double t143 = c6 * beta[52] - s6 * beta[53];
+  const double t144 = -s6 * beta[52] - c6 * beta[53];
+  const double t145 = c5 * t144;
+  const double t146 = -0.225 * (c4 * t143 + s4 * t145);
+  const double t147 = s5 * beta[51] + c5 * t141;
+  const double t148 = -s4 * t126 + c4 * t147 + t146;
+  const double t149 = -s5 * t144;
+  const double t150 = -s4 * t143 + c4 * t145;
+  const double t151 = s3 * t149 + c3 * t150;
+  M[5] = -s2 * (s3 * t142 + t146 + c3 * t148 + 0.035 * (c3 * t149 - s3 * t150)) + c2 * (c3 * t142 - s3 * t148 - 0.035 * t151);
+  const double t152 = t1 * beta[17] + t0 * beta[16] + c4 * t23 + s4 * t24 + 0.225 * t34 - t8 * beta[20] + t11 * beta[19];
+  M[6] = -s2 * beta[7] + c2 * beta[6] + 0.225 * t35 + t152;
+  const double t153 = 0.225 * t88;
+  const double t154 = 0.225 * t85;
+  const double t155 = beta[18] + c4 * t79 + s4 * t82 + t154 - 0.225 * c3 * beta[20] - 0.225 * s3 * beta[19];
+  M[7] = beta[8] + t153 + t155;
+  const double t156 = beta[18] + t154 + c4 * t100 + s4 * t101;
+  M[8] = t153 + t156;
+  const double t157 = c4 * t120 + s4 * t121 + 0.225 * t124;
+  M[9] = 0.225 * t125 + t157;
+  const double t158 = c4 * t135 + s4 * t136 + 0.225 * t139;
+  M[10] = 0.225 * t140 + t158;
+  const double t159 = c4 * t126 + s4 * t147 + 0.225 * t150;
+  M[11] = 0.225 * t151 + t159;
+  M[12] = t152;
+  M[13] = t155;
+  M[14] = beta[21] + t156;
+  M[15] = t157;
+  M[16] = t158;
+  M[17] = t159;
+  M[18] = t20;
+  M[19] = t65;
+  M[20] = t97;
+  M[21] = beta[32] + t111;
+  M[22] = t131;
+  M[23] = t142;
+  M[24] = t22;
+  M[25] = t78;
+  M[26] = t99;
+  M[27] = t119;
+  M[28] = beta[43] + beta[58] + t135;
+  const double t160 = beta[58] + t126;
+  M[29] = t160;
+  M[30] = t14;
+  M[31] = t51;
+  M[32] = t91;
+  M[33] = t106;
+  M[34] = t160;
+  M[35] = beta[51] + beta[54] + beta[58];
+}
+
+// Joint-space inertia matrix M(q) on the base parameters: inverse_dynamics is tau = M(q) ddq +
+// terms without ddq (velocity, gravity, friction, offsets), for forward dynamics
+// ddq = M^-1 (tau - inverse_dynamics(q, dq, 0, beta)). Inputs q (kDof) and beta (kBaseParams,
+// as for inverse_dynamics). Output M: kDof x kDof, row-major, M[i * kDof + k] = d tau_i / d ddq_k
+// (drive inertias included; symmetric, and positive definite for physical parameters).
+void mass_matrix(const float* q, const float* beta, float* M) {
+  const float s2 = std::sin(q[1]);
+  const float c2 = std::cos(q[1]);
+  const float s3 = std::sin(q[2]);
+  const float c3 = std::cos(q[2]);
+  const float s4 = std::sin(q[3]);
+  const float c4 = std::cos(q[3]);
+  const float s5 = std::sin(q[4]);
+  const float c5 = std::cos(q[4]);
+  const float s6 = std::sin(q[5]);
+  const float c6 = std::cos(q[5]);
+  const float t0 = -c2 * s3 - s2 * c3;
+  const float t1 = -c2 * c3 + s2 * s3;
+  const float t2 = -s4 * t0;
+  const float t3 = c4 * t0;
+  const float t4 = c5 * t3 + s5 * t1;
+  const float t5 = -s5 * t3 + c5 * t1;
+  const float t6 = -s6 * t4 + c6 * t2;
+  const float t7 = c6 * t4 + s6 * t2;
+  const float t8 = 0.035f * s2 * s3 - 0.035f * c2 * c3;
+  const float t9 = 0.225f * s2 - 0.225f * t0;
+  const float t10 = c4 * t8 + s4 * t9;
+  const float t11 = 0.035f * s2 * c3 + 0.035f * c2 * s3;
+  const float t12 = c5 * t10 + s5 * t11;
+  const float t13 = -s4 * t8 + c4 * t9;
+  const float t14 = -t5 * beta[51] + t6 * beta[50] + t7 * beta[49] - (c6 * t12 + s6 * t13) * beta[53] + (-s6 * t12 + c6 * t13) * beta[52];
+  const float t15 = t2 * beta[39] + t4 * beta[37] - t14 - t13 * beta[41];
+  const float t16 = -s5 * t10 + c5 * t11;
+  const float t17 = -t5 * beta[50] + t7 * beta[48] + t16 * beta[52];
+  const float t18 = -t5 * beta[49] + t6 * beta[48] + t7 * beta[47] - t16 * beta[53];
+  const float t19 = t2 * beta[38] + t5 * beta[37] + t4 * beta[36] - s6 * t17 + c6 * t18 + t13 * beta[42];
+  const float t20 = -t1 * beta[29] + t2 * beta[28] + t3 * beta[27] - c5 * t15 - s5 * t19 - t10 * beta[31] + t13 * beta[30];
+  const float t21 = t0 * beta[15] - t20 - 0.225f * s2 * beta[19];
+  const float t22 = t2 * beta[40] + t5 * beta[39] + t4 * beta[38] + c6 * t17 + s6 * t18 - t12 * beta[42] + t16 * beta[41];
+  const float t23 = -t1 * beta[28] + t3 * beta[26] + t22 + t11 * beta[30];
+  const float t24 = -t1 * beta[27] + t2 * beta[26] + t3 * beta[25] - s5 * t15 + c5 * t19 - t11 * beta[31];
+  const float t25 = -t5 * beta[52];
+  const float t26 = t5 * beta[53];
+  const float t27 = -t1 * beta[30] - t5 * beta[41] + t4 * beta[42] + c6 * t25 + s6 * t26;
+  const float t28 = t2 * beta[41] + t6 * beta[52] - t7 * beta[53];
+  const float t29 = -t2 * beta[42] - s6 * t25 + c6 * t26;
+  const float t30 = t1 * beta[31] - s5 * t28 + c5 * t29;
+  const float t31 = c4 * t27 + s4 * t30;
+  const float t32 = t1 * beta[15] + t0 * beta[14] - s4 * t23 + c4 * t24 - 0.225f * t31 + 0.225f * s2 * beta[20];
+  const float t33 = -t2 * beta[30] + t3 * beta[31] - c5 * t28 - s5 * t29;
+  const float t34 = -s4 * t27 + c4 * t30;
+  const float t35 = s3 * t33 + c3 * t34;
+  M[0] = beta[0] - s2 * (c2 * beta[5] - s3 * t21 + c3 * t32 - 0.225f * (-t1 * beta[19] + t0 * beta[20] + t31) + 0.035f * (c3 * t33 - s3 * t34)) + c2 * (-s2 * beta[5] + c2 * beta[4] - c3 * t21 - s3 * t32 - 0.035f * t35);
+  const float t36 = c4 * beta[28];
+  const float t37 = s4 * beta[27];
+  const float t38 = c4 * beta[39];
+  const float t39 = s4 * c5;
+  const float t40 = t39 * beta[37];
+  const float t41 = -s4 * s5;
+  const float t42 = -t41 * beta[51];
+  const float t43 = -s6 * t39 + c4 * c6;
+  const float t44 = t43 * beta[50];
+  const float t45 = c6 * t39 + c4 * s6;
+  const float t46 = t45 * beta[49];
+  const float t47 = 0.225f + 0.225f * c3;
+  const float t48 = c4 * t47;
+  const float t49 = c5 * t48 - 0.225f * s3 * s5;
+  const float t50 = -s4 * t47;
+  const float t51 = t42 + t44 + t46 - (c6 * t49 + s6 * t50) * beta[53] + (-s6 * t49 + c6 * t50) * beta[52];
+  const float t52 = t38 + t40 - t51 - t50 * beta[41];
+  const float t53 = c4 * beta[38];
+  const float t54 = t41 * beta[37];
+  const float t55 = t39 * beta[36];
+  const float t56 = -t41 * beta[50];
+  const float t57 = t45 * beta[48];
+  const float t58 = -s5 * t48 - 0.225f * s3 * c5;
+  const float t59 = t56 + t57 + t58 * beta[52];
+  const float t60 = -t41 * beta[49];
+  const float t61 = t43 * beta[48];
+  const float t62 = t45 * beta[47];
+  const float t63 = t60 + t61 + t62 - t58 * beta[53];
+  const float t64 = t53 + t54 + t55 - s6 * t59 + c6 * t63 + t50 * beta[42];
+  const float t65 = t36 + t37 - c5 * t52 - s5 * t64 - t48 * beta[31] + t50 * beta[30];
+  const float t66 = beta[17] - t65;
+  const float t67 = -t41 * beta[52];
+  const float t68 = t41 * beta[53];
+  const float t69 = -t41 * beta[41] + t39 * beta[42] + c6 * t67 + s6 * t68;
+  const float t70 = c4 * beta[41] + t43 * beta[52] - t45 * beta[53];
+  const float t71 = -c4 * beta[42] - s6 * t67 + c6 * t68;
+  const float t72 = -s5 * t70 + c5 * t71;
+  const float t73 = -0.225f * (c4 * t69 + s4 * t72);
+  const float t74 = s4 * beta[26];
+  const float t75 = c4 * beta[40];
+  const float t76 = t41 * beta[39];
+  const float t77 = t39 * beta[38];
+  const float t78 = t75 + t76 + t77 + c6 * t59 + s6 * t63 - t49 * beta[42] + t58 * beta[41];
+  const float t79 = t74 + t78 - 0.225f * s3 * beta[30];
+  const float t80 = c4 * beta[26];
+  const float t81 = s4 * beta[25];
+  const float t82 = t80 + t81 - s5 * t52 + c5 * t64 + 0.225f * s3 * beta[31];
+  const float t83 = beta[16] - s4 * t79 + c4 * t82 + t73;
+  const float t84 = beta[19] + c4 * beta[30] - s4 * beta[31] + c5 * t70 + s5 * t71;
+  const float t85 = -s4 * t69 + c4 * t72;
+  const float t86 = -beta[20] + t85;
+  const float t87 = 0.035f * (-c3 * t84 - s3 * t86);
+  const float t88 = -s3 * t84 + c3 * t86;
+  const float t89 = -0.035f * t88;
+  M[1] = -s2 * (beta[7] - s3 * t66 + t73 + c3 * t83 + t87) + c2 * (beta[6] - c3 * t66 - s3 * t83 + t89);
+  const float t90 = 0.225f * c4 * c5;
+  const float t91 = t42 + t44 + t46 - (c6 * t90 - 0.225f * s4 * s6) * beta[53] + (-s6 * t90 - 0.225f * s4 * c6) * beta[52];
+  const float t92 = t38 + t40 - t91 + 0.225f * s4 * beta[41];
+  const float t93 = -0.225f * c4 * s5;
+  const float t94 = t56 + t57 + t93 * beta[52];
+  const float t95 = t60 + t61 + t62 - t93 * beta[53];
+  const float t96 = t53 + t54 + t55 - s6 * t94 + c6 * t95 - 0.225f * s4 * beta[42];
+  const float t97 = t36 + t37 - c5 * t92 - s5 * t96 - 0.225f * c4 * beta[31] - 0.225f * s4 * beta[30];
+  const float t98 = beta[17] - t97;
+  const float t99 = t75 + t76 + t77 + c6 * t94 + s6 * t95 - t90 * beta[42] + t93 * beta[41];
+  const float t100 = t74 + t99;
+  const float t101 = t80 + t81 - s5 * t92 + c5 * t96;
+  const float t102 = beta[16] + t73 - s4 * t100 + c4 * t101;
+  M[2] = -s2 * (t73 + t87 - s3 * t98 + c3 * t102) + c2 * (t89 - c3 * t98 - s3 * t102);
+  const float t103 = c5 * beta[51];
+  const float t104 = s5 * s6;
+  const float t105 = -s5 * c6;
+  const float t106 = t103 + t104 * beta[50] + t105 * beta[49];
+  const float t107 = -s5 * beta[37] - t106;
+  const float t108 = c5 * beta[50] + t105 * beta[48];
+  const float t109 = c5 * beta[49] + t104 * beta[48] + t105 * beta[47];
+  const float t110 = -c5 * beta[37] - s5 * beta[36] - s6 * t108 + c6 * t109;
+  const float t111 = beta[29] - c5 * t107 - s5 * t110;
+  const float t112 = c5 * beta[52];
+  const float t113 = -c5 * beta[53];
+  const float t114 = beta[30] + c5 * beta[41] - s5 * beta[42] + c6 * t112 + s6 * t113;
+  const float t115 = -t104 * beta[52] + t105 * beta[53];
+  const float t116 = -s6 * t112 + c6 * t113;
+  const float t117 = -beta[31] + s5 * t115 + c5 * t116;
+  const float t118 = -0.225f * (c4 * t114 + s4 * t117);
+  const float t119 = -c5 * beta[39] - s5 * beta[38] + c6 * t108 + s6 * t109;
+  const float t120 = beta[28] + t119;
+  const float t121 = beta[27] - s5 * t107 + c5 * t110;
+  const float t122 = -s4 * t120 + c4 * t121 + t118;
+  const float t123 = c5 * t115 - s5 * t116;
+  const float t124 = -s4 * t114 + c4 * t117;
+  const float t125 = s3 * t123 + c3 * t124;
+  M[3] = -s2 * (s3 * t111 + t118 + c3 * t122 + 0.035f * (c3 * t123 - s3 * t124)) + c2 * (c3 * t111 - s3 * t122 - 0.035f * t125);
+  const float t126 = c6 * beta[50] + s6 * beta[49];
+  const float t127 = beta[39] - t126;
+  const float t128 = s6 * beta[48];
+  const float t129 = c6 * beta[48] + s6 * beta[47];
+  const float t130 = beta[38] - s6 * t128 + c6 * t129;
+  const float t131 = -c5 * t127 - s5 * t130;
+  const float t132 = beta[41] + c6 * beta[52] - s6 * beta[53];
+  const float t133 = -s5 * t132 - c5 * beta[42];
+  const float t134 = -0.225f * s4 * t133;
+  const float t135 = beta[40] + c6 * t128 + s6 * t129;
+  const float t136 = -s5 * t127 + c5 * t130;
+  const float t137 = -s4 * t135 + c4 * t136 + t134;
+  const float t138 = s5 * beta[42] - c5 * t132;
+  const float t139 = c4 * t133;
+  const float t140 = s3 * t138 + c3 * t139;
+  M[4] = -s2 * (s3 * t131 + t134 + c3 * t137 + 0.035f * (c3 * t138 - s3 * t139)) + c2 * (c3 * t131 - s3 * t137 - 0.035f * t140);
+  const float t141 = -s6 * beta[50] + c6 * beta[49];
+  const float t142 = t103 - s5 * t141;
+  const float t143 = c6 * beta[52] - s6 * beta[53];
+  const float t144 = -s6 * beta[52] - c6 * beta[53];
+  const float t145 = c5 * t144;
+  const float t146 = -0.225f * (c4 * t143 + s4 * t145);
+  const float t147 = s5 * beta[51] + c5 * t141;
+  const float t148 = -s4 * t126 + c4 * t147 + t146;
+  const float t149 = -s5 * t144;
+  const float t150 = -s4 * t143 + c4 * t145;
+  const float t151 = s3 * t149 + c3 * t150;
+  M[5] = -s2 * (s3 * t142 + t146 + c3 * t148 + 0.035f * (c3 * t149 - s3 * t150)) + c2 * (c3 * t142 - s3 * t148 - 0.035f * t151);
+  const float t152 = t1 * beta[17] + t0 * beta[16] + c4 * t23 + s4 * t24 + 0.225f * t34 - t8 * beta[20] + t11 * beta[19];
+  M[6] = -s2 * beta[7] + c2 * beta[6] + 0.225f * t35 + t152;
+  const float t153 = 0.225f * t88;
+  const float t154 = 0.225f * t85;
+  const float t155 = beta[18] + c4 * t79 + s4 * t82 + t154 - 0.225f * c3 * beta[20] - 0.225f * s3 * beta[19];
+  M[7] = beta[8] + t153 + t155;
+  const float t156 = beta[18] + t154 + c4 * t100 + s4 * t101;
+  M[8] = t153 + t156;
+  const float t157 = c4 * t120 + s4 * t121 + 0.225f * t124;
+  M[9] = 0.225f * t125 + t157;
+  const float t158 = c4 * t135 + s4 * t136 + 0.225f * t139;
+  M[10] = 0.225f * t140 + t158;
+  const float t159 = c4 * t126 + s4 * t147 + 0.225f * t150;
+  M[11] = 0.225f * t151 + t159;
+  M[12] = t152;
+  M[13] = t155;
+  M[14] = beta[21] + t156;
+  M[15] = t157;
+  M[16] = t158;
+  M[17] = t159;
+  M[18] = t20;
+  M[19] = t65;
+  M[20] = t97;
+  M[21] = beta[32] + t111;
+  M[22] = t131;
+  M[23] = t142;
+  M[24] = t22;
+  M[25] = t78;
+  M[26] = t99;
+  M[27] = t119;
+  M[28] = beta[43] + beta[58] + t135;
+  const float t160 = beta[58] + t126;
+  M[29] = t160;
+  M[30] = t14;
+  M[31] = t51;
+  M[32] = t91;
+  M[33] = t106;
+  M[34] = t160;
+  M[35] = beta[51] + beta[54] + beta[58];
+}
+
+// idim_regressor with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
+// computing them; identical results.
 void idim_regressor_sincos(const double* q, const double* sin_q, const double* cos_q,
                            const double* dq, const double* ddq, double* W) {
   static_cast<void>(q);
@@ -6258,8 +6690,8 @@ void idim_regressor_sincos(const double* q, const double* sin_q, const double* c
   W[365] = t191;
 }
 
-// idim_regressor with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of computing
-// them; identical results.
+// idim_regressor with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
+// computing them; identical results.
 void idim_regressor_sincos(const float* q, const float* sin_q, const float* cos_q,
                            const float* dq, const float* ddq, float* W) {
   static_cast<void>(q);
@@ -6839,11 +7271,10 @@ void idim_regressor_sincos(const float* q, const float* sin_q, const float* cos_
   W[365] = t191;
 }
 
-// inverse_dynamics with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of computing
-// them; identical results.
+// inverse_dynamics with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
+// computing them; identical results.
 void inverse_dynamics_sincos(const double* q, const double* sin_q, const double* cos_q,
-                             const double* dq, const double* ddq, const double* beta,
-                             double* tau) {
+                             const double* dq, const double* ddq, const double* beta, double* tau) {
   static_cast<void>(q);
   const double sg1 = static_cast<double>((dq[0] > 0.0) - (dq[0] < 0.0));
   const double s2 = sin_q[1];
@@ -6965,11 +7396,10 @@ void inverse_dynamics_sincos(const double* q, const double* sin_q, const double*
   tau[5] = beta[57] + ddq[5] * beta[54] + dq[5] * beta[55] + sg6 * beta[56] + t91 + t93 + t95 + t79;
 }
 
-// inverse_dynamics with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of computing
-// them; identical results.
+// inverse_dynamics with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
+// computing them; identical results.
 void inverse_dynamics_sincos(const float* q, const float* sin_q, const float* cos_q,
-                             const float* dq, const float* ddq, const float* beta,
-                             float* tau) {
+                             const float* dq, const float* ddq, const float* beta, float* tau) {
   static_cast<void>(q);
   const float sg1 = static_cast<float>((dq[0] > 0.0f) - (dq[0] < 0.0f));
   const float s2 = sin_q[1];
@@ -7089,6 +7519,434 @@ void inverse_dynamics_sincos(const float* q, const float* sin_q, const float* co
   const float t95 = t94 * beta[60];
   tau[4] = beta[46] + ddq[4] * beta[43] + dq[4] * beta[44] + sg5 * beta[45] + t91 + t93 + t95 + t83;
   tau[5] = beta[57] + ddq[5] * beta[54] + dq[5] * beta[55] + sg6 * beta[56] + t91 + t93 + t95 + t79;
+}
+
+// mass_matrix with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
+// computing them; identical results.
+void mass_matrix_sincos(const double* q, const double* sin_q, const double* cos_q,
+                        const double* beta, double* M) {
+  static_cast<void>(q);
+  const double s2 = sin_q[1];
+  const double c2 = cos_q[1];
+  const double s3 = sin_q[2];
+  const double c3 = cos_q[2];
+  const double s4 = sin_q[3];
+  const double c4 = cos_q[3];
+  const double s5 = sin_q[4];
+  const double c5 = cos_q[4];
+  const double s6 = sin_q[5];
+  const double c6 = cos_q[5];
+  const double t0 = -c2 * s3 - s2 * c3;
+  const double t1 = -c2 * c3 + s2 * s3;
+  const double t2 = -s4 * t0;
+  const double t3 = c4 * t0;
+  const double t4 = c5 * t3 + s5 * t1;
+  const double t5 = -s5 * t3 + c5 * t1;
+  const double t6 = -s6 * t4 + c6 * t2;
+  const double t7 = c6 * t4 + s6 * t2;
+  const double t8 = 0.035 * s2 * s3 - 0.035 * c2 * c3;
+  const double t9 = 0.225 * s2 - 0.225 * t0;
+  const double t10 = c4 * t8 + s4 * t9;
+  const double t11 = 0.035 * s2 * c3 + 0.035 * c2 * s3;
+  const double t12 = c5 * t10 + s5 * t11;
+  const double t13 = -s4 * t8 + c4 * t9;
+  const double t14 = -t5 * beta[51] + t6 * beta[50] + t7 * beta[49] - (c6 * t12 + s6 * t13) * beta[53] + (-s6 * t12 + c6 * t13) * beta[52];
+  const double t15 = t2 * beta[39] + t4 * beta[37] - t14 - t13 * beta[41];
+  const double t16 = -s5 * t10 + c5 * t11;
+  const double t17 = -t5 * beta[50] + t7 * beta[48] + t16 * beta[52];
+  const double t18 = -t5 * beta[49] + t6 * beta[48] + t7 * beta[47] - t16 * beta[53];
+  const double t19 = t2 * beta[38] + t5 * beta[37] + t4 * beta[36] - s6 * t17 + c6 * t18 + t13 * beta[42];
+  const double t20 = -t1 * beta[29] + t2 * beta[28] + t3 * beta[27] - c5 * t15 - s5 * t19 - t10 * beta[31] + t13 * beta[30];
+  const double t21 = t0 * beta[15] - t20 - 0.225 * s2 * beta[19];
+  const double t22 = t2 * beta[40] + t5 * beta[39] + t4 * beta[38] + c6 * t17 + s6 * t18 - t12 * beta[42] + t16 * beta[41];
+  const double t23 = -t1 * beta[28] + t3 * beta[26] + t22 + t11 * beta[30];
+  const double t24 = -t1 * beta[27] + t2 * beta[26] + t3 * beta[25] - s5 * t15 + c5 * t19 - t11 * beta[31];
+  const double t25 = -t5 * beta[52];
+  const double t26 = t5 * beta[53];
+  const double t27 = -t1 * beta[30] - t5 * beta[41] + t4 * beta[42] + c6 * t25 + s6 * t26;
+  const double t28 = t2 * beta[41] + t6 * beta[52] - t7 * beta[53];
+  const double t29 = -t2 * beta[42] - s6 * t25 + c6 * t26;
+  const double t30 = t1 * beta[31] - s5 * t28 + c5 * t29;
+  const double t31 = c4 * t27 + s4 * t30;
+  const double t32 = t1 * beta[15] + t0 * beta[14] - s4 * t23 + c4 * t24 - 0.225 * t31 + 0.225 * s2 * beta[20];
+  const double t33 = -t2 * beta[30] + t3 * beta[31] - c5 * t28 - s5 * t29;
+  const double t34 = -s4 * t27 + c4 * t30;
+  const double t35 = s3 * t33 + c3 * t34;
+  M[0] = beta[0] - s2 * (c2 * beta[5] - s3 * t21 + c3 * t32 - 0.225 * (-t1 * beta[19] + t0 * beta[20] + t31) + 0.035 * (c3 * t33 - s3 * t34)) + c2 * (-s2 * beta[5] + c2 * beta[4] - c3 * t21 - s3 * t32 - 0.035 * t35);
+  const double t36 = c4 * beta[28];
+  const double t37 = s4 * beta[27];
+  const double t38 = c4 * beta[39];
+  const double t39 = s4 * c5;
+  const double t40 = t39 * beta[37];
+  const double t41 = -s4 * s5;
+  const double t42 = -t41 * beta[51];
+  const double t43 = -s6 * t39 + c4 * c6;
+  const double t44 = t43 * beta[50];
+  const double t45 = c6 * t39 + c4 * s6;
+  const double t46 = t45 * beta[49];
+  const double t47 = 0.225 + 0.225 * c3;
+  const double t48 = c4 * t47;
+  const double t49 = c5 * t48 - 0.225 * s3 * s5;
+  const double t50 = -s4 * t47;
+  const double t51 = t42 + t44 + t46 - (c6 * t49 + s6 * t50) * beta[53] + (-s6 * t49 + c6 * t50) * beta[52];
+  const double t52 = t38 + t40 - t51 - t50 * beta[41];
+  const double t53 = c4 * beta[38];
+  const double t54 = t41 * beta[37];
+  const double t55 = t39 * beta[36];
+  const double t56 = -t41 * beta[50];
+  const double t57 = t45 * beta[48];
+  const double t58 = -s5 * t48 - 0.225 * s3 * c5;
+  const double t59 = t56 + t57 + t58 * beta[52];
+  const double t60 = -t41 * beta[49];
+  const double t61 = t43 * beta[48];
+  const double t62 = t45 * beta[47];
+  const double t63 = t60 + t61 + t62 - t58 * beta[53];
+  const double t64 = t53 + t54 + t55 - s6 * t59 + c6 * t63 + t50 * beta[42];
+  const double t65 = t36 + t37 - c5 * t52 - s5 * t64 - t48 * beta[31] + t50 * beta[30];
+  const double t66 = beta[17] - t65;
+  const double t67 = -t41 * beta[52];
+  const double t68 = t41 * beta[53];
+  const double t69 = -t41 * beta[41] + t39 * beta[42] + c6 * t67 + s6 * t68;
+  const double t70 = c4 * beta[41] + t43 * beta[52] - t45 * beta[53];
+  const double t71 = -c4 * beta[42] - s6 * t67 + c6 * t68;
+  const double t72 = -s5 * t70 + c5 * t71;
+  const double t73 = -0.225 * (c4 * t69 + s4 * t72);
+  const double t74 = s4 * beta[26];
+  const double t75 = c4 * beta[40];
+  const double t76 = t41 * beta[39];
+  const double t77 = t39 * beta[38];
+  const double t78 = t75 + t76 + t77 + c6 * t59 + s6 * t63 - t49 * beta[42] + t58 * beta[41];
+  const double t79 = t74 + t78 - 0.225 * s3 * beta[30];
+  const double t80 = c4 * beta[26];
+  const double t81 = s4 * beta[25];
+  const double t82 = t80 + t81 - s5 * t52 + c5 * t64 + 0.225 * s3 * beta[31];
+  const double t83 = beta[16] - s4 * t79 + c4 * t82 + t73;
+  const double t84 = beta[19] + c4 * beta[30] - s4 * beta[31] + c5 * t70 + s5 * t71;
+  const double t85 = -s4 * t69 + c4 * t72;
+  const double t86 = -beta[20] + t85;
+  const double t87 = 0.035 * (-c3 * t84 - s3 * t86);
+  const double t88 = -s3 * t84 + c3 * t86;
+  const double t89 = -0.035 * t88;
+  M[1] = -s2 * (beta[7] - s3 * t66 + t73 + c3 * t83 + t87) + c2 * (beta[6] - c3 * t66 - s3 * t83 + t89);
+  const double t90 = 0.225 * c4 * c5;
+  const double t91 = t42 + t44 + t46 - (c6 * t90 - 0.225 * s4 * s6) * beta[53] + (-s6 * t90 - 0.225 * s4 * c6) * beta[52];
+  const double t92 = t38 + t40 - t91 + 0.225 * s4 * beta[41];
+  const double t93 = -0.225 * c4 * s5;
+  const double t94 = t56 + t57 + t93 * beta[52];
+  const double t95 = t60 + t61 + t62 - t93 * beta[53];
+  const double t96 = t53 + t54 + t55 - s6 * t94 + c6 * t95 - 0.225 * s4 * beta[42];
+  const double t97 = t36 + t37 - c5 * t92 - s5 * t96 - 0.225 * c4 * beta[31] - 0.225 * s4 * beta[30];
+  const double t98 = beta[17] - t97;
+  const double t99 = t75 + t76 + t77 + c6 * t94 + s6 * t95 - t90 * beta[42] + t93 * beta[41];
+  const double t100 = t74 + t99;
+  const double t101 = t80 + t81 - s5 * t92 + c5 * t96;
+  const double t102 = beta[16] + t73 - s4 * t100 + c4 * t101;
+  M[2] = -s2 * (t73 + t87 - s3 * t98 + c3 * t102) + c2 * (t89 - c3 * t98 - s3 * t102);
+  const double t103 = c5 * beta[51];
+  const double t104 = s5 * s6;
+  const double t105 = -s5 * c6;
+  const double t106 = t103 + t104 * beta[50] + t105 * beta[49];
+  const double t107 = -s5 * beta[37] - t106;
+  const double t108 = c5 * beta[50] + t105 * beta[48];
+  const double t109 = c5 * beta[49] + t104 * beta[48] + t105 * beta[47];
+  const double t110 = -c5 * beta[37] - s5 * beta[36] - s6 * t108 + c6 * t109;
+  const double t111 = beta[29] - c5 * t107 - s5 * t110;
+  const double t112 = c5 * beta[52];
+  const double t113 = -c5 * beta[53];
+  const double t114 = beta[30] + c5 * beta[41] - s5 * beta[42] + c6 * t112 + s6 * t113;
+  const double t115 = -t104 * beta[52] + t105 * beta[53];
+  const double t116 = -s6 * t112 + c6 * t113;
+  const double t117 = -beta[31] + s5 * t115 + c5 * t116;
+  const double t118 = -0.225 * (c4 * t114 + s4 * t117);
+  const double t119 = -c5 * beta[39] - s5 * beta[38] + c6 * t108 + s6 * t109;
+  const double t120 = beta[28] + t119;
+  const double t121 = beta[27] - s5 * t107 + c5 * t110;
+  const double t122 = -s4 * t120 + c4 * t121 + t118;
+  const double t123 = c5 * t115 - s5 * t116;
+  const double t124 = -s4 * t114 + c4 * t117;
+  const double t125 = s3 * t123 + c3 * t124;
+  M[3] = -s2 * (s3 * t111 + t118 + c3 * t122 + 0.035 * (c3 * t123 - s3 * t124)) + c2 * (c3 * t111 - s3 * t122 - 0.035 * t125);
+  const double t126 = c6 * beta[50] + s6 * beta[49];
+  const double t127 = beta[39] - t126;
+  const double t128 = s6 * beta[48];
+  const double t129 = c6 * beta[48] + s6 * beta[47];
+  const double t130 = beta[38] - s6 * t128 + c6 * t129;
+  const double t131 = -c5 * t127 - s5 * t130;
+  const double t132 = beta[41] + c6 * beta[52] - s6 * beta[53];
+  const double t133 = -s5 * t132 - c5 * beta[42];
+  const double t134 = -0.225 * s4 * t133;
+  const double t135 = beta[40] + c6 * t128 + s6 * t129;
+  const double t136 = -s5 * t127 + c5 * t130;
+  const double t137 = -s4 * t135 + c4 * t136 + t134;
+  const double t138 = s5 * beta[42] - c5 * t132;
+  const double t139 = c4 * t133;
+  const double t140 = s3 * t138 + c3 * t139;
+  M[4] = -s2 * (s3 * t131 + t134 + c3 * t137 + 0.035 * (c3 * t138 - s3 * t139)) + c2 * (c3 * t131 - s3 * t137 - 0.035 * t140);
+  const double t141 = -s6 * beta[50] + c6 * beta[49];
+  const double t142 = t103 - s5 * t141;
+  const double t143 = c6 * beta[52] - s6 * beta[53];
+  const double t144 = -s6 * beta[52] - c6 * beta[53];
+  const double t145 = c5 * t144;
+  const double t146 = -0.225 * (c4 * t143 + s4 * t145);
+  const double t147 = s5 * beta[51] + c5 * t141;
+  const double t148 = -s4 * t126 + c4 * t147 + t146;
+  const double t149 = -s5 * t144;
+  const double t150 = -s4 * t143 + c4 * t145;
+  const double t151 = s3 * t149 + c3 * t150;
+  M[5] = -s2 * (s3 * t142 + t146 + c3 * t148 + 0.035 * (c3 * t149 - s3 * t150)) + c2 * (c3 * t142 - s3 * t148 - 0.035 * t151);
+  const double t152 = t1 * beta[17] + t0 * beta[16] + c4 * t23 + s4 * t24 + 0.225 * t34 - t8 * beta[20] + t11 * beta[19];
+  M[6] = -s2 * beta[7] + c2 * beta[6] + 0.225 * t35 + t152;
+  const double t153 = 0.225 * t88;
+  const double t154 = 0.225 * t85;
+  const double t155 = beta[18] + c4 * t79 + s4 * t82 + t154 - 0.225 * c3 * beta[20] - 0.225 * s3 * beta[19];
+  M[7] = beta[8] + t153 + t155;
+  const double t156 = beta[18] + t154 + c4 * t100 + s4 * t101;
+  M[8] = t153 + t156;
+  const double t157 = c4 * t120 + s4 * t121 + 0.225 * t124;
+  M[9] = 0.225 * t125 + t157;
+  const double t158 = c4 * t135 + s4 * t136 + 0.225 * t139;
+  M[10] = 0.225 * t140 + t158;
+  const double t159 = c4 * t126 + s4 * t147 + 0.225 * t150;
+  M[11] = 0.225 * t151 + t159;
+  M[12] = t152;
+  M[13] = t155;
+  M[14] = beta[21] + t156;
+  M[15] = t157;
+  M[16] = t158;
+  M[17] = t159;
+  M[18] = t20;
+  M[19] = t65;
+  M[20] = t97;
+  M[21] = beta[32] + t111;
+  M[22] = t131;
+  M[23] = t142;
+  M[24] = t22;
+  M[25] = t78;
+  M[26] = t99;
+  M[27] = t119;
+  M[28] = beta[43] + beta[58] + t135;
+  const double t160 = beta[58] + t126;
+  M[29] = t160;
+  M[30] = t14;
+  M[31] = t51;
+  M[32] = t91;
+  M[33] = t106;
+  M[34] = t160;
+  M[35] = beta[51] + beta[54] + beta[58];
+}
+
+// mass_matrix with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
+// computing them; identical results.
+void mass_matrix_sincos(const float* q, const float* sin_q, const float* cos_q, const float* beta,
+                        float* M) {
+  static_cast<void>(q);
+  const float s2 = sin_q[1];
+  const float c2 = cos_q[1];
+  const float s3 = sin_q[2];
+  const float c3 = cos_q[2];
+  const float s4 = sin_q[3];
+  const float c4 = cos_q[3];
+  const float s5 = sin_q[4];
+  const float c5 = cos_q[4];
+  const float s6 = sin_q[5];
+  const float c6 = cos_q[5];
+  const float t0 = -c2 * s3 - s2 * c3;
+  const float t1 = -c2 * c3 + s2 * s3;
+  const float t2 = -s4 * t0;
+  const float t3 = c4 * t0;
+  const float t4 = c5 * t3 + s5 * t1;
+  const float t5 = -s5 * t3 + c5 * t1;
+  const float t6 = -s6 * t4 + c6 * t2;
+  const float t7 = c6 * t4 + s6 * t2;
+  const float t8 = 0.035f * s2 * s3 - 0.035f * c2 * c3;
+  const float t9 = 0.225f * s2 - 0.225f * t0;
+  const float t10 = c4 * t8 + s4 * t9;
+  const float t11 = 0.035f * s2 * c3 + 0.035f * c2 * s3;
+  const float t12 = c5 * t10 + s5 * t11;
+  const float t13 = -s4 * t8 + c4 * t9;
+  const float t14 = -t5 * beta[51] + t6 * beta[50] + t7 * beta[49] - (c6 * t12 + s6 * t13) * beta[53] + (-s6 * t12 + c6 * t13) * beta[52];
+  const float t15 = t2 * beta[39] + t4 * beta[37] - t14 - t13 * beta[41];
+  const float t16 = -s5 * t10 + c5 * t11;
+  const float t17 = -t5 * beta[50] + t7 * beta[48] + t16 * beta[52];
+  const float t18 = -t5 * beta[49] + t6 * beta[48] + t7 * beta[47] - t16 * beta[53];
+  const float t19 = t2 * beta[38] + t5 * beta[37] + t4 * beta[36] - s6 * t17 + c6 * t18 + t13 * beta[42];
+  const float t20 = -t1 * beta[29] + t2 * beta[28] + t3 * beta[27] - c5 * t15 - s5 * t19 - t10 * beta[31] + t13 * beta[30];
+  const float t21 = t0 * beta[15] - t20 - 0.225f * s2 * beta[19];
+  const float t22 = t2 * beta[40] + t5 * beta[39] + t4 * beta[38] + c6 * t17 + s6 * t18 - t12 * beta[42] + t16 * beta[41];
+  const float t23 = -t1 * beta[28] + t3 * beta[26] + t22 + t11 * beta[30];
+  const float t24 = -t1 * beta[27] + t2 * beta[26] + t3 * beta[25] - s5 * t15 + c5 * t19 - t11 * beta[31];
+  const float t25 = -t5 * beta[52];
+  const float t26 = t5 * beta[53];
+  const float t27 = -t1 * beta[30] - t5 * beta[41] + t4 * beta[42] + c6 * t25 + s6 * t26;
+  const float t28 = t2 * beta[41] + t6 * beta[52] - t7 * beta[53];
+  const float t29 = -t2 * beta[42] - s6 * t25 + c6 * t26;
+  const float t30 = t1 * beta[31] - s5 * t28 + c5 * t29;
+  const float t31 = c4 * t27 + s4 * t30;
+  const float t32 = t1 * beta[15] + t0 * beta[14] - s4 * t23 + c4 * t24 - 0.225f * t31 + 0.225f * s2 * beta[20];
+  const float t33 = -t2 * beta[30] + t3 * beta[31] - c5 * t28 - s5 * t29;
+  const float t34 = -s4 * t27 + c4 * t30;
+  const float t35 = s3 * t33 + c3 * t34;
+  M[0] = beta[0] - s2 * (c2 * beta[5] - s3 * t21 + c3 * t32 - 0.225f * (-t1 * beta[19] + t0 * beta[20] + t31) + 0.035f * (c3 * t33 - s3 * t34)) + c2 * (-s2 * beta[5] + c2 * beta[4] - c3 * t21 - s3 * t32 - 0.035f * t35);
+  const float t36 = c4 * beta[28];
+  const float t37 = s4 * beta[27];
+  const float t38 = c4 * beta[39];
+  const float t39 = s4 * c5;
+  const float t40 = t39 * beta[37];
+  const float t41 = -s4 * s5;
+  const float t42 = -t41 * beta[51];
+  const float t43 = -s6 * t39 + c4 * c6;
+  const float t44 = t43 * beta[50];
+  const float t45 = c6 * t39 + c4 * s6;
+  const float t46 = t45 * beta[49];
+  const float t47 = 0.225f + 0.225f * c3;
+  const float t48 = c4 * t47;
+  const float t49 = c5 * t48 - 0.225f * s3 * s5;
+  const float t50 = -s4 * t47;
+  const float t51 = t42 + t44 + t46 - (c6 * t49 + s6 * t50) * beta[53] + (-s6 * t49 + c6 * t50) * beta[52];
+  const float t52 = t38 + t40 - t51 - t50 * beta[41];
+  const float t53 = c4 * beta[38];
+  const float t54 = t41 * beta[37];
+  const float t55 = t39 * beta[36];
+  const float t56 = -t41 * beta[50];
+  const float t57 = t45 * beta[48];
+  const float t58 = -s5 * t48 - 0.225f * s3 * c5;
+  const float t59 = t56 + t57 + t58 * beta[52];
+  const float t60 = -t41 * beta[49];
+  const float t61 = t43 * beta[48];
+  const float t62 = t45 * beta[47];
+  const float t63 = t60 + t61 + t62 - t58 * beta[53];
+  const float t64 = t53 + t54 + t55 - s6 * t59 + c6 * t63 + t50 * beta[42];
+  const float t65 = t36 + t37 - c5 * t52 - s5 * t64 - t48 * beta[31] + t50 * beta[30];
+  const float t66 = beta[17] - t65;
+  const float t67 = -t41 * beta[52];
+  const float t68 = t41 * beta[53];
+  const float t69 = -t41 * beta[41] + t39 * beta[42] + c6 * t67 + s6 * t68;
+  const float t70 = c4 * beta[41] + t43 * beta[52] - t45 * beta[53];
+  const float t71 = -c4 * beta[42] - s6 * t67 + c6 * t68;
+  const float t72 = -s5 * t70 + c5 * t71;
+  const float t73 = -0.225f * (c4 * t69 + s4 * t72);
+  const float t74 = s4 * beta[26];
+  const float t75 = c4 * beta[40];
+  const float t76 = t41 * beta[39];
+  const float t77 = t39 * beta[38];
+  const float t78 = t75 + t76 + t77 + c6 * t59 + s6 * t63 - t49 * beta[42] + t58 * beta[41];
+  const float t79 = t74 + t78 - 0.225f * s3 * beta[30];
+  const float t80 = c4 * beta[26];
+  const float t81 = s4 * beta[25];
+  const float t82 = t80 + t81 - s5 * t52 + c5 * t64 + 0.225f * s3 * beta[31];
+  const float t83 = beta[16] - s4 * t79 + c4 * t82 + t73;
+  const float t84 = beta[19] + c4 * beta[30] - s4 * beta[31] + c5 * t70 + s5 * t71;
+  const float t85 = -s4 * t69 + c4 * t72;
+  const float t86 = -beta[20] + t85;
+  const float t87 = 0.035f * (-c3 * t84 - s3 * t86);
+  const float t88 = -s3 * t84 + c3 * t86;
+  const float t89 = -0.035f * t88;
+  M[1] = -s2 * (beta[7] - s3 * t66 + t73 + c3 * t83 + t87) + c2 * (beta[6] - c3 * t66 - s3 * t83 + t89);
+  const float t90 = 0.225f * c4 * c5;
+  const float t91 = t42 + t44 + t46 - (c6 * t90 - 0.225f * s4 * s6) * beta[53] + (-s6 * t90 - 0.225f * s4 * c6) * beta[52];
+  const float t92 = t38 + t40 - t91 + 0.225f * s4 * beta[41];
+  const float t93 = -0.225f * c4 * s5;
+  const float t94 = t56 + t57 + t93 * beta[52];
+  const float t95 = t60 + t61 + t62 - t93 * beta[53];
+  const float t96 = t53 + t54 + t55 - s6 * t94 + c6 * t95 - 0.225f * s4 * beta[42];
+  const float t97 = t36 + t37 - c5 * t92 - s5 * t96 - 0.225f * c4 * beta[31] - 0.225f * s4 * beta[30];
+  const float t98 = beta[17] - t97;
+  const float t99 = t75 + t76 + t77 + c6 * t94 + s6 * t95 - t90 * beta[42] + t93 * beta[41];
+  const float t100 = t74 + t99;
+  const float t101 = t80 + t81 - s5 * t92 + c5 * t96;
+  const float t102 = beta[16] + t73 - s4 * t100 + c4 * t101;
+  M[2] = -s2 * (t73 + t87 - s3 * t98 + c3 * t102) + c2 * (t89 - c3 * t98 - s3 * t102);
+  const float t103 = c5 * beta[51];
+  const float t104 = s5 * s6;
+  const float t105 = -s5 * c6;
+  const float t106 = t103 + t104 * beta[50] + t105 * beta[49];
+  const float t107 = -s5 * beta[37] - t106;
+  const float t108 = c5 * beta[50] + t105 * beta[48];
+  const float t109 = c5 * beta[49] + t104 * beta[48] + t105 * beta[47];
+  const float t110 = -c5 * beta[37] - s5 * beta[36] - s6 * t108 + c6 * t109;
+  const float t111 = beta[29] - c5 * t107 - s5 * t110;
+  const float t112 = c5 * beta[52];
+  const float t113 = -c5 * beta[53];
+  const float t114 = beta[30] + c5 * beta[41] - s5 * beta[42] + c6 * t112 + s6 * t113;
+  const float t115 = -t104 * beta[52] + t105 * beta[53];
+  const float t116 = -s6 * t112 + c6 * t113;
+  const float t117 = -beta[31] + s5 * t115 + c5 * t116;
+  const float t118 = -0.225f * (c4 * t114 + s4 * t117);
+  const float t119 = -c5 * beta[39] - s5 * beta[38] + c6 * t108 + s6 * t109;
+  const float t120 = beta[28] + t119;
+  const float t121 = beta[27] - s5 * t107 + c5 * t110;
+  const float t122 = -s4 * t120 + c4 * t121 + t118;
+  const float t123 = c5 * t115 - s5 * t116;
+  const float t124 = -s4 * t114 + c4 * t117;
+  const float t125 = s3 * t123 + c3 * t124;
+  M[3] = -s2 * (s3 * t111 + t118 + c3 * t122 + 0.035f * (c3 * t123 - s3 * t124)) + c2 * (c3 * t111 - s3 * t122 - 0.035f * t125);
+  const float t126 = c6 * beta[50] + s6 * beta[49];
+  const float t127 = beta[39] - t126;
+  const float t128 = s6 * beta[48];
+  const float t129 = c6 * beta[48] + s6 * beta[47];
+  const float t130 = beta[38] - s6 * t128 + c6 * t129;
+  const float t131 = -c5 * t127 - s5 * t130;
+  const float t132 = beta[41] + c6 * beta[52] - s6 * beta[53];
+  const float t133 = -s5 * t132 - c5 * beta[42];
+  const float t134 = -0.225f * s4 * t133;
+  const float t135 = beta[40] + c6 * t128 + s6 * t129;
+  const float t136 = -s5 * t127 + c5 * t130;
+  const float t137 = -s4 * t135 + c4 * t136 + t134;
+  const float t138 = s5 * beta[42] - c5 * t132;
+  const float t139 = c4 * t133;
+  const float t140 = s3 * t138 + c3 * t139;
+  M[4] = -s2 * (s3 * t131 + t134 + c3 * t137 + 0.035f * (c3 * t138 - s3 * t139)) + c2 * (c3 * t131 - s3 * t137 - 0.035f * t140);
+  const float t141 = -s6 * beta[50] + c6 * beta[49];
+  const float t142 = t103 - s5 * t141;
+  const float t143 = c6 * beta[52] - s6 * beta[53];
+  const float t144 = -s6 * beta[52] - c6 * beta[53];
+  const float t145 = c5 * t144;
+  const float t146 = -0.225f * (c4 * t143 + s4 * t145);
+  const float t147 = s5 * beta[51] + c5 * t141;
+  const float t148 = -s4 * t126 + c4 * t147 + t146;
+  const float t149 = -s5 * t144;
+  const float t150 = -s4 * t143 + c4 * t145;
+  const float t151 = s3 * t149 + c3 * t150;
+  M[5] = -s2 * (s3 * t142 + t146 + c3 * t148 + 0.035f * (c3 * t149 - s3 * t150)) + c2 * (c3 * t142 - s3 * t148 - 0.035f * t151);
+  const float t152 = t1 * beta[17] + t0 * beta[16] + c4 * t23 + s4 * t24 + 0.225f * t34 - t8 * beta[20] + t11 * beta[19];
+  M[6] = -s2 * beta[7] + c2 * beta[6] + 0.225f * t35 + t152;
+  const float t153 = 0.225f * t88;
+  const float t154 = 0.225f * t85;
+  const float t155 = beta[18] + c4 * t79 + s4 * t82 + t154 - 0.225f * c3 * beta[20] - 0.225f * s3 * beta[19];
+  M[7] = beta[8] + t153 + t155;
+  const float t156 = beta[18] + t154 + c4 * t100 + s4 * t101;
+  M[8] = t153 + t156;
+  const float t157 = c4 * t120 + s4 * t121 + 0.225f * t124;
+  M[9] = 0.225f * t125 + t157;
+  const float t158 = c4 * t135 + s4 * t136 + 0.225f * t139;
+  M[10] = 0.225f * t140 + t158;
+  const float t159 = c4 * t126 + s4 * t147 + 0.225f * t150;
+  M[11] = 0.225f * t151 + t159;
+  M[12] = t152;
+  M[13] = t155;
+  M[14] = beta[21] + t156;
+  M[15] = t157;
+  M[16] = t158;
+  M[17] = t159;
+  M[18] = t20;
+  M[19] = t65;
+  M[20] = t97;
+  M[21] = beta[32] + t111;
+  M[22] = t131;
+  M[23] = t142;
+  M[24] = t22;
+  M[25] = t78;
+  M[26] = t99;
+  M[27] = t119;
+  M[28] = beta[43] + beta[58] + t135;
+  const float t160 = beta[58] + t126;
+  M[29] = t160;
+  M[30] = t14;
+  M[31] = t51;
+  M[32] = t91;
+  M[33] = t106;
+  M[34] = t160;
+  M[35] = beta[51] + beta[54] + beta[58];
 }
 
 // Jacobian of inverse_dynamics with respect to the state x = [q, dq, ddq] (3 kDof values), for
@@ -9715,7 +10573,8 @@ void power_regressor(const float* q, const float* dq, const float* ddq, float* d
   dh[60] = t56 * t57;  // Fcm6
 }
 
-// energy_regressor with sin_q, cos_q (kDof each) from joint_sincos(q, ...); identical results.
+// energy_regressor with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
+// computing them; identical results.
 void energy_regressor_sincos(const double* q, const double* sin_q, const double* cos_q,
                              const double* dq, double* h) {
   static_cast<void>(q);
@@ -9821,7 +10680,8 @@ void energy_regressor_sincos(const double* q, const double* sin_q, const double*
   h[60] = 0.0;  // Fcm6
 }
 
-// energy_regressor with sin_q, cos_q (kDof each) from joint_sincos(q, ...); identical results.
+// energy_regressor with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
+// computing them; identical results.
 void energy_regressor_sincos(const float* q, const float* sin_q, const float* cos_q,
                              const float* dq, float* h) {
   static_cast<void>(q);
@@ -9927,7 +10787,8 @@ void energy_regressor_sincos(const float* q, const float* sin_q, const float* co
   h[60] = 0.0f;  // Fcm6
 }
 
-// power_regressor with sin_q, cos_q (kDof each) from joint_sincos(q, ...); identical results.
+// power_regressor with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
+// computing them; identical results.
 void power_regressor_sincos(const double* q, const double* sin_q, const double* cos_q,
                             const double* dq, const double* ddq, double* dh) {
   static_cast<void>(q);
@@ -10068,7 +10929,8 @@ void power_regressor_sincos(const double* q, const double* sin_q, const double* 
   dh[60] = t56 * t57;  // Fcm6
 }
 
-// power_regressor with sin_q, cos_q (kDof each) from joint_sincos(q, ...); identical results.
+// power_regressor with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
+// computing them; identical results.
 void power_regressor_sincos(const float* q, const float* sin_q, const float* cos_q,
                             const float* dq, const float* ddq, float* dh) {
   static_cast<void>(q);
@@ -10217,8 +11079,8 @@ void power_regressor_sincos(const float* q, const float* sin_q, const float* cos
 // < 0 and the mean of both if 0 (eq. 8), tau_M = tau_T + JM ddq_M + Rv dq_M + Rc sign(dq_M)
 // (eq. 7). Units follow K: N m on the motor side when K holds gear ratios, on the link side
 // (as in the paper) when it is the coupling alone. Every Rz must be non-zero.
-void drive_torque(const double* q, const double* dq, const double* ddq,
-                  const double* theta, double* tau_M) {
+void drive_torque(const double* q, const double* dq, const double* ddq, const double* theta,
+                  double* tau_M) {
   const double sg1 = static_cast<double>((dq[0] > 0.0) - (dq[0] < 0.0));
   const double s2 = std::sin(q[1]);
   const double c2 = std::cos(q[1]);
@@ -10366,8 +11228,8 @@ void drive_torque(const double* q, const double* dq, const double* ddq,
 // < 0 and the mean of both if 0 (eq. 8), tau_M = tau_T + JM ddq_M + Rv dq_M + Rc sign(dq_M)
 // (eq. 7). Units follow K: N m on the motor side when K holds gear ratios, on the link side
 // (as in the paper) when it is the coupling alone. Every Rz must be non-zero.
-void drive_torque(const float* q, const float* dq, const float* ddq,
-                  const float* theta, float* tau_M) {
+void drive_torque(const float* q, const float* dq, const float* ddq, const float* theta,
+                  float* tau_M) {
   const float sg1 = static_cast<float>((dq[0] > 0.0f) - (dq[0] < 0.0f));
   const float s2 = std::sin(q[1]);
   const float c2 = std::cos(q[1]);
@@ -11145,8 +12007,8 @@ void drive_torque_jacobian(const double* q, const double* dq, const double* ddq,
 // efficiency branch and the Coulomb friction sign count as constant: exact wherever no motor
 // velocity and no power flow tau'_G dq_M is zero. Calls idim_regressor_standard into a local
 // array of kDof * kStandardParams values (on the stack) and applies the chain rule to it.
-void drive_torque_jacobian(const float* q, const float* dq, const float* ddq,
-                           const float* theta, float* tau_M, float* J) {
+void drive_torque_jacobian(const float* q, const float* dq, const float* ddq, const float* theta,
+                           float* tau_M, float* J) {
   float W_std[kDof * kStandardParams] = {};
   idim_regressor_standard(q, dq, ddq, W_std);
   const float sg1 = static_cast<float>((dq[0] > 0.0f) - (dq[0] < 0.0f));

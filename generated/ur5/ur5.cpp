@@ -12,8 +12,10 @@
 // base_from_standard                     36     60        0
 // idim_regressor                        454    363       10
 // inverse_dynamics                      378    308       10
+// mass_matrix                           420    374       10
 // idim_regressor_sincos                 454    363        0
 // inverse_dynamics_sincos               378    308        0
+// mass_matrix_sincos                    420    374        0
 // inverse_dynamics_state_jacobian      2707   2523       10
 // energy_regressor                      133     61       10
 // power_regressor                       338    190       10
@@ -1696,8 +1698,8 @@ void inverse_dynamics_standard(const double* q, const double* dq, const double* 
 // joint positions q, velocities dq and accelerations ddq (kDof each) and the standard
 // parameters p (kStandardParams, in the order of kStandardParamNames). Includes gravity, drive
 // inertia, friction and offsets as the description enables them.
-void inverse_dynamics_standard(const float* q, const float* dq, const float* ddq,
-                               const float* p, float* tau) {
+void inverse_dynamics_standard(const float* q, const float* dq, const float* ddq, const float* p,
+                               float* tau) {
   const float sg1 = static_cast<float>((dq[0] > 0.0f) - (dq[0] < 0.0f));
   const float s2 = std::sin(q[1]);
   const float c2 = std::cos(q[1]);
@@ -3372,9 +3374,9 @@ void idim_regressor_standard_sincos(const float* q, const float* sin_q, const fl
 
 // inverse_dynamics_standard with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
 // computing them; identical results.
-void inverse_dynamics_standard_sincos(const double* q, const double* sin_q,
-                                      const double* cos_q, const double* dq,
-                                      const double* ddq, const double* p, double* tau) {
+void inverse_dynamics_standard_sincos(const double* q, const double* sin_q, const double* cos_q,
+                                      const double* dq, const double* ddq, const double* p,
+                                      double* tau) {
   static_cast<void>(q);
   const double sg1 = static_cast<double>((dq[0] > 0.0) - (dq[0] < 0.0));
   const double s2 = sin_q[1];
@@ -3510,9 +3512,9 @@ void inverse_dynamics_standard_sincos(const double* q, const double* sin_q,
 
 // inverse_dynamics_standard with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
 // computing them; identical results.
-void inverse_dynamics_standard_sincos(const float* q, const float* sin_q,
-                                      const float* cos_q, const float* dq,
-                                      const float* ddq, const float* p, float* tau) {
+void inverse_dynamics_standard_sincos(const float* q, const float* sin_q, const float* cos_q,
+                                      const float* dq, const float* ddq, const float* p,
+                                      float* tau) {
   static_cast<void>(q);
   const float sg1 = static_cast<float>((dq[0] > 0.0f) - (dq[0] < 0.0f));
   const float s2 = sin_q[1];
@@ -4923,8 +4925,8 @@ void idim_regressor(const float* q, const float* dq, const float* ddq, float* W)
 // Inverse dynamics on the base parameters (customized Newton-Euler with the regrouped
 // parameters): joint torques tau (kDof) for q, dq, ddq (kDof each) and beta (kBaseParams, in the
 // order of kBaseParamNames; base_from_standard computes it from standard parameters).
-void inverse_dynamics(const double* q, const double* dq, const double* ddq,
-                      const double* beta, double* tau) {
+void inverse_dynamics(const double* q, const double* dq, const double* ddq, const double* beta,
+                      double* tau) {
   const double sg1 = static_cast<double>((dq[0] > 0.0) - (dq[0] < 0.0));
   const double s2 = std::sin(q[1]);
   const double c2 = std::cos(q[1]);
@@ -5058,8 +5060,8 @@ void inverse_dynamics(const double* q, const double* dq, const double* ddq,
 // Inverse dynamics on the base parameters (customized Newton-Euler with the regrouped
 // parameters): joint torques tau (kDof) for q, dq, ddq (kDof each) and beta (kBaseParams, in the
 // order of kBaseParamNames; base_from_standard computes it from standard parameters).
-void inverse_dynamics(const float* q, const float* dq, const float* ddq,
-                      const float* beta, float* tau) {
+void inverse_dynamics(const float* q, const float* dq, const float* ddq, const float* beta,
+                      float* tau) {
   const float sg1 = static_cast<float>((dq[0] > 0.0f) - (dq[0] < 0.0f));
   const float s2 = std::sin(q[1]);
   const float c2 = std::cos(q[1]);
@@ -5190,8 +5192,458 @@ void inverse_dynamics(const float* q, const float* dq, const float* ddq,
   tau[5] = beta[57] + ddq[5] * beta[54] + dq[5] * beta[55] + sg6 * beta[56] + t94;
 }
 
-// idim_regressor with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of computing
-// them; identical results.
+// Joint-space inertia matrix M(q) on the base parameters: inverse_dynamics is tau = M(q) ddq +
+// terms without ddq (velocity, gravity, friction, offsets), for forward dynamics
+// ddq = M^-1 (tau - inverse_dynamics(q, dq, 0, beta)). Inputs q (kDof) and beta (kBaseParams,
+// as for inverse_dynamics). Output M: kDof x kDof, row-major, M[i * kDof + k] = d tau_i / d ddq_k
+// (drive inertias included; symmetric, and positive definite for physical parameters).
+void mass_matrix(const double* q, const double* beta, double* M) {
+  const double s2 = std::sin(q[1]);
+  const double c2 = std::cos(q[1]);
+  const double s3 = std::sin(q[2]);
+  const double c3 = std::cos(q[2]);
+  const double s4 = std::sin(q[3]);
+  const double c4 = std::cos(q[3]);
+  const double s5 = std::sin(q[4]);
+  const double c5 = std::cos(q[4]);
+  const double s6 = std::sin(q[5]);
+  const double c6 = std::cos(q[5]);
+  const double t0 = -c2 * c3 + s2 * s3;
+  const double t1 = -c2 * s3 - s2 * c3;
+  const double t2 = -s4 * t0 - c4 * t1;
+  const double t3 = c5 * t2;
+  const double t4 = c4 * t0 - s4 * t1;
+  const double t5 = c6 * t3 - s6 * t4;
+  const double t6 = s6 * t3 + c6 * t4;
+  const double t7 = -t5 * beta[53] + t6 * beta[52];
+  const double t8 = t7 + t4 * beta[41];
+  const double t9 = -s5 * t2;
+  const double t10 = -t9 * beta[52];
+  const double t11 = t9 * beta[53];
+  const double t12 = s6 * t10 + c6 * t11;
+  const double t13 = -t4 * beta[42] + t12;
+  const double t14 = -s5 * t8 + c5 * t13;
+  const double t15 = 0.016149999999999998 * s2 * c3 + 0.016149999999999998 * c2 * s3;
+  const double t16 = 0.016149999999999998 * s2 * s3 - 0.016149999999999998 * c2 * c3;
+  const double t17 = -s4 * t15 - c4 * t16;
+  const double t18 = t17 - 0.093 * t4;
+  const double t19 = 0.425 * c2 - 0.39225 * t0;
+  const double t20 = -s5 * t18 + c5 * t19;
+  const double t21 = t20 - 0.09465 * t3;
+  const double t22 = t9 * beta[51] + t5 * beta[49] + t21 * beta[52];
+  const double t23 = t6 * beta[49] + t9 * beta[48] + t5 * beta[47] - t21 * beta[53];
+  const double t24 = c5 * t18 + s5 * t19;
+  const double t25 = t4 * beta[40] + t9 * beta[39] + t3 * beta[38] + c6 * t22 - s6 * t23 - t24 * beta[42] + t20 * beta[41];
+  const double t26 = t2 * beta[27] - 0.093 * t14 + t25 + t19 * beta[30];
+  const double t27 = t24 + 0.09465 * t9;
+  const double t28 = c4 * t15 - s4 * t16;
+  const double t29 = t28 + 0.093 * t2;
+  const double t30 = t6 * beta[51] + t9 * beta[50] + t5 * beta[48] - (s6 * t27 + c6 * t29) * beta[52] + (c6 * t27 - s6 * t29) * beta[53];
+  const double t31 = t4 * beta[39] + t3 * beta[37] + 0.09465 * t12 + t30 - t29 * beta[41];
+  const double t32 = t4 * beta[38] + t9 * beta[37] + t3 * beta[36] + s6 * t22 + c6 * t23 - 0.09465 * t7 + t29 * beta[42];
+  const double t33 = -t9 * beta[41] + t3 * beta[42] + c6 * t10 - s6 * t11;
+  const double t34 = t4 * beta[27] + t2 * beta[25] - s5 * t31 + c5 * t32 + 0.093 * t33 - t19 * beta[31];
+  const double t35 = t0 * beta[16] - s4 * t26 - c4 * t34 + 0.425 * c2 * beta[19];
+  const double t36 = -t2 * beta[31] + t4 * beta[30] + c5 * t8 + s5 * t13;
+  const double t37 = t1 * beta[16] + t0 * beta[14] + c4 * t26 - s4 * t34 - 0.39225 * t36 - 0.425 * c2 * beta[20];
+  const double t38 = -s4 * t33 - c4 * t14;
+  const double t39 = c4 * t33 - s4 * t14;
+  const double t40 = s3 * t38 + c3 * t39;
+  const double t41 = c3 * t38 - s3 * t39;
+  M[0] = beta[0] - s2 * (-c2 * beta[6] + c3 * t35 - s3 * t37 + 0.1197 * t40) - c2 * (-s2 * beta[6] - c2 * beta[4] + s3 * t35 + c3 * t37 - 0.425 * (-t0 * beta[20] + t1 * beta[19] + t36) - 0.1197 * t41) - 0.13585 * (c2 * t41 - s2 * t40);
+  const double t42 = s5 * c6;
+  const double t43 = s5 * s6;
+  const double t44 = -t42 * beta[53] + t43 * beta[52];
+  const double t45 = -c5 * beta[52];
+  const double t46 = c5 * beta[53];
+  const double t47 = s6 * t45 + c6 * t46;
+  const double t48 = -s5 * t44 + c5 * t47;
+  const double t49 = -0.093 * t48;
+  const double t50 = c5 * beta[39];
+  const double t51 = s5 * beta[38];
+  const double t52 = c5 * beta[51];
+  const double t53 = t42 * beta[49];
+  const double t54 = 0.39225 + 0.425 * c3;
+  const double t55 = -s4 * t54 - 0.425 * s3 * c4;
+  const double t56 = -s5 * t55;
+  const double t57 = -0.09465 * s5;
+  const double t58 = t56 + t57;
+  const double t59 = t52 + t53 + t58 * beta[52];
+  const double t60 = t43 * beta[49];
+  const double t61 = c5 * beta[48];
+  const double t62 = t42 * beta[47];
+  const double t63 = t60 + t61 + t62 - t58 * beta[53];
+  const double t64 = c5 * t55;
+  const double t65 = t50 + t51 + c6 * t59 - s6 * t63 - t64 * beta[42] + t56 * beta[41];
+  const double t66 = beta[29] + t49 + t65;
+  const double t67 = s5 * beta[37];
+  const double t68 = 0.09465 * t47;
+  const double t69 = t43 * beta[51];
+  const double t70 = c5 * beta[50];
+  const double t71 = t42 * beta[48];
+  const double t72 = 0.09465 * c5;
+  const double t73 = t64 + t72;
+  const double t74 = c4 * t54 - 0.425 * s3 * s4;
+  const double t75 = t69 + t70 + t71 - (s6 * t73 + c6 * t74) * beta[52] + (c6 * t73 - s6 * t74) * beta[53];
+  const double t76 = t67 + t68 + t75 - t74 * beta[41];
+  const double t77 = c5 * beta[37];
+  const double t78 = s5 * beta[36];
+  const double t79 = -0.09465 * t44;
+  const double t80 = t77 + t78 + s6 * t59 + c6 * t63 + t79 + t74 * beta[42];
+  const double t81 = -c5 * beta[41] + s5 * beta[42] + c6 * t45 - s6 * t46;
+  const double t82 = 0.093 * t81;
+  const double t83 = beta[26] - s5 * t76 + c5 * t80 + t82;
+  const double t84 = beta[18] - s4 * t66 - c4 * t83;
+  const double t85 = c5 * t44 + s5 * t47;
+  const double t86 = -0.39225 * t85;
+  const double t87 = beta[15] + c4 * t66 - s4 * t83 + t86;
+  const double t88 = -beta[30] + t81;
+  const double t89 = beta[31] + t48;
+  const double t90 = -s4 * t88 - c4 * t89;
+  const double t91 = -beta[19] + t90;
+  const double t92 = c4 * t88 - s4 * t89;
+  const double t93 = beta[20] + t92;
+  const double t94 = s3 * t91 + c3 * t93;
+  const double t95 = 0.1197 * t94;
+  const double t96 = -0.425 * t85;
+  const double t97 = c3 * t91 - s3 * t93;
+  const double t98 = -0.1197 * t97;
+  M[1] = -s2 * (beta[8] + c3 * t84 - s3 * t87 + t95) - c2 * (beta[5] + s3 * t84 + c3 * t87 + t96 + t98) - 0.13585 * (c2 * (-beta[9] + t97) - s2 * (beta[10] + t94));
+  const double t99 = 0.39225 * s4 * s5;
+  const double t100 = t57 + t99;
+  const double t101 = t52 + t53 + t100 * beta[52];
+  const double t102 = t60 + t61 + t62 - t100 * beta[53];
+  const double t103 = -0.39225 * s4 * c5;
+  const double t104 = t50 + t51 + c6 * t101 - s6 * t102 - t103 * beta[42] + t99 * beta[41];
+  const double t105 = beta[29] + t49 + t104;
+  const double t106 = t72 + t103;
+  const double t107 = t69 + t70 + t71 - (s6 * t106 + 0.39225 * c4 * c6) * beta[52] + (c6 * t106 - 0.39225 * c4 * s6) * beta[53];
+  const double t108 = t67 + t68 + t107 - 0.39225 * c4 * beta[41];
+  const double t109 = t77 + t78 + t79 + s6 * t101 + c6 * t102 + 0.39225 * c4 * beta[42];
+  const double t110 = beta[26] + t82 - s5 * t108 + c5 * t109;
+  const double t111 = beta[18] - s4 * t105 - c4 * t110;
+  const double t112 = beta[15] + t86 + c4 * t105 - s4 * t110;
+  M[2] = -s2 * (t95 + c3 * t111 - s3 * t112) - c2 * (t96 + t98 + s3 * t111 + c3 * t112) - 0.13585 * (c2 * t97 - s2 * t94);
+  const double t113 = t52 + t53 - 0.09465 * s5 * beta[52];
+  const double t114 = t60 + t61 + t62 + 0.09465 * s5 * beta[53];
+  const double t115 = t50 + t51 + c6 * t113 - s6 * t114;
+  const double t116 = beta[29] + t49 + t115;
+  const double t117 = t69 + t70 + t71 - 0.09465 * c5 * s6 * beta[52] + 0.09465 * c5 * c6 * beta[53];
+  const double t118 = t67 + t68 + t117;
+  const double t119 = t77 + t78 + t79 + s6 * t113 + c6 * t114;
+  const double t120 = beta[26] + t82 - s5 * t118 + c5 * t119;
+  const double t121 = -s4 * t116 - c4 * t120;
+  const double t122 = t86 + c4 * t116 - s4 * t120;
+  const double t123 = s3 * t90 + c3 * t92;
+  const double t124 = c3 * t90 - s3 * t92;
+  M[3] = -s2 * (c3 * t121 - s3 * t122 + 0.1197 * t123) - c2 * (t96 + s3 * t121 + c3 * t122 - 0.1197 * t124) - 0.13585 * (c2 * t124 - s2 * t123);
+  const double t125 = s6 * beta[53] + c6 * beta[52];
+  const double t126 = beta[41] + t125;
+  const double t127 = -s5 * t126 - c5 * beta[42];
+  const double t128 = -s6 * beta[49];
+  const double t129 = c6 * beta[49] - s6 * beta[47];
+  const double t130 = beta[40] + c6 * t128 - s6 * t129;
+  const double t131 = -0.093 * t127 + t130;
+  const double t132 = c6 * beta[51] - s6 * beta[48];
+  const double t133 = beta[39] + t132;
+  const double t134 = beta[38] + s6 * t128 + c6 * t129 - 0.09465 * t125;
+  const double t135 = -s5 * t133 + c5 * t134;
+  const double t136 = -s4 * t131 - c4 * t135;
+  const double t137 = c5 * t126 - s5 * beta[42];
+  const double t138 = c4 * t131 - s4 * t135 - 0.39225 * t137;
+  const double t139 = -c4 * t127;
+  const double t140 = -s4 * t127;
+  const double t141 = s3 * t139 + c3 * t140;
+  const double t142 = c3 * t139 - s3 * t140;
+  M[4] = -s2 * (c3 * t136 - s3 * t138 + 0.1197 * t141) - c2 * (s3 * t136 + c3 * t138 - 0.425 * t137 - 0.1197 * t142) - 0.13585 * (c2 * t142 - s2 * t141);
+  const double t143 = -s6 * beta[52] + c6 * beta[53];
+  const double t144 = c5 * t143;
+  const double t145 = t132 - 0.093 * t144;
+  const double t146 = beta[50] + 0.09465 * t143;
+  const double t147 = s6 * beta[51] + c6 * beta[48];
+  const double t148 = -c6 * beta[52] - s6 * beta[53];
+  const double t149 = -s5 * t146 + c5 * t147 + 0.093 * t148;
+  const double t150 = -s4 * t145 - c4 * t149;
+  const double t151 = s5 * t143;
+  const double t152 = c4 * t145 - s4 * t149 - 0.39225 * t151;
+  const double t153 = -s4 * t148 - c4 * t144;
+  const double t154 = c4 * t148 - s4 * t144;
+  const double t155 = s3 * t153 + c3 * t154;
+  const double t156 = c3 * t153 - s3 * t154;
+  M[5] = -s2 * (c3 * t150 - s3 * t152 + 0.1197 * t155) - c2 * (s3 * t150 + c3 * t152 - 0.425 * t151 - 0.1197 * t156) - 0.13585 * (c2 * t156 - s2 * t155);
+  const double t157 = t4 * beta[29] + t2 * beta[26] + c5 * t31 + s5 * t32 - t28 * beta[30] + t17 * beta[31];
+  const double t158 = t1 * beta[18] + t0 * beta[15] + 0.39225 * t39 + t157 - t16 * beta[19] + t15 * beta[20];
+  M[6] = -s2 * beta[8] - c2 * beta[5] + 0.425 * t40 + t158 + 0.13585 * c2 * beta[9] + 0.13585 * s2 * beta[10];
+  const double t159 = 0.425 * t94;
+  const double t160 = 0.39225 * t92;
+  const double t161 = beta[28] + c5 * t76 + s5 * t80 - t74 * beta[30] + t55 * beta[31];
+  const double t162 = beta[17] + t160 + t161 - 0.425 * s3 * beta[19] + 0.425 * c3 * beta[20];
+  M[7] = beta[7] + t159 + t162;
+  const double t163 = beta[28] + c5 * t108 + s5 * t109 - 0.39225 * c4 * beta[30] - 0.39225 * s4 * beta[31];
+  const double t164 = beta[17] + t160 + t163;
+  M[8] = t159 + t164;
+  const double t165 = beta[28] + c5 * t118 + s5 * t119;
+  const double t166 = t160 + t165;
+  M[9] = 0.425 * t123 + t166;
+  const double t167 = c5 * t133 + s5 * t134;
+  const double t168 = 0.39225 * t140 + t167;
+  M[10] = 0.425 * t141 + t168;
+  const double t169 = c5 * t146 + s5 * t147;
+  const double t170 = 0.39225 * t154 + t169;
+  M[11] = 0.425 * t155 + t170;
+  M[12] = t158;
+  M[13] = t162;
+  M[14] = beta[21] + t164;
+  M[15] = t166;
+  M[16] = t168;
+  M[17] = t170;
+  M[18] = t157;
+  M[19] = t161;
+  M[20] = t163;
+  M[21] = beta[32] + t165;
+  M[22] = t167;
+  M[23] = t169;
+  M[24] = t25;
+  M[25] = t65;
+  M[26] = t104;
+  M[27] = t115;
+  M[28] = beta[43] + t130;
+  M[29] = t132;
+  M[30] = t30;
+  M[31] = t75;
+  M[32] = t107;
+  M[33] = t117;
+  M[34] = t132;
+  M[35] = beta[50] + beta[54];
+}
+
+// Joint-space inertia matrix M(q) on the base parameters: inverse_dynamics is tau = M(q) ddq +
+// terms without ddq (velocity, gravity, friction, offsets), for forward dynamics
+// ddq = M^-1 (tau - inverse_dynamics(q, dq, 0, beta)). Inputs q (kDof) and beta (kBaseParams,
+// as for inverse_dynamics). Output M: kDof x kDof, row-major, M[i * kDof + k] = d tau_i / d ddq_k
+// (drive inertias included; symmetric, and positive definite for physical parameters).
+void mass_matrix(const float* q, const float* beta, float* M) {
+  const float s2 = std::sin(q[1]);
+  const float c2 = std::cos(q[1]);
+  const float s3 = std::sin(q[2]);
+  const float c3 = std::cos(q[2]);
+  const float s4 = std::sin(q[3]);
+  const float c4 = std::cos(q[3]);
+  const float s5 = std::sin(q[4]);
+  const float c5 = std::cos(q[4]);
+  const float s6 = std::sin(q[5]);
+  const float c6 = std::cos(q[5]);
+  const float t0 = -c2 * c3 + s2 * s3;
+  const float t1 = -c2 * s3 - s2 * c3;
+  const float t2 = -s4 * t0 - c4 * t1;
+  const float t3 = c5 * t2;
+  const float t4 = c4 * t0 - s4 * t1;
+  const float t5 = c6 * t3 - s6 * t4;
+  const float t6 = s6 * t3 + c6 * t4;
+  const float t7 = -t5 * beta[53] + t6 * beta[52];
+  const float t8 = t7 + t4 * beta[41];
+  const float t9 = -s5 * t2;
+  const float t10 = -t9 * beta[52];
+  const float t11 = t9 * beta[53];
+  const float t12 = s6 * t10 + c6 * t11;
+  const float t13 = -t4 * beta[42] + t12;
+  const float t14 = -s5 * t8 + c5 * t13;
+  const float t15 = 0.01615f * s2 * c3 + 0.01615f * c2 * s3;
+  const float t16 = 0.01615f * s2 * s3 - 0.01615f * c2 * c3;
+  const float t17 = -s4 * t15 - c4 * t16;
+  const float t18 = t17 - 0.093f * t4;
+  const float t19 = 0.425f * c2 - 0.39225f * t0;
+  const float t20 = -s5 * t18 + c5 * t19;
+  const float t21 = t20 - 0.09465f * t3;
+  const float t22 = t9 * beta[51] + t5 * beta[49] + t21 * beta[52];
+  const float t23 = t6 * beta[49] + t9 * beta[48] + t5 * beta[47] - t21 * beta[53];
+  const float t24 = c5 * t18 + s5 * t19;
+  const float t25 = t4 * beta[40] + t9 * beta[39] + t3 * beta[38] + c6 * t22 - s6 * t23 - t24 * beta[42] + t20 * beta[41];
+  const float t26 = t2 * beta[27] - 0.093f * t14 + t25 + t19 * beta[30];
+  const float t27 = t24 + 0.09465f * t9;
+  const float t28 = c4 * t15 - s4 * t16;
+  const float t29 = t28 + 0.093f * t2;
+  const float t30 = t6 * beta[51] + t9 * beta[50] + t5 * beta[48] - (s6 * t27 + c6 * t29) * beta[52] + (c6 * t27 - s6 * t29) * beta[53];
+  const float t31 = t4 * beta[39] + t3 * beta[37] + 0.09465f * t12 + t30 - t29 * beta[41];
+  const float t32 = t4 * beta[38] + t9 * beta[37] + t3 * beta[36] + s6 * t22 + c6 * t23 - 0.09465f * t7 + t29 * beta[42];
+  const float t33 = -t9 * beta[41] + t3 * beta[42] + c6 * t10 - s6 * t11;
+  const float t34 = t4 * beta[27] + t2 * beta[25] - s5 * t31 + c5 * t32 + 0.093f * t33 - t19 * beta[31];
+  const float t35 = t0 * beta[16] - s4 * t26 - c4 * t34 + 0.425f * c2 * beta[19];
+  const float t36 = -t2 * beta[31] + t4 * beta[30] + c5 * t8 + s5 * t13;
+  const float t37 = t1 * beta[16] + t0 * beta[14] + c4 * t26 - s4 * t34 - 0.39225f * t36 - 0.425f * c2 * beta[20];
+  const float t38 = -s4 * t33 - c4 * t14;
+  const float t39 = c4 * t33 - s4 * t14;
+  const float t40 = s3 * t38 + c3 * t39;
+  const float t41 = c3 * t38 - s3 * t39;
+  M[0] = beta[0] - s2 * (-c2 * beta[6] + c3 * t35 - s3 * t37 + 0.1197f * t40) - c2 * (-s2 * beta[6] - c2 * beta[4] + s3 * t35 + c3 * t37 - 0.425f * (-t0 * beta[20] + t1 * beta[19] + t36) - 0.1197f * t41) - 0.13585f * (c2 * t41 - s2 * t40);
+  const float t42 = s5 * c6;
+  const float t43 = s5 * s6;
+  const float t44 = -t42 * beta[53] + t43 * beta[52];
+  const float t45 = -c5 * beta[52];
+  const float t46 = c5 * beta[53];
+  const float t47 = s6 * t45 + c6 * t46;
+  const float t48 = -s5 * t44 + c5 * t47;
+  const float t49 = -0.093f * t48;
+  const float t50 = c5 * beta[39];
+  const float t51 = s5 * beta[38];
+  const float t52 = c5 * beta[51];
+  const float t53 = t42 * beta[49];
+  const float t54 = 0.39225f + 0.425f * c3;
+  const float t55 = -s4 * t54 - 0.425f * s3 * c4;
+  const float t56 = -s5 * t55;
+  const float t57 = -0.09465f * s5;
+  const float t58 = t56 + t57;
+  const float t59 = t52 + t53 + t58 * beta[52];
+  const float t60 = t43 * beta[49];
+  const float t61 = c5 * beta[48];
+  const float t62 = t42 * beta[47];
+  const float t63 = t60 + t61 + t62 - t58 * beta[53];
+  const float t64 = c5 * t55;
+  const float t65 = t50 + t51 + c6 * t59 - s6 * t63 - t64 * beta[42] + t56 * beta[41];
+  const float t66 = beta[29] + t49 + t65;
+  const float t67 = s5 * beta[37];
+  const float t68 = 0.09465f * t47;
+  const float t69 = t43 * beta[51];
+  const float t70 = c5 * beta[50];
+  const float t71 = t42 * beta[48];
+  const float t72 = 0.09465f * c5;
+  const float t73 = t64 + t72;
+  const float t74 = c4 * t54 - 0.425f * s3 * s4;
+  const float t75 = t69 + t70 + t71 - (s6 * t73 + c6 * t74) * beta[52] + (c6 * t73 - s6 * t74) * beta[53];
+  const float t76 = t67 + t68 + t75 - t74 * beta[41];
+  const float t77 = c5 * beta[37];
+  const float t78 = s5 * beta[36];
+  const float t79 = -0.09465f * t44;
+  const float t80 = t77 + t78 + s6 * t59 + c6 * t63 + t79 + t74 * beta[42];
+  const float t81 = -c5 * beta[41] + s5 * beta[42] + c6 * t45 - s6 * t46;
+  const float t82 = 0.093f * t81;
+  const float t83 = beta[26] - s5 * t76 + c5 * t80 + t82;
+  const float t84 = beta[18] - s4 * t66 - c4 * t83;
+  const float t85 = c5 * t44 + s5 * t47;
+  const float t86 = -0.39225f * t85;
+  const float t87 = beta[15] + c4 * t66 - s4 * t83 + t86;
+  const float t88 = -beta[30] + t81;
+  const float t89 = beta[31] + t48;
+  const float t90 = -s4 * t88 - c4 * t89;
+  const float t91 = -beta[19] + t90;
+  const float t92 = c4 * t88 - s4 * t89;
+  const float t93 = beta[20] + t92;
+  const float t94 = s3 * t91 + c3 * t93;
+  const float t95 = 0.1197f * t94;
+  const float t96 = -0.425f * t85;
+  const float t97 = c3 * t91 - s3 * t93;
+  const float t98 = -0.1197f * t97;
+  M[1] = -s2 * (beta[8] + c3 * t84 - s3 * t87 + t95) - c2 * (beta[5] + s3 * t84 + c3 * t87 + t96 + t98) - 0.13585f * (c2 * (-beta[9] + t97) - s2 * (beta[10] + t94));
+  const float t99 = 0.39225f * s4 * s5;
+  const float t100 = t57 + t99;
+  const float t101 = t52 + t53 + t100 * beta[52];
+  const float t102 = t60 + t61 + t62 - t100 * beta[53];
+  const float t103 = -0.39225f * s4 * c5;
+  const float t104 = t50 + t51 + c6 * t101 - s6 * t102 - t103 * beta[42] + t99 * beta[41];
+  const float t105 = beta[29] + t49 + t104;
+  const float t106 = t72 + t103;
+  const float t107 = t69 + t70 + t71 - (s6 * t106 + 0.39225f * c4 * c6) * beta[52] + (c6 * t106 - 0.39225f * c4 * s6) * beta[53];
+  const float t108 = t67 + t68 + t107 - 0.39225f * c4 * beta[41];
+  const float t109 = t77 + t78 + t79 + s6 * t101 + c6 * t102 + 0.39225f * c4 * beta[42];
+  const float t110 = beta[26] + t82 - s5 * t108 + c5 * t109;
+  const float t111 = beta[18] - s4 * t105 - c4 * t110;
+  const float t112 = beta[15] + t86 + c4 * t105 - s4 * t110;
+  M[2] = -s2 * (t95 + c3 * t111 - s3 * t112) - c2 * (t96 + t98 + s3 * t111 + c3 * t112) - 0.13585f * (c2 * t97 - s2 * t94);
+  const float t113 = t52 + t53 - 0.09465f * s5 * beta[52];
+  const float t114 = t60 + t61 + t62 + 0.09465f * s5 * beta[53];
+  const float t115 = t50 + t51 + c6 * t113 - s6 * t114;
+  const float t116 = beta[29] + t49 + t115;
+  const float t117 = t69 + t70 + t71 - 0.09465f * c5 * s6 * beta[52] + 0.09465f * c5 * c6 * beta[53];
+  const float t118 = t67 + t68 + t117;
+  const float t119 = t77 + t78 + t79 + s6 * t113 + c6 * t114;
+  const float t120 = beta[26] + t82 - s5 * t118 + c5 * t119;
+  const float t121 = -s4 * t116 - c4 * t120;
+  const float t122 = t86 + c4 * t116 - s4 * t120;
+  const float t123 = s3 * t90 + c3 * t92;
+  const float t124 = c3 * t90 - s3 * t92;
+  M[3] = -s2 * (c3 * t121 - s3 * t122 + 0.1197f * t123) - c2 * (t96 + s3 * t121 + c3 * t122 - 0.1197f * t124) - 0.13585f * (c2 * t124 - s2 * t123);
+  const float t125 = s6 * beta[53] + c6 * beta[52];
+  const float t126 = beta[41] + t125;
+  const float t127 = -s5 * t126 - c5 * beta[42];
+  const float t128 = -s6 * beta[49];
+  const float t129 = c6 * beta[49] - s6 * beta[47];
+  const float t130 = beta[40] + c6 * t128 - s6 * t129;
+  const float t131 = -0.093f * t127 + t130;
+  const float t132 = c6 * beta[51] - s6 * beta[48];
+  const float t133 = beta[39] + t132;
+  const float t134 = beta[38] + s6 * t128 + c6 * t129 - 0.09465f * t125;
+  const float t135 = -s5 * t133 + c5 * t134;
+  const float t136 = -s4 * t131 - c4 * t135;
+  const float t137 = c5 * t126 - s5 * beta[42];
+  const float t138 = c4 * t131 - s4 * t135 - 0.39225f * t137;
+  const float t139 = -c4 * t127;
+  const float t140 = -s4 * t127;
+  const float t141 = s3 * t139 + c3 * t140;
+  const float t142 = c3 * t139 - s3 * t140;
+  M[4] = -s2 * (c3 * t136 - s3 * t138 + 0.1197f * t141) - c2 * (s3 * t136 + c3 * t138 - 0.425f * t137 - 0.1197f * t142) - 0.13585f * (c2 * t142 - s2 * t141);
+  const float t143 = -s6 * beta[52] + c6 * beta[53];
+  const float t144 = c5 * t143;
+  const float t145 = t132 - 0.093f * t144;
+  const float t146 = beta[50] + 0.09465f * t143;
+  const float t147 = s6 * beta[51] + c6 * beta[48];
+  const float t148 = -c6 * beta[52] - s6 * beta[53];
+  const float t149 = -s5 * t146 + c5 * t147 + 0.093f * t148;
+  const float t150 = -s4 * t145 - c4 * t149;
+  const float t151 = s5 * t143;
+  const float t152 = c4 * t145 - s4 * t149 - 0.39225f * t151;
+  const float t153 = -s4 * t148 - c4 * t144;
+  const float t154 = c4 * t148 - s4 * t144;
+  const float t155 = s3 * t153 + c3 * t154;
+  const float t156 = c3 * t153 - s3 * t154;
+  M[5] = -s2 * (c3 * t150 - s3 * t152 + 0.1197f * t155) - c2 * (s3 * t150 + c3 * t152 - 0.425f * t151 - 0.1197f * t156) - 0.13585f * (c2 * t156 - s2 * t155);
+  const float t157 = t4 * beta[29] + t2 * beta[26] + c5 * t31 + s5 * t32 - t28 * beta[30] + t17 * beta[31];
+  const float t158 = t1 * beta[18] + t0 * beta[15] + 0.39225f * t39 + t157 - t16 * beta[19] + t15 * beta[20];
+  M[6] = -s2 * beta[8] - c2 * beta[5] + 0.425f * t40 + t158 + 0.13585f * c2 * beta[9] + 0.13585f * s2 * beta[10];
+  const float t159 = 0.425f * t94;
+  const float t160 = 0.39225f * t92;
+  const float t161 = beta[28] + c5 * t76 + s5 * t80 - t74 * beta[30] + t55 * beta[31];
+  const float t162 = beta[17] + t160 + t161 - 0.425f * s3 * beta[19] + 0.425f * c3 * beta[20];
+  M[7] = beta[7] + t159 + t162;
+  const float t163 = beta[28] + c5 * t108 + s5 * t109 - 0.39225f * c4 * beta[30] - 0.39225f * s4 * beta[31];
+  const float t164 = beta[17] + t160 + t163;
+  M[8] = t159 + t164;
+  const float t165 = beta[28] + c5 * t118 + s5 * t119;
+  const float t166 = t160 + t165;
+  M[9] = 0.425f * t123 + t166;
+  const float t167 = c5 * t133 + s5 * t134;
+  const float t168 = 0.39225f * t140 + t167;
+  M[10] = 0.425f * t141 + t168;
+  const float t169 = c5 * t146 + s5 * t147;
+  const float t170 = 0.39225f * t154 + t169;
+  M[11] = 0.425f * t155 + t170;
+  M[12] = t158;
+  M[13] = t162;
+  M[14] = beta[21] + t164;
+  M[15] = t166;
+  M[16] = t168;
+  M[17] = t170;
+  M[18] = t157;
+  M[19] = t161;
+  M[20] = t163;
+  M[21] = beta[32] + t165;
+  M[22] = t167;
+  M[23] = t169;
+  M[24] = t25;
+  M[25] = t65;
+  M[26] = t104;
+  M[27] = t115;
+  M[28] = beta[43] + t130;
+  M[29] = t132;
+  M[30] = t30;
+  M[31] = t75;
+  M[32] = t107;
+  M[33] = t117;
+  M[34] = t132;
+  M[35] = beta[50] + beta[54];
+}
+
+// idim_regressor with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
+// computing them; identical results.
 void idim_regressor_sincos(const double* q, const double* sin_q, const double* cos_q,
                            const double* dq, const double* ddq, double* W) {
   static_cast<void>(q);
@@ -5755,8 +6207,8 @@ void idim_regressor_sincos(const double* q, const double* sin_q, const double* c
   W[347] = 1.0;
 }
 
-// idim_regressor with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of computing
-// them; identical results.
+// idim_regressor with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
+// computing them; identical results.
 void idim_regressor_sincos(const float* q, const float* sin_q, const float* cos_q,
                            const float* dq, const float* ddq, float* W) {
   static_cast<void>(q);
@@ -6320,11 +6772,10 @@ void idim_regressor_sincos(const float* q, const float* sin_q, const float* cos_
   W[347] = 1.0f;
 }
 
-// inverse_dynamics with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of computing
-// them; identical results.
+// inverse_dynamics with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
+// computing them; identical results.
 void inverse_dynamics_sincos(const double* q, const double* sin_q, const double* cos_q,
-                             const double* dq, const double* ddq, const double* beta,
-                             double* tau) {
+                             const double* dq, const double* ddq, const double* beta, double* tau) {
   static_cast<void>(q);
   const double sg1 = static_cast<double>((dq[0] > 0.0) - (dq[0] < 0.0));
   const double s2 = sin_q[1];
@@ -6456,11 +6907,10 @@ void inverse_dynamics_sincos(const double* q, const double* sin_q, const double*
   tau[5] = beta[57] + ddq[5] * beta[54] + dq[5] * beta[55] + sg6 * beta[56] + t94;
 }
 
-// inverse_dynamics with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of computing
-// them; identical results.
+// inverse_dynamics with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
+// computing them; identical results.
 void inverse_dynamics_sincos(const float* q, const float* sin_q, const float* cos_q,
-                             const float* dq, const float* ddq, const float* beta,
-                             float* tau) {
+                             const float* dq, const float* ddq, const float* beta, float* tau) {
   static_cast<void>(q);
   const float sg1 = static_cast<float>((dq[0] > 0.0f) - (dq[0] < 0.0f));
   const float s2 = sin_q[1];
@@ -6590,6 +7040,454 @@ void inverse_dynamics_sincos(const float* q, const float* sin_q, const float* co
   tau[3] = beta[35] + ddq[3] * beta[32] + dq[3] * beta[33] + sg4 * beta[34] + t104;
   tau[4] = beta[46] + ddq[4] * beta[43] + dq[4] * beta[44] + sg5 * beta[45] + t98;
   tau[5] = beta[57] + ddq[5] * beta[54] + dq[5] * beta[55] + sg6 * beta[56] + t94;
+}
+
+// mass_matrix with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
+// computing them; identical results.
+void mass_matrix_sincos(const double* q, const double* sin_q, const double* cos_q,
+                        const double* beta, double* M) {
+  static_cast<void>(q);
+  const double s2 = sin_q[1];
+  const double c2 = cos_q[1];
+  const double s3 = sin_q[2];
+  const double c3 = cos_q[2];
+  const double s4 = sin_q[3];
+  const double c4 = cos_q[3];
+  const double s5 = sin_q[4];
+  const double c5 = cos_q[4];
+  const double s6 = sin_q[5];
+  const double c6 = cos_q[5];
+  const double t0 = -c2 * c3 + s2 * s3;
+  const double t1 = -c2 * s3 - s2 * c3;
+  const double t2 = -s4 * t0 - c4 * t1;
+  const double t3 = c5 * t2;
+  const double t4 = c4 * t0 - s4 * t1;
+  const double t5 = c6 * t3 - s6 * t4;
+  const double t6 = s6 * t3 + c6 * t4;
+  const double t7 = -t5 * beta[53] + t6 * beta[52];
+  const double t8 = t7 + t4 * beta[41];
+  const double t9 = -s5 * t2;
+  const double t10 = -t9 * beta[52];
+  const double t11 = t9 * beta[53];
+  const double t12 = s6 * t10 + c6 * t11;
+  const double t13 = -t4 * beta[42] + t12;
+  const double t14 = -s5 * t8 + c5 * t13;
+  const double t15 = 0.016149999999999998 * s2 * c3 + 0.016149999999999998 * c2 * s3;
+  const double t16 = 0.016149999999999998 * s2 * s3 - 0.016149999999999998 * c2 * c3;
+  const double t17 = -s4 * t15 - c4 * t16;
+  const double t18 = t17 - 0.093 * t4;
+  const double t19 = 0.425 * c2 - 0.39225 * t0;
+  const double t20 = -s5 * t18 + c5 * t19;
+  const double t21 = t20 - 0.09465 * t3;
+  const double t22 = t9 * beta[51] + t5 * beta[49] + t21 * beta[52];
+  const double t23 = t6 * beta[49] + t9 * beta[48] + t5 * beta[47] - t21 * beta[53];
+  const double t24 = c5 * t18 + s5 * t19;
+  const double t25 = t4 * beta[40] + t9 * beta[39] + t3 * beta[38] + c6 * t22 - s6 * t23 - t24 * beta[42] + t20 * beta[41];
+  const double t26 = t2 * beta[27] - 0.093 * t14 + t25 + t19 * beta[30];
+  const double t27 = t24 + 0.09465 * t9;
+  const double t28 = c4 * t15 - s4 * t16;
+  const double t29 = t28 + 0.093 * t2;
+  const double t30 = t6 * beta[51] + t9 * beta[50] + t5 * beta[48] - (s6 * t27 + c6 * t29) * beta[52] + (c6 * t27 - s6 * t29) * beta[53];
+  const double t31 = t4 * beta[39] + t3 * beta[37] + 0.09465 * t12 + t30 - t29 * beta[41];
+  const double t32 = t4 * beta[38] + t9 * beta[37] + t3 * beta[36] + s6 * t22 + c6 * t23 - 0.09465 * t7 + t29 * beta[42];
+  const double t33 = -t9 * beta[41] + t3 * beta[42] + c6 * t10 - s6 * t11;
+  const double t34 = t4 * beta[27] + t2 * beta[25] - s5 * t31 + c5 * t32 + 0.093 * t33 - t19 * beta[31];
+  const double t35 = t0 * beta[16] - s4 * t26 - c4 * t34 + 0.425 * c2 * beta[19];
+  const double t36 = -t2 * beta[31] + t4 * beta[30] + c5 * t8 + s5 * t13;
+  const double t37 = t1 * beta[16] + t0 * beta[14] + c4 * t26 - s4 * t34 - 0.39225 * t36 - 0.425 * c2 * beta[20];
+  const double t38 = -s4 * t33 - c4 * t14;
+  const double t39 = c4 * t33 - s4 * t14;
+  const double t40 = s3 * t38 + c3 * t39;
+  const double t41 = c3 * t38 - s3 * t39;
+  M[0] = beta[0] - s2 * (-c2 * beta[6] + c3 * t35 - s3 * t37 + 0.1197 * t40) - c2 * (-s2 * beta[6] - c2 * beta[4] + s3 * t35 + c3 * t37 - 0.425 * (-t0 * beta[20] + t1 * beta[19] + t36) - 0.1197 * t41) - 0.13585 * (c2 * t41 - s2 * t40);
+  const double t42 = s5 * c6;
+  const double t43 = s5 * s6;
+  const double t44 = -t42 * beta[53] + t43 * beta[52];
+  const double t45 = -c5 * beta[52];
+  const double t46 = c5 * beta[53];
+  const double t47 = s6 * t45 + c6 * t46;
+  const double t48 = -s5 * t44 + c5 * t47;
+  const double t49 = -0.093 * t48;
+  const double t50 = c5 * beta[39];
+  const double t51 = s5 * beta[38];
+  const double t52 = c5 * beta[51];
+  const double t53 = t42 * beta[49];
+  const double t54 = 0.39225 + 0.425 * c3;
+  const double t55 = -s4 * t54 - 0.425 * s3 * c4;
+  const double t56 = -s5 * t55;
+  const double t57 = -0.09465 * s5;
+  const double t58 = t56 + t57;
+  const double t59 = t52 + t53 + t58 * beta[52];
+  const double t60 = t43 * beta[49];
+  const double t61 = c5 * beta[48];
+  const double t62 = t42 * beta[47];
+  const double t63 = t60 + t61 + t62 - t58 * beta[53];
+  const double t64 = c5 * t55;
+  const double t65 = t50 + t51 + c6 * t59 - s6 * t63 - t64 * beta[42] + t56 * beta[41];
+  const double t66 = beta[29] + t49 + t65;
+  const double t67 = s5 * beta[37];
+  const double t68 = 0.09465 * t47;
+  const double t69 = t43 * beta[51];
+  const double t70 = c5 * beta[50];
+  const double t71 = t42 * beta[48];
+  const double t72 = 0.09465 * c5;
+  const double t73 = t64 + t72;
+  const double t74 = c4 * t54 - 0.425 * s3 * s4;
+  const double t75 = t69 + t70 + t71 - (s6 * t73 + c6 * t74) * beta[52] + (c6 * t73 - s6 * t74) * beta[53];
+  const double t76 = t67 + t68 + t75 - t74 * beta[41];
+  const double t77 = c5 * beta[37];
+  const double t78 = s5 * beta[36];
+  const double t79 = -0.09465 * t44;
+  const double t80 = t77 + t78 + s6 * t59 + c6 * t63 + t79 + t74 * beta[42];
+  const double t81 = -c5 * beta[41] + s5 * beta[42] + c6 * t45 - s6 * t46;
+  const double t82 = 0.093 * t81;
+  const double t83 = beta[26] - s5 * t76 + c5 * t80 + t82;
+  const double t84 = beta[18] - s4 * t66 - c4 * t83;
+  const double t85 = c5 * t44 + s5 * t47;
+  const double t86 = -0.39225 * t85;
+  const double t87 = beta[15] + c4 * t66 - s4 * t83 + t86;
+  const double t88 = -beta[30] + t81;
+  const double t89 = beta[31] + t48;
+  const double t90 = -s4 * t88 - c4 * t89;
+  const double t91 = -beta[19] + t90;
+  const double t92 = c4 * t88 - s4 * t89;
+  const double t93 = beta[20] + t92;
+  const double t94 = s3 * t91 + c3 * t93;
+  const double t95 = 0.1197 * t94;
+  const double t96 = -0.425 * t85;
+  const double t97 = c3 * t91 - s3 * t93;
+  const double t98 = -0.1197 * t97;
+  M[1] = -s2 * (beta[8] + c3 * t84 - s3 * t87 + t95) - c2 * (beta[5] + s3 * t84 + c3 * t87 + t96 + t98) - 0.13585 * (c2 * (-beta[9] + t97) - s2 * (beta[10] + t94));
+  const double t99 = 0.39225 * s4 * s5;
+  const double t100 = t57 + t99;
+  const double t101 = t52 + t53 + t100 * beta[52];
+  const double t102 = t60 + t61 + t62 - t100 * beta[53];
+  const double t103 = -0.39225 * s4 * c5;
+  const double t104 = t50 + t51 + c6 * t101 - s6 * t102 - t103 * beta[42] + t99 * beta[41];
+  const double t105 = beta[29] + t49 + t104;
+  const double t106 = t72 + t103;
+  const double t107 = t69 + t70 + t71 - (s6 * t106 + 0.39225 * c4 * c6) * beta[52] + (c6 * t106 - 0.39225 * c4 * s6) * beta[53];
+  const double t108 = t67 + t68 + t107 - 0.39225 * c4 * beta[41];
+  const double t109 = t77 + t78 + t79 + s6 * t101 + c6 * t102 + 0.39225 * c4 * beta[42];
+  const double t110 = beta[26] + t82 - s5 * t108 + c5 * t109;
+  const double t111 = beta[18] - s4 * t105 - c4 * t110;
+  const double t112 = beta[15] + t86 + c4 * t105 - s4 * t110;
+  M[2] = -s2 * (t95 + c3 * t111 - s3 * t112) - c2 * (t96 + t98 + s3 * t111 + c3 * t112) - 0.13585 * (c2 * t97 - s2 * t94);
+  const double t113 = t52 + t53 - 0.09465 * s5 * beta[52];
+  const double t114 = t60 + t61 + t62 + 0.09465 * s5 * beta[53];
+  const double t115 = t50 + t51 + c6 * t113 - s6 * t114;
+  const double t116 = beta[29] + t49 + t115;
+  const double t117 = t69 + t70 + t71 - 0.09465 * c5 * s6 * beta[52] + 0.09465 * c5 * c6 * beta[53];
+  const double t118 = t67 + t68 + t117;
+  const double t119 = t77 + t78 + t79 + s6 * t113 + c6 * t114;
+  const double t120 = beta[26] + t82 - s5 * t118 + c5 * t119;
+  const double t121 = -s4 * t116 - c4 * t120;
+  const double t122 = t86 + c4 * t116 - s4 * t120;
+  const double t123 = s3 * t90 + c3 * t92;
+  const double t124 = c3 * t90 - s3 * t92;
+  M[3] = -s2 * (c3 * t121 - s3 * t122 + 0.1197 * t123) - c2 * (t96 + s3 * t121 + c3 * t122 - 0.1197 * t124) - 0.13585 * (c2 * t124 - s2 * t123);
+  const double t125 = s6 * beta[53] + c6 * beta[52];
+  const double t126 = beta[41] + t125;
+  const double t127 = -s5 * t126 - c5 * beta[42];
+  const double t128 = -s6 * beta[49];
+  const double t129 = c6 * beta[49] - s6 * beta[47];
+  const double t130 = beta[40] + c6 * t128 - s6 * t129;
+  const double t131 = -0.093 * t127 + t130;
+  const double t132 = c6 * beta[51] - s6 * beta[48];
+  const double t133 = beta[39] + t132;
+  const double t134 = beta[38] + s6 * t128 + c6 * t129 - 0.09465 * t125;
+  const double t135 = -s5 * t133 + c5 * t134;
+  const double t136 = -s4 * t131 - c4 * t135;
+  const double t137 = c5 * t126 - s5 * beta[42];
+  const double t138 = c4 * t131 - s4 * t135 - 0.39225 * t137;
+  const double t139 = -c4 * t127;
+  const double t140 = -s4 * t127;
+  const double t141 = s3 * t139 + c3 * t140;
+  const double t142 = c3 * t139 - s3 * t140;
+  M[4] = -s2 * (c3 * t136 - s3 * t138 + 0.1197 * t141) - c2 * (s3 * t136 + c3 * t138 - 0.425 * t137 - 0.1197 * t142) - 0.13585 * (c2 * t142 - s2 * t141);
+  const double t143 = -s6 * beta[52] + c6 * beta[53];
+  const double t144 = c5 * t143;
+  const double t145 = t132 - 0.093 * t144;
+  const double t146 = beta[50] + 0.09465 * t143;
+  const double t147 = s6 * beta[51] + c6 * beta[48];
+  const double t148 = -c6 * beta[52] - s6 * beta[53];
+  const double t149 = -s5 * t146 + c5 * t147 + 0.093 * t148;
+  const double t150 = -s4 * t145 - c4 * t149;
+  const double t151 = s5 * t143;
+  const double t152 = c4 * t145 - s4 * t149 - 0.39225 * t151;
+  const double t153 = -s4 * t148 - c4 * t144;
+  const double t154 = c4 * t148 - s4 * t144;
+  const double t155 = s3 * t153 + c3 * t154;
+  const double t156 = c3 * t153 - s3 * t154;
+  M[5] = -s2 * (c3 * t150 - s3 * t152 + 0.1197 * t155) - c2 * (s3 * t150 + c3 * t152 - 0.425 * t151 - 0.1197 * t156) - 0.13585 * (c2 * t156 - s2 * t155);
+  const double t157 = t4 * beta[29] + t2 * beta[26] + c5 * t31 + s5 * t32 - t28 * beta[30] + t17 * beta[31];
+  const double t158 = t1 * beta[18] + t0 * beta[15] + 0.39225 * t39 + t157 - t16 * beta[19] + t15 * beta[20];
+  M[6] = -s2 * beta[8] - c2 * beta[5] + 0.425 * t40 + t158 + 0.13585 * c2 * beta[9] + 0.13585 * s2 * beta[10];
+  const double t159 = 0.425 * t94;
+  const double t160 = 0.39225 * t92;
+  const double t161 = beta[28] + c5 * t76 + s5 * t80 - t74 * beta[30] + t55 * beta[31];
+  const double t162 = beta[17] + t160 + t161 - 0.425 * s3 * beta[19] + 0.425 * c3 * beta[20];
+  M[7] = beta[7] + t159 + t162;
+  const double t163 = beta[28] + c5 * t108 + s5 * t109 - 0.39225 * c4 * beta[30] - 0.39225 * s4 * beta[31];
+  const double t164 = beta[17] + t160 + t163;
+  M[8] = t159 + t164;
+  const double t165 = beta[28] + c5 * t118 + s5 * t119;
+  const double t166 = t160 + t165;
+  M[9] = 0.425 * t123 + t166;
+  const double t167 = c5 * t133 + s5 * t134;
+  const double t168 = 0.39225 * t140 + t167;
+  M[10] = 0.425 * t141 + t168;
+  const double t169 = c5 * t146 + s5 * t147;
+  const double t170 = 0.39225 * t154 + t169;
+  M[11] = 0.425 * t155 + t170;
+  M[12] = t158;
+  M[13] = t162;
+  M[14] = beta[21] + t164;
+  M[15] = t166;
+  M[16] = t168;
+  M[17] = t170;
+  M[18] = t157;
+  M[19] = t161;
+  M[20] = t163;
+  M[21] = beta[32] + t165;
+  M[22] = t167;
+  M[23] = t169;
+  M[24] = t25;
+  M[25] = t65;
+  M[26] = t104;
+  M[27] = t115;
+  M[28] = beta[43] + t130;
+  M[29] = t132;
+  M[30] = t30;
+  M[31] = t75;
+  M[32] = t107;
+  M[33] = t117;
+  M[34] = t132;
+  M[35] = beta[50] + beta[54];
+}
+
+// mass_matrix with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
+// computing them; identical results.
+void mass_matrix_sincos(const float* q, const float* sin_q, const float* cos_q, const float* beta,
+                        float* M) {
+  static_cast<void>(q);
+  const float s2 = sin_q[1];
+  const float c2 = cos_q[1];
+  const float s3 = sin_q[2];
+  const float c3 = cos_q[2];
+  const float s4 = sin_q[3];
+  const float c4 = cos_q[3];
+  const float s5 = sin_q[4];
+  const float c5 = cos_q[4];
+  const float s6 = sin_q[5];
+  const float c6 = cos_q[5];
+  const float t0 = -c2 * c3 + s2 * s3;
+  const float t1 = -c2 * s3 - s2 * c3;
+  const float t2 = -s4 * t0 - c4 * t1;
+  const float t3 = c5 * t2;
+  const float t4 = c4 * t0 - s4 * t1;
+  const float t5 = c6 * t3 - s6 * t4;
+  const float t6 = s6 * t3 + c6 * t4;
+  const float t7 = -t5 * beta[53] + t6 * beta[52];
+  const float t8 = t7 + t4 * beta[41];
+  const float t9 = -s5 * t2;
+  const float t10 = -t9 * beta[52];
+  const float t11 = t9 * beta[53];
+  const float t12 = s6 * t10 + c6 * t11;
+  const float t13 = -t4 * beta[42] + t12;
+  const float t14 = -s5 * t8 + c5 * t13;
+  const float t15 = 0.01615f * s2 * c3 + 0.01615f * c2 * s3;
+  const float t16 = 0.01615f * s2 * s3 - 0.01615f * c2 * c3;
+  const float t17 = -s4 * t15 - c4 * t16;
+  const float t18 = t17 - 0.093f * t4;
+  const float t19 = 0.425f * c2 - 0.39225f * t0;
+  const float t20 = -s5 * t18 + c5 * t19;
+  const float t21 = t20 - 0.09465f * t3;
+  const float t22 = t9 * beta[51] + t5 * beta[49] + t21 * beta[52];
+  const float t23 = t6 * beta[49] + t9 * beta[48] + t5 * beta[47] - t21 * beta[53];
+  const float t24 = c5 * t18 + s5 * t19;
+  const float t25 = t4 * beta[40] + t9 * beta[39] + t3 * beta[38] + c6 * t22 - s6 * t23 - t24 * beta[42] + t20 * beta[41];
+  const float t26 = t2 * beta[27] - 0.093f * t14 + t25 + t19 * beta[30];
+  const float t27 = t24 + 0.09465f * t9;
+  const float t28 = c4 * t15 - s4 * t16;
+  const float t29 = t28 + 0.093f * t2;
+  const float t30 = t6 * beta[51] + t9 * beta[50] + t5 * beta[48] - (s6 * t27 + c6 * t29) * beta[52] + (c6 * t27 - s6 * t29) * beta[53];
+  const float t31 = t4 * beta[39] + t3 * beta[37] + 0.09465f * t12 + t30 - t29 * beta[41];
+  const float t32 = t4 * beta[38] + t9 * beta[37] + t3 * beta[36] + s6 * t22 + c6 * t23 - 0.09465f * t7 + t29 * beta[42];
+  const float t33 = -t9 * beta[41] + t3 * beta[42] + c6 * t10 - s6 * t11;
+  const float t34 = t4 * beta[27] + t2 * beta[25] - s5 * t31 + c5 * t32 + 0.093f * t33 - t19 * beta[31];
+  const float t35 = t0 * beta[16] - s4 * t26 - c4 * t34 + 0.425f * c2 * beta[19];
+  const float t36 = -t2 * beta[31] + t4 * beta[30] + c5 * t8 + s5 * t13;
+  const float t37 = t1 * beta[16] + t0 * beta[14] + c4 * t26 - s4 * t34 - 0.39225f * t36 - 0.425f * c2 * beta[20];
+  const float t38 = -s4 * t33 - c4 * t14;
+  const float t39 = c4 * t33 - s4 * t14;
+  const float t40 = s3 * t38 + c3 * t39;
+  const float t41 = c3 * t38 - s3 * t39;
+  M[0] = beta[0] - s2 * (-c2 * beta[6] + c3 * t35 - s3 * t37 + 0.1197f * t40) - c2 * (-s2 * beta[6] - c2 * beta[4] + s3 * t35 + c3 * t37 - 0.425f * (-t0 * beta[20] + t1 * beta[19] + t36) - 0.1197f * t41) - 0.13585f * (c2 * t41 - s2 * t40);
+  const float t42 = s5 * c6;
+  const float t43 = s5 * s6;
+  const float t44 = -t42 * beta[53] + t43 * beta[52];
+  const float t45 = -c5 * beta[52];
+  const float t46 = c5 * beta[53];
+  const float t47 = s6 * t45 + c6 * t46;
+  const float t48 = -s5 * t44 + c5 * t47;
+  const float t49 = -0.093f * t48;
+  const float t50 = c5 * beta[39];
+  const float t51 = s5 * beta[38];
+  const float t52 = c5 * beta[51];
+  const float t53 = t42 * beta[49];
+  const float t54 = 0.39225f + 0.425f * c3;
+  const float t55 = -s4 * t54 - 0.425f * s3 * c4;
+  const float t56 = -s5 * t55;
+  const float t57 = -0.09465f * s5;
+  const float t58 = t56 + t57;
+  const float t59 = t52 + t53 + t58 * beta[52];
+  const float t60 = t43 * beta[49];
+  const float t61 = c5 * beta[48];
+  const float t62 = t42 * beta[47];
+  const float t63 = t60 + t61 + t62 - t58 * beta[53];
+  const float t64 = c5 * t55;
+  const float t65 = t50 + t51 + c6 * t59 - s6 * t63 - t64 * beta[42] + t56 * beta[41];
+  const float t66 = beta[29] + t49 + t65;
+  const float t67 = s5 * beta[37];
+  const float t68 = 0.09465f * t47;
+  const float t69 = t43 * beta[51];
+  const float t70 = c5 * beta[50];
+  const float t71 = t42 * beta[48];
+  const float t72 = 0.09465f * c5;
+  const float t73 = t64 + t72;
+  const float t74 = c4 * t54 - 0.425f * s3 * s4;
+  const float t75 = t69 + t70 + t71 - (s6 * t73 + c6 * t74) * beta[52] + (c6 * t73 - s6 * t74) * beta[53];
+  const float t76 = t67 + t68 + t75 - t74 * beta[41];
+  const float t77 = c5 * beta[37];
+  const float t78 = s5 * beta[36];
+  const float t79 = -0.09465f * t44;
+  const float t80 = t77 + t78 + s6 * t59 + c6 * t63 + t79 + t74 * beta[42];
+  const float t81 = -c5 * beta[41] + s5 * beta[42] + c6 * t45 - s6 * t46;
+  const float t82 = 0.093f * t81;
+  const float t83 = beta[26] - s5 * t76 + c5 * t80 + t82;
+  const float t84 = beta[18] - s4 * t66 - c4 * t83;
+  const float t85 = c5 * t44 + s5 * t47;
+  const float t86 = -0.39225f * t85;
+  const float t87 = beta[15] + c4 * t66 - s4 * t83 + t86;
+  const float t88 = -beta[30] + t81;
+  const float t89 = beta[31] + t48;
+  const float t90 = -s4 * t88 - c4 * t89;
+  const float t91 = -beta[19] + t90;
+  const float t92 = c4 * t88 - s4 * t89;
+  const float t93 = beta[20] + t92;
+  const float t94 = s3 * t91 + c3 * t93;
+  const float t95 = 0.1197f * t94;
+  const float t96 = -0.425f * t85;
+  const float t97 = c3 * t91 - s3 * t93;
+  const float t98 = -0.1197f * t97;
+  M[1] = -s2 * (beta[8] + c3 * t84 - s3 * t87 + t95) - c2 * (beta[5] + s3 * t84 + c3 * t87 + t96 + t98) - 0.13585f * (c2 * (-beta[9] + t97) - s2 * (beta[10] + t94));
+  const float t99 = 0.39225f * s4 * s5;
+  const float t100 = t57 + t99;
+  const float t101 = t52 + t53 + t100 * beta[52];
+  const float t102 = t60 + t61 + t62 - t100 * beta[53];
+  const float t103 = -0.39225f * s4 * c5;
+  const float t104 = t50 + t51 + c6 * t101 - s6 * t102 - t103 * beta[42] + t99 * beta[41];
+  const float t105 = beta[29] + t49 + t104;
+  const float t106 = t72 + t103;
+  const float t107 = t69 + t70 + t71 - (s6 * t106 + 0.39225f * c4 * c6) * beta[52] + (c6 * t106 - 0.39225f * c4 * s6) * beta[53];
+  const float t108 = t67 + t68 + t107 - 0.39225f * c4 * beta[41];
+  const float t109 = t77 + t78 + t79 + s6 * t101 + c6 * t102 + 0.39225f * c4 * beta[42];
+  const float t110 = beta[26] + t82 - s5 * t108 + c5 * t109;
+  const float t111 = beta[18] - s4 * t105 - c4 * t110;
+  const float t112 = beta[15] + t86 + c4 * t105 - s4 * t110;
+  M[2] = -s2 * (t95 + c3 * t111 - s3 * t112) - c2 * (t96 + t98 + s3 * t111 + c3 * t112) - 0.13585f * (c2 * t97 - s2 * t94);
+  const float t113 = t52 + t53 - 0.09465f * s5 * beta[52];
+  const float t114 = t60 + t61 + t62 + 0.09465f * s5 * beta[53];
+  const float t115 = t50 + t51 + c6 * t113 - s6 * t114;
+  const float t116 = beta[29] + t49 + t115;
+  const float t117 = t69 + t70 + t71 - 0.09465f * c5 * s6 * beta[52] + 0.09465f * c5 * c6 * beta[53];
+  const float t118 = t67 + t68 + t117;
+  const float t119 = t77 + t78 + t79 + s6 * t113 + c6 * t114;
+  const float t120 = beta[26] + t82 - s5 * t118 + c5 * t119;
+  const float t121 = -s4 * t116 - c4 * t120;
+  const float t122 = t86 + c4 * t116 - s4 * t120;
+  const float t123 = s3 * t90 + c3 * t92;
+  const float t124 = c3 * t90 - s3 * t92;
+  M[3] = -s2 * (c3 * t121 - s3 * t122 + 0.1197f * t123) - c2 * (t96 + s3 * t121 + c3 * t122 - 0.1197f * t124) - 0.13585f * (c2 * t124 - s2 * t123);
+  const float t125 = s6 * beta[53] + c6 * beta[52];
+  const float t126 = beta[41] + t125;
+  const float t127 = -s5 * t126 - c5 * beta[42];
+  const float t128 = -s6 * beta[49];
+  const float t129 = c6 * beta[49] - s6 * beta[47];
+  const float t130 = beta[40] + c6 * t128 - s6 * t129;
+  const float t131 = -0.093f * t127 + t130;
+  const float t132 = c6 * beta[51] - s6 * beta[48];
+  const float t133 = beta[39] + t132;
+  const float t134 = beta[38] + s6 * t128 + c6 * t129 - 0.09465f * t125;
+  const float t135 = -s5 * t133 + c5 * t134;
+  const float t136 = -s4 * t131 - c4 * t135;
+  const float t137 = c5 * t126 - s5 * beta[42];
+  const float t138 = c4 * t131 - s4 * t135 - 0.39225f * t137;
+  const float t139 = -c4 * t127;
+  const float t140 = -s4 * t127;
+  const float t141 = s3 * t139 + c3 * t140;
+  const float t142 = c3 * t139 - s3 * t140;
+  M[4] = -s2 * (c3 * t136 - s3 * t138 + 0.1197f * t141) - c2 * (s3 * t136 + c3 * t138 - 0.425f * t137 - 0.1197f * t142) - 0.13585f * (c2 * t142 - s2 * t141);
+  const float t143 = -s6 * beta[52] + c6 * beta[53];
+  const float t144 = c5 * t143;
+  const float t145 = t132 - 0.093f * t144;
+  const float t146 = beta[50] + 0.09465f * t143;
+  const float t147 = s6 * beta[51] + c6 * beta[48];
+  const float t148 = -c6 * beta[52] - s6 * beta[53];
+  const float t149 = -s5 * t146 + c5 * t147 + 0.093f * t148;
+  const float t150 = -s4 * t145 - c4 * t149;
+  const float t151 = s5 * t143;
+  const float t152 = c4 * t145 - s4 * t149 - 0.39225f * t151;
+  const float t153 = -s4 * t148 - c4 * t144;
+  const float t154 = c4 * t148 - s4 * t144;
+  const float t155 = s3 * t153 + c3 * t154;
+  const float t156 = c3 * t153 - s3 * t154;
+  M[5] = -s2 * (c3 * t150 - s3 * t152 + 0.1197f * t155) - c2 * (s3 * t150 + c3 * t152 - 0.425f * t151 - 0.1197f * t156) - 0.13585f * (c2 * t156 - s2 * t155);
+  const float t157 = t4 * beta[29] + t2 * beta[26] + c5 * t31 + s5 * t32 - t28 * beta[30] + t17 * beta[31];
+  const float t158 = t1 * beta[18] + t0 * beta[15] + 0.39225f * t39 + t157 - t16 * beta[19] + t15 * beta[20];
+  M[6] = -s2 * beta[8] - c2 * beta[5] + 0.425f * t40 + t158 + 0.13585f * c2 * beta[9] + 0.13585f * s2 * beta[10];
+  const float t159 = 0.425f * t94;
+  const float t160 = 0.39225f * t92;
+  const float t161 = beta[28] + c5 * t76 + s5 * t80 - t74 * beta[30] + t55 * beta[31];
+  const float t162 = beta[17] + t160 + t161 - 0.425f * s3 * beta[19] + 0.425f * c3 * beta[20];
+  M[7] = beta[7] + t159 + t162;
+  const float t163 = beta[28] + c5 * t108 + s5 * t109 - 0.39225f * c4 * beta[30] - 0.39225f * s4 * beta[31];
+  const float t164 = beta[17] + t160 + t163;
+  M[8] = t159 + t164;
+  const float t165 = beta[28] + c5 * t118 + s5 * t119;
+  const float t166 = t160 + t165;
+  M[9] = 0.425f * t123 + t166;
+  const float t167 = c5 * t133 + s5 * t134;
+  const float t168 = 0.39225f * t140 + t167;
+  M[10] = 0.425f * t141 + t168;
+  const float t169 = c5 * t146 + s5 * t147;
+  const float t170 = 0.39225f * t154 + t169;
+  M[11] = 0.425f * t155 + t170;
+  M[12] = t158;
+  M[13] = t162;
+  M[14] = beta[21] + t164;
+  M[15] = t166;
+  M[16] = t168;
+  M[17] = t170;
+  M[18] = t157;
+  M[19] = t161;
+  M[20] = t163;
+  M[21] = beta[32] + t165;
+  M[22] = t167;
+  M[23] = t169;
+  M[24] = t25;
+  M[25] = t65;
+  M[26] = t104;
+  M[27] = t115;
+  M[28] = beta[43] + t130;
+  M[29] = t132;
+  M[30] = t30;
+  M[31] = t75;
+  M[32] = t107;
+  M[33] = t117;
+  M[34] = t132;
+  M[35] = beta[50] + beta[54];
 }
 
 // Jacobian of inverse_dynamics with respect to the state x = [q, dq, ddq] (3 kDof values), for
@@ -9436,7 +10334,8 @@ void power_regressor(const float* q, const float* dq, const float* ddq, float* d
   dh[57] = dq[5];  // OFF6
 }
 
-// energy_regressor with sin_q, cos_q (kDof each) from joint_sincos(q, ...); identical results.
+// energy_regressor with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
+// computing them; identical results.
 void energy_regressor_sincos(const double* q, const double* sin_q, const double* cos_q,
                              const double* dq, double* h) {
   static_cast<void>(q);
@@ -9545,7 +10444,8 @@ void energy_regressor_sincos(const double* q, const double* sin_q, const double*
   h[57] = 0.0;  // OFF6
 }
 
-// energy_regressor with sin_q, cos_q (kDof each) from joint_sincos(q, ...); identical results.
+// energy_regressor with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
+// computing them; identical results.
 void energy_regressor_sincos(const float* q, const float* sin_q, const float* cos_q,
                              const float* dq, float* h) {
   static_cast<void>(q);
@@ -9654,7 +10554,8 @@ void energy_regressor_sincos(const float* q, const float* sin_q, const float* co
   h[57] = 0.0f;  // OFF6
 }
 
-// power_regressor with sin_q, cos_q (kDof each) from joint_sincos(q, ...); identical results.
+// power_regressor with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
+// computing them; identical results.
 void power_regressor_sincos(const double* q, const double* sin_q, const double* cos_q,
                             const double* dq, const double* ddq, double* dh) {
   static_cast<void>(q);
@@ -9804,7 +10705,8 @@ void power_regressor_sincos(const double* q, const double* sin_q, const double* 
   dh[57] = dq[5];  // OFF6
 }
 
-// power_regressor with sin_q, cos_q (kDof each) from joint_sincos(q, ...); identical results.
+// power_regressor with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
+// computing them; identical results.
 void power_regressor_sincos(const float* q, const float* sin_q, const float* cos_q,
                             const float* dq, const float* ddq, float* dh) {
   static_cast<void>(q);
@@ -9962,8 +10864,8 @@ void power_regressor_sincos(const float* q, const float* sin_q, const float* cos
 // < 0 and the mean of both if 0 (eq. 8), tau_M = tau_T + JM ddq_M + Rv dq_M + Rc sign(dq_M)
 // (eq. 7). Units follow K: N m on the motor side when K holds gear ratios, on the link side
 // (as in the paper) when it is the coupling alone. Every Rz must be non-zero.
-void drive_torque(const double* q, const double* dq, const double* ddq,
-                  const double* theta, double* tau_M) {
+void drive_torque(const double* q, const double* dq, const double* ddq, const double* theta,
+                  double* tau_M) {
   const double sg1 = static_cast<double>((dq[0] > 0.0) - (dq[0] < 0.0));
   const double s2 = std::sin(q[1]);
   const double c2 = std::cos(q[1]);
@@ -10118,8 +11020,8 @@ void drive_torque(const double* q, const double* dq, const double* ddq,
 // < 0 and the mean of both if 0 (eq. 8), tau_M = tau_T + JM ddq_M + Rv dq_M + Rc sign(dq_M)
 // (eq. 7). Units follow K: N m on the motor side when K holds gear ratios, on the link side
 // (as in the paper) when it is the coupling alone. Every Rz must be non-zero.
-void drive_torque(const float* q, const float* dq, const float* ddq,
-                  const float* theta, float* tau_M) {
+void drive_torque(const float* q, const float* dq, const float* ddq, const float* theta,
+                  float* tau_M) {
   const float sg1 = static_cast<float>((dq[0] > 0.0f) - (dq[0] < 0.0f));
   const float s2 = std::sin(q[1]);
   const float c2 = std::cos(q[1]);
@@ -10842,8 +11744,8 @@ void drive_torque_jacobian(const double* q, const double* dq, const double* ddq,
 // efficiency branch and the Coulomb friction sign count as constant: exact wherever no motor
 // velocity and no power flow tau'_G dq_M is zero. Calls idim_regressor_standard into a local
 // array of kDof * kStandardParams values (on the stack) and applies the chain rule to it.
-void drive_torque_jacobian(const float* q, const float* dq, const float* ddq,
-                           const float* theta, float* tau_M, float* J) {
+void drive_torque_jacobian(const float* q, const float* dq, const float* ddq, const float* theta,
+                           float* tau_M, float* J) {
   float W_std[kDof * kStandardParams] = {};
   idim_regressor_standard(q, dq, ddq, W_std);
   const float sg1 = static_cast<float>((dq[0] > 0.0f) - (dq[0] < 0.0f));

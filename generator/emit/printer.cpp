@@ -8,6 +8,21 @@
 
 namespace modelgen::gen {
 
+void CodeWriter::lines_of(std::string_view text) {
+  std::size_t start = 0;
+  while (start < text.size()) {
+    std::size_t end = text.find('\n', start);
+    if (end == std::string_view::npos) end = text.size();
+    lines_.emplace_back(text.substr(start, end - start));
+    start = end + 1;
+  }
+}
+
+std::string without_final_newline(std::string text) {
+  if (!text.empty() && text.back() == '\n') text.pop_back();
+  return text;
+}
+
 Printer& Printer::set(std::string_view name, std::string_view value) {
   values_[std::string(name)] = std::string(value);
   return *this;

@@ -17,11 +17,16 @@ class CodeWriter {
  public:
   void line(std::string_view text) { lines_.emplace_back(text); }
   void blank() { lines_.emplace_back(); }
+  /// Each line of `text` (a final newline ends the last line, it does not start another).
+  void lines_of(std::string_view text);
   const std::vector<std::string>& lines() const { return lines_; }
 
  private:
   std::vector<std::string> lines_;
 };
+
+/// `text` without its final newline, if it has one (a rendered template used as a value).
+std::string without_final_newline(std::string text);
 
 class Printer {
  public:

@@ -11,16 +11,16 @@
 
 namespace modelgen::gen {
 
-namespace {
-
-std::string render_line(const char* template_name,
-                        const std::vector<std::pair<const char*, std::string>>& values) {
+std::string render_statement(std::string_view template_name,
+                             const std::vector<std::pair<const char*, std::string>>& values) {
   Printer printer(embedded_template(template_name));
   for (const auto& [name, value] : values) printer.set(name, value);
   std::string text = printer.render();
   if (!text.empty() && text.back() == '\n') text.pop_back();
   return text;
 }
+
+namespace {
 
 class StatementWriter {
  public:
@@ -40,10 +40,12 @@ class StatementWriter {
       prepare(out.value, body);
       const std::string value = expression(out.value, Context::kTop);
       if (out.comment.empty()) {
-        body.push_back(render_line("statements/output", {{"target", out.target}, {"value", value}}));
+        body.push_back(
+            render_statement("statements/output", {{"target", out.target}, {"value", value}}));
       } else {
-        body.push_back(render_line("statements/output_named",
-                                   {{"target", out.target}, {"value", value}, {"comment", out.comment}}));
+        body.push_back(render_statement(
+            "statements/output_named",
+            {{"target", out.target}, {"value", value}, {"comment", out.comment}}));
       }
     }
     FunctionBody result;
@@ -102,11 +104,11 @@ class StatementWriter {
     for (ExprId arg : n.args) prepare(arg, body);
     if (n.op == Op::kSign) {
       name_[id] = "t" + std::to_string(temporaries_++);
-      body.push_back(render_line("statements/sign_of",
-                                 {{"scalar", scalar_name(scalar_)},
-                                  {"name", name_[id]},
-                                  {"value", expression(n.args[0], Context::kFactor)},
-                                  {"zero", format_literal(0.0, scalar_)}}));
+      body.push_back(render_statement("statements/sign_of",
+                                      {{"scalar", scalar_name(scalar_)},
+                                       {"name", name_[id]},
+                                       {"value", expression(n.args[0], Context::kFactor)},
+                                       {"zero", format_literal(0.0, scalar_)}}));
       return;
     }
     if (n.op == Op::kShare && !name_[n.args[0]].empty()) {
@@ -116,8 +118,9 @@ class StatementWriter {
     if (uses_[id] >= 2) {
       const std::string value = expression(id, Context::kTop);
       name_[id] = "t" + std::to_string(temporaries_++);
-      body.push_back(render_line("statements/temporary",
-                                 {{"scalar", scalar_name(scalar_)}, {"name", name_[id]}, {"value", value}}));
+      body.push_back(render_statement(
+          "statements/temporary",
+          {{"scalar", scalar_name(scalar_)}, {"name", name_[id]}, {"value", value}}));
     }
   }
 
@@ -148,7 +151,7 @@ class StatementWriter {
       if (!trig) {
         values.push_back({"zero", zero});
       }
-      lines.push_back(render_line(tmpl, values));
+      lines.push_back(render_statement(tmpl, values));
     }
   }
 

@@ -5,6 +5,8 @@
 #pragma once
 
 #include <string>
+#include <string_view>
+#include <utility>
 #include <vector>
 
 #include "generator/emit/number_format.hpp"
@@ -32,6 +34,11 @@ struct FunctionBody {
 /// Where sin and cos of the joint variables come from: computed in the body (std::sin,
 /// std::cos), or read from the caller's arrays sin_q[i] and cos_q[i].
 enum class TrigSource { kCompute, kGiven };
+
+/// One statement from a templates/statements/*.tmpl template ("statements/output"), filled with
+/// `values`, without its final newline.
+std::string render_statement(std::string_view template_name,
+                             const std::vector<std::pair<const char*, std::string>>& values);
 
 FunctionBody write_statements(const ExprGraph& graph, const std::vector<FunctionOutput>& outputs,
                               Scalar scalar, TrigSource trig = TrigSource::kCompute);

@@ -3,7 +3,6 @@
 // once through the modelgen executable give the same bytes. This proves the checked-in code was
 // regenerated and reviewed, not that it is correct (numeric_diff_test does that).
 
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <set>
@@ -12,6 +11,7 @@
 #include <gtest/gtest.h>
 
 #include "generator/generate.hpp"
+#include "tests/support/cli_runner.hpp"
 #include "tests/support/test_support.hpp"
 
 namespace modelgen::gen {
@@ -97,9 +97,9 @@ TEST(GeneratedUpToDate, GenerationIsDeterministic) {
   const GeneratedModel second = generate_from_file(description, {});
   const fs::path directory = fs::path(testing::TempDir()) / "modelgen_determinism";
   fs::remove_all(directory);
-  const std::string modelgen = std::string(MODELGEN_BINARY_DIR) + "/bin/modelgen";
-  const std::string command = "'" + modelgen + "' '" + description + "' -o '" + directory.string() + "'";
-  ASSERT_EQ(std::system(command.c_str()), 0) << command;
+  const test::CliRun run =
+      test::modelgen(test::quoted(description) + " -o " + test::quoted(directory));
+  ASSERT_EQ(run.exit_code, 0) << run.err;
   ASSERT_EQ(first.files.files().size(), 3u);
   for (std::size_t i = 0; i < first.files.files().size(); ++i) {
     const OutputFile& file = first.files.files()[i];

@@ -1,0 +1,117 @@
+// The registry run on one model: builders in registry order on one shared DAG, then each entry
+// point's statements for every scalar type, the operation counts of called entry points added.
+
+#include "generator/emit/function_emitter.hpp"
+
+#include <algorithm>
+#include <stdexcept>
+
+#include "generator/dynamics/drive_model.hpp"
+#include "generator/functions/build_context.hpp"
+#include "generator/functions/registry.hpp"
+
+namespace modelgen::gen {
+
+namespace {
+
+struct Built {
+  const FunctionEntry* entry;
+  FunctionDefinition definition;
+};
+
+void check_output_count(const Built& built, const ModelSizes& sizes) {
+  int expected = 0;
+  for (const ArraySpec& array : built.entry->outputs) expected += array_size(array, sizes);
+  const int written = static_cast<int>(built.definition.outputs.size());
+  if (written != expected) {
+    throw std::logic_error(std::string("emit_functions: the builder of ") + built.entry->name +
+                           " writes " + std::to_string(written) + " values, its entry declares " +
+                           std::to_string(expected));
+  }
+}
+
+std::vector<Built> run_builders(const RobotModel& model, const BaseParameterSet& base,
+                                ExprGraph& graph) {
+  BuildContext context{model, base, graph, make_symbolic_inputs(graph, model.tree)};
+  std::vector<Built> built;
+  for (const FunctionEntry& entry : function_registry()) {
+    built.push_back({&entry, entry.build(context)});
+  }
+  const ModelSizes sizes{model.tree.dof, context.num_params(), context.num_base(),
+                         static_cast<int>(make_drive_parameters(graph, model.tree).theta.size())};
+  for (const Built& b : built) check_output_count(b, sizes);
+  return built;
+}
+
+// The entry point of `built` (plain or _sincos) with its statements for every scalar type.
+EmittedFunction emit(const Built& built, bool sincos, const ExprGraph& graph,
+                     const std::vector<Scalar>& scalars) {
+  EmittedFunction function;
+  function.name = std::string(built.entry->name) + (sincos ? "_sincos" : "");
+  function.entry = built.entry;
+  function.sincos = sincos;
+  function.calls = built.definition.calls;
+  for (const ArraySpec& array : built.entry->inputs) {
+    function.inputs.push_back(array.name);
+    // The variant reads sin(q) and cos(q) from the caller (joint_sincos) in place of computing.
+    if (sincos && std::string(array.name) == "q") {
+      function.inputs.push_back("sin_q");
+      function.inputs.push_back("cos_q");
+    }
+  }
+  for (const ArraySpec& array : built.entry->outputs) function.outputs.push_back(array.name);
+  const FunctionDefinition& definition = built.definition;
+  for (Scalar scalar : scalars) {
+    FunctionBody body = write_statements(graph, definition.outputs, scalar,
+                                         sincos ? TrigSource::kGiven : TrigSource::kCompute);
+    if (definition.prologue) {
+      std::vector<std::string> lines = definition.prologue(scalar);
+      lines.insert(lines.end(), body.lines.begin(), body.lines.end());
+      body.lines = std::move(lines);
+    }
+    function.bodies.push_back(std::move(body));
+  }
+  function.counts = function.bodies.front().counts;
+  return function;
+}
+
+// Adds to each function the counts of the entry points it calls, which come before it.
+void add_callee_counts(std::vector<EmittedFunction>& functions) {
+  for (auto function = functions.begin(); function != functions.end(); ++function) {
+    for (const std::string& callee : function->calls) {
+      const auto found = std::find_if(functions.begin(), function,
+                                      [&](const EmittedFunction& f) { return f.name == callee; });
+      if (found == function) {
+        throw std::logic_error("emit_functions: " + function->name + " calls " + callee +
+                               ", which is not emitted before it");
+      }
+      function->counts.mul += found->counts.mul;
+      function->counts.add += found->counts.add;
+      function->counts.trig += found->counts.trig;
+    }
+  }
+}
+
+}  // namespace
+
+std::vector<EmittedFunction> emit_functions(const RobotModel& model, const BaseParameterSet& base,
+                                            ExprGraph& graph, const std::vector<Scalar>& scalars) {
+  const std::vector<Built> built = run_builders(model, base, graph);
+  // File order: by section; in a section the plain functions, then the _sincos variants, each
+  // in registry order.
+  std::vector<std::pair<const Built*, bool>> order;
+  for (const Built& b : built) order.push_back({&b, false});
+  for (const Built& b : built) {
+    if (b.entry->variants == Variants::kSincos) order.push_back({&b, true});
+  }
+  std::stable_sort(order.begin(), order.end(), [](const auto& a, const auto& b) {
+    return std::make_pair(a.first->entry->section, a.second) <
+           std::make_pair(b.first->entry->section, b.second);
+  });
+  std::vector<EmittedFunction> functions;
+  for (const auto& [b, sincos] : order) functions.push_back(emit(*b, sincos, graph, scalars));
+  add_callee_counts(functions);
+  return functions;
+}
+
+}  // namespace modelgen::gen

@@ -1,0 +1,34 @@
+// Runs the builders of the registry on one model and writes the statements of every entry
+// point (the _sincos variants included) for each scalar type, in the order of the files.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "generator/emit/statement_writer.hpp"
+#include "generator/functions/function_entry.hpp"
+#include "generator/symbolic/expr.hpp"
+#include "modelgen/model/base_parameters.hpp"
+#include "modelgen/model/robot_model.hpp"
+
+namespace modelgen::gen {
+
+struct EmittedFunction {
+  std::string name;  ///< the entry point: the registry name, suffixed _sincos for a variant
+  const FunctionEntry* entry = nullptr;
+  bool sincos = false;
+  /// The input arrays, in the order of the parameter list (a variant's sin_q, cos_q after q).
+  std::vector<std::string> inputs;
+  std::vector<std::string> outputs;  ///< the output arrays, after the inputs
+  std::vector<std::string> calls;    ///< entry points the body calls, which come before it
+  std::vector<FunctionBody> bodies;  ///< one per scalar type asked for, in that order
+  OpCounts counts;                   ///< of the body, plus those of the entry points it calls
+};
+
+/// Every entry point in the order of the generated files: the sections in their order, each
+/// with its functions in registry order followed by their _sincos variants. Throws
+/// std::logic_error when a builder writes more or fewer values than its entry declares.
+std::vector<EmittedFunction> emit_functions(const RobotModel& model, const BaseParameterSet& base,
+                                            ExprGraph& graph, const std::vector<Scalar>& scalars);
+
+}  // namespace modelgen::gen

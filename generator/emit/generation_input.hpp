@@ -1,0 +1,20 @@
+// What, besides the robot model, goes into the generated files.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "generator/emit/number_format.hpp"
+
+namespace modelgen::gen {
+
+struct GenerationInput {
+  std::string stem;          ///< output file stem, from the description file name: "kr150"
+  std::string input_name;    ///< description file name without directories: "kr150.yaml"
+  std::string input_bytes;   ///< the description exactly as read (hashed)
+  std::string command_line;  ///< normalized: only options that change the output, fixed order
+  /// Scalar types to emit entry points for, in this order (double first when both).
+  std::vector<Scalar> scalars = {Scalar::kDouble, Scalar::kFloat};
+};
+
+}  // namespace modelgen::gen

@@ -1,0 +1,28 @@
+// Everything the generated header, source and manifest are rendered from: the model, its base
+// and drive parameters, the input's facts and the emitted functions.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "generator/emit/function_emitter.hpp"
+#include "generator/emit/generation_input.hpp"
+#include "modelgen/model/base_parameters.hpp"
+#include "modelgen/model/robot_model.hpp"
+
+namespace modelgen::gen {
+
+struct RenderInput {
+  const RobotModel& model;
+  const GenerationInput& input;
+  const BaseParameterSet& base;
+  std::vector<std::string> drive_param_names;  ///< theta of drive_torque, in order
+  std::string sha256;                          ///< of input.input_bytes, 64 hex digits
+  std::vector<EmittedFunction> functions;      ///< in the order of the generated files
+
+  std::string header_name() const { return input.stem + ".hpp"; }
+  std::string source_name() const { return input.stem + ".cpp"; }
+  std::string manifest_name() const { return input.stem + ".json"; }
+};
+
+}  // namespace modelgen::gen

@@ -1,0 +1,112 @@
+// The source: name tables, the drive chain as number literals of the first scalar type, and one
+// definition per entry point and scalar type, in file order. An input array a body never reads
+// is marked unused, so the code compiles warning-free with -Wextra.
+
+#include "generator/emit/source_file.hpp"
+
+#include <cctype>
+
+#include "generator/emit/banner.hpp"
+#include "generator/emit/code_list.hpp"
+#include "generator/emit/printer.hpp"
+#include "generator/emit/prototype.hpp"
+
+namespace modelgen::gen {
+
+namespace {
+
+bool uses_array(const FunctionBody& body, const std::string& array) {
+  // A body uses an input array when some statement reads array[...] or passes it to a call
+  // ("(q," or " q)"); trailing comments, which may name inputs (the columns of a Jacobian), do
+  // not count.
+  for (const std::string& full_line : body.lines) {
+    const std::string line = full_line.substr(0, full_line.find("//"));
+    for (std::size_t at = line.find(array); at != std::string::npos;
+         at = line.find(array, at + 1)) {
+      const bool inside_name =
+          at > 0 && (std::isalnum(static_cast<unsigned char>(line[at - 1])) || line[at - 1] == '_');
+      if (inside_name) continue;
+      const std::size_t end = at + array.size();
+      if (end < line.size() && (line[end] == '[' || line[end] == ',' || line[end] == ')')) {
+        return true;
+      }
+    }
+  }
+  return false;
+}
+
+std::string definition(const EmittedFunction& function, std::size_t s, Scalar scalar) {
+  const FunctionBody& body = function.bodies[s];
+  return Printer(embedded_template("function_definition"))
+      .set("signature", function_prototype(function, scalar, true))
+      .set_block(
+          "unused",
+          [&](CodeWriter& out) {
+            for (const std::string& array : function.inputs) {
+              if (uses_array(body, array)) continue;
+              out.line(without_final_newline(
+                  Printer(embedded_template("unused_parameter")).set("parameter", array).render()));
+            }
+          })
+      .set_block("body",
+                 [&](CodeWriter& out) {
+                   for (const std::string& line : body.lines) out.line(line);
+                 })
+      .render();
+}
+
+void write_definitions(const RenderInput& in, CodeWriter& out) {
+  bool first = true;
+  for (const EmittedFunction& function : in.functions) {
+    for (std::size_t s = 0; s < in.input.scalars.size(); ++s) {
+      if (!first) out.blank();
+      first = false;
+      out.lines_of(definition(function, s, in.input.scalars[s]));
+    }
+  }
+}
+
+std::vector<double> as_vector(const Eigen::VectorXd& v) { return {v.data(), v.data() + v.size()}; }
+
+void write_matrix_rows(const Eigen::MatrixXd& matrix, Scalar scalar, CodeWriter& out) {
+  // One row per line, so the matrix reads as written.
+  for (Eigen::Index r = 0; r < matrix.rows(); ++r) {
+    std::vector<double> row(matrix.cols());
+    for (Eigen::Index c = 0; c < matrix.cols(); ++c) row[c] = matrix(r, c);
+    write_number_list(row, scalar, out);
+  }
+}
+
+}  // namespace
+
+std::string render_source(const RenderInput& in) {
+  std::vector<std::string> standard_names, base_names;
+  for (const StandardParam& p : in.model.tree.params) standard_names.push_back(p.name);
+  for (const BaseParameter& b : in.base.params) base_names.push_back(b.name);
+  const DriveChain& drives = in.model.drives;
+  // The drive-chain constants take the first scalar type asked for.
+  const Scalar scalar = in.input.scalars.front();
+  return Printer(embedded_template("model.cpp"))
+      .set("banner", render_banner(in.source_name(), in))
+      .set("header", in.header_name())
+      .set("robot", in.model.name)
+      .set("scalar", scalar_name(scalar))
+      .set_block("standard_param_names",
+                 [&](CodeWriter& out) { write_name_list(standard_names, out); })
+      .set_block("base_param_names", [&](CodeWriter& out) { write_name_list(base_names, out); })
+      .set_block("drive_param_names",
+                 [&](CodeWriter& out) { write_name_list(in.drive_param_names, out); })
+      .set_block("motor_from_joint",
+                 [&](CodeWriter& out) { write_matrix_rows(drives.motor_from_joint, scalar, out); })
+      .set_block("torque_constant",
+                 [&](CodeWriter& out) {
+                   write_number_list(as_vector(drives.torque_constant), scalar, out);
+                 })
+      .set_block(
+          "joint_offset",
+          [&](CodeWriter& out) { write_number_list(as_vector(drives.joint_offset), scalar, out); })
+      .set_block("definitions", [&](CodeWriter& out) { write_definitions(in, out); })
+      .render();
+}
+
+}  // namespace modelgen::gen

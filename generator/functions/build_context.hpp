@@ -1,0 +1,59 @@
+// What every builder of a generated function works from: the robot, its base parameters and
+// the shared expression DAG with the symbolic inputs, plus the small helpers several builders
+// share (the base-parameter substitution, the state vector, row-major output lists).
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "generator/dynamics/newton_euler.hpp"
+#include "generator/functions/function_entry.hpp"
+#include "generator/symbolic/expr.hpp"
+#include "modelgen/model/base_parameters.hpp"
+#include "modelgen/model/robot_model.hpp"
+
+namespace modelgen::gen {
+
+struct BuildContext {
+  const RobotModel& model;
+  const BaseParameterSet& base;
+  ExprGraph& graph;
+  SymbolicInputs symbols;  ///< q, dq, ddq, sin/cos, signs and the standard parameters p
+
+  const RigidBodyTree& tree() const { return model.tree; }
+  int dof() const { return model.tree.dof; }
+  int num_params() const { return static_cast<int>(model.tree.params.size()); }
+  int num_base() const { return static_cast<int>(base.params.size()); }
+};
+
+/// "W[14]": one element of an array, as generated code reads or writes it.
+std::string element(const std::string& array, int index);
+
+/// The input leaf `array[index]`.
+ExprId input_symbol(ExprGraph& graph, const std::string& array, int index);
+
+/// The symbolic inputs with each base parameter beta[b] in place of the standard parameter it is
+/// built on and the absorbed parameters at zero: Newton-Euler on them gives
+/// tau = W_std p = W_base beta (Gautier & Briot eq. 4).
+SymbolicInputs base_parameter_inputs(BuildContext& context);
+
+/// The state x = [q, dq, ddq] (3 dof symbols), and the name of its entry k: "dq[2]".
+std::vector<ExprId> state_symbols(const SymbolicInputs& symbols);
+std::string state_name(int k, int dof);
+
+/// Outputs `array[i * cols + k] = value(i, k)` in row-major order; the first row names its
+/// columns with `column_name(k)` when given.
+std::vector<FunctionOutput> row_major_outputs(
+    const std::string& array, int rows, int cols, const std::function<ExprId(int, int)>& value,
+    const std::function<std::string(int)>& column_name = {});
+
+/// Outputs `array[i] = values[i]`, without comments.
+std::vector<FunctionOutput> vector_outputs(const std::string& array,
+                                           const std::vector<ExprId>& values);
+
+/// A zero-initialized local array and a call to another entry point, as prologue statements.
+std::string local_array(Scalar scalar, const std::string& name, const std::string& size);
+std::string call(const std::string& function, const std::string& arguments);
+
+}  // namespace modelgen::gen

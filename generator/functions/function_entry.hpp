@@ -1,0 +1,82 @@
+// What the registry says about one generated function (name, arrays, variants, place in the
+// files and in the Model struct, builder), and what its builder returns: the outputs as
+// expressions of the shared DAG, plus any calls to other entry points.
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "generator/emit/statement_writer.hpp"
+
+namespace modelgen::gen {
+
+struct BuildContext;
+
+/// Where a function appears in the generated files: the sections in this order, each with its
+/// functions in registry order followed by their _sincos variants.
+enum class Section {
+  kStandard,      ///< on the standard parameters, and the shared sines and cosines
+  kRegrouping,    ///< base parameters from standard ones
+  kBase,          ///< on the base parameters
+  kBaseJacobian,  ///< derivatives of the base inverse dynamics
+  kPowerModel,    ///< Gautier & Briot eq. 8-10
+  kDriveModel,    ///< Swevers et al. 2002 eq. 12 and its Jacobians
+};
+
+/// A dimension of an array, in the counts of the generated header.
+enum class Extent { kOne, kDof, kState, kStandardParams, kBaseParams, kDriveParams };
+
+/// An input or output array of a generated function: rows x cols values, row-major.
+struct ArraySpec {
+  const char* name;
+  Extent rows;
+  Extent cols = Extent::kOne;
+};
+
+/// Whether a function also has a `<name>_sincos` entry point that takes sin_q, cos_q (after q)
+/// from joint_sincos instead of computing them.
+enum class Variants { kPlain, kSincos };
+
+/// Whether the Model struct of the generated header forwards to the (double) function.
+enum class InModelStruct { kNo, kYes };
+
+/// What a builder derives.
+struct FunctionDefinition {
+  /// The output entries in the order they are written; their count is the sum of the sizes of
+  /// the entry's outputs.
+  std::vector<FunctionOutput> outputs;
+  /// Statements before the body: local arrays filled by calls to other entry points.
+  std::function<std::vector<std::string>(Scalar)> prologue{};
+  /// The entry points the prologue calls; their operation counts add to this function's.
+  std::vector<std::string> calls{};
+};
+
+using Builder = FunctionDefinition (*)(BuildContext& context);
+
+/// One generated function. Its documentation is templates/functions/<name>.tmpl.
+struct FunctionEntry {
+  const char* name;
+  Section section;
+  Variants variants;
+  InModelStruct in_model_struct;
+  std::vector<ArraySpec> inputs;
+  std::vector<ArraySpec> outputs;
+  Builder build;
+};
+
+/// The sizes an Extent stands for in one model.
+struct ModelSizes {
+  int dof = 0;
+  int standard_params = 0;
+  int base_params = 0;
+  int drive_params = 0;
+};
+
+/// Number of values of `extent` (kState: q, dq and ddq together, 3 dof).
+int extent_size(Extent extent, const ModelSizes& sizes);
+
+/// Number of values of `array`: rows times cols.
+int array_size(const ArraySpec& array, const ModelSizes& sizes);
+
+}  // namespace modelgen::gen

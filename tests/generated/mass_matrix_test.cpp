@@ -1,0 +1,106 @@
+// The checked-in mass_matrix of one shipped robot (compiled from generated/) against the
+// numeric reference's M(q) on 10 000 seeded random states: column k is the reference inverse
+// dynamics at zero velocity, zero gravity and unit acceleration e_k, minus the same at zero
+// acceleration. At rest the friction terms are zero (sign(0) = 0, viscous terms vanish with
+// dq), so that difference removes exactly the torque offsets and leaves M e_k. Linked into the
+// same executable as numeric_diff_test.cpp.
+
+#include <algorithm>
+#include <vector>
+
+#include <Eigen/Cholesky>
+#include <Eigen/Core>
+#include <gtest/gtest.h>
+
+#include MODELGEN_ROBOT_HEADER
+#include "modelgen/model/load_robot.hpp"
+#include "modelgen/model/reference_dynamics.hpp"
+#include "tests/support/kdl_oracle.hpp"
+#include "tests/support/test_support.hpp"
+
+namespace modelgen {
+namespace {
+
+namespace model = ::modelgen::MODELGEN_ROBOT_NAMESPACE;
+
+using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+using RowMajorFloat = Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+
+constexpr int kStates = 10000;
+
+RigidBodyTree without_gravity(RigidBodyTree tree) {
+  tree.gravity = {0, 0, 0};
+  return tree;
+}
+
+class GeneratedMassMatrix : public testing::Test {
+ protected:
+  GeneratedMassMatrix()
+      : description_(load_robot(test::source_path(MODELGEN_ROBOT_DESCRIPTION))),
+        reference_(without_gravity(description_.tree)) {}
+
+  Eigen::MatrixXd reference_mass_matrix(const Eigen::VectorXd& q, const Eigen::VectorXd& p) const {
+    const int n = model::kDof;
+    const Eigen::VectorXd zero = Eigen::VectorXd::Zero(n);
+    const Eigen::VectorXd at_rest = reference_.inverse_dynamics(q, zero, zero, p);
+    Eigen::MatrixXd M(n, n);
+    for (int k = 0; k < n; ++k) {
+      M.col(k) = reference_.inverse_dynamics(q, zero, Eigen::VectorXd::Unit(n, k), p) - at_rest;
+    }
+    return M;
+  }
+
+  RobotModel description_;
+  ReferenceDynamics reference_;  // without gravity
+};
+
+TEST_F(GeneratedMassMatrix, EqualsTheReferenceOnRandomStates) {
+  const int n = model::kDof, nb = model::kBaseParams;
+  test::Random random(4242);
+  std::vector<double> beta(nb), s(n), c(n);
+  RowMajor M(n, n), M_sincos(n, n), M_struct(n, n);
+  double worst = 0;
+  for (int state = 0; state < kStates; ++state) {
+    const Eigen::VectorXd q = random.vector(n, -3.2, 3.2);
+    const Eigen::VectorXd p = test::random_physical_parameters(description_.tree, random);
+    model::base_from_standard(p.data(), beta.data());
+    model::mass_matrix(q.data(), beta.data(), M.data());
+    const Eigen::MatrixXd expected = reference_mass_matrix(q, p);
+    const double scale = std::max(1.0, expected.lpNorm<Eigen::Infinity>());
+    worst = std::max(worst, (M - expected).lpNorm<Eigen::Infinity>() / scale);
+    // The variant and the Model struct run the same statements: the same doubles.
+    model::joint_sincos(q.data(), s.data(), c.data());
+    model::mass_matrix_sincos(q.data(), s.data(), c.data(), beta.data(), M_sincos.data());
+    model::Model::mass_matrix(q.data(), beta.data(), M_struct.data());
+    EXPECT_EQ(M, M_sincos);
+    EXPECT_EQ(M, M_struct);
+  }
+  std::cout << "[ GENERATED] " << MODELGEN_ROBOT_DESCRIPTION << ": worst relative difference "
+            << "of the mass matrix " << worst << " over " << kStates << " states\n";
+  EXPECT_LT(worst, 1e-12);
+}
+
+TEST_F(GeneratedMassMatrix, IsSymmetricPositiveDefiniteAndFloatAgrees) {
+  const int n = model::kDof, nb = model::kBaseParams;
+  test::Random random(77);
+  std::vector<double> beta(nb);
+  std::vector<float> qf(n), betaf(nb), Mf(n * n);
+  RowMajor M(n, n);
+  for (int state = 0; state < 1000; ++state) {
+    const Eigen::VectorXd q = random.vector(n, -3.2, 3.2);
+    const Eigen::VectorXd p = test::random_physical_parameters(description_.tree, random);
+    model::base_from_standard(p.data(), beta.data());
+    model::mass_matrix(q.data(), beta.data(), M.data());
+    const double scale = M.lpNorm<Eigen::Infinity>();
+    EXPECT_LT((M - M.transpose()).lpNorm<Eigen::Infinity>(), 1e-12 * scale);
+    EXPECT_EQ(Eigen::LLT<Eigen::MatrixXd>(M).info(), Eigen::Success) << "not positive definite";
+    for (int i = 0; i < n; ++i) qf[i] = static_cast<float>(q[i]);
+    for (int b = 0; b < nb; ++b) betaf[b] = static_cast<float>(beta[b]);
+    model::mass_matrix(qf.data(), betaf.data(), Mf.data());
+    const RowMajor M_float = Eigen::Map<const RowMajorFloat>(Mf.data(), n, n).cast<double>();
+    EXPECT_LT((M_float - M).lpNorm<Eigen::Infinity>(), 1e-3 * scale);
+  }
+}
+
+}  // namespace
+}  // namespace modelgen
