@@ -1,5 +1,5 @@
 // The simulated KR150 load identification of Swevers et al. 2002 (sections 4-5), shared by
-// tests/runtime/ml_fit_test.cpp and tests/benchmarks/ml_benchmark.cpp: the Table 1 excitation
+// tests/runtime/ml/ml_fit_test.cpp and tests/benchmarks/ml_benchmark.cpp: the Table 1 excitation
 // (eq. 15, period 36.96 s, 1540 samples) of axes 3-6 or of the wrist, the Table 2 load on link 7,
 // transmission efficiencies below 1, and Gaussian noise on the averaged motor torques, all built
 // in-process through the numeric reference drive model.

@@ -1,7 +1,7 @@
 // The weighted residuals of Swevers et al. 2002, eq. 18, written directly for any scalar type
 // through the templated reference drive model and standard_from_load (eq. 3), nothing of
 // MlProblem's chain rule: with T = ceres::Jet they give the Jacobian by automatic
-// differentiation (the oracle of tests/runtime/ml_fit_test.cpp, the autodiff variant of
+// differentiation (the oracle of tests/runtime/ml/ml_fit_test.cpp, the autodiff variant of
 // tests/benchmarks/ml_benchmark.cpp).
 #pragma once
 

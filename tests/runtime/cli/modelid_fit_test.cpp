@@ -21,7 +21,7 @@
 #include "modelgen/excitation/fourier_trajectory.hpp"
 #include "modelgen/model/identification_model.hpp"
 #include "modelgen/model/load_robot.hpp"
-#include "tests/runtime/modelid_cli_support.hpp"
+#include "tests/runtime/cli/modelid_cli_support.hpp"
 #include "tests/support/test_support.hpp"
 
 namespace modelgen {

@@ -17,7 +17,7 @@
 #include "modelgen/data/trajectory_csv.hpp"
 #include "modelgen/model/load_robot.hpp"
 #include "modelgen/model/reference_dynamics.hpp"
-#include "tests/runtime/modelid_cli_support.hpp"
+#include "tests/runtime/cli/modelid_cli_support.hpp"
 #include "tests/support/test_support.hpp"
 
 namespace modelgen {

@@ -18,7 +18,7 @@
 #include "modelgen/model/load_robot.hpp"
 #include "modelgen/signal/decimation.hpp"
 #include "runtime/cli/shipped_models.hpp"
-#include "tests/runtime/modelid_cli_support.hpp"
+#include "tests/runtime/cli/modelid_cli_support.hpp"
 #include "tests/support/kdl_oracle.hpp"
 
 namespace modelgen {

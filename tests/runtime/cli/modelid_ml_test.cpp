@@ -20,7 +20,7 @@
 #include "modelgen/ml/drive_model.hpp"
 #include "modelgen/ml/load_parameters.hpp"
 #include "modelgen/model/load_robot.hpp"
-#include "tests/runtime/modelid_cli_support.hpp"
+#include "tests/runtime/cli/modelid_cli_support.hpp"
 #include "tests/support/kdl_oracle.hpp"
 #include "tests/support/kr150_load_scenario.hpp"
 

@@ -10,7 +10,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "tests/runtime/modelid_cli_support.hpp"
+#include "tests/runtime/cli/modelid_cli_support.hpp"
 #include "tests/support/test_support.hpp"
 
 namespace modelgen {
