@@ -7,7 +7,7 @@
 
 namespace modelgen::internal {
 
-int run_check(const Arguments& args) {
+int run_check(const CommandLine& args) {
   if (args.positional.size() != 1) throw UsageError{"check takes one ROBOT"};
   const ModelSource source = load_model_source(args.positional[0]);
   std::cout << source.model->name() << ": " << source.model->dof() << " dof, "

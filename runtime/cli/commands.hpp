@@ -11,14 +11,14 @@ namespace modelgen::internal {
 extern const std::map<std::string, OptionKind> kFitOptions, kPredictOptions, kSimulateOptions;
 
 /// modelid fit: base parameters from trajectories (fit_command.cpp).
-int run_fit(const Arguments& args);
+int run_fit(const CommandLine& args);
 /// fit --method ml (ml_fit_command.cpp).
-int run_fit_ml(const Arguments& args);
+int run_fit_ml(const CommandLine& args);
 /// modelid predict: torques of an estimate on trajectories and their errors.
-int run_predict(const Arguments& args);
+int run_predict(const CommandLine& args);
 /// modelid simulate: synthetic data from a Fourier excitation and true parameters.
-int run_simulate(const Arguments& args);
+int run_simulate(const CommandLine& args);
 /// modelid check ROBOT: loads a model and prints its sizes.
-int run_check(const Arguments& args);
+int run_check(const CommandLine& args);
 
 }  // namespace modelgen::internal

@@ -22,13 +22,13 @@ std::map<std::string, OptionKind> with_data_options(std::map<std::string, Option
 
 namespace {
 
-double positive(const Arguments& args, const std::string& option) {
+double positive(const CommandLine& args, const std::string& option) {
   const double value = parse_number(args.one(option), option);
   if (!(value > 0)) throw UsageError{option + " must be positive, not '" + args.one(option) + "'"};
   return value;
 }
 
-int count(const Arguments& args, const std::string& option) {
+int count(const CommandLine& args, const std::string& option) {
   const double value = parse_number(args.one(option), option);
   if (!(value >= 1) || value != static_cast<int>(value)) {
     throw UsageError{option + " must be a whole number of at least 1, not '" + args.one(option) +
@@ -39,7 +39,7 @@ int count(const Arguments& args, const std::string& option) {
 
 }  // namespace
 
-PreparationOptions preparation_options(const Arguments& args) {
+PreparationOptions preparation_options(const CommandLine& args) {
   PreparationOptions options;
   if (args.has("--motor-side")) options.side = Side::kMotor;
   options.periodic = args.has("--periodic");

@@ -21,7 +21,7 @@ std::map<std::string, OptionKind> with_data_options(std::map<std::string, Option
 
 /// The preparation the data options ask for; UsageError for values out of range or options
 /// that contradict each other (--periodic with --raw, --period without --periodic, ...).
-PreparationOptions preparation_options(const Arguments& args);
+PreparationOptions preparation_options(const CommandLine& args);
 
 struct Experiments {
   std::vector<Trajectory> data;  ///< joint side, with dq and ddq

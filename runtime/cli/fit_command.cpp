@@ -154,7 +154,7 @@ void print_essential(const EssentialEstimate& essential, std::size_t num_base) {
 
 }  // namespace
 
-int run_fit(const Arguments& args) {
+int run_fit(const CommandLine& args) {
   reject_positional(args);
   if (args.has("--method") && args.one("--method") == "ml") {
     for (const char* option : {"--essential", "--r-sigma", "--plot"}) {

@@ -41,7 +41,7 @@ namespace {
 const std::vector<std::string> kUnknownGroups = {"load", "Rv", "Rc", "Rz"};
 
 // The approaches to run: 1, 2 or 3, or all three for the comparison of Tables 2-3.
-std::vector<int> parse_approaches(const Arguments& args) {
+std::vector<int> parse_approaches(const CommandLine& args) {
   if (!args.has("--approach")) {
     throw UsageError{
         "--method ml needs --approach 1, 2, 3 or all (Swevers section 4: 1 linear, "
@@ -55,7 +55,7 @@ std::vector<int> parse_approaches(const Arguments& args) {
   return {text[0] - '0'};
 }
 
-std::set<std::string> parse_unknown_groups(const Arguments& args) {
+std::set<std::string> parse_unknown_groups(const CommandLine& args) {
   std::set<std::string> groups;
   const std::string text = args.has("--unknown") ? args.one("--unknown") : "load,Rv,Rc,Rz";
   std::istringstream in(text);
@@ -142,7 +142,7 @@ int drive_motor(const std::string& name) {
 
 }  // namespace
 
-int run_fit_ml(const Arguments& args) {
+int run_fit_ml(const CommandLine& args) {
   const std::vector<int> approaches = parse_approaches(args);
   const std::set<std::string> groups = parse_unknown_groups(args);
   const bool rz_unknown = groups.count("Rz") > 0;

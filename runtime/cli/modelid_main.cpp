@@ -64,7 +64,7 @@ int main(int argc, char** argv) {
   try {
     return dispatch(argc, argv);
   } catch (const UsageError& e) {
-    std::cerr << "modelid: " << e.message << "\n\n" << kUsage;
+    std::cerr << "modelid: " << e.what() << "\n\n" << kUsage;
     return 2;
   } catch (const modelgen::InputError& e) {
     std::cerr << e.what() << "\n";

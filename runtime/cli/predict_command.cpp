@@ -48,7 +48,7 @@ void print_errors(const std::vector<Trajectory>& data, const TorquePrediction& p
 
 }  // namespace
 
-int run_predict(const Arguments& args) {
+int run_predict(const CommandLine& args) {
   reject_positional(args);
   const ModelSource source = load_model_source(args.one("--robot"));
   const IdentificationModel& model = *source.model;

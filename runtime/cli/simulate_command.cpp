@@ -61,7 +61,7 @@ std::vector<double> parse_noise(const std::string& text, int dof, const std::str
 
 }  // namespace
 
-int run_simulate(const Arguments& args) {
+int run_simulate(const CommandLine& args) {
   reject_positional(args);
   const bool drive_mode = args.has("--drive");
   if (drive_mode && args.has("--params")) {
