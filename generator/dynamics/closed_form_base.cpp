@@ -1,6 +1,6 @@
 // Khalil's regrouping rules applied from the last link to the first, with the coefficients kept
 // as expressions of d_j and r_j on an ExprGraph so they print with symbols and evaluate with
-// numbers. tests/generator/closed_form_base_test.cpp checks them against the numeric method.
+// numbers. tests/generator/dynamics/closed_form_base_test.cpp checks them against the numeric method.
 
 #include "generator/dynamics/closed_form_base.hpp"
 

@@ -13,24 +13,6 @@ namespace modelgen::gen {
 
 namespace {
 
-bool is_inertial(ParamKind kind) {
-  switch (kind) {
-    case ParamKind::kXX:
-    case ParamKind::kXY:
-    case ParamKind::kXZ:
-    case ParamKind::kYY:
-    case ParamKind::kYZ:
-    case ParamKind::kZZ:
-    case ParamKind::kMX:
-    case ParamKind::kMY:
-    case ParamKind::kMZ:
-    case ParamKind::kM:
-      return true;
-    default:
-      return false;
-  }
-}
-
 // sum_l row[l] x[l], shared: a motor velocity or acceleration used by several terms.
 ExprId combination(ExprGraph& g, const Eigen::VectorXd& row, const std::vector<ExprId>& x) {
   std::vector<ExprId> terms;

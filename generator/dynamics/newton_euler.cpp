@@ -1,4 +1,4 @@
-// Symbolic Newton-Euler: the numeric recursion of runtime/src/reference_dynamics.cpp written
+// Symbolic Newton-Euler: the numeric recursion of runtime/model/reference_dynamics.cpp written
 // over the expression DAG, so constant geometry (exact zeros and ones of quarter-turn MDH
 // angles) folds away while the equations are built.
 
@@ -175,13 +175,6 @@ class JointScrews {
 
 bool is_motor(ParamKind kind) {
   return kind == ParamKind::kIam || kind == ParamKind::kFvm || kind == ParamKind::kFcm;
-}
-
-bool is_inertial(ParamKind kind) {
-  return kind == ParamKind::kXX || kind == ParamKind::kXY || kind == ParamKind::kXZ ||
-         kind == ParamKind::kYY || kind == ParamKind::kYZ || kind == ParamKind::kZZ ||
-         kind == ParamKind::kMX || kind == ParamKind::kMY || kind == ParamKind::kMZ ||
-         kind == ParamKind::kM;
 }
 
 }  // namespace

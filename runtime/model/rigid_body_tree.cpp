@@ -10,6 +10,13 @@
 
 namespace modelgen {
 
+bool is_inertial(ParamKind kind) {
+  return kind == ParamKind::kXX || kind == ParamKind::kXY || kind == ParamKind::kXZ ||
+         kind == ParamKind::kYY || kind == ParamKind::kYZ || kind == ParamKind::kZZ ||
+         kind == ParamKind::kMX || kind == ParamKind::kMY || kind == ParamKind::kMZ ||
+         kind == ParamKind::kM;
+}
+
 const char* param_kind_stem(ParamKind kind) {
   switch (kind) {
     case ParamKind::kXX:

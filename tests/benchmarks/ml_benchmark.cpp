@@ -99,7 +99,7 @@ class AutodiffResiduals {
   std::vector<std::unique_ptr<ceres::CostFunction>> blocks_;
 };
 
-// The Levenberg-Marquardt settings of fit_ml (runtime/src/ml_fit.cpp, which does not export
+// The Levenberg-Marquardt settings of fit_ml (runtime/src/ml/fit.cpp, which does not export
 // them); the start-up check notes when the two no longer take the same number of iterations.
 ceres::Solver::Options fit_ml_solver_options(const MlFitOptions& options) {
   ceres::Solver::Options out;  // trust region with Levenberg-Marquardt by default, as fit_ml

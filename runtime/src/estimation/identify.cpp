@@ -164,7 +164,7 @@ Identification identify(const IdentificationModel& model, const std::vector<Traj
       }
     }
     if (hint.empty()) throw;
-    throw EstimationError(std::string(e.what()) + hint +
+    throw EstimationError(e.where(), std::string(e.what()) + hint +
                           "; a smaller decimation factor keeps more equations)");
   }
   Eigen::VectorXd error_squares = Eigen::VectorXd::Zero(n), torque_squares = error_squares;

@@ -12,24 +12,6 @@
 namespace modelgen {
 namespace {
 
-bool is_inertial(ParamKind kind) {
-  switch (kind) {
-    case ParamKind::kXX:
-    case ParamKind::kXY:
-    case ParamKind::kXZ:
-    case ParamKind::kYY:
-    case ParamKind::kYZ:
-    case ParamKind::kZZ:
-    case ParamKind::kMX:
-    case ParamKind::kMY:
-    case ParamKind::kMZ:
-    case ParamKind::kM:
-      return true;
-    default:
-      return false;
-  }
-}
-
 // The tree with only its inertial parameters: the rigid-body part of the drive model, whose
 // rotor inertia and friction are the motor-side JM, Rv, Rc instead of Ia, Fv, Fc.
 RigidBodyTree rigid_body_part(const RigidBodyTree& tree) {

@@ -1,7 +1,7 @@
 // The one interface identification works through: a robot's base-parameter regressor, power
 // regressor and regrouping, from generated code compiled in (GeneratedModel) or from the
 // numeric reference built from any description at run time (ReferenceModel). Both give the
-// same numbers; tests/runtime/model_test.cpp checks it.
+// same numbers; tests/model/identification_model_test.cpp checks it.
 #pragma once
 
 #include <memory>

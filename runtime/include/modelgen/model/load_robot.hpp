@@ -1,4 +1,5 @@
-// Entry point for reading any robot description: picks the loader from the file extension.
+// Entry point for reading any robot description: picks the loader from the file extension; and
+// the raw bytes of a description, for its SHA-256.
 #pragma once
 
 #include <string>

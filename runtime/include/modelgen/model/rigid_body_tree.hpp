@@ -90,6 +90,10 @@ const CoupledMotor* coupled_motor_of(const RigidBodyTree& tree, const StandardPa
 /// The name stem of a parameter kind: "XX", "Ia", "Fcp", ...
 const char* param_kind_stem(ParamKind kind);
 
+/// Whether a parameter kind is one of the ten inertial parameters of a body (XX..ZZ, MX..MZ, M),
+/// as opposed to a drive, friction or offset parameter.
+bool is_inertial(ParamKind kind);
+
 /// Checks the invariants the dynamics rely on: parents before children, dof indices 0..dof-1
 /// once each, unit axes, orthonormal rotations, parameters on existing bodies, no duplicate
 /// parameter, drive parameters only on moving joints. Throws std::invalid_argument naming the

@@ -1,6 +1,7 @@
 // The validated robot description: joints as the user wrote them (MDH parameters or URDF
 // transforms, limits, where in the file), the RigidBodyTree the dynamics compute on, the drive
-// chain (gear ratios, motor/joint coupling; drive_chain.hpp), the friction options and a-priori parameter values.
+// chain (gear ratios, motor/joint coupling; drive_chain.hpp), the friction options and
+// a-priori parameter values.
 #pragma once
 
 #include <array>

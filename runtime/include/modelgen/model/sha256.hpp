@@ -1,4 +1,5 @@
-// SHA-256 of input bytes (through OpenSSL), for the banners and manifests of generated files.
+// SHA-256 of input bytes (through OpenSSL): in the banners and manifests of generated files, and
+// in estimates, to name the description a model was made from.
 #pragma once
 
 #include <string>
