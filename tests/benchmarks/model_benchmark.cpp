@@ -166,7 +166,7 @@ struct Workload {
 void check_kdl(const Workload& w, KdlRne& kdl, const char* what) {
   Eigen::VectorXd p_inertial = w.p;
   for (std::size_t k = 0; k < w.model.tree.params.size(); ++k) {
-    if (!test::is_inertial(w.model.tree.params[k].kind)) {
+    if (test::inertial_slot(w.model.tree.params[k].kind) < 0) {
       p_inertial[static_cast<Eigen::Index>(k)] = 0;
     }
   }

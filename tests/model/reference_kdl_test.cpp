@@ -69,7 +69,7 @@ Comparison compare_with_kdl(const modelgen::RobotModel& model, std::uint64_t see
   const int body = body_of_dof(tree, tree.dof > 1 ? 1 : 0);
   std::vector<Eigen::Index> inertial_params;
   for (std::size_t k = 0; k < tree.params.size(); ++k) {
-    if (tree.params[k].body == body && test::is_inertial(tree.params[k].kind)) {
+    if (tree.params[k].body == body && test::inertial_slot(tree.params[k].kind) >= 0) {
       inertial_params.push_back(static_cast<Eigen::Index>(k));
     }
   }

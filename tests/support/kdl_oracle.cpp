@@ -194,8 +194,6 @@ int inertial_slot(ParamKind kind) {
   return -1;
 }
 
-bool is_inertial(ParamKind kind) { return inertial_slot(kind) >= 0; }
-
 Eigen::VectorXd kdl_inverse_dynamics(const RigidBodyTree& tree, const Eigen::VectorXd& q,
                                      const Eigen::VectorXd& dq, const Eigen::VectorXd& ddq,
                                      const Eigen::VectorXd& p) {

@@ -16,10 +16,6 @@ namespace modelgen::test {
 /// KDL::Chain can take. An empty tree is serial.
 bool is_serial(const RigidBodyTree& tree);
 
-/// True for the ten inertial parameter kinds (XX XY XZ YY YZ ZZ MX MY MZ M), false for the drive
-/// ones (Ia, Fv, Fc, OFF and the asymmetric friction kinds).
-bool is_inertial(ParamKind kind);
-
 /// Position of an inertial parameter in XX XY XZ YY YZ ZZ MX MY MZ M order (the order of
 /// modelgen::standard_from_inertial), -1 for a drive parameter.
 int inertial_slot(ParamKind kind);

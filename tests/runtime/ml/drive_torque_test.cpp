@@ -71,13 +71,6 @@ struct Tx40 {
   }
 };
 
-bool is_inertial(ParamKind kind) {
-  return kind == ParamKind::kXX || kind == ParamKind::kXY || kind == ParamKind::kXZ ||
-         kind == ParamKind::kYY || kind == ParamKind::kYZ || kind == ParamKind::kZZ ||
-         kind == ParamKind::kMX || kind == ParamKind::kMY || kind == ParamKind::kMZ ||
-         kind == ParamKind::kM;
-}
-
 // Eq. 7-10 on given rigid-body torques tau_G, templated for ceres::Jet. `drive` holds per joint
 // JM, Rv, Rc, Rz (4 dof entries). Eq. 8 is taken as written, branch by branch.
 template <class T>
