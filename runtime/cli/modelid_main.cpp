@@ -12,6 +12,7 @@
 #include "modelgen/model/error.hpp"
 #include "runtime/cli/arguments.hpp"
 #include "runtime/cli/commands.hpp"
+#include "runtime/cli/version.hpp"
 
 namespace {
 
@@ -34,7 +35,7 @@ constexpr const char* kUsage =
     "                   --noise SIGMA[,SIGMA2,...] [--seed N] [--sample-time S] [--periods K]\n"
     "                   -o A.csv\n"
     "       modelid check ROBOT\n"
-    "       modelid --help\n"
+    "       modelid --version | --help\n"
     "\n"
     "ROBOT is a description (.yaml/.urdf, through the numeric reference) or the name of a\n"
     "compiled-in generated model (tx40, kr150, ur5, iiwa14, panda, kuka_kr150_2,\n"
@@ -60,6 +61,10 @@ int main(int argc, char** argv) {
   if (argc < 2 || std::strcmp(argv[1], "--help") == 0 || std::strcmp(argv[1], "-h") == 0) {
     (argc < 2 ? std::cerr : std::cout) << kUsage;
     return argc < 2 ? 2 : 0;
+  }
+  if (argc == 2 && std::strcmp(argv[1], "--version") == 0) {
+    std::cout << "modelid " << kModelidVersion << "\n";
+    return 0;
   }
   try {
     return dispatch(argc, argv);

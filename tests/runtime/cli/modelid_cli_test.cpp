@@ -1,8 +1,8 @@
 // modelid as a user runs it: the bundled KR150 data are exactly what the documented simulate
 // command makes; fitting noise-free simulated data gives the true base parameters; bad data
 // and unknown robots give messages and exit 1; command lines that cannot be right exit 2;
-// short runs print no progress lines into logs. predict: modelid_predict_test.cpp; fit's
-// essential parameters and plots: modelid_fit_test.cpp.
+// --version prints modelgen's version; short runs print no progress lines into logs. predict:
+// modelid_predict_test.cpp; fit's essential parameters and plots: modelid_fit_test.cpp.
 
 #include <filesystem>
 #include <fstream>
@@ -113,6 +113,23 @@ TEST(ModelidCli, CommandLinesThatCannotBeRightExitTwo) {
     EXPECT_NE(run.err.find(c.message), std::string::npos) << c.arguments << "\n" << run.err;
     EXPECT_NE(run.err.find("usage: modelid fit"), std::string::npos) << run.err;
   }
+}
+
+// Both programs carry the project's version: modelid prints the same one modelgen does, on
+// stdout, exit 0, and its usage text names the option.
+TEST(ModelidCli, VersionIsTheProjectVersionModelgenPrints) {
+  const CliRun generator = test::modelgen("--version");
+  ASSERT_EQ(generator.exit_code, 0) << generator.err;
+  const std::string prefix = "modelgen ";
+  ASSERT_EQ(generator.out.rfind(prefix, 0), 0u) << generator.out;
+  const std::string version = generator.out.substr(prefix.size());  // "x.y.z\n"
+  ASSERT_GT(version.size(), 1u);
+  const CliRun run = modelid("--version");
+  EXPECT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_EQ(run.out, "modelid " + version);
+  EXPECT_EQ(run.err, "");
+  const CliRun help = modelid("--help");
+  EXPECT_NE(help.out.find("modelid --version"), std::string::npos) << help.out;
 }
 
 TEST(ModelidCli, ShortRunsPrintNoProgressIntoLogs) {
