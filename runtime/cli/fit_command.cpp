@@ -17,6 +17,7 @@
 #include "runtime/cli/commands.hpp"
 #include "runtime/cli/data_files.hpp"
 #include "runtime/cli/estimate_file.hpp"
+#include "runtime/cli/estimate_warnings.hpp"
 #include "runtime/cli/model_source.hpp"
 #include "runtime/cli/parameter_file.hpp"
 #include "runtime/cli/prediction_output.hpp"
@@ -223,6 +224,8 @@ int run_fit(const CommandLine& args) {
               << "): the data excite some parameters too little; more or richer experiments "
                  "help (the PIM needs a block-triangular set, Gautier & Briot section IV)\n";
   }
+  // Negative friction or rotor inertia, non-positive masses among the unregrouped parameters.
+  warn_implausible_estimates(std::cerr, id.names, id.fit.value, id.fit.std_dev);
   std::cout << "  rms torque error per axis (rms torque):";
   for (Eigen::Index j = 0; j < id.rms_error.size(); ++j) {
     std::cout << " " << fixed(id.rms_error[j], 0, 3) << " (" << fixed(id.rms_torque[j], 0, 3)

@@ -301,6 +301,7 @@ int run_fit_ml(const CommandLine& args) {
   } else {
     print_ml_comparison(std::cout, runs, payload_link, truth);
   }
+  for (const MlRun& run : runs) warn_implausible_ml_estimates(std::cerr, run, runs.size() > 1);
 
   if (args.has("-o")) {
     nlohmann::json out;

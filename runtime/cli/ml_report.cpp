@@ -9,6 +9,7 @@
 #include "modelgen/ml/fit.hpp"
 #include "modelgen/ml/identifiability.hpp"
 #include "modelgen/ml/load_parameters.hpp"
+#include "runtime/cli/estimate_warnings.hpp"
 #include "runtime/cli/text_format.hpp"
 
 namespace modelgen::internal {
@@ -237,6 +238,19 @@ void print_ml_comparison(std::ostream& out, const std::vector<MlRun>& runs, int 
       out << "  approach " << run.approach << ": warning: " << warning << "\n";
     }
   }
+}
+
+void warn_implausible_ml_estimates(std::ostream& err, const MlRun& run, bool name_approach) {
+  const MlFitResult& fit = run.fit;
+  Eigen::VectorXd value(static_cast<Eigen::Index>(fit.names.size()));
+  Eigen::VectorXd sd(value.size());
+  for (std::size_t u = 0; u < fit.names.size(); ++u) {
+    // Load unknowns are read from the load (find() above), as they are printed.
+    find(fit, fit.names[u], value[static_cast<Eigen::Index>(u)], sd[static_cast<Eigen::Index>(u)]);
+  }
+  warn_implausible_estimates(
+      err, fit.names, value, sd,
+      name_approach ? "approach " + std::to_string(run.approach) + ": " : std::string());
 }
 
 nlohmann::json ml_run_json(const MlRun& run) {

@@ -36,6 +36,10 @@ void print_ml_run(std::ostream& out, const MlRun& run, int payload_link, const M
 void print_ml_comparison(std::ostream& out, const std::vector<MlRun>& runs, int payload_link,
                          const MlTruth& truth);
 
+/// Warnings on `err` for the run's estimates that cannot be physical values (negative Rv, Rc,
+/// JM; a load mass that is not positive), each line naming the approach when `name_approach`.
+void warn_implausible_ml_estimates(std::ostream& err, const MlRun& run, bool name_approach);
+
 /// EST.json's description of one run: method, load with std and warnings, the other unknowns,
 /// rms per axis, identifiability, iterations, seconds.
 nlohmann::json ml_run_json(const MlRun& run);

@@ -2,7 +2,8 @@
 // parameters (--essential) are re-estimated here by least squares on the kept columns of a
 // regressor built with the numeric reference, their %std ratio is below r_sigma and one more
 // parameter would break it; EST.json holds the documented fields; the table marks poorly
-// identified parameters; --plot writes the torques the estimate predicts.
+// identified parameters; --plot writes the torques the estimate predicts; estimates of negative
+// friction or rotor inertia get a warning, regrouped base parameters of any sign do not.
 
 #include <algorithm>
 #include <cmath>
@@ -202,6 +203,67 @@ TEST(ModelidFit, EstimateFileTableAndPlots) {
     EXPECT_NEAR(json["rms_per_axis"][j].get<double>(), rms, 1e-8 * rms) << j;
   }
   EXPECT_TRUE(fs::exists(plots / "plot.gp"));
+}
+
+// The bundled run's truth is physical: at most warnings that say "not significantly" (noisy
+// estimates of small true values), none for regrouped parameters such as XX2R, negative here. The
+// same truth with a negative viscous friction and rotor inertia on axis 3 (both unregrouped base
+// parameters of the KR150), simulated without noise: both are flagged, significantly (their std is
+// ~0), and nothing else is.
+TEST(ModelidFit, ImpossibleEstimatesAreFlagged) {
+  const fs::path dir = test::test_folder("fit");
+  const CliRun bundled = modelid("fit --robot kr150 --data " + quoted_source(kData) +
+                                 " --method wls -o " + quoted(dir / "bundled.json"));
+  ASSERT_EQ(bundled.exit_code, 0) << bundled.err;
+  const nlohmann::json estimate = nlohmann::json::parse(test::read_text(dir / "bundled.json"));
+  std::set<std::string> flagged;
+  std::istringstream bundled_lines(bundled.err);
+  for (std::string line; std::getline(bundled_lines, line);) {
+    const std::string start = "modelid fit: warning: ";
+    if (line.find("cannot be") == std::string::npos) continue;
+    ASSERT_EQ(line.rfind(start, 0), 0u) << line;
+    flagged.insert(line.substr(start.size(), line.find(' ', start.size()) - start.size()));
+    // Noise can push a small true value below 0, but not beyond 3 std.
+    EXPECT_NE(line.find("not significantly"), std::string::npos) << line;
+  }
+  bool negative_regrouped = false;
+  for (const nlohmann::json& p : estimate["parameters"]) {
+    const std::string name = p["name"];
+    if (name.back() != 'R' || p["value"] >= 0) continue;
+    negative_regrouped = true;
+    EXPECT_EQ(flagged.count(name), 0u) << name << " is regrouped: any sign is possible";
+  }
+  EXPECT_TRUE(negative_regrouped) << "no negative regrouped parameter left to test the exemption";
+
+  nlohmann::json truth =
+      nlohmann::json::parse(test::read_text(test::source_path("robots/data/kr150/true.json")));
+  truth["standard"]["Fv3"] = -20.0;
+  truth["standard"]["Ia3"] = -1.5;
+  test::write_text(dir / "truth.json", truth.dump());
+  const CliRun simulated =
+      modelid("simulate --robot kr150 --params " + quoted(dir / "truth.json") + " --trajectory " +
+              quoted_source("robots/data/kr150/excitation.yaml") +
+              " --noise 0 --sample-time 0.01 -o " + quoted(dir / "data.csv"));
+  ASSERT_EQ(simulated.exit_code, 0) << simulated.err;
+  const CliRun fit =
+      modelid("fit --robot kr150 --data " + quoted(dir / "data.csv") + " --method ols");
+  ASSERT_EQ(fit.exit_code, 0) << fit.err;
+  std::istringstream lines(fit.err);
+  std::vector<std::string> warnings;
+  for (std::string line; std::getline(lines, line);) {
+    if (line.find("cannot be") != std::string::npos) warnings.push_back(line);
+  }
+  ASSERT_EQ(warnings.size(), 2u) << fit.err;
+  EXPECT_EQ(warnings[0].rfind("modelid fit: warning: Ia3 = -1.5 is negative: a rotor inertia "
+                              "cannot be",
+                              0),
+            0u)
+      << warnings[0];
+  EXPECT_EQ(warnings[1].rfind("modelid fit: warning: Fv3 = -20 is negative: a friction "
+                              "coefficient cannot be",
+                              0),
+            0u)
+      << warnings[1];
 }
 
 }  // namespace

@@ -10,11 +10,14 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <map>
 #include <sstream>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "modelgen/ml/drive_model.hpp"
@@ -224,6 +227,82 @@ TEST(ModelidMl, Approach3RecoversTheLoadAndApproach1IsBiased) {
   EXPECT_GT(std::abs(load1[0] - truth[0]), 10 * std::abs(load3[0] - truth[0]))
       << "approach 1 mass " << load1[0];
   EXPECT_GT(std::abs(load1[0] - truth[0]), 10 * sd3[0]) << "approach 1 mass " << load1[0];
+}
+
+// The bundled demo (README's first command): every estimate that cannot be a physical value
+// by the rule written out here, independently of the library's, gets a warning line on stderr
+// naming its approach, "not significantly" when value + 3 std reaches 0. The case: the
+// demo's Rv3 comes out negative, and nothing said so.
+TEST(ModelidMl, BundledDemoWarnsAboutImpossibleEstimates) {
+  const std::filesystem::path dir = test_folder("ml");
+  const CliRun simulated =
+      modelid("simulate --robot " + quoted_source("robots/kr150.yaml") + " --drive " +
+              quoted_source("robots/data/kr150/load/drive_truth.json") + " --trajectory " +
+              quoted_source("robots/data/kr150/load/table1.yaml") +
+              " --noise 345,345,345,133,126,123 --seed 2002 --sample-time 0.024 --periods 10 -o " +
+              quoted(dir / "load.csv"));
+  ASSERT_EQ(simulated.exit_code, 0) << simulated.err;
+  const CliRun fit = modelid(
+      "fit --method ml --approach all --robot " + quoted_source("robots/kr150.yaml") + " --known " +
+      quoted_source("robots/data/kr150/load/known.json") + " --data " + quoted(dir / "load.csv") +
+      " --periodic --period 36.96 -o " + quoted(dir / "est.json"));
+  ASSERT_EQ(fit.exit_code, 0) << fit.err;
+  const nlohmann::json est = nlohmann::json::parse(read_text(dir / "est.json"));
+  // Friction coefficients (Rv, Rc) and rotor inertias (JM) of one joint must be >= 0, the load
+  // mass > 0.
+  const auto bounded = [](const std::string& name) {
+    for (const std::string stem : {"Rv", "Rc", "JM"}) {
+      if (name.size() > stem.size() && name.compare(0, stem.size(), stem) == 0 &&
+          name.find_first_not_of("0123456789", stem.size()) == std::string::npos) {
+        return true;
+      }
+    }
+    return false;
+  };
+  std::istringstream err_lines(fit.err);
+  std::vector<std::string> warnings;
+  for (std::string line; std::getline(err_lines, line);) {
+    if (line.find("cannot be") != std::string::npos) warnings.push_back(line);
+  }
+  std::size_t expected = 0;
+  bool rv3_flagged = false;
+  for (const nlohmann::json& approach : est["approaches"]) {
+    const std::string method = approach["method"];  // "ML approach N"
+    const std::string prefix =
+        "modelid fit: warning: approach " + method.substr(method.size() - 1) + ": ";
+    std::vector<std::tuple<std::string, double, double>> checked;
+    for (const nlohmann::json& p : approach["parameters"]) {
+      if (p["value"].is_null() || !bounded(p["name"])) continue;
+      checked.emplace_back(p["name"], p["value"], p["std"].is_null() ? NAN : double(p["std"]));
+    }
+    const nlohmann::json& load = approach["load"];
+    if (!load["m"].is_null()) {
+      checked.emplace_back("load_m", load["m"],
+                           load["std"]["m"].is_null() ? NAN : double(load["std"]["m"]));
+    }
+    for (const auto& [name, value, sd] : checked) {
+      const bool mass = name == "load_m";
+      const bool impossible = mass ? value <= 0 : value < 0;
+      const std::string start = prefix + name + " = ";
+      const auto line = std::find_if(warnings.begin(), warnings.end(),
+                                     [&](const std::string& w) { return w.rfind(start, 0) == 0; });
+      if (!impossible) {
+        EXPECT_TRUE(line == warnings.end()) << *line;
+        continue;
+      }
+      ++expected;
+      if (name == "Rv3") rv3_flagged = true;
+      ASSERT_NE(line, warnings.end()) << start << " " << value << " not flagged:\n" << fit.err;
+      const bool significant = std::isfinite(sd) && value + 3 * sd < 0;
+      EXPECT_EQ(line->find("not significantly") == std::string::npos, significant) << *line;
+      const std::string quantity = mass             ? "a mass"
+                                   : name[0] == 'J' ? "a rotor inertia"
+                                                    : "a friction coefficient";
+      EXPECT_NE(line->find(quantity + " cannot be"), std::string::npos) << *line;
+    }
+  }
+  EXPECT_EQ(warnings.size(), expected) << fit.err;
+  EXPECT_TRUE(rv3_flagged) << "the demo's Rv3 is no longer negative in any approach:\n" << fit.out;
 }
 
 TEST(ModelidMl, UsageErrors) {

@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <map>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -517,7 +518,13 @@ TEST(ModelidSimulate, BundledLoadScenario) {
               " -o " + quoted(estimate));
   ASSERT_EQ(fit.exit_code, 0) << fit.out << fit.err;
   std::printf("%s%s", fit.out.c_str(), fit.err.c_str());
-  EXPECT_EQ(fit.err.find("warning"), std::string::npos) << fit.err;
+  // Every value is known a priori: the only warnings are those about impossible estimates
+  // (modelid_ml_test.cpp checks them).
+  std::istringstream err_lines(fit.err);
+  for (std::string line; std::getline(err_lines, line);) {
+    if (line.find("warning") == std::string::npos) continue;
+    EXPECT_NE(line.find("cannot be"), std::string::npos) << line;
+  }
   EXPECT_NE(fit.out.find("drive model: generated kr150"), std::string::npos) << fit.out;
   const nlohmann::json all = nlohmann::json::parse(read_text(estimate));
   ASSERT_EQ(all["approaches"].size(), 3u);
