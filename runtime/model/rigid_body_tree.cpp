@@ -17,6 +17,12 @@ bool is_inertial(ParamKind kind) {
          kind == ParamKind::kM;
 }
 
+int inertial_slot(ParamKind kind) {
+  static_assert(static_cast<int>(ParamKind::kXX) == 0 && static_cast<int>(ParamKind::kM) == 9,
+                "the inertial kinds come first, in slot order");
+  return is_inertial(kind) ? static_cast<int>(kind) : -1;
+}
+
 const char* param_kind_stem(ParamKind kind) {
   switch (kind) {
     case ParamKind::kXX:

@@ -64,34 +64,6 @@ Frame to_frame(const Eigen::Isometry3d& transform) {
   return frame;
 }
 
-// Position of an inertial parameter in standard_from_inertial's result, -1 for drive ones.
-int inertial_slot(ParamKind kind) {
-  switch (kind) {
-    case ParamKind::kXX:
-      return 0;
-    case ParamKind::kXY:
-      return 1;
-    case ParamKind::kXZ:
-      return 2;
-    case ParamKind::kYY:
-      return 3;
-    case ParamKind::kYZ:
-      return 4;
-    case ParamKind::kZZ:
-      return 5;
-    case ParamKind::kMX:
-      return 6;
-    case ParamKind::kMY:
-      return 7;
-    case ParamKind::kMZ:
-      return 8;
-    case ParamKind::kM:
-      return 9;
-    default:
-      return -1;
-  }
-}
-
 // Walks the kinematic tree depth first from the base, making a body per moving joint.
 class TreeBuilder {
  public:

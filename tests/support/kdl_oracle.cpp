@@ -42,7 +42,7 @@ struct BodyInertial {
 std::vector<BodyInertial> body_inertials(const RigidBodyTree& tree, const Eigen::VectorXd& p) {
   std::vector<std::array<double, 10>> standard(tree.bodies.size(), std::array<double, 10>{});
   for (std::size_t k = 0; k < tree.params.size(); ++k) {
-    const int slot = inertial_slot(tree.params[k].kind);
+    const int slot = test::inertial_slot(tree.params[k].kind);
     if (slot >= 0) standard[tree.params[k].body][slot] += p[static_cast<Eigen::Index>(k)];
   }
   std::vector<BodyInertial> out(tree.bodies.size());
@@ -252,7 +252,7 @@ Eigen::VectorXd random_physical_parameters(const RigidBodyTree& tree, Random& rn
   }
   Eigen::VectorXd p(tree.params.size());
   for (std::size_t k = 0; k < tree.params.size(); ++k) {
-    const int slot = inertial_slot(tree.params[k].kind);
+    const int slot = test::inertial_slot(tree.params[k].kind);
     const double v = slot >= 0 ? standard[tree.params[k].body][slot] : rng.uniform(0, 2);
     p[static_cast<Eigen::Index>(k)] = v;
   }

@@ -94,6 +94,11 @@ const char* param_kind_stem(ParamKind kind);
 /// as opposed to a drive, friction or offset parameter.
 bool is_inertial(ParamKind kind);
 
+/// The position of an inertial parameter among a body's ten, in ParamKind order (XX, XY, XZ,
+/// YY, YZ, ZZ, MX, MY, MZ, M: the order of standard_from_inertial and pseudo_inertia.hpp); -1
+/// for the drive, friction and offset kinds.
+int inertial_slot(ParamKind kind);
+
 /// Checks the invariants the dynamics rely on: parents before children, dof indices 0..dof-1
 /// once each, unit axes, orthonormal rotations, parameters on existing bodies, no duplicate
 /// parameter, drive parameters only on moving joints. Throws std::invalid_argument naming the
