@@ -10,25 +10,6 @@
 namespace modelgen {
 namespace {
 
-// Drive parameters that are magnitudes: rotor inertias and friction coefficients (the negative
-// side's Coulomb term enters with a minus sign, Bona & Curatella eq. 2, so it is >= 0 too).
-bool is_nonnegative_drive(ParamKind kind) {
-  switch (kind) {
-    case ParamKind::kIa:
-    case ParamKind::kFv:
-    case ParamKind::kFc:
-    case ParamKind::kFvPos:
-    case ParamKind::kFvNeg:
-    case ParamKind::kFcPos:
-    case ParamKind::kFcNeg:
-    case ParamKind::kIam:
-    case ParamKind::kFvm:
-      return true;
-    default:
-      return false;
-  }
-}
-
 std::string text(double v) { return shortest_text(v); }
 
 // The inertial conditions of one body, p in ParamKind order.
@@ -71,6 +52,23 @@ void check_body(const RigidBodyTree& tree, int body, const std::array<int, 10>& 
 
 }  // namespace
 
+bool must_be_nonnegative(ParamKind kind) {
+  switch (kind) {
+    case ParamKind::kIa:
+    case ParamKind::kFv:
+    case ParamKind::kFc:
+    case ParamKind::kFvPos:
+    case ParamKind::kFvNeg:
+    case ParamKind::kFcPos:
+    case ParamKind::kFcNeg:
+    case ParamKind::kIam:
+    case ParamKind::kFvm:
+      return true;
+    default:
+      return false;
+  }
+}
+
 std::vector<std::array<int, 10>> inertial_param_indices(const RigidBodyTree& tree) {
   std::vector<std::array<int, 10>> index(tree.bodies.size());
   for (auto& slots : index) slots.fill(-1);
@@ -109,7 +107,7 @@ std::vector<PhysicalViolation> physical_violations(const RigidBodyTree& tree,
   for (std::size_t k = 0; k < tree.params.size(); ++k) {
     const StandardParam& param = tree.params[k];
     const double v = standard[static_cast<Eigen::Index>(k)];
-    if (is_nonnegative_drive(param.kind) && v < 0) {
+    if (must_be_nonnegative(param.kind) && v < 0) {
       out.push_back({param.body, param.name,
                      std::string(param_kind_stem(param.kind)) + " " + text(v) +
                          " is negative (a rotor inertia or friction coefficient is >= 0)"});

@@ -32,6 +32,11 @@ std::vector<PhysicalViolation> physical_violations(const RigidBodyTree& tree,
                                                    const Eigen::VectorXd& standard,
                                                    double relative_tolerance = 1e-9);
 
+/// Whether a drive parameter kind is a magnitude that cannot be negative: rotor inertias
+/// (Ia, Iam) and friction coefficients (Fv, Fc, Fvp, Fvn, Fcp, Fcn, Fvm; the negative side's
+/// Coulomb term enters with a minus sign, Bona & Curatella eq. 2). Not Fcm, not offsets.
+bool must_be_nonnegative(ParamKind kind);
+
 /// Each body's ten inertial parameters as positions into tree.params, in ParamKind order
 /// (XX, XY, XZ, YY, YZ, ZZ, MX, MY, MZ, M); -1 where the tree has no such parameter.
 std::vector<std::array<int, 10>> inertial_param_indices(const RigidBodyTree& tree);

@@ -1,0 +1,72 @@
+// Physically consistent identification: the base parameters nearest (in the metric of the
+// unconstrained fit's information matrix) to an unconstrained estimate that some physically
+// consistent standard parameters produce, and those standard parameters.
+//
+// Each body's pseudo-inertia (Wensing, Kim & Slotine 2017; modelgen/model/pseudo_inertia.hpp) is
+// kept positive definite and rotor inertias and friction coefficients nonnegative: a convex
+// problem, solved to its global optimum by a barrier method; the standard deviations come from
+// the log-Cholesky parametrisation (Rucker & Wensing 2022) at the optimum. For a linear
+// least-squares fit the cost is exact: with beta_hat the unconstrained estimate and F = W'W /
+// sigma^2 its information matrix, ||W beta - y||^2 / sigma^2 = ||W beta_hat - y||^2 / sigma^2 +
+// (beta - beta_hat)' F (beta - beta_hat). A small prior term towards a-priori standard values
+// picks one among the standard parameter sets that give the same base parameters.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "modelgen/model/rigid_body_tree.hpp"
+
+namespace modelgen {
+
+class IdentificationModel;
+
+struct PhysicalFitOptions {
+  /// Weight of the prior term: the sum over standard parameters of the squared deviation from
+  /// the a-priori value (or, without one, from the start), relative to the size of the
+  /// parameter's group (a body's inertia entries, first moments, mass; one drive kind), against
+  /// the base-parameter term in units of the estimate's variance. Small: it only chooses among
+  /// equally good fits, and makes the problem well posed. Must be > 0.
+  double prior_weight = 1e-6;
+  int max_iterations = 2000;  ///< Newton steps of the barrier method
+};
+
+struct PhysicalFitResult {
+  Eigen::VectorXd standard;      ///< consistent standard parameters, tree.params order
+  Eigen::VectorXd base;          ///< K standard: the constrained base estimate
+  Eigen::VectorXd base_std_dev;  ///< from the Jacobian at the optimum (active bounds held)
+  /// (base - beta_hat)' F (base - beta_hat): what the constraints cost, in the unconstrained
+  /// fit's variance units (for least squares: the increase of the weighted sum of squares
+  /// divided by sigma^2; 0 when the unconstrained estimate is already consistent).
+  double cost_increase = 0;
+  /// The constraints that hold with equality at the optimum, in words, e.g. "Fv3 >= 0" or
+  /// "body 'link4': mass distribution at the boundary (pseudo-inertia nearly singular)".
+  std::vector<std::string> active_constraints;
+  /// The prior term's centre and scale per standard parameter: the a-priori value (or the
+  /// start) and the size its deviation is measured against; the prior term is
+  /// prior_weight * sum(((standard - prior) / prior_scale)^2).
+  Eigen::VectorXd prior, prior_scale;
+  bool converged = false;
+  int iterations = 0;  ///< Newton steps
+};
+
+/// The regrouping matrix K (beta = K p) of an identification model, column by column from
+/// base_from_standard.
+Eigen::MatrixXd regrouping_matrix(const IdentificationModel& model);
+
+/// The physically consistent fit (header comment). `K` is num_base x tree.params.size();
+/// `beta_hat` the unconstrained estimate; `information` its inverse covariance (symmetric
+/// positive definite, num_base square); `prior` per standard parameter an a-priori value or
+/// nullopt. The start: the standard parameters nearest the a-priori values that reproduce
+/// beta_hat (it also serves as the prior where there is none), projected onto the consistent
+/// set. Deterministic. Throws EstimationError on mismatched sizes, a non-finite input, a prior
+/// weight that is not positive, or an information matrix that is not positive definite.
+PhysicalFitResult fit_physical(const RigidBodyTree& tree, const Eigen::MatrixXd& K,
+                               const Eigen::VectorXd& beta_hat, const Eigen::MatrixXd& information,
+                               const std::vector<std::optional<double>>& prior,
+                               const PhysicalFitOptions& options = {});
+
+}  // namespace modelgen
