@@ -124,9 +124,14 @@ PreparedExperiment prepare_experiment(Trajectory raw, const DriveChain& drive,
     const double dt = uniform_sample_time(raw);
     // The bandwidth is only needed for what the user did not set.
     const bool need_bandwidth = !options.cutoff_hz || !options.decimation;
-    const double bandwidth = options.bandwidth_hz ? *options.bandwidth_hz
-                             : need_bandwidth     ? estimate_bandwidth(raw)
-                                                  : 0.0;
+    ExcitationBands bands;
+    if (options.bandwidth_hz) {
+      bands.bandwidth_hz = *options.bandwidth_hz;
+    } else if (need_bandwidth) {
+      bands = estimate_bands(raw);
+    }
+    const double bandwidth = bands.bandwidth_hz;
+    out.bandwidth_hz = bandwidth;
     FilterPlan plan;
     if (need_bandwidth) {
       try {
@@ -155,10 +160,15 @@ PreparedExperiment prepare_experiment(Trajectory raw, const DriveChain& drive,
       *m = m->middleRows(edge, kept).eval();
     }
     out.decimation = plan.decimation_factor;
-    const std::string band =
-        options.bandwidth_hz ? ", excitation bandwidth " + number(bandwidth, 3) + " Hz (given)"
-        : need_bandwidth     ? ", excitation bandwidth " + number(bandwidth, 3) + " Hz (estimated)"
-                             : "";
+    std::string band;
+    if (options.bandwidth_hz) {
+      band = ", excitation bandwidth " + number(bandwidth, 3) + " Hz (given)";
+    } else if (need_bandwidth) {
+      band = ", excitation bandwidth " + number(bandwidth, 3) + " Hz (estimated: 99% of the "
+             "velocities' energy below " + number(bands.velocity_hz, 3) + " Hz" +
+             (bands.torque_hz > 0 ? ", of the torques' below " + number(bands.torque_hz, 3) + " Hz"
+                                  : std::string()) + ")";
+    }
     out.summary = resampled + "sampled at " + number(1.0 / dt) + " Hz" + band +
                   "; positions low-passed at " + number(plan.position_cutoff_hz, 3) +
                   " Hz (zero phase), central differences, " + number(edge * dt, 3) +

@@ -35,6 +35,9 @@ struct PreparationOptions {
 struct PreparedExperiment {
   Trajectory data;     ///< joint side, with dq and ddq
   int decimation = 1;  ///< parallel decimation factor for identify() (eq. 13-14)
+  /// Non-periodic route with a position filter: the excitation bandwidth used (given or
+  /// estimated), Hz; 0 otherwise.
+  double bandwidth_hz = 0;
   /// Periodic route: noise variance of the averaged torque per axis ((N m)^2), else empty.
   Eigen::VectorXd tau_noise_variance;
   std::string summary;  ///< what was done, in one or two lines, for the user
