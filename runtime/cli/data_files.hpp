@@ -26,6 +26,9 @@ PreparationOptions preparation_options(const CommandLine& args);
 struct Experiments {
   std::vector<Trajectory> data;  ///< joint side, with dq and ddq
   std::vector<int> decimation;   ///< parallel decimation factor per experiment
+  /// Per experiment: the excitation bandwidth its position filter was planned for (Hz), 0
+  /// when it had none (dq and ddq given, --raw, --periodic, --cutoff with --decimate).
+  std::vector<double> bandwidth_hz;
   /// Per experiment: the joint-side torque noise variance per axis from the period average
   /// (N^2 m^2, dof values) with --periodic, empty otherwise (PreparedExperiment).
   std::vector<Eigen::VectorXd> tau_noise_variance;

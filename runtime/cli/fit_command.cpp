@@ -21,6 +21,7 @@
 #include "runtime/cli/model_source.hpp"
 #include "runtime/cli/parameter_file.hpp"
 #include "runtime/cli/prediction_output.hpp"
+#include "runtime/cli/preparation_check.hpp"
 #include "runtime/cli/progress.hpp"
 #include "runtime/cli/text_format.hpp"
 #include "runtime/cli/torque_plots.hpp"
@@ -224,6 +225,7 @@ int run_fit(const CommandLine& args) {
               << "): the data excite some parameters too little; more or richer experiments "
                  "help (the PIM needs a block-triangular set, Gautier & Briot section IV)\n";
   }
+  warn_residual_outside_band(std::cerr, model, experiments, id.fit.value);
   // Negative friction or rotor inertia, non-positive masses among the unregrouped parameters.
   warn_implausible_estimates(std::cerr, id.names, id.fit.value, id.fit.std_dev);
   std::cout << "  rms torque error per axis (rms torque):";

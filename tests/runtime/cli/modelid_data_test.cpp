@@ -205,6 +205,36 @@ TEST(ModelidData, NonPeriodicRouteFiltersAndDecimates) {
   EXPECT_LT(relative_difference(estimate_values(dir / "est.json"), tx40.beta), 1e-3);
 }
 
+TEST(ModelidData, AResidualAboveTheBandSaysThePreparationWasWrong) {
+  // Encoder-like position noise (1 mrad) and torque noise: with the bandwidth given 50 times too
+  // high, the position filter passes the noise, differentiation amplifies it, and W carries
+  // high-frequency content the torques do not: the fit must say so. With the estimated
+  // bandwidth (the excitation ends at 0.75 Hz) it must not.
+  const fs::path dir = test::test_folder();
+  const Tx40Case tx40;
+  Trajectory x = tx40.sampled(0.001, 12.0);
+  std::mt19937_64 engine(5);
+  std::normal_distribution<double> position_noise(0.0, 1e-3), torque_noise(0.0, 0.5);
+  for (Eigen::Index s = 0; s < x.t.size(); ++s) {
+    for (int j = 0; j < 6; ++j) {
+      x.q(s, j) += position_noise(engine);
+      x.tau(s, j) += torque_noise(engine);
+    }
+  }
+  write_log(dir / "noisy.csv", x.t, x.q, x.tau, "tau");
+  const std::string fit = "fit --robot tx40 --method ols --data " + quoted(dir / "noisy.csv");
+  const CliRun wide = modelid(fit + " --bandwidth 50");
+  ASSERT_EQ(wide.exit_code, 0) << wide.err;
+  EXPECT_NE(wide.err.find("noisy.csv: above the 50 Hz excitation bandwidth the residual has"),
+            std::string::npos)
+      << wide.err;
+  EXPECT_NE(wide.err.find("filtered too little"), std::string::npos) << wide.err;
+  const CliRun estimated = modelid(fit);
+  ASSERT_EQ(estimated.exit_code, 0) << estimated.err;
+  EXPECT_EQ(estimated.err.find("excitation bandwidth the residual"), std::string::npos)
+      << estimated.err;
+}
+
 TEST(ModelidData, ContradictoryOptionsAreUsageErrors) {
   const std::string data = " --data " + test::quoted_source("robots/data/kr150/excitation.csv");
   for (const std::string& options :
