@@ -19,6 +19,16 @@ namespace modelgen::internal {
 /// --harmonics, --raw, --bandwidth, --cutoff, --decimate.
 std::map<std::string, OptionKind> with_data_options(std::map<std::string, OptionKind> options);
 
+/// The data options given in `args`, as command-line words in a fixed order (--motor-side,
+/// --periodic, --period S, --harmonics H, --raw, --bandwidth HZ, --cutoff HZ, --decimate N):
+/// what fit writes into EST.json so that predict prepares data the same way.
+std::vector<std::string> data_option_words(const CommandLine& args);
+
+/// The command line of data options `words` (as data_option_words gives them); UsageError
+/// naming `origin` (e.g. "EST.json") for a word that is not a data option.
+CommandLine data_options_from_words(const std::vector<std::string>& words,
+                                    const std::string& origin);
+
 /// The preparation the data options ask for; UsageError for values out of range or options
 /// that contradict each other (--periodic with --raw, --period without --periodic, ...).
 PreparationOptions preparation_options(const CommandLine& args);

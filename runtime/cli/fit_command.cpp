@@ -262,6 +262,7 @@ int run_fit(const CommandLine& args) {
                                         id.rms_torque.data() + id.rms_torque.size());
     estimate.samples = id.samples;
     estimate.data = args.all("--data");
+    estimate.data_options = data_option_words(args);
     write_file(args.one("-o"), estimate_json(estimate));
   }
   return 0;

@@ -30,6 +30,12 @@ struct PreparationOptions {
   std::optional<double> bandwidth_hz;  ///< excitation bandwidth; estimated when unset
   std::optional<double> cutoff_hz;     ///< position filter cut-off; from plan_filtering
   std::optional<int> decimation;       ///< n_d; from plan_filtering (1 for data with dq/ddq)
+  /// For prediction: one row per input sample, at the file's own time stamps, with its
+  /// measured torques. The motion is made as the route says (zero-phase filtered positions
+  /// and their central differences, the Fourier series of the averaged period, or dq and ddq
+  /// as given) and linearly interpolated back to the time stamps when the route resampled,
+  /// averaged or dropped samples; the filter's edges are kept; the decimation factor is 1.
+  bool every_sample = false;
 };
 
 struct PreparedExperiment {
