@@ -235,6 +235,23 @@ TEST(ModelidData, AResidualAboveTheBandSaysThePreparationWasWrong) {
       << estimated.err;
 }
 
+TEST(ModelidData, AFileAboveTheRowLimitIsRefusedWithTheLimit) {
+  const fs::path dir = test::test_folder();
+  {
+    std::ofstream out(dir / "long.csv");
+    out << "t,q1,q2,q3,q4,q5,q6,tau1,tau2,tau3,tau4,tau5,tau6\n";
+    for (long s = 0; s <= 1000000; ++s) out << s << ",0,0,0,0,0,0,1,1,1,1,1,1\n";
+  }
+  const CliRun run = modelid("fit --robot tx40 --method ols --data " + quoted(dir / "long.csv"));
+  EXPECT_EQ(run.exit_code, 1);
+  EXPECT_EQ(run.err.rfind((dir / "long.csv").string() +
+                              ":1000002: error: more than 1000000 samples, modelid's limit per "
+                              "data file",
+                          0),
+            0u)
+      << run.err;
+}
+
 TEST(ModelidData, ContradictoryOptionsAreUsageErrors) {
   const std::string data = " --data " + test::quoted_source("robots/data/kr150/excitation.csv");
   for (const std::string& options :
