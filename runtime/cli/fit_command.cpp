@@ -18,6 +18,7 @@
 #include "runtime/cli/data_files.hpp"
 #include "runtime/cli/estimate_file.hpp"
 #include "runtime/cli/estimate_warnings.hpp"
+#include "runtime/cli/limit_check.hpp"
 #include "runtime/cli/model_source.hpp"
 #include "runtime/cli/parameter_file.hpp"
 #include "runtime/cli/prediction_output.hpp"
@@ -193,6 +194,8 @@ int run_fit(const CommandLine& args) {
   const Experiments experiments = read_experiments(
       args.all("--data"), model, preparation_options(args), EffortColumns::kRequired, data_report);
   const std::vector<Trajectory>& data = experiments.data;
+  warn_beyond_limits(std::cerr, "fit", source, experiments,
+                     args.has("--motor-side") ? Side::kMotor : Side::kJoint);
 
   IdentifyOptions options;
   options.decimation = experiments.decimation;

@@ -11,6 +11,7 @@
 #include "runtime/cli/commands.hpp"
 #include "runtime/cli/data_files.hpp"
 #include "runtime/cli/estimate_file.hpp"
+#include "runtime/cli/limit_check.hpp"
 #include "runtime/cli/model_source.hpp"
 #include "runtime/cli/parameter_file.hpp"
 #include "runtime/cli/prediction_output.hpp"
@@ -89,6 +90,7 @@ int run_predict(const CommandLine& args) {
   std::ostringstream data_report;
   Experiments experiments = read_experiments(args.all("--data"), model, preparation,
                                              EffortColumns::kOptional, data_report);
+  warn_beyond_limits(std::cerr, "predict", source, experiments, preparation.side);
   // Torques are optional: without them there is nothing to compare, only predictions.
   const bool measured = experiments.data.front().measured != Measured::kNothing;
   for (const Trajectory& x : experiments.data) {

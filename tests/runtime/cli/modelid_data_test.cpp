@@ -252,6 +252,37 @@ TEST(ModelidData, AFileAboveTheRowLimitIsRefusedWithTheLimit) {
       << run.err;
 }
 
+TEST(ModelidData, PositionsBeyondTheLimitsAreWarnedAboutInFitAndPredict) {
+  // Motor angles (gear ratio 32 on joint 2) given as joint angles: joint 2 of robots/tx40.yaml
+  // is limited to [-2.18, 2.18] rad.
+  const fs::path dir = test::test_folder();
+  const Tx40Case tx40;
+  const Trajectory x = tx40.sampled(0.01, 8.0);
+  Eigen::MatrixXd q = x.q;
+  q.col(1) *= 32.0;
+  const double reach = q.col(1).cwiseAbs().maxCoeff();
+  ASSERT_GT(reach, 2.18 * 1.01);
+  write_log(dir / "motor.csv", x.t, q, x.tau, "tau");
+  const std::string data = " --data " + quoted(dir / "motor.csv");
+  const CliRun fit = modelid("fit --robot tx40 --method ols --raw" + data + " -o " +
+                             quoted(dir / "est.json"));
+  ASSERT_EQ(fit.exit_code, 0) << fit.err;
+  const std::string expected = ": warning: " + (dir / "motor.csv").string() +
+                               ": joint 2 ('J2') reaches q = ";
+  EXPECT_NE(fit.err.find("modelid fit" + expected), std::string::npos) << fit.err;
+  EXPECT_NE(fit.err.find("outside its limits [-2.18, 2.18] in the description: motor-side data "
+                         "read as joint data (--motor-side)?"),
+            std::string::npos)
+      << fit.err;
+  // The joints inside their limits are not named.
+  EXPECT_EQ(fit.err.find("joint 1 ('J1') reaches q"), std::string::npos) << fit.err;
+  const CliRun predict =
+      modelid("predict --robot " + test::quoted_source("robots/tx40.yaml") + " --params " +
+              quoted(dir / "est.json") + data);
+  ASSERT_EQ(predict.exit_code, 0) << predict.err;
+  EXPECT_NE(predict.err.find("modelid predict" + expected), std::string::npos) << predict.err;
+}
+
 TEST(ModelidData, ContradictoryOptionsAreUsageErrors) {
   const std::string data = " --data " + test::quoted_source("robots/data/kr150/excitation.csv");
   for (const std::string& options :
