@@ -63,6 +63,25 @@ std::string estimate_json(const EstimateFile& estimate) {
                         {"rel_error_norm", number(e.rel_error_norm)},
                         {"condition_number", number(e.condition_number)}};
   }
+  if (estimate.physical) {
+    const PhysicalBlock& p = *estimate.physical;
+    nlohmann::json standard = nlohmann::json::object();
+    for (const auto& [name, value] : p.standard) standard[name] = number(value);
+    out["standard"] = std::move(standard);
+    nlohmann::json links = nlohmann::json::array();
+    for (const LinkInertial& link : p.links) {
+      links.push_back({{"body", link.body},
+                       {"mass", number(link.mass)},
+                       {"com", numbers({link.com.begin(), link.com.end()})},
+                       {"inertia_com", numbers({link.inertia_com.begin(), link.inertia_com.end()})}});
+    }
+    out["links"] = std::move(links);
+    out["physical"] = {{"prior_weight", number(p.prior_weight)},
+                       {"cost_increase", number(p.cost_increase)},
+                       {"binding_constraints", p.binding_constraints},
+                       {"unconstrained_rel_error_norm", number(p.unconstrained_rel_error_norm)},
+                       {"unconstrained", parameters_json(p.unconstrained)}};
+  }
   return out.dump(2) + "\n";
 }
 

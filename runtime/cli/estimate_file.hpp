@@ -3,8 +3,10 @@
 // read back by read_base_parameters (runtime/cli/parameter_file.hpp).
 #pragma once
 
+#include <array>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "modelgen/model/identification_model.hpp"
@@ -29,6 +31,26 @@ struct EssentialEstimate {
   double condition_number = 0;
 };
 
+/// A body's mass distribution for people: mass, centre of mass and inertia about it, in the
+/// body frame (SI units).
+struct LinkInertial {
+  std::string body;
+  double mass = 0;
+  std::array<double, 3> com{};
+  std::array<double, 6> inertia_com{};  ///< xx, xy, xz, yy, yz, zz (tensor entries)
+};
+
+/// What fit --physical adds; the consistent base estimate itself is EstimateFile::parameters.
+struct PhysicalBlock {
+  double prior_weight = 0;
+  double cost_increase = 0;  ///< of the weighted sum of squares, in sigma^2
+  double unconstrained_rel_error_norm = 0;
+  std::vector<std::string> binding_constraints;
+  std::vector<EstimatedParameter> unconstrained;               ///< the fit without constraints
+  std::vector<std::pair<std::string, double>> standard;        ///< consistent, by standard name
+  std::vector<LinkInertial> links;
+};
+
 struct EstimateFile {
   std::string model;                           ///< IdentificationModel::name()
   std::string description_sha256;              ///< of the description the model was made from
@@ -44,13 +66,17 @@ struct EstimateFile {
   /// The data options the fit was run with, as command-line words (data_option_words).
   std::vector<std::string> data_options;
   std::optional<EssentialEstimate> essential;
+  std::optional<PhysicalBlock> physical;
 };
 
 /// The JSON text of an estimate: {"model", "description_sha256", "method", "samples", "data",
 /// "data_options", "rel_error_norm", "condition_number", "residual_std", "rms_per_axis",
 /// "rms_torque_per_axis", "parameters": [{"name", "value", "std", "rel_std", "truth"?}],
 /// "essential"?: {"r_sigma", "kept", "eliminated", "parameters", "rel_error_norm",
-/// "condition_number"}}. Non-finite numbers are written as null.
+/// "condition_number"}, "standard"?: {"XX1": ..., ...}, "links"?: [{"body", "mass", "com",
+/// "inertia_com"}], "physical"?: {"prior_weight", "cost_increase", "binding_constraints",
+/// "unconstrained_rel_error_norm", "unconstrained": [...]}}. Non-finite numbers are written as
+/// null.
 std::string estimate_json(const EstimateFile& estimate);
 
 /// Refuses a parameter file made for another model: when the JSON file at `path` has a

@@ -14,6 +14,7 @@
 #include "modelgen/estimation/identify.hpp"
 #include "modelgen/estimation/least_squares.hpp"
 #include "modelgen/estimation/predict.hpp"
+#include "modelgen/model/load_robot.hpp"
 #include "runtime/cli/commands.hpp"
 #include "runtime/cli/data_files.hpp"
 #include "runtime/cli/estimate_file.hpp"
@@ -21,9 +22,11 @@
 #include "runtime/cli/limit_check.hpp"
 #include "runtime/cli/model_source.hpp"
 #include "runtime/cli/parameter_file.hpp"
+#include "runtime/cli/physical_report.hpp"
 #include "runtime/cli/prediction_output.hpp"
 #include "runtime/cli/preparation_check.hpp"
 #include "runtime/cli/progress.hpp"
+#include "runtime/cli/shipped_models.hpp"
 #include "runtime/cli/text_format.hpp"
 #include "runtime/cli/torque_plots.hpp"
 
@@ -40,7 +43,9 @@ const std::map<std::string, OptionKind> kFitOptions =
                        {"--plot", OptionKind::kOnce},
                        {"--approach", OptionKind::kOnce},
                        {"--unknown", OptionKind::kOnce},
-                       {"--known", OptionKind::kOnce}});
+                       {"--known", OptionKind::kOnce},
+                       {"--physical", OptionKind::kFlag},
+                       {"--prior-weight", OptionKind::kOnce}});
 
 namespace {
 
@@ -50,6 +55,9 @@ constexpr double kPoorlyIdentifiedPercent = 10.0;
 // Gautier & Briot, section on essential parameters: r_sigma "ideally chosen between 10 and 30",
 // fixed to 20 for all their identifications.
 constexpr double kDefaultRSigma = 20.0;
+// The prior weight of --physical (modelgen/estimation/physical.hpp): small, it only picks among
+// standard sets the data cannot tell apart.
+constexpr double kDefaultPriorWeight = 1e-6;
 // Above this condition number of the (weighted) W, a fit gets a warning: its estimates move by
 // that factor times the relative noise.
 constexpr double kIllConditioned = 1e8;
@@ -155,12 +163,51 @@ void print_essential(const EssentialEstimate& essential, std::size_t num_base) {
             << ", condition number " << fixed(essential.condition_number, 0, 4) << "\n";
 }
 
+// The description behind --robot: the file, or for a compiled-in model its description in the
+// source tree.
+RobotModel description_of(const ModelSource& source, const std::string& robot) {
+  if (source.description) return *source.description;
+  const std::string path = shipped_description_path(robot);
+  if (path.empty()) {
+    throw std::runtime_error("--physical needs the robot's description (its bodies and a-priori "
+                             "values); give --robot the description file instead of '" +
+                             robot + "'");
+  }
+  return load_robot(path);
+}
+
+double prior_weight(const CommandLine& args) {
+  if (!args.has("--prior-weight")) return kDefaultPriorWeight;
+  if (!args.has("--physical")) throw UsageError{"--prior-weight belongs to --physical"};
+  const double weight = parse_number(args.one("--prior-weight"), "--prior-weight");
+  if (!(weight > 0) || !std::isfinite(weight)) {
+    throw UsageError{"--prior-weight must be a positive number, not '" +
+                     args.one("--prior-weight") + "'"};
+  }
+  return weight;
+}
+
+std::vector<EstimatedParameter> estimated(const Eigen::VectorXd& value,
+                                          const Eigen::VectorXd& std_dev,
+                                          const std::vector<std::string>& names,
+                                          const Eigen::VectorXd& truth) {
+  std::vector<EstimatedParameter> out;
+  for (std::size_t b = 0; b < names.size(); ++b) {
+    const auto i = static_cast<Eigen::Index>(b);
+    const double rel = value[i] != 0 ? 100 * std_dev[i] / std::abs(value[i]) : INFINITY;
+    EstimatedParameter p{names[b], value[i], std_dev[i], rel, {}};
+    if (truth.size()) p.truth = truth[i];
+    out.push_back(std::move(p));
+  }
+  return out;
+}
+
 }  // namespace
 
 int run_fit(const CommandLine& args) {
   reject_positional(args);
   if (args.has("--method") && args.one("--method") == "ml") {
-    for (const char* option : {"--essential", "--r-sigma", "--plot"}) {
+    for (const char* option : {"--essential", "--r-sigma", "--plot", "--physical", "--prior-weight"}) {
       if (args.has(option)) {
         throw UsageError{std::string(option) + " belongs to the linear methods, not --method ml"};
       }
@@ -170,6 +217,7 @@ int run_fit(const CommandLine& args) {
   for (const char* option : {"--approach", "--unknown", "--known"}) {
     if (args.has(option)) throw UsageError{std::string(option) + " belongs to --method ml"};
   }
+  const double weight = prior_weight(args);
   const ModelSource source = load_model_source(args.one("--robot"));
   const IdentificationModel& model = *source.model;
   if (!args.has("--data")) throw UsageError{"fit needs at least one --data file"};
@@ -238,6 +286,18 @@ int run_fit(const CommandLine& args) {
   }
   std::cout << "\n";
 
+  std::optional<PhysicalEstimate> physical;
+  TorquePrediction physical_prediction;
+  if (args.has("--physical")) {
+    physical = physical_estimate(description_of(source, args.one("--robot")), model, id.fit, weight);
+    std::vector<Trajectory> compared = data;
+    physical_prediction =
+        predict_with_progress(model, compared, physical->fit.base, experiments.decimation);
+    physical->rel_error_norm = physical_prediction.rel_error_norm;
+    print_physical(std::cout, id.names, id.fit, id.torque_rel_error_norm, *physical,
+                   id.fit.equations - static_cast<long long>(id.names.size()));
+  }
+
   EstimateFile estimate;
   if (essential) {
     estimate.essential =
@@ -266,6 +326,16 @@ int run_fit(const CommandLine& args) {
     estimate.samples = id.samples;
     estimate.data = args.all("--data");
     estimate.data_options = data_option_words(args);
+    if (physical) {
+      // The consistent estimate is the estimate; the unconstrained one stays beside it.
+      estimate.physical = physical_block(*physical, parameters, id.torque_rel_error_norm);
+      estimate.method += " (physically consistent)";
+      estimate.parameters =
+          estimated(physical->fit.base, physical->fit.base_std_dev, id.names, truth);
+      estimate.rel_error_norm = physical->rel_error_norm;
+      const TorquePrediction& p = physical_prediction;
+      estimate.rms_per_axis.assign(p.rms_error.data(), p.rms_error.data() + p.rms_error.size());
+    }
     write_file(args.one("-o"), estimate_json(estimate));
   }
   return 0;

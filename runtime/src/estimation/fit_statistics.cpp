@@ -177,6 +177,10 @@ LeastSquaresResult Reducer::solve(const std::vector<int>& kept,
   for (Eigen::Index i = 0; i < b; ++i) {
     result.std_dev[permutation[i]] = std::sqrt(variance * diagonal_pivoted[i]);
   }
+  // W'W = P R'R P' (the same QR), over the variance.
+  const Eigen::MatrixXd RP = R * qr.colsPermutation().transpose();
+  result.information = RP.transpose() * RP / variance;
+  result.equations = static_cast<long long>(rows);
   for (Eigen::Index i = 0; i < b; ++i) {
     // Eq. 19.
     result.rel_std_dev[i] = result.value[i] != 0.0

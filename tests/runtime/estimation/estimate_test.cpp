@@ -11,6 +11,8 @@
 #include <limits>
 #include <numbers>
 
+#include <random>
+
 #include <gtest/gtest.h>
 #include <Eigen/Cholesky>
 #include <Eigen/SVD>
@@ -424,6 +426,24 @@ TEST(Estimate, WeightedLeastSquaresInClosedForm) {
   EXPECT_NEAR(fit.std_dev[0], std::sqrt(s2 / xx), 1e-14);
   EXPECT_NEAR(fit.rel_std_dev[0], 100 * std::sqrt(s2 / xx) / beta, 1e-12);
   EXPECT_DOUBLE_EQ(fit.condition_number, 1.0);
+  ASSERT_EQ(fit.information.rows(), 1);
+  EXPECT_NEAR(fit.information(0, 0), xx / s2, 1e-12 * xx / s2);
+}
+
+TEST(Estimate, InformationIsTheNormalMatrixOverTheVariance) {
+  // Several columns, a column order the pivoting QR will permute: W'W / s^2 formed directly.
+  std::mt19937 rng(5);
+  std::normal_distribution<double> normal(0, 1);
+  Eigen::MatrixXd W(200, 4);
+  for (Eigen::Index i = 0; i < W.size(); ++i) W.data()[i] = normal(rng);
+  W.col(0) *= 1e-3;
+  W.col(3) *= 50;
+  Eigen::VectorXd y = W * Eigen::Vector4d(1, -2, 3, 0.5);
+  for (Eigen::Index r = 0; r < y.size(); ++r) y[r] += 0.1 * normal(rng);
+  const LeastSquaresResult fit = fit_ols(W, y, {"a", "b", "c", "d"});
+  const double s2 = (y - W * fit.value).squaredNorm() / (200 - 4);
+  const Eigen::MatrixXd expected = W.transpose() * W / s2;
+  EXPECT_LT((fit.information - expected).norm(), 1e-10 * expected.norm());
 }
 
 TEST(Estimate, NonFiniteValuesAreNamed) {

@@ -18,6 +18,11 @@ struct LeastSquaresResult {
   Eigen::VectorXd value;           ///< estimated parameters (eq. 15), one per column of W
   Eigen::VectorXd std_dev;         ///< standard deviations (eq. 17-18)
   Eigen::VectorXd rel_std_dev;     ///< relative standard deviations in % (eq. 19); +inf for 0
+  /// The inverse of the covariance of eq. 18, W'W / sigma^2 on the (weighted) equations: the
+  /// metric in which a constrained estimate's distance from `value` is its cost
+  /// (modelgen/estimation/physical.hpp).
+  Eigen::MatrixXd information;
+  long long equations = 0;  ///< rows of W: the weighted sum of squares is (equations - b) sigma^2
   double residual_std_dev = 0;     ///< sigma_rho of the (weighted) equations (eq. 17)
   double condition_number = 0;     ///< of the (weighted) W, 2-norm
   double relative_error_norm = 0;  ///< ||Y - W value|| / ||Y|| on the unweighted equations
