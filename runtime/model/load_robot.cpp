@@ -4,7 +4,9 @@
 
 #include <filesystem>
 #include <fstream>
+#include <numbers>
 #include <sstream>
+#include <stdexcept>
 
 #include "runtime/model/mdh_yaml_loader.hpp"
 #include "runtime/model/urdf_loader.hpp"
@@ -25,12 +27,16 @@ std::string read_source_file(const std::string& path) {
 }
 
 RobotModel load_robot(const std::string& path, const LoadOptions& options) {
+  if (!(options.angle_tolerance >= 0 && options.angle_tolerance < std::numbers::pi / 4)) {
+    // Beyond pi/4 every angle would be within reach of some quarter turn.
+    throw std::invalid_argument("angle tolerance must be in [0, pi/4)");
+  }
   const std::string extension = std::filesystem::path(path).extension().string();
   if (extension == ".yaml" || extension == ".yml") {
     if (!options.base_link.empty() || !options.tip_link.empty()) {
       throw InputError({path}, "--base and --tip apply to URDF descriptions only");
     }
-    RobotModel model = load_mdh_yaml(path, read_source_file(path));
+    RobotModel model = load_mdh_yaml(path, read_source_file(path), options.angle_tolerance);
     if (!options.name.empty()) {
       check_robot_name(options.name, {path});
       model.name = options.name;

@@ -3,6 +3,9 @@
 #include "runtime/model/urdf_structure.hpp"
 
 #include <algorithm>
+#include <array>
+#include <cstdio>
+#include <utility>
 #include <cctype>
 #include <charconv>
 #include <cmath>
@@ -13,6 +16,8 @@
 #include <string_view>
 #include <vector>
 
+#include <Eigen/Core>
+#include <Eigen/Eigenvalues>
 #include <tinyxml2.h>
 
 #include "modelgen/model/error.hpp"
@@ -156,11 +161,61 @@ class StructureChecker {
     return values;
   }
 
-  void check_origin(const tinyxml2::XMLElement* parent, const std::string& what) const {
+  // urdfdom reads the first of each of these and ignores the rest without a word; a second
+  // one is a mistake (two <child> in a joint, two <inertial> in a link) the user should see.
+  void check_single(const tinyxml2::XMLElement* parent, const char* element,
+                    const std::string& owner) const {
+    const tinyxml2::XMLElement* first = parent->FirstChildElement(element);
+    if (first == nullptr) return;
+    if (const tinyxml2::XMLElement* second = first->NextSiblingElement(element)) {
+      fail(second, owner + " has a second <" + element + "> (the first is at line " +
+                       std::to_string(first->GetLineNum()) + "); give exactly one");
+    }
+  }
+
+  // <visual> and <collision>: urdfdom rejects a bad one with "Could not parse visual/collision
+  // element" on the console and no line; check what it checks, with the line.
+  void check_geometry_owner(const tinyxml2::XMLElement* element, const std::string& owner) const {
+    const std::string what = owner + ": <" + element->Name() + ">";
+    check_origin(element, what + " origin");
+    const tinyxml2::XMLElement* geometry = element->FirstChildElement("geometry");
+    if (geometry == nullptr) fail(element, what + " has no <geometry>");
+    const tinyxml2::XMLElement* shape = geometry->FirstChildElement();
+    if (shape == nullptr) {
+      fail(geometry, what + ": <geometry> holds no shape (box, cylinder, sphere or mesh)");
+    }
+    const std::string name = shape->Name();
+    const std::string shape_what = what + " " + name;
+    if (name == "box") {
+      numbers(shape, "size", 3, shape_what, true);
+    } else if (name == "cylinder" || name == "capsule") {
+      numbers(shape, "radius", 1, shape_what, true);
+      numbers(shape, "length", 1, shape_what, true);
+    } else if (name == "sphere") {
+      numbers(shape, "radius", 1, shape_what, true);
+    } else if (name == "mesh") {
+      const char* file = shape->Attribute("filename");
+      if (file == nullptr || *file == '\0') fail(shape, shape_what + " has no filename attribute");
+      numbers(shape, "scale", 3, shape_what, false);
+    } else {
+      fail(shape, what + ": unknown geometry <" + name + ">" +
+                      did_you_mean(name, {"box", "cylinder", "sphere", "mesh"}) +
+                      "; expected box, cylinder, sphere or mesh");
+    }
+  }
+
+  OriginEntry check_origin(const tinyxml2::XMLElement* parent, const std::string& what) const {
+    OriginEntry entry;
     const tinyxml2::XMLElement* origin = parent->FirstChildElement("origin");
-    if (origin == nullptr) return;
-    numbers(origin, "xyz", 3, what, false);
-    numbers(origin, "rpy", 3, what, false);
+    if (origin == nullptr) return entry;
+    entry.line = origin->GetLineNum();
+    if (const auto xyz = numbers(origin, "xyz", 3, what, false)) {
+      std::copy(xyz->begin(), xyz->end(), entry.xyz.begin());
+    }
+    if (const auto rpy = numbers(origin, "rpy", 3, what, false)) {
+      std::copy(rpy->begin(), rpy->end(), entry.rpy.begin());
+    }
+    return entry;
   }
 
   void check_link(const tinyxml2::XMLElement* link) {
@@ -173,11 +228,21 @@ class StructureChecker {
       fail(link, owner + " is defined twice (first at line " +
                      std::to_string(structure_.links[previous->second].line) + ")");
     }
-    structure_.links.push_back({name, link->GetLineNum()});
+    structure_.links.push_back({name, link->GetLineNum(), {}});
+    check_single(link, "inertial", owner);
+    for (const char* kind : {"visual", "collision"}) {
+      for (const tinyxml2::XMLElement* element = link->FirstChildElement(kind); element != nullptr;
+           element = element->NextSiblingElement(kind)) {
+        check_geometry_owner(element, owner);
+      }
+    }
 
     const tinyxml2::XMLElement* inertial = link->FirstChildElement("inertial");
     if (inertial == nullptr) return;
-    check_origin(inertial, owner + ": inertial origin");
+    for (const char* element : {"origin", "mass", "inertia"}) {
+      check_single(inertial, element, owner + ": <inertial>");
+    }
+    structure_.links.back().inertial_origin = check_origin(inertial, owner + ": inertial origin");
     const tinyxml2::XMLElement* mass = inertial->FirstChildElement("mass");
     if (mass == nullptr) fail(inertial, owner + ": <inertial> has no <mass value=\"...\"/>");
     const auto m = numbers(mass, "value", 1, owner + ": mass", true);
@@ -190,8 +255,36 @@ class StructureChecker {
                          ": <inertial> has no <inertia ixx=... ixy=... ixz=... iyy=... "
                          "iyz=... izz=.../>");
     }
+    std::array<double, 6> I{};  // ixx ixy ixz iyy iyz izz
+    int k = 0;
     for (const char* entry : {"ixx", "ixy", "ixz", "iyy", "iyz", "izz"}) {
-      numbers(inertia, entry, 1, owner + ": inertia", true);
+      I[k++] = (*numbers(inertia, entry, 1, owner + ": inertia", true))[0];
+    }
+    check_inertia(inertia, owner, I);
+  }
+
+  // The inertia about the centre of mass must be positive semi-definite (a body whose mass is
+  // all in one point has zero inertia, which URDFs write); anything else has no mass
+  // distribution and makes every "physically consistent" check downstream meaningless.
+  void check_inertia(const tinyxml2::XMLElement* inertia, const std::string& owner,
+                     const std::array<double, 6>& I) const {
+    for (const auto& [index, name] : {std::pair{0, "ixx"}, {3, "iyy"}, {5, "izz"}}) {
+      if (I[index] < 0) {
+        fail(inertia, owner + ": inertia " + name + "='" + inertia->Attribute(name) +
+                          "' is negative; a moment of inertia cannot be");
+      }
+    }
+    Eigen::Matrix3d J;
+    J << I[0], I[1], I[2], I[1], I[3], I[4], I[2], I[4], I[5];
+    const double scale = J.cwiseAbs().maxCoeff();
+    const Eigen::Vector3d eigenvalues = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(
+                                            J, Eigen::EigenvaluesOnly).eigenvalues();
+    if (eigenvalues.minCoeff() < -1e-9 * scale) {
+      char text[96];
+      std::snprintf(text, sizeof text, "%.6g, %.6g, %.6g", eigenvalues[0], eigenvalues[1],
+                    eigenvalues[2]);
+      fail(inertia, owner + ": the inertia tensor is not positive semi-definite (principal " +
+                        "moments " + text + "): no mass distribution has it");
     }
   }
 
@@ -236,9 +329,12 @@ class StructureChecker {
                       "; expected revolute, continuous, prismatic or fixed");
     }
 
+    for (const char* element : {"parent", "child", "origin", "axis", "limit"}) {
+      check_single(joint, element, owner);
+    }
     link_reference(joint, owner, "parent", entry.parent);
     link_reference(joint, owner, "child", entry.child);
-    check_origin(joint, owner + ": origin");
+    entry.origin = check_origin(joint, owner + ": origin");
 
     // urdfdom reads the axis of moving joints only; a fixed joint's axis means nothing.
     if (const tinyxml2::XMLElement* axis = joint->FirstChildElement("axis");
@@ -248,16 +344,32 @@ class StructureChecker {
         fail(axis, owner + ": axis xyz='" + axis->Attribute("xyz") +
                        "' is the zero vector; give the direction of motion");
       }
+      if (xyz) {
+        entry.axis = std::array<double, 3>{(*xyz)[0], (*xyz)[1], (*xyz)[2]};
+        entry.axis_line = axis->GetLineNum();
+      }
     }
 
     const tinyxml2::XMLElement* limit = joint->FirstChildElement("limit");
     if (limit != nullptr) {
       const std::string what = owner + ": limit";
-      entry.has_lower = numbers(limit, "lower", 1, what, false).has_value();
-      entry.has_upper = numbers(limit, "upper", 1, what, false).has_value();
-      // urdfdom rejects a <limit> without these two; say so with the line.
-      numbers(limit, "velocity", 1, what, true);
-      numbers(limit, "effort", 1, what, true);
+      const auto lower = numbers(limit, "lower", 1, what, false);
+      const auto upper = numbers(limit, "upper", 1, what, false);
+      entry.has_lower = lower.has_value();
+      entry.has_upper = upper.has_value();
+      // Continuous joints ignore lower and upper (urdfdom too), so only the others are checked.
+      if (lower && upper && entry.type != "continuous" && (*lower)[0] > (*upper)[0]) {
+        fail(limit, what + " lower='" + limit->Attribute("lower") + "' is above upper='" +
+                        limit->Attribute("upper") + "'; write lower <= upper");
+      }
+      // urdfdom rejects a <limit> without these two; say so with the line. 0 is what files
+      // write for "unknown"; below 0 is no limit at all.
+      for (const char* attribute : {"velocity", "effort"}) {
+        if ((*numbers(limit, attribute, 1, what, true))[0] < 0) {
+          fail(limit, what + " " + attribute + "='" + limit->Attribute(attribute) +
+                          "' is negative; give the largest magnitude (or 0 when unknown)");
+        }
+      }
     } else if (entry.type == "revolute" || entry.type == "prismatic") {
       fail(joint, owner + " is " + entry.type +
                       " but has no <limit lower=... upper=... velocity=... effort=.../>; URDF "
