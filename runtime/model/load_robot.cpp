@@ -8,6 +8,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "modelgen/model/description_limits.hpp"
 #include "runtime/model/mdh_yaml_loader.hpp"
 #include "runtime/model/urdf_loader.hpp"
 
@@ -17,6 +18,14 @@ std::string read_source_file(const std::string& path) {
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec)) {
     throw InputError({path}, "is a directory, not a robot description");
+  }
+  // Read whole and parsed in memory: a limit keeps a wrong file from exhausting it.
+  if (const std::uintmax_t size = std::filesystem::file_size(path, ec);
+      !ec && size > kMaxDescriptionBytes) {
+    throw InputError({path}, "the file has " + std::to_string(size) +
+                                 " bytes, beyond the limit of " +
+                                 std::to_string(kMaxDescriptionBytes) +
+                                 " bytes for a robot description (README, Limits)");
   }
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError({path}, "cannot open the file (does it exist and is it readable?)");

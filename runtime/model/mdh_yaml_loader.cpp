@@ -83,6 +83,7 @@ class MdhYamlLoader {
     check_robot_name(model_.name, in_.at(name));
     if (root["gravity"]) {
       const auto g = in_.numbers(root["gravity"], "gravity", 3);
+      for (int i = 0; i < 3; ++i) in_.within(root["gravity"][i], "gravity", g[i], kMaxLength, " m/s^2");
       model_.tree.gravity = {g[0], g[1], g[2]};
     }
     read_joints(in_.require(root, "joints", "the robot description"));
@@ -100,6 +101,10 @@ class MdhYamlLoader {
   void read_joints(const YAML::Node& list) {
     if (!list.IsSequence() || list.size() == 0) {
       in_.fail(list, "'joints' must be a non-empty list of modified DH rows");
+    }
+    if (list.size() > static_cast<std::size_t>(kMaxBodies)) {
+      in_.fail(list[kMaxBodies], "joint " + std::to_string(kMaxBodies + 1) + ": a description may hold at most " +
+                                     std::to_string(kMaxBodies) + " rows (README, Limits)");
     }
     std::vector<RawJoint> raw;
     std::set<std::string> names;
@@ -129,9 +134,9 @@ class MdhYamlLoader {
       }
       MdhParameters mdh;
       mdh.alpha = snapped_angle(in_.require(row, "alpha", context), "alpha", context);
-      mdh.d = in_.number(in_.require(row, "d", context), "d");
+      mdh.d = in_.length(in_.require(row, "d", context), "d");
       mdh.theta = snapped_angle(in_.require(row, "theta", context), "theta", context);
-      mdh.r = in_.number(in_.require(row, "r", context), "r");
+      mdh.r = in_.length(in_.require(row, "r", context), "r");
       joint.description.mdh = mdh;
       joint.antecedent = j - 1;
       if (row["ant"]) {
@@ -155,6 +160,18 @@ class MdhYamlLoader {
       model_.joints.push_back(std::move(joint.description));
     }
     model_.tree.dof = dof;
+    if (dof > kMaxMovingJoints) {
+      int moving = 0;
+      for (std::size_t j = 0; j < model_.tree.bodies.size(); ++j) {
+        if (model_.tree.bodies[j].dof_index >= 0 && ++moving > kMaxMovingJoints) {
+          throw InputError(model_.joints[j].where,
+                           "joint " + std::to_string(j + 1) + " is moving joint " +
+                               std::to_string(moving) + "; modelgen models at most " +
+                               std::to_string(kMaxMovingJoints) +
+                               " moving joints (generation time grows with their cube; README, Limits)");
+        }
+      }
+    }
     if (dof == 0) in_.fail(list, "the robot has no moving joint (all joints are 'fixed')");
   }
 
@@ -402,7 +419,9 @@ class MdhYamlLoader {
                                   did_you_mean(key, names) + "; run 'modelgen describe' to list them");
       }
       if (model_.known_values[k]) in_.fail(entry.first, "'" + key + "' is given twice in 'known'");
-      model_.known_values[k] = in_.number(entry.second, key);
+      const bool mass = model_.tree.params[k].kind == ParamKind::kM;
+      model_.known_values[k] =
+          mass ? in_.number(entry.second, key, kMaxMass, " kg") : in_.number(entry.second, key);
       keys[k] = entry.first;
     }
     check_known_physical(keys);

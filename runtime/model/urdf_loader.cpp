@@ -26,6 +26,7 @@
 #include <console_bridge/console.h>
 #include <urdf_parser/urdf_parser.h>
 
+#include "modelgen/model/description_limits.hpp"
 #include "modelgen/model/error.hpp"
 #include "modelgen/model/number_text.hpp"
 #include "modelgen/model/robot_model.hpp"
@@ -107,7 +108,14 @@ class TreeBuilder {
   // `tolerance`: LoadOptions::angle_tolerance, for snapping rounded quarter turns.
   void build(int base_link, double tolerance) {
     tolerance_ = tolerance;
-    visit(base_link, -1, Eigen::Isometry3d::Identity());
+    // Depth first in file order, with a stack of its own: a chain of thousands of fixed links
+    // would overflow the call stack if this recursed.
+    push_children(base_link, -1, Eigen::Isometry3d::Identity());
+    while (!pending_.empty()) {
+      const Pending next = pending_.back();
+      pending_.pop_back();
+      visit(next.joint, next.body, next.body_from_link);
+    }
   }
 
   // The summed inertial parameters per body; nullopt for bodies none of whose links has an
@@ -194,9 +202,24 @@ class TreeBuilder {
     for (std::size_t k = 0; k < values.size(); ++k) (*sum)[k] += values[k];
   }
 
-  void visit(int link, int body, const Eigen::Isometry3d& body_from_link) {
-    for (int j : structure_.child_joints[link]) {
-      if (kept_joints_ != nullptr && !kept_joints_->count(j)) continue;
+  // A joint still to visit: below `body`, its parent link at `body_from_link` in that body.
+  struct Pending {
+    int joint;
+    int body;
+    Eigen::Isometry3d body_from_link;
+  };
+
+  // Queues the joints below `link`, so that they are visited in file order.
+  void push_children(int link, int body, const Eigen::Isometry3d& body_from_link) {
+    const std::vector<int>& children = structure_.child_joints[link];
+    for (auto j = children.rbegin(); j != children.rend(); ++j) {
+      if (kept_joints_ != nullptr && !kept_joints_->count(*j)) continue;
+      pending_.push_back({*j, body, body_from_link});
+    }
+  }
+
+  void visit(int j, int body, const Eigen::Isometry3d& body_from_link) {
+    {
       const JointEntry& entry = structure_.joints[j];
       const urdf::Joint& urdf_joint = joint(entry);
       const int child = structure_.link_index.at(entry.child);
@@ -207,8 +230,16 @@ class TreeBuilder {
       if (!is_moving(entry.type)) {
         // Mass fixed to the base never moves, so it has no effect on the dynamics.
         if (body >= 0) add_inertial(entry.child, body, body_from_child);
-        visit(child, body, body_from_child);
-        continue;
+        push_children(child, body, body_from_child);
+        return;
+      }
+      if (model_.tree.dof == kMaxMovingJoints) {
+        throw InputError({path_, entry.line, 0},
+                         "joint '" + entry.name + "' is moving joint " +
+                             std::to_string(kMaxMovingJoints + 1) + "; modelgen models at most " +
+                             std::to_string(kMaxMovingJoints) +
+                             " moving joints (generation time grows with their cube; README, "
+                             "Limits); choose a part of the tree with --base and --tip");
       }
       Body made;
       made.name = entry.child;
@@ -239,7 +270,7 @@ class TreeBuilder {
       model_.joints.push_back(std::move(description));
       inertials_.emplace_back();
       add_inertial(entry.child, index, Eigen::Isometry3d::Identity());
-      visit(child, index, Eigen::Isometry3d::Identity());
+      push_children(child, index, Eigen::Isometry3d::Identity());
     }
   }
 
@@ -249,6 +280,7 @@ class TreeBuilder {
   const std::set<int>* kept_joints_;
   RobotModel& model_;
   std::vector<std::optional<std::array<double, 10>>> inertials_;
+  std::vector<Pending> pending_;
   double tolerance_ = 0;
 };
 

@@ -20,7 +20,9 @@
 #include <Eigen/Eigenvalues>
 #include <tinyxml2.h>
 
+#include "modelgen/model/description_limits.hpp"
 #include "modelgen/model/error.hpp"
+#include "modelgen/model/number_text.hpp"
 
 namespace modelgen {
 
@@ -79,6 +81,10 @@ class StructureChecker {
     // Links first: joints may name links written further down the file.
     for (const tinyxml2::XMLElement* link = robot->FirstChildElement("link"); link != nullptr;
          link = link->NextSiblingElement("link")) {
+      if (structure_.links.size() == static_cast<std::size_t>(kMaxUrdfLinks)) {
+        fail(link, "more than " + std::to_string(kMaxUrdfLinks) +
+                       " links; a URDF may hold at most that many (README, Limits)");
+      }
       check_link(link);
     }
     if (structure_.links.empty()) fail(robot, "the robot has no <link> elements");
@@ -145,7 +151,8 @@ class StructureChecker {
   // element for the message ("joint 'j1': origin"). Returns the numbers, nullopt if absent.
   std::optional<std::vector<double>> numbers(const tinyxml2::XMLElement* element,
                                              const char* attribute, std::size_t count,
-                                             const std::string& what, bool required) const {
+                                             const std::string& what, bool required,
+                                             double limit = 0, const char* unit = "") const {
     const char* text = element->Attribute(attribute);
     if (text == nullptr) {
       if (required) fail(element, what + " has no " + attribute + " attribute");
@@ -157,6 +164,14 @@ class StructureChecker {
                         (count == 1   ? "a number"
                          : count == 3 ? "three numbers"
                                       : std::to_string(count) + " numbers"));
+    }
+    // Beyond the description limits, products in the dynamics overflow (README, Limits).
+    for (const double value : *values) {
+      if (limit > 0 && std::abs(value) > limit) {
+        fail(element, what + " " + attribute + "='" + text + "' holds " + shortest_text(value) +
+                          unit + ", beyond the limit of " + shortest_text(limit) + unit +
+                          " a description may hold (README, Limits)");
+      }
     }
     return values;
   }
@@ -209,10 +224,10 @@ class StructureChecker {
     const tinyxml2::XMLElement* origin = parent->FirstChildElement("origin");
     if (origin == nullptr) return entry;
     entry.line = origin->GetLineNum();
-    if (const auto xyz = numbers(origin, "xyz", 3, what, false)) {
+    if (const auto xyz = numbers(origin, "xyz", 3, what, false, kMaxLength, " m")) {
       std::copy(xyz->begin(), xyz->end(), entry.xyz.begin());
     }
-    if (const auto rpy = numbers(origin, "rpy", 3, what, false)) {
+    if (const auto rpy = numbers(origin, "rpy", 3, what, false, kMaxAngle, " rad")) {
       std::copy(rpy->begin(), rpy->end(), entry.rpy.begin());
     }
     return entry;
@@ -245,7 +260,7 @@ class StructureChecker {
     structure_.links.back().inertial_origin = check_origin(inertial, owner + ": inertial origin");
     const tinyxml2::XMLElement* mass = inertial->FirstChildElement("mass");
     if (mass == nullptr) fail(inertial, owner + ": <inertial> has no <mass value=\"...\"/>");
-    const auto m = numbers(mass, "value", 1, owner + ": mass", true);
+    const auto m = numbers(mass, "value", 1, owner + ": mass", true, kMaxMass, " kg");
     if ((*m)[0] < 0) {
       fail(mass, owner + ": mass value='" + mass->Attribute("value") + "' is negative");
     }
@@ -258,7 +273,7 @@ class StructureChecker {
     std::array<double, 6> I{};  // ixx ixy ixz iyy iyz izz
     int k = 0;
     for (const char* entry : {"ixx", "ixy", "ixz", "iyy", "iyz", "izz"}) {
-      I[k++] = (*numbers(inertia, entry, 1, owner + ": inertia", true))[0];
+      I[k++] = (*numbers(inertia, entry, 1, owner + ": inertia", true, kMaxMagnitude))[0];
     }
     check_inertia(inertia, owner, I);
   }
@@ -339,10 +354,20 @@ class StructureChecker {
     // urdfdom reads the axis of moving joints only; a fixed joint's axis means nothing.
     if (const tinyxml2::XMLElement* axis = joint->FirstChildElement("axis");
         axis != nullptr && is_moving(entry.type)) {
-      const auto xyz = numbers(axis, "xyz", 3, owner + ": axis", false);
+      const auto xyz = numbers(axis, "xyz", 3, owner + ": axis", false, kMaxMagnitude);
       if (xyz && (*xyz)[0] == 0 && (*xyz)[1] == 0 && (*xyz)[2] == 0) {
         fail(axis, owner + ": axis xyz='" + axis->Attribute("xyz") +
                        "' is the zero vector; give the direction of motion");
+      }
+      // Scaled before squaring, so that the norm of 1e-200 does not underflow to 0 here.
+      if (xyz) {
+        const double scale = std::max({std::abs((*xyz)[0]), std::abs((*xyz)[1]), std::abs((*xyz)[2])});
+        const double norm = scale * std::hypot((*xyz)[0] / scale, (*xyz)[1] / scale, (*xyz)[2] / scale);
+        if (norm < kMinAxisNorm) {
+          fail(axis, owner + ": axis xyz='" + axis->Attribute("xyz") + "' has norm " +
+                         shortest_text(norm) + ", below the limit of " +
+                         shortest_text(kMinAxisNorm) + " (README, Limits); write a unit vector");
+        }
       }
       if (xyz) {
         entry.axis = std::array<double, 3>{(*xyz)[0], (*xyz)[1], (*xyz)[2]};
