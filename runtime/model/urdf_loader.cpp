@@ -354,9 +354,13 @@ RobotModel load_urdf(const std::string& path, const std::string& text, const Loa
     if (urdfdom_errors.empty()) {
       throw InputError({path}, "urdfdom rejected the file without saying why");
     }
-    // Its first message is the cause; the rest repeat it for the enclosing elements.
-    const std::string& cause = urdfdom_errors.front();
-    throw InputError({path, line_named_in(cause, structure), 0}, "urdfdom rejected the file: " + cause);
+    // Its first message is the cause; the rest name the enclosing elements ("Could not parse
+    // joint element for joint [j1]"), which give the line.
+    int line = 0;
+    for (const std::string& message : urdfdom_errors) {
+      if (line == 0) line = line_named_in(message, structure);
+    }
+    throw InputError({path, line, 0}, "urdfdom rejected the file: " + urdfdom_errors.front());
   }
 
   RobotModel model;
