@@ -56,15 +56,7 @@ Arguments parse(int argc, char** argv) {
   args.load.base_link = line.one_or("--base", "");
   args.load.tip_link = line.one_or("--tip", "");
   args.load.name = line.one_or("--name", "");
-  if (line.has("--angle-tolerance")) {
-    const double tolerance = modelgen::parse_number(line.one("--angle-tolerance"), "--angle-tolerance");
-    // Beyond pi/4 every angle is within reach of some quarter turn.
-    if (!(tolerance >= 0 && tolerance < 0.7)) {
-      throw UsageError("--angle-tolerance must be between 0 and 0.7 rad, not '" +
-                       line.one("--angle-tolerance") + "'");
-    }
-    args.load.angle_tolerance = tolerance;
-  }
+  args.load.angle_tolerance = modelgen::angle_tolerance_option(line);
   args.scalar = line.one_or("--scalar", "both");
   if (args.scalar != "double" && args.scalar != "float" && args.scalar != "both") {
     throw UsageError("--scalar must be double, float or both, not '" + args.scalar + "'");

@@ -12,10 +12,12 @@
 
 namespace modelgen::internal {
 
-ModelSource load_model_source(const std::string& robot) {
+ModelSource load_model_source(const std::string& robot, double angle_tolerance) {
   ModelSource source;
   if (std::filesystem::exists(robot)) {
-    source.description = modelgen::load_robot(robot);
+    LoadOptions options;
+    options.angle_tolerance = angle_tolerance;
+    source.description = modelgen::load_robot(robot, options);
     // Rounded quarter turns taken as exact, as modelgen does with its default tolerance, so
     // a description gives the same model here as its generated code.
     for (const DescriptionNote& note : source.description->notes) {

@@ -98,6 +98,24 @@ TEST(AngleToleranceCli, ToleranceMustBeAnAngleBelowAnEighthTurn) {
   }
 }
 
+// modelid reads a description file the same way (its numeric reference then matches the code
+// modelgen generates), and takes the same option.
+TEST(AngleToleranceCli, ModelidReadsDescriptionsAsModelgenDoes) {
+  const test::CliRun exact = test::modelid("check " + test::quoted_source(kExact));
+  ASSERT_EQ(exact.exit_code, 0) << exact.err;
+  const test::CliRun rounded = test::modelid("check " + test::quoted_source(kRounded));
+  ASSERT_EQ(rounded.exit_code, 0) << rounded.err;
+  EXPECT_EQ(rounded.out, exact.out);
+  EXPECT_NE(rounded.err.find(": note: joint 'upper_arm': origin rpy roll 1.57075 taken as pi/2"),
+            std::string::npos)
+      << rounded.err;
+  const test::CliRun as_written =
+      test::modelid("check " + test::quoted_source(kRounded) + " --angle-tolerance 0");
+  ASSERT_EQ(as_written.exit_code, 0) << as_written.err;
+  EXPECT_NE(as_written.out, exact.out);
+  EXPECT_EQ(as_written.err, "");
+}
+
 // The COMAU Smart Six URDF of ../shared (not shipped: no license) writes 1.57075 and 3.14159.
 TEST(AngleToleranceCli, ComauSmartSixBaseParameters) {
   const std::string path = test::shared_path("robots-ref/comau_smart_six.urdf");
