@@ -18,9 +18,11 @@
 #include "runtime/cli/data_files.hpp"
 #include "runtime/cli/estimate_file.hpp"
 #include "runtime/cli/estimate_warnings.hpp"
+#include "runtime/cli/limit_check.hpp"
 #include "runtime/cli/model_source.hpp"
 #include "runtime/cli/parameter_file.hpp"
 #include "runtime/cli/prediction_output.hpp"
+#include "runtime/cli/preparation_check.hpp"
 #include "runtime/cli/progress.hpp"
 #include "runtime/cli/text_format.hpp"
 #include "runtime/cli/torque_plots.hpp"
@@ -193,6 +195,8 @@ int run_fit(const CommandLine& args) {
   const Experiments experiments = read_experiments(
       args.all("--data"), model, preparation_options(args), EffortColumns::kRequired, data_report);
   const std::vector<Trajectory>& data = experiments.data;
+  warn_beyond_limits(std::cerr, "fit", source, experiments,
+                     args.has("--motor-side") ? Side::kMotor : Side::kJoint);
 
   IdentifyOptions options;
   options.decimation = experiments.decimation;
@@ -225,6 +229,7 @@ int run_fit(const CommandLine& args) {
               << "): the data excite some parameters too little; more or richer experiments "
                  "help (the PIM needs a block-triangular set, Gautier & Briot section IV)\n";
   }
+  warn_residual_outside_band(std::cerr, model, experiments, id.fit.value);
   // Negative friction or rotor inertia, non-positive masses among the unregrouped parameters.
   warn_implausible_estimates(std::cerr, id.names, id.fit.value, id.fit.std_dev);
   std::cout << "  rms torque error per axis (rms torque):";
@@ -261,6 +266,7 @@ int run_fit(const CommandLine& args) {
                                         id.rms_torque.data() + id.rms_torque.size());
     estimate.samples = id.samples;
     estimate.data = args.all("--data");
+    estimate.data_options = data_option_words(args);
     write_file(args.one("-o"), estimate_json(estimate));
   }
   return 0;

@@ -5,6 +5,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "modelgen/model/load_robot.hpp"
 #include "modelgen/model/robot_model.hpp"
@@ -15,6 +16,11 @@ namespace modelgen::internal {
 struct ModelSource {
   std::unique_ptr<IdentificationModel> model;
   std::optional<modelgen::RobotModel> description;  ///< when --robot was a file
+  /// Joint names and limits, one per joint of the model: from the description file, or for a
+  /// compiled-in model from its description in the source tree when it is there
+  /// (shipped_description_path); empty when unknown.
+  std::vector<std::string> joint_names;
+  std::vector<JointLimits> limits;
 };
 
 /// Throws modelgen::InputError for a file that does not load, std::invalid_argument for a name
