@@ -34,6 +34,7 @@ namespace modelgen::internal {
 
 const std::map<std::string, OptionKind> kFitOptions =
     with_data_options({{"--robot", OptionKind::kOnce},
+                       {"--angle-tolerance", OptionKind::kOnce},
                        {"--data", OptionKind::kRepeated},
                        {"--method", OptionKind::kOnce},
                        {"-o", OptionKind::kOnce},
@@ -218,7 +219,7 @@ int run_fit(const CommandLine& args) {
     if (args.has(option)) throw UsageError{std::string(option) + " belongs to --method ml"};
   }
   const double weight = prior_weight(args);
-  const ModelSource source = load_model_source(args.one("--robot"));
+  const ModelSource source = load_model_source(args.one("--robot"), angle_tolerance_option(args));
   const IdentificationModel& model = *source.model;
   if (!args.has("--data")) throw UsageError{"fit needs at least one --data file"};
   const std::string& method_text = args.one("--method");

@@ -3,6 +3,7 @@
 #include "runtime/cli/model_source.hpp"
 
 #include <filesystem>
+#include <iostream>
 #include <stdexcept>
 
 #include "modelgen/model/load_robot.hpp"
@@ -30,10 +31,17 @@ void take_limits(const RobotModel& description, int dof, ModelSource& source) {
 
 }  // namespace
 
-ModelSource load_model_source(const std::string& robot) {
+ModelSource load_model_source(const std::string& robot, double angle_tolerance) {
   ModelSource source;
   if (std::filesystem::exists(robot)) {
-    source.description = modelgen::load_robot(robot);
+    LoadOptions options;
+    options.angle_tolerance = angle_tolerance;
+    source.description = modelgen::load_robot(robot, options);
+    // Rounded quarter turns taken as exact, as modelgen does with its default tolerance, so
+    // a description gives the same model here as its generated code.
+    for (const DescriptionNote& note : source.description->notes) {
+      std::cerr << note.to_string() << "\n";
+    }
     source.model = std::make_unique<ReferenceModel>(
         source.description->name, source.description->tree,
         sha256_hex(read_source_file(robot)), source.description->drives);

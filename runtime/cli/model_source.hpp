@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "modelgen/model/load_robot.hpp"
 #include "modelgen/model/robot_model.hpp"
 #include "modelgen/model/identification_model.hpp"
 
@@ -24,6 +25,9 @@ struct ModelSource {
 
 /// Throws modelgen::InputError for a file that does not load, std::invalid_argument for a name
 /// that is neither a file nor a compiled-in model (the message lists the compiled-in ones).
-ModelSource load_model_source(const std::string& robot);
+/// A description file is read with `angle_tolerance` (LoadOptions::angle_tolerance; the
+/// --angle-tolerance option), its notes printed on standard error.
+ModelSource load_model_source(const std::string& robot,
+                              double angle_tolerance = kDefaultAngleTolerance);
 
 }  // namespace modelgen::internal

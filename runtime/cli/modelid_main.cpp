@@ -41,7 +41,8 @@ constexpr const char* kUsage =
     "\n"
     "ROBOT is a description (.yaml/.urdf, through the numeric reference) or the name of a\n"
     "compiled-in generated model (tx40, kr150, ur5, iiwa14, panda, kuka_kr150_2,\n"
-    "panda_arm).\n"
+    "panda_arm). --angle-tolerance RAD (every command) reads a description as modelgen does\n"
+    "(rounded quarter turns within RAD taken as exact; default 1e-4, 0: as written).\n"
     "Data files: CSV with a header t, q1..qn, tau1..taun and optionally dq1.., ddq1.. (without\n"
     "them, velocities and accelerations come from central differences). README.md has details.\n"
     "simulate --drive: THETA.json is {\"name\": value} over the drive model's parameters\n"
@@ -63,7 +64,9 @@ int dispatch(int argc, char** argv) {
   if (command == "fit") return run_fit(parse_arguments(argc, argv, kFitOptions));
   if (command == "predict") return run_predict(parse_arguments(argc, argv, kPredictOptions));
   if (command == "simulate") return run_simulate(parse_arguments(argc, argv, kSimulateOptions));
-  if (command == "check") return run_check(parse_arguments(argc, argv, {}));
+  if (command == "check") {
+    return run_check(parse_arguments(argc, argv, {{"--angle-tolerance", OptionKind::kOnce}}));
+  }
   throw UsageError{"unknown command '" + command + "'"};
 }
 

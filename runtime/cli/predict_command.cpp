@@ -22,6 +22,7 @@ namespace modelgen::internal {
 
 const std::map<std::string, OptionKind> kPredictOptions =
     with_data_options({{"--robot", OptionKind::kOnce},
+                       {"--angle-tolerance", OptionKind::kOnce},
                        {"--params", OptionKind::kOnce},
                        {"--data", OptionKind::kRepeated},
                        {"-o", OptionKind::kOnce},
@@ -53,7 +54,7 @@ void print_errors(const std::vector<Trajectory>& data, const TorquePrediction& p
 
 int run_predict(const CommandLine& args) {
   reject_positional(args);
-  const ModelSource source = load_model_source(args.one("--robot"));
+  const ModelSource source = load_model_source(args.one("--robot"), angle_tolerance_option(args));
   const IdentificationModel& model = *source.model;
   const std::string& params = args.one("--params");
   if (!args.has("--data")) throw UsageError{"predict needs at least one --data file"};
