@@ -200,11 +200,15 @@ int run_fit(const CommandLine& args) {
   options.progress = [&fitting](double fraction) {
     fitting.update(static_cast<long long>(1000 * fraction));
   };
+  // The truth is read before the fit, so a wrong file costs no fitting time; a truth made from
+  // another description (its hash differs) would compare numbers of different parameters.
+  Eigen::VectorXd truth;
+  if (args.has("--truth")) {
+    check_estimate_model(args.one("--truth"), model, "truth");
+    truth = read_base_parameters(args.one("--truth"), model);
+  }
   const Identification id = identify(model, data, method, options);
   fitting.finish();
-
-  Eigen::VectorXd truth;
-  if (args.has("--truth")) truth = read_base_parameters(args.one("--truth"), model);
 
   std::cout << "modelid fit: " << model.name() << ", " << method_name(method) << " on "
             << data.size() << " experiment(s), " << id.samples << " samples\n"
