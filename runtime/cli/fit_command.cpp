@@ -187,7 +187,7 @@ int run_fit(const CommandLine& args) {
     }
   }
   // A plot folder that cannot be made fails now, before the data are read.
-  if (args.has("--plot")) prepare_plot_folder(args.one("--plot"));
+  if (args.has("--plot")) check_plot_folder(args.one("--plot"));
   std::ostringstream data_report;
   const Experiments experiments = read_experiments(
       args.all("--data"), model, preparation_options(args), EffortColumns::kRequired, data_report);

@@ -58,7 +58,7 @@ int run_predict(const CommandLine& args) {
   // parameter name, or worse, match by chance.
   check_estimate_model(params, model);
   const Eigen::VectorXd beta = read_base_parameters(params, model);
-  if (args.has("--plot")) prepare_plot_folder(args.one("--plot"));
+  if (args.has("--plot")) check_plot_folder(args.one("--plot"));
   const PreparationOptions preparation = preparation_options(args);
   std::ostringstream data_report;
   Experiments experiments = read_experiments(args.all("--data"), model, preparation,
