@@ -131,6 +131,12 @@ std::string describe(const RobotModel& model) {
     }
     table.print(out, "  ");
   }
+  if (!model.notes.empty()) {
+    out << "\nangles taken as exact quarter turns (the table above shows the values used)\n";
+    for (const DescriptionNote& note : model.notes) {
+      out << "  line " << note.where.line << ": " << note.message << "\n";
+    }
+  }
 
   out << "\ndrive chain\n";
   const DriveChain& drives = model.drives;

@@ -4,6 +4,8 @@
 
 #include <filesystem>
 
+#include "modelgen/model/number_text.hpp"
+
 namespace modelgen::gen {
 
 std::string normalized_command(const std::string& robot_path, const LoadOptions& options,
@@ -14,6 +16,9 @@ std::string normalized_command(const std::string& robot_path, const LoadOptions&
   if (!options.base_link.empty()) command += " --base " + options.base_link;
   if (!options.tip_link.empty()) command += " --tip " + options.tip_link;
   if (scalar != "both") command += " --scalar " + scalar;
+  if (options.angle_tolerance != kDefaultAngleTolerance) {
+    command += " --angle-tolerance " + shortest_text(options.angle_tolerance);
+  }
   return command;
 }
 

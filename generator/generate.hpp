@@ -16,8 +16,8 @@ namespace modelgen::gen {
 GeneratedModel generate_from_file(const std::string& robot_path, const LoadOptions& options,
                                   const std::string& scalar = "both");
 
-/// "modelgen kr150.yaml -o <dir>" plus --name/--base/--tip/--scalar when not the default, in
-/// that order.
+/// "modelgen kr150.yaml -o <dir>" plus --name/--base/--tip/--scalar/--angle-tolerance when not
+/// the default, in that order.
 std::string normalized_command(const std::string& robot_path, const LoadOptions& options,
                                const std::string& scalar = "both");
 

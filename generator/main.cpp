@@ -17,9 +17,9 @@ namespace {
 
 constexpr const char* kUsage =
     "usage: modelgen ROBOT -o DIR [--scalar double|float|both] [--base LINK] [--tip LINK]\n"
-    "                [--name NAME]\n"
-    "       modelgen describe ROBOT [--base LINK] [--tip LINK] [--name NAME]\n"
-    "       modelgen base ROBOT [--base LINK] [--tip LINK] [--name NAME]\n"
+    "                [--name NAME] [--angle-tolerance RAD]\n"
+    "       modelgen describe ROBOT [--base LINK] [--tip LINK] [--name NAME] [--angle-tolerance RAD]\n"
+    "       modelgen base ROBOT [--base LINK] [--tip LINK] [--name NAME] [--angle-tolerance RAD]\n"
     "       modelgen --version | --help\n"
     "\n"
     "ROBOT is a modified-DH description (.yaml) or a URDF (.urdf).\n"
@@ -30,7 +30,11 @@ constexpr const char* kUsage =
     "  base          print the base parameters and their regrouping relations\n"
     "  --base LINK   URDF: link to use as the fixed base (default: the URDF root)\n"
     "  --tip LINK    URDF: keep only the chain from the base to this link\n"
-    "  --name NAME   robot name (C++ namespace of generated code; default: from the file)\n";
+    "  --name NAME   robot name (C++ namespace of generated code; default: from the file)\n"
+    "  --angle-tolerance RAD\n"
+    "                angles within RAD of a multiple of pi/2 (URDF rpy, MDH alpha and theta)\n"
+    "                and axis components within RAD of 0 are taken as exact, with a note\n"
+    "                (default 1e-4; 0 takes every value as written)\n";
 
 struct Arguments {
   std::string command;  // "describe", "base" or "generate"
@@ -46,11 +50,13 @@ Arguments parse(int argc, char** argv) {
   const modelgen::CommandLine line = modelgen::parse_command_line(
       argc, argv, 1, "",
       {{"--base", OptionKind::kOnce}, {"--tip", OptionKind::kOnce}, {"--name", OptionKind::kOnce},
-       {"--scalar", OptionKind::kOnce}, {"-o", OptionKind::kOnce}, {"--output", OptionKind::kOnce}});
+       {"--scalar", OptionKind::kOnce}, {"-o", OptionKind::kOnce}, {"--output", OptionKind::kOnce},
+       {"--angle-tolerance", OptionKind::kOnce}});
   Arguments args;
   args.load.base_link = line.one_or("--base", "");
   args.load.tip_link = line.one_or("--tip", "");
   args.load.name = line.one_or("--name", "");
+  args.load.angle_tolerance = modelgen::angle_tolerance_option(line);
   args.scalar = line.one_or("--scalar", "both");
   if (args.scalar != "double" && args.scalar != "float" && args.scalar != "both") {
     throw UsageError("--scalar must be double, float or both, not '" + args.scalar + "'");
@@ -74,6 +80,11 @@ Arguments parse(int argc, char** argv) {
   return args;
 }
 
+// What the loader snapped or assumed, on stderr so that standard output stays the result.
+void print_notes(const std::vector<modelgen::DescriptionNote>& notes) {
+  for (const modelgen::DescriptionNote& note : notes) std::cerr << note.to_string() << "\n";
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -88,14 +99,20 @@ int main(int argc, char** argv) {
   try {
     const Arguments args = parse(argc, argv);
     if (args.command == "describe") {
-      std::cout << modelgen::gen::describe(modelgen::load_robot(args.robot, args.load));
+      const modelgen::RobotModel model = modelgen::load_robot(args.robot, args.load);
+      print_notes(model.notes);
+      std::cout << modelgen::gen::describe(model);
     } else if (args.command == "base") {
       const modelgen::RobotModel model = modelgen::load_robot(args.robot, args.load);
+      print_notes(model.notes);
       const auto closed = modelgen::gen::derive_closed_form_relations(model);
       std::cout << modelgen::gen::describe_base_parameters(
           model, modelgen::derive_base_parameters(model.tree), closed ? &*closed : nullptr);
     } else {
-      modelgen::gen::generate_from_file(args.robot, args.load, args.scalar).files.write_to(args.output_dir);
+      const modelgen::gen::GeneratedModel generated =
+          modelgen::gen::generate_from_file(args.robot, args.load, args.scalar);
+      print_notes(generated.notes);
+      generated.files.write_to(args.output_dir);
     }
     return 0;
   } catch (const modelgen::UsageError& e) {

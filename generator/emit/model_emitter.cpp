@@ -26,6 +26,7 @@ GeneratedModel emit_model(const RobotModel& model, const GenerationInput& input)
   in.drive_param_names = make_drive_parameters(graph, model.tree).names;
 
   GeneratedModel result;
+  result.notes = model.notes;
   for (const EmittedFunction& f : in.functions) result.functions.push_back({f.name, f.counts});
   result.files.add(in.header_name(), render_header(in));
   result.files.add(in.source_name(), render_source(in));

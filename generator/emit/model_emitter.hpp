@@ -22,6 +22,7 @@ struct FunctionReport {
 struct GeneratedModel {
   FileSet files;
   std::vector<FunctionReport> functions;  ///< in the order of the generated files
+  std::vector<DescriptionNote> notes;     ///< what the loader snapped (RobotModel::notes)
 };
 
 GeneratedModel emit_model(const RobotModel& model, const GenerationInput& input);

@@ -8,16 +8,47 @@
 
 namespace modelgen::internal {
 
-std::map<std::string, OptionKind> with_data_options(std::map<std::string, OptionKind> options) {
-  options.insert({{"--motor-side", OptionKind::kFlag},
-                  {"--periodic", OptionKind::kFlag},
-                  {"--period", OptionKind::kOnce},
-                  {"--harmonics", OptionKind::kOnce},
-                  {"--raw", OptionKind::kFlag},
-                  {"--bandwidth", OptionKind::kOnce},
-                  {"--cutoff", OptionKind::kOnce},
-                  {"--decimate", OptionKind::kOnce}});
+namespace {
+
+// The data options in the order data_option_words writes them. A function: the commands'
+// option tables, globals of other files, are built from it during static initialisation.
+const std::vector<std::pair<std::string, OptionKind>>& data_options() {
+  static const std::vector<std::pair<std::string, OptionKind>> options = {
+      {"--motor-side", OptionKind::kFlag}, {"--periodic", OptionKind::kFlag},
+      {"--period", OptionKind::kOnce},     {"--harmonics", OptionKind::kOnce},
+      {"--raw", OptionKind::kFlag},        {"--bandwidth", OptionKind::kOnce},
+      {"--cutoff", OptionKind::kOnce},     {"--decimate", OptionKind::kOnce}};
   return options;
+}
+
+}  // namespace
+
+std::map<std::string, OptionKind> with_data_options(std::map<std::string, OptionKind> options) {
+  options.insert(data_options().begin(), data_options().end());
+  return options;
+}
+
+std::vector<std::string> data_option_words(const CommandLine& args) {
+  std::vector<std::string> words;
+  for (const auto& [name, kind] : data_options()) {
+    if (!args.has(name)) continue;
+    words.push_back(name);
+    if (kind != OptionKind::kFlag) words.push_back(args.one(name));
+  }
+  return words;
+}
+
+CommandLine data_options_from_words(const std::vector<std::string>& words,
+                                    const std::string& origin) {
+  std::vector<char*> argv;
+  for (const std::string& word : words) argv.push_back(const_cast<char*>(word.c_str()));
+  const std::map<std::string, OptionKind> allowed(data_options().begin(),
+                                                   data_options().end());
+  try {
+    return parse_command_line(static_cast<int>(argv.size()), argv.data(), 0, "", allowed);
+  } catch (const UsageError& e) {
+    throw UsageError{origin + ": the data options of the estimate: " + e.what()};
+  }
 }
 
 namespace {
@@ -87,6 +118,7 @@ Experiments read_experiments(const std::vector<std::string>& paths,
     if (!prepared.warning.empty()) std::cerr << prepared.warning << "\n";
     out.data.push_back(std::move(prepared.data));
     out.decimation.push_back(prepared.decimation);
+    out.bandwidth_hz.push_back(prepared.bandwidth_hz);
     out.tau_noise_variance.push_back(std::move(prepared.tau_noise_variance));
   }
   progress.update(static_cast<long long>(out.data.size()));

@@ -19,6 +19,16 @@ namespace modelgen::internal {
 /// --harmonics, --raw, --bandwidth, --cutoff, --decimate.
 std::map<std::string, OptionKind> with_data_options(std::map<std::string, OptionKind> options);
 
+/// The data options given in `args`, as command-line words in a fixed order (--motor-side,
+/// --periodic, --period S, --harmonics H, --raw, --bandwidth HZ, --cutoff HZ, --decimate N):
+/// what fit writes into EST.json so that predict prepares data the same way.
+std::vector<std::string> data_option_words(const CommandLine& args);
+
+/// The command line of data options `words` (as data_option_words gives them); UsageError
+/// naming `origin` (e.g. "EST.json") for a word that is not a data option.
+CommandLine data_options_from_words(const std::vector<std::string>& words,
+                                    const std::string& origin);
+
 /// The preparation the data options ask for; UsageError for values out of range or options
 /// that contradict each other (--periodic with --raw, --period without --periodic, ...).
 PreparationOptions preparation_options(const CommandLine& args);
@@ -26,6 +36,9 @@ PreparationOptions preparation_options(const CommandLine& args);
 struct Experiments {
   std::vector<Trajectory> data;  ///< joint side, with dq and ddq
   std::vector<int> decimation;   ///< parallel decimation factor per experiment
+  /// Per experiment: the excitation bandwidth its position filter was planned for (Hz), 0
+  /// when it had none (dq and ddq given, --raw, --periodic, --cutoff with --decimate).
+  std::vector<double> bandwidth_hz;
   /// Per experiment: the joint-side torque noise variance per axis from the period average
   /// (N^2 m^2, dof values) with --periodic, empty otherwise (PreparedExperiment).
   std::vector<Eigen::VectorXd> tau_noise_variance;

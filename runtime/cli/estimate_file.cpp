@@ -48,6 +48,7 @@ std::string estimate_json(const EstimateFile& estimate) {
   out["method"] = estimate.method;
   out["samples"] = estimate.samples;
   out["data"] = estimate.data;
+  out["data_options"] = estimate.data_options;
   out["rel_error_norm"] = number(estimate.rel_error_norm);
   out["condition_number"] = number(estimate.condition_number);
   out["residual_std"] = number(estimate.residual_std);
@@ -85,6 +86,24 @@ void check_estimate_model(const std::string& path, const IdentificationModel& mo
                                "identified on " + made_for + " (description_sha256 '" + sha +
                                "'), --robot is '" + model.name() + "' (description_sha256 '" +
                                model.description_sha256() + "'); the hashes differ");
+}
+
+std::optional<std::vector<std::string>> read_data_options(const std::string& path) {
+  const nlohmann::json json = read_json_file(path);
+  if (!json.is_object() || !json.contains("data_options")) return std::nullopt;
+  const nlohmann::json& field = json["data_options"];
+  std::vector<std::string> words;
+  if (field.is_array()) {
+    for (const nlohmann::json& word : field) {
+      if (!word.is_string()) break;
+      words.push_back(word.get<std::string>());
+    }
+  }
+  if (!field.is_array() || words.size() != field.size()) {
+    throw std::runtime_error(path + ": error: \"data_options\" must be a list of strings (the " +
+                             "command-line words of the fit's data options)");
+  }
+  return words;
 }
 
 }  // namespace modelgen::internal

@@ -41,11 +41,13 @@ struct EstimateFile {
   std::vector<double> rms_torque_per_axis;  ///< rms measured torque per joint
   long long samples = 0;
   std::vector<std::string> data;  ///< the --data files as given
+  /// The data options the fit was run with, as command-line words (data_option_words).
+  std::vector<std::string> data_options;
   std::optional<EssentialEstimate> essential;
 };
 
 /// The JSON text of an estimate: {"model", "description_sha256", "method", "samples", "data",
-/// "rel_error_norm", "condition_number", "residual_std", "rms_per_axis",
+/// "data_options", "rel_error_norm", "condition_number", "residual_std", "rms_per_axis",
 /// "rms_torque_per_axis", "parameters": [{"name", "value", "std", "rel_std", "truth"?}],
 /// "essential"?: {"r_sigma", "kept", "eliminated", "parameters", "rel_error_norm",
 /// "condition_number"}}. Non-finite numbers are written as null.
@@ -59,5 +61,10 @@ std::string estimate_json(const EstimateFile& estimate);
 /// `what` names the file in the message ("estimate", "truth").
 void check_estimate_model(const std::string& path, const IdentificationModel& model,
                           const std::string& what = "estimate");
+
+/// The "data_options" of the estimate file at `path` (words as fit wrote them), or nothing
+/// when the file has none (hand-written parameter files, estimates of older versions).
+/// Throws std::runtime_error "PATH: error: ..." when the field is not a list of strings.
+std::optional<std::vector<std::string>> read_data_options(const std::string& path);
 
 }  // namespace modelgen::internal

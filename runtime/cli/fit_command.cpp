@@ -18,9 +18,11 @@
 #include "runtime/cli/data_files.hpp"
 #include "runtime/cli/estimate_file.hpp"
 #include "runtime/cli/estimate_warnings.hpp"
+#include "runtime/cli/limit_check.hpp"
 #include "runtime/cli/model_source.hpp"
 #include "runtime/cli/parameter_file.hpp"
 #include "runtime/cli/prediction_output.hpp"
+#include "runtime/cli/preparation_check.hpp"
 #include "runtime/cli/progress.hpp"
 #include "runtime/cli/text_format.hpp"
 #include "runtime/cli/torque_plots.hpp"
@@ -29,6 +31,7 @@ namespace modelgen::internal {
 
 const std::map<std::string, OptionKind> kFitOptions =
     with_data_options({{"--robot", OptionKind::kOnce},
+                       {"--angle-tolerance", OptionKind::kOnce},
                        {"--data", OptionKind::kRepeated},
                        {"--method", OptionKind::kOnce},
                        {"-o", OptionKind::kOnce},
@@ -168,7 +171,7 @@ int run_fit(const CommandLine& args) {
   for (const char* option : {"--approach", "--unknown", "--known"}) {
     if (args.has(option)) throw UsageError{std::string(option) + " belongs to --method ml"};
   }
-  const ModelSource source = load_model_source(args.one("--robot"));
+  const ModelSource source = load_model_source(args.one("--robot"), angle_tolerance_option(args));
   const IdentificationModel& model = *source.model;
   if (!args.has("--data")) throw UsageError{"fit needs at least one --data file"};
   const std::string& method_text = args.one("--method");
@@ -192,6 +195,8 @@ int run_fit(const CommandLine& args) {
   const Experiments experiments = read_experiments(
       args.all("--data"), model, preparation_options(args), EffortColumns::kRequired, data_report);
   const std::vector<Trajectory>& data = experiments.data;
+  warn_beyond_limits(std::cerr, "fit", source, experiments,
+                     args.has("--motor-side") ? Side::kMotor : Side::kJoint);
 
   IdentifyOptions options;
   options.decimation = experiments.decimation;
@@ -228,6 +233,7 @@ int run_fit(const CommandLine& args) {
               << "): the data excite some parameters too little; more or richer experiments "
                  "help (the PIM needs a block-triangular set, Gautier & Briot section IV)\n";
   }
+  warn_residual_outside_band(std::cerr, model, experiments, id.fit.value);
   // Negative friction or rotor inertia, non-positive masses among the unregrouped parameters.
   warn_implausible_estimates(std::cerr, id.names, id.fit.value, id.fit.std_dev);
   std::cout << "  rms torque error per axis (rms torque):";
@@ -264,6 +270,7 @@ int run_fit(const CommandLine& args) {
                                         id.rms_torque.data() + id.rms_torque.size());
     estimate.samples = id.samples;
     estimate.data = args.all("--data");
+    estimate.data_options = data_option_words(args);
     write_file(args.one("-o"), estimate_json(estimate));
   }
   return 0;

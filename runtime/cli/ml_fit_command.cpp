@@ -150,7 +150,7 @@ int run_fit_ml(const CommandLine& args) {
       std::find(approaches.begin(), approaches.end(), 3) == approaches.end()) {
     std::cerr << "modelid: note: approaches 1 and 2 fix R_z to 1; Rz in --unknown is ignored\n";
   }
-  const ModelSource source = load_model_source(args.one("--robot"));
+  const ModelSource source = load_model_source(args.one("--robot"), angle_tolerance_option(args));
   if (!source.description) {
     throw UsageError{
         "--method ml needs --robot to be a description file (.yaml/.urdf): the "

@@ -5,7 +5,9 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
+#include "modelgen/model/load_robot.hpp"
 #include "modelgen/model/robot_model.hpp"
 #include "modelgen/model/identification_model.hpp"
 
@@ -14,10 +16,18 @@ namespace modelgen::internal {
 struct ModelSource {
   std::unique_ptr<IdentificationModel> model;
   std::optional<modelgen::RobotModel> description;  ///< when --robot was a file
+  /// Joint names and limits, one per joint of the model: from the description file, or for a
+  /// compiled-in model from its description in the source tree when it is there
+  /// (shipped_description_path); empty when unknown.
+  std::vector<std::string> joint_names;
+  std::vector<JointLimits> limits;
 };
 
 /// Throws modelgen::InputError for a file that does not load, std::invalid_argument for a name
 /// that is neither a file nor a compiled-in model (the message lists the compiled-in ones).
-ModelSource load_model_source(const std::string& robot);
+/// A description file is read with `angle_tolerance` (LoadOptions::angle_tolerance; the
+/// --angle-tolerance option), its notes printed on standard error.
+ModelSource load_model_source(const std::string& robot,
+                              double angle_tolerance = kDefaultAngleTolerance);
 
 }  // namespace modelgen::internal

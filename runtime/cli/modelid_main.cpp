@@ -12,6 +12,7 @@
 #include "modelgen/model/error.hpp"
 #include "runtime/cli/arguments.hpp"
 #include "runtime/cli/commands.hpp"
+#include "runtime/cli/progress.hpp"
 #include "runtime/cli/version.hpp"
 
 namespace {
@@ -35,11 +36,13 @@ constexpr const char* kUsage =
     "                   --noise SIGMA[,SIGMA2,...] [--seed N] [--sample-time S] [--periods K]\n"
     "                   -o A.csv\n"
     "       modelid check ROBOT\n"
+    "       (any command: --progress shows progress lines also when stderr is not a terminal)\n"
     "       modelid --version | --help\n"
     "\n"
     "ROBOT is a description (.yaml/.urdf, through the numeric reference) or the name of a\n"
     "compiled-in generated model (tx40, kr150, ur5, iiwa14, panda, kuka_kr150_2,\n"
-    "panda_arm).\n"
+    "panda_arm). --angle-tolerance RAD (every command) reads a description as modelgen does\n"
+    "(rounded quarter turns within RAD taken as exact; default 1e-4, 0: as written).\n"
     "Data files: CSV with a header t, q1..qn, tau1..taun and optionally dq1.., ddq1.. (without\n"
     "them, velocities and accelerations come from central differences). README.md has details.\n"
     "simulate --drive: THETA.json is {\"name\": value} over the drive model's parameters\n"
@@ -48,10 +51,22 @@ constexpr const char* kUsage =
 
 int dispatch(int argc, char** argv) {
   const std::string command = argv[1];
+  // --progress, for every command: progress lines also when stderr is not a terminal.
+  int kept = 2;
+  for (int a = 2; a < argc; ++a) {
+    if (std::strcmp(argv[a], "--progress") == 0) {
+      show_progress_in_logs(true);
+    } else {
+      argv[kept++] = argv[a];
+    }
+  }
+  argc = kept;
   if (command == "fit") return run_fit(parse_arguments(argc, argv, kFitOptions));
   if (command == "predict") return run_predict(parse_arguments(argc, argv, kPredictOptions));
   if (command == "simulate") return run_simulate(parse_arguments(argc, argv, kSimulateOptions));
-  if (command == "check") return run_check(parse_arguments(argc, argv, {}));
+  if (command == "check") {
+    return run_check(parse_arguments(argc, argv, {{"--angle-tolerance", OptionKind::kOnce}}));
+  }
   throw UsageError{"unknown command '" + command + "'"};
 }
 

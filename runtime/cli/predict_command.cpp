@@ -5,11 +5,13 @@
 
 #include <cmath>
 #include <iostream>
+#include <optional>
 #include <sstream>
 
 #include "runtime/cli/commands.hpp"
 #include "runtime/cli/data_files.hpp"
 #include "runtime/cli/estimate_file.hpp"
+#include "runtime/cli/limit_check.hpp"
 #include "runtime/cli/model_source.hpp"
 #include "runtime/cli/parameter_file.hpp"
 #include "runtime/cli/prediction_output.hpp"
@@ -20,10 +22,12 @@ namespace modelgen::internal {
 
 const std::map<std::string, OptionKind> kPredictOptions =
     with_data_options({{"--robot", OptionKind::kOnce},
+                       {"--angle-tolerance", OptionKind::kOnce},
                        {"--params", OptionKind::kOnce},
                        {"--data", OptionKind::kRepeated},
                        {"-o", OptionKind::kOnce},
-                       {"--plot", OptionKind::kOnce}});
+                       {"--plot", OptionKind::kOnce},
+                       {"--decimated", OptionKind::kFlag}});
 
 namespace {
 
@@ -50,7 +54,7 @@ void print_errors(const std::vector<Trajectory>& data, const TorquePrediction& p
 
 int run_predict(const CommandLine& args) {
   reject_positional(args);
-  const ModelSource source = load_model_source(args.one("--robot"));
+  const ModelSource source = load_model_source(args.one("--robot"), angle_tolerance_option(args));
   const IdentificationModel& model = *source.model;
   const std::string& params = args.one("--params");
   if (!args.has("--data")) throw UsageError{"predict needs at least one --data file"};
@@ -59,10 +63,35 @@ int run_predict(const CommandLine& args) {
   check_estimate_model(params, model);
   const Eigen::VectorXd beta = read_base_parameters(params, model);
   if (args.has("--plot")) check_plot_folder(args.one("--plot"));
-  const PreparationOptions preparation = preparation_options(args);
+  // The data are prepared as the fit prepared them (EST.json's data options) unless this
+  // command line gives data options of its own; stderr says which.
+  const std::vector<std::string> given = data_option_words(args);
+  const std::optional<std::vector<std::string>> from_estimate = read_data_options(params);
+  const auto spelled = [](const std::vector<std::string>& words) {
+    std::string text;
+    for (const std::string& word : words) text += (text.empty() ? "" : " ") + word;
+    return text.empty() ? std::string("none") : text;
+  };
+  PreparationOptions preparation;
+  if (!given.empty() || !from_estimate) {
+    preparation = preparation_options(args);
+    if (from_estimate && *from_estimate != given) {
+      std::cerr << "modelid predict: data options from the command line (" << spelled(given)
+                << "); the fit's, in " << params << ", were " << spelled(*from_estimate)
+                << "\n";
+    }
+  } else {
+    preparation = preparation_options(data_options_from_words(*from_estimate, params));
+    std::cerr << "modelid predict: data options from " << params
+              << " (as the fit prepared its data): " << spelled(*from_estimate) << "\n";
+  }
+  // One prediction per input sample unless the fit's decimated comparison is asked for.
+  const bool decimated = args.has("--decimated");
+  preparation.every_sample = !decimated;
   std::ostringstream data_report;
   Experiments experiments = read_experiments(args.all("--data"), model, preparation,
                                              EffortColumns::kOptional, data_report);
+  warn_beyond_limits(std::cerr, "predict", source, experiments, preparation.side);
   // Torques are optional: without them there is nothing to compare, only predictions.
   const bool measured = experiments.data.front().measured != Measured::kNothing;
   for (const Trajectory& x : experiments.data) {
@@ -72,7 +101,8 @@ int run_predict(const CommandLine& args) {
                       ": give them in every file or in none");
     }
   }
-  // Compared where identification compares them: after the parallel decimation's filter.
+  // --decimated: compared where identification compares them, after the parallel
+  // decimation's filter (every factor is 1 otherwise).
   const TorquePrediction prediction =
       predict_with_progress(model, experiments.data, beta, experiments.decimation);
   const std::vector<Trajectory>& data = experiments.data;

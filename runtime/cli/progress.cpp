@@ -13,9 +13,11 @@ namespace modelgen::internal {
 namespace {
 
 constexpr auto kRedrawInterval = std::chrono::milliseconds(100);
-constexpr auto kQuietLogTime = std::chrono::seconds(1);
+bool log_progress = false;
 
 }  // namespace
+
+void show_progress_in_logs(bool show) { log_progress = show; }
 
 Progress::Progress(std::string label, long long total)
     : label_(std::move(label)),
@@ -40,8 +42,9 @@ void Progress::update(long long done, const std::string& detail) {
     line_shown_ = true;
     return;
   }
+  if (!log_progress) return;
   const int quarter = percent / 25;
-  if (quarter <= quarters_printed_ || now - start_ < kQuietLogTime) return;
+  if (quarter <= quarters_printed_) return;
   quarters_printed_ = quarter;
   std::fprintf(stderr, "modelid: %s %d%%%s\n", label_.c_str(), percent, tail.c_str());
 }

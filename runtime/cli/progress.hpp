@@ -9,8 +9,13 @@ namespace modelgen::internal {
 
 /// Reports how much of `total` units of work is done. On a terminal (isatty(2)) one line,
 /// "modelid: LABEL 42% DETAIL", rewritten in place at most ten times a second and erased by
-/// finish(). Otherwise (a file, a pipe) nothing for runs shorter than a second, then one line
-/// at each quarter of the work at most: four lines in a log, never a stream of updates.
+/// finish(). Otherwise (a file, a pipe) nothing, unless the user asked with --progress
+/// (show_progress_in_logs): then one line at each quarter of the work at most: four lines in a
+/// log, never a stream of updates.
+/// Whether progress lines go to a stderr that is not a terminal (modelid --progress). Off by
+/// default: scripts and tests read stderr for warnings and errors.
+void show_progress_in_logs(bool show);
+
 class Progress {
  public:
   Progress(std::string label, long long total);

@@ -2,10 +2,14 @@
 
 #include "runtime/cli/shipped_models.hpp"
 
+#include <filesystem>
 #include <functional>
 #include <map>
 
 #include "franka_panda.hpp"
+#include "modelgen/model/error.hpp"
+#include "modelgen/model/load_robot.hpp"
+#include "modelgen/model/sha256.hpp"
 #include "kr150.hpp"
 #include "kuka_iiwa14_drake.hpp"
 #include "kuka_kr150_2.hpp"
@@ -23,24 +27,25 @@ struct Shipped {
   std::function<std::unique_ptr<IdentificationModel>()> model;
   std::function<std::unique_ptr<DriveModel>()> drive_model;
   std::string description_sha256;
+  std::string description;  ///< relative to the source tree (MODELGEN_SHIPPED_ROBOTS)
 };
 
 template <class Generated>
-Shipped shipped() {
+Shipped shipped(std::string description) {
   return {[] { return std::make_unique<GeneratedModel<Generated>>(); },
           [] { return std::make_unique<GeneratedDriveModel<Generated>>(); },
-          Generated::input_sha256()};
+          Generated::input_sha256(), std::move(description)};
 }
 
 const std::map<std::string, Shipped>& registry() {
   static const std::map<std::string, Shipped> kModels = {
-      {"tx40", shipped<modelgen::tx40::Model>()},
-      {"kr150", shipped<modelgen::kr150::Model>()},
-      {"ur5", shipped<modelgen::ur5::Model>()},
-      {"iiwa14", shipped<modelgen::iiwa14::Model>()},
-      {"panda", shipped<modelgen::panda::Model>()},
-      {"kuka_kr150_2", shipped<modelgen::kuka_kr150_2::Model>()},
-      {"panda_arm", shipped<modelgen::panda_arm::Model>()},
+      {"tx40", shipped<modelgen::tx40::Model>("robots/tx40.yaml")},
+      {"kr150", shipped<modelgen::kr150::Model>("robots/kr150.yaml")},
+      {"ur5", shipped<modelgen::ur5::Model>("robots/urdf/ur5.urdf")},
+      {"iiwa14", shipped<modelgen::iiwa14::Model>("robots/urdf/kuka_iiwa14_drake.urdf")},
+      {"panda", shipped<modelgen::panda::Model>("robots/urdf/franka_panda.urdf")},
+      {"kuka_kr150_2", shipped<modelgen::kuka_kr150_2::Model>("robots/urdf/kuka_kr150_2.urdf")},
+      {"panda_arm", shipped<modelgen::panda_arm::Model>("robots/panda_arm.yaml")},
   };
   return kModels;
 }
@@ -60,6 +65,20 @@ std::unique_ptr<DriveModel> make_shipped_drive_model(const std::string& descript
     return entry.drive_model();
   }
   return nullptr;
+}
+
+std::string shipped_description_path(const std::string& name) {
+  auto found = registry().find(name);
+  if (found == registry().end()) return "";
+  const std::string path = std::string(MODELGEN_SOURCE_DIR) + "/" + found->second.description;
+  std::error_code missing;
+  if (!std::filesystem::is_regular_file(path, missing)) return "";
+  try {
+    if (sha256_hex(read_source_file(path)) != found->second.description_sha256) return "";
+  } catch (const InputError&) {
+    return "";
+  }
+  return path;
 }
 
 std::vector<std::string> shipped_model_names() {

@@ -19,6 +19,12 @@ std::unique_ptr<IdentificationModel> make_shipped_model(const std::string& name)
 std::unique_ptr<DriveModel> make_shipped_drive_model(const std::string& description_sha256,
                                                      std::string* name = nullptr);
 
+/// The description file the compiled-in model `name` was generated from, in the source tree
+/// modelid was built from, when that file is there and is still the same (same SHA-256): its
+/// joint limits and names are not compiled in. Empty otherwise (an installed modelid without
+/// its sources, an edited description).
+std::string shipped_description_path(const std::string& name);
+
 /// Names of the compiled-in models, sorted.
 std::vector<std::string> shipped_model_names();
 

@@ -28,6 +28,7 @@
 namespace modelgen::internal {
 
 const std::map<std::string, OptionKind> kSimulateOptions = {{"--robot", OptionKind::kOnce},
+                                                            {"--angle-tolerance", OptionKind::kOnce},
                                                             {"--params", OptionKind::kOnce},
                                                             {"--drive", OptionKind::kOnce},
                                                             {"--trajectory", OptionKind::kOnce},
@@ -75,7 +76,7 @@ int run_simulate(const CommandLine& args) {
         "simulate needs --params TRUE.json (base or standard parameters) or --drive "
         "THETA.json (drive model parameters)"};
   }
-  const ModelSource source = load_model_source(args.one("--robot"));
+  const ModelSource source = load_model_source(args.one("--robot"), angle_tolerance_option(args));
   if (drive_mode && !source.description) {
     throw UsageError{"--drive needs --robot to be a description file (.yaml/.urdf), not '" +
                      args.one("--robot") + "'"};

@@ -4,6 +4,7 @@
 
 #include "modelgen/model/base_parameters.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -78,18 +79,29 @@ BaseParameterSet derive_base_parameters(const RigidBodyTree& tree) {
 
   double largest = 0;
   for (int k = 0; k < num_params; ++k) largest = std::max(largest, W.col(k).norm());
+  // A column counts as independent when the part of it the earlier columns do not explain is
+  // above `dependence` relative to its norm. Floating point alone leaves ~1e-12 there, hence the
+  // floor of 1e-8. But the geometry is only known to the description's angle precision: an
+  // angle off by delta rad (a rounded pi/2 the loader did not snap, axes parallel only to
+  // delta) moves a column that is dependent for the true robot by about delta relative to its
+  // norm, and that part is not identifiable on the real robot. So effects below the precision
+  // count as dependence.
+  const double dependence = std::max(1e-8, tree.angle_precision);
+  // Likewise a column that vanishes for the true robot (MX1 when axis 1 is vertical) is about
+  // delta times an ordinary column when the geometry is off by delta.
+  const double negligible = std::max(1e-10, tree.angle_precision);
   std::vector<int> independent, dependent;
   BaseParameterSet result;
   Eigen::MatrixXd Q(W.rows(), 0);
   for (int k = 0; k < num_params; ++k) {
     Eigen::VectorXd v = W.col(k);
     const double norm = v.norm();
-    if (norm <= 1e-10 * largest) {
+    if (norm <= negligible * largest) {
       result.without_effect.push_back(k);
       continue;
     }
     for (int pass = 0; pass < 2; ++pass) v -= Q * (Q.transpose() * v);
-    if (v.norm() <= 1e-8 * norm) {
+    if (v.norm() <= dependence * norm) {
       dependent.push_back(k);
       continue;
     }
@@ -134,9 +146,13 @@ BaseParameterSet derive_base_parameters(const RigidBodyTree& tree) {
   Eigen::MatrixXd W_base(W_check.rows(), independent.size());
   for (std::size_t i = 0; i < independent.size(); ++i) W_base.col(i) = W_check.col(independent[i]);
   const double error = (W_check - W_base * result.K).cwiseAbs().maxCoeff();
-  if (error > 1e-8 * std::max(1.0, W_check.cwiseAbs().maxCoeff())) {
-    throw std::logic_error("base parameters: regrouping relations fail their check (error " +
-                           std::to_string(error) + ")");
+  // Columns taken as dependent within `dependence` leave errors of that relative size.
+  const double allowed = 10 * dependence;
+  if (error > allowed * std::max(1.0, W_check.cwiseAbs().maxCoeff())) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.3g", error);
+    throw std::logic_error(std::string("base parameters: regrouping relations fail their check (error ") +
+                           text + ")");
   }
   return result;
 }

@@ -2,6 +2,8 @@
 
 #include "modelgen/model/command_line.hpp"
 
+#include "modelgen/model/load_robot.hpp"
+
 #include <charconv>
 #include <cmath>
 
@@ -61,6 +63,16 @@ double parse_number(const std::string& text, const std::string& option) {
     throw UsageError(option + " must be a number, not '" + text + "'");
   }
   return value;
+}
+
+double angle_tolerance_option(const CommandLine& line) {
+  if (!line.has("--angle-tolerance")) return kDefaultAngleTolerance;
+  const std::string& text = line.one("--angle-tolerance");
+  const double tolerance = parse_number(text, "--angle-tolerance");
+  if (!(tolerance >= 0 && tolerance < 0.7)) {
+    throw UsageError("--angle-tolerance must be between 0 and 0.7 rad, not '" + text + "'");
+  }
+  return tolerance;
 }
 
 }  // namespace modelgen

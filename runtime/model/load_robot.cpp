@@ -4,8 +4,11 @@
 
 #include <filesystem>
 #include <fstream>
+#include <numbers>
 #include <sstream>
+#include <stdexcept>
 
+#include "modelgen/model/description_limits.hpp"
 #include "runtime/model/mdh_yaml_loader.hpp"
 #include "runtime/model/urdf_loader.hpp"
 
@@ -16,6 +19,14 @@ std::string read_source_file(const std::string& path) {
   if (std::filesystem::is_directory(path, ec)) {
     throw InputError({path}, "is a directory, not a robot description");
   }
+  // Read whole and parsed in memory: a limit keeps a wrong file from exhausting it.
+  if (const std::uintmax_t size = std::filesystem::file_size(path, ec);
+      !ec && size > kMaxDescriptionBytes) {
+    throw InputError({path}, "the file has " + std::to_string(size) +
+                                 " bytes, beyond the limit of " +
+                                 std::to_string(kMaxDescriptionBytes) +
+                                 " bytes for a robot description (README, Limits)");
+  }
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError({path}, "cannot open the file (does it exist and is it readable?)");
   std::ostringstream bytes;
@@ -25,12 +36,16 @@ std::string read_source_file(const std::string& path) {
 }
 
 RobotModel load_robot(const std::string& path, const LoadOptions& options) {
+  if (!(options.angle_tolerance >= 0 && options.angle_tolerance < std::numbers::pi / 4)) {
+    // Beyond pi/4 every angle would be within reach of some quarter turn.
+    throw std::invalid_argument("angle tolerance must be in [0, pi/4)");
+  }
   const std::string extension = std::filesystem::path(path).extension().string();
   if (extension == ".yaml" || extension == ".yml") {
     if (!options.base_link.empty() || !options.tip_link.empty()) {
       throw InputError({path}, "--base and --tip apply to URDF descriptions only");
     }
-    RobotModel model = load_mdh_yaml(path, read_source_file(path));
+    RobotModel model = load_mdh_yaml(path, read_source_file(path), options.angle_tolerance);
     if (!options.name.empty()) {
       check_robot_name(options.name, {path});
       model.name = options.name;

@@ -6,12 +6,18 @@
 #include "runtime/model/mdh_yaml_loader.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstdio>
+#include <map>
 #include <set>
 
+#include <Eigen/Eigenvalues>
 #include <Eigen/LU>
 #include <yaml-cpp/yaml.h>
 
+#include "modelgen/model/number_text.hpp"
+#include "runtime/model/angle_snapping.hpp"
 #include "runtime/model/yaml_reader.hpp"
 
 namespace modelgen {
@@ -53,7 +59,8 @@ struct RawJoint {
 
 class MdhYamlLoader {
  public:
-  MdhYamlLoader(const std::string& path) : in_(path) {}
+  MdhYamlLoader(const std::string& path, double angle_tolerance)
+      : in_(path), angle_tolerance_(angle_tolerance) {}
 
   RobotModel load(const std::string& text) {
     YAML::Node root;
@@ -70,11 +77,13 @@ class MdhYamlLoader {
                    "the robot description");
     model_.source_file = in_.path();
     model_.format = DescriptionFormat::kMdhYaml;
+    model_.tree.angle_precision = angle_tolerance_;
     const YAML::Node name = in_.require(root, "name", "the robot description");
     model_.name = in_.text(name, "name");
     check_robot_name(model_.name, in_.at(name));
     if (root["gravity"]) {
       const auto g = in_.numbers(root["gravity"], "gravity", 3);
+      for (int i = 0; i < 3; ++i) in_.within(root["gravity"][i], "gravity", g[i], kMaxLength, " m/s^2");
       model_.tree.gravity = {g[0], g[1], g[2]};
     }
     read_joints(in_.require(root, "joints", "the robot description"));
@@ -92,6 +101,10 @@ class MdhYamlLoader {
   void read_joints(const YAML::Node& list) {
     if (!list.IsSequence() || list.size() == 0) {
       in_.fail(list, "'joints' must be a non-empty list of modified DH rows");
+    }
+    if (list.size() > static_cast<std::size_t>(kMaxBodies)) {
+      in_.fail(list[kMaxBodies], "joint " + std::to_string(kMaxBodies + 1) + ": a description may hold at most " +
+                                     std::to_string(kMaxBodies) + " rows (README, Limits)");
     }
     std::vector<RawJoint> raw;
     std::set<std::string> names;
@@ -120,10 +133,10 @@ class MdhYamlLoader {
                            "; valid types: revolute, prismatic, fixed");
       }
       MdhParameters mdh;
-      mdh.alpha = in_.angle(in_.require(row, "alpha", context), "alpha");
-      mdh.d = in_.number(in_.require(row, "d", context), "d");
-      mdh.theta = in_.angle(in_.require(row, "theta", context), "theta");
-      mdh.r = in_.number(in_.require(row, "r", context), "r");
+      mdh.alpha = snapped_angle(in_.require(row, "alpha", context), "alpha", context);
+      mdh.d = in_.length(in_.require(row, "d", context), "d");
+      mdh.theta = snapped_angle(in_.require(row, "theta", context), "theta", context);
+      mdh.r = in_.length(in_.require(row, "r", context), "r");
       joint.description.mdh = mdh;
       joint.antecedent = j - 1;
       if (row["ant"]) {
@@ -147,7 +160,35 @@ class MdhYamlLoader {
       model_.joints.push_back(std::move(joint.description));
     }
     model_.tree.dof = dof;
+    if (dof > kMaxMovingJoints) {
+      int moving = 0;
+      for (std::size_t j = 0; j < model_.tree.bodies.size(); ++j) {
+        if (model_.tree.bodies[j].dof_index >= 0 && ++moving > kMaxMovingJoints) {
+          throw InputError(model_.joints[j].where,
+                           "joint " + std::to_string(j + 1) + " is moving joint " +
+                               std::to_string(moving) + "; modelgen models at most " +
+                               std::to_string(kMaxMovingJoints) +
+                               " moving joints (generation time grows with their cube; README, Limits)");
+        }
+      }
+    }
     if (dof == 0) in_.fail(list, "the robot has no moving joint (all joints are 'fixed')");
+  }
+
+  // An MDH angle; a number written for a quarter turn ("1.5708") becomes the exact fraction of
+  // pi, so the generated code gets exact sines and cosines and the base parameters the
+  // robot's symmetries. A note says so unless the number was pi to double precision.
+  Angle snapped_angle(const YAML::Node& node, const std::string& field, const std::string& joint) {
+    const Angle written = in_.angle(node, field);
+    if (written.is_pi_fraction) return written;
+    const auto quarters = nearest_quarter_turn(written.value, angle_tolerance_);
+    if (!quarters) return written;
+    Angle exact = Angle::pi_fraction(*quarters, 2, quarter_turn_text(*quarters));
+    if (std::abs(written.value - exact.value) > kSilentSnap) {
+      model_.notes.push_back(
+          {in_.at(node), snap_note(joint + ": " + field, written.value, *quarters, angle_tolerance_)});
+    }
+    return exact;
   }
 
   // `ant` is a link number (0 = base) or a link name; Khalil's numbering needs a(j) < j.
@@ -369,6 +410,7 @@ class MdhYamlLoader {
   void read_known(const YAML::Node& node) {
     if (!node.IsMap()) in_.fail(node, "'known' must map standard parameter names to values");
     const std::vector<std::string> names = model_.param_names();
+    std::map<int, YAML::Node> keys;  // where each known value was given
     for (const auto& entry : node) {
       const std::string key = entry.first.Scalar();
       const int k = model_.param_index(key);
@@ -377,19 +419,80 @@ class MdhYamlLoader {
                                   did_you_mean(key, names) + "; run 'modelgen describe' to list them");
       }
       if (model_.known_values[k]) in_.fail(entry.first, "'" + key + "' is given twice in 'known'");
-      model_.known_values[k] = in_.number(entry.second, key);
+      const bool mass = model_.tree.params[k].kind == ParamKind::kM;
+      model_.known_values[k] =
+          mass ? in_.number(entry.second, key, kMaxMass, " kg") : in_.number(entry.second, key);
+      keys[k] = entry.first;
+    }
+    check_known_physical(keys);
+  }
+
+  // A-priori values describe a real body: no negative mass, moment of inertia or drive
+  // inertia, and an inertia tensor (when all six entries are known) that some mass
+  // distribution has, i.e. positive semi-definite (zero for a massless link is fine).
+  void check_known_physical(const std::map<int, YAML::Node>& keys) {
+    const std::vector<StandardParam>& params = model_.tree.params;
+    for (const auto& [k, node] : keys) {
+      const ParamKind kind = params[k].kind;
+      const bool nonnegative = kind == ParamKind::kM || kind == ParamKind::kXX ||
+                               kind == ParamKind::kYY || kind == ParamKind::kZZ ||
+                               kind == ParamKind::kIa || kind == ParamKind::kIam;
+      if (nonnegative && *model_.known_values[k] < 0) {
+        in_.fail(node, "'" + params[k].name + "' in 'known' is " +
+                           shortest_text(*model_.known_values[k]) + ", but " +
+                           (kind == ParamKind::kM ? "a mass" : "an inertia") + " cannot be negative");
+      }
+    }
+    for (std::size_t body = 0; body < model_.tree.bodies.size(); ++body) {
+      static const ParamKind kTensor[] = {ParamKind::kXX, ParamKind::kXY, ParamKind::kXZ,
+                                          ParamKind::kYY, ParamKind::kYZ, ParamKind::kZZ};
+      std::array<double, 6> I{};
+      int first = -1;
+      bool complete = true;
+      for (int e = 0; e < 6; ++e) {
+        int index = -1;
+        for (std::size_t k = 0; k < params.size(); ++k) {
+          if (params[k].body == static_cast<int>(body) && params[k].kind == kTensor[e]) {
+            index = static_cast<int>(k);
+          }
+        }
+        if (index < 0 || !model_.known_values[index]) {
+          complete = false;
+          break;
+        }
+        if (first < 0) first = index;
+        I[e] = *model_.known_values[index];
+      }
+      if (!complete) continue;
+      // Khalil's tensor entries: XY = -integral of x y dm, so J is [XX XY XZ; XY YY YZ; ...].
+      Eigen::Matrix3d J;
+      J << I[0], I[1], I[2], I[1], I[3], I[4], I[2], I[4], I[5];
+      const Eigen::Vector3d eigenvalues =
+          Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(J, Eigen::EigenvaluesOnly).eigenvalues();
+      if (eigenvalues.minCoeff() < -1e-9 * J.cwiseAbs().maxCoeff()) {
+        char text[96];
+        std::snprintf(text, sizeof text, "%.6g, %.6g, %.6g", eigenvalues[0], eigenvalues[1],
+                      eigenvalues[2]);
+        const std::string suffix = std::to_string(body + 1);
+        in_.fail(keys.at(first), "the inertia tensor of link " + suffix + " in 'known' (XX" +
+                                     suffix + " .. ZZ" + suffix +
+                                     ") is not positive semi-definite (principal moments " + text +
+                                     "): no mass distribution has it");
+      }
     }
   }
 
   YamlReader in_;
+  double angle_tolerance_;
   RobotModel model_;
 };
 
 }  // namespace
 
-RobotModel load_mdh_yaml(const std::string& path, const std::string& text) {
+RobotModel load_mdh_yaml(const std::string& path, const std::string& text,
+                          double angle_tolerance) {
   try {
-    return MdhYamlLoader(path).load(text);
+    return MdhYamlLoader(path, angle_tolerance).load(text);
   } catch (const YAML::Exception& e) {
     // A yaml-cpp error the checks above did not anticipate: still report it with a position.
     throw InputError({path, e.mark.line + 1, e.mark.column + 1}, e.msg);

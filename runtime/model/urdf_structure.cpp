@@ -3,6 +3,9 @@
 #include "runtime/model/urdf_structure.hpp"
 
 #include <algorithm>
+#include <array>
+#include <cstdio>
+#include <utility>
 #include <cctype>
 #include <charconv>
 #include <cmath>
@@ -13,9 +16,13 @@
 #include <string_view>
 #include <vector>
 
+#include <Eigen/Core>
+#include <Eigen/Eigenvalues>
 #include <tinyxml2.h>
 
+#include "modelgen/model/description_limits.hpp"
 #include "modelgen/model/error.hpp"
+#include "modelgen/model/number_text.hpp"
 
 namespace modelgen {
 
@@ -74,6 +81,10 @@ class StructureChecker {
     // Links first: joints may name links written further down the file.
     for (const tinyxml2::XMLElement* link = robot->FirstChildElement("link"); link != nullptr;
          link = link->NextSiblingElement("link")) {
+      if (structure_.links.size() == static_cast<std::size_t>(kMaxUrdfLinks)) {
+        fail(link, "more than " + std::to_string(kMaxUrdfLinks) +
+                       " links; a URDF may hold at most that many (README, Limits)");
+      }
       check_link(link);
     }
     if (structure_.links.empty()) fail(robot, "the robot has no <link> elements");
@@ -140,7 +151,8 @@ class StructureChecker {
   // element for the message ("joint 'j1': origin"). Returns the numbers, nullopt if absent.
   std::optional<std::vector<double>> numbers(const tinyxml2::XMLElement* element,
                                              const char* attribute, std::size_t count,
-                                             const std::string& what, bool required) const {
+                                             const std::string& what, bool required,
+                                             double limit = 0, const char* unit = "") const {
     const char* text = element->Attribute(attribute);
     if (text == nullptr) {
       if (required) fail(element, what + " has no " + attribute + " attribute");
@@ -153,14 +165,72 @@ class StructureChecker {
                          : count == 3 ? "three numbers"
                                       : std::to_string(count) + " numbers"));
     }
+    // Beyond the description limits, products in the dynamics overflow (README, Limits).
+    for (const double value : *values) {
+      if (limit > 0 && std::abs(value) > limit) {
+        fail(element, what + " " + attribute + "='" + text + "' holds " + shortest_text(value) +
+                          unit + ", beyond the limit of " + shortest_text(limit) + unit +
+                          " a description may hold (README, Limits)");
+      }
+    }
     return values;
   }
 
-  void check_origin(const tinyxml2::XMLElement* parent, const std::string& what) const {
+  // urdfdom reads the first of each of these and ignores the rest without a word; a second
+  // one is a mistake (two <child> in a joint, two <inertial> in a link) the user should see.
+  void check_single(const tinyxml2::XMLElement* parent, const char* element,
+                    const std::string& owner) const {
+    const tinyxml2::XMLElement* first = parent->FirstChildElement(element);
+    if (first == nullptr) return;
+    if (const tinyxml2::XMLElement* second = first->NextSiblingElement(element)) {
+      fail(second, owner + " has a second <" + element + "> (the first is at line " +
+                       std::to_string(first->GetLineNum()) + "); give exactly one");
+    }
+  }
+
+  // <visual> and <collision>: urdfdom rejects a bad one with "Could not parse visual/collision
+  // element" on the console and no line; check what it checks, with the line.
+  void check_geometry_owner(const tinyxml2::XMLElement* element, const std::string& owner) const {
+    const std::string what = owner + ": <" + element->Name() + ">";
+    check_origin(element, what + " origin");
+    const tinyxml2::XMLElement* geometry = element->FirstChildElement("geometry");
+    if (geometry == nullptr) fail(element, what + " has no <geometry>");
+    const tinyxml2::XMLElement* shape = geometry->FirstChildElement();
+    if (shape == nullptr) {
+      fail(geometry, what + ": <geometry> holds no shape (box, cylinder, sphere or mesh)");
+    }
+    const std::string name = shape->Name();
+    const std::string shape_what = what + " " + name;
+    if (name == "box") {
+      numbers(shape, "size", 3, shape_what, true);
+    } else if (name == "cylinder" || name == "capsule") {
+      numbers(shape, "radius", 1, shape_what, true);
+      numbers(shape, "length", 1, shape_what, true);
+    } else if (name == "sphere") {
+      numbers(shape, "radius", 1, shape_what, true);
+    } else if (name == "mesh") {
+      const char* file = shape->Attribute("filename");
+      if (file == nullptr || *file == '\0') fail(shape, shape_what + " has no filename attribute");
+      numbers(shape, "scale", 3, shape_what, false);
+    } else {
+      fail(shape, what + ": unknown geometry <" + name + ">" +
+                      did_you_mean(name, {"box", "cylinder", "sphere", "mesh"}) +
+                      "; expected box, cylinder, sphere or mesh");
+    }
+  }
+
+  OriginEntry check_origin(const tinyxml2::XMLElement* parent, const std::string& what) const {
+    OriginEntry entry;
     const tinyxml2::XMLElement* origin = parent->FirstChildElement("origin");
-    if (origin == nullptr) return;
-    numbers(origin, "xyz", 3, what, false);
-    numbers(origin, "rpy", 3, what, false);
+    if (origin == nullptr) return entry;
+    entry.line = origin->GetLineNum();
+    if (const auto xyz = numbers(origin, "xyz", 3, what, false, kMaxLength, " m")) {
+      std::copy(xyz->begin(), xyz->end(), entry.xyz.begin());
+    }
+    if (const auto rpy = numbers(origin, "rpy", 3, what, false, kMaxAngle, " rad")) {
+      std::copy(rpy->begin(), rpy->end(), entry.rpy.begin());
+    }
+    return entry;
   }
 
   void check_link(const tinyxml2::XMLElement* link) {
@@ -173,14 +243,24 @@ class StructureChecker {
       fail(link, owner + " is defined twice (first at line " +
                      std::to_string(structure_.links[previous->second].line) + ")");
     }
-    structure_.links.push_back({name, link->GetLineNum()});
+    structure_.links.push_back({name, link->GetLineNum(), {}});
+    check_single(link, "inertial", owner);
+    for (const char* kind : {"visual", "collision"}) {
+      for (const tinyxml2::XMLElement* element = link->FirstChildElement(kind); element != nullptr;
+           element = element->NextSiblingElement(kind)) {
+        check_geometry_owner(element, owner);
+      }
+    }
 
     const tinyxml2::XMLElement* inertial = link->FirstChildElement("inertial");
     if (inertial == nullptr) return;
-    check_origin(inertial, owner + ": inertial origin");
+    for (const char* element : {"origin", "mass", "inertia"}) {
+      check_single(inertial, element, owner + ": <inertial>");
+    }
+    structure_.links.back().inertial_origin = check_origin(inertial, owner + ": inertial origin");
     const tinyxml2::XMLElement* mass = inertial->FirstChildElement("mass");
     if (mass == nullptr) fail(inertial, owner + ": <inertial> has no <mass value=\"...\"/>");
-    const auto m = numbers(mass, "value", 1, owner + ": mass", true);
+    const auto m = numbers(mass, "value", 1, owner + ": mass", true, kMaxMass, " kg");
     if ((*m)[0] < 0) {
       fail(mass, owner + ": mass value='" + mass->Attribute("value") + "' is negative");
     }
@@ -190,8 +270,36 @@ class StructureChecker {
                          ": <inertial> has no <inertia ixx=... ixy=... ixz=... iyy=... "
                          "iyz=... izz=.../>");
     }
+    std::array<double, 6> I{};  // ixx ixy ixz iyy iyz izz
+    int k = 0;
     for (const char* entry : {"ixx", "ixy", "ixz", "iyy", "iyz", "izz"}) {
-      numbers(inertia, entry, 1, owner + ": inertia", true);
+      I[k++] = (*numbers(inertia, entry, 1, owner + ": inertia", true, kMaxMagnitude))[0];
+    }
+    check_inertia(inertia, owner, I);
+  }
+
+  // The inertia about the centre of mass must be positive semi-definite (a body whose mass is
+  // all in one point has zero inertia, which URDFs write); anything else has no mass
+  // distribution and makes every "physically consistent" check downstream meaningless.
+  void check_inertia(const tinyxml2::XMLElement* inertia, const std::string& owner,
+                     const std::array<double, 6>& I) const {
+    for (const auto& [index, name] : {std::pair{0, "ixx"}, {3, "iyy"}, {5, "izz"}}) {
+      if (I[index] < 0) {
+        fail(inertia, owner + ": inertia " + name + "='" + inertia->Attribute(name) +
+                          "' is negative; a moment of inertia cannot be");
+      }
+    }
+    Eigen::Matrix3d J;
+    J << I[0], I[1], I[2], I[1], I[3], I[4], I[2], I[4], I[5];
+    const double scale = J.cwiseAbs().maxCoeff();
+    const Eigen::Vector3d eigenvalues = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(
+                                            J, Eigen::EigenvaluesOnly).eigenvalues();
+    if (eigenvalues.minCoeff() < -1e-9 * scale) {
+      char text[96];
+      std::snprintf(text, sizeof text, "%.6g, %.6g, %.6g", eigenvalues[0], eigenvalues[1],
+                    eigenvalues[2]);
+      fail(inertia, owner + ": the inertia tensor is not positive semi-definite (principal " +
+                        "moments " + text + "): no mass distribution has it");
     }
   }
 
@@ -236,28 +344,57 @@ class StructureChecker {
                       "; expected revolute, continuous, prismatic or fixed");
     }
 
+    for (const char* element : {"parent", "child", "origin", "axis", "limit"}) {
+      check_single(joint, element, owner);
+    }
     link_reference(joint, owner, "parent", entry.parent);
     link_reference(joint, owner, "child", entry.child);
-    check_origin(joint, owner + ": origin");
+    entry.origin = check_origin(joint, owner + ": origin");
 
     // urdfdom reads the axis of moving joints only; a fixed joint's axis means nothing.
     if (const tinyxml2::XMLElement* axis = joint->FirstChildElement("axis");
         axis != nullptr && is_moving(entry.type)) {
-      const auto xyz = numbers(axis, "xyz", 3, owner + ": axis", false);
+      const auto xyz = numbers(axis, "xyz", 3, owner + ": axis", false, kMaxMagnitude);
       if (xyz && (*xyz)[0] == 0 && (*xyz)[1] == 0 && (*xyz)[2] == 0) {
         fail(axis, owner + ": axis xyz='" + axis->Attribute("xyz") +
                        "' is the zero vector; give the direction of motion");
+      }
+      // Scaled before squaring, so that the norm of 1e-200 does not underflow to 0 here.
+      if (xyz) {
+        const double scale = std::max({std::abs((*xyz)[0]), std::abs((*xyz)[1]), std::abs((*xyz)[2])});
+        const double norm = scale * std::hypot((*xyz)[0] / scale, (*xyz)[1] / scale, (*xyz)[2] / scale);
+        if (norm < kMinAxisNorm) {
+          fail(axis, owner + ": axis xyz='" + axis->Attribute("xyz") + "' has norm " +
+                         shortest_text(norm) + ", below the limit of " +
+                         shortest_text(kMinAxisNorm) + " (README, Limits); write a unit vector");
+        }
+      }
+      if (xyz) {
+        entry.axis = std::array<double, 3>{(*xyz)[0], (*xyz)[1], (*xyz)[2]};
+        entry.axis_line = axis->GetLineNum();
       }
     }
 
     const tinyxml2::XMLElement* limit = joint->FirstChildElement("limit");
     if (limit != nullptr) {
       const std::string what = owner + ": limit";
-      entry.has_lower = numbers(limit, "lower", 1, what, false).has_value();
-      entry.has_upper = numbers(limit, "upper", 1, what, false).has_value();
-      // urdfdom rejects a <limit> without these two; say so with the line.
-      numbers(limit, "velocity", 1, what, true);
-      numbers(limit, "effort", 1, what, true);
+      const auto lower = numbers(limit, "lower", 1, what, false);
+      const auto upper = numbers(limit, "upper", 1, what, false);
+      entry.has_lower = lower.has_value();
+      entry.has_upper = upper.has_value();
+      // Continuous joints ignore lower and upper (urdfdom too), so only the others are checked.
+      if (lower && upper && entry.type != "continuous" && (*lower)[0] > (*upper)[0]) {
+        fail(limit, what + " lower='" + limit->Attribute("lower") + "' is above upper='" +
+                        limit->Attribute("upper") + "'; write lower <= upper");
+      }
+      // urdfdom rejects a <limit> without these two; say so with the line. 0 is what files
+      // write for "unknown"; below 0 is no limit at all.
+      for (const char* attribute : {"velocity", "effort"}) {
+        if ((*numbers(limit, attribute, 1, what, true))[0] < 0) {
+          fail(limit, what + " " + attribute + "='" + limit->Attribute(attribute) +
+                          "' is negative; give the largest magnitude (or 0 when unknown)");
+        }
+      }
     } else if (entry.type == "revolute" || entry.type == "prismatic") {
       fail(joint, owner + " is " + entry.type +
                       " but has no <limit lower=... upper=... velocity=... effort=.../>; URDF "

@@ -3,7 +3,9 @@
 // the URDF loader.
 #pragma once
 
+#include <array>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -11,9 +13,18 @@ namespace modelgen {
 
 // What the TinyXML2 pass keeps: names, file order and lines. urdfdom keeps joints in a map
 // sorted by name, so the deterministic child order (file order) must come from here.
+// An <origin> as written (urdfdom keeps only the quaternion, so rounded quarter turns in rpy
+// can only be recognised here).
+struct OriginEntry {
+  std::array<double, 3> xyz{0, 0, 0};
+  std::array<double, 3> rpy{0, 0, 0};
+  int line = 0;  // 0 when the element has no <origin>
+};
+
 struct LinkEntry {
   std::string name;
   int line = 0;
+  OriginEntry inertial_origin;  // of its <inertial>, if any
 };
 
 struct JointEntry {
@@ -24,6 +35,9 @@ struct JointEntry {
   int line = 0;
   bool has_lower = false;  // <limit lower=...> written; urdfdom reads a missing one as 0
   bool has_upper = false;
+  OriginEntry origin;
+  std::optional<std::array<double, 3>> axis;  // <axis xyz> of a moving joint, as written
+  int axis_line = 0;
 };
 
 struct UrdfStructure {

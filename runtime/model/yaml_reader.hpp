@@ -13,7 +13,9 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include "modelgen/model/description_limits.hpp"
 #include "modelgen/model/error.hpp"
+#include "modelgen/model/number_text.hpp"
 #include "modelgen/model/robot_model.hpp"
 
 namespace modelgen {
@@ -56,7 +58,10 @@ class YamlReader {
     return value;
   }
 
-  double number(const YAML::Node& node, const std::string& field) const {
+  /// A finite number of magnitude at most `limit` (the description limits; `unit` for the
+  /// message).
+  double number(const YAML::Node& node, const std::string& field, double limit = kMaxMagnitude,
+                const std::string& unit = "") const {
     if (!node.IsScalar()) fail(node, "'" + field + "' must be a number");
     std::istringstream in(node.Scalar());
     in.imbue(std::locale::classic());
@@ -65,7 +70,22 @@ class YamlReader {
     if (in.fail() || !in.eof() || !std::isfinite(value)) {
       fail(node, "'" + field + "' must be a number, got '" + node.Scalar() + "'");
     }
+    within(node, field, value, limit, unit);
     return value;
+  }
+
+  /// Fails unless |value| <= limit; `unit` (" m", " kg") completes the message.
+  void within(const YAML::Node& node, const std::string& field, double value, double limit,
+              const std::string& unit) const {
+    if (std::abs(value) > limit) {
+      fail(node, "'" + field + "' is " + node.Scalar() + unit + ", beyond the limit of " +
+                     shortest_text(limit) + unit + " a description may hold (README, Limits)");
+    }
+  }
+
+  /// A length in metres (or gravity in m/s^2), |value| <= kMaxLength.
+  double length(const YAML::Node& node, const std::string& field) const {
+    return number(node, field, kMaxLength, " m");
   }
 
   double positive(const YAML::Node& node, const std::string& field) const {
@@ -103,6 +123,7 @@ class YamlReader {
       fail(node, "'" + field + "' must be an angle in radians: a number or an expression of pi "
                                "such as pi/2, -pi/2, 3*pi/4; got '" + node.Scalar() + "'");
     }
+    within(node, field, parsed->value, kMaxAngle, " rad");
     return *parsed;
   }
 

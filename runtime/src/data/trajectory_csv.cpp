@@ -5,13 +5,17 @@
 #include <algorithm>
 #include <cerrno>
 #include <charconv>
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <filesystem>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <map>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "modelgen/model/number_text.hpp"
@@ -43,11 +47,31 @@ std::vector<std::string> split(const std::string& line) {
 
 std::string format(double value) { return shortest_text(value); }
 
+// Six significant digits: time stamps and steps in messages.
+std::string brief(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.6g", value);
+  return text;
+}
+
+// The longest step between two time stamps, in median sample times, that resampling may fill:
+// a longer hole would be filled with invented samples (a 90 s hole at 10 ms gave 9 000), and
+// a time stamp far off (1e9 s) with a uniform grid too large for memory.
+constexpr double kMaxGapSteps = 100;
+
 }  // namespace
 
 Trajectory read_trajectory_csv(const std::string& path, int dof, EffortColumns effort) {
   std::ifstream in(path);
   if (!in) fail(path, 0, "", "cannot open the file");
+  std::error_code size_error;
+  const std::uintmax_t bytes = std::filesystem::file_size(path, size_error);
+  if (!size_error && bytes > kMaxDataFileBytes) {
+    fail(path, 0, "",
+         "the file has " + std::to_string(bytes >> 20) + " MiB, above modelid's limit of " +
+             std::to_string(kMaxDataFileBytes >> 20) +
+             " MiB per data file: split it into several experiments");
+  }
   std::string line;
   int line_number = 0;
   std::vector<std::string> header;
@@ -57,7 +81,15 @@ Trajectory read_trajectory_csv(const std::string& path, int dof, EffortColumns e
   }
   header = split(line);
   std::map<std::string, int> column;
-  for (std::size_t c = 0; c < header.size(); ++c) column[header[c]] = static_cast<int>(c);
+  for (std::size_t c = 0; c < header.size(); ++c) {
+    const auto [at, added] = column.emplace(header[c], static_cast<int>(c));
+    // Which of two same-named columns is meant cannot be known.
+    if (!added && !header[c].empty()) {
+      fail(path, line_number, header[c],
+           "column '" + header[c] + "' appears twice in the header (fields " +
+               std::to_string(at->second + 1) + " and " + std::to_string(c + 1) + ")");
+    }
+  }
   auto find = [&](const std::string& name, bool required) {
     auto found = column.find(name);
     if (found != column.end()) return found->second;
@@ -85,7 +117,7 @@ Trajectory read_trajectory_csv(const std::string& path, int dof, EffortColumns e
   }
   const std::string effort_prefix = measured == Measured::kCurrent ? "i" : "tau";
   std::vector<int> q(dof), tau(dof, -1), dq(dof), ddq(dof);
-  bool velocity = true;
+  bool velocity = true, any_derivative = false;
   for (int j = 0; j < dof; ++j) {
     const std::string k = std::to_string(j + 1);
     q[j] = find("q" + k, true);
@@ -93,9 +125,25 @@ Trajectory read_trajectory_csv(const std::string& path, int dof, EffortColumns e
     dq[j] = find("dq" + k, false);
     ddq[j] = find("ddq" + k, false);
     velocity = velocity && dq[j] >= 0 && ddq[j] >= 0;
+    any_derivative = any_derivative || dq[j] >= 0 || ddq[j] >= 0;
+  }
+  // Velocities without accelerations (or some axes only) would be silently ignored, the
+  // derivatives all taken from the positions: refused, so that the user chooses.
+  if (any_derivative && !velocity) {
+    for (int j = 0; j < dof; ++j) {
+      const std::string k = std::to_string(j + 1);
+      for (const auto& [name, index] : {std::pair{"dq" + k, dq[j]}, std::pair{"ddq" + k, ddq[j]}}) {
+        if (index >= 0) continue;
+        fail(path, line_number, name,
+             "missing column '" + name + "': velocities and accelerations are used together, " +
+                 "dq1..dq" + std::to_string(dof) + " and ddq1..ddq" + std::to_string(dof) +
+                 "; give all of them, or none (then both come from the positions)");
+      }
+    }
   }
 
   std::vector<std::vector<double>> rows;
+  std::vector<int> row_line;  // the line of each row, for messages about time steps
   while (std::getline(in, line)) {
     ++line_number;
     if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
@@ -123,9 +171,49 @@ Trajectory read_trajectory_csv(const std::string& path, int dof, EffortColumns e
            "time does not increase (" + format(values[t_column]) + " after " +
                format(rows.back()[t_column]) + ")");
     }
+    if (rows.size() == kMaxDataRows) {
+      fail(path, line_number, "",
+           "more than " + std::to_string(kMaxDataRows) +
+               " samples, modelid's limit per data file (the regressor of one sample takes "
+               "about 3 KB for six axes): split the file into several experiments or decimate "
+               "it first");
+    }
     rows.push_back(std::move(values));
+    row_line.push_back(line_number);
   }
   if (rows.size() < 3) fail(path, line_number, "", "fewer than 3 samples");
+  // Holes in the time stamps, against the median step.
+  std::vector<double> steps(rows.size() - 1);
+  for (std::size_t s = 0; s + 1 < rows.size(); ++s) {
+    steps[s] = rows[s + 1][t_column] - rows[s][t_column];
+  }
+  std::vector<double> sorted = steps;
+  std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
+  const double median = sorted[sorted.size() / 2];
+  for (std::size_t s = 0; s < steps.size(); ++s) {
+    if (steps[s] > kMaxGapSteps * median) {
+      fail(path, row_line[s + 1], "t",
+           "time jumps from " + brief(rows[s][t_column]) + " s (line " +
+               std::to_string(row_line[s]) + ") to " + brief(rows[s + 1][t_column]) +
+               " s, " + brief(std::round(steps[s] / median)) +
+               " sample times (median " + brief(median) + " s); a hole longer than " +
+               brief(kMaxGapSteps) +
+               " sample times is not filled with invented samples: split the file at the "
+               "hole into two experiments (--data A --data B)");
+    }
+  }
+  if (effort == EffortColumns::kRequired) {
+    bool any_effort = false;
+    for (const std::vector<double>& row : rows) {
+      for (int j = 0; j < dof; ++j) any_effort = any_effort || row[tau[j]] != 0;
+    }
+    if (!any_effort) {
+      fail(path, 0, "", "every " +
+                            std::string(measured == Measured::kCurrent ? "current" : "torque") +
+                            " (" + effort_prefix + "1.." + effort_prefix + std::to_string(dof) +
+                            ") is zero: there is nothing to identify from");
+    }
+  }
 
   Trajectory out;
   out.source = path;

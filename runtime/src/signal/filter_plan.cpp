@@ -29,9 +29,93 @@ using detail::fail;
 using detail::format;
 using detail::next_power_of_two;
 
+// Lines above kSignificance times the local mean noise power are motion.
+constexpr double kSignificance = 20.0;
+// The noise floor is estimated per band of at least kMinBandLines lines, bands growing by
+// kBandRatio (an eighth of an octave) so that a coloured floor is followed: noise falling as
+// f^-4 changes by a factor 1.4 within such a band.
+constexpr Eigen::Index kMinBandLines = 128;
+constexpr double kBandRatio = 1.09;
+// The floor of a band is a low quantile of its lines: motion may fill a good part of a band (a
+// contiguous excitation spectrum) without lifting it. For exponentially distributed noise
+// powers, the quartile is -ln(0.75) = 0.288 times their mean.
+constexpr double kFloorQuantile = 0.25;
+
+// The mean noise power under each line of a power spectrum (lines 0..half): a floor that
+// follows the spectrum's colour. Noise in measured positions is seldom white: timing jitter,
+// positions resampled by interpolation or held between updates (the Panda's logs) give a floor
+// that falls with frequency, and a floor taken from the top of the band alone then passes the
+// noise at mid frequencies off as motion, which differentiation weighs by f^2.
+Eigen::VectorXd local_noise_floor(const Eigen::VectorXd& power) {
+  const Eigen::Index lines = power.size();
+  Eigen::VectorXd floor = Eigen::VectorXd::Zero(lines);
+  std::vector<double> band;
+  for (Eigen::Index first = 1; first < lines;) {  // line 0 (the mean) is no motion
+    const Eigen::Index width = std::max(
+        kMinBandLines, static_cast<Eigen::Index>(static_cast<double>(first) * (kBandRatio - 1)));
+    // A short last band joins the previous one.
+    const Eigen::Index last = lines - (first + width) < width / 2 ? lines : first + width;
+    band.assign(power.data() + first, power.data() + last);
+    const auto rank = static_cast<std::ptrdiff_t>(kFloorQuantile * static_cast<double>(band.size()));
+    std::nth_element(band.begin(), band.begin() + rank, band.end());
+    floor.segment(first, last - first).setConstant(band[rank] / -std::log(1.0 - kFloorQuantile));
+    first = last;
+  }
+  return floor;
+}
+
+// The frequency below which `fraction` of the energy of the columns' significant lines lies,
+// each line's power weighted by (2 pi f)^(2 derivative): the bandwidth of the derivative-th
+// derivative. Per column: its least-squares line removed (a ramp would leak over the whole
+// spectrum), Hann window, power spectrum, local_noise_floor. Returns a negative value when no
+// line stands out of the noise.
+double significant_band(const Eigen::MatrixXd& x, double dt, int derivative, double fraction) {
+  const Eigen::Index n = x.rows();
+  const Eigen::Index fft_size = next_power_of_two(n), half = fft_size / 2;
+  Eigen::FFT<double> fft;
+  std::vector<Complex> windowed(fft_size), spectrum;
+  Eigen::VectorXd line_power(half + 1), weighted = Eigen::VectorXd::Zero(half + 1);
+  const Eigen::ArrayXd k = Eigen::ArrayXd::LinSpaced(n, 0, static_cast<double>(n - 1));
+  const Eigen::ArrayXd hann = 0.5 - 0.5 * (2.0 * kPi / static_cast<double>(n - 1) * k).cos();
+  const double mean_k = k.mean();
+  for (Eigen::Index j = 0; j < x.cols(); ++j) {
+    const double mean_x = x.col(j).mean();
+    const double slope =
+        ((k - mean_k) * (x.col(j).array() - mean_x)).sum() / (k - mean_k).square().sum();
+    std::fill(windowed.begin(), windowed.end(), 0.0);
+    for (Eigen::Index s = 0; s < n; ++s) {
+      windowed[s] = hann[s] * (x(s, j) - mean_x - slope * (k[s] - mean_k));
+    }
+    fft.fwd(spectrum, windowed);
+    for (Eigen::Index l = 0; l <= half; ++l) line_power[l] = std::norm(spectrum[l]);
+    const Eigen::VectorXd floor = local_noise_floor(line_power);
+    for (Eigen::Index l = 1; l <= half; ++l) {
+      // A line counts when noise alone would exceed it with a probability of 2e-9 (the powers
+      // of noise lines are exponentially distributed: P(p > c mean) = exp(-c)), so that among
+      // some 10^5 lines of all axes none is taken for motion by chance.
+      if (!(line_power[l] > kSignificance * floor[l])) continue;
+      const double w = 2.0 * kPi * static_cast<double>(l) / (static_cast<double>(fft_size) * dt);
+      weighted[l] += std::pow(w, 2 * derivative) * (line_power[l] - floor[l]);
+    }
+  }
+  const double total = weighted.sum();
+  if (!(total > 0)) return -1;
+  double cumulative = 0;
+  Eigen::Index line = 0;
+  for (; line < half; ++line) {
+    cumulative += weighted[line];
+    if (cumulative >= fraction * total) break;
+  }
+  return static_cast<double>(line) / (static_cast<double>(fft_size) * dt);
+}
+
 }  // namespace
 
 double estimate_bandwidth(const Trajectory& x, double energy_fraction) {
+  return estimate_bands(x, energy_fraction).bandwidth_hz;
+}
+
+ExcitationBands estimate_bands(const Trajectory& x, double energy_fraction) {
   if (!(energy_fraction > 0) || !(energy_fraction < 1)) {
     throw std::invalid_argument("energy fraction must be between 0 and 1, got " +
                                 format(energy_fraction));
@@ -39,44 +123,18 @@ double estimate_bandwidth(const Trajectory& x, double energy_fraction) {
   const double dt = uniform_sample_time(x);
   check_shapes(x, false);
   check_finite(x, x.q, "q");
-  const Eigen::Index n = x.t.size(), dof = x.q.cols();
-  if (n < 16) fail(x, "fewer than 16 samples to estimate a bandwidth from");
-  const Eigen::Index fft_size = next_power_of_two(n), half = fft_size / 2;
-  Eigen::FFT<double> fft;
-  std::vector<Complex> windowed(fft_size), spectrum;
-  Eigen::VectorXd line_power(half + 1), velocity_power = Eigen::VectorXd::Zero(half + 1);
-  const Eigen::ArrayXd k = Eigen::ArrayXd::LinSpaced(n, 0, static_cast<double>(n - 1));
-  const Eigen::ArrayXd hann = 0.5 - 0.5 * (2.0 * kPi / static_cast<double>(n - 1) * k).cos();
-  for (Eigen::Index j = 0; j < dof; ++j) {
-    // Least-squares line through the axis: a ramp would leak over the whole spectrum.
-    const double mean_k = k.mean(), mean_q = x.q.col(j).mean();
-    const double slope =
-        ((k - mean_k) * (x.q.col(j).array() - mean_q)).sum() / (k - mean_k).square().sum();
-    std::fill(windowed.begin(), windowed.end(), 0.0);
-    for (Eigen::Index s = 0; s < n; ++s) {
-      windowed[s] = hann[s] * (x.q(s, j) - mean_q - slope * (k[s] - mean_k));
-    }
-    fft.fwd(spectrum, windowed);
-    for (Eigen::Index l = 0; l <= half; ++l) line_power[l] = std::norm(spectrum[l]);
-    // Noise floor from the top half of the band: the median of exponentially distributed
-    // powers is ln 2 times their mean.
-    std::vector<double> top(line_power.data() + half / 2, line_power.data() + half + 1);
-    std::nth_element(top.begin(), top.begin() + top.size() / 2, top.end());
-    const double floor = 10.0 * top[top.size() / 2] / std::numbers::ln2;
-    for (Eigen::Index l = 1; l <= half; ++l) {
-      const double w = 2.0 * kPi * static_cast<double>(l) / (static_cast<double>(fft_size) * dt);
-      velocity_power[l] += w * w * std::max(line_power[l] - floor, 0.0);
-    }
+  if (x.t.size() < 16) fail(x, "fewer than 16 samples to estimate a bandwidth from");
+  ExcitationBands out;
+  out.velocity_hz = significant_band(x.q, dt, 1, energy_fraction);
+  if (out.velocity_hz < 0) fail(x, "the positions do not move above their noise: no bandwidth");
+  // Gautier & Briot eq. 13-14: the decimation must keep the band of both sides of
+  // tau = W beta. W is nonlinear in the motion (sines of q, products of velocities) and holds
+  // friction, so the torques reach above the motion's band; the measured torques show how far.
+  if (x.measured != Measured::kNothing && x.tau.allFinite()) {
+    out.torque_hz = std::max(significant_band(x.tau, dt, 0, energy_fraction), 0.0);
   }
-  const double total = velocity_power.sum();
-  if (!(total > 0)) fail(x, "the positions do not move above their noise: no bandwidth");
-  double cumulative = 0;
-  Eigen::Index line = 0;
-  for (; line < half; ++line) {
-    cumulative += velocity_power[line];
-    if (cumulative >= energy_fraction * total) break;
-  }
-  return static_cast<double>(line) / (static_cast<double>(fft_size) * dt);
+  out.bandwidth_hz = std::max(out.velocity_hz, out.torque_hz);
+  return out;
 }
 
 FilterPlan plan_filtering(double sample_rate_hz, double bandwidth_hz) {

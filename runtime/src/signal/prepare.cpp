@@ -48,12 +48,62 @@ bool is_uniform(const Eigen::VectorXd& t) {
   return true;
 }
 
+
+// The smooth motion of `prepared` (q, dq, ddq) at the time stamps of `target`, by linear
+// interpolation; times outside take the nearest end. With period > 0, times are first
+// wrapped into the prepared period (the periodic route's one averaged period).
+void motion_at_samples_of(const Trajectory& prepared, double period, Trajectory& target) {
+  const Eigen::Index m = prepared.t.size(), n = target.t.size();
+  target.dq.resize(n, target.q.cols());
+  target.ddq.resize(n, target.q.cols());
+  const double first = prepared.t[0];
+  for (Eigen::Index s = 0; s < n; ++s) {
+    double t = target.t[s];
+    if (period > 0) t = first + std::fmod(std::fmod(t - first, period) + period, period);
+    const Eigen::Index k = std::clamp<Eigen::Index>(
+        std::upper_bound(prepared.t.data(), prepared.t.data() + m, t) - prepared.t.data() - 1, 0,
+        m - 2);
+    const double w = m < 2 ? 0 : std::clamp((t - prepared.t[k]) / (prepared.t[k + 1] - prepared.t[k]), 0.0, 1.0);
+    const Eigen::Index k1 = std::min(k + 1, m - 1);
+    target.q.row(s) = (1 - w) * prepared.q.row(k) + w * prepared.q.row(k1);
+    target.dq.row(s) = (1 - w) * prepared.dq.row(k) + w * prepared.dq.row(k1);
+    target.ddq.row(s) = (1 - w) * prepared.ddq.row(k) + w * prepared.ddq.row(k1);
+  }
+  target.has_velocity = true;
+}
+
+PreparedExperiment prepare_joint_side(Trajectory raw, const PreparationOptions& options,
+                                      bool keep_edges);
+
 }  // namespace
 
 PreparedExperiment prepare_experiment(Trajectory raw, const DriveChain& drive,
                                       const PreparationOptions& options) {
-  PreparedExperiment out;
   to_joint_side(raw, drive, options.side);
+  if (!options.every_sample) return prepare_joint_side(std::move(raw), options, false);
+  // One row per input sample: the motion as the route makes it (filtered positions and their
+  // derivatives, or the Fourier series), taken back to the file's own time stamps, with the
+  // torques as measured; nothing decimated.
+  PreparedExperiment out = prepare_joint_side(raw, options, true);
+  const double period = options.periodic ? out.data.t[out.data.t.size() - 1] - out.data.t[0] +
+                                               (out.data.t[1] - out.data.t[0])
+                                         : 0.0;
+  if (options.periodic || !raw.has_velocity) {
+    motion_at_samples_of(out.data, period, raw);
+  }
+  out.data = std::move(raw);
+  out.decimation = 1;
+  out.summary += "; every sample of the file kept (no decimation" +
+                 std::string(options.periodic ? ", the series evaluated at each time stamp)"
+                                              : ")");
+  return out;
+}
+
+namespace {
+
+PreparedExperiment prepare_joint_side(Trajectory raw, const PreparationOptions& options,
+                                      bool keep_edges) {
+  PreparedExperiment out;
   std::string resampled;
   // Every digital filter here (averaging per period, position filter, decimation) assumes a
   // uniform sample time.
@@ -124,9 +174,14 @@ PreparedExperiment prepare_experiment(Trajectory raw, const DriveChain& drive,
     const double dt = uniform_sample_time(raw);
     // The bandwidth is only needed for what the user did not set.
     const bool need_bandwidth = !options.cutoff_hz || !options.decimation;
-    const double bandwidth = options.bandwidth_hz ? *options.bandwidth_hz
-                             : need_bandwidth     ? estimate_bandwidth(raw)
-                                                  : 0.0;
+    ExcitationBands bands;
+    if (options.bandwidth_hz) {
+      bands.bandwidth_hz = *options.bandwidth_hz;
+    } else if (need_bandwidth) {
+      bands = estimate_bands(raw);
+    }
+    const double bandwidth = bands.bandwidth_hz;
+    out.bandwidth_hz = bandwidth;
     FilterPlan plan;
     if (need_bandwidth) {
       try {
@@ -150,23 +205,33 @@ PreparedExperiment prepare_experiment(Trajectory raw, const DriveChain& drive,
                       std::to_string(edge) + " samples at each end) leave " +
                       std::to_string(std::max<Eigen::Index>(kept, 0)) + " samples");
     }
-    raw.t = raw.t.segment(edge, kept).eval();
-    for (Eigen::MatrixXd* m : {&raw.q, &raw.dq, &raw.ddq, &raw.tau}) {
-      *m = m->middleRows(edge, kept).eval();
+    if (!keep_edges) {
+      raw.t = raw.t.segment(edge, kept).eval();
+      for (Eigen::MatrixXd* m : {&raw.q, &raw.dq, &raw.ddq, &raw.tau}) {
+        *m = m->middleRows(edge, kept).eval();
+      }
     }
     out.decimation = plan.decimation_factor;
-    const std::string band =
-        options.bandwidth_hz ? ", excitation bandwidth " + number(bandwidth, 3) + " Hz (given)"
-        : need_bandwidth     ? ", excitation bandwidth " + number(bandwidth, 3) + " Hz (estimated)"
-                             : "";
+    std::string band;
+    if (options.bandwidth_hz) {
+      band = ", excitation bandwidth " + number(bandwidth, 3) + " Hz (given)";
+    } else if (need_bandwidth) {
+      band = ", excitation bandwidth " + number(bandwidth, 3) + " Hz (estimated: 99% of the "
+             "velocities' energy below " + number(bands.velocity_hz, 3) + " Hz" +
+             (bands.torque_hz > 0 ? ", of the torques' below " + number(bands.torque_hz, 3) + " Hz"
+                                  : std::string()) + ")";
+    }
     out.summary = resampled + "sampled at " + number(1.0 / dt) + " Hz" + band +
                   "; positions low-passed at " + number(plan.position_cutoff_hz, 3) +
                   " Hz (zero phase), central differences, " + number(edge * dt, 3) +
-                  " s dropped at each end (filter edges), parallel decimation by " +
-                  std::to_string(out.decimation);
+                  (keep_edges ? " s at each end within the filter's edges (approximate)"
+                              : " s dropped at each end (filter edges), parallel decimation by " +
+                                    std::to_string(out.decimation));
   }
   out.data = std::move(raw);
   return out;
 }
+
+}  // namespace
 
 }  // namespace modelgen

@@ -52,7 +52,16 @@ Trajectory resample_uniform(const Trajectory& x, double dt) {
     throw DataError(x.source + ": error: cannot resample " + std::to_string(n) +
                     " samples with a sample time of " + number(dt) + " s");
   }
-  const Eigen::Index m = static_cast<Eigen::Index>(std::floor((x.t[n - 1] - x.t[0]) / dt)) + 1;
+  const double span = (x.t[n - 1] - x.t[0]) / dt;
+  // A grid far denser than the samples would be mostly invented (and a time stamp far off
+  // would ask for more memory than there is).
+  if (!(span < 100.0 * static_cast<double>(n))) {
+    throw DataError(x.source + ": error: resampling " + std::to_string(n) + " samples over " +
+                    number(x.t[n - 1] - x.t[0]) + " s every " + number(dt) + " s would make " +
+                    number(span) + " samples, more than 100 per sample: the time stamps have "
+                    "holes; split the record at them");
+  }
+  const Eigen::Index m = static_cast<Eigen::Index>(std::floor(span)) + 1;
   Trajectory out;
   out.source = x.source;
   out.measured = x.measured;

@@ -202,6 +202,22 @@ TEST(ModelidCli, ShortRunsPrintNoProgressIntoLogs) {
   EXPECT_EQ(run.err.find('\r'), std::string::npos);
 }
 
+TEST(ModelidCli, ProgressGoesToLogsOnlyWhenAskedFor) {
+  // stderr is a file: a fit that prints progress at each quarter when asked (--progress) prints
+  // none otherwise, however long it runs.
+  const std::string fit = "fit --robot kr150 --method wls --data " +
+                          quoted("robots/data/kr150/excitation.csv");
+  const CliRun quiet = modelid(fit);
+  ASSERT_EQ(quiet.exit_code, 0) << quiet.err;
+  EXPECT_EQ(quiet.err.find("modelid: fitting"), std::string::npos) << quiet.err;
+  EXPECT_EQ(quiet.err.find("modelid: reading data"), std::string::npos) << quiet.err;
+  const CliRun shown = modelid(fit + " --progress");
+  ASSERT_EQ(shown.exit_code, 0) << shown.err;
+  EXPECT_NE(shown.err.find("modelid: fitting 100%\n"), std::string::npos) << shown.err;
+  EXPECT_EQ(shown.err.find('\r'), std::string::npos);
+  EXPECT_EQ(shown.out, quiet.out);
+}
+
 // The two conventions of excitation files: position amplitudes (Swevers 2002 eq. 15, sparse
 // terms as in its Table 1) give q = q0 + sum a sin(l w t) + b cos(l w t), computed here in closed
 // form; the same trajectory in velocity amplitudes (dense lists) gives the same samples.

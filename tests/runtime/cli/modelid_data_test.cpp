@@ -205,6 +205,84 @@ TEST(ModelidData, NonPeriodicRouteFiltersAndDecimates) {
   EXPECT_LT(relative_difference(estimate_values(dir / "est.json"), tx40.beta), 1e-3);
 }
 
+TEST(ModelidData, AResidualAboveTheBandSaysThePreparationWasWrong) {
+  // Encoder-like position noise (1 mrad) and torque noise: with the bandwidth given 50 times too
+  // high, the position filter passes the noise, differentiation amplifies it, and W carries
+  // high-frequency content the torques do not: the fit must say so. With the estimated
+  // bandwidth (the excitation ends at 0.75 Hz) it must not.
+  const fs::path dir = test::test_folder();
+  const Tx40Case tx40;
+  Trajectory x = tx40.sampled(0.001, 12.0);
+  std::mt19937_64 engine(5);
+  std::normal_distribution<double> position_noise(0.0, 1e-3), torque_noise(0.0, 0.5);
+  for (Eigen::Index s = 0; s < x.t.size(); ++s) {
+    for (int j = 0; j < 6; ++j) {
+      x.q(s, j) += position_noise(engine);
+      x.tau(s, j) += torque_noise(engine);
+    }
+  }
+  write_log(dir / "noisy.csv", x.t, x.q, x.tau, "tau");
+  const std::string fit = "fit --robot tx40 --method ols --data " + quoted(dir / "noisy.csv");
+  const CliRun wide = modelid(fit + " --bandwidth 50");
+  ASSERT_EQ(wide.exit_code, 0) << wide.err;
+  EXPECT_NE(wide.err.find("noisy.csv: above the 50 Hz excitation bandwidth the residual has"),
+            std::string::npos)
+      << wide.err;
+  EXPECT_NE(wide.err.find("filtered too little"), std::string::npos) << wide.err;
+  const CliRun estimated = modelid(fit);
+  ASSERT_EQ(estimated.exit_code, 0) << estimated.err;
+  EXPECT_EQ(estimated.err.find("excitation bandwidth the residual"), std::string::npos)
+      << estimated.err;
+}
+
+TEST(ModelidData, AFileAboveTheRowLimitIsRefusedWithTheLimit) {
+  const fs::path dir = test::test_folder();
+  {
+    std::ofstream out(dir / "long.csv");
+    out << "t,q1,q2,q3,q4,q5,q6,tau1,tau2,tau3,tau4,tau5,tau6\n";
+    for (long s = 0; s <= 1000000; ++s) out << s << ",0,0,0,0,0,0,1,1,1,1,1,1\n";
+  }
+  const CliRun run = modelid("fit --robot tx40 --method ols --data " + quoted(dir / "long.csv"));
+  EXPECT_EQ(run.exit_code, 1);
+  EXPECT_EQ(run.err.rfind((dir / "long.csv").string() +
+                              ":1000002: error: more than 1000000 samples, modelid's limit per "
+                              "data file",
+                          0),
+            0u)
+      << run.err;
+}
+
+TEST(ModelidData, PositionsBeyondTheLimitsAreWarnedAboutInFitAndPredict) {
+  // Motor angles (gear ratio 32 on joint 2) given as joint angles: joint 2 of robots/tx40.yaml
+  // is limited to [-2.18, 2.18] rad.
+  const fs::path dir = test::test_folder();
+  const Tx40Case tx40;
+  const Trajectory x = tx40.sampled(0.01, 8.0);
+  Eigen::MatrixXd q = x.q;
+  q.col(1) *= 32.0;
+  const double reach = q.col(1).cwiseAbs().maxCoeff();
+  ASSERT_GT(reach, 2.18 * 1.01);
+  write_log(dir / "motor.csv", x.t, q, x.tau, "tau");
+  const std::string data = " --data " + quoted(dir / "motor.csv");
+  const CliRun fit = modelid("fit --robot tx40 --method ols --raw" + data + " -o " +
+                             quoted(dir / "est.json"));
+  ASSERT_EQ(fit.exit_code, 0) << fit.err;
+  const std::string expected = ": warning: " + (dir / "motor.csv").string() +
+                               ": joint 2 ('J2') reaches q = ";
+  EXPECT_NE(fit.err.find("modelid fit" + expected), std::string::npos) << fit.err;
+  EXPECT_NE(fit.err.find("outside its limits [-2.18, 2.18] in the description: motor-side data "
+                         "read as joint data (--motor-side)?"),
+            std::string::npos)
+      << fit.err;
+  // The joints inside their limits are not named.
+  EXPECT_EQ(fit.err.find("joint 1 ('J1') reaches q"), std::string::npos) << fit.err;
+  const CliRun predict =
+      modelid("predict --robot " + test::quoted_source("robots/tx40.yaml") + " --params " +
+              quoted(dir / "est.json") + data);
+  ASSERT_EQ(predict.exit_code, 0) << predict.err;
+  EXPECT_NE(predict.err.find("modelid predict" + expected), std::string::npos) << predict.err;
+}
+
 TEST(ModelidData, ContradictoryOptionsAreUsageErrors) {
   const std::string data = " --data " + test::quoted_source("robots/data/kr150/excitation.csv");
   for (const std::string& options :

@@ -12,6 +12,7 @@
 
 #include <gtest/gtest.h>
 #include <Eigen/Core>
+#include <nlohmann/json.hpp>
 
 #include "modelgen/data/trajectory.hpp"
 #include "modelgen/data/trajectory_csv.hpp"
@@ -121,6 +122,78 @@ ErrorTable parse_errors(const std::string& out) {
   const std::size_t at = out.find(key);
   if (at != std::string::npos) table.rel_error_norm = std::stod(out.substr(at + key.size()));
   return table;
+}
+
+// t, q and tau of a simulated file, without its dq and ddq: what a controller logs.
+fs::path positions_only(const fs::path& from, const fs::path& to) {
+  const Trajectory x = read_trajectory_csv(from.string(), kDof);
+  std::ostringstream out;
+  out.precision(17);
+  out << "t";
+  for (const char* prefix : {"q", "tau"}) {
+    for (int j = 1; j <= kDof; ++j) out << "," << prefix << j;
+  }
+  out << "\n";
+  for (Eigen::Index s = 0; s < x.t.size(); ++s) {
+    out << x.t[s];
+    for (const Eigen::MatrixXd* m : {&x.q, &x.tau}) {
+      for (int j = 0; j < kDof; ++j) out << "," << (*m)(s, j);
+    }
+    out << "\n";
+  }
+  test::write_text(to, out.str());
+  return to;
+}
+
+TEST(ModelidPredict, UsesTheFitsDataOptionsAndPredictsEverySample) {
+  const fs::path dir = test::test_folder();
+  const fs::path log = positions_only(simulate(dir, "full.csv", "0.002"), dir / "log.csv");
+  const fs::path est = dir / "est.json";
+  const CliRun fit = modelid("fit --robot tx40 --method ols --bandwidth 1 --data " +
+                             quoted(log) + " -o " + quoted(est));
+  ASSERT_EQ(fit.exit_code, 0) << fit.err;
+  const nlohmann::json estimate = nlohmann::json::parse(test::read_text(est));
+  EXPECT_EQ(estimate["data_options"], nlohmann::json({"--bandwidth", "1"}));
+
+  // Without data options: the fit's, said on stderr; one row per input sample.
+  const fs::path pred = dir / "pred.csv";
+  const std::string predict =
+      "predict --robot tx40 --params " + quoted(est) + " --data " + quoted(log);
+  const CliRun every = modelid(predict + " -o " + quoted(pred));
+  ASSERT_EQ(every.exit_code, 0) << every.err;
+  EXPECT_NE(every.err.find("modelid predict: data options from " + est.string() +
+                           " (as the fit prepared its data): --bandwidth 1\n"),
+            std::string::npos)
+      << every.err;
+  const test::CsvTable input = test::read_csv(log), rows = test::read_csv(pred);
+  ASSERT_EQ(rows.rows.size(), input.rows.size());
+  for (std::size_t s = 0; s < rows.rows.size(); ++s) {
+    ASSERT_EQ(rows.at(s, "t"), input.at(s, "t")) << s;
+    ASSERT_EQ(rows.at(s, "tau3"), input.at(s, "tau3")) << s;  // as measured, not filtered
+  }
+  // Noise-free data: the filtered positions' derivatives are close to the exact ones, also
+  // within the filter's edges.
+  EXPECT_LT(parse_errors(every.out).rel_error_norm, 0.02) << every.out;
+
+  // --decimated: the fit's own comparison, the same samples and relative error norm.
+  const CliRun decimated = modelid(predict + " --decimated");
+  ASSERT_EQ(decimated.exit_code, 0) << decimated.err;
+  EXPECT_NE(decimated.out.find(", " + std::to_string(estimate["samples"].get<long long>()) +
+                               " samples,"),
+            std::string::npos)
+      << decimated.out;
+  EXPECT_NEAR(parse_errors(decimated.out).rel_error_norm,
+              estimate["rel_error_norm"].get<double>(),
+              1e-5 + 1e-4 * estimate["rel_error_norm"].get<double>());
+
+  // Data options on predict's command line win, and stderr says what the fit had.
+  const CliRun own = modelid(predict + " --bandwidth 2");
+  ASSERT_EQ(own.exit_code, 0) << own.err;
+  EXPECT_NE(own.err.find("modelid predict: data options from the command line (--bandwidth 2); "
+                         "the fit's, in " + est.string() + ", were --bandwidth 1\n"),
+            std::string::npos)
+      << own.err;
+  EXPECT_NE(own.out.find("excitation bandwidth 2 Hz (given)"), std::string::npos) << own.out;
 }
 
 TEST(ModelidPredict, TrueParametersGiveTheReferenceTorquesAndNoError) {

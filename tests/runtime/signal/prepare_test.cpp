@@ -48,6 +48,22 @@ TEST(Prepare, ResampledSignalsMatchTheSignalOnTheNewGrid) {
   EXPECT_THROW(resample_uniform(x, 0.0), DataError);
 }
 
+TEST(Prepare, AFarTimeStampIsRefusedNotResampledOntoAHugeGrid) {
+  // A last time stamp of 1e9 s after 1 ms steps: a uniform grid over it would hold 1e12
+  // points (the fuzzer's crash in resample_uniform).
+  Trajectory x = jittered(100, 0.001, 0.0);
+  x.source = "far.csv";
+  x.t[99] = 1e9;
+  try {
+    resample_uniform(x, 0.001);
+    ADD_FAILURE() << "no error";
+  } catch (const DataError& e) {
+    EXPECT_EQ(std::string(e.what()).rfind("far.csv: error: resampling 100 samples over 1e+09 s", 0),
+              0u)
+        << e.what();
+  }
+}
+
 TEST(Prepare, JitteredStampsAreResampledBeforeFiltering) {
   Trajectory x = jittered(4001, 0.001, 0.0003);
   PreparationOptions options;

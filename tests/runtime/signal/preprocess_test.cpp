@@ -573,6 +573,57 @@ TEST(EstimateBandwidth, IgnoresSensorNoiseAndQuantization) {
   expect_data_error([&] { estimate_bandwidth(x); }, "quantized.csv", "do not move");
 }
 
+// A slow five-harmonic excitation as the Panda run's (period 13.35 s, top harmonic 0.375 Hz),
+// sampled at 1 kHz for 20 s.
+Trajectory slow_excitation(Eigen::Index axes) {
+  const double fs = 1000, period = 13.35;
+  const Eigen::Index n = 20000;
+  Trajectory x;
+  x.source = "slow.csv";
+  x.t = Eigen::VectorXd::LinSpaced(n, 0, (n - 1) / fs);
+  x.q = Eigen::MatrixXd::Zero(n, axes);
+  x.tau = x.q;
+  for (Eigen::Index j = 0; j < axes; ++j) {
+    for (int l = 1; l <= 5; ++l) {
+      const double w = 2 * kPi * l / period;
+      x.q.col(j) += (0.3 / l * ((w * x.t).array() + 0.7 * (j + l)).sin()).matrix();
+    }
+  }
+  return x;
+}
+
+TEST(EstimateBandwidth, IgnoresColouredNoise) {
+  // Noise that falls with frequency (white noise through a 100 Hz low-pass, as timing jitter or
+  // interpolated, held positions give): a noise floor taken from the top of the band sees only
+  // its tail, and the velocity weighting (2 pi f)^2 then makes the noise between 1 and 100 Hz
+  // the "bandwidth" (the Panda run gave 80.4 Hz). The motion ends at 0.375 Hz, plus the Hann
+  // main lobe (2 / 32.8 s).
+  Trajectory x = slow_excitation(3);
+  std::mt19937_64 engine(17);
+  Eigen::MatrixXd noise = Eigen::MatrixXd::Zero(x.q.rows(), x.q.cols());
+  add_noise(noise, 2e-3, engine);
+  filter_causal(butterworth_lowpass(2, 100, 1000), noise);
+  x.q += noise;
+  const double bandwidth = estimate_bandwidth(x);
+  EXPECT_GT(bandwidth, 0.35);
+  EXPECT_LT(bandwidth, 0.5);
+}
+
+TEST(EstimateBandwidth, KeepsTheTorquesBandWhenItIsWider) {
+  // Torques reach above the motion (here sin(5 q), as the dynamics' sines of q give):
+  // the decimation must keep both sides of tau = W beta, so the bandwidth is the torques'.
+  Trajectory x = slow_excitation(1);
+  x.tau.col(0) = (4.0 * (5.0 * x.q.col(0).array()).sin()).matrix();
+  const ExcitationBands bands = estimate_bands(x);
+  EXPECT_LT(bands.velocity_hz, 0.5);
+  EXPECT_GT(bands.torque_hz, bands.velocity_hz);
+  EXPECT_EQ(bands.bandwidth_hz, bands.torque_hz);
+  // Without measured torques (predict on positions only), the motion's band alone.
+  x.measured = Measured::kNothing;
+  EXPECT_EQ(estimate_bands(x).torque_hz, 0);
+  EXPECT_EQ(estimate_bandwidth(x), estimate_bands(x).velocity_hz);
+}
+
 // ---------------------------------------------------------------------------------------------
 // Real data (../shared/datasets, see SOURCES.md there)
 

@@ -50,4 +50,9 @@ CommandLine parse_command_line(int argc, char** argv, int first, const std::stri
 /// otherwise.
 double parse_number(const std::string& text, const std::string& option);
 
+/// The value of --angle-tolerance RAD (LoadOptions::angle_tolerance) when given, else the
+/// default; UsageError unless 0 <= RAD < 0.7 (beyond pi/4 every angle would be near some
+/// quarter turn).
+double angle_tolerance_option(const CommandLine& line);
+
 }  // namespace modelgen

@@ -8,10 +8,20 @@
 
 namespace modelgen {
 
+/// Default of LoadOptions::angle_tolerance: URDFs round pi/2 to 1.5708 (3.7e-6 rad off) or
+/// 1.57075 (4.6e-5 rad off); 1e-4 rad (0.006 degree) is far below any tilt a robot is built
+/// with and far above such rounding.
+inline constexpr double kDefaultAngleTolerance = 1e-4;
+
 struct LoadOptions {
   std::string base_link;  ///< URDF: root of the kinematic tree to model; empty = URDF root
   std::string tip_link;   ///< URDF: keep only the chain from base to this link; empty = all
   std::string name;       ///< overrides the robot name (URDF names need not be identifiers)
+  /// Angles (URDF rpy, MDH alpha and theta) within this many radians of a multiple of pi/2 are
+  /// taken as that multiple, and axis components within it of 0 as 0; each such change becomes
+  /// a RobotModel note. Rank decisions on the geometry use it as its precision
+  /// (RigidBodyTree::angle_precision). 0 takes every value as written.
+  double angle_tolerance = kDefaultAngleTolerance;
 };
 
 /// Loads `path` (.yaml/.yml: MDH description; .urdf: URDF) into a validated RobotModel.

@@ -81,6 +81,9 @@ struct RigidBodyTree {
   int dof = 0;                                 ///< number of moving joints
   std::vector<StandardParam> params;           ///< order of the standard parameter vector
   std::vector<CoupledMotor> coupled_motors;    ///< motors kIam/kFvm/kFcm parameters refer to
+  /// How precisely the description fixes the geometry's angles, rad (the loader's
+  /// --angle-tolerance; 0 = exact). Base-parameter rank decisions ignore effects of this size.
+  double angle_precision = 0;
 };
 
 /// The coupled motor a kIam/kFvm/kFcm parameter belongs to: the one numbered after the joint of

@@ -73,6 +73,15 @@ struct FrictionOptions {
 
 enum class DescriptionFormat { kMdhYaml, kUrdf };
 
+/// Something the loader changed or assumed that the user should know about but that is not an
+/// error (a rounded quarter turn taken as exact). Printed as "file:line: note: message".
+struct DescriptionNote {
+  SourceLocation where;
+  std::string message;
+
+  std::string to_string() const;
+};
+
 struct RobotModel {
   std::string name;         ///< C++ identifier: namespace of generated code
   std::string source_file;  ///< as given on the command line
@@ -86,6 +95,8 @@ struct RobotModel {
   /// A-priori values of standard parameters (YAML `known`, or URDF inertials), by
   /// tree.params index.
   std::vector<std::optional<double>> known_values;
+  /// What the loader snapped or assumed, in file order (see DescriptionNote).
+  std::vector<DescriptionNote> notes;
 
   int dof() const { return tree.dof; }
   /// Index of the standard parameter with this name, or -1.

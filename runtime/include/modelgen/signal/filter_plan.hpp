@@ -9,18 +9,33 @@
 
 namespace modelgen {
 
-/// The frequency (Hz) below which `energy_fraction` of the energy of the joint velocities lies,
-/// all axes pooled: the excitation bandwidth for plan_filtering. Computed from the positions
-/// (measured dq, often filtered by the drive, is not used): per axis q without its
-/// least-squares line, Hann-windowed, power spectrum by FFT; the band above fs / 4 is taken as
-/// white noise only, and 10 x its mean level (estimated from its median) is subtracted from
-/// every line, so that sensor noise and encoder quantization, which differentiation would
-/// amplify, do not count; the velocity spectrum is then (2 pi f)^2 times what is left.
-/// Coloured errors (timing jitter, data resampled by interpolation) are not removed and raise
-/// the estimate: check it, or give the bandwidth to plan_filtering directly.
+/// The bands of an experiment's excitation (Hz), as estimate_bands finds them.
+struct ExcitationBands {
+  double velocity_hz = 0;  ///< below it, energy_fraction of the joint velocities' energy
+  double torque_hz = 0;    ///< below it, energy_fraction of the torques' energy (0: none)
+  double bandwidth_hz = 0;  ///< the larger: the band identification must keep
+};
+
+/// The excitation bandwidth for plan_filtering: the larger of two bands, all axes pooled.
+/// - Motion: the frequency below which `energy_fraction` of the energy of the joint velocities
+///   lies, computed from the positions (measured dq, often filtered by the drive, is not used).
+/// - Torques (when the trajectory has measured ones): the frequency below which
+///   `energy_fraction` of the torques' energy lies. The dynamics are nonlinear in the motion
+///   and hold friction, so the torques, and the regressor with them, reach above the motion's
+///   band; the decimation must keep both sides of tau = W beta (Gautier & Briot eq. 13-14).
+/// Per axis the signal has its least-squares line removed, is Hann-windowed and its power
+/// spectrum taken by FFT; only lines standing out of the noise count: a line counts when it
+/// exceeds 20 times the local mean noise power (noise alone would do so with probability
+/// exp(-20) = 2e-9), the floor being estimated per quarter octave (at least 64 lines) from the
+/// 10% quantile of the lines around it, so that coloured noise (timing jitter, positions
+/// resampled by interpolation or held between updates) does not pass for motion; what is left
+/// above the floor is weighted by (2 pi f)^2 for the velocities.
 /// Throws DataError naming the source for non-uniform sampling, fewer than 16 samples,
 /// non-finite positions, positions that do not move above their noise; std::invalid_argument
 /// for energy_fraction outside (0, 1).
+ExcitationBands estimate_bands(const Trajectory& trajectory, double energy_fraction = 0.99);
+
+/// estimate_bands(trajectory, energy_fraction).bandwidth_hz.
 double estimate_bandwidth(const Trajectory& trajectory, double energy_fraction = 0.99);
 
 /// Filtering and decimation settings for non-periodic data. Plain values: a caller may

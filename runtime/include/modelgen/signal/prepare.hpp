@@ -30,11 +30,20 @@ struct PreparationOptions {
   std::optional<double> bandwidth_hz;  ///< excitation bandwidth; estimated when unset
   std::optional<double> cutoff_hz;     ///< position filter cut-off; from plan_filtering
   std::optional<int> decimation;       ///< n_d; from plan_filtering (1 for data with dq/ddq)
+  /// For prediction: one row per input sample, at the file's own time stamps, with its
+  /// measured torques. The motion is made as the route says (zero-phase filtered positions
+  /// and their central differences, the Fourier series of the averaged period, or dq and ddq
+  /// as given) and linearly interpolated back to the time stamps when the route resampled,
+  /// averaged or dropped samples; the filter's edges are kept; the decimation factor is 1.
+  bool every_sample = false;
 };
 
 struct PreparedExperiment {
   Trajectory data;     ///< joint side, with dq and ddq
   int decimation = 1;  ///< parallel decimation factor for identify() (eq. 13-14)
+  /// Non-periodic route with a position filter: the excitation bandwidth used (given or
+  /// estimated), Hz; 0 otherwise.
+  double bandwidth_hz = 0;
   /// Periodic route: noise variance of the averaged torque per axis ((N m)^2), else empty.
   Eigen::VectorXd tau_noise_variance;
   std::string summary;  ///< what was done, in one or two lines, for the user

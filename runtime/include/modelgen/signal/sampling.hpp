@@ -14,7 +14,8 @@ namespace modelgen {
 double uniform_sample_time(const Trajectory& trajectory);
 
 /// Linear interpolation of q, tau (and dq, ddq when present) on t0, t0 + dt, ... up to the last
-/// time. Throws DataError naming the source for dt <= 0 or fewer than 2 samples.
+/// time. Throws DataError naming the source for dt <= 0, fewer than 2 samples, or a grid of
+/// more than 100 points per sample (holes in the time stamps; it would be mostly invented).
 Trajectory resample_uniform(const Trajectory& x, double dt);
 
 }  // namespace modelgen
