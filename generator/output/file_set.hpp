@@ -1,8 +1,10 @@
 // Generated files held in memory and written all-or-nothing: every file goes to a temporary
-// beside its destination first, and only when all are written are they renamed into place,
-// so a failed run never leaves a half-written or mixed set of files.
+// beside its destination first, a journal then commits the set and the temporaries are
+// renamed into place, so a failed run never leaves a half-written or mixed set of files, and a
+// run killed during the renames is completed by the next run in the same folder.
 #pragma once
 
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -19,12 +21,21 @@ class FileSet {
   const std::vector<OutputFile>& files() const { return files_; }
 
   /// Writes every file into `directory` (created if missing). Files whose content is already
-  /// identical are left untouched, so build systems see no change. Throws InputError naming
-  /// the path on failure, after removing any temporary it wrote.
+  /// identical are left untouched, so build systems see no change. First completes a run that
+  /// was killed after committing its set in `directory` (its journal `.modelgen-commit`) and
+  /// removes hidden temporaries of runs that no longer exist. Throws InputError naming the
+  /// path and the system's reason (strerror) on failure, after restoring the old files and
+  /// removing every temporary it wrote.
   void write_to(const std::string& directory) const;
 
  private:
   std::vector<OutputFile> files_;
 };
+
+namespace test_hooks {
+/// Called after each rename of write_to with the number done so far; tests set it to stop the
+/// process between renames, as a kill would. Null in the programs.
+extern void (*after_rename)(std::size_t renamed);
+}  // namespace test_hooks
 
 }  // namespace modelgen::gen

@@ -2,6 +2,7 @@
 
 #include "runtime/cli/arguments.hpp"
 
+#include <fcntl.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -14,17 +15,28 @@ namespace modelgen::internal {
 
 void write_file(const std::string& path, const std::string& text) {
   // The temporary lives in the destination's folder so that the rename cannot cross file
-  // systems; the process id keeps two concurrent runs apart.
+  // systems; the process id keeps two concurrent runs apart. POSIX calls rather than a stream,
+  // so a failure carries the system's reason ("No space left on device").
   const std::string temporary = path + ".tmp-modelid-" + std::to_string(::getpid());
-  std::ofstream out(temporary, std::ios::binary);
-  const int open_errno = out ? 0 : errno;
-  out << text;
-  out.close();
   std::string reason;
-  if (!out) {
-    reason = open_errno != 0 ? std::strerror(open_errno) : "write failed";
-  } else if (std::rename(temporary.c_str(), path.c_str()) != 0) {
+  const int fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
+  if (fd < 0) {
     reason = std::strerror(errno);
+  } else {
+    std::size_t written = 0;
+    while (written < text.size()) {
+      const ssize_t n = ::write(fd, text.data() + written, text.size() - written);
+      if (n < 0 && errno == EINTR) continue;
+      if (n <= 0) {
+        reason = n < 0 ? std::strerror(errno) : "nothing written";
+        break;
+      }
+      written += static_cast<std::size_t>(n);
+    }
+    if (::close(fd) != 0 && reason.empty()) reason = std::strerror(errno);
+    if (reason.empty() && std::rename(temporary.c_str(), path.c_str()) != 0) {
+      reason = std::strerror(errno);
+    }
   }
   if (!reason.empty()) {
     std::remove(temporary.c_str());

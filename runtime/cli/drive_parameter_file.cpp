@@ -8,25 +8,29 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "modelgen/model/error.hpp"
 #include "runtime/cli/json_file.hpp"
 
 namespace modelgen::internal {
 
 std::map<std::string, double> read_drive_parameter_values(const std::string& path,
                                                           const std::vector<std::string>& names) {
-  const nlohmann::json json = read_json_file(path);
+  const JsonDocument document = read_json_document(path);
+  const nlohmann::json& json = document.value;
   if (!json.is_object()) {
-    throw std::runtime_error(path + ": error: expected an object {\"name\": value, ...}");
+    throw InputError(document.at(""), "expected an object {\"name\": value, ...}");
   }
   std::map<std::string, double> out;
   for (const auto& [name, value] : json.items()) {
+    const SourceLocation where = document.at(json_pointer("", name));
     if (std::find(names.begin(), names.end(), name) == names.end()) {
-      throw std::runtime_error(path + ": error: '" + name +
-                               "' is not a parameter of the drive model (XXj..Mj, JMj, Rvj, Rcj, "
-                               "Rzj, load_m, load_cx, ...)");
+      throw InputError(where, "'" + name +
+                                  "' is not a parameter of the drive model (XXj..Mj, JMj, Rvj, "
+                                  "Rcj, Rzj, load_m, load_cx, ...)" +
+                                  modelgen::did_you_mean(name, names));
     }
     if (!value.is_number() || !std::isfinite(value.get<double>())) {
-      throw std::runtime_error(path + ": error: '" + name + "' must be a finite number");
+      throw InputError(where, "'" + name + "' must be a finite number");
     }
     out[name] = value.get<double>();
   }

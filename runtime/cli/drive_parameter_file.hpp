@@ -9,8 +9,8 @@
 
 namespace modelgen::internal {
 
-/// The values in `path`; every name must be one of `names`. Throws std::runtime_error naming
-/// the file and the problem (not JSON, not an object, an unknown name, a value that is not a
+/// The values in `path`; every name must be one of `names`. Throws InputError naming
+/// the file, line and column and the problem (not JSON, not an object, an unknown name, a value that is not a
 /// finite number).
 std::map<std::string, double> read_drive_parameter_values(const std::string& path,
                                                           const std::vector<std::string>& names);

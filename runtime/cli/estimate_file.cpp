@@ -8,6 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "modelgen/model/error.hpp"
 #include "runtime/cli/json_file.hpp"
 
 namespace modelgen::internal {
@@ -85,12 +86,14 @@ std::string estimate_json(const EstimateFile& estimate) {
   return out.dump(2) + "\n";
 }
 
-void check_estimate_model(const std::string& path, const IdentificationModel& model) {
-  const nlohmann::json json = read_json_file(path);
+void check_estimate_model(const std::string& path, const IdentificationModel& model,
+                          const std::string& what) {
+  const JsonDocument document = read_json_document(path);
+  const nlohmann::json& json = document.value;
   if (!json.is_object() || !json.contains("description_sha256")) return;
   const nlohmann::json& field = json["description_sha256"];
   if (!field.is_string()) {
-    throw std::runtime_error(path + ": error: \"description_sha256\" must be a string");
+    throw InputError(document.at("/description_sha256"), "\"description_sha256\" must be a string");
   }
   const std::string sha = field.get<std::string>();
   if (sha.empty() || sha == model.description_sha256()) return;
@@ -98,10 +101,10 @@ void check_estimate_model(const std::string& path, const IdentificationModel& mo
   if (json.contains("model") && json["model"].is_string()) {
     made_for = "'" + json["model"].get<std::string>() + "'";
   }
-  throw std::runtime_error(path + ": error: the estimate belongs to another model: it was " +
-                           "identified on " + made_for + " (description_sha256 '" + sha +
-                           "'), --robot is '" + model.name() + "' (description_sha256 '" +
-                           model.description_sha256() + "')");
+  throw InputError({path}, "the " + what + " belongs to another model: it was " +
+                               "identified on " + made_for + " (description_sha256 '" + sha +
+                               "'), --robot is '" + model.name() + "' (description_sha256 '" +
+                               model.description_sha256() + "'); the hashes differ");
 }
 
 std::optional<std::vector<std::string>> read_data_options(const std::string& path) {

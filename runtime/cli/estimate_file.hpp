@@ -81,10 +81,12 @@ std::string estimate_json(const EstimateFile& estimate);
 
 /// Refuses a parameter file made for another model: when the JSON file at `path` has a
 /// non-empty "description_sha256" that differs from model.description_sha256(), throws
-/// std::runtime_error "PATH: error: the estimate belongs to another model ...". Files without
-/// the field (hand-written parameter files) pass. Throws std::runtime_error for a file that
-/// cannot be read or is not JSON, or whose field is not a string.
-void check_estimate_model(const std::string& path, const IdentificationModel& model);
+/// InputError "PATH: error: the estimate belongs to another model ...". Files without the field
+/// (hand-written parameter files) pass. Throws InputError for a file that cannot be read or is
+/// not JSON, or whose field is not a string.
+/// `what` names the file in the message ("estimate", "truth").
+void check_estimate_model(const std::string& path, const IdentificationModel& model,
+                          const std::string& what = "estimate");
 
 /// The "data_options" of the estimate file at `path` (words as fit wrote them), or nothing
 /// when the file has none (hand-written parameter files, estimates of older versions).

@@ -238,7 +238,7 @@ int run_fit(const CommandLine& args) {
     }
   }
   // A plot folder that cannot be made fails now, before the data are read.
-  if (args.has("--plot")) prepare_plot_folder(args.one("--plot"));
+  if (args.has("--plot")) check_plot_folder(args.one("--plot"));
   std::ostringstream data_report;
   const Experiments experiments = read_experiments(
       args.all("--data"), model, preparation_options(args), EffortColumns::kRequired, data_report);
@@ -253,11 +253,15 @@ int run_fit(const CommandLine& args) {
   options.progress = [&fitting](double fraction) {
     fitting.update(static_cast<long long>(1000 * fraction));
   };
+  // The truth is read before the fit, so a wrong file costs no fitting time; a truth made from
+  // another description (its hash differs) would compare numbers of different parameters.
+  Eigen::VectorXd truth;
+  if (args.has("--truth")) {
+    check_estimate_model(args.one("--truth"), model, "truth");
+    truth = read_base_parameters(args.one("--truth"), model);
+  }
   const Identification id = identify(model, data, method, options);
   fitting.finish();
-
-  Eigen::VectorXd truth;
-  if (args.has("--truth")) truth = read_base_parameters(args.one("--truth"), model);
 
   std::cout << "modelid fit: " << model.name() << ", " << method_name(method) << " on "
             << data.size() << " experiment(s), " << id.samples << " samples\n"

@@ -1,16 +1,20 @@
-// Fourier trajectory YAML through yaml-cpp; every yaml-cpp error becomes a positioned
-// modelgen::InputError.
+// Fourier trajectory YAML through yaml-cpp and the description loader's positioned reader:
+// every key checked (unknown or given twice), every number finite, and hard limits on the
+// period and the harmonics so that a typo cannot make `simulate` run for hours.
 
 #include "runtime/cli/fourier_file.hpp"
 
 #include <algorithm>
 #include <array>
+#include <map>
 #include <numbers>
+#include <sstream>
 #include <vector>
 
 #include <yaml-cpp/yaml.h>
 
 #include "modelgen/model/error.hpp"
+#include "runtime/model/yaml_reader.hpp"
 
 namespace modelgen::internal {
 
@@ -23,31 +27,37 @@ FourierTrajectory read_fourier_checked(const std::string& path, int dof) {
   } catch (const YAML::Exception& e) {
     throw modelgen::InputError({path, e.mark.line + 1, e.mark.column + 1}, e.msg);
   }
-  auto at = [&](const YAML::Node& node) -> modelgen::SourceLocation {
-    return {path, node.Mark().line + 1, node.Mark().column + 1};
-  };
+  const YamlReader in(path);
   FourierTrajectory f;
-  if (!root["period"] || !root["joints"] || !root["joints"].IsSequence()) {
+  if (!root.IsMap() || !root["period"] || !root["joints"] || !root["joints"].IsSequence()) {
     throw modelgen::InputError({path},
                           "a trajectory needs 'period' (s) and 'joints' (one entry per "
                           "joint with q0 and a, b or terms)");
   }
-  f.period = root["period"].as<double>();
-  if (!(f.period > 0)) throw modelgen::InputError(at(root["period"]), "'period' must be positive (s)");
+  in.check_keys(root, {"period", "form", "joints"}, "the trajectory");
+  f.period = in.number(root["period"], "period");
+  if (f.period < kMinFourierPeriod || f.period > kMaxFourierPeriod) {
+    std::ostringstream limits;
+    limits << kMinFourierPeriod << " s and " << kMaxFourierPeriod << " s";
+    in.fail(root["period"], "'period' must be between " + limits.str() +
+                                " (a hard limit of modelid), got " + root["period"].Scalar());
+  }
   std::string form = "velocity";
-  if (root["form"]) form = root["form"].as<std::string>();
+  if (root["form"]) form = in.text(root["form"], "form");
   if (form != "velocity" && form != "position") {
-    throw modelgen::InputError(at(root["form"]),
-                          "'form' is 'velocity' (a/(l w) sin - b/(l w) cos, Swevers 1997) or "
-                          "'position' (a sin + b cos, Swevers 2002 eq. 15), not '" +
-                              form + "'");
+    in.fail(root["form"],
+            "'form' is 'velocity' (a/(l w) sin - b/(l w) cos, Swevers 1997) or "
+            "'position' (a sin + b cos, Swevers 2002 eq. 15), not '" + form + "'");
   }
   const YAML::Node joints = root["joints"];
   if (static_cast<int>(joints.size()) != dof) {
-    throw modelgen::InputError(at(joints), "'joints' has " + std::to_string(joints.size()) +
-                                          " entries, the robot has " + std::to_string(dof) +
-                                          " joints");
+    in.fail(joints, "'joints' has " + std::to_string(joints.size()) + " entries, the robot has " +
+                        std::to_string(dof) + " joints");
   }
+  auto harmonic_limit = [](const std::string& what) {
+    return what + " (a hard limit of modelid: " + std::to_string(kMaxFourierHarmonic) +
+           " harmonics)";
+  };
   // Coefficients as written: dense lists a, b (harmonics 1, 2, ...) or sparse terms
   // [{l, a, b}], zero elsewhere.
   std::vector<std::vector<std::array<double, 3>>> written(static_cast<std::size_t>(dof));
@@ -55,31 +65,52 @@ FourierTrajectory read_fourier_checked(const std::string& path, int dof) {
   f.q0 = Eigen::VectorXd::Zero(dof);
   for (int j = 0; j < dof; ++j) {
     const YAML::Node joint = joints[j];
-    if (joint["q0"]) f.q0[j] = joint["q0"].as<double>();
+    const std::string context = "joint " + std::to_string(j + 1);
+    in.check_keys(joint, {"q0", "a", "b", "terms"}, context);
+    if (joint["q0"]) f.q0[j] = in.number(joint["q0"], "q0");
     auto& terms = written[static_cast<std::size_t>(j)];
     if (joint["terms"]) {
       if (joint["a"] || joint["b"]) {
-        throw modelgen::InputError(at(joint), "joint " + std::to_string(j + 1) +
-                                             ": give either 'a' and 'b' or 'terms', not both");
+        in.fail(joint, context + ": give either 'a' and 'b' or 'terms', not both");
       }
+      if (!joint["terms"].IsSequence()) in.fail(joint["terms"], "'terms' must be a list");
+      std::map<long, int> line_of;  // harmonic -> line of its first term
       for (const YAML::Node& term : joint["terms"]) {
-        if (!term["l"] || !term["a"] || !term["b"]) {
-          throw modelgen::InputError(at(term), "a term needs 'l' (harmonic, 1 or more), 'a' and 'b'");
+        if (!term.IsMap() || !term["l"] || !term["a"] || !term["b"]) {
+          in.fail(term, "a term needs 'l' (harmonic, 1 or more), 'a' and 'b'");
         }
-        const int l = term["l"].as<int>();
-        if (l < 1) throw modelgen::InputError(at(term["l"]), "harmonic 'l' must be 1 or more");
-        terms.push_back({static_cast<double>(l), term["a"].as<double>(), term["b"].as<double>()});
-        harmonics = std::max(harmonics, l);
+        in.check_keys(term, {"l", "a", "b"}, "a term of " + context);
+        const long l = in.integer(term["l"], "l");
+        if (l < 1) in.fail(term["l"], "harmonic 'l' must be 1 or more");
+        if (l > kMaxFourierHarmonic) {
+          in.fail(term["l"], harmonic_limit("harmonic 'l' is " + std::to_string(l) +
+                                            ", more than " +
+                                            std::to_string(kMaxFourierHarmonic)));
+        }
+        const int line = in.at(term["l"]).line;
+        if (const auto [earlier, inserted] = line_of.emplace(l, line); !inserted) {
+          in.fail(term["l"], context + ": harmonic " + std::to_string(l) +
+                                 " is given twice (first at line " +
+                                 std::to_string(earlier->second) + "); give each harmonic once");
+        }
+        terms.push_back({static_cast<double>(l), in.number(term["a"], "a"),
+                         in.number(term["b"], "b")});
+        harmonics = std::max(harmonics, static_cast<int>(l));
       }
     } else {
-      if (!joint["a"] || !joint["b"] || joint["a"].size() != joint["b"].size()) {
-        throw modelgen::InputError(at(joint), "joint " + std::to_string(j + 1) +
-                                             " needs 'a' and 'b' with as many coefficients "
-                                             "each, or 'terms'");
+      if (!joint["a"] || !joint["b"] || !joint["a"].IsSequence() || !joint["b"].IsSequence() ||
+          joint["a"].size() != joint["b"].size()) {
+        in.fail(joint, context + " needs 'a' and 'b' with as many coefficients each, or 'terms'");
+      }
+      if (joint["a"].size() > static_cast<std::size_t>(kMaxFourierHarmonic)) {
+        in.fail(joint["a"], harmonic_limit(context + ": 'a' and 'b' have " +
+                                           std::to_string(joint["a"].size()) +
+                                           " coefficients, more than " +
+                                           std::to_string(kMaxFourierHarmonic)));
       }
       for (std::size_t l = 0; l < joint["a"].size(); ++l) {
-        terms.push_back(
-            {static_cast<double>(l + 1), joint["a"][l].as<double>(), joint["b"][l].as<double>()});
+        terms.push_back({static_cast<double>(l + 1), in.number(joint["a"][l], "a"),
+                         in.number(joint["b"][l], "b")});
       }
       harmonics = std::max(harmonics, static_cast<int>(joint["a"].size()));
     }

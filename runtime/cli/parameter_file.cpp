@@ -1,8 +1,10 @@
-// JSON parameter files through nlohmann::json.
+// JSON parameter files through nlohmann::json, every complaint at the line of its key.
 
 #include "runtime/cli/parameter_file.hpp"
 
-#include <stdexcept>
+#include <map>
+#include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -14,17 +16,21 @@ namespace modelgen::internal {
 namespace {
 
 int index_of(const std::vector<std::string>& names, const std::string& name,
-             const std::string& path, const char* kind) {
+             const SourceLocation& where, const char* kind) {
+  if (name.empty()) {
+    throw InputError(where, std::string("empty parameter name; expected a ") + kind +
+                                " parameter of this model such as '" + names.front() + "'");
+  }
   for (std::size_t k = 0; k < names.size(); ++k) {
     if (names[k] == name) return static_cast<int>(k);
   }
-  throw std::runtime_error(path + ": error: '" + name + "' is not a " + kind + " parameter of " +
-                           "this model" + modelgen::did_you_mean(name, names));
+  throw InputError(where, "'" + name + "' is not a " + kind + " parameter of this model" +
+                              modelgen::did_you_mean(name, names));
 }
 
-double number(const nlohmann::json& value, const std::string& path, const std::string& name) {
+double number(const nlohmann::json& value, const SourceLocation& where, const std::string& name) {
   if (!value.is_number()) {
-    throw std::runtime_error(path + ": error: the value of '" + name + "' is not a number");
+    throw InputError(where, "the value of '" + name + "' is not a number");
   }
   return value.get<double>();
 }
@@ -32,36 +38,66 @@ double number(const nlohmann::json& value, const std::string& path, const std::s
 }  // namespace
 
 Eigen::VectorXd read_base_parameters(const std::string& path, const IdentificationModel& model) {
-  const nlohmann::json json = read_json_file(path);
+  const JsonDocument document = read_json_document(path);
+  const nlohmann::json& json = document.value;
+  if (!json.is_object()) {
+    throw InputError(document.at(""), "expected an object with a \"standard\", \"base\" or "
+                                      "\"parameters\" entry");
+  }
   Eigen::VectorXd beta = Eigen::VectorXd::Zero(model.num_base_params());
   for (const char* key : {"standard", "base"}) {
     if (json.contains(key) && !json[key].is_object()) {
-      throw std::runtime_error(path + ": error: \"" + key + "\" must be an object of name: value");
+      throw InputError(document.at(json_pointer("", key)),
+                       "\"" + std::string(key) + "\" must be an object of name: value");
     }
+  }
+  // One source of values: with two, one of them would be ignored without a word.
+  std::vector<std::string> given;
+  for (const char* key : {"standard", "base", "parameters"}) {
+    if (json.contains(key)) given.push_back(key);
+  }
+  if (given.size() > 1) {
+    const SourceLocation first = document.at(json_pointer("", given[0]));
+    throw InputError(document.at(json_pointer("", given[1])),
+                     "both \"" + given[0] + "\" (line " + std::to_string(first.line) +
+                         ") and \"" + given[1] + "\" are given; a parameter file holds one of "
+                         "\"standard\", \"base\" or \"parameters\"");
   }
   if (json.contains("standard")) {
     Eigen::VectorXd p = Eigen::VectorXd::Zero(model.num_standard_params());
     for (const auto& [name, value] : json["standard"].items()) {
-      p[index_of(model.standard_param_names(), name, path, "standard")] = number(value, path, name);
+      const SourceLocation where = document.at(json_pointer("/standard", name));
+      p[index_of(model.standard_param_names(), name, where, "standard")] =
+          number(value, where, name);
     }
     model.base_from_standard(p.data(), beta.data());
   } else if (json.contains("base")) {
     for (const auto& [name, value] : json["base"].items()) {
-      beta[index_of(model.base_param_names(), name, path, "base")] = number(value, path, name);
+      const SourceLocation where = document.at(json_pointer("/base", name));
+      beta[index_of(model.base_param_names(), name, where, "base")] = number(value, where, name);
     }
   } else if (json.contains("parameters") && json["parameters"].is_array()) {
-    for (const auto& entry : json["parameters"]) {
-      if (!entry.contains("name") || !entry["name"].is_string() || !entry.contains("value")) {
-        throw std::runtime_error(path + ": error: every entry of \"parameters\" needs a \"name\" " +
-                                 "and a \"value\"");
+    std::map<std::string, int> line_of;  // parameter name -> line of its first entry
+    const nlohmann::json& entries = json["parameters"];
+    for (std::size_t k = 0; k < entries.size(); ++k) {
+      const nlohmann::json& entry = entries[k];
+      const std::string entry_pointer = json_pointer("/parameters", std::to_string(k));
+      if (!entry.is_object() || !entry.contains("name") || !entry["name"].is_string() ||
+          !entry.contains("value")) {
+        throw InputError(document.at(entry_pointer),
+                         "every entry of \"parameters\" needs a \"name\" and a \"value\"");
       }
       const std::string name = entry["name"].get<std::string>();
-      beta[index_of(model.base_param_names(), name, path, "base")] =
-          number(entry["value"], path, name);
+      const SourceLocation where = document.at(json_pointer(entry_pointer, "name"));
+      const int index = index_of(model.base_param_names(), name, where, "base");
+      if (const auto [earlier, inserted] = line_of.emplace(name, where.line); !inserted) {
+        throw InputError(where, "parameter '" + name + "' is given twice (first at line " +
+                                    std::to_string(earlier->second) + "); give each once");
+      }
+      beta[index] = number(entry["value"], document.at(json_pointer(entry_pointer, "value")), name);
     }
   } else {
-    throw std::runtime_error(path + ": error: expected a \"standard\", \"base\" or " +
-                             "\"parameters\" entry");
+    throw InputError(document.at(""), "expected a \"standard\", \"base\" or \"parameters\" entry");
   }
   return beta;
 }

@@ -15,8 +15,9 @@ namespace modelgen::internal {
 ///                                      through the regrouping relations;
 ///   {"base": {"ZZ1R": 1.2, ...}}       base parameters by name, missing ones 0;
 ///   {"parameters": [{"name": "ZZ1R", "value": 1.2}, ...]}   an estimate written by `fit`.
-/// Throws std::runtime_error naming the file and the problem (syntax error with line and
-/// column, unknown parameter with the closest name).
+/// Throws InputError naming the file, line and column and the problem: a syntax error, a
+/// number beyond a double, a key or parameter given twice, more than one of the three forms,
+/// an empty or unknown parameter name (with the closest name).
 Eigen::VectorXd read_base_parameters(const std::string& path, const IdentificationModel& model);
 
 }  // namespace modelgen::internal

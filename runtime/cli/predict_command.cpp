@@ -62,7 +62,7 @@ int run_predict(const CommandLine& args) {
   // parameter name, or worse, match by chance.
   check_estimate_model(params, model);
   const Eigen::VectorXd beta = read_base_parameters(params, model);
-  if (args.has("--plot")) prepare_plot_folder(args.one("--plot"));
+  if (args.has("--plot")) check_plot_folder(args.one("--plot"));
   // The data are prepared as the fit prepared them (EST.json's data options) unless this
   // command line gives data options of its own; stderr says which.
   const std::vector<std::string> given = data_option_words(args);

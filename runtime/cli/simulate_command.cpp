@@ -19,6 +19,7 @@
 #include "modelgen/ml/drive_model.hpp"
 #include "runtime/cli/commands.hpp"
 #include "runtime/cli/drive_simulation.hpp"
+#include "runtime/cli/estimate_file.hpp"
 #include "runtime/cli/fourier_file.hpp"
 #include "runtime/cli/model_source.hpp"
 #include "runtime/cli/parameter_file.hpp"
@@ -82,7 +83,10 @@ int run_simulate(const CommandLine& args) {
   }
   const IdentificationModel& model = *source.model;
   Eigen::VectorXd beta;
-  if (!drive_mode) beta = read_base_parameters(args.one("--params"), model);
+  if (!drive_mode) {
+    check_estimate_model(args.one("--params"), model);
+    beta = read_base_parameters(args.one("--params"), model);
+  }
   const FourierTrajectory fourier = read_fourier(args.one("--trajectory"), model.dof());
   const std::vector<double> noise =
       parse_noise(args.one("--noise"), model.dof(), drive_mode ? "motor" : "joint");

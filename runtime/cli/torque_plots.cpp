@@ -8,6 +8,7 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <cstring>
 #include <cstdlib>
 #include <filesystem>
 #include <ostream>
@@ -149,14 +150,31 @@ std::string run_gnuplot(const std::string& program, const std::string& dir) {
 
 }  // namespace
 
-void prepare_plot_folder(const std::string& dir) {
+void check_plot_folder(const std::string& dir) {
   std::error_code error;
-  fs::create_directories(dir, error);
-  if (error) {
-    throw std::runtime_error(dir + ": error: cannot create the plot folder: " + error.message());
+  if (fs::exists(dir, error)) {
+    if (!fs::is_directory(dir, error)) {
+      throw std::runtime_error(dir + ": error: --plot needs a folder, this is a file");
+    }
+    if (::access(dir.c_str(), W_OK | X_OK) != 0) {
+      throw std::runtime_error(dir + ": error: cannot write into the plot folder: " +
+                               std::strerror(errno));
+    }
+    return;
   }
-  if (!fs::is_directory(dir, error)) {
-    throw std::runtime_error(dir + ": error: --plot needs a folder, this is a file");
+  // The folder is made only when the plots are written: a run that fails leaves nothing. Here
+  // its nearest existing ancestor must be a folder this process can create entries in.
+  fs::path ancestor = fs::absolute(fs::path(dir), error).parent_path();
+  while (!ancestor.empty() && !fs::exists(ancestor, error) && ancestor != ancestor.root_path()) {
+    ancestor = ancestor.parent_path();
+  }
+  if (!fs::is_directory(ancestor, error)) {
+    throw std::runtime_error(dir + ": error: cannot create the plot folder: '" +
+                             ancestor.string() + "' is not a folder");
+  }
+  if (::access(ancestor.c_str(), W_OK | X_OK) != 0) {
+    throw std::runtime_error(dir + ": error: cannot create the plot folder: " +
+                             std::strerror(errno));
   }
 }
 
@@ -183,7 +201,11 @@ std::optional<std::string> find_program(const std::string& name) {
 void write_torque_plots(const std::string& dir, const std::string& title,
                         const std::vector<Trajectory>& data, const TorquePrediction& prediction,
                         std::ostream& out, std::ostream& warnings) {
-  prepare_plot_folder(dir);
+  std::error_code error;
+  fs::create_directories(dir, error);
+  if (error) {
+    throw std::runtime_error(dir + ": error: cannot create the plot folder: " + error.message());
+  }
   const fs::path folder(dir);
   write_file((folder / "torques.csv").string(), prediction_csv(data, prediction, false));
   write_file((folder / "plot.gp").string(), gnuplot_script(title, data, prediction));

@@ -12,9 +12,11 @@
 
 namespace modelgen::internal {
 
-/// Creates `dir` and its parents when missing. Throws std::runtime_error "DIR: error: ..." when
-/// it cannot be created or is not a folder; called before any work so a bad DIR fails early.
-void prepare_plot_folder(const std::string& dir);
+/// Checks, without creating anything, that `dir` is a writable folder or could be created (its
+/// nearest existing ancestor is a writable folder). Throws std::runtime_error "DIR: error: ..."
+/// otherwise; called before any work so a bad DIR fails early, and a run that fails later
+/// leaves no new folder behind (write_torque_plots creates it).
+void check_plot_folder(const std::string& dir);
 
 /// The full path of an executable `name` found on $PATH, or nothing; never throws.
 std::optional<std::string> find_program(const std::string& name);

@@ -1,6 +1,7 @@
 # Installs this build into a scratch prefix, configures and builds tests/downstream against it
 # (find_package(modelgen) + modelgen_generate), runs the consumer and checks what it prints.
-# Run by CTest: cmake -DBUILD_DIR=... -DSOURCE_DIR=... -DWORK_DIR=... -P run_downstream.cmake
+# Run by CTest: cmake -DBUILD_DIR=... -DSOURCE_DIR=... -DWORK_DIR=... -DCXX_COMPILER=...
+# [-DSANITIZER_FLAGS=...] -P run_downstream.cmake
 file(REMOVE_RECURSE ${WORK_DIR})
 function(run)
   execute_process(COMMAND ${ARGV} RESULT_VARIABLE result OUTPUT_VARIABLE out ERROR_VARIABLE err)
@@ -10,8 +11,13 @@ function(run)
   set(last_output "${out}" PARENT_SCOPE)
 endfunction()
 run(${CMAKE_COMMAND} --install ${BUILD_DIR} --prefix ${WORK_DIR}/prefix)
+# The consumer is built as this build was: the same compiler and, in a sanitized build, the same
+# sanitizers, without which the installed libraries' sanitizer runtime does not link.
+string(REPLACE ";" " " sanitizer_flags "${SANITIZER_FLAGS}")
 run(${CMAKE_COMMAND} -S ${SOURCE_DIR}/tests/downstream -B ${WORK_DIR}/build
-    -DCMAKE_PREFIX_PATH=${WORK_DIR}/prefix -DCMAKE_BUILD_TYPE=Release)
+    -DCMAKE_PREFIX_PATH=${WORK_DIR}/prefix -DCMAKE_BUILD_TYPE=Release
+    -DCMAKE_CXX_COMPILER=${CXX_COMPILER} "-DCMAKE_CXX_FLAGS=${sanitizer_flags}"
+    "-DCMAKE_EXE_LINKER_FLAGS=${sanitizer_flags}")
 run(${CMAKE_COMMAND} --build ${WORK_DIR}/build)
 run(${WORK_DIR}/build/controller ${SOURCE_DIR}/robots/kr150.yaml)
 # At q = 0 link 2 points along the base x axis and its joint axis z2 is the base y axis. A unit

@@ -36,9 +36,11 @@ void to_joint_side(Trajectory& x, const DriveChain& drive, Side positions) {
   if (x.measured == Measured::kCurrent) {
     for (Eigen::Index j = 0; j < n; ++j) {
       if (!(drive.torque_constant[j] > 0)) {
-        throw DataError(x.source + ": error: column i" + std::to_string(j + 1) +
-                        " holds motor currents but the description gives no torque constant for "
-                        "motor " +
+        // Positioned at the header's current column, as the CSV reader's own errors are.
+        const std::string column = "i" + std::to_string(j + 1);
+        throw DataError(x.source + ":1 (column " + column + "): error: column " + column +
+                        " holds motor currents but the description gives no torque constant "
+                        "for motor " +
                         std::to_string(j + 1) + " (drives: torque_constant)");
       }
     }

@@ -2,12 +2,15 @@
 
 #include "modelgen/data/trajectory_csv.hpp"
 
+#include <algorithm>
+#include <cerrno>
 #include <charconv>
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
 #include <cstdio>
+#include <cstring>
 #include <fstream>
 #include <map>
 #include <sstream>
@@ -239,8 +242,15 @@ Trajectory read_trajectory_csv(const std::string& path, int dof, EffortColumns e
 void write_trajectory_csv(const std::string& path, const Trajectory& x) {
   // Written beside the destination and renamed at the end: never a half-written file.
   const std::string temporary = path + ".tmp-modelid";
+  // The stream keeps errno of the call that failed: the message gives the system's reason.
+  auto failed = [&path](int error) {
+    return DataError(SourceLocation{path}, path + ": error: cannot write the file: " +
+                                               (error != 0 ? std::strerror(error) : "write failed") +
+                                               " (no file was changed)");
+  };
+  errno = 0;
   std::ofstream out(temporary);
-  if (!out) throw DataError(SourceLocation{path}, path + ": error: cannot write the file");
+  if (!out) throw failed(errno);
   const Eigen::Index dof = x.q.cols();
   out << "t";
   for (const char* prefix : {"q", "dq", "ddq", "tau"}) {
@@ -255,9 +265,11 @@ void write_trajectory_csv(const std::string& path, const Trajectory& x) {
     out << "\n";
   }
   out.close();
-  if (!out || std::rename(temporary.c_str(), path.c_str()) != 0) {
+  const int write_error = out ? 0 : (errno != 0 ? errno : -1);
+  if (write_error != 0 || std::rename(temporary.c_str(), path.c_str()) != 0) {
+    const int error = write_error != 0 ? std::max(write_error, 0) : errno;
     std::remove(temporary.c_str());
-    throw DataError(SourceLocation{path}, path + ": error: cannot write the file");
+    throw failed(error);
   }
 }
 

@@ -5,6 +5,8 @@
 #include "generator/output/file_set.hpp"
 
 #include <algorithm>
+#include <csignal>
+#include <cstring>
 #include <atomic>
 #include <chrono>
 #include <filesystem>
@@ -13,7 +15,9 @@
 #include <string>
 #include <vector>
 
+#include <sys/resource.h>
 #include <sys/stat.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <gtest/gtest.h>
@@ -91,6 +95,117 @@ fs::file_time_type age(const fs::path& path) {
   return fs::last_write_time(path);
 }
 
+// Hidden files a run may leave: temporaries, backups, the journal.
+std::vector<std::string> hidden(const fs::path& directory) {
+  std::vector<std::string> result;
+  for (const std::string& name : names(directory)) {
+    if (!name.empty() && name[0] == '.') result.push_back(name);
+  }
+  return result;
+}
+
+// Runs write_to in a child process that dies (as under kill -9: no unwinding, no cleanup)
+// right after the rename number `stop_after`.
+void write_and_die_after_rename(const FileSet& files, const fs::path& out, std::size_t stop_after) {
+  const pid_t child = ::fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    static std::size_t limit;
+    limit = stop_after;
+    test_hooks::after_rename = [](std::size_t renamed) {
+      if (renamed == limit) ::_exit(42);
+    };
+    try {
+      files.write_to(out.string());
+    } catch (...) {
+      ::_exit(1);
+    }
+    ::_exit(0);
+  }
+  int status = 0;
+  ASSERT_EQ(::waitpid(child, &status, 0), child);
+  ASSERT_TRUE(WIFEXITED(status));
+  ASSERT_EQ(WEXITSTATUS(status), 42) << "the child was to die between its renames";
+}
+
+TEST(FileSet, ARunKilledBetweenItsRenamesIsCompletedByTheNextRun) {
+  TempDir tmp;
+  const fs::path out = tmp.path() / "kr150";
+  fs::create_directories(out);
+  write(out / "kr150.hpp", "old header\n");
+  write(out / "kr150.cpp", "old source\n");
+  write(out / "kr150.json", "old manifest\n");
+  write(out / "notes.txt", "the user's own file\n");
+  FileSet files;
+  files.add("kr150.hpp", "new header\n");
+  files.add("kr150.cpp", "new source\n");
+  files.add("kr150.json", "new manifest\n");
+  write_and_die_after_rename(files, out, 1);
+  ASSERT_EQ(read(out / "kr150.hpp"), "new header\n") << "the kill came after the first rename";
+
+  // The next run, whatever it writes (here nothing), first finishes the committed set.
+  FileSet{}.write_to(out.string());
+  EXPECT_EQ(read(out / "kr150.hpp"), "new header\n");
+  EXPECT_EQ(read(out / "kr150.cpp"), "new source\n");
+  EXPECT_EQ(read(out / "kr150.json"), "new manifest\n");
+  EXPECT_EQ(read(out / "notes.txt"), "the user's own file\n");
+  EXPECT_EQ(hidden(out), std::vector<std::string>{});
+  EXPECT_EQ(names(out),
+            (std::vector<std::string>{"kr150.cpp", "kr150.hpp", "kr150.json", "notes.txt"}));
+}
+
+TEST(FileSet, AKilledRunThenANewSetLeavesOnlyTheNewSet) {
+  TempDir tmp;
+  const fs::path out = tmp.path() / "out";
+  fs::create_directories(out);
+  write(out / "a.hpp", "old header\n");
+  write(out / "a.cpp", "old source\n");
+  FileSet killed;
+  killed.add("a.hpp", "killed header\n");
+  killed.add("a.cpp", "killed source\n");
+  write_and_die_after_rename(killed, out, 1);
+
+  FileSet next;
+  next.add("a.hpp", "next header\n");
+  next.add("a.cpp", "next source\n");
+  next.write_to(out.string());
+  EXPECT_EQ(read(out / "a.hpp"), "next header\n");
+  EXPECT_EQ(read(out / "a.cpp"), "next source\n");
+  EXPECT_EQ(names(out), (std::vector<std::string>{"a.cpp", "a.hpp"}));
+}
+
+TEST(FileSet, AFullDiskGivesTheSystemsReasonAndChangesNothing) {
+  // A file size limit makes write(2) fail with EFBIG as a full disk fails with ENOSPC; in a
+  // child process, so the limit does not outlive the test.
+  TempDir tmp;
+  write(tmp.path() / "a.hpp", "old header\n");
+  const fs::path message_file = tmp.path() / "message.txt";
+  const pid_t child = ::fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    std::signal(SIGXFSZ, SIG_IGN);
+    const rlimit limit{1024, 1024};
+    ::setrlimit(RLIMIT_FSIZE, &limit);
+    FileSet files;
+    files.add("a.hpp", std::string(100000, 'x'));
+    std::string message = "no error";
+    try {
+      files.write_to(tmp.path().string());
+    } catch (const InputError& error) {
+      message = error.what();
+    }
+    write(message_file, message.substr(0, 1000));  // under the limit
+    ::_exit(0);
+  }
+  int status = 0;
+  ASSERT_EQ(::waitpid(child, &status, 0), child);
+  const std::string message = read(message_file);
+  fs::remove(message_file);
+  EXPECT_NE(message.find(std::strerror(EFBIG)), std::string::npos) << message;
+  EXPECT_EQ(read(tmp.path() / "a.hpp"), "old header\n");
+  EXPECT_EQ(names(tmp.path()), (std::vector<std::string>{"a.hpp"}));
+}
+
 TEST(FileSet, KeepsFilesInOrder) {
   FileSet files;
   files.add("b.hpp", "1");
@@ -105,7 +220,8 @@ TEST(FileSet, KeepsFilesInOrder) {
 TEST(FileSet, CreatesTheDirectoryAndWritesExactBytes) {
   TempDir tmp;
   const fs::path out = tmp.path() / "build" / "modelgen" / "kr150_model";
-  const std::string binary("line 1\r\nno final newline\0after nul\xff", 37);
+  // 6 + 2 + 16 + 1 + 9 + 1 bytes: the literal without its terminating NUL.
+  const std::string binary("line 1\r\nno final newline\0after nul\xff", 35);
   FileSet files;
   files.add("kr150.hpp", "#ifndef X\n#define X\n#endif  // X\n");
   files.add("kr150.cpp", binary);
@@ -116,7 +232,7 @@ TEST(FileSet, CreatesTheDirectoryAndWritesExactBytes) {
   EXPECT_EQ(names(out), (std::vector<std::string>{"kr150.cpp", "kr150.hpp", "kr150.json"}));
   EXPECT_EQ(read(out / "kr150.hpp"), "#ifndef X\n#define X\n#endif  // X\n");
   EXPECT_EQ(read(out / "kr150.cpp"), binary);
-  EXPECT_EQ(read(out / "kr150.cpp").size(), 37u);
+  EXPECT_EQ(read(out / "kr150.cpp").size(), 35u);
   EXPECT_TRUE(fs::is_regular_file(out / "kr150.json"));
   EXPECT_EQ(fs::file_size(out / "kr150.json"), 0u);
 }

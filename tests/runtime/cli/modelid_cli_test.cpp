@@ -4,6 +4,10 @@
 // --version prints modelgen's version; short runs print no progress lines into logs. predict:
 // modelid_predict_test.cpp; fit's essential parameters and plots: modelid_fit_test.cpp.
 
+#include <sys/resource.h>
+
+#include <csignal>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 
@@ -23,6 +27,58 @@ using test::read_text;
 std::string quoted(const std::string& relative) { return test::quoted_source(relative); }
 
 std::string read(const std::string& path) { return read_text(path); }
+
+// A fit that fails on its data must not leave the --plot folder it was asked to make.
+TEST(ModelidCli, AFailedFitCreatesNoPlotFolder) {
+  const std::filesystem::path dir = test::test_folder();
+  const std::filesystem::path plots = dir / "new" / "plots";
+  const CliRun run = modelid("fit --robot tests/bad_inputs/robots/two_axes.yaml --data " +
+                                 test::quoted_source("tests/bad_inputs/data/nan_value.csv") +
+                                 " --method ols --plot " + test::quoted(plots),
+                             {MODELGEN_SOURCE_DIR});
+  EXPECT_EQ(run.exit_code, 1) << run.err;
+  EXPECT_FALSE(std::filesystem::exists(dir / "new")) << "a failed fit made the plot folder";
+
+  // A folder that can never be made still fails before any work.
+  test::write_text(dir / "file", "");
+  const CliRun under_a_file = modelid("fit --robot tx40 --data x.csv --method ols --plot " +
+                                      test::quoted(dir / "file" / "plots"));
+  EXPECT_EQ(under_a_file.exit_code, 1);
+  EXPECT_NE(under_a_file.err.find("cannot create the plot folder"), std::string::npos)
+      << under_a_file.err;
+}
+
+// A write that the system refuses (a full disk: ENOSPC; here a file size limit: EFBIG) says
+// why, leaves the old output and no temporary.
+TEST(ModelidCli, AFailedWriteGivesTheSystemsReason) {
+  const std::filesystem::path dir = test::test_folder();
+  const std::filesystem::path out = dir / "simulated.csv";
+  test::write_text(out, "the user's earlier data\n");
+  // Inherited by the shell and modelid: no SIGXFSZ kill, writes beyond 8 kB fail with EFBIG.
+  rlimit before{};
+  ASSERT_EQ(::getrlimit(RLIMIT_FSIZE, &before), 0);
+  const rlimit limit{8192, before.rlim_max};
+  const auto old_handler = std::signal(SIGXFSZ, SIG_IGN);
+  ASSERT_EQ(::setrlimit(RLIMIT_FSIZE, &limit), 0);
+  const CliRun run = modelid(
+      "simulate --robot tests/bad_inputs/robots/two_axes.yaml --params "
+      "tests/bad_inputs/robots/two_axes_params.json --trajectory "
+      "tests/bad_inputs/robots/two_axes_trajectory.yaml --noise 0 -o " + test::quoted(out),
+      {MODELGEN_SOURCE_DIR});
+  ::setrlimit(RLIMIT_FSIZE, &before);
+  std::signal(SIGXFSZ, old_handler);
+  EXPECT_EQ(run.exit_code, 1) << run.err;
+  EXPECT_NE(run.err.find("cannot write the file: " + std::string(std::strerror(EFBIG))),
+            std::string::npos)
+      << run.err;
+  EXPECT_EQ(read_text(out), "the user's earlier data\n");
+  std::size_t files = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(dir)) {
+    (void)entry;
+    ++files;
+  }
+  EXPECT_EQ(files, 1u) << "a temporary was left beside the output";
+}
 
 TEST(ModelidCli, BundledDataComeFromTheDocumentedSimulation) {
   const std::string csv = testing::TempDir() + "kr150_resimulated.csv";

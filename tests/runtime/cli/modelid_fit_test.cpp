@@ -72,6 +72,25 @@ int index_of(const std::vector<std::string>& names, const std::string& name) {
   return static_cast<int>(found - names.begin());
 }
 
+// A truth file made for another description (its description_sha256 differs) would compare
+// the estimate with numbers of other parameters: refused before the fit, saying the hashes
+// differ.
+TEST(ModelidFit, ATruthOfAnotherModelIsRefused) {
+  const fs::path dir = test::test_folder();
+  const fs::path forged = dir / "truth.json";
+  test::write_text(forged, R"({"model": "tx40", "description_sha256": ")" + std::string(64, '0') +
+                               R"(", "parameters": [{"name": "ZZ1R", "value": 1}]})");
+  const CliRun run =
+      modelid("fit --robot kr150 --data " + quoted_source("robots/data/kr150/excitation.csv") +
+              " --method ols --truth " + quoted(forged));
+  EXPECT_EQ(run.exit_code, 1) << run.out;
+  EXPECT_NE(run.err.find(forged.string() + ": error: the truth belongs to another model: it was "
+                                           "identified on 'tx40'"),
+            std::string::npos)
+      << run.err;
+  EXPECT_NE(run.err.find("the hashes differ"), std::string::npos) << run.err;
+}
+
 TEST(ModelidFit, EssentialParametersKeepTheirRatioBelowRSigma) {
   const fs::path dir = test::test_folder();
   const ReferenceModel reference = kr150_reference();

@@ -335,11 +335,12 @@ TEST(ModelidMl, UsageErrors) {
             std::string::npos)
       << run.err;
 
+  // The message points at the key: column 12 is the opening quote of "Ia3".
   write_text(dir / "known.json", "{\"JM3\": 8, \"Ia3\": 8}");
   run = modelid("fit --method ml --approach 3 --robot " + robot + " --periodic --known " +
                 quoted(dir / "known.json") + data);
   EXPECT_EQ(run.exit_code, 1);
-  EXPECT_NE(run.err.find("known.json: error: 'Ia3' is not a parameter of the drive model"),
+  EXPECT_NE(run.err.find("known.json:1:12: error: 'Ia3' is not a parameter of the drive model"),
             std::string::npos)
       << run.err;
 

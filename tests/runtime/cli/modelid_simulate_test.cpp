@@ -428,7 +428,7 @@ TEST(ModelidSimulate, UsageAndInputErrors) {
        "--noise: a standard deviation cannot be negative, not '-2'", 2},
       {"simulate --robot " + robot + " --drive " + quoted(dir / "unknown.json") + " --noise 1" +
            rest,
-       "unknown.json: error: 'Ia3' is not a parameter of the drive model", 1},
+       "unknown.json:1:12: error: 'Ia3' is not a parameter of the drive model", 1},
       {"simulate --robot " + quoted(dir / "no_payload.yaml") + " --drive " +
            quoted(dir / "load.json") + " --noise 1" + rest,
        "load.json: error: a load is given but " + (dir / "no_payload.yaml").string() +
