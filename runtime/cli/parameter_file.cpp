@@ -2,6 +2,7 @@
 
 #include "runtime/cli/parameter_file.hpp"
 
+#include <cmath>
 #include <map>
 #include <string>
 #include <vector>
@@ -10,6 +11,7 @@
 
 #include "modelgen/model/error.hpp"
 #include "runtime/cli/json_file.hpp"
+#include "runtime/cli/text_format.hpp"
 
 namespace modelgen::internal {
 
@@ -51,10 +53,16 @@ Eigen::VectorXd read_base_parameters(const std::string& path, const Identificati
                        "\"" + std::string(key) + "\" must be an object of name: value");
     }
   }
-  // One source of values: with two, one of them would be ignored without a word.
+  // One source of values: with two, one of them would be ignored without a word. An estimate
+  // of fit --physical has both its base parameters and the consistent standard set that gives
+  // them: the base parameters are read, and must agree with the standard set.
+  const bool physical_estimate =
+      json.contains("physical") && json.contains("parameters") && json.contains("standard");
   std::vector<std::string> given;
   for (const char* key : {"standard", "base", "parameters"}) {
-    if (json.contains(key)) given.push_back(key);
+    if (json.contains(key) && !(physical_estimate && std::string(key) == "standard")) {
+      given.push_back(key);
+    }
   }
   if (given.size() > 1) {
     const SourceLocation first = document.at(json_pointer("", given[0]));
@@ -63,14 +71,19 @@ Eigen::VectorXd read_base_parameters(const std::string& path, const Identificati
                          ") and \"" + given[1] + "\" are given; a parameter file holds one of "
                          "\"standard\", \"base\" or \"parameters\"");
   }
-  if (json.contains("standard")) {
+  const auto from_standard = [&] {
     Eigen::VectorXd p = Eigen::VectorXd::Zero(model.num_standard_params());
     for (const auto& [name, value] : json["standard"].items()) {
       const SourceLocation where = document.at(json_pointer("/standard", name));
       p[index_of(model.standard_param_names(), name, where, "standard")] =
           number(value, where, name);
     }
-    model.base_from_standard(p.data(), beta.data());
+    Eigen::VectorXd out(model.num_base_params());
+    model.base_from_standard(p.data(), out.data());
+    return out;
+  };
+  if (json.contains("standard") && !physical_estimate) {
+    beta = from_standard();
   } else if (json.contains("base")) {
     for (const auto& [name, value] : json["base"].items()) {
       const SourceLocation where = document.at(json_pointer("/base", name));
@@ -98,6 +111,18 @@ Eigen::VectorXd read_base_parameters(const std::string& path, const Identificati
     }
   } else {
     throw InputError(document.at(""), "expected a \"standard\", \"base\" or \"parameters\" entry");
+  }
+  if (physical_estimate) {
+    const Eigen::VectorXd regrouped = from_standard();
+    for (Eigen::Index b = 0; b < beta.size(); ++b) {
+      if (!(std::abs(regrouped[b] - beta[b]) <= 1e-6 * (1 + std::abs(beta[b])))) {
+        throw InputError(document.at(json_pointer("", "standard")),
+                         "the \"standard\" set gives " +
+                             model.base_param_names()[static_cast<std::size_t>(b)] + " = " +
+                             shortest(regrouped[b]) + " but \"parameters\" has " +
+                             shortest(beta[b]) + "; the file was edited by hand?");
+      }
+    }
   }
   return beta;
 }

@@ -113,6 +113,31 @@ TEST(ModelidPhysical, TheBundledKr150RunGivesAConsistentRobot) {
   }
 }
 
+TEST(ModelidPhysical, TheEstimateDrivesPredictAndSimulate) {
+  const fs::path dir = test::test_folder("physical_use");
+  const std::string data = quoted_source("robots/data/kr150/excitation.csv");
+  ASSERT_EQ(modelid("fit --robot kr150 --data " + data + " --method wls --physical -o " +
+                    quoted(dir / "est.json"))
+                .exit_code,
+            0);
+  const CliRun predict = modelid("predict --robot kr150 --params " + quoted(dir / "est.json") +
+                                 " --data " + data + " --decimated");
+  EXPECT_EQ(predict.exit_code, 0) << predict.err;
+  const CliRun simulate =
+      modelid("simulate --robot kr150 --params " + quoted(dir / "est.json") + " --trajectory " +
+              quoted_source("robots/data/kr150/excitation.yaml") +
+              " --noise 0 --sample-time 0.01 -o " + quoted(dir / "sim.csv"));
+  EXPECT_EQ(simulate.exit_code, 0) << simulate.err;
+  // A standard set edited by hand no longer gives the base parameters beside it: refused.
+  nlohmann::json est = nlohmann::json::parse(test::read_text(dir / "est.json"));
+  est["standard"]["M3"] = est["standard"]["M3"].get<double>() + 10;
+  test::write_text(dir / "edited.json", est.dump(2));
+  const CliRun edited = modelid("predict --robot kr150 --params " + quoted(dir / "edited.json") +
+                                " --data " + data);
+  EXPECT_NE(edited.exit_code, 0);
+  EXPECT_NE(edited.err.find("the \"standard\" set gives"), std::string::npos) << edited.err;
+}
+
 TEST(ModelidPhysical, OptionsAreChecked) {
   const std::string data = " --data " + quoted_source("robots/data/kr150/excitation.csv");
   const CliRun weight_alone = modelid("fit --robot kr150 --method wls --prior-weight 1" + data);
