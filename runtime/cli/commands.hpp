@@ -12,8 +12,8 @@ extern const std::map<std::string, OptionKind> kFitOptions, kPredictOptions, kSi
 
 /// modelid fit: base parameters from trajectories (fit_command.cpp).
 int run_fit(const CommandLine& args);
-/// fit --method ml (ml_fit_command.cpp).
-int run_fit_ml(const CommandLine& args);
+/// fit --method ml (ml_fit_command.cpp); `prior_weight` is --physical's.
+int run_fit_ml(const CommandLine& args, double prior_weight);
 /// modelid predict: torques of an estimate on trajectories and their errors.
 int run_predict(const CommandLine& args);
 /// modelid simulate: synthetic data from a Fourier excitation and true parameters.

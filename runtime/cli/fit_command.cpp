@@ -166,15 +166,11 @@ void print_essential(const EssentialEstimate& essential, std::size_t num_base) {
 
 // The description behind --robot: the file, or for a compiled-in model its description in the
 // source tree.
-RobotModel description_of(const ModelSource& source, const std::string& robot) {
-  if (source.description) return *source.description;
-  const std::string path = shipped_description_path(robot);
-  if (path.empty()) {
-    throw std::runtime_error("--physical needs the robot's description (its bodies and a-priori "
-                             "values); give --robot the description file instead of '" +
-                             robot + "'");
-  }
-  return load_robot(path);
+const RobotModel& description_of(const ModelSource& source, const std::string& robot) {
+  if (const RobotModel* description = source.any_description()) return *description;
+  throw std::runtime_error("--physical needs the robot's description (its bodies and a-priori "
+                           "values); give --robot the description file instead of '" +
+                           robot + "'");
 }
 
 double prior_weight(const CommandLine& args) {
@@ -207,18 +203,18 @@ std::vector<EstimatedParameter> estimated(const Eigen::VectorXd& value,
 
 int run_fit(const CommandLine& args) {
   reject_positional(args);
+  const double weight = prior_weight(args);
   if (args.has("--method") && args.one("--method") == "ml") {
-    for (const char* option : {"--essential", "--r-sigma", "--plot", "--physical", "--prior-weight"}) {
+    for (const char* option : {"--essential", "--r-sigma", "--plot"}) {
       if (args.has(option)) {
         throw UsageError{std::string(option) + " belongs to the linear methods, not --method ml"};
       }
     }
-    return run_fit_ml(args);
+    return run_fit_ml(args, weight);
   }
   for (const char* option : {"--approach", "--unknown", "--known"}) {
     if (args.has(option)) throw UsageError{std::string(option) + " belongs to --method ml"};
   }
-  const double weight = prior_weight(args);
   const ModelSource source = load_model_source(args.one("--robot"), angle_tolerance_option(args));
   const IdentificationModel& model = *source.model;
   if (!args.has("--data")) throw UsageError{"fit needs at least one --data file"};

@@ -253,10 +253,40 @@ void warn_implausible_ml_estimates(std::ostream& err, const MlRun& run, bool nam
       name_approach ? "approach " + std::to_string(run.approach) + ": " : std::string());
 }
 
+void print_ml_physical(std::ostream& out, const std::vector<MlRun>& runs) {
+  for (const MlRun& run : runs) {
+    if (!run.physical) continue;
+    const MlPhysicalRun& p = *run.physical;
+    const std::string name = runs.size() > 1 ? "approach " + std::to_string(run.approach) + ": " : "";
+    if (p.result.unconstrained_consistent) {
+      out << "  " << name << "physically consistent without constraints (--physical changed nothing)\n";
+      continue;
+    }
+    out << "  " << name << "physically consistent estimate (--physical, prior weight "
+        << fixed(p.prior_weight, 0, 3) << "); the unconstrained one had:";
+    for (const std::string& v : p.violations) out << " [" << v << "]";
+    const double unconstrained = p.result.unconstrained_sum_of_squares;
+    out << "\n    cost of consistency: " << fixed(p.result.cost_increase, 0, 4)
+        << " (weighted sum of squares " << fixed(unconstrained, 0, 6) << " -> "
+        << fixed(unconstrained + p.result.cost_increase, 0, 6) << ", "
+        << fixed(unconstrained > 0 ? 100 * p.result.cost_increase / unconstrained : 0.0, 0, 3)
+        << " %), " << fixed(p.seconds, 0, 3) << " s\n    binding constraints:";
+    if (p.result.binding.empty()) out << " none";
+    for (const std::string& b : p.result.binding) out << " [" << b << "]";
+    out << "\n    rms torque error per fitted motor, unconstrained:";
+    const Eigen::VectorXd& rms = p.unconstrained.rms_error;
+    for (Eigen::Index j = 0; j < rms.size(); ++j) {
+      if (rms[j] > 0) out << " " << j + 1 << ": " << fixed(rms[j], 0, 4);
+    }
+    out << "\n";
+  }
+}
+
 nlohmann::json ml_run_json(const MlRun& run) {
   const MlFitResult& fit = run.fit;
   nlohmann::json out;
-  out["method"] = "ML approach " + std::to_string(run.approach);
+  out["method"] = "ML approach " + std::to_string(run.approach) +
+                  (run.physical ? " (physically consistent)" : "");
   if (fit.has_load) {
     nlohmann::json load = load_json(fit.load);
     load["std"] = load_json(fit.load_std_dev);
@@ -280,6 +310,17 @@ nlohmann::json ml_run_json(const MlRun& run) {
   out["iterations"] = fit.iterations;
   out["seconds"] = run.seconds;
   if (!run.summary.empty()) out["summary"] = run.summary;
+  if (run.physical) {
+    const MlPhysicalRun& p = *run.physical;
+    MlRun unconstrained = run;
+    unconstrained.fit = p.unconstrained;
+    unconstrained.physical.reset();
+    out["physical"] = {{"prior_weight", p.prior_weight},
+                       {"cost_increase", p.result.cost_increase},
+                       {"binding_constraints", p.result.binding},
+                       {"unconstrained_violations", p.violations},
+                       {"unconstrained", ml_run_json(unconstrained)}};
+  }
   return out;
 }
 

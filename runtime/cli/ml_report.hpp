@@ -6,20 +6,33 @@
 #include <nlohmann/json.hpp>
 
 #include <map>
+#include <optional>
 #include <ostream>
 #include <string>
 
 #include "modelgen/ml/fit.hpp"
 #include "modelgen/ml/linear_route.hpp"
+#include "modelgen/ml/physical_fit.hpp"
 
 namespace modelgen::internal {
+
+/// What fit --physical adds to an approach: the unconstrained estimate, what was wrong with it,
+/// and what consistency cost.
+struct MlPhysicalRun {
+  double prior_weight = 0;
+  MlFitResult unconstrained;
+  std::vector<std::string> violations;  ///< of the unconstrained estimate
+  MlPhysicalResult result;              ///< result.fit is MlRun::fit
+  double seconds = 0;                   ///< wall time of the constrained search
+};
 
 /// One approach's result.
 struct MlRun {
   int approach = 0;     ///< 1, 2 or 3 (section 4)
-  MlFitResult fit;      ///< approach 1: LinearRoute::fit
+  MlFitResult fit;      ///< approach 1: LinearRoute::fit; with --physical the consistent fit
   double seconds = 0;   ///< wall time of the fit
   std::string summary;  ///< one line on how it was obtained
+  std::optional<MlPhysicalRun> physical;  ///< with --physical
 };
 
 /// Exact values by ml_param_names() name (load_m, Rv3, ...) from --truth; empty without it.
@@ -40,8 +53,14 @@ void print_ml_comparison(std::ostream& out, const std::vector<MlRun>& runs, int 
 /// JM; a load mass that is not positive), each line naming the approach when `name_approach`.
 void warn_implausible_ml_estimates(std::ostream& err, const MlRun& run, bool name_approach);
 
+/// With --physical: per run, what the unconstrained estimate violated, the cost of consistency
+/// (eq. 18's weighted sum of squares, noise variances as units) and the binding constraints.
+void print_ml_physical(std::ostream& out, const std::vector<MlRun>& runs);
+
 /// EST.json's description of one run: method, load with std and warnings, the other unknowns,
-/// rms per axis, identifiability, iterations, seconds.
+/// rms per axis, identifiability, iterations, seconds; with --physical the consistent estimate
+/// and a "physical" block (prior weight, cost increase, binding constraints, the unconstrained
+/// estimate's violations and the unconstrained estimate itself).
 nlohmann::json ml_run_json(const MlRun& run);
 
 }  // namespace modelgen::internal

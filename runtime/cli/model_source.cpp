@@ -33,7 +33,8 @@ void take_limits(const RobotModel& description, int dof, ModelSource& source) {
 
 ModelSource load_model_source(const std::string& robot, double angle_tolerance) {
   ModelSource source;
-  if (std::filesystem::exists(robot)) {
+  // A folder named like a compiled-in model (build/kr150 after generating it) is not a file.
+  if (std::filesystem::exists(robot) && !std::filesystem::is_directory(robot)) {
     LoadOptions options;
     options.angle_tolerance = angle_tolerance;
     source.description = modelgen::load_robot(robot, options);
@@ -51,7 +52,10 @@ ModelSource load_model_source(const std::string& robot, double angle_tolerance) 
   source.model = make_shipped_model(robot);
   if (source.model != nullptr) {
     const std::string path = shipped_description_path(robot);
-    if (!path.empty()) take_limits(modelgen::load_robot(path), source.model->dof(), source);
+    if (!path.empty()) {
+      source.shipped_description = modelgen::load_robot(path);
+      take_limits(*source.shipped_description, source.model->dof(), source);
+    }
   }
   if (source.model == nullptr) {
     std::string names;

@@ -16,11 +16,20 @@ namespace modelgen::internal {
 struct ModelSource {
   std::unique_ptr<IdentificationModel> model;
   std::optional<modelgen::RobotModel> description;  ///< when --robot was a file
+  /// For a compiled-in model, its description in the source tree when it is there
+  /// (shipped_description_path).
+  std::optional<modelgen::RobotModel> shipped_description;
   /// Joint names and limits, one per joint of the model: from the description file, or for a
   /// compiled-in model from its description in the source tree when it is there
   /// (shipped_description_path); empty when unknown.
   std::vector<std::string> joint_names;
   std::vector<JointLimits> limits;
+
+  /// The description behind the model: the file, else the shipped one; null when neither.
+  const modelgen::RobotModel* any_description() const {
+    if (description) return &*description;
+    return shipped_description ? &*shipped_description : nullptr;
+  }
 };
 
 /// Throws modelgen::InputError for a file that does not load, std::invalid_argument for a name

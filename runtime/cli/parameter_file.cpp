@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "modelgen/model/error.hpp"
+#include "modelgen/model/physical_consistency.hpp"
 #include "runtime/cli/json_file.hpp"
 #include "runtime/cli/text_format.hpp"
 
@@ -125,6 +126,47 @@ Eigen::VectorXd read_base_parameters(const std::string& path, const Identificati
     }
   }
   return beta;
+}
+
+void check_physically_possible(const std::string& path, const IdentificationModel& model,
+                               const RobotModel& description) {
+  if (description.param_names() != model.standard_param_names()) return;
+  const RigidBodyTree& tree = description.tree;
+  const JsonDocument document = read_json_document(path);
+  const nlohmann::json& json = document.value;
+  std::vector<std::string> problems;
+  std::string key;
+  if (json.contains("standard")) {
+    key = "standard";
+    Eigen::VectorXd p = Eigen::VectorXd::Zero(model.num_standard_params());
+    for (const auto& [name, value] : json["standard"].items()) {
+      const SourceLocation where = document.at(json_pointer("/standard", name));
+      p[index_of(model.standard_param_names(), name, where, "standard")] =
+          number(value, where, name);
+    }
+    for (const PhysicalViolation& v : physical_violations(tree, p)) {
+      const std::string link =
+          v.body >= 0 ? "link '" + tree.bodies[static_cast<std::size_t>(v.body)].name + "' " : "";
+      problems.push_back(link + v.parameter + ": " + v.condition);
+    }
+  } else {
+    key = json.contains("base") ? "base" : "parameters";
+    const Eigen::VectorXd beta = read_base_parameters(path, model);
+    const std::vector<std::string>& names = model.base_param_names();
+    for (std::size_t b = 0; b < names.size(); ++b) {
+      for (const StandardParam& param : tree.params) {
+        if (param.name != names[b] || !must_be_nonnegative(param.kind)) continue;
+        const double value = beta[static_cast<Eigen::Index>(b)];
+        if (value < 0) problems.push_back(names[b] + " = " + shortest(value) + " is negative");
+      }
+    }
+  }
+  if (problems.empty()) return;
+  std::string list;
+  for (const std::string& problem : problems) list += (list.empty() ? "" : "; ") + problem;
+  throw InputError(document.at(json_pointer("", key)),
+                   "these parameters cannot be those of a physical robot: " + list +
+                       " (fit --physical gives estimates that can)");
 }
 
 }  // namespace modelgen::internal

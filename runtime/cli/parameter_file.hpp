@@ -7,6 +7,7 @@
 #include <Eigen/Core>
 
 #include "modelgen/model/identification_model.hpp"
+#include "modelgen/model/robot_model.hpp"
 
 namespace modelgen::internal {
 
@@ -19,5 +20,15 @@ namespace modelgen::internal {
 /// number beyond a double, a key or parameter given twice, more than one of the three forms,
 /// an empty or unknown parameter name (with the closest name).
 Eigen::VectorXd read_base_parameters(const std::string& path, const IdentificationModel& model);
+
+/// Throws InputError at the file's "standard" (or "base", "parameters") entry when its values
+/// cannot be those of a physical robot (modelgen/model/physical_consistency.hpp): a standard
+/// set is judged whole (per link mass, centre of mass and inertia; rotor inertias and friction
+/// >= 0); of base parameters only those that are a standard parameter themselves (drive
+/// parameters that are not regrouped) can be judged. The message names each link and
+/// condition. `path` must have passed read_base_parameters; `description` is the one `model`
+/// was made from (nothing is judged when its parameters are not the model's).
+void check_physically_possible(const std::string& path, const IdentificationModel& model,
+                               const RobotModel& description);
 
 }  // namespace modelgen::internal

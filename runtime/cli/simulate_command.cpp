@@ -3,6 +3,7 @@
 // or the motor torques of the drive model (Swevers eq. 12, drive_simulation.hpp) mapped to the
 // joints, adds seeded Gaussian noise per axis, then writes the trajectory CSV.
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstdint>
@@ -61,6 +62,41 @@ std::vector<double> parse_noise(const std::string& text, int dof, const std::str
   return sigma;
 }
 
+// Without --params: the base parameters of the description's a-priori values (URDF
+// inertials, YAML `known:`), the ones it lacks taken as 0, which is said.
+Eigen::VectorXd a_priori_base_parameters(const ModelSource& source,
+                                         const IdentificationModel& model) {
+  const RobotModel* description = source.any_description();
+  const auto known = [](const std::optional<double>& value) { return value.has_value(); };
+  if (description == nullptr || description->param_names() != model.standard_param_names() ||
+      std::none_of(description->known_values.begin(), description->known_values.end(), known)) {
+    throw UsageError{
+        "simulate needs --params TRUE.json (base or standard parameters) or --drive "
+        "THETA.json (drive model parameters); without them it uses the description's "
+        "a-priori values (URDF inertials, YAML 'known:'), and this one has none"};
+  }
+  Eigen::VectorXd standard = Eigen::VectorXd::Zero(model.num_standard_params());
+  std::vector<std::string> missing;
+  for (std::size_t k = 0; k < description->known_values.size(); ++k) {
+    if (description->known_values[k]) {
+      standard[static_cast<Eigen::Index>(k)] = *description->known_values[k];
+    } else {
+      missing.push_back(model.standard_param_names()[k]);
+    }
+  }
+  std::cerr << "modelid simulate: note: no --params: the description's a-priori values";
+  if (!missing.empty()) {
+    std::cerr << "; " << missing.size() << " of " << standard.size()
+              << " standard parameters have none and are 0:";
+    for (std::size_t k = 0; k < missing.size() && k < 8; ++k) std::cerr << " " << missing[k];
+    if (missing.size() > 8) std::cerr << " ...";
+  }
+  std::cerr << "\n";
+  Eigen::VectorXd beta(model.num_base_params());
+  model.base_from_standard(standard.data(), beta.data());
+  return beta;
+}
+
 }  // namespace
 
 int run_simulate(const CommandLine& args) {
@@ -71,11 +107,6 @@ int run_simulate(const CommandLine& args) {
         "--drive and --params exclude each other: simulate either the base parameters "
         "(--params) or the drive model (--drive)"};
   }
-  if (!drive_mode && !args.has("--params")) {
-    throw UsageError{
-        "simulate needs --params TRUE.json (base or standard parameters) or --drive "
-        "THETA.json (drive model parameters)"};
-  }
   const ModelSource source = load_model_source(args.one("--robot"), angle_tolerance_option(args));
   if (drive_mode && !source.description) {
     throw UsageError{"--drive needs --robot to be a description file (.yaml/.urdf), not '" +
@@ -83,9 +114,15 @@ int run_simulate(const CommandLine& args) {
   }
   const IdentificationModel& model = *source.model;
   Eigen::VectorXd beta;
-  if (!drive_mode) {
+  if (!drive_mode && !args.has("--params")) {
+    beta = a_priori_base_parameters(source, model);
+  } else if (!drive_mode) {
     check_estimate_model(args.one("--params"), model);
     beta = read_base_parameters(args.one("--params"), model);
+    // A simulation of a robot that cannot exist would make data no robot gives.
+    if (const RobotModel* description = source.any_description()) {
+      check_physically_possible(args.one("--params"), model, *description);
+    }
   }
   const FourierTrajectory fourier = read_fourier(args.one("--trajectory"), model.dof());
   const std::vector<double> noise =

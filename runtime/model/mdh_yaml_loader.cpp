@@ -17,6 +17,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include "modelgen/model/number_text.hpp"
+#include "modelgen/model/physical_consistency.hpp"
 #include "runtime/model/angle_snapping.hpp"
 #include "runtime/model/yaml_reader.hpp"
 
@@ -434,15 +435,19 @@ class MdhYamlLoader {
     const std::vector<StandardParam>& params = model_.tree.params;
     for (const auto& [k, node] : keys) {
       const ParamKind kind = params[k].kind;
-      const bool nonnegative = kind == ParamKind::kM || kind == ParamKind::kXX ||
-                               kind == ParamKind::kYY || kind == ParamKind::kZZ ||
-                               kind == ParamKind::kIa || kind == ParamKind::kIam;
-      if (nonnegative && *model_.known_values[k] < 0) {
+      const bool inertial = kind == ParamKind::kM || kind == ParamKind::kXX ||
+                            kind == ParamKind::kYY || kind == ParamKind::kZZ;
+      if ((inertial || must_be_nonnegative(kind)) && *model_.known_values[k] < 0) {
+        const char* what = kind == ParamKind::kM                        ? "a mass"
+                           : inertial || kind == ParamKind::kIa ||
+                                   kind == ParamKind::kIam              ? "an inertia"
+                                                                        : "a friction coefficient";
         in_.fail(node, "'" + params[k].name + "' in 'known' is " +
-                           shortest_text(*model_.known_values[k]) + ", but " +
-                           (kind == ParamKind::kM ? "a mass" : "an inertia") + " cannot be negative");
+                           shortest_text(*model_.known_values[k]) + ", but " + what +
+                           " cannot be negative");
       }
     }
+    check_known_bodies(keys);
     for (std::size_t body = 0; body < model_.tree.bodies.size(); ++body) {
       static const ParamKind kTensor[] = {ParamKind::kXX, ParamKind::kXY, ParamKind::kXZ,
                                           ParamKind::kYY, ParamKind::kYZ, ParamKind::kZZ};
@@ -479,6 +484,29 @@ class MdhYamlLoader {
                                      ") is not positive semi-definite (principal moments " + text +
                                      "): no mass distribution has it");
       }
+    }
+  }
+
+  // A body whose ten inertial parameters are all known must be one some mass distribution
+  // has: its pseudo-inertia positive semidefinite (mass, centre of mass and the inertia about
+  // it with the triangle inequalities), which the tensor about the frame origin alone is not.
+  void check_known_bodies(const std::map<int, YAML::Node>& keys) {
+    const auto indices = inertial_param_indices(model_.tree);
+    Eigen::VectorXd standard = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(model_.tree.params.size()));
+    std::vector<char> complete(indices.size(), 0);
+    for (std::size_t body = 0; body < indices.size(); ++body) {
+      complete[body] = std::all_of(indices[body].begin(), indices[body].end(), [&](int k) {
+        return k >= 0 && model_.known_values[static_cast<std::size_t>(k)].has_value();
+      });
+      if (!complete[body]) continue;
+      for (int k : indices[body]) standard[k] = *model_.known_values[static_cast<std::size_t>(k)];
+    }
+    for (const PhysicalViolation& violation : physical_violations(model_.tree, standard)) {
+      if (violation.body < 0 || !complete[static_cast<std::size_t>(violation.body)]) continue;
+      const int first = indices[static_cast<std::size_t>(violation.body)][0];
+      in_.fail(keys.at(first), "link " + std::to_string(violation.body + 1) + " in 'known' (" +
+                                   violation.parameter + "): " + violation.condition +
+                                   "; no mass distribution has these values");
     }
   }
 

@@ -6,7 +6,6 @@
 
 #include <ceres/ceres.h>
 
-#include <Eigen/SVD>
 #include <cmath>
 #include <limits>
 #include <utility>
@@ -14,35 +13,12 @@
 #include "modelgen/estimation/estimation_error.hpp"
 #include "modelgen/ml/linear_route.hpp"
 #include "runtime/src/ml/problem_impl.hpp"
+#include "runtime/src/ml/standard_deviations.hpp"
 
 namespace modelgen {
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-
-// Covariance of the identifiable unknowns: s^2 (J^T J)^-1 on unit-norm columns by the SVD.
-Eigen::VectorXd standard_deviations(const Eigen::MatrixXd& J, const std::vector<bool>& keep,
-                                    double s2) {
-  std::vector<Eigen::Index> live;
-  for (Eigen::Index u = 0; u < J.cols(); ++u) {
-    if (keep[u]) live.push_back(u);
-  }
-  Eigen::VectorXd out = Eigen::VectorXd::Constant(J.cols(), kNaN);
-  if (live.empty()) return out;
-  Eigen::MatrixXd Js(J.rows(), static_cast<Eigen::Index>(live.size()));
-  Eigen::VectorXd scale(static_cast<Eigen::Index>(live.size()));
-  for (size_t c = 0; c < live.size(); ++c) {
-    scale[c] = J.col(live[c]).norm();
-    Js.col(c) = J.col(live[c]) / scale[c];
-  }
-  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(Js, Eigen::ComputeThinV);
-  const Eigen::VectorXd inv = svd.singularValues().cwiseInverse();
-  const Eigen::MatrixXd Vs = svd.matrixV() * inv.asDiagonal();
-  for (size_t c = 0; c < live.size(); ++c) {
-    out[live[c]] = std::sqrt(s2 * Vs.row(c).squaredNorm()) / scale[c];
-  }
-  return out;
-}
 
 }  // namespace
 
@@ -113,7 +89,7 @@ MlFitResult fit_ml(MlProblem& problem, const MlFitOptions& options) {
   const double s2 =
       residuals.squaredNorm() / static_cast<double>(std::max<Eigen::Index>(1, dof_free));
   result.residual_std_dev = std::sqrt(s2);
-  result.std_dev = standard_deviations(J, result.identifiability.identifiable, s2);
+  result.std_dev = detail::standard_deviations(J, result.identifiability.identifiable, s2);
   result.value = theta1;
   for (int u = 0; u < U; ++u) {
     if (!result.identifiability.identifiable[u]) result.value[u] = kNaN;

@@ -97,10 +97,11 @@ TEST(ModelidCli, NoiseFreeDataGiveTheTrueParameters) {
   const std::string truth = testing::TempDir() + "tx40_truth.json";
   // TX-40 with its own description's a-priori drive values plus link inertias, through the
   // numeric reference (--robot is the description file).
-  std::ofstream(truth) << R"({"standard": {"ZZ1": 1.2, "XX2": 0.3, "YY2": 0.9, "ZZ2": 1.1,
-      "MX2": 2.2, "MY2": 0.1, "M2": 10, "XX3": 0.1, "YY3": 0.2, "ZZ3": 0.15, "MY3": -0.6, "M3": 5,
-      "XX4": 0.02, "ZZ4": 0.03, "MX4": -0.04, "XX5": 0.01, "YZ5": 0.003, "MY5": 0.02,
-      "ZZ6": 0.002, "MX6": 0.02, "Ia3": 0.09, "Ia4": 0.03, "Ia5": 0.05, "Ia6": 0.01,
+  std::ofstream(truth) << R"({"standard": {"XX1": 0.8, "YY1": 0.8, "ZZ1": 1.2, "M1": 20,
+      "XX2": 0.3, "YY2": 0.9, "ZZ2": 1.1, "MX2": 2.2, "MY2": 0.1, "M2": 10, "XX3": 0.2,
+      "YY3": 0.2, "ZZ3": 0.2, "MY3": -0.6, "M3": 5, "XX4": 0.02, "YY4": 0.03, "ZZ4": 0.03,
+      "MX4": -0.04, "M4": 2, "XX5": 0.01, "YY5": 0.01, "ZZ5": 0.01, "YZ5": 0.003, "MY5": 0.02,
+      "M5": 1, "XX6": 0.002, "YY6": 0.002, "ZZ6": 0.002, "MX6": 0.02, "M6": 0.5, "Ia3": 0.09, "Ia4": 0.03, "Ia5": 0.05, "Ia6": 0.01,
       "Fv1": 8, "Fc1": 7, "Fv2": 5.5, "Fc2": 8, "Fv3": 2, "Fc3": 6, "Fv4": 1.1, "Fc4": 2.5,
       "Fv5": 1.9, "Fc5": 3, "Fv6": 0.65, "Fc6": 0.3, "Iam6": 0.0096, "Fvm6": 0.6, "Fcm6": 1.9}})";
   const std::string description = quoted("robots/tx40.yaml");

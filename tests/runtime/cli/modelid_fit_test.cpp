@@ -254,16 +254,18 @@ TEST(ModelidFit, ImpossibleEstimatesAreFlagged) {
   }
   EXPECT_TRUE(negative_regrouped) << "no negative regrouped parameter left to test the exemption";
 
-  nlohmann::json truth =
-      nlohmann::json::parse(test::read_text(test::source_path("robots/data/kr150/true.json")));
-  truth["standard"]["Fv3"] = -20.0;
-  truth["standard"]["Ia3"] = -1.5;
-  test::write_text(dir / "truth.json", truth.dump());
-  const CliRun simulated =
-      modelid("simulate --robot kr150 --params " + quoted(dir / "truth.json") + " --trajectory " +
-              quoted_source("robots/data/kr150/excitation.yaml") +
-              " --noise 0 --sample-time 0.01 -o " + quoted(dir / "data.csv"));
+  // simulate refuses a truth no robot has (Fv3 = -20, Ia3 = -1.5: impossible_truth_test.cpp):
+  // data of such a robot are made by taking 40 dq3 + 7.5 ddq3 off the torque of axis 3 of the
+  // true robot (Fv3 20, Ia3 6).
+  const CliRun simulated = modelid(
+      "simulate --robot kr150 --params " + quoted_source("robots/data/kr150/true.json") +
+      " --trajectory " + quoted_source("robots/data/kr150/excitation.yaml") +
+      " --noise 0 --sample-time 0.01 -o " + quoted(dir / "true.csv"));
   ASSERT_EQ(simulated.exit_code, 0) << simulated.err;
+  Trajectory data = read_trajectory_csv((dir / "true.csv").string(), 6);
+  ASSERT_TRUE(data.has_velocity);
+  data.tau.col(2) -= 40 * data.dq.col(2) + 7.5 * data.ddq.col(2);
+  write_trajectory_csv((dir / "data.csv").string(), data);
   const CliRun fit =
       modelid("fit --robot kr150 --data " + quoted(dir / "data.csv") + " --method ols");
   ASSERT_EQ(fit.exit_code, 0) << fit.err;
