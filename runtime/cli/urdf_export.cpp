@@ -270,7 +270,8 @@ UrdfExport identified_urdf(const std::string& path, const std::string& text,
         tree.bodies[b].name + "': the identified body (" + text_of(identified[9]) +
         " kg) less the a-priori inertials of the links fixed to it (" + text_of(fixed[9]) +
         " kg) is no physical body; '" + tree.bodies[b].name +
-        "' takes the whole body and the <inertial> of " + joined(removed) + " is removed");
+        "' takes the whole body, and the <inertial>" + (removed.size() > 1 ? "s of " : " of ") +
+        joined(removed) + (removed.size() > 1 ? " are removed" : " is removed"));
   }
   replace_comment(document, comment_text(description, standard, note));
   out.text = printed(document);

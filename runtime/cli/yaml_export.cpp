@@ -17,6 +17,8 @@ namespace modelgen::internal {
 
 namespace {
 
+const std::string kNoteStart = "Identified by modelid export";
+
 // The lines of `text`, each with its line break.
 std::vector<std::string> lines_of(const std::string& text) {
   std::vector<std::string> lines;
@@ -87,8 +89,12 @@ std::string identified_yaml(const std::string& path, const std::string& text,
          blank_or_top_comment(lines[static_cast<std::size_t>(next_line - 1)])) {
     --next_line;
   }
+  // A section an earlier export wrote goes with the comment it wrote above it.
+  int start = known_line;
+  while (start > 0 && lines[static_cast<std::size_t>(start - 1)].rfind("# ", 0) == 0) --start;
+  if (lines[static_cast<std::size_t>(start)].rfind("# " + kNoteStart, 0) != 0) start = known_line;
   std::string out;
-  for (int i = 0; i < known_line; ++i) out += lines[static_cast<std::size_t>(i)];
+  for (int i = 0; i < start; ++i) out += lines[static_cast<std::size_t>(i)];
   out += section;
   for (std::size_t i = static_cast<std::size_t>(next_line); i < lines.size(); ++i) out += lines[i];
   return out;

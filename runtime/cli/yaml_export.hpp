@@ -14,7 +14,8 @@ namespace modelgen::internal {
 /// every value of `standard` (one per description parameter, in its order), grouped by link
 /// under a comment naming the joint, the section introduced by the comment lines of `note`.
 /// A top-level `known:` that is there is replaced, with its comments (up to the next top-level
-/// key, less the blank and column-0 comment lines just before that key); otherwise the section
+/// key, less the blank and column-0 comment lines just before that key; with the comment above
+/// it when that starts "# Identified by modelid export", as `note` should); otherwise the section
 /// is added at the end. Throws InputError when `known` shares a line with another top-level key
 /// (a flow-style top level), which cannot be replaced without rewriting the rest.
 std::string identified_yaml(const std::string& path, const std::string& text,

@@ -278,6 +278,17 @@ TEST(ModelidExport, FixedLinksKeepTheirInertialsAndTheMovingLinkTakesTheRest) {
       link_element(written, "l2")->FirstChildElement("inertial")->FirstChildElement("origin");
   EXPECT_STREQ(origin->Attribute("rpy"), "0 0 0.3");  // the link's inertial frame is kept
   EXPECT_NE(text.find("a gripper"), std::string::npos);
+
+  // Identified again: one comment of export's, the new one.
+  const nlohmann::json est2 = tool_arm_estimate(dir / "id.urdf", 1.1);
+  test::write_text(dir / "est2.json", est2.dump(2));
+  const CliRun rerun = modelid("export --robot " + quoted(dir / "id.urdf") + " --params " +
+                               quoted(dir / "est2.json") + " -o " + quoted(dir / "id2.urdf"));
+  ASSERT_EQ(rerun.exit_code, 0) << rerun.err;
+  EXPECT_LT(round_trip_error(dir / "id2.urdf", est2), 1e-9);
+  const std::string text2 = test::read_text(dir / "id2.urdf");
+  EXPECT_EQ(text2.find("modelid export:"), text2.rfind("modelid export:"));
+  EXPECT_NE(text2.find("est2.json"), std::string::npos);
 }
 
 TEST(ModelidExport, AToolHeavierThanItsIdentifiedBodyMovesOntoTheMovingLink) {
@@ -289,8 +300,13 @@ TEST(ModelidExport, AToolHeavierThanItsIdentifiedBodyMovesOntoTheMovingLink) {
   const CliRun run = modelid("export --robot " + quoted(dir / "arm.urdf") + " --params " +
                              quoted(dir / "est.json") + " -o " + quoted(dir / "id.urdf"));
   ASSERT_EQ(run.exit_code, 0) << run.err;
-  EXPECT_NE(run.err.find("warning: link 'l2'"), std::string::npos) << run.err;
-  EXPECT_NE(run.err.find("'tool'"), std::string::npos) << run.err;
+  const std::string warning =
+      (dir / "arm.urdf").string() + ":25: warning: link 'l2': the identified body (";
+  EXPECT_EQ(run.err.substr(0, warning.size()), warning);
+  EXPECT_NE(run.err.find(" kg) is no physical body; 'l2' takes the whole body, and the "
+                         "<inertial> of 'tool' is removed\n"),
+            std::string::npos)
+      << run.err;
 
   const std::string text = test::read_text(dir / "id.urdf");
   ASSERT_NE(urdf::parseURDF(text), nullptr) << text;
@@ -319,6 +335,20 @@ void yaml_round_trip(const std::string& shipped, const std::string& kept_prefix_
   ASSERT_NE(end, std::string::npos);
   EXPECT_EQ(text.substr(0, end), original.substr(0, end));
   EXPECT_EQ(text.find("Ia1: 0.362"), std::string::npos);  // the old value is gone
+
+  // Identified again: the section and its comment replaced, not repeated.
+  const std::string again = (dir / "id.yaml").string();
+  const nlohmann::json est2 = estimate_of(again, 1.5 * consistent_standard(load_robot(again)));
+  test::write_text(dir / "est2.json", est2.dump(2));
+  const CliRun rerun = modelid("export --robot " + quoted(dir / "id.yaml") + " --params " +
+                               quoted(dir / "est2.json") + " -o " + quoted(dir / "id2.yaml"));
+  ASSERT_EQ(rerun.exit_code, 0) << rerun.err;
+  EXPECT_LT(round_trip_error(dir / "id2.yaml", est2), 1e-9);
+  const std::string text2 = test::read_text(dir / "id2.yaml");
+  EXPECT_EQ(text2.substr(0, end), original.substr(0, end));
+  const std::string note = "# Identified by modelid export";
+  EXPECT_EQ(text2.find(note), text2.rfind(note));
+  EXPECT_EQ(text2.find("\nknown:"), text2.rfind("\nknown:"));
 }
 
 TEST(ModelidExport, Tx40KnownSectionIsReplaced) { yaml_round_trip("robots/tx40.yaml", "known:"); }
