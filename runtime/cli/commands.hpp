@@ -8,7 +8,8 @@
 namespace modelgen::internal {
 
 /// The options each command accepts, for parse_arguments.
-extern const std::map<std::string, OptionKind> kFitOptions, kPredictOptions, kSimulateOptions;
+extern const std::map<std::string, OptionKind> kFitOptions, kPredictOptions, kSimulateOptions,
+    kExportOptions;
 
 /// modelid fit: base parameters from trajectories (fit_command.cpp).
 int run_fit(const CommandLine& args);
@@ -18,6 +19,8 @@ int run_fit_ml(const CommandLine& args, double prior_weight);
 int run_predict(const CommandLine& args);
 /// modelid simulate: synthetic data from a Fourier excitation and true parameters.
 int run_simulate(const CommandLine& args);
+/// modelid export: the identified values of an estimate written into the description.
+int run_export(const CommandLine& args);
 /// modelid check ROBOT: loads a model and prints its sizes.
 int run_check(const CommandLine& args);
 

@@ -1,5 +1,5 @@
-// modelid command line: dispatches to the commands (fit, predict, simulate, check; one source
-// file each) and turns their errors into messages and exit codes: 0 success, 1 bad input or
+// modelid command line: dispatches to the commands (fit, predict, simulate, export, check; one
+// source file each) and turns their errors into messages and exit codes: 0 success, 1 bad input or
 // data, 2 bad usage, 3 internal error.
 
 #include <cstring>
@@ -35,6 +35,7 @@ constexpr const char* kUsage =
     "       modelid simulate --robot DESCRIPTION.yaml --drive THETA.json --trajectory TRAJ.yaml\n"
     "                   --noise SIGMA[,SIGMA2,...] [--seed N] [--sample-time S] [--periods K]\n"
     "                   -o A.csv\n"
+    "       modelid export --robot DESCRIPTION --params EST.json -o IDENTIFIED\n"
     "       modelid check ROBOT\n"
     "       (any command: --progress shows progress lines also when stderr is not a terminal)\n"
     "       modelid --version | --help\n"
@@ -47,7 +48,13 @@ constexpr const char* kUsage =
     "them, velocities and accelerations come from central differences). README.md has details.\n"
     "simulate --drive: THETA.json is {\"name\": value} over the drive model's parameters\n"
     "(XXj..Mj, JMj, Rvj, Rcj, Rzj, load_m, load_cx, ..., load_Iyz; missing: 0, Rzj 1); the\n"
-    "noise (one sigma or one per motor) is added to the motor torques, tau = K^T tau_M written.\n";
+    "noise (one sigma or one per motor) is added to the motor torques, tau = K^T tau_M written.\n"
+    "export: the \"standard\" set of an estimate of fit --physical written into the description\n"
+    "(DESCRIPTION.urdf -> IDENTIFIED.urdf, DESCRIPTION.yaml -> IDENTIFIED.yaml). URDF: each\n"
+    "moving link's <inertial> gets its identified body less the a-priori inertials of the links\n"
+    "fixed to it, which keep theirs (when that is no physical body, the moving link takes it all\n"
+    "and the fixed links' inertials are removed, with a warning); drive parameters have no URDF\n"
+    "element and go into a comment. YAML: every standard parameter as its known: section.\n";
 
 int dispatch(int argc, char** argv) {
   const std::string command = argv[1];
@@ -64,6 +71,7 @@ int dispatch(int argc, char** argv) {
   if (command == "fit") return run_fit(parse_arguments(argc, argv, kFitOptions));
   if (command == "predict") return run_predict(parse_arguments(argc, argv, kPredictOptions));
   if (command == "simulate") return run_simulate(parse_arguments(argc, argv, kSimulateOptions));
+  if (command == "export") return run_export(parse_arguments(argc, argv, kExportOptions));
   if (command == "check") {
     return run_check(parse_arguments(argc, argv, {{"--angle-tolerance", OptionKind::kOnce}}));
   }
