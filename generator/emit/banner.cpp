@@ -57,7 +57,7 @@ std::string render_banner(const std::string& file, const RenderInput& in) {
                                         .set("file", estimate.file_name)
                                         .set("method", estimate.method.empty()
                                                            ? ""
-                                                           : " (" + estimate.method + ")")
+                                                           : ", method " + estimate.method)
                                         .set("sha256", estimate.sha256)
                                         .render());
                      })

@@ -100,7 +100,7 @@ TEST(IdentifiedConstants, BannerNamesTheEstimateByItsHash) {
   const std::string sha = sha256_hex(read_source_file(MODELGEN_IDENTIFIED_ESTIMATE));
   for (const char* file : {"kr150.hpp", "kr150.cpp"}) {
     const std::string text = file_text(std::string(MODELGEN_IDENTIFIED_DIR) + "/" + file);
-    EXPECT_NE(text.find("// Identified parameters: kr150_estimate.json (IDIM-WLS)\n"
+    EXPECT_NE(text.find("// Identified parameters: kr150_estimate.json, method IDIM-WLS\n"
                         "// Identified parameters SHA-256: " +
                         sha + "\n"),
               std::string::npos)

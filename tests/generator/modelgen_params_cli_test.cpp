@@ -42,9 +42,11 @@ std::string literal(double value, bool is_float) {
   return text + (is_float ? "f" : "");
 }
 
-std::string estimate_json(const std::string& description_hash_member) {
+// An estimate as modelid fit -o writes it; `extra_members` go before "parameters".
+std::string estimate_json(const std::string& description_hash_member,
+                          const std::string& extra_members = "") {
   std::string text = "{\n  \"model\": \"two_axes\",\n" + description_hash_member +
-                     "  \"method\": \"IDIM-WLS\",\n  \"parameters\": [\n";
+                     "  \"method\": \"IDIM-WLS\",\n" + extra_members + "  \"parameters\": [\n";
   for (std::size_t k = 0; k < kValues.size(); ++k) {
     text += "    {\"name\": \"" + kValues[k].first +
             "\", \"value\": " + literal(kValues[k].second, false) +
@@ -118,7 +120,7 @@ TEST(ModelgenParams, ConstantsFollowTheModelsBaseParameterOrder) {
 
   const std::string sha = sha256_hex(read_source_file(estimate.string()));
   const std::string banner_lines =
-      "// Identified parameters: two_axes_est.json (IDIM-WLS)\n"
+      "// Identified parameters: two_axes_est.json, method IDIM-WLS\n"
       "// Identified parameters SHA-256: " +
       sha + "\n";
   for (const std::string* text : {&header, &source}) {
@@ -133,6 +135,20 @@ TEST(ModelgenParams, ConstantsFollowTheModelsBaseParameterOrder) {
       << manifest;
   EXPECT_NE(manifest.find("{\"name\": \"inverse_dynamics_identified\""), std::string::npos);
   EXPECT_NE(manifest.find("{\"name\": \"ZZ1R\", \"value\": 1.25}"), std::string::npos);
+}
+
+// fit --physical adds a consistent standard set; the constants are still "parameters", the base
+// estimate (here the standard set would give ZZ1R = 99 + 0.25 M2).
+TEST(ModelgenParams, PhysicalEstimateGivesItsBaseParameters) {
+  const fs::path dir = test::test_folder();
+  const fs::path estimate = dir / "physical.json";
+  test::write_text(estimate, estimate_json(hash_member(),
+                                           "  \"standard\": {\"ZZ1\": 99.0, \"M2\": 4.0},\n"
+                                           "  \"physical\": {\"prior_weight\": 0.001},\n"));
+  const CliRun run = modelgen(test::quoted_source(kRobot) + " -o " + test::quoted(dir / "out") +
+                              " --params " + test::quoted(estimate));
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_NE(read_text(dir / "out/two_axes.cpp").find("    1.25,  // ZZ1R\n"), std::string::npos);
 }
 
 TEST(ModelgenParams, WithoutParamsNothingIdentifiedIsEmitted) {
