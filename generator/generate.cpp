@@ -4,12 +4,14 @@
 
 #include <filesystem>
 
+#include "generator/estimate/estimate_file.hpp"
 #include "modelgen/model/number_text.hpp"
+#include "modelgen/model/sha256.hpp"
 
 namespace modelgen::gen {
 
 std::string normalized_command(const std::string& robot_path, const LoadOptions& options,
-                               const std::string& scalar) {
+                               const std::string& scalar, const std::string& params_path) {
   std::string command =
       "modelgen " + std::filesystem::path(robot_path).filename().string() + " -o <dir>";
   if (!options.name.empty()) command += " --name " + options.name;
@@ -19,11 +21,16 @@ std::string normalized_command(const std::string& robot_path, const LoadOptions&
   if (options.angle_tolerance != kDefaultAngleTolerance) {
     command += " --angle-tolerance " + shortest_text(options.angle_tolerance);
   }
+  // The file name only: no directory of the machine that generated; the banner's hash says
+  // which estimate it was.
+  if (!params_path.empty()) {
+    command += " --params " + std::filesystem::path(params_path).filename().string();
+  }
   return command;
 }
 
 GeneratedModel generate_from_file(const std::string& robot_path, const LoadOptions& options,
-                                  const std::string& scalar) {
+                                  const std::string& scalar, const std::string& params_path) {
   GenerationInput input;
   if (scalar == "double") {
     input.scalars = {Scalar::kDouble};
@@ -37,7 +44,10 @@ GeneratedModel generate_from_file(const std::string& robot_path, const LoadOptio
   input.stem = path.stem().string();
   input.input_name = path.filename().string();
   input.input_bytes = read_source_file(robot_path);
-  input.command_line = normalized_command(robot_path, options, scalar);
+  input.command_line = normalized_command(robot_path, options, scalar, params_path);
+  if (!params_path.empty()) {
+    input.estimate = read_estimate_file(params_path, robot_path, sha256_hex(input.input_bytes));
+  }
   return emit_model(model, input);
 }
 

@@ -12,13 +12,17 @@ namespace modelgen::gen {
 /// Loads `robot_path` and emits its model. The output file stem is the description's file name
 /// without extension; the banner's command line is normalized (file name only, options that
 /// change the output in a fixed order). Throws InputError for a bad description.
-/// `scalar` is "both" (double and float entry points), "double" or "float".
+/// `scalar` is "both" (double and float entry points), "double" or "float". `params_path`, when
+/// not empty, is an estimate of `modelid fit -o` whose base parameters become constants and
+/// inverse_dynamics_identified (firmware values); InputError for a bad or foreign estimate.
 GeneratedModel generate_from_file(const std::string& robot_path, const LoadOptions& options,
-                                  const std::string& scalar = "both");
+                                  const std::string& scalar = "both",
+                                  const std::string& params_path = "");
 
-/// "modelgen kr150.yaml -o <dir>" plus --name/--base/--tip/--scalar/--angle-tolerance when not
-/// the default, in that order.
+/// "modelgen kr150.yaml -o <dir>" plus --name/--base/--tip/--scalar/--angle-tolerance/--params
+/// when not the default, in that order (--params by file name only, as the description).
 std::string normalized_command(const std::string& robot_path, const LoadOptions& options,
-                               const std::string& scalar = "both");
+                               const std::string& scalar = "both",
+                               const std::string& params_path = "");
 
 }  // namespace modelgen::gen

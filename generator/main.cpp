@@ -17,7 +17,7 @@ namespace {
 
 constexpr const char* kUsage =
     "usage: modelgen ROBOT -o DIR [--scalar double|float|both] [--base LINK] [--tip LINK]\n"
-    "                [--name NAME] [--angle-tolerance RAD]\n"
+    "                [--name NAME] [--angle-tolerance RAD] [--params EST.json]\n"
     "       modelgen describe ROBOT [--base LINK] [--tip LINK] [--name NAME] [--angle-tolerance RAD]\n"
     "       modelgen base ROBOT [--base LINK] [--tip LINK] [--name NAME] [--angle-tolerance RAD]\n"
     "       modelgen --version | --help\n"
@@ -26,6 +26,10 @@ constexpr const char* kUsage =
     "  -o DIR        generate STEM.hpp, STEM.cpp and STEM.json into DIR (STEM: ROBOT's file\n"
     "                name without extension); all three are replaced together or not at all\n"
     "  --scalar T    entry points for double, float or both (default both)\n"
+    "  --params EST.json\n"
+    "                an estimate of 'modelid fit -o': its base parameters become the constants\n"
+    "                kIdentifiedBase and inverse_dynamics_identified(q, dq, ddq, tau) uses them\n"
+    "                (firmware values); it must have been made on ROBOT (description_sha256)\n"
     "  describe      print the parsed model: joints, drive chain, standard parameters\n"
     "  base          print the base parameters and their regrouping relations\n"
     "  --base LINK   URDF: link to use as the fixed base (default: the URDF root)\n"
@@ -41,6 +45,7 @@ struct Arguments {
   std::string robot;
   std::string output_dir;
   std::string scalar = "both";
+  std::string params;  // --params EST.json; empty without it
   modelgen::LoadOptions load;
 };
 
@@ -51,7 +56,7 @@ Arguments parse(int argc, char** argv) {
       argc, argv, 1, "",
       {{"--base", OptionKind::kOnce}, {"--tip", OptionKind::kOnce}, {"--name", OptionKind::kOnce},
        {"--scalar", OptionKind::kOnce}, {"-o", OptionKind::kOnce}, {"--output", OptionKind::kOnce},
-       {"--angle-tolerance", OptionKind::kOnce}});
+       {"--angle-tolerance", OptionKind::kOnce}, {"--params", OptionKind::kOnce}});
   Arguments args;
   args.load.base_link = line.one_or("--base", "");
   args.load.tip_link = line.one_or("--tip", "");
@@ -63,6 +68,8 @@ Arguments parse(int argc, char** argv) {
   }
   if (line.has("-o") && line.has("--output")) throw UsageError("-o and --output given together");
   args.output_dir = line.one_or("-o", line.one_or("--output", ""));
+  args.params = line.one_or("--params", "");
+  if (line.has("--params") && args.params.empty()) throw UsageError("--params needs a file");
 
   const std::vector<std::string>& positional = line.positional;
   if (positional.empty()) throw UsageError("no robot description given");
@@ -70,6 +77,9 @@ Arguments parse(int argc, char** argv) {
     args.command = positional[0];
     if (positional.size() != 2) throw UsageError(args.command + " takes exactly one ROBOT file");
     if (!args.output_dir.empty()) throw UsageError(args.command + " writes no files; drop -o");
+    if (line.has("--params")) {
+      throw UsageError(args.command + " takes no --params; it belongs to generation (-o DIR)");
+    }
     args.robot = positional[1];
     return args;
   }
@@ -110,8 +120,9 @@ int main(int argc, char** argv) {
           model, modelgen::derive_base_parameters(model.tree), closed ? &*closed : nullptr);
     } else {
       const modelgen::gen::GeneratedModel generated =
-          modelgen::gen::generate_from_file(args.robot, args.load, args.scalar);
+          modelgen::gen::generate_from_file(args.robot, args.load, args.scalar, args.params);
       print_notes(generated.notes);
+      for (const std::string& warning : generated.warnings) std::cerr << warning << "\n";
       generated.files.write_to(args.output_dir);
     }
     return 0;

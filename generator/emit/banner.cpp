@@ -49,6 +49,18 @@ std::string render_banner(const std::string& file, const RenderInput& in) {
           .set("input", in.input.input_name)
           .set("command", in.input.command_line)
           .set("sha256", in.sha256)
+          .set_block("identified",
+                     [&](CodeWriter& out) {
+                       if (!in.input.estimate) return;
+                       const EstimateFile& estimate = *in.input.estimate;
+                       out.lines_of(Printer(embedded_template("banner_identified"))
+                                        .set("file", estimate.file_name)
+                                        .set("method", estimate.method.empty()
+                                                           ? ""
+                                                           : ", method " + estimate.method)
+                                        .set("sha256", estimate.sha256)
+                                        .render());
+                     })
           .set_block("op_table", [&](CodeWriter& out) { write_op_table(in.functions, out); })
           .render());
 }

@@ -21,7 +21,10 @@ struct Built {
 
 void check_output_count(const Built& built, const ModelSizes& sizes) {
   int expected = 0;
-  for (const ArraySpec& array : built.entry->outputs) expected += array_size(array, sizes);
+  // A wrapper's outputs are written by the entry point it calls.
+  if (!built.definition.outputs_written_by_call) {
+    for (const ArraySpec& array : built.entry->outputs) expected += array_size(array, sizes);
+  }
   const int written = static_cast<int>(built.definition.outputs.size());
   if (written != expected) {
     throw std::logic_error(std::string("emit_functions: the builder of ") + built.entry->name +
@@ -31,10 +34,12 @@ void check_output_count(const Built& built, const ModelSizes& sizes) {
 }
 
 std::vector<Built> run_builders(const RobotModel& model, const BaseParameterSet& base,
-                                ExprGraph& graph) {
-  BuildContext context{model, base, graph, make_symbolic_inputs(graph, model.tree)};
+                                ExprGraph& graph, const std::vector<Scalar>& scalars,
+                                bool with_estimate) {
+  BuildContext context{model, base, graph, make_symbolic_inputs(graph, model.tree), scalars};
   std::vector<Built> built;
   for (const FunctionEntry& entry : function_registry()) {
+    if (entry.emitted == Emitted::kWithEstimate && !with_estimate) continue;
     built.push_back({&entry, entry.build(context)});
   }
   const ModelSizes sizes{model.tree.dof, context.num_params(), context.num_base(),
@@ -95,8 +100,9 @@ void add_callee_counts(std::vector<EmittedFunction>& functions) {
 }  // namespace
 
 std::vector<EmittedFunction> emit_functions(const RobotModel& model, const BaseParameterSet& base,
-                                            ExprGraph& graph, const std::vector<Scalar>& scalars) {
-  const std::vector<Built> built = run_builders(model, base, graph);
+                                            ExprGraph& graph, const std::vector<Scalar>& scalars,
+                                            bool with_estimate) {
+  const std::vector<Built> built = run_builders(model, base, graph, scalars, with_estimate);
   // File order: by section; in a section the plain functions, then the _sincos variants, each
   // in registry order.
   std::vector<std::pair<const Built*, bool>> order;

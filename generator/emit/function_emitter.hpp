@@ -26,9 +26,11 @@ struct EmittedFunction {
 };
 
 /// Every entry point in the order of the generated files: the sections in their order, each
-/// with its functions in registry order followed by their _sincos variants. Throws
-/// std::logic_error when a builder writes more or fewer values than its entry declares.
+/// with its functions in registry order followed by their _sincos variants; the functions on
+/// identified constants (Emitted::kWithEstimate) only `with_estimate`. Throws std::logic_error
+/// when a builder writes more or fewer values than its entry declares.
 std::vector<EmittedFunction> emit_functions(const RobotModel& model, const BaseParameterSet& base,
-                                            ExprGraph& graph, const std::vector<Scalar>& scalars);
+                                            ExprGraph& graph, const std::vector<Scalar>& scalars,
+                                            bool with_estimate = false);
 
 }  // namespace modelgen::gen

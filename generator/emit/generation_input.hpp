@@ -1,10 +1,12 @@
 // What, besides the robot model, goes into the generated files.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "generator/emit/number_format.hpp"
+#include "generator/estimate/estimate_file.hpp"
 
 namespace modelgen::gen {
 
@@ -15,6 +17,9 @@ struct GenerationInput {
   std::string command_line;  ///< normalized: only options that change the output, fixed order
   /// Scalar types to emit entry points for, in this order (double first when both).
   std::vector<Scalar> scalars = {Scalar::kDouble, Scalar::kFloat};
+  /// The estimate of --params, whose base parameters become constants and
+  /// inverse_dynamics_identified; none without it.
+  std::optional<EstimateFile> estimate;
 };
 
 }  // namespace modelgen::gen

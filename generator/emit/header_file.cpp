@@ -7,6 +7,7 @@
 #include <cctype>
 
 #include "generator/emit/banner.hpp"
+#include "generator/emit/identified_constants.hpp"
 #include "generator/emit/printer.hpp"
 #include "generator/emit/prototype.hpp"
 #include "generator/functions/registry.hpp"
@@ -90,6 +91,8 @@ std::string render_header(const RenderInput& in) {
       .set("standard_param_count", static_cast<long long>(in.model.tree.params.size()))
       .set("base_param_count", static_cast<long long>(in.base.params.size()))
       .set("drive_param_count", static_cast<long long>(in.drive_param_names.size()))
+      .set_block("identified_declarations",
+                 [&](CodeWriter& out) { write_identified_declarations(in, out); })
       .set_block("model_struct", [&](CodeWriter& out) { write_model_struct(in, out); })
       .set_block("declarations", [&](CodeWriter& out) { write_declarations(in, out); })
       .render();

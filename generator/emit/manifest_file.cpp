@@ -92,6 +92,16 @@ std::string render_manifest(const RenderInput& in) {
   document["base_parameters"] = base_parameters(in);
   document["drive_parameters"] = in.drive_param_names;
   document["functions"] = functions(in);
+  if (in.input.estimate) {
+    const EstimateFile& estimate = *in.input.estimate;
+    document["identified_from"] = Json{
+        {"file", estimate.file_name}, {"sha256", estimate.sha256}, {"method", estimate.method}};
+    Json values = Json::array();
+    for (std::size_t b = 0; b < in.identified_base.size(); ++b) {
+      values.push_back(Json{{"name", in.base.params[b].name}, {"value", in.identified_base[b]}});
+    }
+    document["identified_base"] = values;
+  }
   return layout(document);
 }
 

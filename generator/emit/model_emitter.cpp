@@ -14,19 +14,42 @@
 
 namespace modelgen::gen {
 
+namespace {
+
+// The estimate's values in base-parameter order, refused when they do not fit the model or,
+// with float entry points, a float.
+std::vector<double> identified_values(const EstimateFile& estimate, const RobotModel& model,
+                                      const BaseParameterSet& base,
+                                      const std::vector<Scalar>& scalars) {
+  std::vector<std::string> names;
+  for (const BaseParameter& b : base.params) names.push_back(b.name);
+  std::vector<double> values = base_values(estimate, names, model.name);
+  for (Scalar scalar : scalars) {
+    if (scalar == Scalar::kFloat) check_fits_float(estimate);
+  }
+  return values;
+}
+
+}  // namespace
+
 GeneratedModel emit_model(const RobotModel& model, const GenerationInput& input) {
   const BaseParameterSet base = derive_base_parameters(model.tree);
+  // The estimate is checked before the (longer) derivation of the functions.
+  std::vector<double> identified;
+  if (input.estimate) identified = identified_values(*input.estimate, model, base, input.scalars);
   ExprGraph graph;
   RenderInput in{model,
                  input,
                  base,
                  {},
                  sha256_hex(input.input_bytes),
-                 emit_functions(model, base, graph, input.scalars)};
+                 emit_functions(model, base, graph, input.scalars, input.estimate.has_value()),
+                 std::move(identified)};
   in.drive_param_names = make_drive_parameters(graph, model.tree).names;
 
   GeneratedModel result;
   result.notes = model.notes;
+  if (input.estimate) result.warnings = input.estimate->warnings;
   for (const EmittedFunction& f : in.functions) result.functions.push_back({f.name, f.counts});
   result.files.add(in.header_name(), render_header(in));
   result.files.add(in.source_name(), render_source(in));

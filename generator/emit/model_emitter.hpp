@@ -23,6 +23,7 @@ struct GeneratedModel {
   FileSet files;
   std::vector<FunctionReport> functions;  ///< in the order of the generated files
   std::vector<DescriptionNote> notes;     ///< what the loader snapped (RobotModel::notes)
+  std::vector<std::string> warnings;      ///< about the estimate, as printed ("PATH: warning: ...")
 };
 
 GeneratedModel emit_model(const RobotModel& model, const GenerationInput& input);

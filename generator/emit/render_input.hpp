@@ -19,6 +19,8 @@ struct RenderInput {
   std::vector<std::string> drive_param_names;  ///< theta of drive_torque, in order
   std::string sha256;                          ///< of input.input_bytes, 64 hex digits
   std::vector<EmittedFunction> functions;      ///< in the order of the generated files
+  /// The estimate's values (--params) in the order of base.params; empty without an estimate.
+  std::vector<double> identified_base = {};
 
   std::string header_name() const { return input.stem + ".hpp"; }
   std::string source_name() const { return input.stem + ".cpp"; }

@@ -8,6 +8,7 @@
 
 #include "generator/emit/banner.hpp"
 #include "generator/emit/code_list.hpp"
+#include "generator/emit/identified_constants.hpp"
 #include "generator/emit/printer.hpp"
 #include "generator/emit/prototype.hpp"
 
@@ -105,6 +106,8 @@ std::string render_source(const RenderInput& in) {
       .set_block(
           "joint_offset",
           [&](CodeWriter& out) { write_number_list(as_vector(drives.joint_offset), scalar, out); })
+      .set_block("identified_definitions",
+                 [&](CodeWriter& out) { write_identified_definitions(in, out); })
       .set_block("definitions", [&](CodeWriter& out) { write_definitions(in, out); })
       .render();
 }

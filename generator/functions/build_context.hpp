@@ -20,6 +20,7 @@ struct BuildContext {
   const BaseParameterSet& base;
   ExprGraph& graph;
   SymbolicInputs symbols;  ///< q, dq, ddq, sin/cos, signs and the standard parameters p
+  std::vector<Scalar> scalars;  ///< the scalar types of the entry points, in file order
 
   const RigidBodyTree& tree() const { return model.tree; }
   int dof() const { return model.tree.dof; }

@@ -22,6 +22,7 @@ enum class Section {
   kBaseJacobian,  ///< derivatives of the base inverse dynamics
   kPowerModel,    ///< Gautier & Briot eq. 8-10
   kDriveModel,    ///< Swevers et al. 2002 eq. 12 and its Jacobians
+  kIdentified,    ///< on the identified base parameters of --params (firmware constants)
 };
 
 /// A dimension of an array, in the counts of the generated header.
@@ -41,6 +42,10 @@ enum class Variants { kPlain, kSincos };
 /// Whether the Model struct of the generated header forwards to the (double) function.
 enum class InModelStruct { kNo, kYes };
 
+/// Whether a function is generated for every model or only with an estimate (--params), whose
+/// base parameters it uses as constants.
+enum class Emitted { kAlways, kWithEstimate };
+
 /// What a builder derives.
 struct FunctionDefinition {
   /// The output entries in the order they are written; their count is the sum of the sizes of
@@ -50,6 +55,9 @@ struct FunctionDefinition {
   std::function<std::vector<std::string>(Scalar)> prologue{};
   /// The entry points the prologue calls; their operation counts add to this function's.
   std::vector<std::string> calls{};
+  /// The prologue's call writes the outputs (a function that wraps another entry point), so
+  /// `outputs` stays empty.
+  bool outputs_written_by_call = false;
 };
 
 using Builder = FunctionDefinition (*)(BuildContext& context);
@@ -63,6 +71,7 @@ struct FunctionEntry {
   std::vector<ArraySpec> inputs;
   std::vector<ArraySpec> outputs;
   Builder build;
+  Emitted emitted = Emitted::kAlways;
 };
 
 /// The sizes an Extent stands for in one model.

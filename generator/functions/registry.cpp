@@ -19,6 +19,7 @@ FunctionDefinition build_drive_torque_state_jacobian(BuildContext& context);
 FunctionDefinition build_energy_regressor(BuildContext& context);
 FunctionDefinition build_power_regressor(BuildContext& context);
 FunctionDefinition build_mass_matrix(BuildContext& context);
+FunctionDefinition build_inverse_dynamics_identified(BuildContext& context);
 
 namespace {
 
@@ -63,6 +64,9 @@ const std::vector<FunctionEntry> kRegistry = {
      {kQ, kDq, kDdq}, {{"dh", E::kBaseParams}}, build_power_regressor},
     {"mass_matrix", S::kBase, Variants::kSincos, InModelStruct::kYes,
      {kQ, {"beta", E::kBaseParams}}, {{"M", E::kDof, E::kDof}}, build_mass_matrix},
+    {"inverse_dynamics_identified", S::kIdentified, Variants::kPlain, InModelStruct::kNo,
+     {kQ, kDq, kDdq}, {{"tau", E::kDof}}, build_inverse_dynamics_identified,
+     Emitted::kWithEstimate},
 };
 // clang-format on
 

@@ -87,8 +87,15 @@ class PositionRecorder : public nlohmann::json_sax<nlohmann::json> {
 
   bool parse_error(std::size_t position, const std::string& last_token,
                    const nlohmann::detail::exception& error) override {
-    // Point at the start of the offending token; drop the library's own prefix and position.
-    const std::size_t start = position > last_token.size() ? position - last_token.size() : 0;
+    // `position` counts the characters read, the offending one last. The token string does not
+    // say where a token starts: a one-character token ("]") does not reset it, so it may hold
+    // the tokens before it, control characters spelled "<U+000A>". A number out of range (406)
+    // is a token of its own and is pointed at from its first digit. The library's own prefix
+    // and position are dropped from the message.
+    const std::size_t start = error.id == 406 && position >= last_token.size()
+                                  ? position - last_token.size()
+                              : position > 0 ? position - 1
+                                             : 0;
     const std::pair<int, int> where = line_column(start);
     std::string message = error.what();
     if (const std::size_t end = message.find("] "); end != std::string::npos) {

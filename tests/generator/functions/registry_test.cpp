@@ -43,6 +43,7 @@ TEST(Registry, FilesOrderFunctionsBySectionWithVariantsLast) {
       emit_functions(model, base, graph, {Scalar::kDouble});
   std::size_t expected = 0;
   for (const FunctionEntry& entry : function_registry()) {
+    if (entry.emitted == Emitted::kWithEstimate) continue;  // only with --params
     expected += entry.variants == Variants::kSincos ? 2 : 1;
   }
   ASSERT_EQ(functions.size(), expected);
@@ -76,6 +77,38 @@ TEST(Registry, FilesOrderFunctionsBySectionWithVariantsLast) {
       }
     }
   }
+}
+
+// With an estimate (--params), inverse_dynamics_identified comes last: a call to
+// inverse_dynamics on the constants of the scalar type, no statements of its own, so its
+// operation counts are those of inverse_dynamics. Without one it is not emitted (above).
+TEST(Registry, IdentifiedInverseDynamicsWrapsInverseDynamics) {
+  const RobotModel model = load_robot(test::source_path("robots/tx40.yaml"));
+  const BaseParameterSet base = derive_base_parameters(model.tree);
+  ExprGraph graph;
+  const std::vector<EmittedFunction> functions =
+      emit_functions(model, base, graph, {Scalar::kDouble, Scalar::kFloat}, true);
+  const EmittedFunction& identified = functions.back();
+  ASSERT_EQ(identified.name, "inverse_dynamics_identified");
+  EXPECT_EQ(identified.inputs, (std::vector<std::string>{"q", "dq", "ddq"}));
+  EXPECT_EQ(identified.outputs, (std::vector<std::string>{"tau"}));
+  ASSERT_EQ(identified.bodies.size(), 2u);
+  EXPECT_EQ(identified.bodies[0].lines,
+            (std::vector<std::string>{"inverse_dynamics(q, dq, ddq, kIdentifiedBase, tau);"}));
+  EXPECT_EQ(identified.bodies[1].lines,
+            (std::vector<std::string>{"inverse_dynamics(q, dq, ddq, kIdentifiedBaseFloat, tau);"}));
+  for (const EmittedFunction& f : functions) {
+    if (f.name != "inverse_dynamics") continue;
+    EXPECT_EQ(identified.counts.mul, f.counts.mul);
+    EXPECT_EQ(identified.counts.add, f.counts.add);
+    EXPECT_EQ(identified.counts.trig, f.counts.trig);
+  }
+  // Float alone: the one array is kIdentifiedBase, in float.
+  ExprGraph float_graph;
+  const std::vector<EmittedFunction> float_only =
+      emit_functions(model, base, float_graph, {Scalar::kFloat}, true);
+  EXPECT_EQ(float_only.back().bodies.at(0).lines,
+            (std::vector<std::string>{"inverse_dynamics(q, dq, ddq, kIdentifiedBase, tau);"}));
 }
 
 TEST(Registry, ModelStructHasExactlyTheMarkedMembers) {
