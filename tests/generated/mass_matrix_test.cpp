@@ -26,7 +26,12 @@ namespace model = ::modelgen::MODELGEN_ROBOT_NAMESPACE;
 using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
 using RowMajorFloat = Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
 
+// Random states per comparison; fewer in the sanitizer build (tests/CMakeLists.txt).
+#ifdef MODELGEN_TEST_STATES
+constexpr int kStates = MODELGEN_TEST_STATES;
+#else
 constexpr int kStates = 10000;
+#endif
 
 RigidBodyTree without_gravity(RigidBodyTree tree) {
   tree.gravity = {0, 0, 0};

@@ -19,7 +19,12 @@ namespace {
 
 namespace model = ::modelgen::MODELGEN_ROBOT_NAMESPACE;
 
+// Random states per comparison; fewer in the sanitizer build (tests/CMakeLists.txt).
+#ifdef MODELGEN_TEST_STATES
+constexpr int kStates = MODELGEN_TEST_STATES;
+#else
 constexpr int kStates = 10000;
+#endif
 
 class GeneratedModel : public testing::Test {
  protected:
