@@ -312,18 +312,29 @@ void check_sizes(const RigidBodyTree& tree, const Eigen::MatrixXd& K,
 // A bound that a parameter merely touches, or a body the data leave free at its floor, costs
 // nothing and does not bind.
 std::vector<char> binding_constraints(const Layout& layout, const Eigen::VectorXd& push,
-                                      const Eigen::VectorXd& prior_pull, double tolerance) {
+                                      const Eigen::VectorXd& prior_pull,
+                                      const Eigen::VectorXd& curvature, double tolerance) {
+  // A push that moves its variable by less than a hundredth of the spread the cost allows it
+  // (push / sqrt(curvature), in standard deviations) is rounding, not a constraint the data
+  // meet: the barrier leaves such pushes, whose size depends on the compiler (a clang build
+  // found one on a TX-40 link where g++ found none).
+  const auto moves = [&](int k) { return push[k] > 1e-2 * std::sqrt(curvature[k]); };
   std::vector<char> binding(static_cast<std::size_t>(push.size()), 0);
   for (int k : layout.scalar_params) {
-    binding[static_cast<std::size_t>(k)] = push[k] > 10 * prior_pull[k] + tolerance;
+    binding[static_cast<std::size_t>(k)] = push[k] > 10 * prior_pull[k] + tolerance && moves(k);
   }
   for (const auto& index : layout.body_params) {
     double largest_push = 0, largest_pull = 0;
+    bool moved = false;
     for (int k : index) {
       largest_push = std::max(largest_push, push[k]);
       largest_pull = std::max(largest_pull, prior_pull[k]);
+      moved = moved || moves(k);
     }
-    for (int k : index) binding[static_cast<std::size_t>(k)] = largest_push > 10 * largest_pull + tolerance;
+    for (int k : index) {
+      binding[static_cast<std::size_t>(k)] =
+          largest_push > 10 * largest_pull + tolerance && moved;
+    }
   }
   return binding;
 }
@@ -489,14 +500,13 @@ PhysicalFitResult fit_physical(const RigidBodyTree& tree, const Eigen::MatrixXd&
   result.base = K * result.standard;
   result.cost_increase = (U * (result.base - beta_hat)).squaredNorm();
   // A constraint that only resists the prior (its push no larger than the prior term's own
-  // gradient) does not bind the fit to the data, nor does one whose push is below 1e-4 of the
-  // data term's gradient scale: the barrier leaves pushes of about 1e-6 of it on bodies the
-  // prior holds near the boundary, and their size depends on rounding (a clang build found
-  // 1.5e-5 of it on a TX-40 link where g++ found less than 1e-6).
-  const double tolerance = 1e-4 * std::max((A.transpose() * b).cwiseAbs().maxCoeff(), 1e-300);
+  // gradient) does not bind the fit to the data.
+  const double tolerance = 1e-7 * std::max((A.transpose() * b).cwiseAbs().maxCoeff(), 1e-300);
   const Eigen::VectorXd prior_pull = (G.transpose() * (G * solved.y - g)).cwiseAbs();
+  const Eigen::VectorXd curvature =
+      A.colwise().squaredNorm().transpose() + G.colwise().squaredNorm().transpose();
   const std::vector<char> binding =
-      binding_constraints(layout, solved.push, prior_pull, tolerance);
+      binding_constraints(layout, solved.push, prior_pull, curvature, tolerance);
   result.active_constraints = describe(tree, layout, binding);
   result.base_std_dev = base_standard_deviations(layout, binding, K, U, G, T, d, result.standard);
   return result;
