@@ -271,9 +271,11 @@ int run_fit_ml(const CommandLine& args, double prior_weight) {
     MlRun run;
     run.approach = approach;
     const auto start = std::chrono::steady_clock::now();
+    Eigen::VectorXd route_values;  // approach 1: every value, the route's estimates included
     if (approach == 1) {
       const LinearRoute route = linear_route(problem);
       run.fit = route.fit;
+      route_values = route.values;
       run.summary =
           "linear model (R_z = 1, section 3.2): " + std::to_string(route.excited_parameters) +
           " parameters, " + std::to_string(route.base_parameters) +
@@ -292,10 +294,20 @@ int run_fit_ml(const CommandLine& args, double prior_weight) {
       MlPhysicalRun physical;
       physical.prior_weight = prior_weight;
       physical.unconstrained = run.fit;
-      physical.violations = ml_physical_violations(problem, run.fit);
       MlPhysicalOptions options;
       options.prior_weight = prior_weight;
-      physical.result = fit_ml_physical(problem, run.fit, options);
+      if (approach == 1) {
+        // The route estimates the rotor inertias too: its consistent version searches eq. 18
+        // (R_z = 1, linear in these unknowns) over exactly the route's unknowns.
+        MlSetup route_setup = setup_of(1);
+        route_setup.unknown = run.fit.names;
+        MlProblem route_problem(*drive_model, data, route_setup, route_values);
+        physical.violations = ml_physical_violations(route_problem, run.fit);
+        physical.result = fit_ml_physical(route_problem, run.fit, options);
+      } else {
+        physical.violations = ml_physical_violations(problem, run.fit);
+        physical.result = fit_ml_physical(problem, run.fit, options);
+      }
       run.fit = physical.result.fit;
       physical.seconds =
           std::chrono::duration<double>(std::chrono::steady_clock::now() - physical_start).count();

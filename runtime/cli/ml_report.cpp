@@ -270,7 +270,12 @@ void print_ml_physical(std::ostream& out, const std::vector<MlRun>& runs) {
         << " (weighted sum of squares " << fixed(unconstrained, 0, 6) << " -> "
         << fixed(unconstrained + p.result.cost_increase, 0, 6) << ", "
         << fixed(unconstrained > 0 ? 100 * p.result.cost_increase / unconstrained : 0.0, 0, 3)
-        << " %), " << fixed(p.seconds, 0, 3) << " s\n    binding constraints:";
+        << " %), " << fixed(p.seconds, 0, 3) << " s\n";
+    if (p.result.cost_increase < 0) {
+      out << "    (below zero: this approach's estimate does not minimise eq. 18, the consistent "
+             "search does)\n";
+    }
+    out << "    binding constraints:";
     if (p.result.binding.empty()) out << " none";
     for (const std::string& b : p.result.binding) out << " [" << b << "]";
     out << "\n    rms torque error per fitted motor, unconstrained:";

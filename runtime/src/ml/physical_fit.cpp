@@ -280,6 +280,10 @@ MlPhysicalResult fit_ml_physical(MlProblem& problem, const MlFitResult& unconstr
   if (!(options.prior_weight > 0) || !std::isfinite(options.prior_weight)) {
     throw EstimationError("physical fit: the prior weight must be a positive number");
   }
+  if (unconstrained.names != problem.unknown_names()) {
+    throw EstimationError("physical fit: the unconstrained estimate has other unknowns than the "
+                          "problem (fit it on the same problem)");
+  }
   MlPhysicalResult result;
   if (ml_physical_violations(problem, unconstrained).empty()) {
     result.fit = unconstrained;

@@ -20,6 +20,8 @@
 #include <tuple>
 #include <vector>
 
+#include <Eigen/Eigenvalues>
+
 #include "modelgen/ml/drive_model.hpp"
 #include "modelgen/ml/load_parameters.hpp"
 #include "modelgen/model/load_robot.hpp"
@@ -303,6 +305,73 @@ TEST(ModelidMl, BundledDemoWarnsAboutImpossibleEstimates) {
   }
   EXPECT_EQ(warnings.size(), expected) << fit.err;
   EXPECT_TRUE(rv3_flagged) << "the demo's Rv3 is no longer negative in any approach:\n" << fit.out;
+}
+
+// fit --method ml --physical on the bundled demo: each approach's estimate becomes one no
+// physical law forbids, checked here from the numbers in EST.json (friction and rotor inertias
+// >= 0, efficiencies in (0, 1], a load whose inertia about its centre of gravity is positive
+// definite with the triangle inequalities), at little cost in fit.
+TEST(ModelidMl, PhysicalMakesEveryApproachConsistent) {
+  const std::filesystem::path dir = test_folder("ml");
+  const CliRun simulated =
+      modelid("simulate --robot " + quoted_source("robots/kr150.yaml") + " --drive " +
+              quoted_source("robots/data/kr150/load/drive_truth.json") + " --trajectory " +
+              quoted_source("robots/data/kr150/load/table1.yaml") +
+              " --noise 345,345,345,133,126,123 --seed 2002 --sample-time 0.024 --periods 10 -o " +
+              quoted(dir / "load.csv"));
+  ASSERT_EQ(simulated.exit_code, 0) << simulated.err;
+  const CliRun fit = modelid(
+      "fit --method ml --approach all --robot " + quoted_source("robots/kr150.yaml") + " --known " +
+      quoted_source("robots/data/kr150/load/known.json") + " --data " + quoted(dir / "load.csv") +
+      " --periodic --period 36.96 --physical -o " + quoted(dir / "est.json"));
+  ASSERT_EQ(fit.exit_code, 0) << fit.err;
+  EXPECT_EQ(fit.err.find("cannot be"), std::string::npos) << fit.err;
+  const nlohmann::json est = nlohmann::json::parse(read_text(dir / "est.json"));
+  ASSERT_EQ(est["approaches"].size(), 3u);
+  for (const nlohmann::json& approach : est["approaches"]) {
+    const std::string method = approach["method"];
+    EXPECT_NE(method.find("(physically consistent)"), std::string::npos) << method;
+    ASSERT_TRUE(approach.contains("physical")) << method;
+    const nlohmann::json& physical = approach["physical"];
+    // The unconstrained estimate had a negative viscous friction on axis 3 (the bundled demo's
+    // known flaw), and that bound binds.
+    bool rv3 = false;
+    for (const nlohmann::json& v : physical["unconstrained_violations"]) {
+      rv3 = rv3 || std::string(v).rfind("Rv3 = -", 0) == 0;
+    }
+    EXPECT_TRUE(rv3) << method;
+    bool rv3_binds = false;
+    for (const nlohmann::json& b : physical["binding_constraints"]) rv3_binds |= b == "Rv3 >= 0";
+    EXPECT_TRUE(rv3_binds) << method;
+    for (const nlohmann::json& p : approach["parameters"]) {
+      if (p["value"].is_null()) continue;
+      const std::string name = p["name"];
+      const double value = p["value"];
+      if (name.rfind("Rz", 0) == 0) {
+        EXPECT_GT(value, 0) << method << " " << name;
+        EXPECT_LE(value, 1) << method << " " << name;
+      } else {
+        EXPECT_GE(value, 0) << method << " " << name;
+      }
+    }
+    const nlohmann::json& load = approach["load"];
+    ASSERT_FALSE(load["m"].is_null()) << method;
+    EXPECT_GT(double(load["m"]), 0) << method;
+    const nlohmann::json& I = load["I"];
+    Eigen::Matrix3d inertia;
+    inertia << double(I["xx"]), double(I["xy"]), double(I["xz"]), double(I["xy"]),
+        double(I["yy"]), double(I["yz"]), double(I["xz"]), double(I["yz"]), double(I["zz"]);
+    const Eigen::Vector3d moments =
+        Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(inertia).eigenvalues();
+    EXPECT_GT(moments[0], 0) << method;
+    EXPECT_LE(moments[2], moments[0] + moments[1]) << method;
+    // Consistency costs little: rms torque errors within 5 % of the unconstrained ones.
+    const std::vector<double> rms = approach["rms_per_axis"];
+    const std::vector<double> before = physical["unconstrained"]["rms_per_axis"];
+    for (std::size_t i = 0; i < rms.size(); ++i) {
+      EXPECT_LE(rms[i], 1.05 * before[i] + 1e-12) << method << " motor " << i + 1;
+    }
+  }
 }
 
 TEST(ModelidMl, UsageErrors) {

@@ -47,7 +47,8 @@ std::vector<std::string> ml_physical_violations(const MlProblem& problem, const 
 /// The consistent fit of `problem`, started from `unconstrained` (fit_ml's result on the same
 /// problem) made consistent: the load's pseudo-inertia with its eigenvalues floored, the drive
 /// parameters clipped to their bounds. Returns `unconstrained` itself when it is consistent.
-/// Throws EstimationError when only some of the load's ten parameters are unknown (a known mass
+/// Throws EstimationError when `unconstrained` has other unknowns than `problem`, when only
+/// some of the load's ten parameters are unknown (a known mass
 /// with an unknown centre of gravity, say: the log-Cholesky parameters couple all ten) or the
 /// search fails numerically.
 MlPhysicalResult fit_ml_physical(MlProblem& problem, const MlFitResult& unconstrained,
