@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "modelgen/model/rigid_body_tree.hpp"
+
 namespace modelgen::internal {
 
 /// The values in `path`; every name must be one of `names`. Throws InputError naming
@@ -14,5 +16,12 @@ namespace modelgen::internal {
 /// finite number).
 std::map<std::string, double> read_drive_parameter_values(const std::string& path,
                                                           const std::vector<std::string>& names);
+
+/// What makes `values` (drive-model names, as read above) impossible for a robot with `tree`,
+/// one entry per violated condition: a link whose XXj..Mj are all given that no mass
+/// distribution has (modelgen/model/physical_consistency.hpp), JMj, Rvj, Rcj below zero, Rzj
+/// outside (0, 1], a load (all ten given) that cannot be (modelgen/ml/load_parameters.hpp).
+std::vector<std::string> drive_parameter_violations(const std::map<std::string, double>& values,
+                                                    const RigidBodyTree& tree);
 
 }  // namespace modelgen::internal

@@ -93,6 +93,14 @@ DriveTruth read_drive_truth(const std::string& path, const modelgen::RobotModel&
                             const DriveModel& model) {
   const std::vector<std::string> names = ml_param_names(model);
   const std::map<std::string, double> values = read_drive_parameter_values(path, names);
+  // A simulation of a robot that cannot exist would make data no robot gives.
+  const std::vector<std::string> violations = drive_parameter_violations(values, description.tree);
+  if (!violations.empty()) {
+    std::string list;
+    for (const std::string& v : violations) list += (list.empty() ? "" : "; ") + v;
+    throw std::runtime_error(path + ": error: these values cannot be those of a physical robot: " +
+                             list);
+  }
   const int P = model.num_params();
   const int inertial = P - kDriveParamsPerMotor * model.dof();
 

@@ -183,10 +183,33 @@ int run_fit_ml(const CommandLine& args, double prior_weight) {
   }
   const std::vector<std::string> names = ml_param_names(*drive_model);
   std::map<std::string, double> overrides;
-  if (args.has("--known")) overrides = read_drive_parameter_values(args.one("--known"), names);
+  if (args.has("--known")) {
+    overrides = read_drive_parameter_values(args.one("--known"), names);
+    // A-priori values no robot has would bias every estimate made with them.
+    const std::vector<std::string> violations =
+        drive_parameter_violations(overrides, description.tree);
+    if (!violations.empty()) {
+      std::string list;
+      for (const std::string& v : violations) list += (list.empty() ? "" : "; ") + v;
+      throw std::runtime_error(args.one("--known") +
+                               ": error: these a-priori values cannot be those of a physical "
+                               "robot: " + list);
+    }
+  }
   if (overrides.count("load_m") && !(overrides.at("load_m") > 0)) {
     throw std::runtime_error(args.one("--known") + ": error: 'load_m' must be positive, not " +
                              shortest(overrides.at("load_m")));
+  }
+  if (args.has("--physical") && groups.count("load")) {
+    const auto& load = load_param_names();
+    const auto known = std::count_if(load.begin(), load.end(),
+                                     [&](const std::string& n) { return overrides.count(n) > 0; });
+    if (known > 0 && known < static_cast<long>(load.size())) {
+      throw UsageError{
+          "--physical needs the load's ten parameters all unknown or all known (its "
+          "log-Cholesky parameters couple them); " + args.one("--known") + " gives " +
+          std::to_string(known) + " of them"};
+    }
   }
   MlTruth truth;
   if (args.has("--truth")) truth = read_drive_parameter_values(args.one("--truth"), names);

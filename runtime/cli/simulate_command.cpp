@@ -12,12 +12,14 @@
 #include <optional>
 #include <random>
 #include <sstream>
+#include <stdexcept>
 #include <vector>
 
 #include "modelgen/data/trajectory.hpp"
 #include "modelgen/data/trajectory_csv.hpp"
 #include "modelgen/excitation/fourier_trajectory.hpp"
 #include "modelgen/ml/drive_model.hpp"
+#include "modelgen/model/physical_consistency.hpp"
 #include "runtime/cli/commands.hpp"
 #include "runtime/cli/drive_simulation.hpp"
 #include "runtime/cli/estimate_file.hpp"
@@ -68,7 +70,11 @@ Eigen::VectorXd a_priori_base_parameters(const ModelSource& source,
                                          const IdentificationModel& model) {
   const RobotModel* description = source.any_description();
   const auto known = [](const std::optional<double>& value) { return value.has_value(); };
-  if (description == nullptr || description->param_names() != model.standard_param_names() ||
+  if (description != nullptr && description->param_names() != model.standard_param_names()) {
+    throw UsageError{"simulate needs --params TRUE.json: the description found for '" +
+                     model.name() + "' has other standard parameters than the model"};
+  }
+  if (description == nullptr ||
       std::none_of(description->known_values.begin(), description->known_values.end(), known)) {
     throw UsageError{
         "simulate needs --params TRUE.json (base or standard parameters) or --drive "
@@ -92,6 +98,20 @@ Eigen::VectorXd a_priori_base_parameters(const ModelSource& source,
     if (missing.size() > 8) std::cerr << " ...";
   }
   std::cerr << "\n";
+  // The loaders check each inertial for a negative mass or an indefinite tensor, not for the
+  // triangle inequalities about the centre of mass: the a-priori set is held to what
+  // --params is.
+  std::string problems;
+  for (const PhysicalViolation& v : physical_violations(description->tree, standard)) {
+    problems += (problems.empty() ? "" : "; ") +
+                (v.body >= 0 ? "link '" + description->tree.bodies[static_cast<std::size_t>(v.body)].name + "' " : std::string()) +
+                v.parameter + ": " + v.condition;
+  }
+  if (!problems.empty()) {
+    throw std::runtime_error(description->source_file +
+                             ": error: its a-priori values cannot be those of a physical robot: " +
+                             problems + "; give --params instead");
+  }
   Eigen::VectorXd beta(model.num_base_params());
   model.base_from_standard(standard.data(), beta.data());
   return beta;

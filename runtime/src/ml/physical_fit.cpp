@@ -15,7 +15,6 @@
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <array>
-#include <cctype>
 #include <cmath>
 #include <limits>
 #include <memory>
@@ -36,6 +35,9 @@ constexpr double kEfficiencyFloor = 1e-3;
 // A load whose pseudo-inertia has its smallest eigenvalue below this fraction of its largest
 // sits on the boundary of the consistent set (a degenerate shape: a point, a rod, a plate).
 constexpr double kBoundaryRatio = 1e-6;
+// The length (m) below which a load's centre of gravity is not told from the frame origin by
+// the prior term's scale.
+constexpr double kLengthScale = 0.01;
 
 enum class Bound { kNone, kNonnegative, kEfficiency };
 
@@ -284,6 +286,8 @@ MlPhysicalResult fit_ml_physical(MlProblem& problem, const MlFitResult& unconstr
     throw EstimationError("physical fit: the unconstrained estimate has other unknowns than the "
                           "problem (fit it on the same problem)");
   }
+  std::array<int, 10> load_at{};
+  const bool has_load = load_positions(problem, load_at);  // throws for a partly known load
   MlPhysicalResult result;
   if (ml_physical_violations(problem, unconstrained).empty()) {
     result.fit = unconstrained;
@@ -305,8 +309,6 @@ MlPhysicalResult fit_ml_physical(MlProblem& problem, const MlFitResult& unconstr
 
   // The start: the unconstrained values (held ones included) made consistent, and the prior
   // term's centre and scale per drive unknown and for the load's standard parameters.
-  std::array<int, 10> load_at{};
-  const bool has_load = load_positions(problem, load_at);
   Eigen::VectorXd theta1(U);  // the current unknowns
   for (int u = 0; u < U; ++u) theta1[u] = unconstrained.all_values[indices[u]];
   std::vector<Bound> bound(static_cast<std::size_t>(U));
@@ -331,10 +333,15 @@ MlPhysicalResult fit_ml_physical(MlProblem& problem, const MlFitResult& unconstr
     }
     load_phi = *log_cholesky;
     // Scales by group, as the linear fit's: inertia entries, first moments, mass.
-    const double inertia = std::max(load_centre.head<6>().cwiseAbs().maxCoeff(), 1e-12);
-    const double moments = std::max(load_centre.segment<3>(6).cwiseAbs().maxCoeff(), 1e-12);
+    // Floors from the mass and a 1 cm length, so a start at the origin (a point mass, as the
+    // linear route gives a load it cannot see) does not pin the centre of gravity there.
+    const double mass = std::max(std::abs(load_centre[9]), 1e-6);
+    const double inertia =
+        std::max(load_centre.head<6>().cwiseAbs().maxCoeff(), mass * kLengthScale * kLengthScale);
+    const double moments =
+        std::max(load_centre.segment<3>(6).cwiseAbs().maxCoeff(), mass * kLengthScale);
     for (int i = 0; i < 10; ++i) {
-      load_scale[i] = i < 6 ? inertia : i < 9 ? moments : std::abs(load_centre[9]);
+      load_scale[i] = i < 6 ? inertia : i < 9 ? moments : mass;
     }
   }
 
@@ -347,6 +354,8 @@ MlPhysicalResult fit_ml_physical(MlProblem& problem, const MlFitResult& unconstr
   ceres::Solver::Summary summary;
   int iterations = 0;
   double solve_seconds = 0;
+  bool settled = false;  // the active set stopped changing
+  bool searched = false;
   for (int round = 0; round < 2 * U + 2; ++round) {
     Coordinates coordinates;
     coordinates.U = U;
@@ -381,6 +390,12 @@ MlPhysicalResult fit_ml_physical(MlProblem& problem, const MlFitResult& unconstr
       start.resize(U);
       coordinates.unknowns(phi.data(), start.data(), nullptr);
     }
+    // Every identifiable unknown held on its bound and no load: nothing is left to search.
+    if (coordinates.size() == 0) {
+      settled = true;
+      break;
+    }
+    searched = true;
 
     ceres::Problem::Options problem_options;
     problem_options.cost_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
@@ -445,7 +460,10 @@ MlPhysicalResult fit_ml_physical(MlProblem& problem, const MlFitResult& unconstr
         changed = true;
       }
     }
-    if (!changed) break;
+    if (!changed) {
+      settled = true;
+      break;
+    }
   }
 
   MlFitResult& fit = result.fit;
@@ -453,10 +471,11 @@ MlPhysicalResult fit_ml_physical(MlProblem& problem, const MlFitResult& unconstr
   fit.initial = start;
   fit.identifiability = unconstrained.identifiability;
   fit.notes = unconstrained.notes;
-  fit.converged = summary.termination_type == ceres::CONVERGENCE;
+  // Converged: the active set settled and the last search converged (or none was needed).
+  fit.converged = settled && (!searched || summary.termination_type == ceres::CONVERGENCE);
   fit.iterations = iterations;
   fit.solve_seconds = solve_seconds;
-  fit.solver_report = summary.BriefReport();
+  fit.solver_report = searched ? summary.BriefReport() : "no search: every unknown on its bound";
 
   Eigen::VectorXd residuals;
   Eigen::MatrixXd J;

@@ -107,5 +107,36 @@ TEST(ModelidSimulate, AnImpossibleTruthIsRefusedNamingTheLink) {
   EXPECT_FALSE(fs::exists(dir / "impossible.csv"));
 }
 
+// The drive-model files (simulate --drive, fit --method ml --known) are held to the same
+// conditions: link 3 of the bundled load demo given its centre of mass 2 m off the axis.
+TEST(ModelidSimulate, AnImpossibleDriveTruthOrAPrioriValueIsRefused) {
+  const fs::path dir = test::test_folder("a_priori");
+  for (const char* file : {"drive_truth.json", "known.json"}) {
+    nlohmann::json values = nlohmann::json::parse(
+        test::read_text(test::source_path(std::string("robots/data/kr150/load/") + file)));
+    values["MY3"] = 300.0;
+    test::write_text(dir / file, values.dump(2));
+  }
+  const std::string robot = quoted_source("robots/kr150.yaml");
+  const CliRun simulate = modelid(
+      "simulate --robot " + robot + " --drive " + quoted(dir / "drive_truth.json") +
+      " --trajectory " + quoted_source("robots/data/kr150/load/table1.yaml") +
+      " --noise 1 --sample-time 0.024 -o " + quoted(dir / "load.csv"));
+  EXPECT_EQ(simulate.exit_code, 1) << simulate.err;
+  EXPECT_NE(simulate.err.find("drive_truth.json: error: these values cannot be those of a "
+                              "physical robot: link 'A3' XX3: "),
+            std::string::npos)
+      << simulate.err;
+  EXPECT_FALSE(fs::exists(dir / "load.csv"));
+  const CliRun fit = modelid("fit --method ml --approach 3 --robot " + robot + " --known " +
+                             quoted(dir / "known.json") + " --data " +
+                             quoted_source("robots/data/kr150/excitation.csv") + " --periodic");
+  EXPECT_EQ(fit.exit_code, 1) << fit.err;
+  EXPECT_NE(fit.err.find("known.json: error: these a-priori values cannot be those of a "
+                         "physical robot: link 'A3' XX3: "),
+            std::string::npos)
+      << fit.err;
+}
+
 }  // namespace
 }  // namespace modelgen

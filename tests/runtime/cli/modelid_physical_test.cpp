@@ -153,6 +153,14 @@ TEST(ModelidPhysical, OptionsAreChecked) {
   const CliRun ml = modelid("fit --robot kr150 --method ml --approach 2 --periodic --prior-weight 1" + data);
   EXPECT_NE(ml.exit_code, 0);
   EXPECT_NE(ml.err.find("--prior-weight belongs to --physical"), std::string::npos) << ml.err;
+  // A weighed load mass with --physical: the ten load parameters are searched together.
+  const fs::path dir = test::test_folder("physical");
+  test::write_text(dir / "mass.json", "{\"load_m\": 125.46}");
+  const CliRun partly = modelid("fit --robot " + quoted_source("robots/kr150.yaml") +
+                                " --method ml --approach 3 --periodic --physical --known " +
+                                quoted(dir / "mass.json") + data);
+  EXPECT_EQ(partly.exit_code, 2) << partly.err;
+  EXPECT_NE(partly.err.find("all unknown or all known"), std::string::npos) << partly.err;
 }
 
 }  // namespace

@@ -439,7 +439,7 @@ TEST(ModelidSimulate, UsageAndInputErrors) {
        "flat_load.json: error: the load is not physically consistent: ", 1},
       {"simulate --robot " + robot + " --drive " + quoted(dir / "bad_rz.json") + " --noise 1" +
            rest,
-       "bad_rz.json: error: 'Rz4' is an efficiency and must be positive, not 0", 1},
+       "bad_rz.json: error: these values cannot be those of a physical robot: Rz4 = 0 is no efficiency (0 < Rz <= 1)", 1},
   };
   for (const Case& c : cases) {
     const CliRun run = modelid(c.arguments);
