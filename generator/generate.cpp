@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <filesystem>
 
-#include "generator/emit/function_emitter.hpp"
+#include "generator/functions/entry_points.hpp"
 #include "generator/estimate/estimate_file.hpp"
 #include "modelgen/model/number_text.hpp"
 #include "modelgen/model/sha256.hpp"

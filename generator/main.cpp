@@ -7,8 +7,8 @@
 #include <vector>
 
 #include "generator/describe.hpp"
-#include "generator/emit/function_emitter.hpp"
 #include "generator/dynamics/base_report.hpp"
+#include "generator/functions/entry_points.hpp"
 #include "generator/generate.hpp"
 #include "generator/version.hpp"
 #include "modelgen/model/command_line.hpp"
@@ -86,7 +86,8 @@ Arguments parse(int argc, char** argv) {
     std::size_t start = 0;
     while (true) {
       const std::size_t comma = list.find(',', start);
-      const std::string name = list.substr(start, comma == std::string::npos ? comma : comma - start);
+      const std::string name =
+          list.substr(start, comma == std::string::npos ? comma : comma - start);
       if (name.empty()) throw UsageError("--functions: empty name in '" + list + "'");
       args.functions.push_back(name);
       if (comma == std::string::npos) break;

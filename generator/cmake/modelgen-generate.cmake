@@ -1,5 +1,6 @@
-# modelgen_generate(TARGET <name> ROBOT <description> [OUT_DIR <dir>] [SCALAR double|float|both]
-#                   [FUNCTIONS <entry point>...] [PARAMS <EST.json>] [OPTIONS <modelgen options>...])
+# modelgen_generate(TARGET <name> ROBOT <description> [OUT_DIR <dir>]
+#                   [SCALAR double|float|both] [FUNCTIONS <entry point>...] [PARAMS <EST.json>]
+#                   [OPTIONS <modelgen options>...])
 #
 # Runs modelgen at build time on a robot description (MDH .yaml or .urdf) and defines a static
 # library TARGET holding the generated code, with the output directory as its include path
@@ -19,32 +20,34 @@
 # from the package.
 
 # Every entry point modelgen generates, in the order of its files, with the entry points each
-# one calls after a colon ("modelgen --list-functions" prints the same; a test compares them).
+# one needs after a colon ("modelgen --list-functions" prints the same; a test compares them,
+# and modelgen_generate() compares them with a MODELGEN_EXECUTABLE or installed modelgen).
 set(MODELGEN_ENTRY_POINTS
   idim_regressor_standard
   inverse_dynamics_standard
   joint_sincos
-  idim_regressor_standard_sincos
-  inverse_dynamics_standard_sincos
+  idim_regressor_standard_sincos:joint_sincos
+  inverse_dynamics_standard_sincos:joint_sincos
   base_from_standard
   idim_regressor
   inverse_dynamics
   mass_matrix
-  idim_regressor_sincos
-  inverse_dynamics_sincos
-  mass_matrix_sincos
+  idim_regressor_sincos:joint_sincos
+  inverse_dynamics_sincos:joint_sincos
+  mass_matrix_sincos:joint_sincos
   inverse_dynamics_state_jacobian
   energy_regressor
   power_regressor
-  energy_regressor_sincos
-  power_regressor_sincos
+  energy_regressor_sincos:joint_sincos
+  power_regressor_sincos:joint_sincos
   drive_torque
   drive_torque_jacobian:idim_regressor_standard
   drive_torque_state_jacobian:base_from_standard,inverse_dynamics,inverse_dynamics_state_jacobian
   inverse_dynamics_identified:inverse_dynamics)
 
 set(MODELGEN_EXECUTABLE "" CACHE FILEPATH
-    "The modelgen that modelgen_generate() runs (a build-machine executable in a cross build); empty: modelgen::modelgen")
+    "The modelgen that modelgen_generate() runs (a build-machine executable in a cross build); \
+empty: modelgen::modelgen")
 
 # The entry points of MODELGEN_ENTRY_POINTS that `selection` needs (itself and what it calls,
 # transitively), in file order; inverse_dynamics_identified only `with_params`.
@@ -99,6 +102,26 @@ function(_modelgen_needed_functions out selection with_params)
   set(${out} ${ordered} PARENT_SCOPE)
 endfunction()
 
+# Stops when the modelgen at `executable` generates other entry points than this file knows (a
+# MODELGEN_EXECUTABLE of another version): its files would not be compiled, or not be there.
+# Runs it once per executable and configure.
+function(_modelgen_check_entry_points executable)
+  string(MAKE_C_IDENTIFIER "${executable}" key)
+  get_property(checked GLOBAL PROPERTY _modelgen_checked_${key})
+  if(checked)
+    return()
+  endif()
+  execute_process(COMMAND ${executable} --list-functions RESULT_VARIABLE result
+                  OUTPUT_VARIABLE listed ERROR_VARIABLE errors)
+  string(REPLACE ";" "\n" table "${MODELGEN_ENTRY_POINTS}")
+  if(NOT result EQUAL 0 OR NOT listed STREQUAL "${table}\n")
+    message(FATAL_ERROR "modelgen_generate: ${executable} does not generate the entry points "
+                        "this modelgen_generate() knows (--list-functions: ${result}${errors}); use "
+                        "the modelgen-generate.cmake installed with that modelgen")
+  endif()
+  set_property(GLOBAL PROPERTY _modelgen_checked_${key} TRUE)
+endfunction()
+
 function(modelgen_generate)
   cmake_parse_arguments(PARSE_ARGV 0 arg "" "TARGET;ROBOT;OUT_DIR;SCALAR;PARAMS"
                         "OPTIONS;FUNCTIONS")
@@ -117,6 +140,19 @@ function(modelgen_generate)
     if(NOT missing_value EQUAL -1)
       message(FATAL_ERROR "modelgen_generate: ${keyword} needs a value")
     endif()
+  endforeach()
+  # Options that decide which files are written have arguments of their own, which this
+  # function turns into the library's sources.
+  foreach(option ${arg_OPTIONS})
+    foreach(pair "-o|OUT_DIR" "--output|OUT_DIR" "--scalar|SCALAR" "--params|PARAMS"
+                 "--functions|FUNCTIONS")
+      string(REPLACE "|" ";" pair "${pair}")
+      list(GET pair 0 flag)
+      list(GET pair 1 argument)
+      if(option STREQUAL flag)
+        message(FATAL_ERROR "modelgen_generate: give ${flag} as ${argument}, not in OPTIONS")
+      endif()
+    endforeach()
   endforeach()
   if(NOT arg_OUT_DIR)
     set(arg_OUT_DIR ${CMAKE_CURRENT_BINARY_DIR}/modelgen/${arg_TARGET})
@@ -158,9 +194,16 @@ function(modelgen_generate)
     endif()
     set(generator ${MODELGEN_EXECUTABLE})
     set(generator_dependency ${MODELGEN_EXECUTABLE})
+    _modelgen_check_entry_points(${MODELGEN_EXECUTABLE})
   elseif(TARGET modelgen::modelgen)
     set(generator modelgen::modelgen)
     set(generator_dependency $<TARGET_FILE:modelgen::modelgen>)
+    # An installed modelgen can run now; the one of modelgen's own build is not built yet.
+    get_target_property(imported modelgen::modelgen IMPORTED)
+    if(imported)
+      get_target_property(location modelgen::modelgen LOCATION)
+      _modelgen_check_entry_points(${location})
+    endif()
   else()
     message(FATAL_ERROR "modelgen_generate: no modelgen to run: find_package(modelgen "
                         "COMPONENTS generator) or set MODELGEN_EXECUTABLE to a modelgen that "
@@ -173,13 +216,20 @@ function(modelgen_generate)
     list(APPEND sources ${arg_OUT_DIR}/${stem}_${function}.cpp)
   endforeach()
   set(stamp ${arg_OUT_DIR}/${stem}.stamp)
+  # The arguments as a file the stamp depends on: changing FUNCTIONS, SCALAR or OPTIONS
+  # re-runs modelgen with Make too (Ninja re-runs on a changed command by itself). Rewritten
+  # only when they change.
+  set(arguments_file ${CMAKE_CURRENT_BINARY_DIR}/modelgen/${arg_TARGET}.arguments)
+  string(REPLACE ";" " " arguments
+         "--scalar;${arg_SCALAR};${params_option};${functions_option};${arg_OPTIONS}")
+  file(CONFIGURE OUTPUT ${arguments_file} CONTENT "${arguments}\n" @ONLY)
   add_custom_command(
     OUTPUT ${stamp}
     BYPRODUCTS ${sources} ${arg_OUT_DIR}/${stem}.hpp ${arg_OUT_DIR}/${stem}.json
     COMMAND ${generator} ${robot} -o ${arg_OUT_DIR} --scalar ${arg_SCALAR}
             ${params_option} ${functions_option} ${arg_OPTIONS}
     COMMAND ${CMAKE_COMMAND} -E touch ${stamp}
-    DEPENDS ${robot} ${params_dependency} ${generator_dependency}
+    DEPENDS ${robot} ${params_dependency} ${generator_dependency} ${arguments_file}
     COMMENT "modelgen: generating ${stem} for ${arg_TARGET}"
     VERBATIM)
   add_library(${arg_TARGET} STATIC ${sources} ${arg_OUT_DIR}/${stem}.hpp ${stamp})

@@ -8,6 +8,7 @@
 
 #include <fcntl.h>
 #include <signal.h>
+#include <sys/file.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -32,6 +33,11 @@ void FileSet::add(std::string name, std::string content) {
 }
 
 void FileSet::retire(std::string name) { retired_.push_back(std::move(name)); }
+
+void FileSet::set_owner(std::string generated_mark, std::string owner_mark) {
+  generated_mark_ = std::move(generated_mark);
+  owner_mark_ = std::move(owner_mark);
+}
 
 namespace {
 
@@ -70,6 +76,35 @@ std::string write_new_file(const fs::path& path, const std::string& content) {
   if (::close(fd) != 0) return std::strerror(errno);
   return "";
 }
+
+std::string first_line(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::string line;
+  std::getline(in, line);
+  return line;
+}
+
+// An exclusive lock on the output directory for the whole write: two runs into one folder (a
+// parallel build generating twice) take turns, so neither completes the other's journal while
+// it is still renaming. Released when the object goes.
+class DirectoryLock {
+ public:
+  explicit DirectoryLock(const fs::path& directory)
+      : fd_(::open(directory.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC)) {
+    if (fd_ >= 0) {
+      while (::flock(fd_, LOCK_EX) != 0 && errno == EINTR) {
+      }
+    }
+  }
+  ~DirectoryLock() {
+    if (fd_ >= 0) ::close(fd_);
+  }
+  DirectoryLock(const DirectoryLock&) = delete;
+  DirectoryLock& operator=(const DirectoryLock&) = delete;
+
+ private:
+  int fd_;
+};
 
 bool process_alive(long pid) { return pid > 0 && (::kill(static_cast<pid_t>(pid), 0) == 0 || errno == EPERM); }
 
@@ -126,12 +161,28 @@ void FileSet::write_to(const std::string& directory) const {
     throw InputError({directory}, "cannot create the output directory" +
                                       (ec ? ": " + ec.message() : std::string()));
   }
+  const DirectoryLock lock(directory);
   recover_interrupted_run(directory);
-  // Refuse before touching anything if a destination is something other than a file.
+  // Whether an existing file was generated, and from another input than this set's.
+  const auto generated = [&](const fs::path& path) {
+    return !generated_mark_.empty() && first_line(path).find(generated_mark_) != std::string::npos;
+  };
+  const auto foreign = [&](const fs::path& path) {
+    return generated(path) && first_line(path).find(owner_mark_) == std::string::npos;
+  };
+  // Refuse before touching anything if a destination is something other than a file, or the
+  // output of another input.
   for (const OutputFile& file : files_) {
     const fs::path destination = fs::path(directory) / file.name;
     if (fs::exists(fs::symlink_status(destination)) && !fs::is_regular_file(destination)) {
       throw InputError({destination.string()}, "exists and is not a regular file; not replaced");
+    }
+    if (fs::exists(destination) && foreign(destination)) {
+      throw InputError({destination.string()},
+                       "was generated from another description (its first line: '" +
+                           first_line(destination) +
+                           "'); not replaced: generate each description into a folder of its own "
+                           "(no file was changed)");
     }
   }
   struct Replacement {
@@ -175,7 +226,10 @@ void FileSet::write_to(const std::string& directory) const {
   }
   std::vector<std::string> retired;
   for (const std::string& name : retired_) {
-    if (fs::is_regular_file(fs::symlink_status(fs::path(directory) / name))) retired.push_back(name);
+    const fs::path path = fs::path(directory) / name;
+    if (!fs::is_regular_file(fs::symlink_status(path))) continue;
+    if (!generated_mark_.empty() && (!generated(path) || foreign(path))) continue;  // not ours
+    retired.push_back(name);
   }
   if (replacements.empty() && retired.empty()) return;
   // The commit point: once the journal exists, the new set is what the folder will hold, even

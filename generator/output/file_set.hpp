@@ -19,8 +19,15 @@ class FileSet {
  public:
   void add(std::string name, std::string content);
   /// A file of an earlier run that this set no longer has (a function left out by
-  /// --functions): removed from the directory when the new set is in place, not before.
+  /// --functions): removed from the directory when the new set is in place, not before, and
+  /// only if it is this generator's own (set_owner).
   void retire(std::string name);
+  /// Files whose first line contains `generated_mark` were written by this generator; of those,
+  /// only the ones whose first line also contains `owner_mark` belong to this set's input. An
+  /// existing file of the generator that belongs to another input is neither replaced (write_to
+  /// throws InputError naming it, before anything is written) nor retired. Without a call, every
+  /// file may be replaced and retired files are removed whatever they hold.
+  void set_owner(std::string generated_mark, std::string owner_mark);
   const std::vector<OutputFile>& files() const { return files_; }
   const std::vector<std::string>& retired() const { return retired_; }
 
@@ -35,6 +42,7 @@ class FileSet {
  private:
   std::vector<OutputFile> files_;
   std::vector<std::string> retired_;
+  std::string generated_mark_, owner_mark_;
 };
 
 namespace test_hooks {

@@ -174,8 +174,10 @@ ExprId ExprGraph::mul(std::vector<ExprId> factors) {
   if (rest.empty()) return constant(coefficient);
   if (coefficient != 1.0 && rest.size() == 1 && nodes_[rest[0]].op == Op::kAdd) {
     // Distribute a constant over a sum so that like terms can meet: 2 (a + b) -> 2a + 2b.
+    // A copy: mul() adds nodes, which may move nodes_ and the argument list with it.
+    const std::vector<ExprId> sum_terms = nodes_[rest[0]].args;
     std::vector<ExprId> terms;
-    for (ExprId t : nodes_[rest[0]].args) terms.push_back(mul(constant(coefficient), t));
+    for (ExprId t : sum_terms) terms.push_back(mul(constant(coefficient), t));
     return add(std::move(terms));
   }
   sort_canonical(rest);

@@ -2,10 +2,11 @@
 // subexpression, so shared subexpressions are shared by construction), constants folded,
 // neutral and absorbing elements removed, commutative operands in a canonical order, and like
 // terms collected. Operands are ordered by structure (canonical_before: constants, symbols by
-// name, then operations by height and their arguments), never by node id: ids follow creation order, and creation order depends on the order in which
-// a compiler evaluates the arguments of a call such as add(mul(a, b), mul(c, d)). Ordering by
-// structure makes the generated code a function of the input alone, whichever compiler built
-// modelgen (and never of pointer values or hash seeds).
+// name, then operations by height and their arguments), never by node id: ids follow creation
+// order, and creation order depends on the order in which a compiler evaluates the arguments of
+// a call such as add(mul(a, b), mul(c, d)). Ordering by structure makes the generated code a
+// function of the input alone, whichever compiler built modelgen (and never of pointer values
+// or hash seeds).
 #pragma once
 
 #include <cstdint>
@@ -22,8 +23,9 @@ enum class Op : std::uint8_t {
   kConstant,
   kSymbol,
   kAdd,  // n-ary sum, args in canonical order, no constant zero, no nested sums
-  kMul,  // n-ary product, at most one constant (first), no 0 or 1 constants, no nested products;
-        // the other factors in canonical order
+  // n-ary product, at most one constant (first), no 0 or 1 constants, no nested products; the
+  // other factors in canonical order
+  kMul,
   kShare,  // one arg: an intermediate result kept whole, an atom to sums and products
   kSign,   // one arg: -1, 0 or 1 (Coulomb friction of a motor driving several joints)
   kInv,    // one arg: its reciprocal 1 / arg (transmission efficiency, Swevers eq. 8); never

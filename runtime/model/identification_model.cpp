@@ -3,9 +3,23 @@
 
 #include "modelgen/model/identification_model.hpp"
 
+#include <vector>
+
 #include <Eigen/Core>
 
 namespace modelgen {
+
+void IdentificationModel::mass_matrix(const double* q, const double* beta, double* M) const {
+  const int n = dof();
+  std::vector<double> zero(n, 0.0), unit(n, 0.0), at_rest(n), column(n);
+  inverse_dynamics(q, zero.data(), zero.data(), beta, at_rest.data());
+  for (int k = 0; k < n; ++k) {
+    unit[k] = 1.0;
+    inverse_dynamics(q, zero.data(), unit.data(), beta, column.data());
+    unit[k] = 0.0;
+    for (int i = 0; i < n; ++i) M[i * n + k] = column[i] - at_rest[i];
+  }
+}
 
 ReferenceModel::ReferenceModel(std::string name, RigidBodyTree tree, std::string description_sha256,
                                std::optional<DriveChain> drive)

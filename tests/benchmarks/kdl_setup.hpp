@@ -52,6 +52,8 @@ class KdlRne {
                                    const Eigen::VectorXd& ddq);
 
   unsigned num_joints() const { return chain_.getNrOfJoints(); }
+  /// The chain, for KDL's other solvers (forward dynamics).
+  const KDL::Chain& chain() const { return chain_; }
   unsigned num_segments() const { return chain_.getNrOfSegments(); }
 
  private:

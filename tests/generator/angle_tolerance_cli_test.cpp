@@ -44,7 +44,8 @@ std::string generated_code(const fs::path& dir, const std::string& stem) {
   std::vector<fs::path> files;
   for (const auto& entry : fs::directory_iterator(dir)) {
     const std::string name = entry.path().filename().string();
-    if (name == stem + ".cpp" || (name.rfind(stem + "_", 0) == 0 && entry.path().extension() == ".cpp")) {
+    const bool function_file = name.rfind(stem + "_", 0) == 0 && entry.path().extension() == ".cpp";
+    if (name == stem + ".cpp" || function_file) {
       files.push_back(entry.path());
     }
   }

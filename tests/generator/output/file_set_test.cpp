@@ -169,6 +169,39 @@ TEST(FileSet, RetiredFilesGoOnlyWithTheNewSet) {
   EXPECT_EQ(hidden(out), std::vector<std::string>{});
 }
 
+TEST(FileSet, AnotherInputsFilesAreNeitherReplacedNorRetired) {
+  TempDir tmp;
+  const fs::path out = tmp.path() / "mixed";
+  fs::create_directories(out);
+  write(out / "b_x.cpp", "// b_x.cpp: made by gen from b.in. KEEP\nbody of b\n");
+  write(out / "a_y.cpp", "// a_y.cpp: made by gen from a.in. KEEP\nold body of a\n");
+  write(out / "notes.cpp", "the user's own file\n");
+  FileSet files;
+  files.set_owner(": made by gen ", " from a.in. KEEP");
+  files.add("a.hpp", "// a.hpp: made by gen from a.in. KEEP\n");
+  files.retire("b_x.cpp");    // generated from b.in: not ours
+  files.retire("a_y.cpp");    // ours: removed
+  files.retire("notes.cpp");  // not generated: kept
+  files.write_to(out.string());
+  EXPECT_EQ(names(out), (std::vector<std::string>{"a.hpp", "b_x.cpp", "notes.cpp"}));
+
+  FileSet clash;
+  clash.set_owner(": made by gen ", " from a.in. KEEP");
+  clash.add("a.hpp", "// a.hpp: made by gen from a.in. KEEP\nnew\n");
+  clash.add("b_x.cpp", "// b_x.cpp: made by gen from a.in. KEEP\n");
+  try {
+    clash.write_to(out.string());
+    FAIL() << "another input's file was replaced";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("was generated from another description"),
+              std::string::npos)
+        << e.what();
+  }
+  EXPECT_EQ(read(out / "b_x.cpp"), "// b_x.cpp: made by gen from b.in. KEEP\nbody of b\n");
+  EXPECT_EQ(read(out / "a.hpp"), "// a.hpp: made by gen from a.in. KEEP\n");
+  EXPECT_EQ(hidden(out), std::vector<std::string>{});
+}
+
 TEST(FileSet, AFailedWriteKeepsTheFilesItWouldRetire) {
   TempDir tmp;
   const fs::path out = tmp.path() / "tx40";

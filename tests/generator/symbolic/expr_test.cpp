@@ -445,7 +445,9 @@ TEST(ExprDeterminism, OperandOrderDoesNotDependOnCreationOrder) {
   ExprGraph first, second;
   // The second graph meets the leaves and many products and sums first, in reverse order.
   std::vector<ExprId> leaves;
-  for (int i = 4; i >= 0; --i) leaves.push_back(second.symbol(input("x[" + std::to_string(i) + "]")));
+  for (int i = 4; i >= 0; --i) {
+    leaves.push_back(second.symbol(input("x[" + std::to_string(i) + "]")));
+  }
   for (std::size_t i = leaves.size(); i-- > 0;) {
     for (std::size_t j = leaves.size(); j-- > 0;) {
       const ExprId product = second.mul(leaves[i], leaves[j]);

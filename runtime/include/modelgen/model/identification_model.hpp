@@ -40,6 +40,11 @@ class IdentificationModel {
   /// Joint torques from base parameters: tau receives dof() values.
   virtual void inverse_dynamics(const double* q, const double* dq, const double* ddq,
                                 const double* beta, double* tau) const = 0;
+  /// Joint-space inertia matrix from base parameters: M receives dof() x dof() values,
+  /// row-major, drive inertias on its diagonal. This default builds it column by column from
+  /// inverse_dynamics at zero velocity (M e_k = tau(q, 0, e_k) - tau(q, 0, 0): gravity and the
+  /// torque offsets cancel, Coulomb friction is 0 at rest); generated models override it.
+  virtual void mass_matrix(const double* q, const double* beta, double* M) const;
   /// The regrouping relations: beta (num_base_params()) from standard parameters
   /// (num_standard_params()).
   virtual void base_from_standard(const double* p_standard, double* beta) const = 0;
@@ -116,6 +121,9 @@ class GeneratedModel final : public IdentificationModel {
   void inverse_dynamics(const double* q, const double* dq, const double* ddq, const double* beta,
                         double* tau) const override {
     Generated::inverse_dynamics(q, dq, ddq, beta, tau);
+  }
+  void mass_matrix(const double* q, const double* beta, double* M) const override {
+    Generated::mass_matrix(q, beta, M);
   }
   void base_from_standard(const double* p_standard, double* beta) const override {
     Generated::base_from_standard(p_standard, beta);
