@@ -69,26 +69,43 @@ set(scalar_option)
 if(SCALAR)
   set(scalar_option -DMODELGEN_SCALAR=${SCALAR})
 endif()
+# Host compiler flags from the environment (a sanitizer build's, say) are not the target's.
 file(REMOVE_RECURSE ${build_dir})
-run(${CMAKE_COMMAND} -S ${source_dir} -B ${build_dir}
+run(${CMAKE_COMMAND} -E env --unset=CFLAGS --unset=CXXFLAGS --unset=ASMFLAGS --unset=LDFLAGS
+    ${CMAKE_COMMAND} -S ${source_dir} -B ${build_dir}
     -DCMAKE_TOOLCHAIN_FILE=${source_dir}/arm-none-eabi.cmake -DMODELGEN_EXECUTABLE=${MODELGEN}
     ${scalar_option})
 run(${CMAKE_COMMAND} --build ${build_dir} --parallel 2)
 set(elf ${build_dir}/cortex_m4_tx40.elf)
 
 # --- No soft double: the AEABI double routines (__aeabi_dadd, __aeabi_f2d, ...) and libgcc's
-# names for them (__adddf3, __extendsfdf2, ...).
+# names for them (__adddf3, __extendsfdf2, ...), defined or referenced.
+function(soft_double_symbols out nm_output)
+  string(REPLACE "\n" ";" lines "${nm_output}")
+  set(names)
+  foreach(line ${lines})
+    if(line MATCHES " (__aeabi_d[a-z0-9]+|__aeabi_[a-z0-9]+2d|__[a-z]+df[a-z0-9]*)$")
+      list(APPEND names ${CMAKE_MATCH_1})
+    endif()
+  endforeach()
+  list(REMOVE_DUPLICATES names)
+  string(REPLACE ";" " " names "${names}")
+  set(${out} "${names}" PARENT_SCOPE)
+endfunction()
+# The check must see one double multiplication and one float-to-double promotion.
+file(WRITE ${WORK_DIR}/double_probe.c "double f(float a, double b) { return a * b; }\n")
+run(${arm-none-eabi-gcc_path} ${cpu_flags} -O2 -c ${WORK_DIR}/double_probe.c
+    -o ${WORK_DIR}/double_probe.o)
+run(${arm-none-eabi-nm_path} ${WORK_DIR}/double_probe.o)
+soft_double_symbols(probe_symbols "${last_output}")
+if(NOT probe_symbols MATCHES "__aeabi_dmul" OR NOT probe_symbols MATCHES "__aeabi_f2d")
+  message(FATAL_ERROR "cortex_m4 test: the soft-double check finds '${probe_symbols}' in a "
+                      "double multiplication, not __aeabi_dmul and __aeabi_f2d:\n${last_output}")
+endif()
 run(${arm-none-eabi-nm_path} ${elf})
-string(REPLACE "\n" ";" symbols "${last_output}")
-set(soft_double)
-foreach(line ${symbols})
-  if(line MATCHES " (__aeabi_d[a-z0-9]+|__aeabi_[a-z0-9]+2d|__[a-z]+df[a-z0-9]*)$")
-    list(APPEND soft_double ${CMAKE_MATCH_1})
-  endif()
-endforeach()
+set(symbols "${last_output}")
+soft_double_symbols(soft_double "${symbols}")
 if(soft_double)
-  list(REMOVE_DUPLICATES soft_double)
-  string(REPLACE ";" " " soft_double "${soft_double}")
   message(FATAL_ERROR "cortex_m4 test: the float-only program contains soft-double routines: "
                       "${soft_double}\n(something computes in double on a single-precision FPU; "
                       "arm-none-eabi-nm ${elf})")
