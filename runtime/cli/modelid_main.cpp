@@ -38,6 +38,10 @@ constexpr const char* kUsage =
     "       modelid export --robot DESCRIPTION --params EST.json -o IDENTIFIED\n"
     "       modelid check ROBOT\n"
     "       modelid check-trajectory --robot ROBOT --trajectory TRAJ.yaml\n"
+    "       modelid design --robot ROBOT --period T --harmonics N [--axes 1,2,..]\n"
+    "                   [--hold q1=V,..] [--criterion cond|logdet] [--margin 0.95]\n"
+    "                   [--starts K] [--seed S] [--noise SIGMA] [--samples S]\n"
+    "                   [--ddq-limit A[,A2,..]] [--max-evaluations N] -o TRAJ.yaml\n"
     "       (any command: --progress shows progress lines also when stderr is not a terminal)\n"
     "       modelid --version | --help\n"
     "\n"
@@ -75,6 +79,7 @@ int dispatch(int argc, char** argv) {
   if (command == "predict") return run_predict(parse_arguments(argc, argv, kPredictOptions));
   if (command == "simulate") return run_simulate(parse_arguments(argc, argv, kSimulateOptions));
   if (command == "export") return run_export(parse_arguments(argc, argv, kExportOptions));
+  if (command == "design") return run_design(parse_arguments(argc, argv, kDesignOptions));
   if (command == "check-trajectory") {
     return run_check_trajectory(parse_arguments(argc, argv, kCheckTrajectoryOptions));
   }
