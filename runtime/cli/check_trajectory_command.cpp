@@ -29,7 +29,7 @@ int run_check_trajectory(const CommandLine& args) {
             << " points of one period (" << fixed(points / trajectory.period, 0, 6)
             << " Hz); q use: distance from the middle of the range over half the range\n";
   const int exceeded =
-      print_limit_use(std::cout, source, limit_uses(trajectory_extremes(trajectory), source.limits));
+      print_limit_use(std::cout, source, trajectory_extremes(trajectory), source.limits);
   if (exceeded > 0) {
     std::cerr << "modelid check-trajectory: " << exceeded << " limit"
               << (exceeded == 1 ? " is" : "s are") << " exceeded (marked '!')\n";

@@ -15,6 +15,7 @@
 #include "modelgen/excitation/excitation_design.hpp"
 #include "modelgen/excitation/limit_use.hpp"
 #include "runtime/cli/commands.hpp"
+#include "runtime/cli/fourier_file.hpp"
 #include "runtime/cli/model_source.hpp"
 #include "runtime/cli/text_format.hpp"
 #include "runtime/cli/trajectory_limits.hpp"
@@ -29,6 +30,7 @@ const std::map<std::string, OptionKind> kDesignOptions = {
     {"--starts", OptionKind::kOnce},    {"--seed", OptionKind::kOnce},
     {"--noise", OptionKind::kOnce},     {"--samples", OptionKind::kOnce},
     {"--ddq-limit", OptionKind::kOnce}, {"--max-evaluations", OptionKind::kOnce},
+    {"--compare", OptionKind::kOnce},
     {"-o", OptionKind::kOnce}};
 
 namespace {
@@ -225,6 +227,9 @@ int run_design(const CommandLine& args) {
   const double noise = args.has("--noise") ? parse_number(args.one("--noise"), "--noise") : 1.0;
   if (!(noise > 0)) throw UsageError{"--noise must be a positive standard deviation (N m)"};
   const std::string& output = args.one("-o");
+  // Read before the optimisation: a broken file should not cost a design run.
+  std::optional<FourierTrajectory> compared;
+  if (args.has("--compare")) compared = read_fourier(args.one("--compare"), model.dof());
   problem.progress = [](const std::string& line) { std::cerr << "modelid design: " << line << "\n"; };
 
   const ExcitationDesign design = design_excitation(problem);
@@ -244,7 +249,8 @@ int run_design(const CommandLine& args) {
   out << model.name() << ": " << problem.moving.size() << " moving axes, " << problem.harmonics
       << " harmonics, period " << shortest(problem.period) << " s; the regressor stacked over "
       << design.samples << " samples of one period (" << fixed(design.samples / problem.period, 0, 6)
-      << " Hz), columns scaled to unit norm\n";
+      << " Hz); columns divided by their RMS norm over the random starts (fixed: units drop "
+         "out, a weakly excited parameter still counts)\n";
   out << "base parameters the moving axes excite: " << design.columns.size() << " of "
       << names.size();
   if (design.columns.size() < names.size()) {
@@ -258,9 +264,10 @@ int run_design(const CommandLine& args) {
   }
   out << "\n";
   const auto line = [&out](const std::string& what, const CriterionValue& v) {
-    out << pad(what, 28) << "cond " << fixed(v.cond_scaled, 0, 5) << ", unscaled "
-        << fixed(v.cond_unscaled, 0, 5) << "; smallest singular value " << fixed(v.sigma_min_scaled, 0, 5)
-        << ", unscaled " << fixed(v.sigma_min_unscaled, 0, 5) << "\n";
+    out << pad(what, 28) << "cond " << fixed(v.cond_scaled, 0, 5) << ", unit columns "
+        << fixed(v.cond_unit, 0, 5) << ", unscaled " << fixed(v.cond_unscaled, 0, 5)
+        << "; smallest singular value " << fixed(v.sigma_min_scaled, 0, 5) << ", unscaled "
+        << fixed(v.sigma_min_unscaled, 0, 5) << "\n";
   };
   out << "criterion " << (problem.criterion == DesignCriterion::kCond ? "log cond" : "-log det")
       << ": best of 100 random feasible starts " << fixed(design.before.value, 0, 6)
@@ -268,6 +275,19 @@ int run_design(const CommandLine& args) {
       << " evaluations)\n";
   line("best random feasible start:", design.before);
   line("design:", design.after);
+  if (compared) {
+    // The same criterion on another trajectory (Swevers 2002 Table 1, say): the same columns
+    // and the same number of samples per period.
+    const Eigen::MatrixXd W = stacked_regressor(model, *compared, design.samples);
+    Eigen::MatrixXd selected(W.rows(), static_cast<Eigen::Index>(design.columns.size()));
+    for (std::size_t c = 0; c < design.columns.size(); ++c) {
+      selected.col(static_cast<Eigen::Index>(c)) = W.col(design.columns[c]);
+    }
+    const CriterionValue value = evaluate_criterion(selected, design.scale, problem.criterion, false);
+    out << "--compare " << args.one("--compare") << ": criterion " << fixed(value.value, 0, 6)
+        << " (period " << shortest(compared->period) << " s, " << design.samples << " samples)\n";
+    line("--compare:", value);
+  }
   for (std::size_t j = 0; j < design.shrink.size(); ++j) {
     if (design.shrink[j] < 1) {
       out << joint_label(source, static_cast<int>(j)) << ": left a limit between the optimiser's "
@@ -297,7 +317,7 @@ int run_design(const CommandLine& args) {
   const long points = limit_grid_points(trajectory);
   out << "limit use on " << points << " points of one period (" << fixed(points / design.period, 0, 6)
       << " Hz), margin " << shortest(problem.margin) << ":\n";
-  print_limit_use(out, source, limit_uses(trajectory_extremes(trajectory), problem.limits));
+  print_limit_use(out, source, trajectory_extremes(trajectory), problem.limits);
   std::cerr << "modelid design: written to " << output << "\n";
   return 0;
 }

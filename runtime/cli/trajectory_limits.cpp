@@ -2,6 +2,7 @@
 
 #include "runtime/cli/trajectory_limits.hpp"
 
+#include <cmath>
 #include <cstdio>
 #include <map>
 #include <sstream>
@@ -66,12 +67,14 @@ void refuse_beyond_limits(const std::string& path, const FourierTrajectory& traj
   if (!message.str().empty()) throw std::runtime_error(message.str() + "\n" + advice);
 }
 
-int print_limit_use(std::ostream& out, const ModelSource& source, const std::vector<LimitUse>& uses) {
+int print_limit_use(std::ostream& out, const ModelSource& source,
+                    const std::vector<JointExtremes>& extremes, const std::vector<JointLimits>& limits) {
+  const std::vector<LimitUse> uses = limit_uses(extremes, limits);
   int exceeded = 0;
   out << pad("joint", 16) << pad("q: peak", 12) << pad("limit", 10) << pad("use", 10)
       << pad("|dq|: peak", 12) << pad("limit", 10) << pad("use", 10) << pad("|ddq|: peak", 12)
       << pad("limit", 10) << "use\n";
-  for (std::size_t j = 0; j < source.limits.size(); ++j) {
+  for (std::size_t j = 0; j < extremes.size(); ++j) {
     std::string name = std::to_string(j + 1);
     if (j < source.joint_names.size()) name += " " + source.joint_names[j];
     std::ostringstream row;
@@ -82,7 +85,11 @@ int print_limit_use(std::ostream& out, const ModelSource& source, const std::vec
         if (use.joint == static_cast<int>(j) && use.key == key) found = &use;
       }
       if (found == nullptr) {
-        row << pad("-", 12) << pad("(none)", 10) << pad("-", 10);
+        const JointExtremes& e = extremes[j];
+        const double peak = std::string(key) == "q"     ? (std::abs(e.q_max) >= std::abs(e.q_min) ? e.q_max : e.q_min)
+                            : std::string(key) == "dq" ? e.dq_peak
+                                                       : e.ddq_peak;
+        row << pad(fixed(peak, 0, 4), 12) << pad("(none)", 10) << pad("-", 10);
         continue;
       }
       const bool over = found->use > 1.0;

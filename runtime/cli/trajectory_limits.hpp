@@ -26,8 +26,10 @@ bool note_missing_limits(std::ostream& err, const std::string& command, const Mo
 void refuse_beyond_limits(const std::string& path, const FourierTrajectory& trajectory,
                           const ModelSource& source, const std::string& advice);
 
-/// The table of limit uses, one row per joint: each limit's peak, limit and use in percent, a
-/// '!' after a use above 100%. Returns the number of limits exceeded.
-int print_limit_use(std::ostream& out, const ModelSource& source, const std::vector<LimitUse>& uses);
+/// The table of limit uses of `extremes` against `limits` (one per joint): each limit's peak,
+/// limit and use in percent, a '!' after a use above 100%; a key without a limit shows its
+/// peak and "(none)". Returns the number of limits exceeded.
+int print_limit_use(std::ostream& out, const ModelSource& source,
+                    const std::vector<JointExtremes>& extremes, const std::vector<JointLimits>& limits);
 
 }  // namespace modelgen::internal

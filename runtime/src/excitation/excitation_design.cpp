@@ -169,12 +169,31 @@ class Design {
     std::sort(columns_.begin(), columns_.end());
   }
   const std::vector<int>& columns() const { return columns_; }
+  void set_columns(std::vector<int> columns) { columns_ = std::move(columns); }
+
+  // The fixed column scale (design_criterion.hpp): the RMS norm of each selected column over
+  // the given trajectories.
+  void choose_scale(const std::vector<std::vector<double>>& trajectories) {
+    Eigen::VectorXd sum = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(columns_.size()));
+    for (const auto& x : trajectories) {
+      Eigen::MatrixXd q, dq, ddq;
+      states(x, q, dq, ddq);
+      sum += selected(stacked(q, dq, ddq)).colwise().squaredNorm().transpose();
+    }
+    scale_ = (sum / static_cast<double>(trajectories.size())).cwiseSqrt();
+    // A column no trajectory excites keeps scale 1 (it is rank-deficient anyway).
+    for (Eigen::Index c = 0; c < scale_.size(); ++c) {
+      if (!(scale_[c] > 0)) scale_[c] = 1;
+    }
+  }
+  const Eigen::VectorXd& scale() const { return scale_; }
+  void set_scale(Eigen::VectorXd scale) { scale_ = std::move(scale); }
 
   CriterionValue criterion(const std::vector<double>& x, std::vector<double>* gradient) const {
     Eigen::MatrixXd q, dq, ddq;
     states(x, q, dq, ddq);
     const Eigen::MatrixXd W = stacked(q, dq, ddq);
-    CriterionValue value = evaluate_criterion(selected(W), p_.criterion, gradient != nullptr);
+    CriterionValue value = evaluate_criterion(selected(W), scale_, p_.criterion, gradient != nullptr);
     if (gradient == nullptr) return value;
     gradient->assign(static_cast<std::size_t>(n_), 0.0);
     if (!std::isfinite(value.value)) return value;
@@ -363,6 +382,7 @@ class Design {
   FourierBasis criterion_basis_, constraint_basis_;
   std::vector<AxisBounds> bounds_;
   std::vector<int> columns_;
+  Eigen::VectorXd scale_;
 };
 
 double objective(unsigned n, const double* x, double* grad, void* data) {
@@ -419,6 +439,15 @@ Eigen::MatrixXd stacked_regressor(const IdentificationModel& model,
   return W;
 }
 
+double design_objective(const ExcitationDesignProblem& problem, const std::vector<int>& columns,
+                        const Eigen::VectorXd& scale, const std::vector<double>& x,
+                        std::vector<double>* gradient) {
+  Design design(problem);
+  design.set_columns(columns);
+  design.set_scale(scale);
+  return design.criterion(x, gradient).value;
+}
+
 ExcitationDesign design_excitation(const ExcitationDesignProblem& problem) {
   if (problem.model == nullptr || problem.moving.empty() || problem.harmonics < 1 ||
       !(problem.period > 0) || problem.hold.size() != problem.model->dof() ||
@@ -437,6 +466,7 @@ ExcitationDesign design_excitation(const ExcitationDesignProblem& problem) {
   std::vector<std::vector<double>> starts;
   for (int s = 0; s < problem.random_starts; ++s) starts.push_back(design.random_start(state));
   design.choose_columns({starts.begin(), starts.begin() + std::min<std::size_t>(3, starts.size())});
+  design.choose_scale(starts);
   std::vector<std::pair<double, std::size_t>> ranked;
   for (std::size_t s = 0; s < starts.size(); ++s) {
     ranked.emplace_back(design.criterion(starts[s], nullptr).value, s);
@@ -449,6 +479,7 @@ ExcitationDesign design_excitation(const ExcitationDesignProblem& problem) {
   result.period = problem.period;
   result.samples = design.samples();
   result.columns = design.columns();
+  result.scale = design.scale();
   result.before = design.criterion(starts[ranked.front().second], nullptr);
 
   std::vector<double> lower, upper, best, best_shrink;

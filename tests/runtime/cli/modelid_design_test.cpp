@@ -127,7 +127,7 @@ TEST(ModelidDesign, ReportedConditionNumberIsTheStackedRegressors) {
     return s[0] / s[s.size() - 1];
   };
   const Eigen::MatrixXd scaled = W * W.colwise().norm().cwiseInverse().asDiagonal();
-  EXPECT_NEAR(reported(run.out, "design:", "cond "), cond(scaled), 1e-4 * cond(scaled));
+  EXPECT_NEAR(reported(run.out, "design:", "unit columns "), cond(scaled), 1e-4 * cond(scaled));
   EXPECT_NEAR(reported(run.out, "design:", "unscaled "), cond(W), 1e-4 * cond(W));
   // The criterion (log cond) improved on the best random feasible start.
   EXPECT_LT(reported(run.out, "design:", "cond "), reported(run.out, "best random", "cond "));

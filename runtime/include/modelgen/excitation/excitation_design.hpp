@@ -45,6 +45,8 @@ struct ExcitationDesign {
   double period = 0;
   int samples = 0;                      ///< regressor samples per period used
   std::vector<int> columns;             ///< base parameters the moving axes excite (0-based)
+  /// The fixed scale of those columns: their RMS norm over the random feasible starts.
+  Eigen::VectorXd scale;
   CriterionValue before;                ///< the best random feasible start
   CriterionValue after;                 ///< the design
   std::vector<double> shrink;           ///< per joint, the dense-grid repair factor (1: none)
@@ -60,6 +62,13 @@ FourierTrajectory to_trajectory(const Eigen::VectorXd& q0, const Eigen::MatrixXd
 /// (samples * dof) x num_base_params, sample after sample.
 Eigen::MatrixXd stacked_regressor(const IdentificationModel& model,
                                   const FourierTrajectory& trajectory, int samples);
+
+/// The objective SLSQP minimises at variables `x` (per moving joint: q0, a_1..a_L, b_1..b_L of
+/// the position form) over base-parameter `columns` divided by `scale`, and its gradient when
+/// `gradient` is not null: the optimiser's own, exposed for tests.
+double design_objective(const ExcitationDesignProblem& problem, const std::vector<int>& columns,
+                        const Eigen::VectorXd& scale, const std::vector<double>& x,
+                        std::vector<double>* gradient);
 
 /// Throws std::invalid_argument for an inconsistent problem (the caller checks limits first).
 ExcitationDesign design_excitation(const ExcitationDesignProblem& problem);
