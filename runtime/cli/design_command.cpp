@@ -235,13 +235,17 @@ int run_design(const CommandLine& args) {
   const ExcitationDesign design = design_excitation(problem);
 
   // The file first: the report below is about what was written.
+  // The command that makes this file again (the options that change it, as given).
   std::ostringstream header;
-  header << "# modelid design --robot " << args.one("--robot") << ": criterion "
-         << (problem.criterion == DesignCriterion::kCond ? "cond" : "logdet") << ", margin "
-         << shortest(problem.margin) << ", seed " << problem.seed << ", " << problem.harmonics
-         << " harmonics, axes";
-  for (int j : problem.moving) header << " " << j + 1;
-  header << "\n";
+  header << "# made by: modelid design";
+  for (const char* option : {"--robot", "--angle-tolerance", "--period", "--harmonics", "--axes",
+                             "--hold", "--criterion", "--margin", "--starts", "--seed",
+                             "--samples", "--ddq-limit", "--max-evaluations"}) {
+    if (args.has(option)) header << " " << option << " " << args.one(option);
+  }
+  header << "\n# criterion " << (problem.criterion == DesignCriterion::kCond ? "log cond" : "-log det")
+         << ": best of 100 random feasible starts " << fixed(design.before.value, 0, 6)
+         << ", this design " << fixed(design.after.value, 0, 6) << "\n";
   write_file(output, trajectory_yaml(design, header.str()));
 
   std::ostream& out = std::cout;

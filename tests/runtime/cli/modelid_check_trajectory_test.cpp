@@ -7,6 +7,7 @@
 #include <numbers>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -92,10 +93,15 @@ TEST(ModelidCheckTrajectory, NamesTheLimitsTheDescriptionLacks) {
       << run.err;
 }
 
-TEST(ModelidCheckTrajectory, BundledExcitationIsWithinTheLimits) {
-  const CliRun run = modelid("check-trajectory --robot kr150 --trajectory " +
-                             quoted_source("robots/data/kr150/excitation.yaml"));
-  EXPECT_EQ(run.exit_code, 0) << run.out << run.err;
+TEST(ModelidCheckTrajectory, BundledExcitationsAreWithinTheLimits) {
+  for (const auto& [robot, trajectory] :
+       {std::pair{"kr150", "robots/data/kr150/excitation.yaml"},
+        std::pair{"kr150", "robots/data/kr150/load/design.yaml"},
+        std::pair{"tx40", "robots/data/tx40/design.yaml"}}) {
+    const CliRun run = modelid(std::string("check-trajectory --robot ") + robot +
+                               " --trajectory " + quoted_source(trajectory));
+    EXPECT_EQ(run.exit_code, 0) << trajectory << "\n" << run.out << run.err;
+  }
 }
 
 }  // namespace
