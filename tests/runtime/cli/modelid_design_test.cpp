@@ -6,10 +6,12 @@
 
 #include <cmath>
 #include <numbers>
+#include <random>
 #include <sstream>
 #include <string>
 #include <vector>
 
+#include <Eigen/QR>
 #include <Eigen/SVD>
 #include <gtest/gtest.h>
 #include <yaml-cpp/yaml.h>
@@ -131,6 +133,27 @@ TEST(ModelidDesign, ReportedConditionNumberIsTheStackedRegressors) {
   EXPECT_NEAR(reported(run.out, "design:", "unscaled "), cond(W), 1e-4 * cond(W));
   // The criterion (log cond) improved on the best random feasible start.
   EXPECT_LT(reported(run.out, "design:", "cond "), reported(run.out, "best random", "cond "));
+
+  // The reported standard deviations (--noise 1: sigma^2 (W^T W)^-1) against a Monte-Carlo of
+  // 200 OLS fits of the test's own W with unit Gaussian noise on every torque sample.
+  std::mt19937 engine(11);
+  std::normal_distribution<double> gauss(0.0, 1.0);
+  const Eigen::VectorXd beta = Eigen::VectorXd::LinSpaced(p, 1.0, 2.0);
+  const auto solver = W.colPivHouseholderQr();
+  Eigen::MatrixXd fits(200, p);
+  for (int r = 0; r < fits.rows(); ++r) {
+    Eigen::VectorXd tau = W * beta;
+    for (Eigen::Index i = 0; i < tau.size(); ++i) tau[i] += gauss(engine);
+    fits.row(r) = solver.solve(tau).transpose();
+  }
+  const Eigen::RowVectorXd mean = fits.colwise().mean();
+  const std::vector<std::string> names = model.base_param_names();
+  for (int c = 0; c < p; ++c) {
+    const double sd = std::sqrt((fits.col(c).array() - mean[c]).square().sum() / (fits.rows() - 1));
+    // 200 runs: the sample sd is within 20% of the true one with overwhelming probability.
+    EXPECT_NEAR(reported(run.out, "  " + names[static_cast<std::size_t>(c)] + " ", "sd "), sd, 0.2 * sd)
+        << names[static_cast<std::size_t>(c)];
+  }
 }
 
 TEST(ModelidDesign, SameSeedSameFile) {
