@@ -2,8 +2,10 @@
 
 #include "generator/generate.hpp"
 
+#include <algorithm>
 #include <filesystem>
 
+#include "generator/emit/function_emitter.hpp"
 #include "generator/estimate/estimate_file.hpp"
 #include "modelgen/model/number_text.hpp"
 #include "modelgen/model/sha256.hpp"
@@ -11,7 +13,8 @@
 namespace modelgen::gen {
 
 std::string normalized_command(const std::string& robot_path, const LoadOptions& options,
-                               const std::string& scalar, const std::string& params_path) {
+                               const std::string& scalar, const std::string& params_path,
+                               const std::vector<std::string>& functions) {
   std::string command =
       "modelgen " + std::filesystem::path(robot_path).filename().string() + " -o <dir>";
   if (!options.name.empty()) command += " --name " + options.name;
@@ -26,11 +29,37 @@ std::string normalized_command(const std::string& robot_path, const LoadOptions&
   if (!params_path.empty()) {
     command += " --params " + std::filesystem::path(params_path).filename().string();
   }
+  if (!functions.empty()) {
+    command += " --functions ";
+    for (std::size_t i = 0; i < functions.size(); ++i) command += (i ? "," : "") + functions[i];
+  }
   return command;
 }
 
+namespace {
+
+// The names of --functions once each, in the order of the generated files, so that the
+// banner's command does not depend on how they were listed. Unknown names are kept (at the
+// end) for emit_functions to refuse with the list of valid ones.
+std::vector<std::string> in_file_order(const std::vector<std::string>& functions,
+                                       bool with_estimate) {
+  std::vector<std::string> ordered;
+  for (const std::string& name : entry_point_names(with_estimate)) {
+    if (std::find(functions.begin(), functions.end(), name) != functions.end()) {
+      ordered.push_back(name);
+    }
+  }
+  for (const std::string& name : functions) {
+    if (std::find(ordered.begin(), ordered.end(), name) == ordered.end()) ordered.push_back(name);
+  }
+  return ordered;
+}
+
+}  // namespace
+
 GeneratedModel generate_from_file(const std::string& robot_path, const LoadOptions& options,
-                                  const std::string& scalar, const std::string& params_path) {
+                                  const std::string& scalar, const std::string& params_path,
+                                  const std::vector<std::string>& functions) {
   GenerationInput input;
   if (scalar == "double") {
     input.scalars = {Scalar::kDouble};
@@ -44,7 +73,9 @@ GeneratedModel generate_from_file(const std::string& robot_path, const LoadOptio
   input.stem = path.stem().string();
   input.input_name = path.filename().string();
   input.input_bytes = read_source_file(robot_path);
-  input.command_line = normalized_command(robot_path, options, scalar, params_path);
+  input.functions = in_file_order(functions, !params_path.empty());
+  input.command_line =
+      normalized_command(robot_path, options, scalar, params_path, input.functions);
   if (!params_path.empty()) {
     input.estimate = read_estimate_file(params_path, robot_path, sha256_hex(input.input_bytes));
   }

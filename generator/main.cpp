@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "generator/describe.hpp"
+#include "generator/emit/function_emitter.hpp"
 #include "generator/dynamics/base_report.hpp"
 #include "generator/generate.hpp"
 #include "generator/version.hpp"
@@ -18,18 +19,26 @@ namespace {
 constexpr const char* kUsage =
     "usage: modelgen ROBOT -o DIR [--scalar double|float|both] [--base LINK] [--tip LINK]\n"
     "                [--name NAME] [--angle-tolerance RAD] [--params EST.json]\n"
+    "                [--functions NAME,NAME,...]\n"
     "       modelgen describe ROBOT [--base LINK] [--tip LINK] [--name NAME] [--angle-tolerance RAD]\n"
     "       modelgen base ROBOT [--base LINK] [--tip LINK] [--name NAME] [--angle-tolerance RAD]\n"
-    "       modelgen --version | --help\n"
+    "       modelgen --list-functions | --version | --help\n"
     "\n"
     "ROBOT is a modified-DH description (.yaml) or a URDF (.urdf).\n"
-    "  -o DIR        generate STEM.hpp, STEM.cpp and STEM.json into DIR (STEM: ROBOT's file\n"
-    "                name without extension); all three are replaced together or not at all\n"
+    "  -o DIR        generate into DIR (STEM: ROBOT's file name without extension) STEM.hpp,\n"
+    "                STEM.cpp (tables), STEM_<function>.cpp for each function and the\n"
+    "                manifest STEM.json; all are replaced together or not at all, and function\n"
+    "                files of an earlier run that this one does not make are removed\n"
+    "  --functions LIST\n"
+    "                generate only these entry points (comma-separated, e.g.\n"
+    "                inverse_dynamics,idim_regressor) and those they call; default all\n"
     "  --scalar T    entry points for double, float or both (default both)\n"
     "  --params EST.json\n"
     "                an estimate of 'modelid fit -o': its base parameters become the constants\n"
     "                kIdentifiedBase and inverse_dynamics_identified(q, dq, ddq, tau) uses them\n"
     "                (firmware values); it must have been made on ROBOT (description_sha256)\n"
+    "  --list-functions\n"
+    "                print every entry point, with ':' and those it calls\n"
     "  describe      print the parsed model: joints, drive chain, standard parameters\n"
     "  base          print the base parameters and their regrouping relations\n"
     "  --base LINK   URDF: link to use as the fixed base (default: the URDF root)\n"
@@ -46,6 +55,7 @@ struct Arguments {
   std::string output_dir;
   std::string scalar = "both";
   std::string params;  // --params EST.json; empty without it
+  std::vector<std::string> functions;  // --functions; empty for all
   modelgen::LoadOptions load;
 };
 
@@ -56,7 +66,8 @@ Arguments parse(int argc, char** argv) {
       argc, argv, 1, "",
       {{"--base", OptionKind::kOnce}, {"--tip", OptionKind::kOnce}, {"--name", OptionKind::kOnce},
        {"--scalar", OptionKind::kOnce}, {"-o", OptionKind::kOnce}, {"--output", OptionKind::kOnce},
-       {"--angle-tolerance", OptionKind::kOnce}, {"--params", OptionKind::kOnce}});
+       {"--angle-tolerance", OptionKind::kOnce}, {"--params", OptionKind::kOnce},
+       {"--functions", OptionKind::kOnce}});
   Arguments args;
   args.load.base_link = line.one_or("--base", "");
   args.load.tip_link = line.one_or("--tip", "");
@@ -70,6 +81,18 @@ Arguments parse(int argc, char** argv) {
   args.output_dir = line.one_or("-o", line.one_or("--output", ""));
   args.params = line.one_or("--params", "");
   if (line.has("--params") && args.params.empty()) throw UsageError("--params needs a file");
+  if (line.has("--functions")) {
+    const std::string list = line.one("--functions");
+    std::size_t start = 0;
+    while (true) {
+      const std::size_t comma = list.find(',', start);
+      const std::string name = list.substr(start, comma == std::string::npos ? comma : comma - start);
+      if (name.empty()) throw UsageError("--functions: empty name in '" + list + "'");
+      args.functions.push_back(name);
+      if (comma == std::string::npos) break;
+      start = comma + 1;
+    }
+  }
 
   const std::vector<std::string>& positional = line.positional;
   if (positional.empty()) throw UsageError("no robot description given");
@@ -77,8 +100,11 @@ Arguments parse(int argc, char** argv) {
     args.command = positional[0];
     if (positional.size() != 2) throw UsageError(args.command + " takes exactly one ROBOT file");
     if (!args.output_dir.empty()) throw UsageError(args.command + " writes no files; drop -o");
-    if (line.has("--params")) {
-      throw UsageError(args.command + " takes no --params; it belongs to generation (-o DIR)");
+    for (const char* option : {"--params", "--functions"}) {
+      if (line.has(option)) {
+        throw UsageError(args.command + " takes no " + option +
+                         "; it belongs to generation (-o DIR)");
+      }
     }
     args.robot = positional[1];
     return args;
@@ -102,6 +128,10 @@ int main(int argc, char** argv) {
     std::cout << kUsage;
     return 0;
   }
+  if (argc == 2 && std::strcmp(argv[1], "--list-functions") == 0) {
+    std::cout << modelgen::gen::entry_point_list();
+    return 0;
+  }
   if (argc == 2 && std::strcmp(argv[1], "--version") == 0) {
     std::cout << "modelgen " << modelgen::gen::kVersion << "\n";
     return 0;
@@ -120,8 +150,12 @@ int main(int argc, char** argv) {
           model, modelgen::derive_base_parameters(model.tree), closed ? &*closed : nullptr);
     } else {
       const modelgen::gen::GeneratedModel generated =
-          modelgen::gen::generate_from_file(args.robot, args.load, args.scalar, args.params);
+          modelgen::gen::generate_from_file(args.robot, args.load, args.scalar, args.params,
+                                            args.functions);
       print_notes(generated.notes);
+      for (const std::string& added : generated.added_callees) {
+        std::cerr << "modelgen: note: --functions: " << added << ", which is generated too\n";
+      }
       for (const std::string& warning : generated.warnings) std::cerr << warning << "\n";
       generated.files.write_to(args.output_dir);
     }

@@ -4,26 +4,26 @@
 // The generated code belongs to the owner of the robot description.
 //
 // Function                              mul    add  sin/cos
-// idim_regressor_standard              1522   1188       12
-// inverse_dynamics_standard             714    573       12
+// idim_regressor_standard              1522   1150       12
+// inverse_dynamics_standard             714    558       12
 // joint_sincos                            0      0       18
-// idim_regressor_standard_sincos       1522   1188        0
-// inverse_dynamics_standard_sincos      714    573        0
+// idim_regressor_standard_sincos       1522   1150        0
+// inverse_dynamics_standard_sincos      714    558        0
 // base_from_standard                     56    105        0
-// idim_regressor                       1218    955       12
-// inverse_dynamics                      604    480       12
-// mass_matrix                          1446   1243       12
-// idim_regressor_sincos                1218    955        0
-// inverse_dynamics_sincos               604    480        0
-// mass_matrix_sincos                   1446   1243        0
-// inverse_dynamics_state_jacobian      8067   6776       12
-// energy_regressor                      219    134       12
-// power_regressor                       511    340       12
-// energy_regressor_sincos               219    134        0
-// power_regressor_sincos                511    340        0
-// drive_torque                          777    592       12
-// drive_torque_jacobian                3259   2061       12
-// drive_torque_state_jacobian          9024   7406       24
+// idim_regressor                       1218    918       12
+// inverse_dynamics                      604    461       12
+// mass_matrix                          1446   1052       12
+// idim_regressor_sincos                1218    918        0
+// inverse_dynamics_sincos               604    461        0
+// mass_matrix_sincos                   1446   1052        0
+// inverse_dynamics_state_jacobian      8067   6314       12
+// energy_regressor                      219    120       12
+// power_regressor                       511    299       12
+// energy_regressor_sincos               219    120        0
+// power_regressor_sincos                511    299        0
+// drive_torque                          777    576       12
+// drive_torque_jacobian                3259   2023       12
+// drive_torque_state_jacobian          9024   6925       24
 #ifndef MODELGEN_PANDA_HPP_
 #define MODELGEN_PANDA_HPP_
 

@@ -4,26 +4,26 @@
 // The generated code belongs to the owner of the robot description.
 //
 // Function                              mul    add  sin/cos
-// idim_regressor_standard               685    567       10
-// inverse_dynamics_standard             496    402       10
+// idim_regressor_standard               685    550       10
+// inverse_dynamics_standard             496    394       10
 // joint_sincos                            0      0       12
-// idim_regressor_standard_sincos        685    567        0
-// inverse_dynamics_standard_sincos      496    402        0
+// idim_regressor_standard_sincos        685    550        0
+// inverse_dynamics_standard_sincos      496    394        0
 // base_from_standard                     49     81        0
-// idim_regressor                        477    390       10
-// inverse_dynamics                      379    304       10
-// mass_matrix                           419    393       10
-// idim_regressor_sincos                 477    390        0
-// inverse_dynamics_sincos               379    304        0
-// mass_matrix_sincos                    419    393        0
-// inverse_dynamics_state_jacobian      2606   2524       10
-// energy_regressor                      132     61       10
-// power_regressor                       325    186       10
-// energy_regressor_sincos               132     61        0
-// power_regressor_sincos                325    186        0
-// drive_torque                          517    408       10
-// drive_torque_jacobian                1822   1248       10
-// drive_torque_state_jacobian          3244   3005       20
+// idim_regressor                        477    375       10
+// inverse_dynamics                      379    293       10
+// mass_matrix                           419    356       10
+// idim_regressor_sincos                 477    375        0
+// inverse_dynamics_sincos               379    293        0
+// mass_matrix_sincos                    419    356        0
+// inverse_dynamics_state_jacobian      2606   2353       10
+// energy_regressor                      132     55       10
+// power_regressor                       325    164       10
+// energy_regressor_sincos               132     55        0
+// power_regressor_sincos                325    164        0
+// drive_torque                          517    400       10
+// drive_torque_jacobian                1822   1231       10
+// drive_torque_state_jacobian          3244   2823       20
 #ifndef MODELGEN_KR150_HPP_
 #define MODELGEN_KR150_HPP_
 

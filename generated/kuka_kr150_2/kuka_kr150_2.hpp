@@ -4,26 +4,26 @@
 // The generated code belongs to the owner of the robot description.
 //
 // Function                              mul    add  sin/cos
-// idim_regressor_standard               614    489       10
-// inverse_dynamics_standard             419    331       10
+// idim_regressor_standard               614    481       10
+// inverse_dynamics_standard             419    327       10
 // joint_sincos                            0      0       12
-// idim_regressor_standard_sincos        614    489        0
-// inverse_dynamics_standard_sincos      419    331        0
+// idim_regressor_standard_sincos        614    481        0
+// inverse_dynamics_standard_sincos      419    327        0
 // base_from_standard                     37     75        0
-// idim_regressor                        490    385       10
-// inverse_dynamics                      365    287       10
-// mass_matrix                           430    385       10
-// idim_regressor_sincos                 490    385        0
-// inverse_dynamics_sincos               365    287        0
-// mass_matrix_sincos                    430    385        0
-// inverse_dynamics_state_jacobian      2816   2563       10
+// idim_regressor                        490    379       10
+// inverse_dynamics                      365    279       10
+// mass_matrix                           430    361       10
+// idim_regressor_sincos                 490    379        0
+// inverse_dynamics_sincos               365    279        0
+// mass_matrix_sincos                    430    361        0
+// inverse_dynamics_state_jacobian      2816   2474       10
 // energy_regressor                      127     51       10
-// power_regressor                       317    168       10
+// power_regressor                       317    159       10
 // energy_regressor_sincos               127     51        0
-// power_regressor_sincos                317    168        0
-// drive_torque                          461    347       10
-// drive_torque_jacobian                1412    891       10
-// drive_torque_state_jacobian          3362   2955       20
+// power_regressor_sincos                317    159        0
+// drive_torque                          461    339       10
+// drive_torque_jacobian                1412    883       10
+// drive_torque_state_jacobian          3362   2858       20
 #ifndef MODELGEN_KUKA_KR150_2_HPP_
 #define MODELGEN_KUKA_KR150_2_HPP_
 

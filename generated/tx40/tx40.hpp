@@ -4,26 +4,26 @@
 // The generated code belongs to the owner of the robot description.
 //
 // Function                              mul    add  sin/cos
-// idim_regressor_standard               585    480       10
-// inverse_dynamics_standard             441    377       10
+// idim_regressor_standard               585    459       10
+// inverse_dynamics_standard             441    367       10
 // joint_sincos                            0      0       12
-// idim_regressor_standard_sincos        585    480        0
-// inverse_dynamics_standard_sincos      441    377        0
+// idim_regressor_standard_sincos        585    459        0
+// inverse_dynamics_standard_sincos      441    367        0
 // base_from_standard                     32     70        0
-// idim_regressor                        468    381       10
-// inverse_dynamics                      338    289       10
-// mass_matrix                           425    379       10
-// idim_regressor_sincos                 468    381        0
-// inverse_dynamics_sincos               338    289        0
-// mass_matrix_sincos                    425    379        0
-// inverse_dynamics_state_jacobian      2588   2507       10
-// energy_regressor                      126     59       10
-// power_regressor                       318    181       10
-// energy_regressor_sincos               126     59        0
-// power_regressor_sincos                318    181        0
-// drive_torque                          501    384       10
-// drive_torque_jacobian                2029   1016       10
-// drive_torque_state_jacobian          3244   2918       20
+// idim_regressor                        468    362       10
+// inverse_dynamics                      338    276       10
+// mass_matrix                           425    333       10
+// idim_regressor_sincos                 468    362        0
+// inverse_dynamics_sincos               338    276        0
+// mass_matrix_sincos                    425    333        0
+// inverse_dynamics_state_jacobian      2588   2313       10
+// energy_regressor                      126     51       10
+// power_regressor                       318    159       10
+// energy_regressor_sincos               126     51        0
+// power_regressor_sincos                318    159        0
+// drive_torque                          501    374       10
+// drive_torque_jacobian                2029    995       10
+// drive_torque_state_jacobian          3244   2711       20
 #ifndef MODELGEN_TX40_HPP_
 #define MODELGEN_TX40_HPP_
 

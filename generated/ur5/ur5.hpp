@@ -4,26 +4,26 @@
 // The generated code belongs to the owner of the robot description.
 //
 // Function                              mul    add  sin/cos
-// idim_regressor_standard               577    459       10
-// inverse_dynamics_standard             434    354       10
+// idim_regressor_standard               577    446       10
+// inverse_dynamics_standard             434    347       10
 // joint_sincos                            0      0       12
-// idim_regressor_standard_sincos        577    459        0
-// inverse_dynamics_standard_sincos      434    354        0
+// idim_regressor_standard_sincos        577    446        0
+// inverse_dynamics_standard_sincos      434    347        0
 // base_from_standard                     36     60        0
-// idim_regressor                        454    363       10
-// inverse_dynamics                      378    308       10
-// mass_matrix                           420    374       10
-// idim_regressor_sincos                 454    363        0
-// inverse_dynamics_sincos               378    308        0
-// mass_matrix_sincos                    420    374        0
-// inverse_dynamics_state_jacobian      2707   2523       10
-// energy_regressor                      133     61       10
-// power_regressor                       338    190       10
-// energy_regressor_sincos               133     61        0
-// power_regressor_sincos                338    190        0
-// drive_torque                          476    366       10
-// drive_torque_jacobian                1375    861       10
-// drive_torque_state_jacobian          3265   2921       20
+// idim_regressor                        454    351       10
+// inverse_dynamics                      378    296       10
+// mass_matrix                           420    348       10
+// idim_regressor_sincos                 454    351        0
+// inverse_dynamics_sincos               378    296        0
+// mass_matrix_sincos                    420    348        0
+// inverse_dynamics_state_jacobian      2707   2409       10
+// energy_regressor                      133     59       10
+// power_regressor                       338    175       10
+// energy_regressor_sincos               133     59        0
+// power_regressor_sincos                338    175        0
+// drive_torque                          476    359       10
+// drive_torque_jacobian                1375    848       10
+// drive_torque_state_jacobian          3265   2795       20
 #ifndef MODELGEN_UR5_HPP_
 #define MODELGEN_UR5_HPP_
 

@@ -1,15 +1,107 @@
 # modelgen_generate(TARGET <name> ROBOT <description> [OUT_DIR <dir>] [SCALAR double|float|both]
-#                   [PARAMS <EST.json>] [OPTIONS <modelgen options>...])
+#                   [FUNCTIONS <entry point>...] [PARAMS <EST.json>] [OPTIONS <modelgen options>...])
 #
 # Runs modelgen at build time on a robot description (MDH .yaml or .urdf) and defines a static
 # library TARGET holding the generated code, with the output directory as its include path
-# (#include "<stem>.hpp", namespace modelgen::<robot name>). Generation re-runs when the
-# description, the estimate or modelgen changes; unchanged output is not rewritten, so nothing
-# recompiles. PARAMS passes --params: the estimate's base parameters become the constants
-# kIdentifiedBase and inverse_dynamics_identified uses them. It may be the OUTPUT of an
-# add_custom_command of the same directory (a fit run at build time).
+# (#include "<stem>.hpp", namespace modelgen::<robot name>). Every entry point is a source file
+# of its own (<stem>_<function>.cpp), so the library compiles in parallel and a firmware links
+# only what it calls. FUNCTIONS keeps only those entry points and the ones they call (default:
+# all). Generation re-runs when the description, the estimate or modelgen changes; unchanged
+# output is not rewritten, so nothing recompiles. PARAMS passes --params: the estimate's base
+# parameters become the constants kIdentifiedBase and inverse_dynamics_identified uses them. It
+# may be the OUTPUT of an add_custom_command of the same directory (a fit run at build time).
+# The generated sources are also listed in the variable <TARGET>_SOURCES of the caller.
+#
+# The generator is a host tool, as protoc is: in a cross build it runs on the build machine.
+# It is the cache variable MODELGEN_EXECUTABLE when set (like Protobuf_PROTOC_EXECUTABLE),
+# otherwise the imported target modelgen::modelgen of find_package(modelgen COMPONENTS
+# generator), or the modelgen target of modelgen's own build. The generated code needs nothing
+# from the package.
+
+# Every entry point modelgen generates, in the order of its files, with the entry points each
+# one calls after a colon ("modelgen --list-functions" prints the same; a test compares them).
+set(MODELGEN_ENTRY_POINTS
+  idim_regressor_standard
+  inverse_dynamics_standard
+  joint_sincos
+  idim_regressor_standard_sincos
+  inverse_dynamics_standard_sincos
+  base_from_standard
+  idim_regressor
+  inverse_dynamics
+  mass_matrix
+  idim_regressor_sincos
+  inverse_dynamics_sincos
+  mass_matrix_sincos
+  inverse_dynamics_state_jacobian
+  energy_regressor
+  power_regressor
+  energy_regressor_sincos
+  power_regressor_sincos
+  drive_torque
+  drive_torque_jacobian:idim_regressor_standard
+  drive_torque_state_jacobian:base_from_standard,inverse_dynamics,inverse_dynamics_state_jacobian
+  inverse_dynamics_identified:inverse_dynamics)
+
+set(MODELGEN_EXECUTABLE "" CACHE FILEPATH
+    "The modelgen that modelgen_generate() runs (a build-machine executable in a cross build); empty: modelgen::modelgen")
+
+# The entry points of MODELGEN_ENTRY_POINTS that `selection` needs (itself and what it calls,
+# transitively), in file order; inverse_dynamics_identified only `with_params`.
+function(_modelgen_needed_functions out selection with_params)
+  set(names)
+  foreach(entry ${MODELGEN_ENTRY_POINTS})
+    string(REGEX REPLACE ":.*" "" name "${entry}")
+    list(APPEND names ${name})
+  endforeach()
+  if(NOT with_params)
+    list(REMOVE_ITEM names inverse_dynamics_identified)
+  endif()
+  if(NOT selection)
+    set(${out} ${names} PARENT_SCOPE)
+    return()
+  endif()
+  foreach(name ${selection})
+    list(FIND names ${name} found)
+    if(found EQUAL -1)
+      if(name STREQUAL "inverse_dynamics_identified")
+        message(FATAL_ERROR "modelgen_generate: FUNCTIONS inverse_dynamics_identified needs PARAMS")
+      endif()
+      string(REPLACE ";" ", " valid "${names}")
+      message(FATAL_ERROR "modelgen_generate: FUNCTIONS: unknown function '${name}'; the "
+                          "functions are: ${valid}")
+    endif()
+  endforeach()
+  set(needed ${selection})
+  set(pending ${selection})
+  while(pending)
+    list(POP_FRONT pending name)
+    foreach(entry ${MODELGEN_ENTRY_POINTS})
+      if(entry MATCHES "^${name}:(.*)$")
+        string(REPLACE "," ";" callees "${CMAKE_MATCH_1}")
+        foreach(callee ${callees})
+          list(FIND needed ${callee} found)
+          if(found EQUAL -1)
+            list(APPEND needed ${callee})
+            list(APPEND pending ${callee})
+          endif()
+        endforeach()
+      endif()
+    endforeach()
+  endwhile()
+  set(ordered)
+  foreach(name ${names})
+    list(FIND needed ${name} found)
+    if(NOT found EQUAL -1)
+      list(APPEND ordered ${name})
+    endif()
+  endforeach()
+  set(${out} ${ordered} PARENT_SCOPE)
+endfunction()
+
 function(modelgen_generate)
-  cmake_parse_arguments(PARSE_ARGV 0 arg "" "TARGET;ROBOT;OUT_DIR;SCALAR;PARAMS" "OPTIONS")
+  cmake_parse_arguments(PARSE_ARGV 0 arg "" "TARGET;ROBOT;OUT_DIR;SCALAR;PARAMS"
+                        "OPTIONS;FUNCTIONS")
   if(arg_UNPARSED_ARGUMENTS)
     list(GET arg_UNPARSED_ARGUMENTS 0 unknown)
     message(FATAL_ERROR "modelgen_generate: unknown argument '${unknown}'")
@@ -20,9 +112,26 @@ function(modelgen_generate)
     endif()
   endforeach()
   # list(FIND), not IN_LIST: the function may run where policy CMP0057 is not set.
-  list(FIND arg_KEYWORDS_MISSING_VALUES PARAMS params_missing_value)
-  if(NOT params_missing_value EQUAL -1)
-    message(FATAL_ERROR "modelgen_generate: PARAMS needs an estimate file")
+  foreach(keyword PARAMS FUNCTIONS)
+    list(FIND arg_KEYWORDS_MISSING_VALUES ${keyword} missing_value)
+    if(NOT missing_value EQUAL -1)
+      message(FATAL_ERROR "modelgen_generate: ${keyword} needs a value")
+    endif()
+  endforeach()
+  if(MODELGEN_EXECUTABLE)
+    if(NOT EXISTS "${MODELGEN_EXECUTABLE}")
+      message(FATAL_ERROR "modelgen_generate: MODELGEN_EXECUTABLE '${MODELGEN_EXECUTABLE}' "
+                          "does not exist")
+    endif()
+    set(generator ${MODELGEN_EXECUTABLE})
+    set(generator_dependency ${MODELGEN_EXECUTABLE})
+  elseif(TARGET modelgen::modelgen)
+    set(generator modelgen::modelgen)
+    set(generator_dependency $<TARGET_FILE:modelgen::modelgen>)
+  else()
+    message(FATAL_ERROR "modelgen_generate: no modelgen to run: find_package(modelgen "
+                        "COMPONENTS generator) or set MODELGEN_EXECUTABLE to a modelgen that "
+                        "runs on this machine")
   endif()
   if(NOT arg_OUT_DIR)
     set(arg_OUT_DIR ${CMAKE_CURRENT_BINARY_DIR}/modelgen/${arg_TARGET})
@@ -39,6 +148,7 @@ function(modelgen_generate)
   endif()
   set(params_option)
   set(params_dependency)
+  set(with_params FALSE)
   if(DEFINED arg_PARAMS)
     get_filename_component(params ${arg_PARAMS} ABSOLUTE)
     get_source_file_property(params_generated ${params} GENERATED)
@@ -48,21 +158,32 @@ function(modelgen_generate)
     endif()
     set(params_option --params ${params})
     set(params_dependency ${params})
+    set(with_params TRUE)
+  endif()
+  _modelgen_needed_functions(functions "${arg_FUNCTIONS}" ${with_params})
+  set(functions_option)
+  if(arg_FUNCTIONS)
+    string(REPLACE ";" "," functions_list "${arg_FUNCTIONS}")
+    set(functions_option --functions ${functions_list})
   endif()
   # Output names follow the description's file stem, as on the modelgen command line.
   get_filename_component(stem ${robot} NAME_WLE)
-  set(sources ${arg_OUT_DIR}/${stem}.hpp ${arg_OUT_DIR}/${stem}.cpp ${arg_OUT_DIR}/${stem}.json)
+  set(sources ${arg_OUT_DIR}/${stem}.cpp)
+  foreach(function ${functions})
+    list(APPEND sources ${arg_OUT_DIR}/${stem}_${function}.cpp)
+  endforeach()
   set(stamp ${arg_OUT_DIR}/${stem}.stamp)
   add_custom_command(
     OUTPUT ${stamp}
-    BYPRODUCTS ${sources}
-    COMMAND modelgen::modelgen ${robot} -o ${arg_OUT_DIR} --scalar ${arg_SCALAR}
-            ${params_option} ${arg_OPTIONS}
+    BYPRODUCTS ${sources} ${arg_OUT_DIR}/${stem}.hpp ${arg_OUT_DIR}/${stem}.json
+    COMMAND ${generator} ${robot} -o ${arg_OUT_DIR} --scalar ${arg_SCALAR}
+            ${params_option} ${functions_option} ${arg_OPTIONS}
     COMMAND ${CMAKE_COMMAND} -E touch ${stamp}
-    DEPENDS ${robot} ${params_dependency} $<TARGET_FILE:modelgen::modelgen>
+    DEPENDS ${robot} ${params_dependency} ${generator_dependency}
     COMMENT "modelgen: generating ${stem} for ${arg_TARGET}"
     VERBATIM)
-  add_library(${arg_TARGET} STATIC ${arg_OUT_DIR}/${stem}.cpp ${arg_OUT_DIR}/${stem}.hpp ${stamp})
+  add_library(${arg_TARGET} STATIC ${sources} ${arg_OUT_DIR}/${stem}.hpp ${stamp})
   target_include_directories(${arg_TARGET} PUBLIC ${arg_OUT_DIR})
   target_compile_features(${arg_TARGET} PUBLIC cxx_std_11)
+  set(${arg_TARGET}_SOURCES ${sources} PARENT_SCOPE)
 endfunction()

@@ -41,7 +41,8 @@ void write_op_table(const std::vector<EmittedFunction>& functions, CodeWriter& o
 
 }  // namespace
 
-std::string render_banner(const std::string& file, const RenderInput& in) {
+std::string render_banner(const std::string& file, const RenderInput& in,
+                          const std::vector<EmittedFunction>& functions) {
   return without_final_newline(
       Printer(embedded_template("banner"))
           .set("file", file)
@@ -61,7 +62,7 @@ std::string render_banner(const std::string& file, const RenderInput& in) {
                                         .set("sha256", estimate.sha256)
                                         .render());
                      })
-          .set_block("op_table", [&](CodeWriter& out) { write_op_table(in.functions, out); })
+          .set_block("op_table", [&](CodeWriter& out) { write_op_table(functions, out); })
           .render());
 }
 

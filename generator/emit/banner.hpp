@@ -8,7 +8,14 @@
 
 namespace modelgen::gen {
 
-/// The banner of the generated file `file` (templates/banner.tmpl), without a final newline.
-std::string render_banner(const std::string& file, const RenderInput& in);
+/// The banner of the generated file `file` (templates/banner.tmpl), without a final newline,
+/// with the operation counts of `functions`.
+std::string render_banner(const std::string& file, const RenderInput& in,
+                          const std::vector<EmittedFunction>& functions);
+
+/// The banner with the operation counts of every generated function.
+inline std::string render_banner(const std::string& file, const RenderInput& in) {
+  return render_banner(file, in, in.functions);
+}
 
 }  // namespace modelgen::gen

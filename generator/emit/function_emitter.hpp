@@ -27,10 +27,25 @@ struct EmittedFunction {
 
 /// Every entry point in the order of the generated files: the sections in their order, each
 /// with its functions in registry order followed by their _sincos variants; the functions on
-/// identified constants (Emitted::kWithEstimate) only `with_estimate`. Throws std::logic_error
-/// when a builder writes more or fewer values than its entry declares.
+/// identified constants (Emitted::kWithEstimate) only `with_estimate`. A non-empty `selection`
+/// (entry-point names, as modelgen --functions takes them) keeps only those and the entry points
+/// they call; `added` (if given) receives "caller calls callee" for each callee kept that was
+/// not asked for. Throws UsageError for a name that is not an entry point of this model, and
+/// std::logic_error when a builder writes more or fewer values than its entry declares.
 std::vector<EmittedFunction> emit_functions(const RobotModel& model, const BaseParameterSet& base,
                                             ExprGraph& graph, const std::vector<Scalar>& scalars,
-                                            bool with_estimate = false);
+                                            bool with_estimate = false,
+                                            const std::vector<std::string>& selection = {},
+                                            std::vector<std::string>* added = nullptr);
+
+/// The entry points of every model, in file order (a variant after its plain function's
+/// section), and with `with_estimate` the functions on identified constants: what --functions
+/// accepts.
+std::vector<std::string> entry_point_names(bool with_estimate);
+
+/// Every entry point (entry_point_names(true)), one per line, followed by ":" and the entry
+/// points it calls, comma-separated, when it calls any: what `modelgen --list-functions`
+/// prints and modelgen_generate() mirrors (MODELGEN_ENTRY_POINTS).
+std::string entry_point_list();
 
 }  // namespace modelgen::gen

@@ -20,6 +20,8 @@ struct GenerationInput {
   /// The estimate of --params, whose base parameters become constants and
   /// inverse_dynamics_identified; none without it.
   std::optional<EstimateFile> estimate;
+  /// The entry points asked for (--functions), in file order; empty for all of them.
+  std::vector<std::string> functions;
 };
 
 }  // namespace modelgen::gen

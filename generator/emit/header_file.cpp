@@ -49,9 +49,20 @@ std::string model_struct_member(const FunctionEntry& entry, const std::string& r
          text.substr(first_line_end);
 }
 
+bool emitted(const RenderInput& in, const char* name) {
+  for (const EmittedFunction& f : in.functions) {
+    if (f.name == name) return true;
+  }
+  return false;
+}
+
 void write_model_struct(const RenderInput& in, CodeWriter& out) {
-  // Generic code runs in double: the struct exists when double entry points come first.
+  // Generic code runs in double: the struct exists when double entry points come first, and
+  // only with all its members (a --functions selection without them is for a controller).
   if (in.input.scalars.empty() || in.input.scalars.front() != Scalar::kDouble) return;
+  for (const FunctionEntry& entry : function_registry()) {
+    if (entry.in_model_struct == InModelStruct::kYes && !emitted(in, entry.name)) return;
+  }
   out.lines_of(Printer(embedded_template("model_struct"))
                    .set("robot", in.model.name)
                    .set("sha256", in.sha256)

@@ -63,6 +63,16 @@ Json base_parameters(const RenderInput& in) {
   return list;
 }
 
+// The generated files, header and manifest included, in the order modelgen writes them.
+Json files(const RenderInput& in) {
+  Json list = Json::array();
+  list.push_back(in.header_name());
+  list.push_back(in.source_name());
+  for (const EmittedFunction& f : in.functions) list.push_back(in.function_source_name(f.name));
+  list.push_back(in.manifest_name());
+  return list;
+}
+
 Json functions(const RenderInput& in) {
   Json list = Json::array();
   for (const EmittedFunction& f : in.functions) {
@@ -92,6 +102,7 @@ std::string render_manifest(const RenderInput& in) {
   document["base_parameters"] = base_parameters(in);
   document["drive_parameters"] = in.drive_param_names;
   document["functions"] = functions(in);
+  document["files"] = files(in);
   if (in.input.estimate) {
     const EstimateFile& estimate = *in.input.estimate;
     document["identified_from"] = Json{

@@ -1,5 +1,6 @@
-// Builds the generated files of one robot: NAME.hpp, NAME.cpp and the manifest NAME.json, from
-// the registry of generated functions, the statement writer and the templates.
+// Builds the generated files of one robot: NAME.hpp, NAME.cpp (tables), NAME_<function>.cpp
+// per entry point and the manifest NAME.json, from the registry of generated functions, the
+// statement writer and the templates.
 #pragma once
 
 #include <string>
@@ -24,6 +25,9 @@ struct GeneratedModel {
   std::vector<FunctionReport> functions;  ///< in the order of the generated files
   std::vector<DescriptionNote> notes;     ///< what the loader snapped (RobotModel::notes)
   std::vector<std::string> warnings;      ///< about the estimate, as printed ("PATH: warning: ...")
+  /// Entry points generated although --functions did not name them, because a chosen one
+  /// calls them: "drive_torque_jacobian calls idim_regressor_standard".
+  std::vector<std::string> added_callees;
 };
 
 GeneratedModel emit_model(const RobotModel& model, const GenerationInput& input);

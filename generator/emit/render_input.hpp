@@ -24,6 +24,10 @@ struct RenderInput {
 
   std::string header_name() const { return input.stem + ".hpp"; }
   std::string source_name() const { return input.stem + ".cpp"; }
+  /// The file of one entry point: "tx40_inverse_dynamics.cpp".
+  std::string function_source_name(const std::string& function) const {
+    return input.stem + "_" + function + ".cpp";
+  }
   std::string manifest_name() const { return input.stem + ".json"; }
 };
 

@@ -1,6 +1,8 @@
-// The source: name tables, the drive chain as number literals of the first scalar type, and one
-// definition per entry point and scalar type, in file order. An input array a body never reads
-// is marked unused, so the code compiles warning-free with -Wextra.
+// The sources: NAME.cpp with the name tables and the drive chain as number literals of the first
+// scalar type; NAME_<function>.cpp with one entry point's definition per scalar type, so that a
+// build compiles the functions in parallel and a firmware links only the files it calls (no
+// section garbage collection needed). An input array a body never reads is marked unused, so
+// the code compiles warning-free with -Wextra.
 
 #include "generator/emit/source_file.hpp"
 
@@ -56,16 +58,6 @@ std::string definition(const EmittedFunction& function, std::size_t s, Scalar sc
       .render();
 }
 
-void write_definitions(const RenderInput& in, CodeWriter& out) {
-  bool first = true;
-  for (const EmittedFunction& function : in.functions) {
-    for (std::size_t s = 0; s < in.input.scalars.size(); ++s) {
-      if (!first) out.blank();
-      first = false;
-      out.lines_of(definition(function, s, in.input.scalars[s]));
-    }
-  }
-}
 
 std::vector<double> as_vector(const Eigen::VectorXd& v) { return {v.data(), v.data() + v.size()}; }
 
@@ -108,7 +100,22 @@ std::string render_source(const RenderInput& in) {
           [&](CodeWriter& out) { write_number_list(as_vector(drives.joint_offset), scalar, out); })
       .set_block("identified_definitions",
                  [&](CodeWriter& out) { write_identified_definitions(in, out); })
-      .set_block("definitions", [&](CodeWriter& out) { write_definitions(in, out); })
+      .render();
+}
+
+std::string render_function_source(const RenderInput& in, const EmittedFunction& function) {
+  const std::string file = in.function_source_name(function.name);
+  return Printer(embedded_template("function.cpp"))
+      .set("banner", render_banner(file, in, {function}))
+      .set("header", in.header_name())
+      .set("robot", in.model.name)
+      .set_block("definitions",
+                 [&](CodeWriter& out) {
+                   for (std::size_t s = 0; s < in.input.scalars.size(); ++s) {
+                     if (s > 0) out.blank();
+                     out.lines_of(definition(function, s, in.input.scalars[s]));
+                   }
+                 })
       .render();
 }
 

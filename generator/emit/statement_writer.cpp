@@ -1,10 +1,12 @@
 // Scheduling and printing of straight-line code. A node becomes a temporary when more than one
 // parent (or output) uses it; single-use nodes are printed inline in their parent. Temporaries
 // are numbered in emission order, which is a depth-first walk of the outputs in output order
-// and of each node's arguments in id order: a function of the input only.
+// and of each node's arguments in their canonical order (ExprGraph::canonical_before): a
+// function of the input only.
 
 #include "generator/emit/statement_writer.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "generator/emit/printer.hpp"
@@ -177,50 +179,73 @@ class StatementWriter {
     return n.op == Op::kMul && g_.is_constant(n.args[0]) ? g_.constant_value(n.args[0]) : 1.0;
   }
 
-  // Appends the terms of a sum to `out`, negated when `negate`. Sums reached through inline
-  // shared intermediates are spliced in (a + (b - c) prints as a + b - c), and so are negated
-  // ones (a - (b - c) prints as a - b + c): same operations, no parentheses, no negations.
-  // Counting: each " + " or " - " is one addition; a leading "-" is a negation (one addition)
-  // unless it is the sign of a numeric literal ("-2.0", "-0.5 * x"), which costs nothing.
-  void append_terms(ExprId id, bool negate, std::string& out, bool& first) {
+  // One term of a printed sum: its sign and its magnitude's text.
+  struct Term {
+    bool negative = false;
+    std::string magnitude;
+    bool literal_sign = false;  // the sign can be folded into a numeric literal ("-2.0 * x")
+  };
+
+  // Collects the terms of a sum, negated when `negate`. Sums reached through inline shared
+  // intermediates are spliced in (a + (b - c) prints as a + b - c), and so are negated ones
+  // (a - (b - c) prints as a - b + c): same operations, no parentheses, no negations.
+  void collect_terms(ExprId id, bool negate, std::vector<Term>& terms) {
     id = resolve(id);
     const Node& n = g_.node(id);
     if (name_[id].empty() && n.op == Op::kAdd) {
-      for (ExprId term : n.args) append_terms(term, negate, out, first);
+      for (ExprId term : n.args) collect_terms(term, negate, terms);
       return;
     }
     const bool inline_node = name_[id].empty();
     if (inline_node && n.op == Op::kMul && n.args.size() == 2 && coefficient(n) == -1.0) {
       const ExprId inner = resolve(n.args[1]);
       if (name_[inner].empty() && g_.node(inner).op == Op::kAdd) {
-        append_terms(inner, !negate, out, first);
+        collect_terms(inner, !negate, terms);
         return;
       }
     }
-    // Split the term into a sign and a magnitude text.
-    bool negative = negate;
-    std::string magnitude;
-    bool literal_sign = false;  // the leading sign can be folded into a numeric literal
+    Term term;
+    term.negative = negate;
     if (inline_node && n.op == Op::kConstant) {
-      negative = (n.value < 0) != negate;
-      magnitude = format_literal(std::abs(n.value), scalar_);
-      literal_sign = true;
+      term.negative = (n.value < 0) != negate;
+      term.magnitude = format_literal(std::abs(n.value), scalar_);
+      term.literal_sign = true;
     } else if (inline_node && n.op == Op::kMul && g_.is_constant(n.args[0])) {
       const double c = coefficient(n);
-      negative = (c < 0) != negate;
-      magnitude = product(n, std::abs(c));
-      literal_sign = std::abs(c) != 1.0;
+      term.negative = (c < 0) != negate;
+      term.magnitude = product(n, std::abs(c));
+      term.literal_sign = std::abs(c) != 1.0;
     } else {
-      magnitude = expression(id, Context::kTop);
+      term.magnitude = expression(id, Context::kTop);
     }
-    if (first) {
-      if (negative && !literal_sign) ++counts_.add;  // negation
-      out += negative ? "-" + magnitude : magnitude;
-    } else {
-      ++counts_.add;
-      out += (negative ? " - " : " + ") + magnitude;
+    terms.push_back(std::move(term));
+  }
+
+  // A sum's text. It leads with a positive term where there is one (b - a, not -a + b), else
+  // with a negative literal; only a sum of negated names starts with a negation.
+  // Counting: each " + " or " - " is one addition; a leading "-" is a negation (one addition)
+  // unless it is the sign of a numeric literal ("-2.0", "-0.5 * x"), which costs nothing.
+  std::string sum(ExprId id) {
+    std::vector<Term> terms;
+    collect_terms(id, false, terms);
+    auto lead = std::find_if(terms.begin(), terms.end(), [](const Term& t) { return !t.negative; });
+    if (lead == terms.end()) {
+      lead = std::find_if(terms.begin(), terms.end(), [](const Term& t) { return t.literal_sign; });
     }
-    first = false;
+    if (lead == terms.end()) lead = terms.begin();
+    std::rotate(terms.begin(), lead, lead + 1);
+    std::string out;
+    for (std::size_t i = 0; i < terms.size(); ++i) {
+      const Term& t = terms[i];
+      if (i == 0) {
+        if (t.negative && !t.literal_sign) ++counts_.add;  // negation
+        out += t.negative ? "-" + t.magnitude : t.magnitude;
+      } else {
+        ++counts_.add;
+        out += (t.negative ? " - " : " + ") + t.magnitude;
+      }
+    }
+    return out;
   }
 
   std::string expression(ExprId id, Context context) {
@@ -245,9 +270,7 @@ class StatementWriter {
         return c < 0 && context == Context::kFactor ? "(" + text + ")" : text;
       }
       case Op::kAdd: {
-        std::string out;
-        bool first = true;
-        append_terms(id, false, out, first);
+        const std::string out = sum(id);
         return context == Context::kFactor ? "(" + out + ")" : out;
       }
       case Op::kInv: {

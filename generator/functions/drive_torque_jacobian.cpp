@@ -38,7 +38,6 @@ FunctionDefinition build_drive_torque_jacobian(BuildContext& context) {
     return std::vector<std::string>{local_array(scalar, "W_std", "kDof * kStandardParams"),
                                     call("idim_regressor_standard", "q, dq, ddq, W_std")};
   };
-  definition.calls = {"idim_regressor_standard"};
   return definition;
 }
 

@@ -57,7 +57,6 @@ FunctionDefinition build_drive_torque_state_jacobian(BuildContext& context) {
   FunctionDefinition definition{
       row_major_outputs("J", n, 3 * n, entry, [&](int k) { return state_name(k, n); })};
   definition.prologue = [drive](Scalar scalar) { return prologue(drive, scalar); };
-  definition.calls = {"base_from_standard", "inverse_dynamics", "inverse_dynamics_state_jacobian"};
   return definition;
 }
 

@@ -53,8 +53,6 @@ struct FunctionDefinition {
   std::vector<FunctionOutput> outputs;
   /// Statements before the body: local arrays filled by calls to other entry points.
   std::function<std::vector<std::string>(Scalar)> prologue{};
-  /// The entry points the prologue calls; their operation counts add to this function's.
-  std::vector<std::string> calls{};
   /// The prologue's call writes the outputs (a function that wraps another entry point), so
   /// `outputs` stays empty.
   bool outputs_written_by_call = false;
@@ -72,6 +70,9 @@ struct FunctionEntry {
   std::vector<ArraySpec> outputs;
   Builder build;
   Emitted emitted = Emitted::kAlways;
+  /// The entry points the builder's prologue calls; their operation counts add to this
+  /// function's, and --functions generates them with it.
+  std::vector<std::string> calls = {};
 };
 
 /// The sizes an Extent stands for in one model.

@@ -13,7 +13,6 @@ FunctionDefinition build_inverse_dynamics_identified(BuildContext& context) {
     return std::vector<std::string>{call(
         "inverse_dynamics", "q, dq, ddq, " + identified_base_array(scalar, scalars) + ", tau")};
   };
-  definition.calls = {"inverse_dynamics"};
   definition.outputs_written_by_call = true;
   return definition;
 }

@@ -54,10 +54,12 @@ const std::vector<FunctionEntry> kRegistry = {
      {kQ, kDq, kDdq, {"theta", E::kDriveParams}}, {{"tau_M", E::kDof}}, build_drive_torque},
     {"drive_torque_jacobian", S::kDriveModel, Variants::kPlain, InModelStruct::kYes,
      {kQ, kDq, kDdq, {"theta", E::kDriveParams}},
-     {{"tau_M", E::kDof}, {"J", E::kDof, E::kDriveParams}}, build_drive_torque_jacobian},
+     {{"tau_M", E::kDof}, {"J", E::kDof, E::kDriveParams}}, build_drive_torque_jacobian,
+     Emitted::kAlways, {"idim_regressor_standard"}},
     {"drive_torque_state_jacobian", S::kDriveModel, Variants::kPlain, InModelStruct::kYes,
      {kQ, kDq, kDdq, {"theta", E::kDriveParams}}, {{"J", E::kDof, E::kState}},
-     build_drive_torque_state_jacobian},
+     build_drive_torque_state_jacobian, Emitted::kAlways,
+     {"base_from_standard", "inverse_dynamics", "inverse_dynamics_state_jacobian"}},
     {"energy_regressor", S::kPowerModel, Variants::kSincos, InModelStruct::kNo,
      {kQ, kDq}, {{"h", E::kBaseParams}}, build_energy_regressor},
     {"power_regressor", S::kPowerModel, Variants::kSincos, InModelStruct::kYes,
@@ -66,7 +68,7 @@ const std::vector<FunctionEntry> kRegistry = {
      {kQ, {"beta", E::kBaseParams}}, {{"M", E::kDof, E::kDof}}, build_mass_matrix},
     {"inverse_dynamics_identified", S::kIdentified, Variants::kPlain, InModelStruct::kNo,
      {kQ, kDq, kDdq}, {{"tau", E::kDof}}, build_inverse_dynamics_identified,
-     Emitted::kWithEstimate},
+     Emitted::kWithEstimate, {"inverse_dynamics"}},
 };
 // clang-format on
 

@@ -31,6 +31,8 @@ void FileSet::add(std::string name, std::string content) {
   files_.push_back({std::move(name), std::move(content)});
 }
 
+void FileSet::retire(std::string name) { retired_.push_back(std::move(name)); }
+
 namespace {
 
 constexpr const char* kJournal = ".modelgen-commit";
@@ -71,9 +73,9 @@ std::string write_new_file(const fs::path& path, const std::string& content) {
 
 bool process_alive(long pid) { return pid > 0 && (::kill(static_cast<pid_t>(pid), 0) == 0 || errno == EPERM); }
 
-// Finishes what a killed run committed (its journal lists "temporary\tdestination" lines):
-// every temporary still there is renamed into place, then backups, leftovers of runs that no
-// longer exist and the journal go.
+// Finishes what a killed run committed (its journal lists "temporary\tdestination" lines, and
+// "\tname" for a file to remove): every temporary still there is renamed into place, retired
+// files are removed, then backups, leftovers of runs that no longer exist and the journal go.
 void recover_interrupted_run(const fs::path& directory) {
   std::error_code ignored;
   const fs::path journal = directory / kJournal;
@@ -93,7 +95,9 @@ void recover_interrupted_run(const fs::path& directory) {
     // A journal without its last line was cut short: the set was never committed.
     if (complete) {
       for (const auto& [temporary, destination] : moves) {
-        if (fs::exists(directory / temporary, ignored)) {
+        if (temporary.empty()) {
+          fs::remove(directory / destination, ignored);
+        } else if (fs::exists(directory / temporary, ignored)) {
           fs::rename(directory / temporary, directory / destination, ignored);
         }
       }
@@ -169,13 +173,18 @@ void FileSet::write_to(const std::string& directory) const {
                                                    " (no file was changed)");
     }
   }
-  if (replacements.empty()) return;
+  std::vector<std::string> retired;
+  for (const std::string& name : retired_) {
+    if (fs::is_regular_file(fs::symlink_status(fs::path(directory) / name))) retired.push_back(name);
+  }
+  if (replacements.empty() && retired.empty()) return;
   // The commit point: once the journal exists, the new set is what the folder will hold, even
   // if this process dies during the renames below (the next run completes them).
   std::string journal_text;
   for (const Replacement& r : replacements) {
     journal_text += r.temporary.filename().string() + "\t" + r.name + "\n";
   }
+  for (const std::string& name : retired) journal_text += "\t" + name + "\n";
   journal_text += "end\n";
   std::string reason = write_new_file(journal_temporary, journal_text);
   if (reason.empty()) {
@@ -210,6 +219,7 @@ void FileSet::write_to(const std::string& directory) const {
     if (test_hooks::after_rename != nullptr) test_hooks::after_rename(++renamed);
   }
   std::error_code ignored;
+  for (const std::string& name : retired) fs::remove(fs::path(directory) / name, ignored);
   for (const Replacement& r : replacements) {
     if (r.backed_up) fs::remove(r.backup, ignored);
   }

@@ -18,7 +18,11 @@ struct OutputFile {
 class FileSet {
  public:
   void add(std::string name, std::string content);
+  /// A file of an earlier run that this set no longer has (a function left out by
+  /// --functions): removed from the directory when the new set is in place, not before.
+  void retire(std::string name);
   const std::vector<OutputFile>& files() const { return files_; }
+  const std::vector<std::string>& retired() const { return retired_; }
 
   /// Writes every file into `directory` (created if missing). Files whose content is already
   /// identical are left untouched, so build systems see no change. First completes a run that
@@ -30,6 +34,7 @@ class FileSet {
 
  private:
   std::vector<OutputFile> files_;
+  std::vector<std::string> retired_;
 };
 
 namespace test_hooks {

@@ -33,10 +33,55 @@ ExprGraph::ExprGraph() {
   one_ = constant(1.0);
 }
 
+namespace {
+
+// FNV-1a and a boost-style mix: fixed functions, the same in every standard library.
+std::uint64_t hash_text(const std::string& text) {
+  std::uint64_t h = 1469598103934665603ull;
+  for (unsigned char c : text) h = (h ^ c) * 1099511628211ull;
+  return h;
+}
+
+void mix(std::uint64_t& h, std::uint64_t v) { h ^= v + 0x9e3779b97f4a7c15ull + (h << 6) + (h >> 2); }
+
+int kind_rank(Op op) {
+  if (op == Op::kConstant) return 0;
+  if (op == Op::kSymbol) return 1;
+  return 2;
+}
+
+}  // namespace
+
+bool ExprGraph::canonical_before(ExprId a, ExprId b) const {
+  if (a == b) return false;
+  const Node& x = nodes_[a];
+  const Node& y = nodes_[b];
+  if (kind_rank(x.op) != kind_rank(y.op)) return kind_rank(x.op) < kind_rank(y.op);
+  if (x.op == Op::kConstant) return x.value < y.value;
+  if (x.op == Op::kSymbol) return symbols_[x.symbol].name < symbols_[y.symbol].name;
+  if (x.height != y.height) return x.height < y.height;
+  if (x.structure != y.structure) return x.structure < y.structure;
+  return a < b;  // two structures with one hash: a 2^-64 event
+}
+
+void ExprGraph::sort_canonical(std::vector<ExprId>& ids) const {
+  std::sort(ids.begin(), ids.end(),
+            [this](ExprId a, ExprId b) { return canonical_before(a, b); });
+}
+
 ExprId ExprGraph::intern(Node node) {
   Key key{node.op, node.value, node.symbol, node.args};
   auto found = index_.find(key);
   if (found != index_.end()) return found->second;
+  std::uint64_t structure = 1469598103934665603ull ^ static_cast<std::uint64_t>(node.op);
+  if (node.op == Op::kConstant) mix(structure, std::bit_cast<std::uint64_t>(node.value));
+  if (node.op == Op::kSymbol) mix(structure, hash_text(symbols_[node.symbol].name));
+  node.height = 0;
+  for (ExprId a : node.args) {
+    mix(structure, nodes_[a].structure);
+    node.height = std::max(node.height, nodes_[a].height + 1);
+  }
+  node.structure = structure;
   const ExprId id = static_cast<ExprId>(nodes_.size());
   nodes_.push_back(std::move(node));
   index_.emplace(std::move(key), id);
@@ -70,7 +115,7 @@ std::pair<double, ExprId> ExprGraph::split_coefficient(ExprId id) {
   if (n.args.size() == 2) return {coefficient, n.args[1]};
   Node rest;
   rest.op = Op::kMul;
-  rest.args.assign(n.args.begin() + 1, n.args.end());
+  rest.args.assign(n.args.begin() + 1, n.args.end());  // still in canonical order
   return {coefficient, intern(std::move(rest))};
 }
 
@@ -92,7 +137,7 @@ ExprId ExprGraph::add(std::vector<ExprId> terms) {
     }
   }
   double constant_sum = 0;
-  std::map<ExprId, double> coefficients;  // ordered by id: deterministic
+  std::map<ExprId, double> coefficients;  // the args are put in canonical order below
   for (ExprId t : flat) {
     if (nodes_[t].op == Op::kConstant) {
       constant_sum += nodes_[t].value;
@@ -109,7 +154,7 @@ ExprId ExprGraph::add(std::vector<ExprId> terms) {
   if (constant_sum != 0.0) args.push_back(constant(constant_sum));
   if (args.empty()) return zero_;
   if (args.size() == 1) return args[0];
-  std::sort(args.begin(), args.end());
+  sort_canonical(args);
   Node node;
   node.op = Op::kAdd;
   node.args = std::move(args);
@@ -145,7 +190,7 @@ ExprId ExprGraph::mul(std::vector<ExprId> factors) {
     for (ExprId t : nodes_[rest[0]].args) terms.push_back(mul(constant(coefficient), t));
     return add(std::move(terms));
   }
-  std::sort(rest.begin(), rest.end());
+  sort_canonical(rest);
   if (coefficient == 1.0 && rest.size() == 1) return rest[0];
   Node node;
   node.op = Op::kMul;

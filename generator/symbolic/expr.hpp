@@ -1,8 +1,11 @@
 // Expression DAG for the symbolic models: hash-consed nodes (one node per distinct
 // subexpression, so shared subexpressions are shared by construction), constants folded,
 // neutral and absorbing elements removed, commutative operands in a canonical order, and like
-// terms collected. Node ids are given in creation order, so every order derived from them is a
-// function of the input only (never of pointer values or hash seeds).
+// terms collected. Operands are ordered by structure (kind, height, a hash of the subexpression),
+// never by node id: ids follow creation order, and creation order depends on the order in which
+// a compiler evaluates the arguments of a call such as add(mul(a, b), mul(c, d)). Ordering by
+// structure makes the generated code a function of the input alone, whichever compiler built
+// modelgen (and never of pointer values or hash seeds).
 #pragma once
 
 #include <cstdint>
@@ -18,8 +21,9 @@ using ExprId = std::uint32_t;
 enum class Op : std::uint8_t {
   kConstant,
   kSymbol,
-  kAdd,  // n-ary sum, args sorted by id, no constant zero, no nested sums
-  kMul,  // n-ary product, at most one constant (first), no 0 or 1 constants, no nested products
+  kAdd,  // n-ary sum, args in canonical order, no constant zero, no nested sums
+  kMul,  // n-ary product, at most one constant (first), no 0 or 1 constants, no nested products;
+        // the other factors in canonical order
   kShare,  // one arg: an intermediate result kept whole, an atom to sums and products
   kSign,   // one arg: -1, 0 or 1 (Coulomb friction of a motor driving several joints)
   kInv,    // one arg: its reciprocal 1 / arg (transmission efficiency, Swevers eq. 8); never
@@ -48,6 +52,11 @@ struct Node {
   double value = 0;          ///< kConstant
   std::uint32_t symbol = 0;  ///< kSymbol: index into ExprGraph::symbols()
   std::vector<ExprId> args;  ///< kAdd, kMul
+  /// Set by the graph: 0 for leaves, else one more than the highest argument.
+  std::uint32_t height = 0;
+  /// Set by the graph: a hash of the subexpression's structure (symbol names, constant values,
+  /// operations), independent of node ids.
+  std::uint64_t structure = 0;
 };
 
 class ExprGraph {
@@ -85,6 +94,9 @@ class ExprGraph {
   ExprId div(ExprId a, ExprId b);
 
   const Node& node(ExprId id) const { return nodes_[id]; }
+  /// The canonical order of operands: constants, then symbols by name, then other nodes by
+  /// height and structure hash (node id only to separate two structures with equal hashes).
+  bool canonical_before(ExprId a, ExprId b) const;
   const std::vector<Symbol>& symbols() const { return symbols_; }
   std::size_t size() const { return nodes_.size(); }
 
@@ -109,6 +121,7 @@ class ExprGraph {
   };
 
   ExprId intern(Node node);
+  void sort_canonical(std::vector<ExprId>& ids) const;
   // Splits a term into its constant coefficient and the rest (1 for a constant).
   std::pair<double, ExprId> split_coefficient(ExprId id);
 
