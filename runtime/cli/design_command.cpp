@@ -6,7 +6,7 @@
 #include <charconv>
 #include <cmath>
 #include <iostream>
-#include <numbers>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 

@@ -501,7 +501,6 @@ ExcitationDesign design_excitation(const ExcitationDesignProblem& problem) {
     const int before = design.evaluations;
     const nlopt_result code = nlopt_optimize(opt, x.data(), &value);
     nlopt_destroy(opt);
-    (void)code;
     const std::vector<double> shrink = design.repair_on_dense_grid(x);
     const double repaired = design.criterion(x, nullptr).value;
     say("start " + std::to_string(s + 1) + "/" + std::to_string(optimised) + ": " +

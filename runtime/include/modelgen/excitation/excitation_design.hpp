@@ -32,7 +32,7 @@ struct ExcitationDesignProblem {
   int samples = 0;          ///< regressor samples per period; 0: 40 per highest harmonic, >= 100
   int random_starts = 100;  ///< random feasible trajectories drawn
   int starts = 3;           ///< the best ones optimised
-  int max_evaluations = 400;  ///< per optimised start
+  int max_evaluations = 1000;  ///< per optimised start
   std::uint64_t seed = 1;
   std::function<void(const std::string&)> progress;  ///< one line per step, may be empty
 };
