@@ -151,7 +151,7 @@ void drive_torque_state_jacobian(const double* q, const double* dq, const double
   J[26] = dtau_G[26] * t2;  // ddq[8]
   const double t3 = dq[1] * tau_G[1];
   const double t4 = static_cast<double>((t3 > 0.0) - (t3 < 0.0));
-  const double t5 = (1.0 / theta[97]) * (0.5 + 0.5 * t4) + theta[97] * (0.5 - 0.5 * t4);
+  const double t5 = theta[97] * (0.5 - 0.5 * t4) + (1.0 / theta[97]) * (0.5 + 0.5 * t4);
   J[27] = dtau_G[27] * t5;
   J[28] = dtau_G[28] * t5;
   J[29] = dtau_G[29] * t5;
@@ -181,7 +181,7 @@ void drive_torque_state_jacobian(const double* q, const double* dq, const double
   J[53] = dtau_G[53] * t5;
   const double t6 = dq[2] * tau_G[2];
   const double t7 = static_cast<double>((t6 > 0.0) - (t6 < 0.0));
-  const double t8 = (1.0 / theta[101]) * (0.5 + 0.5 * t7) + theta[101] * (0.5 - 0.5 * t7);
+  const double t8 = theta[101] * (0.5 - 0.5 * t7) + (1.0 / theta[101]) * (0.5 + 0.5 * t7);
   J[54] = dtau_G[54] * t8;
   J[55] = dtau_G[55] * t8;
   J[56] = dtau_G[56] * t8;
@@ -301,7 +301,7 @@ void drive_torque_state_jacobian(const double* q, const double* dq, const double
   J[161] = dtau_G[161] * t17;
   const double t18 = dq[6] * tau_G[6];
   const double t19 = static_cast<double>((t18 > 0.0) - (t18 < 0.0));
-  const double t20 = (1.0 / theta[117]) * (0.5 + 0.5 * t19) + theta[117] * (0.5 - 0.5 * t19);
+  const double t20 = theta[117] * (0.5 - 0.5 * t19) + (1.0 / theta[117]) * (0.5 + 0.5 * t19);
   J[162] = dtau_G[162] * t20;
   J[163] = dtau_G[163] * t20;
   J[164] = dtau_G[164] * t20;
@@ -331,7 +331,7 @@ void drive_torque_state_jacobian(const double* q, const double* dq, const double
   J[188] = dtau_G[188] * t20;
   const double t21 = dq[7] * tau_G[7];
   const double t22 = static_cast<double>((t21 > 0.0) - (t21 < 0.0));
-  const double t23 = (1.0 / theta[121]) * (0.5 + 0.5 * t22) + theta[121] * (0.5 - 0.5 * t22);
+  const double t23 = theta[121] * (0.5 - 0.5 * t22) + (1.0 / theta[121]) * (0.5 + 0.5 * t22);
   J[189] = dtau_G[189] * t23;
   J[190] = dtau_G[190] * t23;
   J[191] = dtau_G[191] * t23;
@@ -530,7 +530,7 @@ void drive_torque_state_jacobian(const float* q, const float* dq, const float* d
   J[26] = dtau_G[26] * t2;  // ddq[8]
   const float t3 = dq[1] * tau_G[1];
   const float t4 = static_cast<float>((t3 > 0.0f) - (t3 < 0.0f));
-  const float t5 = (1.0f / theta[97]) * (0.5f + 0.5f * t4) + theta[97] * (0.5f - 0.5f * t4);
+  const float t5 = theta[97] * (0.5f - 0.5f * t4) + (1.0f / theta[97]) * (0.5f + 0.5f * t4);
   J[27] = dtau_G[27] * t5;
   J[28] = dtau_G[28] * t5;
   J[29] = dtau_G[29] * t5;
@@ -560,7 +560,7 @@ void drive_torque_state_jacobian(const float* q, const float* dq, const float* d
   J[53] = dtau_G[53] * t5;
   const float t6 = dq[2] * tau_G[2];
   const float t7 = static_cast<float>((t6 > 0.0f) - (t6 < 0.0f));
-  const float t8 = (1.0f / theta[101]) * (0.5f + 0.5f * t7) + theta[101] * (0.5f - 0.5f * t7);
+  const float t8 = theta[101] * (0.5f - 0.5f * t7) + (1.0f / theta[101]) * (0.5f + 0.5f * t7);
   J[54] = dtau_G[54] * t8;
   J[55] = dtau_G[55] * t8;
   J[56] = dtau_G[56] * t8;
@@ -680,7 +680,7 @@ void drive_torque_state_jacobian(const float* q, const float* dq, const float* d
   J[161] = dtau_G[161] * t17;
   const float t18 = dq[6] * tau_G[6];
   const float t19 = static_cast<float>((t18 > 0.0f) - (t18 < 0.0f));
-  const float t20 = (1.0f / theta[117]) * (0.5f + 0.5f * t19) + theta[117] * (0.5f - 0.5f * t19);
+  const float t20 = theta[117] * (0.5f - 0.5f * t19) + (1.0f / theta[117]) * (0.5f + 0.5f * t19);
   J[162] = dtau_G[162] * t20;
   J[163] = dtau_G[163] * t20;
   J[164] = dtau_G[164] * t20;
@@ -710,7 +710,7 @@ void drive_torque_state_jacobian(const float* q, const float* dq, const float* d
   J[188] = dtau_G[188] * t20;
   const float t21 = dq[7] * tau_G[7];
   const float t22 = static_cast<float>((t21 > 0.0f) - (t21 < 0.0f));
-  const float t23 = (1.0f / theta[121]) * (0.5f + 0.5f * t22) + theta[121] * (0.5f - 0.5f * t22);
+  const float t23 = theta[121] * (0.5f - 0.5f * t22) + (1.0f / theta[121]) * (0.5f + 0.5f * t22);
   J[189] = dtau_G[189] * t23;
   J[190] = dtau_G[190] * t23;
   J[191] = dtau_G[191] * t23;

@@ -16,26 +16,26 @@ namespace kr150 {
 // Input p_standard: kStandardParams values in the order of kStandardParamNames.
 // Output beta: kBaseParams values in the order of kBaseParamNames.
 void base_from_standard(const double* p_standard, double* beta) {
-  beta[0] = p_standard[10] + p_standard[16] + p_standard[29] + p_standard[5] + 0.1225 * p_standard[22] + 1.688025 * p_standard[93] + 1.688025 * p_standard[61] + 1.688025 * p_standard[77] + 1.685 * p_standard[35] + 1.688025 * p_standard[48];  // ZZ1R
+  beta[0] = p_standard[10] + p_standard[16] + p_standard[29] + p_standard[5] + 0.1225 * p_standard[22] + 1.685 * p_standard[35] + 1.688025 * p_standard[48] + 1.688025 * p_standard[61] + 1.688025 * p_standard[77] + 1.688025 * p_standard[93];  // ZZ1R
   beta[1] = p_standard[11];  // Fv1
   beta[2] = p_standard[12];  // Fc1
-  beta[3] = p_standard[13] - 1.5625 * p_standard[48] - 1.5625 * p_standard[61] - 1.5625 * p_standard[77] - 1.5625 * p_standard[35] - p_standard[16] - 1.5625 * p_standard[93];  // XX2R
+  beta[3] = p_standard[13] - 1.5625 * p_standard[35] - 1.5625 * p_standard[48] - 1.5625 * p_standard[61] - 1.5625 * p_standard[77] - 1.5625 * p_standard[93] - p_standard[16];  // XX2R
   beta[4] = p_standard[14];  // XY2
   beta[5] = p_standard[15] - 1.25 * p_standard[34];  // XZ2R
   beta[6] = p_standard[17];  // YZ2
-  beta[7] = p_standard[18] + p_standard[23] + 1.5625 * p_standard[93] + 1.5625 * p_standard[61] + 1.5625 * p_standard[77] + 1.5625 * p_standard[35] + 1.5625 * p_standard[48];  // ZZ2R
-  beta[8] = p_standard[19] + 1.25 * p_standard[93] + 1.25 * p_standard[48] + 1.25 * p_standard[61] + 1.25 * p_standard[77] + 1.25 * p_standard[35];  // MX2R
+  beta[7] = p_standard[18] + p_standard[23] + 1.5625 * p_standard[35] + 1.5625 * p_standard[48] + 1.5625 * p_standard[61] + 1.5625 * p_standard[77] + 1.5625 * p_standard[93];  // ZZ2R
+  beta[8] = p_standard[19] + 1.25 * p_standard[35] + 1.25 * p_standard[48] + 1.25 * p_standard[61] + 1.25 * p_standard[77] + 1.25 * p_standard[93];  // MX2R
   beta[9] = p_standard[20];  // MY2
   beta[10] = p_standard[24];  // Fv2
   beta[11] = p_standard[25];  // Fc2
   const double t0 = -2.2 * p_standard[47];
-  beta[12] = p_standard[26] + p_standard[42] + 1.206975 * p_standard[93] + t0 + 1.206975 * p_standard[61] + 1.206975 * p_standard[77] + 1.206975 * p_standard[48] - p_standard[29];  // XX3R
-  beta[13] = p_standard[27] - 0.055 * p_standard[47] + 0.0605 * p_standard[93] + 0.0605 * p_standard[48] + 0.0605 * p_standard[61] + 0.0605 * p_standard[77];  // XY3R
+  beta[12] = p_standard[26] + p_standard[42] + t0 - p_standard[29] + 1.206975 * p_standard[48] + 1.206975 * p_standard[61] + 1.206975 * p_standard[77] + 1.206975 * p_standard[93];  // XX3R
+  beta[13] = p_standard[27] - 0.055 * p_standard[47] + 0.0605 * p_standard[48] + 0.0605 * p_standard[61] + 0.0605 * p_standard[77] + 0.0605 * p_standard[93];  // XY3R
   beta[14] = p_standard[28];  // XZ3
   beta[15] = p_standard[30];  // YZ3
-  beta[16] = p_standard[31] + p_standard[42] + t0 + 1.213025 * p_standard[93] + 1.213025 * p_standard[48] + 1.213025 * p_standard[61] + 1.213025 * p_standard[77];  // ZZ3R
-  beta[17] = p_standard[32] + 0.055 * p_standard[93] + 0.055 * p_standard[48] + 0.055 * p_standard[61] + 0.055 * p_standard[77];  // MX3R
-  beta[18] = p_standard[33] + p_standard[47] - 1.1 * p_standard[61] - 1.1 * p_standard[77] - 1.1 * p_standard[48] - 1.1 * p_standard[93];  // MY3R
+  beta[16] = p_standard[31] + p_standard[42] + t0 + 1.213025 * p_standard[48] + 1.213025 * p_standard[61] + 1.213025 * p_standard[77] + 1.213025 * p_standard[93];  // ZZ3R
+  beta[17] = p_standard[32] + 0.055 * p_standard[48] + 0.055 * p_standard[61] + 0.055 * p_standard[77] + 0.055 * p_standard[93];  // MX3R
+  beta[18] = p_standard[33] + p_standard[47] - 1.1 * p_standard[48] - 1.1 * p_standard[61] - 1.1 * p_standard[77] - 1.1 * p_standard[93];  // MY3R
   beta[19] = p_standard[36];  // Ia3
   beta[20] = p_standard[37];  // Fv3
   beta[21] = p_standard[38];  // Fc3
@@ -49,9 +49,9 @@ void base_from_standard(const double* p_standard, double* beta) {
   beta[29] = p_standard[49];  // Ia4
   beta[30] = p_standard[50];  // Fv4
   beta[31] = p_standard[51];  // Fc4
-  const double t1 = 0.0529 * p_standard[93];
-  const double t2 = -0.46 * p_standard[92];
-  beta[32] = p_standard[52] + p_standard[71] + p_standard[87] + t1 - p_standard[55] + t2;  // XX5R
+  const double t1 = -0.46 * p_standard[92];
+  const double t2 = 0.0529 * p_standard[93];
+  beta[32] = p_standard[52] + p_standard[71] + p_standard[87] - p_standard[55] + t1 + t2;  // XX5R
   beta[33] = p_standard[53];  // XY5
   beta[34] = p_standard[54];  // XZ5
   beta[35] = p_standard[56];  // YZ5
@@ -83,26 +83,26 @@ void base_from_standard(const double* p_standard, double* beta) {
 // Input p_standard: kStandardParams values in the order of kStandardParamNames.
 // Output beta: kBaseParams values in the order of kBaseParamNames.
 void base_from_standard(const float* p_standard, float* beta) {
-  beta[0] = p_standard[10] + p_standard[16] + p_standard[29] + p_standard[5] + 0.1225f * p_standard[22] + 1.688025f * p_standard[93] + 1.688025f * p_standard[61] + 1.688025f * p_standard[77] + 1.685f * p_standard[35] + 1.688025f * p_standard[48];  // ZZ1R
+  beta[0] = p_standard[10] + p_standard[16] + p_standard[29] + p_standard[5] + 0.1225f * p_standard[22] + 1.685f * p_standard[35] + 1.688025f * p_standard[48] + 1.688025f * p_standard[61] + 1.688025f * p_standard[77] + 1.688025f * p_standard[93];  // ZZ1R
   beta[1] = p_standard[11];  // Fv1
   beta[2] = p_standard[12];  // Fc1
-  beta[3] = p_standard[13] - 1.5625f * p_standard[48] - 1.5625f * p_standard[61] - 1.5625f * p_standard[77] - 1.5625f * p_standard[35] - p_standard[16] - 1.5625f * p_standard[93];  // XX2R
+  beta[3] = p_standard[13] - 1.5625f * p_standard[35] - 1.5625f * p_standard[48] - 1.5625f * p_standard[61] - 1.5625f * p_standard[77] - 1.5625f * p_standard[93] - p_standard[16];  // XX2R
   beta[4] = p_standard[14];  // XY2
   beta[5] = p_standard[15] - 1.25f * p_standard[34];  // XZ2R
   beta[6] = p_standard[17];  // YZ2
-  beta[7] = p_standard[18] + p_standard[23] + 1.5625f * p_standard[93] + 1.5625f * p_standard[61] + 1.5625f * p_standard[77] + 1.5625f * p_standard[35] + 1.5625f * p_standard[48];  // ZZ2R
-  beta[8] = p_standard[19] + 1.25f * p_standard[93] + 1.25f * p_standard[48] + 1.25f * p_standard[61] + 1.25f * p_standard[77] + 1.25f * p_standard[35];  // MX2R
+  beta[7] = p_standard[18] + p_standard[23] + 1.5625f * p_standard[35] + 1.5625f * p_standard[48] + 1.5625f * p_standard[61] + 1.5625f * p_standard[77] + 1.5625f * p_standard[93];  // ZZ2R
+  beta[8] = p_standard[19] + 1.25f * p_standard[35] + 1.25f * p_standard[48] + 1.25f * p_standard[61] + 1.25f * p_standard[77] + 1.25f * p_standard[93];  // MX2R
   beta[9] = p_standard[20];  // MY2
   beta[10] = p_standard[24];  // Fv2
   beta[11] = p_standard[25];  // Fc2
   const float t0 = -2.2f * p_standard[47];
-  beta[12] = p_standard[26] + p_standard[42] + 1.206975f * p_standard[93] + t0 + 1.206975f * p_standard[61] + 1.206975f * p_standard[77] + 1.206975f * p_standard[48] - p_standard[29];  // XX3R
-  beta[13] = p_standard[27] - 0.055f * p_standard[47] + 0.0605f * p_standard[93] + 0.0605f * p_standard[48] + 0.0605f * p_standard[61] + 0.0605f * p_standard[77];  // XY3R
+  beta[12] = p_standard[26] + p_standard[42] + t0 - p_standard[29] + 1.206975f * p_standard[48] + 1.206975f * p_standard[61] + 1.206975f * p_standard[77] + 1.206975f * p_standard[93];  // XX3R
+  beta[13] = p_standard[27] - 0.055f * p_standard[47] + 0.0605f * p_standard[48] + 0.0605f * p_standard[61] + 0.0605f * p_standard[77] + 0.0605f * p_standard[93];  // XY3R
   beta[14] = p_standard[28];  // XZ3
   beta[15] = p_standard[30];  // YZ3
-  beta[16] = p_standard[31] + p_standard[42] + t0 + 1.213025f * p_standard[93] + 1.213025f * p_standard[48] + 1.213025f * p_standard[61] + 1.213025f * p_standard[77];  // ZZ3R
-  beta[17] = p_standard[32] + 0.055f * p_standard[93] + 0.055f * p_standard[48] + 0.055f * p_standard[61] + 0.055f * p_standard[77];  // MX3R
-  beta[18] = p_standard[33] + p_standard[47] - 1.1f * p_standard[61] - 1.1f * p_standard[77] - 1.1f * p_standard[48] - 1.1f * p_standard[93];  // MY3R
+  beta[16] = p_standard[31] + p_standard[42] + t0 + 1.213025f * p_standard[48] + 1.213025f * p_standard[61] + 1.213025f * p_standard[77] + 1.213025f * p_standard[93];  // ZZ3R
+  beta[17] = p_standard[32] + 0.055f * p_standard[48] + 0.055f * p_standard[61] + 0.055f * p_standard[77] + 0.055f * p_standard[93];  // MX3R
+  beta[18] = p_standard[33] + p_standard[47] - 1.1f * p_standard[48] - 1.1f * p_standard[61] - 1.1f * p_standard[77] - 1.1f * p_standard[93];  // MY3R
   beta[19] = p_standard[36];  // Ia3
   beta[20] = p_standard[37];  // Fv3
   beta[21] = p_standard[38];  // Fc3
@@ -116,9 +116,9 @@ void base_from_standard(const float* p_standard, float* beta) {
   beta[29] = p_standard[49];  // Ia4
   beta[30] = p_standard[50];  // Fv4
   beta[31] = p_standard[51];  // Fc4
-  const float t1 = 0.0529f * p_standard[93];
-  const float t2 = -0.46f * p_standard[92];
-  beta[32] = p_standard[52] + p_standard[71] + p_standard[87] + t1 - p_standard[55] + t2;  // XX5R
+  const float t1 = -0.46f * p_standard[92];
+  const float t2 = 0.0529f * p_standard[93];
+  beta[32] = p_standard[52] + p_standard[71] + p_standard[87] - p_standard[55] + t1 + t2;  // XX5R
   beta[33] = p_standard[53];  // XY5
   beta[34] = p_standard[54];  // XZ5
   beta[35] = p_standard[56];  // YZ5

@@ -33,7 +33,7 @@ void energy_regressor(const double* q, const double* dq, double* h) {
   const double t0 = dq[0] * s2;
   h[3] = 0.5 * t0 * t0;  // XX2R
   const double t1 = c2 * dq[0];
-  h[4] = t0 * t1;  // XY2
+  h[4] = t1 * t0;  // XY2
   h[5] = dq[1] * t0;  // XZ2R
   h[6] = dq[1] * t1;  // YZ2
   h[7] = 0.5 * dq[1] * dq[1];  // ZZ2R
@@ -44,7 +44,7 @@ void energy_regressor(const double* q, const double* dq, double* h) {
   const double t2 = c3 * t1 - s3 * t0;
   h[12] = 0.5 * t2 * t2;  // XX3R
   const double t3 = -c3 * t0 - s3 * t1;
-  h[13] = t2 * t3;  // XY3R
+  h[13] = t3 * t2;  // XY3R
   const double t4 = dq[1] + dq[2];
   h[14] = t4 * t2;  // XZ3
   h[15] = t4 * t3;  // YZ3
@@ -52,10 +52,10 @@ void energy_regressor(const double* q, const double* dq, double* h) {
   const double t5 = -1.25 * dq[1] * s3;
   const double t6 = 9.81 * c2 * c3 - 9.81 * s2 * s3;
   const double t7 = -0.35 * dq[0] - 1.25 * t1;
-  h[17] = t5 * t4 - t6 - t3 * t7;  // MX3R
+  h[17] = t4 * t5 - t6 - t7 * t3;  // MX3R
   const double t8 = 1.25 * c3 * dq[1];
   const double t9 = -9.81 * c2 * s3 - 9.81 * c3 * s2;
-  h[18] = t2 * t7 - t4 * t8 - t9;  // MY3R
+  h[18] = t7 * t2 - t4 * t8 - t9;  // MY3R
   h[19] = 0.5 * dq[2] * dq[2];  // Ia3
   h[20] = 0.0;  // Fv3
   h[21] = 0.0;  // Fc3
@@ -70,7 +70,7 @@ void energy_regressor(const double* q, const double* dq, double* h) {
   const double t13 = c4 * t6;
   const double t14 = t5 + 0.055 * t4;
   const double t15 = t8 + 1.1 * t4;
-  const double t16 = t7 - 0.055 * t3 - 1.1 * t2;
+  const double t16 = t7 - 1.1 * t2 - 0.055 * t3;
   const double t17 = -s4 * t15 - c4 * t16;
   h[27] = t12 * t17 - t13 - t14 * t11;  // MX4
   const double t18 = -s4 * t6;
@@ -82,7 +82,7 @@ void energy_regressor(const double* q, const double* dq, double* h) {
   const double t20 = s5 * t12 + c5 * t10;
   h[32] = 0.5 * t20 * t20;  // XX5R
   const double t21 = c5 * t12 - s5 * t10;
-  h[33] = t20 * t21;  // XY5
+  h[33] = t21 * t20;  // XY5
   const double t22 = dq[4] - t11;
   h[34] = t22 * t20;  // XZ5
   h[35] = t22 * t21;  // YZ5
@@ -112,7 +112,7 @@ void energy_regressor(const double* q, const double* dq, double* h) {
   h[52] = 0.5 * dq[5] * dq[5];  // Ia6
   h[53] = 0.0;  // Fv6
   h[54] = 0.0;  // Fc6
-  const double t30 = dq[5] + 0.014 * dq[4] - 0.0139302 * dq[3];
+  const double t30 = dq[5] - 0.0139302 * dq[3] + 0.014 * dq[4];
   h[55] = 0.5 * t30 * t30;  // Iam6
   h[56] = 0.0;  // Fvm6
   h[57] = 0.0;  // Fcm6
@@ -139,7 +139,7 @@ void energy_regressor(const float* q, const float* dq, float* h) {
   const float t0 = dq[0] * s2;
   h[3] = 0.5f * t0 * t0;  // XX2R
   const float t1 = c2 * dq[0];
-  h[4] = t0 * t1;  // XY2
+  h[4] = t1 * t0;  // XY2
   h[5] = dq[1] * t0;  // XZ2R
   h[6] = dq[1] * t1;  // YZ2
   h[7] = 0.5f * dq[1] * dq[1];  // ZZ2R
@@ -150,7 +150,7 @@ void energy_regressor(const float* q, const float* dq, float* h) {
   const float t2 = c3 * t1 - s3 * t0;
   h[12] = 0.5f * t2 * t2;  // XX3R
   const float t3 = -c3 * t0 - s3 * t1;
-  h[13] = t2 * t3;  // XY3R
+  h[13] = t3 * t2;  // XY3R
   const float t4 = dq[1] + dq[2];
   h[14] = t4 * t2;  // XZ3
   h[15] = t4 * t3;  // YZ3
@@ -158,10 +158,10 @@ void energy_regressor(const float* q, const float* dq, float* h) {
   const float t5 = -1.25f * dq[1] * s3;
   const float t6 = 9.81f * c2 * c3 - 9.81f * s2 * s3;
   const float t7 = -0.35f * dq[0] - 1.25f * t1;
-  h[17] = t5 * t4 - t6 - t3 * t7;  // MX3R
+  h[17] = t4 * t5 - t6 - t7 * t3;  // MX3R
   const float t8 = 1.25f * c3 * dq[1];
   const float t9 = -9.81f * c2 * s3 - 9.81f * c3 * s2;
-  h[18] = t2 * t7 - t4 * t8 - t9;  // MY3R
+  h[18] = t7 * t2 - t4 * t8 - t9;  // MY3R
   h[19] = 0.5f * dq[2] * dq[2];  // Ia3
   h[20] = 0.0f;  // Fv3
   h[21] = 0.0f;  // Fc3
@@ -176,7 +176,7 @@ void energy_regressor(const float* q, const float* dq, float* h) {
   const float t13 = c4 * t6;
   const float t14 = t5 + 0.055f * t4;
   const float t15 = t8 + 1.1f * t4;
-  const float t16 = t7 - 0.055f * t3 - 1.1f * t2;
+  const float t16 = t7 - 1.1f * t2 - 0.055f * t3;
   const float t17 = -s4 * t15 - c4 * t16;
   h[27] = t12 * t17 - t13 - t14 * t11;  // MX4
   const float t18 = -s4 * t6;
@@ -188,7 +188,7 @@ void energy_regressor(const float* q, const float* dq, float* h) {
   const float t20 = s5 * t12 + c5 * t10;
   h[32] = 0.5f * t20 * t20;  // XX5R
   const float t21 = c5 * t12 - s5 * t10;
-  h[33] = t20 * t21;  // XY5
+  h[33] = t21 * t20;  // XY5
   const float t22 = dq[4] - t11;
   h[34] = t22 * t20;  // XZ5
   h[35] = t22 * t21;  // YZ5
@@ -218,7 +218,7 @@ void energy_regressor(const float* q, const float* dq, float* h) {
   h[52] = 0.5f * dq[5] * dq[5];  // Ia6
   h[53] = 0.0f;  // Fv6
   h[54] = 0.0f;  // Fc6
-  const float t30 = dq[5] + 0.014f * dq[4] - 0.0139302f * dq[3];
+  const float t30 = dq[5] - 0.0139302f * dq[3] + 0.014f * dq[4];
   h[55] = 0.5f * t30 * t30;  // Iam6
   h[56] = 0.0f;  // Fvm6
   h[57] = 0.0f;  // Fcm6

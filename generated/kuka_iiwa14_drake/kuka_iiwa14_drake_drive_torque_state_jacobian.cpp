@@ -149,7 +149,7 @@ void drive_torque_state_jacobian(const double* q, const double* dq, const double
   J[41] = dtau_G[41] * t5;
   const double t6 = dq[2] * tau_G[2];
   const double t7 = static_cast<double>((t6 > 0.0) - (t6 < 0.0));
-  const double t8 = (1.0 / theta[81]) * (0.5 + 0.5 * t7) + theta[81] * (0.5 - 0.5 * t7);
+  const double t8 = theta[81] * (0.5 - 0.5 * t7) + (1.0 / theta[81]) * (0.5 + 0.5 * t7);
   J[42] = dtau_G[42] * t8;
   J[43] = dtau_G[43] * t8;
   J[44] = dtau_G[44] * t8;
@@ -173,7 +173,7 @@ void drive_torque_state_jacobian(const double* q, const double* dq, const double
   J[62] = dtau_G[62] * t8;
   const double t9 = dq[3] * tau_G[3];
   const double t10 = static_cast<double>((t9 > 0.0) - (t9 < 0.0));
-  const double t11 = (1.0 / theta[85]) * (0.5 + 0.5 * t10) + theta[85] * (0.5 - 0.5 * t10);
+  const double t11 = theta[85] * (0.5 - 0.5 * t10) + (1.0 / theta[85]) * (0.5 + 0.5 * t10);
   J[63] = dtau_G[63] * t11;
   J[64] = dtau_G[64] * t11;
   J[65] = dtau_G[65] * t11;
@@ -197,7 +197,7 @@ void drive_torque_state_jacobian(const double* q, const double* dq, const double
   J[83] = dtau_G[83] * t11;
   const double t12 = dq[4] * tau_G[4];
   const double t13 = static_cast<double>((t12 > 0.0) - (t12 < 0.0));
-  const double t14 = (1.0 / theta[89]) * (0.5 + 0.5 * t13) + theta[89] * (0.5 - 0.5 * t13);
+  const double t14 = theta[89] * (0.5 - 0.5 * t13) + (1.0 / theta[89]) * (0.5 + 0.5 * t13);
   J[84] = dtau_G[84] * t14;
   J[85] = dtau_G[85] * t14;
   J[86] = dtau_G[86] * t14;
@@ -406,7 +406,7 @@ void drive_torque_state_jacobian(const float* q, const float* dq, const float* d
   J[41] = dtau_G[41] * t5;
   const float t6 = dq[2] * tau_G[2];
   const float t7 = static_cast<float>((t6 > 0.0f) - (t6 < 0.0f));
-  const float t8 = (1.0f / theta[81]) * (0.5f + 0.5f * t7) + theta[81] * (0.5f - 0.5f * t7);
+  const float t8 = theta[81] * (0.5f - 0.5f * t7) + (1.0f / theta[81]) * (0.5f + 0.5f * t7);
   J[42] = dtau_G[42] * t8;
   J[43] = dtau_G[43] * t8;
   J[44] = dtau_G[44] * t8;
@@ -430,7 +430,7 @@ void drive_torque_state_jacobian(const float* q, const float* dq, const float* d
   J[62] = dtau_G[62] * t8;
   const float t9 = dq[3] * tau_G[3];
   const float t10 = static_cast<float>((t9 > 0.0f) - (t9 < 0.0f));
-  const float t11 = (1.0f / theta[85]) * (0.5f + 0.5f * t10) + theta[85] * (0.5f - 0.5f * t10);
+  const float t11 = theta[85] * (0.5f - 0.5f * t10) + (1.0f / theta[85]) * (0.5f + 0.5f * t10);
   J[63] = dtau_G[63] * t11;
   J[64] = dtau_G[64] * t11;
   J[65] = dtau_G[65] * t11;
@@ -454,7 +454,7 @@ void drive_torque_state_jacobian(const float* q, const float* dq, const float* d
   J[83] = dtau_G[83] * t11;
   const float t12 = dq[4] * tau_G[4];
   const float t13 = static_cast<float>((t12 > 0.0f) - (t12 < 0.0f));
-  const float t14 = (1.0f / theta[89]) * (0.5f + 0.5f * t13) + theta[89] * (0.5f - 0.5f * t13);
+  const float t14 = theta[89] * (0.5f - 0.5f * t13) + (1.0f / theta[89]) * (0.5f + 0.5f * t13);
   J[84] = dtau_G[84] * t14;
   J[85] = dtau_G[85] * t14;
   J[86] = dtau_G[86] * t14;

@@ -36,7 +36,7 @@ void energy_regressor_sincos(const double* q, const double* sin_q, const double*
   const double t0 = dq[0] * s2;
   h[4] = 0.5 * t0 * t0;  // XX2R
   const double t1 = c2 * dq[0];
-  h[5] = t0 * t1;  // XY2
+  h[5] = t1 * t0;  // XY2
   h[6] = dq[1] * t0;  // XZ2
   h[7] = dq[1] * t1;  // YZ2
   h[8] = 0.5 * dq[1] * dq[1];  // ZZ2R
@@ -66,7 +66,7 @@ void energy_regressor_sincos(const double* q, const double* sin_q, const double*
   const double t9 = s4 * t4 + c4 * t2;
   h[25] = 0.5 * t9 * t9;  // XX4R
   const double t10 = c4 * t4 - s4 * t2;
-  h[26] = t9 * t10;  // XY4
+  h[26] = t10 * t9;  // XY4
   const double t11 = dq[3] - t3;
   h[27] = t11 * t9;  // XZ4
   h[28] = t11 * t10;  // YZ4
@@ -86,7 +86,7 @@ void energy_regressor_sincos(const double* q, const double* sin_q, const double*
   const double t18 = s5 * t11 - c5 * t9;
   h[36] = 0.5 * t18 * t18;  // XX5R
   const double t19 = c5 * t11 + s5 * t9;
-  h[37] = t19 * t18;  // XY5
+  h[37] = t18 * t19;  // XY5
   const double t20 = dq[4] + t10;
   h[38] = t20 * t18;  // XZ5
   h[39] = t20 * t19;  // YZ5R
@@ -106,10 +106,10 @@ void energy_regressor_sincos(const double* q, const double* sin_q, const double*
   const double t27 = s6 * t20 + c6 * t18;
   h[47] = 0.5 * t27 * t27;  // XX6R
   const double t28 = c6 * t20 - s6 * t18;
-  h[48] = t27 * t28;  // XY6
+  h[48] = t28 * t27;  // XY6
   const double t29 = dq[5] - t19;
-  h[49] = t27 * t29;  // XZ6
-  h[50] = t28 * t29;  // YZ6
+  h[49] = t29 * t27;  // XZ6
+  h[50] = t29 * t28;  // YZ6
   h[51] = 0.5 * t29 * t29;  // ZZ6R
   const double t30 = s6 * t16 + c6 * t21;
   const double t31 = 0.2155 * t18 - t24;
@@ -124,8 +124,8 @@ void energy_regressor_sincos(const double* q, const double* sin_q, const double*
   h[57] = 0.0;  // OFF6
   const double t35 = s7 * t29 - c7 * t27;
   h[58] = 0.5 * t35 * t35;  // XX7R
-  const double t36 = s7 * t27 + c7 * t29;
-  h[59] = t36 * t35;  // XY7
+  const double t36 = c7 * t29 + s7 * t27;
+  h[59] = t35 * t36;  // XY7
   const double t37 = dq[6] + t28;
   h[60] = t37 * t35;  // XZ7
   h[61] = t37 * t36;  // YZ7
@@ -164,7 +164,7 @@ void energy_regressor_sincos(const float* q, const float* sin_q, const float* co
   const float t0 = dq[0] * s2;
   h[4] = 0.5f * t0 * t0;  // XX2R
   const float t1 = c2 * dq[0];
-  h[5] = t0 * t1;  // XY2
+  h[5] = t1 * t0;  // XY2
   h[6] = dq[1] * t0;  // XZ2
   h[7] = dq[1] * t1;  // YZ2
   h[8] = 0.5f * dq[1] * dq[1];  // ZZ2R
@@ -194,7 +194,7 @@ void energy_regressor_sincos(const float* q, const float* sin_q, const float* co
   const float t9 = s4 * t4 + c4 * t2;
   h[25] = 0.5f * t9 * t9;  // XX4R
   const float t10 = c4 * t4 - s4 * t2;
-  h[26] = t9 * t10;  // XY4
+  h[26] = t10 * t9;  // XY4
   const float t11 = dq[3] - t3;
   h[27] = t11 * t9;  // XZ4
   h[28] = t11 * t10;  // YZ4
@@ -214,7 +214,7 @@ void energy_regressor_sincos(const float* q, const float* sin_q, const float* co
   const float t18 = s5 * t11 - c5 * t9;
   h[36] = 0.5f * t18 * t18;  // XX5R
   const float t19 = c5 * t11 + s5 * t9;
-  h[37] = t19 * t18;  // XY5
+  h[37] = t18 * t19;  // XY5
   const float t20 = dq[4] + t10;
   h[38] = t20 * t18;  // XZ5
   h[39] = t20 * t19;  // YZ5R
@@ -234,10 +234,10 @@ void energy_regressor_sincos(const float* q, const float* sin_q, const float* co
   const float t27 = s6 * t20 + c6 * t18;
   h[47] = 0.5f * t27 * t27;  // XX6R
   const float t28 = c6 * t20 - s6 * t18;
-  h[48] = t27 * t28;  // XY6
+  h[48] = t28 * t27;  // XY6
   const float t29 = dq[5] - t19;
-  h[49] = t27 * t29;  // XZ6
-  h[50] = t28 * t29;  // YZ6
+  h[49] = t29 * t27;  // XZ6
+  h[50] = t29 * t28;  // YZ6
   h[51] = 0.5f * t29 * t29;  // ZZ6R
   const float t30 = s6 * t16 + c6 * t21;
   const float t31 = 0.2155f * t18 - t24;
@@ -252,8 +252,8 @@ void energy_regressor_sincos(const float* q, const float* sin_q, const float* co
   h[57] = 0.0f;  // OFF6
   const float t35 = s7 * t29 - c7 * t27;
   h[58] = 0.5f * t35 * t35;  // XX7R
-  const float t36 = s7 * t27 + c7 * t29;
-  h[59] = t36 * t35;  // XY7
+  const float t36 = c7 * t29 + s7 * t27;
+  h[59] = t35 * t36;  // XY7
   const float t37 = dq[6] + t28;
   h[60] = t37 * t35;  // XZ7
   h[61] = t37 * t36;  // YZ7

@@ -159,7 +159,7 @@ void drive_torque_state_jacobian(const double* q, const double* dq, const double
   J[41] = dtau_G[41] * t5;
   const double t6 = dq[2] * tau_G[2];
   const double t7 = static_cast<double>((t6 > 0.0) - (t6 < 0.0));
-  const double t8 = (1.0 / theta[91]) * (0.5 + 0.5 * t7) + theta[91] * (0.5 - 0.5 * t7);
+  const double t8 = theta[91] * (0.5 - 0.5 * t7) + (1.0 / theta[91]) * (0.5 + 0.5 * t7);
   J[42] = dtau_G[42] * t8;
   J[43] = dtau_G[43] * t8;
   J[44] = dtau_G[44] * t8;
@@ -183,7 +183,7 @@ void drive_torque_state_jacobian(const double* q, const double* dq, const double
   J[62] = dtau_G[62] * t8;
   const double t9 = dq[3] * tau_G[3];
   const double t10 = static_cast<double>((t9 > 0.0) - (t9 < 0.0));
-  const double t11 = (1.0 / theta[95]) * (0.5 + 0.5 * t10) + theta[95] * (0.5 - 0.5 * t10);
+  const double t11 = theta[95] * (0.5 - 0.5 * t10) + (1.0 / theta[95]) * (0.5 + 0.5 * t10);
   J[63] = dtau_G[63] * t11;
   J[64] = dtau_G[64] * t11;
   J[65] = dtau_G[65] * t11;
@@ -207,7 +207,7 @@ void drive_torque_state_jacobian(const double* q, const double* dq, const double
   J[83] = dtau_G[83] * t11;
   const double t12 = dq[4] * tau_G[4];
   const double t13 = static_cast<double>((t12 > 0.0) - (t12 < 0.0));
-  const double t14 = (1.0 / theta[99]) * (0.5 + 0.5 * t13) + theta[99] * (0.5 - 0.5 * t13);
+  const double t14 = theta[99] * (0.5 - 0.5 * t13) + (1.0 / theta[99]) * (0.5 + 0.5 * t13);
   J[84] = dtau_G[84] * t14;
   J[85] = dtau_G[85] * t14;
   J[86] = dtau_G[86] * t14;
@@ -231,7 +231,7 @@ void drive_torque_state_jacobian(const double* q, const double* dq, const double
   J[104] = dtau_G[104] * t14;
   const double t15 = dq[5] * tau_G[5];
   const double t16 = static_cast<double>((t15 > 0.0) - (t15 < 0.0));
-  const double t17 = (1.0 / theta[103]) * (0.5 + 0.5 * t16) + theta[103] * (0.5 - 0.5 * t16);
+  const double t17 = theta[103] * (0.5 - 0.5 * t16) + (1.0 / theta[103]) * (0.5 + 0.5 * t16);
   J[105] = dtau_G[105] * t17;
   J[106] = dtau_G[106] * t17;
   J[107] = dtau_G[107] * t17;
@@ -255,7 +255,7 @@ void drive_torque_state_jacobian(const double* q, const double* dq, const double
   J[125] = dtau_G[125] * t17;
   const double t18 = dq[6] * tau_G[6];
   const double t19 = static_cast<double>((t18 > 0.0) - (t18 < 0.0));
-  const double t20 = (1.0 / theta[107]) * (0.5 + 0.5 * t19) + theta[107] * (0.5 - 0.5 * t19);
+  const double t20 = theta[107] * (0.5 - 0.5 * t19) + (1.0 / theta[107]) * (0.5 + 0.5 * t19);
   J[126] = dtau_G[126] * t20;
   J[127] = dtau_G[127] * t20;
   J[128] = dtau_G[128] * t20;
@@ -426,7 +426,7 @@ void drive_torque_state_jacobian(const float* q, const float* dq, const float* d
   J[41] = dtau_G[41] * t5;
   const float t6 = dq[2] * tau_G[2];
   const float t7 = static_cast<float>((t6 > 0.0f) - (t6 < 0.0f));
-  const float t8 = (1.0f / theta[91]) * (0.5f + 0.5f * t7) + theta[91] * (0.5f - 0.5f * t7);
+  const float t8 = theta[91] * (0.5f - 0.5f * t7) + (1.0f / theta[91]) * (0.5f + 0.5f * t7);
   J[42] = dtau_G[42] * t8;
   J[43] = dtau_G[43] * t8;
   J[44] = dtau_G[44] * t8;
@@ -450,7 +450,7 @@ void drive_torque_state_jacobian(const float* q, const float* dq, const float* d
   J[62] = dtau_G[62] * t8;
   const float t9 = dq[3] * tau_G[3];
   const float t10 = static_cast<float>((t9 > 0.0f) - (t9 < 0.0f));
-  const float t11 = (1.0f / theta[95]) * (0.5f + 0.5f * t10) + theta[95] * (0.5f - 0.5f * t10);
+  const float t11 = theta[95] * (0.5f - 0.5f * t10) + (1.0f / theta[95]) * (0.5f + 0.5f * t10);
   J[63] = dtau_G[63] * t11;
   J[64] = dtau_G[64] * t11;
   J[65] = dtau_G[65] * t11;
@@ -474,7 +474,7 @@ void drive_torque_state_jacobian(const float* q, const float* dq, const float* d
   J[83] = dtau_G[83] * t11;
   const float t12 = dq[4] * tau_G[4];
   const float t13 = static_cast<float>((t12 > 0.0f) - (t12 < 0.0f));
-  const float t14 = (1.0f / theta[99]) * (0.5f + 0.5f * t13) + theta[99] * (0.5f - 0.5f * t13);
+  const float t14 = theta[99] * (0.5f - 0.5f * t13) + (1.0f / theta[99]) * (0.5f + 0.5f * t13);
   J[84] = dtau_G[84] * t14;
   J[85] = dtau_G[85] * t14;
   J[86] = dtau_G[86] * t14;
@@ -498,7 +498,7 @@ void drive_torque_state_jacobian(const float* q, const float* dq, const float* d
   J[104] = dtau_G[104] * t14;
   const float t15 = dq[5] * tau_G[5];
   const float t16 = static_cast<float>((t15 > 0.0f) - (t15 < 0.0f));
-  const float t17 = (1.0f / theta[103]) * (0.5f + 0.5f * t16) + theta[103] * (0.5f - 0.5f * t16);
+  const float t17 = theta[103] * (0.5f - 0.5f * t16) + (1.0f / theta[103]) * (0.5f + 0.5f * t16);
   J[105] = dtau_G[105] * t17;
   J[106] = dtau_G[106] * t17;
   J[107] = dtau_G[107] * t17;
@@ -522,7 +522,7 @@ void drive_torque_state_jacobian(const float* q, const float* dq, const float* d
   J[125] = dtau_G[125] * t17;
   const float t18 = dq[6] * tau_G[6];
   const float t19 = static_cast<float>((t18 > 0.0f) - (t18 < 0.0f));
-  const float t20 = (1.0f / theta[107]) * (0.5f + 0.5f * t19) + theta[107] * (0.5f - 0.5f * t19);
+  const float t20 = theta[107] * (0.5f - 0.5f * t19) + (1.0f / theta[107]) * (0.5f + 0.5f * t19);
   J[126] = dtau_G[126] * t20;
   J[127] = dtau_G[127] * t20;
   J[128] = dtau_G[128] * t20;

@@ -143,7 +143,7 @@ void drive_torque_state_jacobian(const double* q, const double* dq, const double
   J[35] = 0.03125 * dtau_G[35] * t5;
   const double t6 = dq[2] * tau_G[2];
   const double t7 = static_cast<double>((t6 > 0.0) - (t6 < 0.0));
-  const double t8 = (1.0 / theta[81]) * (0.5 + 0.5 * t7) + theta[81] * (0.5 - 0.5 * t7);
+  const double t8 = theta[81] * (0.5 - 0.5 * t7) + (1.0 / theta[81]) * (0.5 + 0.5 * t7);
   J[36] = 0.022222222222222223 * dtau_G[36] * t8;
   J[37] = 0.022222222222222223 * dtau_G[37] * t8;
   J[38] = 0.022222222222222223 * dtau_G[38] * t8;
@@ -164,7 +164,7 @@ void drive_torque_state_jacobian(const double* q, const double* dq, const double
   J[53] = 0.022222222222222223 * dtau_G[53] * t8;
   const double t9 = dq[3] * tau_G[3];
   const double t10 = static_cast<double>((t9 > 0.0) - (t9 < 0.0));
-  const double t11 = (1.0 / theta[85]) * (0.5 + 0.5 * t10) + theta[85] * (0.5 - 0.5 * t10);
+  const double t11 = theta[85] * (0.5 - 0.5 * t10) + (1.0 / theta[85]) * (0.5 + 0.5 * t10);
   J[54] = -0.020833333333333332 * dtau_G[54] * t11;
   J[55] = -0.020833333333333332 * dtau_G[55] * t11;
   J[56] = -0.020833333333333332 * dtau_G[56] * t11;
@@ -185,7 +185,7 @@ void drive_torque_state_jacobian(const double* q, const double* dq, const double
   J[71] = -0.020833333333333332 * dtau_G[71] * t11;
   const double t12 = dq[4] * (0.022222222222222223 * tau_G[4] - 0.022222222222222223 * tau_G[5]);
   const double t13 = static_cast<double>((t12 > 0.0) - (t12 < 0.0));
-  const double t14 = (1.0 / theta[89]) * (0.5 + 0.5 * t13) + theta[89] * (0.5 - 0.5 * t13);
+  const double t14 = theta[89] * (0.5 - 0.5 * t13) + (1.0 / theta[89]) * (0.5 + 0.5 * t13);
   J[72] = (0.022222222222222223 * dtau_G[72] - 0.022222222222222223 * dtau_G[90]) * t14;
   J[73] = (0.022222222222222223 * dtau_G[73] - 0.022222222222222223 * dtau_G[91]) * t14;
   J[74] = (0.022222222222222223 * dtau_G[74] - 0.022222222222222223 * dtau_G[92]) * t14;
@@ -206,7 +206,7 @@ void drive_torque_state_jacobian(const double* q, const double* dq, const double
   J[89] = (0.022222222222222223 * dtau_G[89] - 0.022222222222222223 * dtau_G[107]) * t14;
   const double t15 = tau_G[5] * (32.0 * dq[4] + 32.0 * dq[5]);
   const double t16 = static_cast<double>((t15 > 0.0) - (t15 < 0.0));
-  const double t17 = (1.0 / theta[93]) * (0.5 + 0.5 * t16) + theta[93] * (0.5 - 0.5 * t16);
+  const double t17 = theta[93] * (0.5 - 0.5 * t16) + (1.0 / theta[93]) * (0.5 + 0.5 * t16);
   J[90] = 0.03125 * dtau_G[90] * t17;
   J[91] = 0.03125 * dtau_G[91] * t17;
   J[92] = 0.03125 * dtau_G[92] * t17;
@@ -360,7 +360,7 @@ void drive_torque_state_jacobian(const float* q, const float* dq, const float* d
   J[35] = 0.03125f * dtau_G[35] * t5;
   const float t6 = dq[2] * tau_G[2];
   const float t7 = static_cast<float>((t6 > 0.0f) - (t6 < 0.0f));
-  const float t8 = (1.0f / theta[81]) * (0.5f + 0.5f * t7) + theta[81] * (0.5f - 0.5f * t7);
+  const float t8 = theta[81] * (0.5f - 0.5f * t7) + (1.0f / theta[81]) * (0.5f + 0.5f * t7);
   J[36] = 0.022222223f * dtau_G[36] * t8;
   J[37] = 0.022222223f * dtau_G[37] * t8;
   J[38] = 0.022222223f * dtau_G[38] * t8;
@@ -381,7 +381,7 @@ void drive_torque_state_jacobian(const float* q, const float* dq, const float* d
   J[53] = 0.022222223f * dtau_G[53] * t8;
   const float t9 = dq[3] * tau_G[3];
   const float t10 = static_cast<float>((t9 > 0.0f) - (t9 < 0.0f));
-  const float t11 = (1.0f / theta[85]) * (0.5f + 0.5f * t10) + theta[85] * (0.5f - 0.5f * t10);
+  const float t11 = theta[85] * (0.5f - 0.5f * t10) + (1.0f / theta[85]) * (0.5f + 0.5f * t10);
   J[54] = -0.020833334f * dtau_G[54] * t11;
   J[55] = -0.020833334f * dtau_G[55] * t11;
   J[56] = -0.020833334f * dtau_G[56] * t11;
@@ -402,7 +402,7 @@ void drive_torque_state_jacobian(const float* q, const float* dq, const float* d
   J[71] = -0.020833334f * dtau_G[71] * t11;
   const float t12 = dq[4] * (0.022222223f * tau_G[4] - 0.022222223f * tau_G[5]);
   const float t13 = static_cast<float>((t12 > 0.0f) - (t12 < 0.0f));
-  const float t14 = (1.0f / theta[89]) * (0.5f + 0.5f * t13) + theta[89] * (0.5f - 0.5f * t13);
+  const float t14 = theta[89] * (0.5f - 0.5f * t13) + (1.0f / theta[89]) * (0.5f + 0.5f * t13);
   J[72] = (0.022222223f * dtau_G[72] - 0.022222223f * dtau_G[90]) * t14;
   J[73] = (0.022222223f * dtau_G[73] - 0.022222223f * dtau_G[91]) * t14;
   J[74] = (0.022222223f * dtau_G[74] - 0.022222223f * dtau_G[92]) * t14;
@@ -423,7 +423,7 @@ void drive_torque_state_jacobian(const float* q, const float* dq, const float* d
   J[89] = (0.022222223f * dtau_G[89] - 0.022222223f * dtau_G[107]) * t14;
   const float t15 = tau_G[5] * (32.0f * dq[4] + 32.0f * dq[5]);
   const float t16 = static_cast<float>((t15 > 0.0f) - (t15 < 0.0f));
-  const float t17 = (1.0f / theta[93]) * (0.5f + 0.5f * t16) + theta[93] * (0.5f - 0.5f * t16);
+  const float t17 = theta[93] * (0.5f - 0.5f * t16) + (1.0f / theta[93]) * (0.5f + 0.5f * t16);
   J[90] = 0.03125f * dtau_G[90] * t17;
   J[91] = 0.03125f * dtau_G[91] * t17;
   J[92] = 0.03125f * dtau_G[92] * t17;

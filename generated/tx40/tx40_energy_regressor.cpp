@@ -34,7 +34,7 @@ void energy_regressor(const double* q, const double* dq, double* h) {
   const double t0 = c2 * dq[0];
   h[4] = 0.5 * t0 * t0;  // XX2R
   const double t1 = -dq[0] * s2;
-  h[5] = t0 * t1;  // XY2
+  h[5] = t1 * t0;  // XY2
   h[6] = dq[1] * t0;  // XZ2R
   h[7] = dq[1] * t1;  // YZ2
   h[8] = 0.5 * dq[1] * dq[1];  // ZZ2R
@@ -65,7 +65,7 @@ void energy_regressor(const double* q, const double* dq, double* h) {
   const double t10 = s4 * t4 + c4 * t2;
   h[25] = 0.5 * t10 * t10;  // XX4R
   const double t11 = c4 * t4 - s4 * t2;
-  h[26] = t10 * t11;  // XY4
+  h[26] = t11 * t10;  // XY4
   const double t12 = dq[3] - t3;
   h[27] = t12 * t10;  // XZ4
   h[28] = t12 * t11;  // YZ4
@@ -92,7 +92,7 @@ void energy_regressor(const double* q, const double* dq, double* h) {
   h[40] = 0.5 * t21 * t21;  // ZZ5R
   const double t22 = s5 * t8 + c5 * t13;
   const double t23 = c5 * t7 - s5 * t18;
-  h[41] = t21 * t23 - t22 - t20 * t16;  // MX5
+  h[41] = t21 * t23 - t22 - t16 * t20;  // MX5
   const double t24 = s5 * t7 + c5 * t18;
   h[42] = s5 * t13 - c5 * t8 + t16 * t19 - t21 * t24;  // MY5R
   h[43] = 0.5 * dq[4] * dq[4];  // Ia5
@@ -102,13 +102,13 @@ void energy_regressor(const double* q, const double* dq, double* h) {
   const double t25 = s6 * t21 + c6 * t19;
   h[47] = 0.5 * t25 * t25;  // XX6R
   const double t26 = c6 * t21 - s6 * t19;
-  h[48] = t25 * t26;  // XY6R
+  h[48] = t26 * t25;  // XY6R
   const double t27 = dq[5] - t20;
   h[49] = t27 * t25;  // XZ6R
   h[50] = t27 * t26;  // YZ6R
   h[51] = 0.5 * t27 * t27;  // ZZ6R
-  h[52] = t26 * t23 - s6 * t17 - c6 * t22 + t27 * (c6 * t16 - s6 * t24);  // MX6R
-  h[53] = s6 * t22 - c6 * t17 - t25 * t23 - t27 * (s6 * t16 + c6 * t24);  // MY6R
+  h[52] = t23 * t26 - s6 * t17 - c6 * t22 + t27 * (c6 * t16 - s6 * t24);  // MX6R
+  h[53] = s6 * t22 - c6 * t17 - t23 * t25 - t27 * (s6 * t16 + c6 * t24);  // MY6R
   h[54] = 0.5 * dq[5] * dq[5];  // Ia6
   h[55] = 0.0;  // Fv6
   h[56] = 0.0;  // Fc6
@@ -141,7 +141,7 @@ void energy_regressor(const float* q, const float* dq, float* h) {
   const float t0 = c2 * dq[0];
   h[4] = 0.5f * t0 * t0;  // XX2R
   const float t1 = -dq[0] * s2;
-  h[5] = t0 * t1;  // XY2
+  h[5] = t1 * t0;  // XY2
   h[6] = dq[1] * t0;  // XZ2R
   h[7] = dq[1] * t1;  // YZ2
   h[8] = 0.5f * dq[1] * dq[1];  // ZZ2R
@@ -172,7 +172,7 @@ void energy_regressor(const float* q, const float* dq, float* h) {
   const float t10 = s4 * t4 + c4 * t2;
   h[25] = 0.5f * t10 * t10;  // XX4R
   const float t11 = c4 * t4 - s4 * t2;
-  h[26] = t10 * t11;  // XY4
+  h[26] = t11 * t10;  // XY4
   const float t12 = dq[3] - t3;
   h[27] = t12 * t10;  // XZ4
   h[28] = t12 * t11;  // YZ4
@@ -199,7 +199,7 @@ void energy_regressor(const float* q, const float* dq, float* h) {
   h[40] = 0.5f * t21 * t21;  // ZZ5R
   const float t22 = s5 * t8 + c5 * t13;
   const float t23 = c5 * t7 - s5 * t18;
-  h[41] = t21 * t23 - t22 - t20 * t16;  // MX5
+  h[41] = t21 * t23 - t22 - t16 * t20;  // MX5
   const float t24 = s5 * t7 + c5 * t18;
   h[42] = s5 * t13 - c5 * t8 + t16 * t19 - t21 * t24;  // MY5R
   h[43] = 0.5f * dq[4] * dq[4];  // Ia5
@@ -209,13 +209,13 @@ void energy_regressor(const float* q, const float* dq, float* h) {
   const float t25 = s6 * t21 + c6 * t19;
   h[47] = 0.5f * t25 * t25;  // XX6R
   const float t26 = c6 * t21 - s6 * t19;
-  h[48] = t25 * t26;  // XY6R
+  h[48] = t26 * t25;  // XY6R
   const float t27 = dq[5] - t20;
   h[49] = t27 * t25;  // XZ6R
   h[50] = t27 * t26;  // YZ6R
   h[51] = 0.5f * t27 * t27;  // ZZ6R
-  h[52] = t26 * t23 - s6 * t17 - c6 * t22 + t27 * (c6 * t16 - s6 * t24);  // MX6R
-  h[53] = s6 * t22 - c6 * t17 - t25 * t23 - t27 * (s6 * t16 + c6 * t24);  // MY6R
+  h[52] = t23 * t26 - s6 * t17 - c6 * t22 + t27 * (c6 * t16 - s6 * t24);  // MX6R
+  h[53] = s6 * t22 - c6 * t17 - t23 * t25 - t27 * (s6 * t16 + c6 * t24);  // MY6R
   h[54] = 0.5f * dq[5] * dq[5];  // Ia6
   h[55] = 0.0f;  // Fv6
   h[56] = 0.0f;  // Fc6

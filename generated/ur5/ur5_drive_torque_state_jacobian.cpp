@@ -91,7 +91,7 @@ void drive_torque_state_jacobian(const double* q, const double* dq, const double
   inverse_dynamics_state_jacobian(q, dq, ddq, beta, dtau_G);
   const double t0 = dq[0] * tau_G[0];
   const double t1 = static_cast<double>((t0 > 0.0) - (t0 < 0.0));
-  const double t2 = (1.0 / theta[63]) * (0.5 + 0.5 * t1) + theta[63] * (0.5 - 0.5 * t1);
+  const double t2 = theta[63] * (0.5 - 0.5 * t1) + (1.0 / theta[63]) * (0.5 + 0.5 * t1);
   J[0] = dtau_G[0] * t2;  // q[0]
   J[1] = dtau_G[1] * t2;  // q[1]
   J[2] = dtau_G[2] * t2;  // q[2]
@@ -296,7 +296,7 @@ void drive_torque_state_jacobian(const float* q, const float* dq, const float* d
   inverse_dynamics_state_jacobian(q, dq, ddq, beta, dtau_G);
   const float t0 = dq[0] * tau_G[0];
   const float t1 = static_cast<float>((t0 > 0.0f) - (t0 < 0.0f));
-  const float t2 = (1.0f / theta[63]) * (0.5f + 0.5f * t1) + theta[63] * (0.5f - 0.5f * t1);
+  const float t2 = theta[63] * (0.5f - 0.5f * t1) + (1.0f / theta[63]) * (0.5f + 0.5f * t1);
   J[0] = dtau_G[0] * t2;  // q[0]
   J[1] = dtau_G[1] * t2;  // q[1]
   J[2] = dtau_G[2] * t2;  // q[2]

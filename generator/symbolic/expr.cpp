@@ -35,15 +35,6 @@ ExprGraph::ExprGraph() {
 
 namespace {
 
-// FNV-1a and a boost-style mix: fixed functions, the same in every standard library.
-std::uint64_t hash_text(const std::string& text) {
-  std::uint64_t h = 1469598103934665603ull;
-  for (unsigned char c : text) h = (h ^ c) * 1099511628211ull;
-  return h;
-}
-
-void mix(std::uint64_t& h, std::uint64_t v) { h ^= v + 0x9e3779b97f4a7c15ull + (h << 6) + (h >> 2); }
-
 int kind_rank(Op op) {
   if (op == Op::kConstant) return 0;
   if (op == Op::kSymbol) return 1;
@@ -60,8 +51,12 @@ bool ExprGraph::canonical_before(ExprId a, ExprId b) const {
   if (x.op == Op::kConstant) return x.value < y.value;
   if (x.op == Op::kSymbol) return symbols_[x.symbol].name < symbols_[y.symbol].name;
   if (x.height != y.height) return x.height < y.height;
-  if (x.structure != y.structure) return x.structure < y.structure;
-  return a < b;  // two structures with one hash: a 2^-64 event
+  if (x.op != y.op) return x.op < y.op;
+  const std::size_t common = std::min(x.args.size(), y.args.size());
+  for (std::size_t k = 0; k < common; ++k) {
+    if (x.args[k] != y.args[k]) return canonical_before(x.args[k], y.args[k]);
+  }
+  return x.args.size() < y.args.size();
 }
 
 void ExprGraph::sort_canonical(std::vector<ExprId>& ids) const {
@@ -73,15 +68,8 @@ ExprId ExprGraph::intern(Node node) {
   Key key{node.op, node.value, node.symbol, node.args};
   auto found = index_.find(key);
   if (found != index_.end()) return found->second;
-  std::uint64_t structure = 1469598103934665603ull ^ static_cast<std::uint64_t>(node.op);
-  if (node.op == Op::kConstant) mix(structure, std::bit_cast<std::uint64_t>(node.value));
-  if (node.op == Op::kSymbol) mix(structure, hash_text(symbols_[node.symbol].name));
   node.height = 0;
-  for (ExprId a : node.args) {
-    mix(structure, nodes_[a].structure);
-    node.height = std::max(node.height, nodes_[a].height + 1);
-  }
-  node.structure = structure;
+  for (ExprId a : node.args) node.height = std::max(node.height, nodes_[a].height + 1);
   const ExprId id = static_cast<ExprId>(nodes_.size());
   nodes_.push_back(std::move(node));
   index_.emplace(std::move(key), id);

@@ -1,8 +1,8 @@
 // Expression DAG for the symbolic models: hash-consed nodes (one node per distinct
 // subexpression, so shared subexpressions are shared by construction), constants folded,
 // neutral and absorbing elements removed, commutative operands in a canonical order, and like
-// terms collected. Operands are ordered by structure (kind, height, a hash of the subexpression),
-// never by node id: ids follow creation order, and creation order depends on the order in which
+// terms collected. Operands are ordered by structure (canonical_before: constants, symbols by
+// name, then operations by height and their arguments), never by node id: ids follow creation order, and creation order depends on the order in which
 // a compiler evaluates the arguments of a call such as add(mul(a, b), mul(c, d)). Ordering by
 // structure makes the generated code a function of the input alone, whichever compiler built
 // modelgen (and never of pointer values or hash seeds).
@@ -54,9 +54,6 @@ struct Node {
   std::vector<ExprId> args;  ///< kAdd, kMul
   /// Set by the graph: 0 for leaves, else one more than the highest argument.
   std::uint32_t height = 0;
-  /// Set by the graph: a hash of the subexpression's structure (symbol names, constant values,
-  /// operations), independent of node ids.
-  std::uint64_t structure = 0;
 };
 
 class ExprGraph {
@@ -94,8 +91,10 @@ class ExprGraph {
   ExprId div(ExprId a, ExprId b);
 
   const Node& node(ExprId id) const { return nodes_[id]; }
-  /// The canonical order of operands: constants, then symbols by name, then other nodes by
-  /// height and structure hash (node id only to separate two structures with equal hashes).
+  /// The canonical order of operands, a total order on structures: constants by value, then
+  /// symbols by name, then operations by height, kind and arguments (lexicographically, in
+  /// this order). Two nodes have one structure only if they are one node (hash-consing), so a
+  /// comparison descends one path of differing arguments: its cost is the height.
   bool canonical_before(ExprId a, ExprId b) const;
   const std::vector<Symbol>& symbols() const { return symbols_; }
   std::size_t size() const { return nodes_.size(); }

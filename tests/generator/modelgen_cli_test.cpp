@@ -1,8 +1,12 @@
-// The modelgen executable as a user runs it: generation writes the three files, a bad
-// description leaves an existing output directory exactly as it was, usage errors exit 2.
+// The modelgen executable as a user runs it: generation writes the header, the tables, a file
+// per function and the manifest; --functions keeps the chosen entry points and their callees; a
+// bad description leaves an existing output directory exactly as it was, usage errors exit 2.
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -29,10 +33,93 @@ TEST(ModelgenCli, GeneratesHeaderSourceAndManifest) {
   const CliRun run = modelgen(test::quoted_source("robots/tx40.yaml") + " -o " + test::quoted(dir));
   ASSERT_EQ(run.exit_code, 0) << run.err;
   EXPECT_EQ(run.out, "");
-  for (const char* name : {"tx40.hpp", "tx40.cpp", "tx40.json"}) {
+  for (const char* name : {"tx40.hpp", "tx40.cpp", "tx40.json", "tx40_inverse_dynamics.cpp",
+                           "tx40_idim_regressor_sincos.cpp", "tx40_drive_torque_jacobian.cpp"}) {
     EXPECT_TRUE(fs::exists(dir / name)) << name;
   }
   EXPECT_NE(read_text(dir / "tx40.hpp").find("namespace tx40 {"), std::string::npos);
+  // Each function file defines its entry point, and only it.
+  const std::string inverse_dynamics = read_text(dir / "tx40_inverse_dynamics.cpp");
+  EXPECT_NE(inverse_dynamics.find("void inverse_dynamics(const double* q"), std::string::npos);
+  EXPECT_NE(inverse_dynamics.find("void inverse_dynamics(const float* q"), std::string::npos);
+  EXPECT_EQ(inverse_dynamics.find("void idim_regressor("), std::string::npos);
+  EXPECT_EQ(inverse_dynamics.find("void inverse_dynamics_sincos("), std::string::npos);
+  EXPECT_EQ(read_text(dir / "tx40.cpp").find("void "), std::string::npos);
+}
+
+// The files of a directory, sorted.
+std::vector<std::string> files_in(const fs::path& dir) {
+  std::vector<std::string> names;
+  for (const auto& entry : fs::directory_iterator(dir)) names.push_back(entry.path().filename());
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+TEST(ModelgenCli, FunctionsKeepsTheChosenEntryPointsAndTheirCallees) {
+  const fs::path dir = fresh_directory("cli_functions");
+  const CliRun run = modelgen(test::quoted_source("robots/tx40.yaml") + " -o " +
+                              test::quoted(dir) +
+                              " --functions drive_torque_jacobian,inverse_dynamics_sincos");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_NE(run.err.find("note: --functions: drive_torque_jacobian calls idim_regressor_standard, "
+                         "which is generated too"),
+            std::string::npos)
+      << run.err;
+  EXPECT_EQ(files_in(dir), (std::vector<std::string>{
+                               "tx40.cpp", "tx40.hpp", "tx40.json",
+                               "tx40_drive_torque_jacobian.cpp",
+                               "tx40_idim_regressor_standard.cpp",
+                               "tx40_inverse_dynamics_sincos.cpp"}));
+  const std::string header = read_text(dir / "tx40.hpp");
+  EXPECT_NE(header.find("void inverse_dynamics_sincos("), std::string::npos);
+  EXPECT_EQ(header.find("void inverse_dynamics("), std::string::npos);
+  EXPECT_EQ(header.find("void mass_matrix("), std::string::npos);
+  // Without all of its members the runtime's Model struct is left out.
+  EXPECT_EQ(header.find("struct Model {"), std::string::npos);
+  // The banner's command names the selection in file order, whatever order it was given in.
+  EXPECT_NE(header.find("// Regenerate: modelgen tx40.yaml -o <dir> --functions "
+                        "inverse_dynamics_sincos,drive_torque_jacobian"),
+            std::string::npos);
+  const std::string manifest = read_text(dir / "tx40.json");
+  EXPECT_NE(manifest.find("\"tx40_idim_regressor_standard.cpp\""), std::string::npos);
+  EXPECT_EQ(manifest.find("\"name\": \"mass_matrix\""), std::string::npos);
+}
+
+TEST(ModelgenCli, AFullRunAfterASelectionAndBackRemovesNothingElse) {
+  const fs::path dir = fresh_directory("cli_functions_again");
+  const std::string base = test::quoted_source("robots/tx40.yaml") + " -o " + test::quoted(dir);
+  ASSERT_EQ(modelgen(base).exit_code, 0);
+  const std::size_t all = files_in(dir).size();
+  // One header, one table source, one manifest and a file per entry point.
+  EXPECT_EQ(all, 3u + 20u);
+  std::ofstream(dir / "controller.cpp") << "// the user's own file\n";
+  const CliRun narrowed = modelgen(base + " --functions inverse_dynamics");
+  ASSERT_EQ(narrowed.exit_code, 0) << narrowed.err;
+  // The function files of the first run are gone; the user's file stays.
+  EXPECT_EQ(files_in(dir), (std::vector<std::string>{"controller.cpp", "tx40.cpp", "tx40.hpp",
+                                                     "tx40.json", "tx40_inverse_dynamics.cpp"}));
+  ASSERT_EQ(modelgen(base).exit_code, 0);
+  EXPECT_EQ(files_in(dir).size(), all + 1);
+}
+
+TEST(ModelgenCli, UnknownFunctionIsAUsageErrorListingTheValidOnes) {
+  const std::string base =
+      test::quoted_source("robots/tx40.yaml") + " -o " + test::quoted(fresh_directory("cli_bad_f"));
+  const CliRun typo = modelgen(base + " --functions inverse_dynamics,idim_regresor");
+  EXPECT_EQ(typo.exit_code, 2);
+  EXPECT_NE(typo.err.find("--functions: unknown function 'idim_regresor' (did you mean "
+                          "'idim_regressor'?); the functions are: idim_regressor_standard, "),
+            std::string::npos)
+      << typo.err;
+  const CliRun identified = modelgen(base + " --functions inverse_dynamics_identified");
+  EXPECT_EQ(identified.exit_code, 2);
+  EXPECT_NE(identified.err.find("inverse_dynamics_identified uses identified constants; it needs "
+                                "--params"),
+            std::string::npos)
+      << identified.err;
+  const CliRun empty = modelgen(base + " --functions inverse_dynamics,,mass_matrix");
+  EXPECT_EQ(empty.exit_code, 2);
+  EXPECT_NE(empty.err.find("--functions: empty name"), std::string::npos) << empty.err;
 }
 
 TEST(ModelgenCli, BadDescriptionLeavesExistingOutputUntouched) {

@@ -28,7 +28,8 @@ using Lines = std::vector<std::string>;
 
 class StatementWriterTest : public testing::Test {
  protected:
-  // Creation order fixes the ids, hence the operand order of sums and products (by id).
+  // Operands print in canonical order (ExprGraph::canonical_before): constants, symbols by name
+  // (c1 < p[0] < p[1] < p[2] < q[0] < s1), then operations by height and arguments.
   ExprGraph g;
   const ExprId q0 = g.symbol(Symbol{"q[0]", SymbolKind::kInput, ""});
   const ExprId s1 = g.symbol(Symbol{"s1", SymbolKind::kSin, "q[0]"});
@@ -45,7 +46,7 @@ TEST_F(StatementWriterTest, SharedSubexpressionBecomesATemporary) {
       Scalar::kDouble);
   EXPECT_EQ(body.lines, (Lines{
                             "const double s1 = std::sin(q[0]);",
-                            "const double t0 = s1 + p[0];",
+                            "const double t0 = p[0] + s1;",
                             "W[0] = q[0] * t0;  // XX1",
                             "W[1] = p[1] * t0;",
                             "W[2] = 0.0;",
@@ -56,14 +57,14 @@ TEST_F(StatementWriterTest, SharedSubexpressionBecomesATemporary) {
 }
 
 TEST_F(StatementWriterTest, SingleUseSubexpressionsAreInlined) {
-  const ExprId c1_p0 = g.mul(c1, p0);  // created first: the smaller id, printed first
   const ExprId s1_p1 = g.mul(s1, p1);
+  const ExprId c1_p0 = g.mul(c1, p0);  // created second, printed first: c1 sorts before p[1]
   const ExprId value = g.add(s1_p1, c1_p0);
   const FunctionBody body = write_statements(g, {{"W[0]", value, "ZZ1"}}, Scalar::kDouble);
   EXPECT_EQ(body.lines, (Lines{
                             "const double s1 = std::sin(q[0]);",
                             "const double c1 = std::cos(q[0]);",
-                            "W[0] = c1 * p[0] + s1 * p[1];  // ZZ1",
+                            "W[0] = c1 * p[0] + p[1] * s1;  // ZZ1",
                         }));
   EXPECT_EQ(body.counts.mul, 2);
   EXPECT_EQ(body.counts.add, 1);
@@ -72,13 +73,14 @@ TEST_F(StatementWriterTest, SingleUseSubexpressionsAreInlined) {
 
 TEST_F(StatementWriterTest, UnusedDerivedLeavesAreNotDeclared) {
   const FunctionBody body = write_statements(g, {{"tau[0]", g.mul(p0, q0), ""}}, Scalar::kDouble);
-  EXPECT_EQ(body.lines, (Lines{"tau[0] = q[0] * p[0];"}));
+  EXPECT_EQ(body.lines, (Lines{"tau[0] = p[0] * q[0];"}));
   EXPECT_EQ(body.counts.trig, 0);
 }
 
 TEST_F(StatementWriterTest, NegativeTermsPrintAsSubtraction) {
-  // -p[0] is created before p[1] * p[2], so it is the first term of W[2]. Each negative
-  // term is used once (a node used twice would become a temporary).
+  // A sum leads with a positive term: W[2] = -p[0] + p[1] * p[2] prints as p[1] * p[2] - p[0],
+  // one operation less. Each negative term is used once (a node used twice would become a
+  // temporary).
   const ExprId two_p0 = g.mul(g.constant(2), p0);
   const ExprId minus_p0 = g.neg(p0);
   const FunctionBody body = write_statements(g,
@@ -91,7 +93,7 @@ TEST_F(StatementWriterTest, NegativeTermsPrintAsSubtraction) {
   EXPECT_EQ(body.lines, (Lines{
                             "W[0] = p[0] - p[1];",
                             "W[1] = 2.0 * p[0] - 3.0 * p[1];",
-                            "W[2] = -p[0] + p[1] * p[2];",
+                            "W[2] = p[1] * p[2] - p[0];",
                             "W[3] = -p[2];",
                             "W[4] = p[2] - 0.5;",
                         }));
@@ -100,23 +102,23 @@ TEST_F(StatementWriterTest, NegativeTermsPrintAsSubtraction) {
     EXPECT_EQ(line.find("- -"), std::string::npos) << line;
     EXPECT_EQ(line.find("-1.0 *"), std::string::npos) << line;
   }
-  // '*': 0 + 2 + 1 + 0 + 0; '+'/'-' incl. unary: 1 + 1 + 2 + 1 + 1.
+  // '*': 0 + 2 + 1 + 0 + 0; '+'/'-' incl. unary: 1 + 1 + 1 + 1 + 1.
   EXPECT_EQ(body.counts.mul, 3);
-  EXPECT_EQ(body.counts.add, 6);
+  EXPECT_EQ(body.counts.add, 5);
   EXPECT_EQ(body.counts.trig, 0);
 }
 
 TEST_F(StatementWriterTest, NegativeConstantCountsTheSameAloneAndAsFirstTerm) {
-  // "W[0] = -2.0;" and "W[0] = -2.0 + p[0] * p[1];" differ by exactly one '+' and one '*'.
+  // "W[0] = -2.0;" and "W[0] = -2.0 - p[0] * p[1];" differ by exactly one '-' and one '*'.
   // Whether the '-' of a negative literal is an operation or not, it must count the same in
-  // both lines.
+  // both lines. With no positive term, the literal leads (its sign costs nothing).
   const ExprId minus_two = g.constant(-2.0);
-  const ExprId product = g.mul(p0, p1);  // created after -2.0: printed after it
+  const ExprId product = g.neg(g.mul(p0, p1));
   const FunctionBody alone = write_statements(g, {{"W[0]", minus_two, ""}}, Scalar::kDouble);
   const FunctionBody first =
       write_statements(g, {{"W[0]", g.add(product, minus_two), ""}}, Scalar::kDouble);
   ASSERT_EQ(alone.lines, (Lines{"W[0] = -2.0;"}));
-  ASSERT_EQ(first.lines, (Lines{"W[0] = -2.0 + p[0] * p[1];"}));
+  ASSERT_EQ(first.lines, (Lines{"W[0] = -2.0 - p[0] * p[1];"}));
   EXPECT_EQ(first.counts.mul - alone.counts.mul, 1);
   EXPECT_EQ(first.counts.add - alone.counts.add, 1)
       << "alone: " << alone.counts.add << " add, as first term: " << first.counts.add << " add";
@@ -204,7 +206,7 @@ TEST_F(StatementWriterTest, FloatUsesFloatDeclarationsAndLiterals) {
   EXPECT_EQ(body.lines, (Lines{
                             "const float s1 = std::sin(q[0]);",
                             "const float c1 = std::cos(q[0]);",
-                            "const float t0 = s1 + p[0];",
+                            "const float t0 = p[0] + s1;",
                             "W[0] = q[0] * t0;  // XX1",
                             "W[1] = p[1] * t0;",
                             "W[2] = 0.0f;",

@@ -154,6 +154,51 @@ TEST(FileSet, ARunKilledBetweenItsRenamesIsCompletedByTheNextRun) {
             (std::vector<std::string>{"kr150.cpp", "kr150.hpp", "kr150.json", "notes.txt"}));
 }
 
+TEST(FileSet, RetiredFilesGoOnlyWithTheNewSet) {
+  TempDir tmp;
+  const fs::path out = tmp.path() / "tx40";
+  fs::create_directories(out);
+  write(out / "tx40_mass_matrix.cpp", "function of an earlier run\n");
+  write(out / "notes.txt", "the user's own file\n");
+  FileSet files;
+  files.add("tx40.hpp", "header\n");
+  files.retire("tx40_mass_matrix.cpp");
+  files.retire("tx40_never_written.cpp");  // absent: nothing to do
+  files.write_to(out.string());
+  EXPECT_EQ(names(out), (std::vector<std::string>{"notes.txt", "tx40.hpp"}));
+  EXPECT_EQ(hidden(out), std::vector<std::string>{});
+}
+
+TEST(FileSet, AFailedWriteKeepsTheFilesItWouldRetire) {
+  TempDir tmp;
+  const fs::path out = tmp.path() / "tx40";
+  fs::create_directories(out);
+  write(out / "tx40_mass_matrix.cpp", "function of an earlier run\n");
+  fs::create_directories(out / "tx40.hpp");  // a destination that is not a file
+  FileSet files;
+  files.add("tx40.hpp", "header\n");
+  files.retire("tx40_mass_matrix.cpp");
+  EXPECT_THROW(files.write_to(out.string()), InputError);
+  EXPECT_EQ(read(out / "tx40_mass_matrix.cpp"), "function of an earlier run\n");
+}
+
+TEST(FileSet, ARunKilledBeforeRemovingRetiredFilesIsCompletedByTheNextRun) {
+  TempDir tmp;
+  const fs::path out = tmp.path() / "tx40";
+  fs::create_directories(out);
+  write(out / "tx40.hpp", "old header\n");
+  write(out / "tx40_mass_matrix.cpp", "function of an earlier run\n");
+  FileSet files;
+  files.add("tx40.hpp", "new header\n");
+  files.retire("tx40_mass_matrix.cpp");
+  // Killed after its only rename, before the retired file went.
+  write_and_die_after_rename(files, out, 1);
+  ASSERT_TRUE(fs::exists(out / "tx40_mass_matrix.cpp"));
+  FileSet{}.write_to(out.string());
+  EXPECT_EQ(names(out), std::vector<std::string>{"tx40.hpp"});
+  EXPECT_EQ(read(out / "tx40.hpp"), "new header\n");
+}
+
 TEST(FileSet, AKilledRunThenANewSetLeavesOnlyTheNewSet) {
   TempDir tmp;
   const fs::path out = tmp.path() / "out";
