@@ -54,7 +54,10 @@ TEST_P(DesignGradient, EqualsCentralDifferencesOfTheObjective) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Criteria, DesignGradient,
-                         ::testing::Values(DesignCriterion::kCond, DesignCriterion::kLogDet));
+                         ::testing::Values(DesignCriterion::kCond, DesignCriterion::kLogDet),
+                         [](const auto& info) {
+                           return info.param == DesignCriterion::kCond ? "cond" : "logdet";
+                         });
 
 }  // namespace
 }  // namespace modelgen
