@@ -7,8 +7,6 @@
 // base_from_standard                     56    105        0
 #include "franka_panda.hpp"
 
-#include <cmath>
-
 namespace modelgen {
 namespace panda {
 

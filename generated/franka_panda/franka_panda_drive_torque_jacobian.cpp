@@ -7,8 +7,6 @@
 // drive_torque_jacobian                3259   2023       12
 #include "franka_panda.hpp"
 
-#include <cmath>
-
 namespace modelgen {
 namespace panda {
 

@@ -7,8 +7,6 @@
 // drive_torque_state_jacobian          9024   6925       24
 #include "franka_panda.hpp"
 
-#include <cmath>
-
 namespace modelgen {
 namespace panda {
 

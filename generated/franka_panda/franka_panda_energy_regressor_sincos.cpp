@@ -7,8 +7,6 @@
 // energy_regressor_sincos               219    120        0
 #include "franka_panda.hpp"
 
-#include <cmath>
-
 namespace modelgen {
 namespace panda {
 

@@ -7,8 +7,6 @@
 // idim_regressor_sincos                1218    918        0
 #include "franka_panda.hpp"
 
-#include <cmath>
-
 namespace modelgen {
 namespace panda {
 

@@ -7,8 +7,6 @@
 // idim_regressor_standard_sincos       1522   1150        0
 #include "franka_panda.hpp"
 
-#include <cmath>
-
 namespace modelgen {
 namespace panda {
 

@@ -7,8 +7,6 @@
 // inverse_dynamics_sincos               604    461        0
 #include "franka_panda.hpp"
 
-#include <cmath>
-
 namespace modelgen {
 namespace panda {
 

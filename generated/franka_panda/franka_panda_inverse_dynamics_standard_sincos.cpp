@@ -7,8 +7,6 @@
 // inverse_dynamics_standard_sincos      714    558        0
 #include "franka_panda.hpp"
 
-#include <cmath>
-
 namespace modelgen {
 namespace panda {
 

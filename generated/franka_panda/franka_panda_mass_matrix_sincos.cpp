@@ -7,8 +7,6 @@
 // mass_matrix_sincos                   1446   1052        0
 #include "franka_panda.hpp"
 
-#include <cmath>
-
 namespace modelgen {
 namespace panda {
 

@@ -7,8 +7,6 @@
 // power_regressor_sincos                511    299        0
 #include "franka_panda.hpp"
 
-#include <cmath>
-
 namespace modelgen {
 namespace panda {
 

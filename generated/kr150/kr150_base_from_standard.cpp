@@ -7,8 +7,6 @@
 // base_from_standard                     49     81        0
 #include "kr150.hpp"
 
-#include <cmath>
-
 namespace modelgen {
 namespace kr150 {
 

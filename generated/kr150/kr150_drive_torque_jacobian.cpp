@@ -7,8 +7,6 @@
 // drive_torque_jacobian                1822   1231       10
 #include "kr150.hpp"
 
-#include <cmath>
-
 namespace modelgen {
 namespace kr150 {
 

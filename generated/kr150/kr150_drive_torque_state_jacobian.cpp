@@ -7,8 +7,6 @@
 // drive_torque_state_jacobian          3244   2823       20
 #include "kr150.hpp"
 
-#include <cmath>
-
 namespace modelgen {
 namespace kr150 {
 

@@ -7,8 +7,6 @@
 // energy_regressor_sincos               132     55        0
 #include "kr150.hpp"
 
-#include <cmath>
-
 namespace modelgen {
 namespace kr150 {
 

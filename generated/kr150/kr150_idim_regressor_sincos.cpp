@@ -7,8 +7,6 @@
 // idim_regressor_sincos                 477    375        0
 #include "kr150.hpp"
 
-#include <cmath>
-
 namespace modelgen {
 namespace kr150 {
 

@@ -7,8 +7,6 @@
 // idim_regressor_standard_sincos        685    550        0
 #include "kr150.hpp"
 
-#include <cmath>
-
 namespace modelgen {
 namespace kr150 {
 

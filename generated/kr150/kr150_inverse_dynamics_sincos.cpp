@@ -7,8 +7,6 @@
 // inverse_dynamics_sincos               379    293        0
 #include "kr150.hpp"
 
-#include <cmath>
-
 namespace modelgen {
 namespace kr150 {
 

@@ -7,8 +7,6 @@
 // inverse_dynamics_standard_sincos      496    394        0
 #include "kr150.hpp"
 
-#include <cmath>
-
 namespace modelgen {
 namespace kr150 {
 

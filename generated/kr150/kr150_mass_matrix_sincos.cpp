@@ -7,8 +7,6 @@
 // mass_matrix_sincos                    419    356        0
 #include "kr150.hpp"
 
-#include <cmath>
-
 namespace modelgen {
 namespace kr150 {
 

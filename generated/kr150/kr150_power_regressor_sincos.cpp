@@ -7,8 +7,6 @@
 // power_regressor_sincos                325    164        0
 #include "kr150.hpp"
 
-#include <cmath>
-
 namespace modelgen {
 namespace kr150 {
 

@@ -7,8 +7,6 @@
 // base_from_standard                     23     59        0
 #include "kuka_iiwa14_drake.hpp"
 
-#include <cmath>
-
 namespace modelgen {
 namespace iiwa14 {
 

@@ -7,8 +7,6 @@
 // drive_torque_jacobian                2078   1252       12
 #include "kuka_iiwa14_drake.hpp"
 
-#include <cmath>
-
 namespace modelgen {
 namespace iiwa14 {
 

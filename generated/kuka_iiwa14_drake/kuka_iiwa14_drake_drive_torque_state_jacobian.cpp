@@ -7,8 +7,6 @@
 // drive_torque_state_jacobian          4983   3961       24
 #include "kuka_iiwa14_drake.hpp"
 
-#include <cmath>
-
 namespace modelgen {
 namespace iiwa14 {
 

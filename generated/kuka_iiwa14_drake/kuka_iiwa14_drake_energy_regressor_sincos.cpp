@@ -7,8 +7,6 @@
 // energy_regressor_sincos               148     60        0
 #include "kuka_iiwa14_drake.hpp"
 
-#include <cmath>
-
 namespace modelgen {
 namespace iiwa14 {
 

@@ -7,8 +7,6 @@
 // idim_regressor_sincos                 798    564        0
 #include "kuka_iiwa14_drake.hpp"
 
-#include <cmath>
-
 namespace modelgen {
 namespace iiwa14 {
 

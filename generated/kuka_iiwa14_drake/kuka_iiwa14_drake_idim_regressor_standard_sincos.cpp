@@ -7,8 +7,6 @@
 // idim_regressor_standard_sincos       1007    713        0
 #include "kuka_iiwa14_drake.hpp"
 
-#include <cmath>
-
 namespace modelgen {
 namespace iiwa14 {
 

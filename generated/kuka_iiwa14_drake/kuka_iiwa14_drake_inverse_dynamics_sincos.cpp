@@ -7,8 +7,6 @@
 // inverse_dynamics_sincos               422    324        0
 #include "kuka_iiwa14_drake.hpp"
 
-#include <cmath>
-
 namespace modelgen {
 namespace iiwa14 {
 

@@ -7,8 +7,6 @@
 // inverse_dynamics_standard_sincos      484    379        0
 #include "kuka_iiwa14_drake.hpp"
 
-#include <cmath>
-
 namespace modelgen {
 namespace iiwa14 {
 

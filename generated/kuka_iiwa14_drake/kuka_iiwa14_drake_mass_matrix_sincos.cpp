@@ -7,8 +7,6 @@
 // mass_matrix_sincos                    750    554        0
 #include "kuka_iiwa14_drake.hpp"
 
-#include <cmath>
-
 namespace modelgen {
 namespace iiwa14 {
 

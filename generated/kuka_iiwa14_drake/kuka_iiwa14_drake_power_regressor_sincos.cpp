@@ -7,8 +7,6 @@
 // power_regressor_sincos                378    191        0
 #include "kuka_iiwa14_drake.hpp"
 
-#include <cmath>
-
 namespace modelgen {
 namespace iiwa14 {
 

@@ -7,8 +7,6 @@
 // base_from_standard                     37     75        0
 #include "kuka_kr150_2.hpp"
 
-#include <cmath>
-
 namespace modelgen {
 namespace kuka_kr150_2 {
 

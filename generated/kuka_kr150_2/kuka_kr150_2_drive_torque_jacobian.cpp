@@ -7,8 +7,6 @@
 // drive_torque_jacobian                1412    883       10
 #include "kuka_kr150_2.hpp"
 
-#include <cmath>
-
 namespace modelgen {
 namespace kuka_kr150_2 {
 

@@ -7,8 +7,6 @@
 // drive_torque_state_jacobian          3362   2858       20
 #include "kuka_kr150_2.hpp"
 
-#include <cmath>
-
 namespace modelgen {
 namespace kuka_kr150_2 {
 

@@ -7,8 +7,6 @@
 // energy_regressor_sincos               127     51        0
 #include "kuka_kr150_2.hpp"
 
-#include <cmath>
-
 namespace modelgen {
 namespace kuka_kr150_2 {
 

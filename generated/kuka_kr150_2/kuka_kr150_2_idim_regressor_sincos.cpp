@@ -7,8 +7,6 @@
 // idim_regressor_sincos                 490    379        0
 #include "kuka_kr150_2.hpp"
 
-#include <cmath>
-
 namespace modelgen {
 namespace kuka_kr150_2 {
 

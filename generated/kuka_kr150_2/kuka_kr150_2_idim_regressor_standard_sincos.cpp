@@ -7,8 +7,6 @@
 // idim_regressor_standard_sincos        614    481        0
 #include "kuka_kr150_2.hpp"
 
-#include <cmath>
-
 namespace modelgen {
 namespace kuka_kr150_2 {
 

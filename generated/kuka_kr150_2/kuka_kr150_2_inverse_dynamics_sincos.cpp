@@ -7,8 +7,6 @@
 // inverse_dynamics_sincos               365    279        0
 #include "kuka_kr150_2.hpp"
 
-#include <cmath>
-
 namespace modelgen {
 namespace kuka_kr150_2 {
 

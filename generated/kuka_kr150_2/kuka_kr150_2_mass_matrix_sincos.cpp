@@ -7,8 +7,6 @@
 // mass_matrix_sincos                    430    361        0
 #include "kuka_kr150_2.hpp"
 
-#include <cmath>
-
 namespace modelgen {
 namespace kuka_kr150_2 {
 

@@ -7,8 +7,6 @@
 // power_regressor_sincos                317    159        0
 #include "kuka_kr150_2.hpp"
 
-#include <cmath>
-
 namespace modelgen {
 namespace kuka_kr150_2 {
 

@@ -7,8 +7,6 @@
 // base_from_standard                     61    106        0
 #include "panda_arm.hpp"
 
-#include <cmath>
-
 namespace modelgen {
 namespace panda_arm {
 

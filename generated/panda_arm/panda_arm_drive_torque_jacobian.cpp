@@ -7,8 +7,6 @@
 // drive_torque_jacobian                2328   1442       12
 #include "panda_arm.hpp"
 
-#include <cmath>
-
 namespace modelgen {
 namespace panda_arm {
 

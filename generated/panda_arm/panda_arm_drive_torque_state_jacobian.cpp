@@ -7,8 +7,6 @@
 // drive_torque_state_jacobian          4990   4073       24
 #include "panda_arm.hpp"
 
-#include <cmath>
-
 namespace modelgen {
 namespace panda_arm {
 

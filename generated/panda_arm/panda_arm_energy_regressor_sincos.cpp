@@ -7,8 +7,6 @@
 // energy_regressor_sincos               141     63        0
 #include "panda_arm.hpp"
 
-#include <cmath>
-
 namespace modelgen {
 namespace panda_arm {
 

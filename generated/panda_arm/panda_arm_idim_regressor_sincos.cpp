@@ -7,8 +7,6 @@
 // idim_regressor_sincos                 800    586        0
 #include "panda_arm.hpp"
 
-#include <cmath>
-
 namespace modelgen {
 namespace panda_arm {
 

@@ -7,8 +7,6 @@
 // idim_regressor_standard_sincos       1117    833        0
 #include "panda_arm.hpp"
 
-#include <cmath>
-
 namespace modelgen {
 namespace panda_arm {
 

@@ -7,8 +7,6 @@
 // inverse_dynamics_sincos               415    326        0
 #include "panda_arm.hpp"
 
-#include <cmath>
-
 namespace modelgen {
 namespace panda_arm {
 

@@ -7,8 +7,6 @@
 // inverse_dynamics_standard_sincos      538    432        0
 #include "panda_arm.hpp"
 
-#include <cmath>
-
 namespace modelgen {
 namespace panda_arm {
 

@@ -7,8 +7,6 @@
 // mass_matrix_sincos                    775    568        0
 #include "panda_arm.hpp"
 
-#include <cmath>
-
 namespace modelgen {
 namespace panda_arm {
 

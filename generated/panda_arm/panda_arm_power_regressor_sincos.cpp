@@ -7,8 +7,6 @@
 // power_regressor_sincos                385    197        0
 #include "panda_arm.hpp"
 
-#include <cmath>
-
 namespace modelgen {
 namespace panda_arm {
 

@@ -7,8 +7,6 @@
 // base_from_standard                     32     70        0
 #include "tx40.hpp"
 
-#include <cmath>
-
 namespace modelgen {
 namespace tx40 {
 

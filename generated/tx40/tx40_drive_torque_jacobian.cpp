@@ -7,8 +7,6 @@
 // drive_torque_jacobian                2029    995       10
 #include "tx40.hpp"
 
-#include <cmath>
-
 namespace modelgen {
 namespace tx40 {
 

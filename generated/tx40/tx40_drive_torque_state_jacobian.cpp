@@ -7,8 +7,6 @@
 // drive_torque_state_jacobian          3244   2711       20
 #include "tx40.hpp"
 
-#include <cmath>
-
 namespace modelgen {
 namespace tx40 {
 

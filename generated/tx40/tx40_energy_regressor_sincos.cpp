@@ -7,8 +7,6 @@
 // energy_regressor_sincos               126     51        0
 #include "tx40.hpp"
 
-#include <cmath>
-
 namespace modelgen {
 namespace tx40 {
 

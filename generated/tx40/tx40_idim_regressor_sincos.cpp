@@ -7,8 +7,6 @@
 // idim_regressor_sincos                 468    362        0
 #include "tx40.hpp"
 
-#include <cmath>
-
 namespace modelgen {
 namespace tx40 {
 

@@ -7,8 +7,6 @@
 // idim_regressor_standard_sincos        585    459        0
 #include "tx40.hpp"
 
-#include <cmath>
-
 namespace modelgen {
 namespace tx40 {
 

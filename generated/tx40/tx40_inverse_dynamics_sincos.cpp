@@ -7,8 +7,6 @@
 // inverse_dynamics_sincos               338    276        0
 #include "tx40.hpp"
 
-#include <cmath>
-
 namespace modelgen {
 namespace tx40 {
 

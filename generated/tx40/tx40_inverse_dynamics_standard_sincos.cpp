@@ -7,8 +7,6 @@
 // inverse_dynamics_standard_sincos      441    367        0
 #include "tx40.hpp"
 
-#include <cmath>
-
 namespace modelgen {
 namespace tx40 {
 

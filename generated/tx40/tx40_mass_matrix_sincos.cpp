@@ -7,8 +7,6 @@
 // mass_matrix_sincos                    425    333        0
 #include "tx40.hpp"
 
-#include <cmath>
-
 namespace modelgen {
 namespace tx40 {
 

@@ -7,8 +7,6 @@
 // power_regressor_sincos                318    159        0
 #include "tx40.hpp"
 
-#include <cmath>
-
 namespace modelgen {
 namespace tx40 {
 

@@ -7,8 +7,6 @@
 // base_from_standard                     36     60        0
 #include "ur5.hpp"
 
-#include <cmath>
-
 namespace modelgen {
 namespace ur5 {
 

@@ -7,8 +7,6 @@
 // drive_torque_jacobian                1375    848       10
 #include "ur5.hpp"
 
-#include <cmath>
-
 namespace modelgen {
 namespace ur5 {
 

@@ -7,8 +7,6 @@
 // drive_torque_state_jacobian          3265   2795       20
 #include "ur5.hpp"
 
-#include <cmath>
-
 namespace modelgen {
 namespace ur5 {
 

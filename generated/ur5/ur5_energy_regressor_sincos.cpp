@@ -7,8 +7,6 @@
 // energy_regressor_sincos               133     59        0
 #include "ur5.hpp"
 
-#include <cmath>
-
 namespace modelgen {
 namespace ur5 {
 

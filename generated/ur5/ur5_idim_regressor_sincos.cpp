@@ -7,8 +7,6 @@
 // idim_regressor_sincos                 454    351        0
 #include "ur5.hpp"
 
-#include <cmath>
-
 namespace modelgen {
 namespace ur5 {
 

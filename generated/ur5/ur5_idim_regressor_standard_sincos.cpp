@@ -7,8 +7,6 @@
 // idim_regressor_standard_sincos        577    446        0
 #include "ur5.hpp"
 
-#include <cmath>
-
 namespace modelgen {
 namespace ur5 {
 

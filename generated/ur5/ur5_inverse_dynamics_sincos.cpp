@@ -7,8 +7,6 @@
 // inverse_dynamics_sincos               378    296        0
 #include "ur5.hpp"
 
-#include <cmath>
-
 namespace modelgen {
 namespace ur5 {
 

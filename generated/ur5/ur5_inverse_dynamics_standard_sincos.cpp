@@ -7,8 +7,6 @@
 // inverse_dynamics_standard_sincos      434    347        0
 #include "ur5.hpp"
 
-#include <cmath>
-
 namespace modelgen {
 namespace ur5 {
 

@@ -7,8 +7,6 @@
 // mass_matrix_sincos                    420    348        0
 #include "ur5.hpp"
 
-#include <cmath>
-
 namespace modelgen {
 namespace ur5 {
 

@@ -7,8 +7,6 @@
 // power_regressor_sincos                338    175        0
 #include "ur5.hpp"
 
-#include <cmath>
-
 namespace modelgen {
 namespace ur5 {
 
