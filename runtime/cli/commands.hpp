@@ -9,7 +9,7 @@ namespace modelgen::internal {
 
 /// The options each command accepts, for parse_arguments.
 extern const std::map<std::string, OptionKind> kFitOptions, kPredictOptions, kSimulateOptions,
-    kExportOptions;
+    kExportOptions, kCheckTrajectoryOptions, kDesignOptions;
 
 /// modelid fit: base parameters from trajectories (fit_command.cpp).
 int run_fit(const CommandLine& args);
@@ -21,6 +21,10 @@ int run_predict(const CommandLine& args);
 int run_simulate(const CommandLine& args);
 /// modelid export: the identified values of an estimate written into the description.
 int run_export(const CommandLine& args);
+/// modelid check-trajectory: the use of every joint limit by a Fourier excitation.
+int run_check_trajectory(const CommandLine& args);
+/// modelid design: an optimal Fourier excitation within the joint limits.
+int run_design(const CommandLine& args);
 /// modelid check ROBOT: loads a model and prints its sizes.
 int run_check(const CommandLine& args);
 

@@ -31,15 +31,22 @@ constexpr const char* kUsage =
     "                   [-o PRED.csv] [--plot DIR]\n"
     "       modelid simulate --robot ROBOT [--params TRUE.json] --trajectory TRAJ.yaml\n"
     "                   --noise SIGMA[,SIGMA2,...] [--seed N] [--sample-time S] [--periods K]\n"
-    "                   -o A.csv\n"
+    "                   [--ignore-limits] -o A.csv\n"
     "       modelid simulate --robot DESCRIPTION.yaml --drive THETA.json --trajectory TRAJ.yaml\n"
     "                   --noise SIGMA[,SIGMA2,...] [--seed N] [--sample-time S] [--periods K]\n"
     "                   -o A.csv\n"
     "       modelid export --robot DESCRIPTION --params EST.json -o IDENTIFIED\n"
     "       modelid check ROBOT\n"
+    "       modelid check-trajectory --robot ROBOT --trajectory TRAJ.yaml\n"
+    "       modelid design --robot ROBOT --period T --harmonics N [--axes 1,2,..]\n"
+    "                   [--hold q1=V,..] [--criterion cond|logdet] [--margin 0.95]\n"
+    "                   [--starts K] [--seed S] [--noise SIGMA] [--samples S]\n"
+    "                   [--ddq-limit A[,A2,..]] [--max-evaluations N] -o TRAJ.yaml\n"
     "       (any command: --progress shows progress lines also when stderr is not a terminal)\n"
     "       modelid --version | --help\n"
     "\n"
+    "simulate refuses a trajectory beyond the description's joint limits (checked at 1 kHz or\n"
+    "finer over one period) unless --ignore-limits; check-trajectory prints each limit's use.\n"
     "ROBOT is a description (.yaml/.urdf, through the numeric reference) or the name of a\n"
     "compiled-in generated model (tx40, kr150, ur5, iiwa14, panda, kuka_kr150_2,\n"
     "panda_arm). --angle-tolerance RAD (every command) reads a description as modelgen does\n"
@@ -72,6 +79,10 @@ int dispatch(int argc, char** argv) {
   if (command == "predict") return run_predict(parse_arguments(argc, argv, kPredictOptions));
   if (command == "simulate") return run_simulate(parse_arguments(argc, argv, kSimulateOptions));
   if (command == "export") return run_export(parse_arguments(argc, argv, kExportOptions));
+  if (command == "design") return run_design(parse_arguments(argc, argv, kDesignOptions));
+  if (command == "check-trajectory") {
+    return run_check_trajectory(parse_arguments(argc, argv, kCheckTrajectoryOptions));
+  }
   if (command == "check") {
     return run_check(parse_arguments(argc, argv, {{"--angle-tolerance", OptionKind::kOnce}}));
   }

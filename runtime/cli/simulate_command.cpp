@@ -27,6 +27,7 @@
 #include "runtime/cli/model_source.hpp"
 #include "runtime/cli/parameter_file.hpp"
 #include "runtime/cli/progress.hpp"
+#include "runtime/cli/trajectory_limits.hpp"
 
 namespace modelgen::internal {
 
@@ -39,6 +40,7 @@ const std::map<std::string, OptionKind> kSimulateOptions = {{"--robot", OptionKi
                                                             {"--seed", OptionKind::kOnce},
                                                             {"--sample-time", OptionKind::kOnce},
                                                             {"--periods", OptionKind::kOnce},
+                                                            {"--ignore-limits", OptionKind::kFlag},
                                                             {"-o", OptionKind::kOnce}};
 
 namespace {
@@ -145,6 +147,14 @@ int run_simulate(const CommandLine& args) {
     }
   }
   const FourierTrajectory fourier = read_fourier(args.one("--trajectory"), model.dof());
+  // Checked on a dense grid over one period, not at the output samples only: a peak between
+  // two samples is still a joint driven into its stop.
+  if (!args.has("--ignore-limits")) {
+    note_missing_limits(std::cerr, "simulate", source);
+    refuse_beyond_limits(args.one("--trajectory"), fourier, source,
+                         "modelid simulate: nothing written; modelid check-trajectory shows the use "
+                         "of every limit, --ignore-limits simulates it anyway");
+  }
   const std::vector<double> noise =
       parse_noise(args.one("--noise"), model.dof(), drive_mode ? "motor" : "joint");
   const double sample_time = args.has("--sample-time")

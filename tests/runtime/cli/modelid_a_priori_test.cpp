@@ -121,7 +121,7 @@ TEST(ModelidSimulate, AnImpossibleDriveTruthOrAPrioriValueIsRefused) {
   const CliRun simulate = modelid(
       "simulate --robot " + robot + " --drive " + quoted(dir / "drive_truth.json") +
       " --trajectory " + quoted_source("robots/data/kr150/load/table1.yaml") +
-      " --noise 1 --sample-time 0.024 -o " + quoted(dir / "load.csv"));
+      " --noise 1 --sample-time 0.024 --ignore-limits -o " + quoted(dir / "load.csv"));
   EXPECT_EQ(simulate.exit_code, 1) << simulate.err;
   EXPECT_NE(simulate.err.find("drive_truth.json: error: these values cannot be those of a "
                               "physical robot: link 'A3' XX3: "),

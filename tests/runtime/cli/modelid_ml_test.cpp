@@ -241,7 +241,8 @@ TEST(ModelidMl, BundledDemoWarnsAboutImpossibleEstimates) {
       modelid("simulate --robot " + quoted_source("robots/kr150.yaml") + " --drive " +
               quoted_source("robots/data/kr150/load/drive_truth.json") + " --trajectory " +
               quoted_source("robots/data/kr150/load/table1.yaml") +
-              " --noise 345,345,345,133,126,123 --seed 2002 --sample-time 0.024 --periods 10 -o " +
+              " --noise 345,345,345,133,126,123 --seed 2002 --sample-time 0.024 --periods 10 "
+              "--ignore-limits -o " +
               quoted(dir / "load.csv"));
   ASSERT_EQ(simulated.exit_code, 0) << simulated.err;
   const CliRun fit = modelid(
@@ -317,7 +318,8 @@ TEST(ModelidMl, PhysicalMakesEveryApproachConsistent) {
       modelid("simulate --robot " + quoted_source("robots/kr150.yaml") + " --drive " +
               quoted_source("robots/data/kr150/load/drive_truth.json") + " --trajectory " +
               quoted_source("robots/data/kr150/load/table1.yaml") +
-              " --noise 345,345,345,133,126,123 --seed 2002 --sample-time 0.024 --periods 10 -o " +
+              " --noise 345,345,345,133,126,123 --seed 2002 --sample-time 0.024 --periods 10 "
+              "--ignore-limits -o " +
               quoted(dir / "load.csv"));
   ASSERT_EQ(simulated.exit_code, 0) << simulated.err;
   const CliRun fit = modelid(

@@ -464,7 +464,7 @@ TEST(ModelidSimulate, BundledLoadScenario) {
   const std::string folder = "robots/data/kr150/load/";
   const std::string options = "--trajectory " + folder +
                               "table1.yaml --noise 345,345,345,133,126,123 --seed 2002 "
-                              "--sample-time 0.024 --periods 10";
+                              "--sample-time 0.024 --periods 10 --ignore-limits";
   const std::string readme = read_text(source_path(folder + "README.md"));
   const std::string documented = "modelid simulate --robot robots/kr150.yaml --drive " + folder +
                                  "drive_truth.json " + options;
@@ -475,7 +475,7 @@ TEST(ModelidSimulate, BundledLoadScenario) {
                              " --drive " + quoted_source(folder + "drive_truth.json") +
                              " --trajectory " + quoted_source(folder + "table1.yaml") +
                              " --noise 345,345,345,133,126,123 --seed 2002 --sample-time 0.024"
-                             " --periods 10 -o " +
+                             " --periods 10 --ignore-limits -o " +
                              quoted(csv));
   ASSERT_EQ(run.exit_code, 0) << run.err;
   EXPECT_EQ(run.err.find("note"), std::string::npos) << "every value is given: " << run.err;
@@ -599,6 +599,7 @@ TEST(ModelidSimulate, WristOnlyNeedsAKnownLoadMass) {
                     quoted_source(folder + "drive_truth.json") + " --trajectory " +
                     quoted(dir / "wrist.yaml") +
                     " --noise 345,345,345,133,126,123 --seed 7 --sample-time 0.024 --periods 10 "
+                    "--ignore-limits "
                     "-o " +
                     quoted(dir / "wrist.csv"))
                 .exit_code,

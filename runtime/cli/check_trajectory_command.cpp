@@ -1,0 +1,41 @@
+// modelid check-trajectory --robot R --trajectory T.yaml: the peak use of every joint limit
+// of the description by a Fourier excitation, on a dense grid over one period.
+
+#include <iostream>
+
+#include "modelgen/excitation/limit_use.hpp"
+#include "runtime/cli/commands.hpp"
+#include "runtime/cli/fourier_file.hpp"
+#include "runtime/cli/model_source.hpp"
+#include "runtime/cli/text_format.hpp"
+#include "runtime/cli/trajectory_limits.hpp"
+
+namespace modelgen::internal {
+
+const std::map<std::string, OptionKind> kCheckTrajectoryOptions = {
+    {"--robot", OptionKind::kOnce},
+    {"--angle-tolerance", OptionKind::kOnce},
+    {"--trajectory", OptionKind::kOnce}};
+
+int run_check_trajectory(const CommandLine& args) {
+  reject_positional(args);
+  const ModelSource source = load_model_source(args.one("--robot"), angle_tolerance_option(args));
+  const std::string& path = args.one("--trajectory");
+  const FourierTrajectory trajectory = read_fourier(path, source.model->dof());
+  note_missing_limits(std::cerr, "check-trajectory", source);
+  const long points = limit_grid_points(trajectory);
+  std::cout << path << ": period " << shortest(trajectory.period) << " s, "
+            << trajectory.a.cols() << " harmonics, checked on " << points
+            << " points of one period (" << fixed(points / trajectory.period, 0, 6)
+            << " Hz); q use: distance from the middle of the range over half the range\n";
+  const int exceeded =
+      print_limit_use(std::cout, source, trajectory_extremes(trajectory), source.limits);
+  if (exceeded > 0) {
+    std::cerr << "modelid check-trajectory: " << exceeded << " limit"
+              << (exceeded == 1 ? " is" : "s are") << " exceeded (marked '!')\n";
+    return 1;
+  }
+  return 0;
+}
+
+}  // namespace modelgen::internal

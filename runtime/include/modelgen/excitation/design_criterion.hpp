@@ -1,0 +1,35 @@
+// The information criteria of excitation design on a stacked base regressor W (samples x dof
+// rows, base-parameter columns): the condition number (Bona & Curatella eq. 20, Presse &
+// Gautier) and -log det(W^T W) (d-optimality, Swevers et al. 1997), of W D with a fixed
+// column scale D. Unscaled, parameters in kg, kg m, kg m^2 and N m s make the condition number
+// mostly a measure of units. Scaling each column to unit norm at the point evaluated removes
+// the units but also hides how strongly a parameter is excited (a joint that barely moves
+// keeps unit-norm columns); a scale fixed before the optimisation (excitation_design: the RMS
+// column norms of the random starts) removes the units and keeps that.
+#pragma once
+
+#include <Eigen/Core>
+
+namespace modelgen {
+
+enum class DesignCriterion { kCond, kLogDet };
+
+/// The criterion and what the report needs, for one stacked regressor.
+struct CriterionValue {
+  double value = 0;  ///< log cond(W D) or -log det((W D)^T (W D)), D = diag(1 / scale)
+  double cond_scaled = 0;      ///< cond(W D)
+  double cond_unit = 0;        ///< cond of W with unit-norm columns
+  double cond_unscaled = 0;    ///< cond(W)
+  double sigma_min_scaled = 0, sigma_min_unscaled = 0;
+  /// d value / d W (same shape as W); filled when asked.
+  Eigen::MatrixXd gradient;
+};
+
+/// The criterion of `W` with columns divided by `scale` (positive, one per column). The cond
+/// criterion is the log of the condition number: the same minimiser, a better-scaled function.
+/// A rank-deficient W gives +inf. With `with_gradient`, d value / d W from the
+/// eigen-decomposition of (W D)^T (W D): d lambda_i = 2 (W D v_i)^T dW D v_i.
+CriterionValue evaluate_criterion(const Eigen::MatrixXd& W, const Eigen::VectorXd& scale,
+                                  DesignCriterion criterion, bool with_gradient);
+
+}  // namespace modelgen

@@ -1,0 +1,108 @@
+// modelid check-trajectory against peaks computed by hand: a single harmonic in position form,
+// q = q0 + a sin(l wf t) + b cos(l wf t), peaks at q0 +- r, |dq| at r l wf, |ddq| at r (l wf)^2
+// with r = hypot(a, b); position use is the distance from the middle of the range over half
+// the range.
+
+#include <cmath>
+#include <numbers>
+#include <sstream>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "tests/support/cli_runner.hpp"
+#include "tests/support/test_support.hpp"
+
+namespace modelgen::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+// The whitespace-separated fields of the table row that starts with `joint`.
+std::vector<std::string> row_of(const std::string& out, const std::string& joint) {
+  std::istringstream in(out);
+  for (std::string line; std::getline(in, line);) {
+    if (line.rfind(joint + " ", 0) != 0) continue;
+    std::istringstream fields(line);
+    std::vector<std::string> row;
+    for (std::string field; fields >> field;) row.push_back(field);
+    return row;
+  }
+  ADD_FAILURE() << "no row '" << joint << "' in:\n" << out;
+  return {};
+}
+
+// A "80.0%" field as 0.8.
+double fraction(const std::string& field) { return std::stod(field) / 100; }
+
+constexpr const char* kRobot = "tests/bad_inputs/robots/two_axes_limited.yaml";
+
+TEST(ModelidCheckTrajectory, PrintsThePeakUseOfEveryLimit) {
+  const fs::path dir = test_folder();
+  write_text(dir / "one.yaml",
+             "period: 2\nform: position\njoints:\n"
+             "  - {q0: 0.2, terms: [{l: 1, a: 0.6, b: 0.8}]}\n"
+             "  - {q0: 0.25, terms: [{l: 2, a: 0.1, b: 0}]}\n");
+  const CliRun run = modelid("check-trajectory --robot " + quoted_source(kRobot) +
+                             " --trajectory " + quoted(dir / "one.yaml"));
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const double pi = std::numbers::pi;
+  // Joint 1: r = 1, wf = pi; q in [-0.8, 1.2] against [-1.5, 1.5]; dq limit 7, ddq 20.
+  const std::vector<std::string> j1 = row_of(run.out, "1");
+  ASSERT_EQ(j1.size(), 11u) << run.out;
+  EXPECT_NEAR(std::stod(j1[2]), 1.2, 1e-3);
+  EXPECT_NEAR(fraction(j1[4]), 1.2 / 1.5, 1e-3);
+  EXPECT_NEAR(std::stod(j1[5]), pi, 1e-3);
+  EXPECT_NEAR(fraction(j1[7]), pi / 7, 1e-3);
+  EXPECT_NEAR(std::stod(j1[8]), pi * pi, 1e-2);
+  EXPECT_NEAR(fraction(j1[10]), pi * pi / 20, 1e-3);
+  // Joint 2: r = 0.1, l wf = 2 pi; q in [0.15, 0.35] against [-1, 1.5] (middle 0.25, half
+  // range 1.25); dq limit 1.5, ddq 15.
+  const std::vector<std::string> j2 = row_of(run.out, "2");
+  ASSERT_EQ(j2.size(), 11u) << run.out;
+  EXPECT_NEAR(fraction(j2[4]), 0.1 / 1.25, 1e-3);
+  EXPECT_NEAR(std::stod(j2[5]), 0.2 * pi, 1e-3);
+  EXPECT_NEAR(fraction(j2[7]), 0.2 * pi / 1.5, 1e-3);
+  EXPECT_NEAR(std::stod(j2[8]), 0.4 * pi * pi, 1e-3);
+  EXPECT_NEAR(fraction(j2[10]), 0.4 * pi * pi / 15, 1e-3);
+  EXPECT_EQ(run.out.find('!'), std::string::npos) << run.out;
+}
+
+TEST(ModelidCheckTrajectory, ExceededLimitsAreMarkedAndFail) {
+  const CliRun run = modelid("check-trajectory --robot " + quoted_source(kRobot) +
+                             " --trajectory " +
+                             quoted_source("tests/bad_inputs/limits/beyond_velocity.yaml"));
+  EXPECT_EQ(run.exit_code, 1);
+  const std::vector<std::string> j2 = row_of(run.out, "2");
+  ASSERT_EQ(j2.size(), 11u) << run.out;
+  EXPECT_EQ(j2[7], "125.7%!");  // 0.6 pi / 1.5
+  EXPECT_NE(run.err.find("1 limit is exceeded"), std::string::npos) << run.err;
+}
+
+TEST(ModelidCheckTrajectory, NamesTheLimitsTheDescriptionLacks) {
+  // two_axes.yaml has no limits at all: every key is named, joint by joint, and nothing fails.
+  const CliRun run = modelid("check-trajectory --robot " +
+                             quoted_source("tests/bad_inputs/robots/two_axes.yaml") +
+                             " --trajectory " +
+                             quoted_source("tests/bad_inputs/limits/beyond_velocity.yaml"));
+  EXPECT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_NE(run.err.find("no 'dq' limit for joint 1 ('J1'), joint 2 ('J2'); not checked"),
+            std::string::npos)
+      << run.err;
+}
+
+TEST(ModelidCheckTrajectory, BundledExcitationsAreWithinTheLimits) {
+  for (const auto& [robot, trajectory] :
+       {std::pair{"kr150", "robots/data/kr150/excitation.yaml"},
+        std::pair{"kr150", "robots/data/kr150/load/design.yaml"},
+        std::pair{"tx40", "robots/data/tx40/design.yaml"}}) {
+    const CliRun run = modelid(std::string("check-trajectory --robot ") + robot +
+                               " --trajectory " + quoted_source(trajectory));
+    EXPECT_EQ(run.exit_code, 0) << trajectory << "\n" << run.out << run.err;
+  }
+}
+
+}  // namespace
+}  // namespace modelgen::test
