@@ -14,7 +14,7 @@
 #include "generated/tx40/tx40.hpp"
 #include "modelgen/model/identification_model.hpp"
 #include "modelgen/model/load_robot.hpp"
-#include "modelgen/simulation/forward_dynamics.hpp"
+#include "modelgen/closed_loop/forward_dynamics.hpp"
 #include "tests/benchmarks/benchmark_summary.hpp"
 #include "tests/benchmarks/kdl_setup.hpp"
 #include "tests/support/kdl_oracle.hpp"

@@ -3,7 +3,7 @@
 // mass matrix equals the one built from the reference's inverse dynamics; impossible
 // parameters are refused.
 
-#include "modelgen/simulation/forward_dynamics.hpp"
+#include "modelgen/closed_loop/forward_dynamics.hpp"
 
 #include <cmath>
 #include <stdexcept>

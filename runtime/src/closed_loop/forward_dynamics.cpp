@@ -2,7 +2,7 @@
 // Cholesky solve: for the 6-joint arms of this project cheaper than an articulated-body pass,
 // since the generated functions share the sines and cosines and fold the geometry in.
 
-#include "modelgen/simulation/forward_dynamics.hpp"
+#include "modelgen/closed_loop/forward_dynamics.hpp"
 
 #include <cmath>
 #include <sstream>
