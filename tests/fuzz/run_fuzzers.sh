@@ -3,13 +3,14 @@
 # (robots/ and tests/bad_inputs/), under the sanitizers it was built with; fails on a crash, a
 # sanitizer report, an input error that is not a modelgen::Error, or an input taking over
 # 10 s. Usage: tests/fuzz/run_fuzzers.sh BUILD_DIR [RUNS_PER_TARGET]. By default each target
-# gets about a minute on one core: the description loaders build the reference model for
+# gets about half a minute on one core (CI's time budget; give more runs locally): the
+# description loaders build the reference model for
 # every accepted input (tens of inputs per second), the file readers run hundreds a second.
 set -euo pipefail
 build=$(cd "$1" && pwd)
 runs=${2:-}
-declare -A default_runs=([fuzz_mdh_yaml]=3000 [fuzz_urdf]=2000 [fuzz_data_csv]=20000
-                         [fuzz_parameter_json]=20000 [fuzz_trajectory_yaml]=10000)
+declare -A default_runs=([fuzz_mdh_yaml]=1500 [fuzz_urdf]=1000 [fuzz_data_csv]=10000
+                         [fuzz_parameter_json]=10000 [fuzz_trajectory_yaml]=5000)
 source_dir=$(cd "$(dirname "$0")/../.." && pwd)
 work=$build/fuzz
 rm -rf "$work"
