@@ -8,9 +8,7 @@
 #include <cmath>
 #include <cstdint>
 #include <iostream>
-#include <numbers>
 #include <optional>
-#include <random>
 #include <sstream>
 #include <stdexcept>
 #include <vector>
@@ -19,6 +17,7 @@
 #include "modelgen/data/trajectory_csv.hpp"
 #include "modelgen/excitation/fourier_trajectory.hpp"
 #include "modelgen/ml/drive_model.hpp"
+#include "modelgen/signal/gaussian_noise.hpp"
 #include "modelgen/model/physical_consistency.hpp"
 #include "runtime/cli/commands.hpp"
 #include "runtime/cli/drive_simulation.hpp"
@@ -196,13 +195,10 @@ int run_simulate(const CommandLine& args) {
     }
   }
   // Gaussian noise per axis by Box-Muller on a fixed generator: the same seed, the same file.
-  std::mt19937_64 engine(seed);
-  auto uniform = [&engine] { return (static_cast<double>(engine() >> 11) + 0.5) * 0x1.0p-53; };
+  GaussianNoise gaussian(seed);
   for (Eigen::Index s = 0; s < x.t.size(); ++s) {
     for (int j = 0; j < model.dof(); ++j) {
-      const double u1 = uniform(), u2 = uniform();  // named: operand order is unspecified
-      const double g = std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * std::numbers::pi * u2);
-      x.tau(s, j) = tau(s, j) + noise[static_cast<std::size_t>(j)] * g;
+      x.tau(s, j) = tau(s, j) + noise[static_cast<std::size_t>(j)] * gaussian();
     }
   }
   // Swevers eq. 10 / power balance: the joint torques the motor torques produce,
