@@ -21,6 +21,8 @@ namespace {
 // Relative change of the estimate below which the iterations stop whatever the standard
 // deviations (a few hundred rounding errors).
 constexpr double kSettled = 1e-12;
+// Step halvings DIDIM tries before it stops.
+constexpr int kMaxHalvings = 8;
 
 // Row j of the base regressor at rows [from, from + count) of (q, dq, ddq): count x b.
 Eigen::MatrixXd joint_rows(const IdentificationModel& model, const Eigen::MatrixXd& q,
@@ -176,11 +178,15 @@ ClosedLoopIdentification identify_closed_loop(const IdentificationModel& model,
   ClosedLoopIdentification out;
   out.start = beta = fit.value;
 
-  // Iterate: simulate with the last estimate, refit.
-  std::vector<std::vector<Eigen::MatrixXd>> simulated(records.size()),
-      simulated_torques(records.size());
-  for (int iteration = 1; iteration <= options.max_iterations; ++iteration) {
-    const std::vector<double> current(beta.data(), beta.data() + b);
+  // The simulated equations of an estimate: its closed loop on every record's reference.
+  struct Simulated {
+    std::vector<std::vector<Eigen::MatrixXd>> W, tau;  // regressor and command, decimated
+  };
+  std::string failure;
+  auto simulate_with = [&](const Eigen::VectorXd& estimate, Simulated& sim) {
+    const std::vector<double> values(estimate.data(), estimate.data() + b);
+    sim.W.assign(records.size(), {});
+    sim.tau.assign(records.size(), {});
     for (std::size_t e = 0; e < records.size(); ++e) {
       const ClosedLoopRecord& r = records[e];
       PidController controller(gains);
@@ -190,36 +196,70 @@ ClosedLoopIdentification identify_closed_loop(const IdentificationModel& model,
       simulation.tau_noise.resize(0);
       ClosedLoopRun run;
       try {
-        run = simulate_closed_loop(model, current, controller, r.qr, r.q0, r.dq0, simulation,
+        run = simulate_closed_loop(model, values, controller, r.qr, r.q0, r.dq0, simulation,
                                    r.t0);
       } catch (const std::exception& error) {
-        throw EstimationError("iteration " + std::to_string(iteration) +
-                              ": the closed loop could not be simulated with the estimate (" +
-                              error.what() + "); try --physical on IDIM-WLS first");
+        failure = error.what();
+        return false;
       }
-      simulated[e].clear();
-      simulated_torques[e].clear();
-      const Eigen::Index rows_used = r.prepared.t.size();
+      const Eigen::Index used = r.prepared.t.size();
+      const auto& kept = equations[e].kept;
       for (int j = 0; j < n; ++j) {
-        const auto& kept = equations[e].kept;
-        simulated[e].push_back(decimate(
-            joint_rows(model, run.q, run.dq, run.ddq, r.first_row, rows_used, j),
-            r.decimation)(kept, Eigen::all));
-        simulated_torques[e].push_back(decimate(
-            run.tau_command.col(j).segment(r.first_row, rows_used), r.decimation)(kept, 0));
+        sim.W[e].push_back(decimate(joint_rows(model, run.q, run.dq, run.ddq, r.first_row, used, j),
+                                    r.decimation)(kept, Eigen::all));
+        sim.tau[e].push_back(
+            decimate(run.tau_command.col(j).segment(r.first_row, used), r.decimation)(kept, 0));
       }
     }
-    const Eigen::MatrixXd Ws = stack(equations, simulated, rows, b);
+    return true;
+  };
+  auto output_error = [&](const Simulated& sim) {
+    return (y - stack(equations, sim.tau, rows, 1).col(0)).squaredNorm();
+  };
+  Simulated current;
+  if (!simulate_with(beta, current)) {
+    throw EstimationError("the closed loop could not be simulated with the IDIM-WLS estimate (" +
+                          failure + "); try --physical, or check the controller's gains");
+  }
+
+  // Iterate: simulate with the last estimate, refit.
+  for (int iteration = 1; iteration <= options.max_iterations; ++iteration) {
+    const Eigen::MatrixXd Ws = stack(equations, current.W, rows, b);
     Eigen::VectorXd next;
     LeastSquaresResult result;
     if (method == ClosedLoopMethod::kDidim) {
       // The Gauss-Newton step of DIDIM on the output error Y - tau_s(beta), with the
       // simulated regressor as its Jacobian: a linear fit. (tau_s = W_s beta where the
       // simulated states obey the model; the simulation's smoothed friction makes them
-      // differ near rest, and the simulated torque is the output.)
-      const Eigen::VectorXd output = stack(equations, simulated_torques, rows, 1).col(0);
-      result = fit_ols(Ws, y - output, names);
-      next = beta + result.value;
+      // differ near rest, and the simulated torque is the output.) The Jacobian leaves out
+      // how the states move with beta: a step that does not lower the output error (or
+      // makes a robot that cannot be simulated) is halved.
+      const double cost = output_error(current);
+      result = fit_ols(Ws, y - stack(equations, current.tau, rows, 1).col(0), names);
+      const Eigen::VectorXd step = result.value;
+      Simulated trial;
+      double alpha = 1;
+      int halvings = 0;
+      for (;; ++halvings, alpha /= 2) {
+        next = beta + alpha * step;
+        if (simulate_with(next, trial) && output_error(trial) <= cost) break;
+        if (halvings == kMaxHalvings) break;
+      }
+      if (halvings == kMaxHalvings) {
+        // The step leaves out how the states move with beta; within a standard deviation of
+        // the minimum that is what is left of it.
+        double full = 0;
+        for (int k = 0; k < b; ++k) {
+          full = std::max(full, std::abs(step[k]) / std::max(result.std_dev[k], 1e-300));
+        }
+        if (full < 1) {
+          out.converged = true;
+        } else {
+          out.stop_reason = "no step along the Gauss-Newton direction lowers the output error";
+        }
+        break;
+      }
+      current = std::move(trial);
       result.value = next;
     } else {
       // IV: (Z^T W) beta = Z^T Y, columns scaled to unit norm for the solve.
@@ -242,6 +282,11 @@ ClosedLoopIdentification identify_closed_loop(const IdentificationModel& model,
       result.std_dev = covariance.diagonal().cwiseMax(0).cwiseSqrt();
       result.information = covariance.inverse();
       result.residual_std_dev = std::sqrt(variance);
+      if (!simulate_with(next, current)) {
+        throw EstimationError("iteration " + std::to_string(iteration) +
+                              ": the closed loop could not be simulated with the estimate (" +
+                              failure + "); try --physical on IDIM-WLS first");
+      }
     }
     double move = 0;
     for (int k = 0; k < b; ++k) {
@@ -259,6 +304,14 @@ ClosedLoopIdentification identify_closed_loop(const IdentificationModel& model,
       out.converged = true;
       break;
     }
+    // Changes that no longer shrink: the iterations circle (the smoothed friction of the
+    // simulations moves with the estimate); more of them would not settle.
+    const std::size_t m = out.moves.size();
+    if (m >= 6 && *std::max_element(out.moves.end() - 3, out.moves.end()) >=
+                      *std::max_element(out.moves.end() - 6, out.moves.end() - 3)) {
+      out.stop_reason = "the changes no longer shrink";
+      break;
+    }
   }
 
   // Statistics on the decimated equations, the residual the method minimises.
@@ -274,7 +327,7 @@ ClosedLoopIdentification identify_closed_loop(const IdentificationModel& model,
     for (int j = 0; j < n; ++j) {
       const Eigen::VectorXd& tau = torques[e][j];
       error_squares[j] += method == ClosedLoopMethod::kDidim
-                              ? (tau - simulated_torques[e][j]).squaredNorm()
+                              ? (tau - current.tau[e][j]).squaredNorm()
                               : (tau - measured[e][j] * beta).squaredNorm();
       torque_squares[j] += tau.squaredNorm();
     }

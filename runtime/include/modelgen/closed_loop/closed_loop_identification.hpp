@@ -7,6 +7,7 @@
 #pragma once
 
 #include <functional>
+#include <string>
 #include <vector>
 
 #include <Eigen/Core>
@@ -40,7 +41,7 @@ struct ClosedLoopRecord {
 struct ClosedLoopFitOptions {
   int max_iterations = 20;
   /// Converged when no parameter moves by more than this fraction of its standard deviation.
-  double tolerance = 0.01;
+  double tolerance = 0.05;
   ClosedLoopOptions simulation;  ///< substeps and friction smoothing (no measurement noise)
   /// Per joint (rad/s, m/s; empty: none): the decimated samples where some joint moves slower
   /// (by its prepared velocity) are left out of every fit. Near rest the Coulomb model
@@ -60,6 +61,7 @@ struct ClosedLoopIdentification {
   Eigen::VectorXd start;  ///< the IDIM-WLS estimate the iterations started from
   int iterations = 0;
   bool converged = false;
+  std::string stop_reason;  ///< why the iterations stopped before converging; empty if converged
   std::vector<double> moves;  ///< largest move per iteration, in standard deviations
 };
 
@@ -71,8 +73,10 @@ struct ClosedLoopIdentification {
 ///   DIDIM: Gauss-Newton on the output error Y - tau_s(beta), tau_s the simulated command,
 ///       with the regressor of the simulated states W_s as its Jacobian: beta += the least-
 ///       squares solution of W_s d = Y - tau_s(beta); covariance sigma^2 (W_s^T W_s)^-1.
-/// Stops when no parameter moves by more than options.tolerance standard deviations (or the
-/// estimate no longer changes), or after options.max_iterations.
+/// Converged when no parameter moves by more than options.tolerance standard deviations (or
+/// the estimate no longer changes); stops unconverged after options.max_iterations, when the
+/// changes of the last three iterations are no smaller than those of the three before, or
+/// (DIDIM) when eight halvings of a step do not lower the output error.
 /// Throws EstimationError for records that do not fit the model or the controller, a
 /// singular system, and when a simulation with an estimate fails (not a physical robot, an
 /// unstable loop), naming the iteration.
