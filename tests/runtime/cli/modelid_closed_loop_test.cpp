@@ -1,9 +1,11 @@
 // modelid simulate --controller and fit --method iv|didim as a user runs them, on the compiled-in
 // TX-40 along its bundled design: the written reference equals the Fourier series evaluated
-// here; the robot tracks it; IV and DIDIM converge near the true parameters; usage errors.
+// here; the robot tracks it; IV and DIDIM converge near the true parameters; validate with the
+// truth leaves the measurement noise; usage errors.
 // (tests/runtime/closed_loop/closed_loop_identification_test.cpp holds the methods to 3 sd.)
 
 #include <cmath>
+#include <sstream>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -109,6 +111,35 @@ TEST_F(ModelidClosedLoop, IvAndDidimConvergeNearTheTruth) {
     }
     EXPECT_GE(checked, 6) << method;
   }
+}
+
+TEST_F(ModelidClosedLoop, ValidatingTheTruthLeavesTheMeasurementNoise) {
+  // The record's own robot simulated under the same controller: what differs is the noise
+  // added to the torques (0.2 N m) and what the recording controller made of the encoder's
+  // counts (its D term turns a count of 1.5e-6 rad into 260 * 1.5e-6 / 1 ms = 0.4 N m on
+  // joints 1-2), which validate's controller, on the simulated positions, does not see.
+  const fs::path plots = folder_ / "plots";
+  const CliRun run = modelid("validate --robot tx40 --params " + quoted(truth_) + " --controller " +
+                             quoted(controller_) + " --data " + quoted(data_) + " --plot " +
+                             quoted(plots));
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  std::istringstream lines(run.out);
+  std::string line;
+  int joints = 0;
+  while (std::getline(lines, line)) {
+    std::istringstream fields(line);
+    int joint = 0;
+    double rms_deg = 0, max_deg = 0, rms_torque = 0, max_torque = 0;
+    if (!(fields >> joint >> rms_deg >> max_deg >> rms_torque >> max_torque)) continue;
+    ++joints;
+    EXPECT_GT(rms_torque, 0.18) << line;
+    EXPECT_LT(rms_torque, 0.3) << line;
+    EXPECT_LT(max_deg, 5e-3) << line;
+  }
+  EXPECT_EQ(joints, 6) << run.out;
+  const CsvTable positions = read_csv(plots / "positions.csv");
+  EXPECT_EQ(positions.rows.size(), 10000u);
+  EXPECT_TRUE(fs::exists(plots / "torques.csv"));
 }
 
 TEST_F(ModelidClosedLoop, UsageErrors) {
