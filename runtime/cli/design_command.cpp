@@ -10,9 +10,8 @@
 #include <sstream>
 #include <stdexcept>
 
-#include <Eigen/Cholesky>
-
 #include "modelgen/excitation/excitation_design.hpp"
+#include "modelgen/excitation/expected_precision.hpp"
 #include "modelgen/excitation/limit_use.hpp"
 #include "runtime/cli/commands.hpp"
 #include "runtime/cli/fourier_file.hpp"
@@ -303,14 +302,13 @@ int run_design(const CommandLine& args) {
   // sampled as assumed, with the noise --noise on every torque sample.
   Eigen::MatrixXd W(design.regressor.rows(), static_cast<Eigen::Index>(design.columns.size()));
   for (std::size_t c = 0; c < design.columns.size(); ++c) W.col(static_cast<Eigen::Index>(c)) = design.regressor.col(design.columns[c]);
-  const Eigen::MatrixXd covariance =
-      noise * noise * (W.transpose() * W).ldlt().solve(Eigen::MatrixXd::Identity(W.cols(), W.cols()));
+  const Eigen::VectorXd expected_sd = expected_std_devs(W, noise);
   const std::optional<Eigen::VectorXd> prior = a_priori_base(source);
   out << "expected standard deviations for --noise " << shortest(noise)
       << " N m per torque sample, one period at the rate above"
       << (prior ? ", %std of the description's a-priori values" : "") << ":\n";
   for (std::size_t c = 0; c < design.columns.size(); ++c) {
-    const double sd = std::sqrt(covariance(static_cast<Eigen::Index>(c), static_cast<Eigen::Index>(c)));
+    const double sd = expected_sd[static_cast<Eigen::Index>(c)];
     out << "  " << pad(names[static_cast<std::size_t>(design.columns[c])], 10) << " sd " << fixed(sd, 0, 4);
     if (prior && (*prior)[design.columns[c]] != 0) {
       out << "  " << fixed(100 * sd / std::abs((*prior)[design.columns[c]]), 0, 3) << "%";
