@@ -1,9 +1,11 @@
 // modelid check-trajectory --robot R --trajectory T.yaml: the peak use of every joint limit
-// of the description by a Fourier excitation, on a dense grid over one period.
+// of the description by a Fourier excitation, on a dense grid over one period; with effort
+// limits and a-priori inertial values, the peak a-priori torques too.
 
 #include <iostream>
 
 #include "modelgen/excitation/limit_use.hpp"
+#include "runtime/cli/a_priori_torque.hpp"
 #include "runtime/cli/commands.hpp"
 #include "runtime/cli/fourier_file.hpp"
 #include "runtime/cli/model_source.hpp"
@@ -28,8 +30,13 @@ int run_check_trajectory(const CommandLine& args) {
             << trajectory.a.cols() << " harmonics, checked on " << points
             << " points of one period (" << fixed(points / trajectory.period, 0, 6)
             << " Hz); q use: distance from the middle of the range over half the range\n";
-  const int exceeded =
-      print_limit_use(std::cout, source, trajectory_extremes(trajectory), source.limits);
+  int exceeded = print_limit_use(std::cout, source, trajectory_extremes(trajectory), source.limits);
+  if (const auto beta = effort_check_parameters(std::cerr, "check-trajectory", source)) {
+    std::cout << "a-priori joint torques (the description's inertial values; drive and friction "
+                 "values it does not give taken as 0) against the effort limits:\n";
+    exceeded += print_torque_use(std::cout, source, torque_peaks(*source.model, *beta, trajectory),
+                                 source.limits);
+  }
   if (exceeded > 0) {
     std::cerr << "modelid check-trajectory: " << exceeded << " limit"
               << (exceeded == 1 ? " is" : "s are") << " exceeded (marked '!')\n";

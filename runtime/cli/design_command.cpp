@@ -13,6 +13,7 @@
 #include "modelgen/excitation/excitation_design.hpp"
 #include "modelgen/excitation/expected_precision.hpp"
 #include "modelgen/excitation/limit_use.hpp"
+#include "runtime/cli/a_priori_torque.hpp"
 #include "runtime/cli/commands.hpp"
 #include "runtime/cli/fourier_file.hpp"
 #include "runtime/cli/model_source.hpp"
@@ -198,6 +199,7 @@ int run_design(const CommandLine& args) {
   problem.moving = parse_axes(args, model.dof());
   problem.limits = design_limits(args, source, problem.moving);
   problem.hold = parse_hold(args, source, problem.moving);
+  if (const auto beta = effort_check_parameters(std::cerr, "design", source)) problem.a_priori = *beta;
   if (args.has("--criterion")) {
     const std::string& name = args.one("--criterion");
     if (name != "cond" && name != "logdet") {
@@ -320,6 +322,16 @@ int run_design(const CommandLine& args) {
   out << "limit use on " << points << " points of one period (" << fixed(points / design.period, 0, 6)
       << " Hz), margin " << shortest(problem.margin) << ":\n";
   print_limit_use(out, source, trajectory_extremes(trajectory), problem.limits);
+  if (problem.a_priori.size() > 0) {
+    if (design.torque_shrink < 1) {
+      out << "the a-priori torques left an effort limit between the optimiser's constraint "
+             "points; every oscillation shrunk by "
+          << fixed(100 * (1 - design.torque_shrink), 0, 3) << "% to stay inside on the dense grid\n";
+    }
+    out << "a-priori joint torques (the description's inertial values; drive and friction values "
+           "it does not give taken as 0), held within the effort limits times the margin:\n";
+    print_torque_use(out, source, torque_peaks(model, problem.a_priori, trajectory), problem.limits);
+  }
   std::cerr << "modelid design: written to " << output << "\n";
   return 0;
 }

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <map>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 
@@ -100,6 +101,29 @@ int print_limit_use(std::ostream& out, const ModelSource& source,
     std::string text = row.str();
     text.erase(text.find_last_not_of(' ') + 1);
     out << text << "\n";
+  }
+  return exceeded;
+}
+
+int print_torque_use(std::ostream& out, const ModelSource& source,
+                     const std::vector<TorquePeak>& peaks, const std::vector<JointLimits>& limits) {
+  int exceeded = 0;
+  out << pad("joint", 16) << pad("|tau|: peak", 12) << pad("at t", 10) << pad("effort", 10) << "use\n";
+  for (std::size_t j = 0; j < peaks.size(); ++j) {
+    std::string name = std::to_string(j + 1);
+    if (j < source.joint_names.size()) name += " " + source.joint_names[j];
+    std::ostringstream row;
+    row << pad(name, 16) << pad(fixed(peaks[j].peak, 0, 4), 12) << pad(fixed(peaks[j].time, 0, 4), 10);
+    const std::optional<double> effort = j < limits.size() ? limits[j].effort : std::nullopt;
+    if (!effort) {
+      row << "(none)";
+    } else {
+      const double use = peaks[j].peak / *effort;
+      const bool over = use > 1.0;
+      exceeded += over ? 1 : 0;
+      row << pad(fixed(*effort, 0, 4), 10) << percent(use) << (over ? "!" : "");
+    }
+    out << row.str() << "\n";
   }
   return exceeded;
 }

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "modelgen/excitation/limit_use.hpp"
+#include "modelgen/excitation/torque_use.hpp"
 #include "runtime/cli/model_source.hpp"
 
 namespace modelgen::internal {
@@ -31,5 +32,11 @@ void refuse_beyond_limits(const std::string& path, const FourierTrajectory& traj
 /// peak and "(none)". Returns the number of limits exceeded.
 int print_limit_use(std::ostream& out, const ModelSource& source,
                     const std::vector<JointExtremes>& extremes, const std::vector<JointLimits>& limits);
+
+/// The table of a-priori torque use: per joint, the peak |tau| over one period, when it occurs,
+/// the effort limit and the use in percent, a '!' after a use above 100%; a joint without an
+/// effort limit shows its peak and "(none)". Returns the number of effort limits exceeded.
+int print_torque_use(std::ostream& out, const ModelSource& source,
+                     const std::vector<TorquePeak>& peaks, const std::vector<JointLimits>& limits);
 
 }  // namespace modelgen::internal
