@@ -18,6 +18,8 @@
 #include "runtime/cli/fourier_file.hpp"
 #include "runtime/cli/model_source.hpp"
 #include "runtime/cli/text_format.hpp"
+#include "runtime/cli/torque_plots.hpp"
+#include "runtime/cli/trajectory_plot.hpp"
 #include "runtime/cli/trajectory_limits.hpp"
 
 namespace modelgen::internal {
@@ -30,7 +32,7 @@ const std::map<std::string, OptionKind> kDesignOptions = {
     {"--starts", OptionKind::kOnce},    {"--seed", OptionKind::kOnce},
     {"--noise", OptionKind::kOnce},     {"--samples", OptionKind::kOnce},
     {"--ddq-limit", OptionKind::kOnce}, {"--max-evaluations", OptionKind::kOnce},
-    {"--compare", OptionKind::kOnce},
+    {"--compare", OptionKind::kOnce},   {"--plot", OptionKind::kOnce},
     {"-o", OptionKind::kOnce}};
 
 namespace {
@@ -110,7 +112,6 @@ Eigen::VectorXd parse_hold(const CommandLine& args, const ModelSource& source,
 // override theirs); a missing one is an error naming the joint and the key.
 std::vector<JointLimits> design_limits(const CommandLine& args, const ModelSource& source,
                                        const std::vector<int>& moving) {
-  const int dof = source.model->dof();
   const RobotModel* description = source.any_description();
   const std::string where = description != nullptr ? description->source_file : source.model->name();
   if (source.limits.empty()) {
@@ -119,18 +120,7 @@ std::vector<JointLimits> design_limits(const CommandLine& args, const ModelSourc
                              "give --robot DESCRIPTION.yaml");
   }
   std::vector<JointLimits> limits = source.limits;
-  if (args.has("--ddq-limit")) {
-    const std::vector<std::string> items = split(args.one("--ddq-limit"));
-    if (items.size() != 1 && static_cast<int>(items.size()) != dof) {
-      throw UsageError{"--ddq-limit takes one acceleration limit or " + std::to_string(dof) +
-                       " (one per joint), not " + std::to_string(items.size())};
-    }
-    for (int j = 0; j < dof; ++j) {
-      const double value = parse_number(items[items.size() == 1 ? 0 : static_cast<std::size_t>(j)], "--ddq-limit");
-      if (!(value > 0)) throw UsageError{"--ddq-limit: a limit must be positive"};
-      limits[static_cast<std::size_t>(j)].ddq = value;
-    }
-  }
+  apply_ddq_limit_option(args, limits);
   for (int j : moving) {
     const JointLimits& limit = limits[static_cast<std::size_t>(j)];
     std::string key;
@@ -228,6 +218,7 @@ int run_design(const CommandLine& args) {
   const double noise = args.has("--noise") ? parse_number(args.one("--noise"), "--noise") : 1.0;
   if (!(noise > 0)) throw UsageError{"--noise must be a positive standard deviation (N m)"};
   const std::string& output = args.one("-o");
+  if (args.has("--plot")) check_plot_folder(args.one("--plot"));
   // Read before the optimisation: a broken file should not cost a design run.
   std::optional<FourierTrajectory> compared;
   if (args.has("--compare")) compared = read_fourier(args.one("--compare"), model.dof());
@@ -333,6 +324,11 @@ int run_design(const CommandLine& args) {
     print_torque_use(out, source, torque_peaks(model, problem.a_priori, trajectory), problem.limits);
   }
   std::cerr << "modelid design: written to " << output << "\n";
+  if (args.has("--plot")) {
+    const std::string plot = write_trajectory_plot(args.one("--plot"), trajectory, source, problem.limits,
+                                                   output + ": modelid design for " + model.name());
+    std::cerr << "modelid design: plot written to " << plot << "\n";
+  }
   return 0;
 }
 

@@ -128,4 +128,21 @@ int print_torque_use(std::ostream& out, const ModelSource& source,
   return exceeded;
 }
 
+void apply_ddq_limit_option(const CommandLine& args, std::vector<JointLimits>& limits) {
+  if (!args.has("--ddq-limit")) return;
+  std::vector<std::string> items;
+  std::istringstream in(args.one("--ddq-limit"));
+  for (std::string item; std::getline(in, item, ',');) items.push_back(item);
+  const std::size_t dof = limits.size();
+  if (items.size() != 1 && items.size() != dof) {
+    throw UsageError{"--ddq-limit takes one acceleration limit or " + std::to_string(dof) +
+                     " (one per joint), not " + std::to_string(items.size())};
+  }
+  for (std::size_t j = 0; j < dof; ++j) {
+    const double value = parse_number(items[items.size() == 1 ? 0 : j], "--ddq-limit");
+    if (!(value > 0)) throw UsageError{"--ddq-limit: a limit must be positive"};
+    limits[j].ddq = value;
+  }
+}
+
 }  // namespace modelgen::internal
