@@ -269,8 +269,22 @@ int run_design(const CommandLine& args) {
       << ": best of 100 random feasible starts " << fixed(design.before.value, 0, 6)
       << ", designed " << fixed(design.after.value, 0, 6) << " (" << design.evaluations
       << " evaluations)\n";
+  // How far the criterion could go at all: a pair of columns nearly parallel sets a floor no
+  // column scaling removes (Coulomb and viscous friction of one joint, typically: sign(dq) and
+  // dq). `selected` holds the excited columns.
+  const auto floor = [&](const std::string& what, const Eigen::MatrixXd& selected) {
+    const CollinearPair pair = most_collinear_pair(selected);
+    out << pad(what, 28) << "most collinear columns "
+        << names[static_cast<std::size_t>(design.columns[static_cast<std::size_t>(pair.first)])] << " and "
+        << names[static_cast<std::size_t>(design.columns[static_cast<std::size_t>(pair.second)])] << " (|cos| "
+        << fixed(pair.correlation, 0, 4) << "): no column scaling brings cond below "
+        << fixed(pair.cond_floor, 0, 4) << "\n";
+  };
   line("best random feasible start:", design.before);
   line("design:", design.after);
+  Eigen::MatrixXd W(design.regressor.rows(), static_cast<Eigen::Index>(design.columns.size()));
+  for (std::size_t c = 0; c < design.columns.size(); ++c) W.col(static_cast<Eigen::Index>(c)) = design.regressor.col(design.columns[c]);
+  floor("design:", W);
   if (compared) {
     // The same criterion on another trajectory (Swevers 2002 Table 1, say): the same columns
     // and the same number of samples per period.
@@ -283,6 +297,7 @@ int run_design(const CommandLine& args) {
     out << "--compare " << args.one("--compare") << ": criterion " << fixed(value.value, 0, 6)
         << " (period " << shortest(compared->period) << " s, " << design.samples << " samples)\n";
     line("--compare:", value);
+    floor("--compare:", selected);
   }
   for (std::size_t j = 0; j < design.shrink.size(); ++j) {
     if (design.shrink[j] < 1) {
@@ -293,8 +308,6 @@ int run_design(const CommandLine& args) {
   }
   // sigma^2 (W^T W)^-1 over the excited columns: the covariance of an OLS fit of one period
   // sampled as assumed, with the noise --noise on every torque sample.
-  Eigen::MatrixXd W(design.regressor.rows(), static_cast<Eigen::Index>(design.columns.size()));
-  for (std::size_t c = 0; c < design.columns.size(); ++c) W.col(static_cast<Eigen::Index>(c)) = design.regressor.col(design.columns[c]);
   const Eigen::VectorXd expected_sd = expected_std_devs(W, noise);
   const std::optional<Eigen::VectorXd> prior = a_priori_base(source);
   out << "expected standard deviations for --noise " << shortest(noise)
