@@ -601,6 +601,15 @@ double design_objective(const ExcitationDesignProblem& problem, const std::vecto
   return design.criterion(x, gradient).value;
 }
 
+std::vector<double> design_constraints(const ExcitationDesignProblem& problem,
+                                       const std::vector<double>& x, std::vector<double>* jacobian) {
+  Design design(problem);
+  std::vector<double> c(static_cast<std::size_t>(design.constraints()));
+  if (jacobian != nullptr) jacobian->assign(c.size() * x.size(), 0.0);
+  design.limit_constraints(x.data(), c.data(), jacobian != nullptr ? jacobian->data() : nullptr);
+  return c;
+}
+
 ExcitationDesign design_excitation(const ExcitationDesignProblem& problem) {
   if (problem.model == nullptr || problem.moving.empty() || problem.harmonics < 1 ||
       !(problem.period > 0) || problem.hold.size() != problem.model->dof() ||

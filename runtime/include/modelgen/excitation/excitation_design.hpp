@@ -79,6 +79,13 @@ double design_objective(const ExcitationDesignProblem& problem, const std::vecto
                         const Eigen::VectorXd& scale, const std::vector<double>& x,
                         std::vector<double>* gradient);
 
+/// The inequality constraints c(x) <= 0 SLSQP is given at variables `x` (the limits of the
+/// moving joints at 16 points per period of the highest harmonic, then the effort limits when
+/// problem.a_priori is set), and their Jacobian (row-major, constraints x variables) when
+/// `jacobian` is not null: the optimiser's own, exposed for tests.
+std::vector<double> design_constraints(const ExcitationDesignProblem& problem,
+                                       const std::vector<double>& x, std::vector<double>* jacobian);
+
 /// Throws std::invalid_argument for an inconsistent problem (the caller checks limits first),
 /// std::runtime_error when the effort limits leave no feasible random start or cannot be met
 /// on the dense grid (the a-priori torque at rest already exceeds one).
