@@ -79,7 +79,7 @@ int print_limit_use(std::ostream& out, const ModelSource& source,
     std::string name = std::to_string(j + 1);
     if (j < source.joint_names.size()) name += " " + source.joint_names[j];
     std::ostringstream row;
-    row << pad(name, 16);
+    row << pad(name, 15) << " ";
     for (const char* key : {"q", "dq", "ddq"}) {
       const LimitUse* found = nullptr;
       for (const LimitUse& use : uses) {
@@ -113,7 +113,7 @@ int print_torque_use(std::ostream& out, const ModelSource& source,
     std::string name = std::to_string(j + 1);
     if (j < source.joint_names.size()) name += " " + source.joint_names[j];
     std::ostringstream row;
-    row << pad(name, 16) << pad(fixed(peaks[j].peak, 0, 4), 12) << pad(fixed(peaks[j].time, 0, 4), 10);
+    row << pad(name, 15) << " " << pad(fixed(peaks[j].peak, 0, 4), 12) << pad(fixed(peaks[j].time, 0, 4), 10);
     const std::optional<double> effort = j < limits.size() ? limits[j].effort : std::nullopt;
     if (!effort) {
       row << "(none)";
