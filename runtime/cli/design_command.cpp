@@ -224,7 +224,16 @@ int run_design(const CommandLine& args) {
   if (args.has("--compare")) compared = read_fourier(args.one("--compare"), model.dof());
   problem.progress = [](const std::string& line) { std::cerr << "modelid design: " << line << "\n"; };
 
-  const ExcitationDesign design = design_excitation(problem);
+  // The library's reasons (effort limits no start meets) name no file; the description is it.
+  const ExcitationDesign design = [&] {
+    try {
+      return design_excitation(problem);
+    } catch (const std::runtime_error& error) {
+      const RobotModel* description = source.any_description();
+      throw std::runtime_error((description != nullptr ? description->source_file : model.name()) +
+                               ": error: " + error.what());
+    }
+  }();
 
   // The file first: the report below is about what was written.
   // The command that makes this file again (the options that change it, as given).

@@ -31,6 +31,13 @@ namespace {
 
 using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
 
+std::string shortest_text(double value) {
+  std::ostringstream out;
+  out.precision(4);
+  out << value;
+  return out.str();
+}
+
 // The limits of one moving joint, margin applied: q within [low, high], |dq| <= dq, |ddq| <= ddq.
 struct AxisBounds {
   double low, high, dq, ddq;
@@ -508,6 +515,31 @@ class Design {
     return factors;
   }
 
+  // Why no random start met the effort limits: the joint whose a-priori torque at rest, the
+  // moving joints in the middle of their ranges and the others where held, uses most of its
+  // limit (margin applied), and how much.
+  std::string explain_torque_at_rest(int random_starts) const {
+    Eigen::VectorXd q = p_.hold;
+    for (std::size_t m = 0; m < p_.moving.size(); ++m) {
+      q[p_.moving[m]] = (bounds_[m].low + bounds_[m].high) / 2;
+    }
+    const Eigen::VectorXd tau = torque(q, Eigen::VectorXd::Zero(dof_), Eigen::VectorXd::Zero(dof_));
+    std::size_t worst = 0;
+    for (std::size_t i = 1; i < torque_joints_.size(); ++i) {
+      if (std::abs(tau[torque_joints_[i]]) / torque_limits_[i] >
+          std::abs(tau[torque_joints_[worst]]) / torque_limits_[worst]) {
+        worst = i;
+      }
+    }
+    return "none of " + std::to_string(random_starts) + " random starts keeps the a-priori " +
+           "torques within the effort limits times the margin, even shrunk to rest at its " +
+           "offsets; at rest in the middle of the moving joints' ranges, joint " +
+           std::to_string(torque_joints_[worst] + 1) + "'s torque is " +
+           shortest_text(tau[torque_joints_[worst]]) + " against " +
+           shortest_text(torque_limits_[worst]) + " (effort times margin): check the " +
+           "description's effort limits and a-priori values, or hold the joints elsewhere";
+  }
+
   // The effort limits on the dense grid: when the a-priori torques leave them between the
   // constraint points, every oscillation is shrunk by one factor (returned; 1: none needed).
   double repair_torque_on_dense_grid(std::vector<double>& x) const {
@@ -551,13 +583,6 @@ double objective(unsigned n, const double* x, double* grad, void* data) {
 void constraint(unsigned /*m*/, double* result, unsigned /*n*/, const double* x, double* grad,
                 void* data) {
   static_cast<Design*>(data)->limit_constraints(x, result, grad);
-}
-
-std::string shortest_text(double value) {
-  std::ostringstream out;
-  out.precision(4);
-  out << value;
-  return out.str();
 }
 
 }  // namespace
@@ -631,12 +656,7 @@ ExcitationDesign design_excitation(const ExcitationDesignProblem& problem) {
     std::vector<double> start = design.random_start(state);
     if (!start.empty()) starts.push_back(std::move(start));
   }
-  if (starts.empty()) {
-    throw std::runtime_error(
-        "none of " + std::to_string(problem.random_starts) + " random starts keeps the a-priori " +
-        "torques within the effort limits times the margin even at rest: the torque at rest " +
-        "(gravity, offsets) already exceeds one");
-  }
+  if (starts.empty()) throw std::runtime_error(design.explain_torque_at_rest(problem.random_starts));
   design.choose_columns({starts.begin(), starts.begin() + std::min<std::size_t>(3, starts.size())});
   design.choose_scale(starts);
   std::vector<std::pair<double, std::size_t>> ranked;
