@@ -1,13 +1,17 @@
 // modelid check-trajectory --robot R --trajectory T.yaml: the peak use of every joint limit
-// of the description by a Fourier excitation, on a dense grid over one period.
+// of the description by a Fourier excitation, on a dense grid over one period; with effort
+// limits and a-priori inertial values, the peak a-priori torques too.
 
 #include <iostream>
 
 #include "modelgen/excitation/limit_use.hpp"
+#include "runtime/cli/a_priori_torque.hpp"
 #include "runtime/cli/commands.hpp"
 #include "runtime/cli/fourier_file.hpp"
 #include "runtime/cli/model_source.hpp"
 #include "runtime/cli/text_format.hpp"
+#include "runtime/cli/torque_plots.hpp"
+#include "runtime/cli/trajectory_plot.hpp"
 #include "runtime/cli/trajectory_limits.hpp"
 
 namespace modelgen::internal {
@@ -15,21 +19,38 @@ namespace modelgen::internal {
 const std::map<std::string, OptionKind> kCheckTrajectoryOptions = {
     {"--robot", OptionKind::kOnce},
     {"--angle-tolerance", OptionKind::kOnce},
-    {"--trajectory", OptionKind::kOnce}};
+    {"--trajectory", OptionKind::kOnce},
+    {"--plot", OptionKind::kOnce},
+    {"--ddq-limit", OptionKind::kOnce}};
 
 int run_check_trajectory(const CommandLine& args) {
   reject_positional(args);
   const ModelSource source = load_model_source(args.one("--robot"), angle_tolerance_option(args));
   const std::string& path = args.one("--trajectory");
+  if (args.has("--plot")) check_plot_folder(args.one("--plot"));
   const FourierTrajectory trajectory = read_fourier(path, source.model->dof());
   note_missing_limits(std::cerr, "check-trajectory", source);
+  // The acceleration limits a design was made with (design --ddq-limit), when the
+  // description has none.
+  std::vector<JointLimits> limits = source.limits;
+  if (!limits.empty()) apply_ddq_limit_option(args, limits);
   const long points = limit_grid_points(trajectory);
   std::cout << path << ": period " << shortest(trajectory.period) << " s, "
             << trajectory.a.cols() << " harmonics, checked on " << points
             << " points of one period (" << fixed(points / trajectory.period, 0, 6)
             << " Hz); q use: distance from the middle of the range over half the range\n";
-  const int exceeded =
-      print_limit_use(std::cout, source, trajectory_extremes(trajectory), source.limits);
+  int exceeded = print_limit_use(std::cout, source, trajectory_extremes(trajectory), limits);
+  if (const auto beta = effort_check_parameters(std::cerr, "check-trajectory", source)) {
+    std::cout << "a-priori joint torques (the description's inertial values; drive and friction "
+                 "values it does not give taken as 0) against the effort limits:\n";
+    exceeded += print_torque_use(std::cout, source, torque_peaks(*source.model, *beta, trajectory),
+                                 source.limits);
+  }
+  if (args.has("--plot")) {
+    const std::string plot = write_trajectory_plot(args.one("--plot"), trajectory, source, limits,
+                                                   path + " on " + source.model->name());
+    std::cerr << "modelid check-trajectory: plot written to " << plot << "\n";
+  }
   if (exceeded > 0) {
     std::cerr << "modelid check-trajectory: " << exceeded << " limit"
               << (exceeded == 1 ? " is" : "s are") << " exceeded (marked '!')\n";

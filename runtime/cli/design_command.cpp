@@ -10,14 +10,16 @@
 #include <sstream>
 #include <stdexcept>
 
-#include <Eigen/Cholesky>
-
 #include "modelgen/excitation/excitation_design.hpp"
+#include "modelgen/excitation/expected_precision.hpp"
 #include "modelgen/excitation/limit_use.hpp"
+#include "runtime/cli/a_priori_torque.hpp"
 #include "runtime/cli/commands.hpp"
 #include "runtime/cli/fourier_file.hpp"
 #include "runtime/cli/model_source.hpp"
 #include "runtime/cli/text_format.hpp"
+#include "runtime/cli/torque_plots.hpp"
+#include "runtime/cli/trajectory_plot.hpp"
 #include "runtime/cli/trajectory_limits.hpp"
 
 namespace modelgen::internal {
@@ -30,7 +32,7 @@ const std::map<std::string, OptionKind> kDesignOptions = {
     {"--starts", OptionKind::kOnce},    {"--seed", OptionKind::kOnce},
     {"--noise", OptionKind::kOnce},     {"--samples", OptionKind::kOnce},
     {"--ddq-limit", OptionKind::kOnce}, {"--max-evaluations", OptionKind::kOnce},
-    {"--compare", OptionKind::kOnce},
+    {"--compare", OptionKind::kOnce},   {"--plot", OptionKind::kOnce},
     {"-o", OptionKind::kOnce}};
 
 namespace {
@@ -110,7 +112,6 @@ Eigen::VectorXd parse_hold(const CommandLine& args, const ModelSource& source,
 // override theirs); a missing one is an error naming the joint and the key.
 std::vector<JointLimits> design_limits(const CommandLine& args, const ModelSource& source,
                                        const std::vector<int>& moving) {
-  const int dof = source.model->dof();
   const RobotModel* description = source.any_description();
   const std::string where = description != nullptr ? description->source_file : source.model->name();
   if (source.limits.empty()) {
@@ -119,18 +120,7 @@ std::vector<JointLimits> design_limits(const CommandLine& args, const ModelSourc
                              "give --robot DESCRIPTION.yaml");
   }
   std::vector<JointLimits> limits = source.limits;
-  if (args.has("--ddq-limit")) {
-    const std::vector<std::string> items = split(args.one("--ddq-limit"));
-    if (items.size() != 1 && static_cast<int>(items.size()) != dof) {
-      throw UsageError{"--ddq-limit takes one acceleration limit or " + std::to_string(dof) +
-                       " (one per joint), not " + std::to_string(items.size())};
-    }
-    for (int j = 0; j < dof; ++j) {
-      const double value = parse_number(items[items.size() == 1 ? 0 : static_cast<std::size_t>(j)], "--ddq-limit");
-      if (!(value > 0)) throw UsageError{"--ddq-limit: a limit must be positive"};
-      limits[static_cast<std::size_t>(j)].ddq = value;
-    }
-  }
+  apply_ddq_limit_option(args, limits);
   for (int j : moving) {
     const JointLimits& limit = limits[static_cast<std::size_t>(j)];
     std::string key;
@@ -199,6 +189,7 @@ int run_design(const CommandLine& args) {
   problem.moving = parse_axes(args, model.dof());
   problem.limits = design_limits(args, source, problem.moving);
   problem.hold = parse_hold(args, source, problem.moving);
+  if (const auto beta = effort_check_parameters(std::cerr, "design", source)) problem.a_priori = *beta;
   if (args.has("--criterion")) {
     const std::string& name = args.one("--criterion");
     if (name != "cond" && name != "logdet") {
@@ -227,12 +218,22 @@ int run_design(const CommandLine& args) {
   const double noise = args.has("--noise") ? parse_number(args.one("--noise"), "--noise") : 1.0;
   if (!(noise > 0)) throw UsageError{"--noise must be a positive standard deviation (N m)"};
   const std::string& output = args.one("-o");
+  if (args.has("--plot")) check_plot_folder(args.one("--plot"));
   // Read before the optimisation: a broken file should not cost a design run.
   std::optional<FourierTrajectory> compared;
   if (args.has("--compare")) compared = read_fourier(args.one("--compare"), model.dof());
   problem.progress = [](const std::string& line) { std::cerr << "modelid design: " << line << "\n"; };
 
-  const ExcitationDesign design = design_excitation(problem);
+  // The library's reasons (effort limits no start meets) name no file; the description is it.
+  const ExcitationDesign design = [&] {
+    try {
+      return design_excitation(problem);
+    } catch (const std::runtime_error& error) {
+      const RobotModel* description = source.any_description();
+      throw std::runtime_error((description != nullptr ? description->source_file : model.name()) +
+                               ": error: " + error.what());
+    }
+  }();
 
   // The file first: the report below is about what was written.
   // The command that makes this file again (the options that change it, as given).
@@ -277,8 +278,22 @@ int run_design(const CommandLine& args) {
       << ": best of 100 random feasible starts " << fixed(design.before.value, 0, 6)
       << ", designed " << fixed(design.after.value, 0, 6) << " (" << design.evaluations
       << " evaluations)\n";
+  // How far the criterion could go at all: a pair of columns nearly parallel sets a floor no
+  // column scaling removes (Coulomb and viscous friction of one joint, typically: sign(dq) and
+  // dq). `selected` holds the excited columns.
+  const auto floor = [&](const std::string& what, const Eigen::MatrixXd& selected) {
+    const CollinearPair pair = most_collinear_pair(selected);
+    out << pad(what, 28) << "most collinear columns "
+        << names[static_cast<std::size_t>(design.columns[static_cast<std::size_t>(pair.first)])] << " and "
+        << names[static_cast<std::size_t>(design.columns[static_cast<std::size_t>(pair.second)])] << " (|cos| "
+        << fixed(pair.correlation, 0, 4) << "): no column scaling brings cond below "
+        << fixed(pair.cond_floor, 0, 4) << "\n";
+  };
   line("best random feasible start:", design.before);
   line("design:", design.after);
+  Eigen::MatrixXd W(design.regressor.rows(), static_cast<Eigen::Index>(design.columns.size()));
+  for (std::size_t c = 0; c < design.columns.size(); ++c) W.col(static_cast<Eigen::Index>(c)) = design.regressor.col(design.columns[c]);
+  floor("design:", W);
   if (compared) {
     // The same criterion on another trajectory (Swevers 2002 Table 1, say): the same columns
     // and the same number of samples per period.
@@ -291,6 +306,7 @@ int run_design(const CommandLine& args) {
     out << "--compare " << args.one("--compare") << ": criterion " << fixed(value.value, 0, 6)
         << " (period " << shortest(compared->period) << " s, " << design.samples << " samples)\n";
     line("--compare:", value);
+    floor("--compare:", selected);
   }
   for (std::size_t j = 0; j < design.shrink.size(); ++j) {
     if (design.shrink[j] < 1) {
@@ -301,16 +317,13 @@ int run_design(const CommandLine& args) {
   }
   // sigma^2 (W^T W)^-1 over the excited columns: the covariance of an OLS fit of one period
   // sampled as assumed, with the noise --noise on every torque sample.
-  Eigen::MatrixXd W(design.regressor.rows(), static_cast<Eigen::Index>(design.columns.size()));
-  for (std::size_t c = 0; c < design.columns.size(); ++c) W.col(static_cast<Eigen::Index>(c)) = design.regressor.col(design.columns[c]);
-  const Eigen::MatrixXd covariance =
-      noise * noise * (W.transpose() * W).ldlt().solve(Eigen::MatrixXd::Identity(W.cols(), W.cols()));
+  const Eigen::VectorXd expected_sd = expected_std_devs(W, noise);
   const std::optional<Eigen::VectorXd> prior = a_priori_base(source);
   out << "expected standard deviations for --noise " << shortest(noise)
       << " N m per torque sample, one period at the rate above"
       << (prior ? ", %std of the description's a-priori values" : "") << ":\n";
   for (std::size_t c = 0; c < design.columns.size(); ++c) {
-    const double sd = std::sqrt(covariance(static_cast<Eigen::Index>(c), static_cast<Eigen::Index>(c)));
+    const double sd = expected_sd[static_cast<Eigen::Index>(c)];
     out << "  " << pad(names[static_cast<std::size_t>(design.columns[c])], 10) << " sd " << fixed(sd, 0, 4);
     if (prior && (*prior)[design.columns[c]] != 0) {
       out << "  " << fixed(100 * sd / std::abs((*prior)[design.columns[c]]), 0, 3) << "%";
@@ -322,7 +335,22 @@ int run_design(const CommandLine& args) {
   out << "limit use on " << points << " points of one period (" << fixed(points / design.period, 0, 6)
       << " Hz), margin " << shortest(problem.margin) << ":\n";
   print_limit_use(out, source, trajectory_extremes(trajectory), problem.limits);
+  if (problem.a_priori.size() > 0) {
+    if (design.torque_shrink < 1) {
+      out << "the a-priori torques left an effort limit between the optimiser's constraint "
+             "points; every oscillation shrunk by "
+          << fixed(100 * (1 - design.torque_shrink), 0, 3) << "% to stay inside on the dense grid\n";
+    }
+    out << "a-priori joint torques (the description's inertial values; drive and friction values "
+           "it does not give taken as 0), held within the effort limits times the margin:\n";
+    print_torque_use(out, source, torque_peaks(model, problem.a_priori, trajectory), problem.limits);
+  }
   std::cerr << "modelid design: written to " << output << "\n";
+  if (args.has("--plot")) {
+    const std::string plot = write_trajectory_plot(args.one("--plot"), trajectory, source, problem.limits,
+                                                   output + ": modelid design for " + model.name());
+    std::cerr << "modelid design: plot written to " << plot << "\n";
+  }
   return 0;
 }
 

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <map>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 
@@ -78,7 +79,7 @@ int print_limit_use(std::ostream& out, const ModelSource& source,
     std::string name = std::to_string(j + 1);
     if (j < source.joint_names.size()) name += " " + source.joint_names[j];
     std::ostringstream row;
-    row << pad(name, 16);
+    row << pad(name, 15) << " ";
     for (const char* key : {"q", "dq", "ddq"}) {
       const LimitUse* found = nullptr;
       for (const LimitUse& use : uses) {
@@ -102,6 +103,46 @@ int print_limit_use(std::ostream& out, const ModelSource& source,
     out << text << "\n";
   }
   return exceeded;
+}
+
+int print_torque_use(std::ostream& out, const ModelSource& source,
+                     const std::vector<TorquePeak>& peaks, const std::vector<JointLimits>& limits) {
+  int exceeded = 0;
+  out << pad("joint", 16) << pad("|tau|: peak", 12) << pad("at t", 10) << pad("effort", 10) << "use\n";
+  for (std::size_t j = 0; j < peaks.size(); ++j) {
+    std::string name = std::to_string(j + 1);
+    if (j < source.joint_names.size()) name += " " + source.joint_names[j];
+    std::ostringstream row;
+    row << pad(name, 15) << " " << pad(fixed(peaks[j].peak, 0, 4), 12) << pad(fixed(peaks[j].time, 0, 4), 10);
+    const std::optional<double> effort = j < limits.size() ? limits[j].effort : std::nullopt;
+    if (!effort) {
+      row << "(none)";
+    } else {
+      const double use = peaks[j].peak / *effort;
+      const bool over = use > 1.0;
+      exceeded += over ? 1 : 0;
+      row << pad(fixed(*effort, 0, 4), 10) << percent(use) << (over ? "!" : "");
+    }
+    out << row.str() << "\n";
+  }
+  return exceeded;
+}
+
+void apply_ddq_limit_option(const CommandLine& args, std::vector<JointLimits>& limits) {
+  if (!args.has("--ddq-limit")) return;
+  std::vector<std::string> items;
+  std::istringstream in(args.one("--ddq-limit"));
+  for (std::string item; std::getline(in, item, ',');) items.push_back(item);
+  const std::size_t dof = limits.size();
+  if (items.size() != 1 && items.size() != dof) {
+    throw UsageError{"--ddq-limit takes one acceleration limit or " + std::to_string(dof) +
+                     " (one per joint), not " + std::to_string(items.size())};
+  }
+  for (std::size_t j = 0; j < dof; ++j) {
+    const double value = parse_number(items[items.size() == 1 ? 0 : j], "--ddq-limit");
+    if (!(value > 0)) throw UsageError{"--ddq-limit: a limit must be positive"};
+    limits[j].ddq = value;
+  }
 }
 
 }  // namespace modelgen::internal

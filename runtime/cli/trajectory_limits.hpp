@@ -8,6 +8,8 @@
 #include <vector>
 
 #include "modelgen/excitation/limit_use.hpp"
+#include "modelgen/excitation/torque_use.hpp"
+#include "modelgen/model/command_line.hpp"
 #include "runtime/cli/model_source.hpp"
 
 namespace modelgen::internal {
@@ -31,5 +33,16 @@ void refuse_beyond_limits(const std::string& path, const FourierTrajectory& traj
 /// peak and "(none)". Returns the number of limits exceeded.
 int print_limit_use(std::ostream& out, const ModelSource& source,
                     const std::vector<JointExtremes>& extremes, const std::vector<JointLimits>& limits);
+
+/// The table of a-priori torque use: per joint, the peak |tau| over one period, when it occurs,
+/// the effort limit and the use in percent, a '!' after a use above 100%; a joint without an
+/// effort limit shows its peak and "(none)". Returns the number of effort limits exceeded.
+int print_torque_use(std::ostream& out, const ModelSource& source,
+                     const std::vector<TorquePeak>& peaks, const std::vector<JointLimits>& limits);
+
+/// --ddq-limit A or A1,..,An (design, check-trajectory): acceleration limits for every joint
+/// of `limits` (which must not be empty), replacing the description's (URDF has none). No-op
+/// without the option; UsageError for a wrong count or a limit that is not positive.
+void apply_ddq_limit_option(const CommandLine& args, std::vector<JointLimits>& limits);
 
 }  // namespace modelgen::internal

@@ -2,6 +2,7 @@
 
 #include "modelgen/excitation/design_criterion.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -58,6 +59,23 @@ CriterionValue evaluate_criterion(const Eigen::MatrixXd& W, const Eigen::VectorX
   }
   if (with_gradient) out.gradient = 2 * scaled * Q * scale.cwiseInverse().asDiagonal();
   return out;
+}
+
+CollinearPair most_collinear_pair(const Eigen::MatrixXd& W) {
+  const Eigen::VectorXd norms = W.colwise().norm().transpose();
+  const Eigen::MatrixXd U = W * norms.cwiseInverse().asDiagonal();
+  const Eigen::MatrixXd cosines = U.transpose() * U;
+  CollinearPair pair;
+  for (Eigen::Index i = 0; i < cosines.rows(); ++i) {
+    for (Eigen::Index j = i + 1; j < cosines.cols(); ++j) {
+      if (std::abs(cosines(i, j)) > pair.correlation || pair.first < 0) {
+        pair.first = static_cast<int>(i), pair.second = static_cast<int>(j);
+        pair.correlation = std::min(std::abs(cosines(i, j)), 1.0);
+      }
+    }
+  }
+  pair.cond_floor = pair.correlation < 1 ? std::sqrt((1 + pair.correlation) / (1 - pair.correlation)) : kInfinity;
+  return pair;
 }
 
 }  // namespace modelgen

@@ -15,6 +15,7 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 
@@ -22,12 +23,20 @@
 #include <nlopt.h>
 
 #include "modelgen/excitation/limit_use.hpp"
+#include "modelgen/excitation/torque_use.hpp"
 
 namespace modelgen {
 
 namespace {
 
 using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+
+std::string shortest_text(double value) {
+  std::ostringstream out;
+  out.precision(4);
+  out << value;
+  return out.str();
+}
 
 // The limits of one moving joint, margin applied: q within [low, high], |dq| <= dq, |ddq| <= ddq.
 struct AxisBounds {
@@ -74,6 +83,12 @@ class Design {
       bounds_.push_back({middle - p.margin * half, middle + p.margin * half, p.margin * *limit.dq,
                          p.margin * *limit.ddq});
     }
+    if (p.a_priori.size() > 0) {
+      for (int j = 0; j < dof_; ++j) {
+        const std::optional<double>& effort = p.limits[static_cast<std::size_t>(j)].effort;
+        if (effort) torque_joints_.push_back(j), torque_limits_.push_back(p.margin * *effort);
+      }
+    }
   }
 
   int variables() const { return n_; }
@@ -96,16 +111,23 @@ class Design {
   // q, dq, ddq (samples x dof) on the criterion's instants.
   void states(const std::vector<double>& x, Eigen::MatrixXd& q, Eigen::MatrixXd& dq,
               Eigen::MatrixXd& ddq) const {
-    q = p_.hold.transpose().replicate(samples_, 1);
-    dq = Eigen::MatrixXd::Zero(samples_, dof_);
-    ddq = Eigen::MatrixXd::Zero(samples_, dof_);
+    states(x.data(), criterion_basis_, q, dq, ddq);
+  }
+
+  // q, dq, ddq (instants x dof) on the instants of `basis`.
+  void states(const double* x, const FourierBasis& basis, Eigen::MatrixXd& q, Eigen::MatrixXd& dq,
+              Eigen::MatrixXd& ddq) const {
+    const int points = static_cast<int>(basis.times.size());
+    q = p_.hold.transpose().replicate(points, 1);
+    dq = Eigen::MatrixXd::Zero(points, dof_);
+    ddq = Eigen::MatrixXd::Zero(points, dof_);
     for (std::size_t m = 0; m < p_.moving.size(); ++m) {
       const int j = p_.moving[m];
-      const double* v = x.data() + m * per_axis_;
-      for (int k = 0; k < samples_; ++k) {
+      const double* v = x + m * per_axis_;
+      for (int k = 0; k < points; ++k) {
         double qk = v[0], dqk = 0, ddqk = 0;
         for (int l = 0; l < L_; ++l) {
-          const double w = (l + 1) * wf_, s = criterion_basis_.sin(k, l), c = criterion_basis_.cos(k, l);
+          const double w = (l + 1) * wf_, s = basis.sin(k, l), c = basis.cos(k, l);
           const double a = v[1 + l], b = v[1 + L_ + l];
           qk += a * s + b * c;
           dqk += w * (a * c - b * s);
@@ -236,7 +258,72 @@ class Design {
   }
 
   int constraints() const {
-    return static_cast<int>(p_.moving.size()) * static_cast<int>(constraint_basis_.times.size()) * 6;
+    const int points = static_cast<int>(constraint_basis_.times.size());
+    return static_cast<int>(p_.moving.size()) * points * 6 +
+           static_cast<int>(torque_joints_.size()) * points * 2;
+  }
+
+  bool limits_torque() const { return !torque_joints_.empty(); }
+
+  // The a-priori joint torques (dof) at one state.
+  Eigen::VectorXd torque(const Eigen::VectorXd& q, const Eigen::VectorXd& dq,
+                         const Eigen::VectorXd& ddq) const {
+    Eigen::VectorXd tau(dof_);
+    model_.inverse_dynamics(q.data(), dq.data(), ddq.data(), p_.a_priori.data(), tau.data());
+    return tau;
+  }
+
+  // The largest |tau_i| / (margin effort_i) over the instants of `basis`.
+  double torque_use(const double* x, const FourierBasis& basis) const {
+    Eigen::MatrixXd q, dq, ddq;
+    states(x, basis, q, dq, ddq);
+    double use = 0;
+    for (Eigen::Index k = 0; k < q.rows(); ++k) {
+      const Eigen::VectorXd tau = torque(q.row(k).transpose(), dq.row(k).transpose(), ddq.row(k).transpose());
+      for (std::size_t i = 0; i < torque_joints_.size(); ++i) {
+        use = std::max(use, std::abs(tau[torque_joints_[i]]) / torque_limits_[i]);
+      }
+    }
+    return use;
+  }
+
+  // The largest |tau_i| / (margin effort_i) on the dense grid of limit_use.hpp.
+  double dense_torque_use(const std::vector<double>& x) const {
+    Eigen::VectorXd q0;
+    Eigen::MatrixXd a, b;
+    coefficients(x, q0, a, b);
+    const std::vector<TorquePeak> peaks =
+        torque_peaks(model_, p_.a_priori, to_trajectory(q0, a, b, p_.period));
+    double use = 0;
+    for (std::size_t i = 0; i < torque_joints_.size(); ++i) {
+      use = std::max(use, peaks[static_cast<std::size_t>(torque_joints_[i])].peak / torque_limits_[i]);
+    }
+    return use;
+  }
+
+  // Multiplies every moving joint's oscillation (about its q0) by the largest factor in [0, 1]
+  // for which `use` (a torque use of the variables) stays within `fill`, found by bisection
+  // (16 halvings: the factor is at most 2^-16 below the largest; the lower end is always
+  // feasible). Returns the factor, or -1 when even no oscillation (the robot at rest at the
+  // offsets) exceeds `fill`; x is then unchanged.
+  template <class Use>
+  double shrink_for_torque(std::vector<double>& x, double fill, const Use& use) const {
+    if (use(x) <= fill) return 1;
+    const auto scaled = [&](double factor) {
+      std::vector<double> y = x;
+      for (std::size_t m = 0; m < p_.moving.size(); ++m) {
+        for (int e = 1; e < per_axis_; ++e) y[m * per_axis_ + e] *= factor;
+      }
+      return y;
+    };
+    if (use(scaled(0)) > fill) return -1;
+    double low = 0, high = 1;
+    for (int i = 0; i < 16; ++i) {
+      const double middle = (low + high) / 2;
+      (use(scaled(middle)) <= fill ? low : high) = middle;
+    }
+    x = scaled(low);
+    return low;
   }
 
   // c <= 0 at every constraint point, each normalised by its limit: q - high, low - q, +-dq -
@@ -273,6 +360,55 @@ class Design {
             double* g = grad + static_cast<std::size_t>(row) * n_ + m * per_axis_;
             for (int e = 0; e < per_axis_; ++e) g[e] = rows[i][e];
           }
+        }
+      }
+    }
+    if (limits_torque()) torque_constraints(x, c + row, grad == nullptr ? nullptr : grad + static_cast<std::size_t>(row) * n_);
+  }
+
+  // +-tau_i / (margin effort_i) - 1 <= 0 at every constraint point for every joint with an
+  // effort limit. d tau / d state by differences as in criterion() (the model gives no state
+  // Jacobian): central in q and dq, a unit step in ddq, in which tau is linear.
+  void torque_constraints(const double* x, double* c, double* grad) const {
+    const int points = static_cast<int>(constraint_basis_.times.size());
+    const std::size_t torques = torque_joints_.size();
+    if (grad != nullptr) std::fill(grad, grad + 2 * torques * points * static_cast<std::size_t>(n_), 0.0);
+    Eigen::MatrixXd q, dq, ddq;
+    states(x, constraint_basis_, q, dq, ddq);
+    constexpr double h = 1e-6;
+    for (int k = 0; k < points; ++k) {
+      const Eigen::VectorXd qk = q.row(k).transpose(), dqk = dq.row(k).transpose(),
+                            ddqk = ddq.row(k).transpose();
+      const Eigen::VectorXd tau = torque(qk, dqk, ddqk);
+      double* ck = c + 2 * torques * k;
+      for (std::size_t i = 0; i < torques; ++i) {
+        const double scaled = tau[torque_joints_[i]] / torque_limits_[i];
+        ck[2 * i] = scaled - 1, ck[2 * i + 1] = -scaled - 1;
+      }
+      if (grad == nullptr) continue;
+      for (std::size_t m = 0; m < p_.moving.size(); ++m) {
+        const int j = p_.moving[m];
+        Eigen::VectorXd up = qk, down = qk;
+        up[j] += h, down[j] -= h;
+        const Eigen::VectorXd by_q = (torque(up, dqk, ddqk) - torque(down, dqk, ddqk)) / (2 * h);
+        up = dqk, down = dqk;
+        up[j] += h, down[j] -= h;
+        const Eigen::VectorXd by_dq = (torque(qk, up, ddqk) - torque(qk, down, ddqk)) / (2 * h);
+        up = ddqk;
+        up[j] += 1;
+        const Eigen::VectorXd by_ddq = torque(qk, dqk, up) - tau;
+        for (std::size_t i = 0; i < torques; ++i) {
+          const int t = torque_joints_[i];
+          double* g = grad + (2 * torques * k + 2 * i) * static_cast<std::size_t>(n_) + m * per_axis_;
+          double* g_neg = g + n_;
+          const double limit = torque_limits_[i];
+          g[0] = by_q[t] / limit;
+          for (int l = 0; l < L_; ++l) {
+            const double w = (l + 1) * wf_, s = constraint_basis_.sin(k, l), cs = constraint_basis_.cos(k, l);
+            g[1 + l] = (by_q[t] * s + by_dq[t] * w * cs - by_ddq[t] * w * w * s) / limit;
+            g[1 + L_ + l] = (by_q[t] * cs - by_dq[t] * w * s - by_ddq[t] * w * w * cs) / limit;
+          }
+          for (int e = 0; e < per_axis_; ++e) g_neg[e] = -g[e];
         }
       }
     }
@@ -328,6 +464,14 @@ class Design {
       }
       shrink_to_fit(m, v, 0.98);
     }
+    // The effort limits at the constraint points, by one factor for all joints (torques
+    // couple them); a start whose torque at rest already exceeds them is marked empty.
+    if (limits_torque() &&
+        shrink_for_torque(x, 0.98, [this](const std::vector<double>& y) {
+          return torque_use(y.data(), constraint_basis_);
+        }) < 0) {
+      return {};
+    }
     return x;
   }
 
@@ -371,6 +515,45 @@ class Design {
     return factors;
   }
 
+  // Why no random start met the effort limits: the joint whose a-priori torque at rest, the
+  // moving joints in the middle of their ranges and the others where held, uses most of its
+  // limit (margin applied), and how much.
+  std::string explain_torque_at_rest(int random_starts) const {
+    Eigen::VectorXd q = p_.hold;
+    for (std::size_t m = 0; m < p_.moving.size(); ++m) {
+      q[p_.moving[m]] = (bounds_[m].low + bounds_[m].high) / 2;
+    }
+    const Eigen::VectorXd tau = torque(q, Eigen::VectorXd::Zero(dof_), Eigen::VectorXd::Zero(dof_));
+    std::size_t worst = 0;
+    for (std::size_t i = 1; i < torque_joints_.size(); ++i) {
+      if (std::abs(tau[torque_joints_[i]]) / torque_limits_[i] >
+          std::abs(tau[torque_joints_[worst]]) / torque_limits_[worst]) {
+        worst = i;
+      }
+    }
+    return "none of " + std::to_string(random_starts) + " random starts keeps the a-priori " +
+           "torques within the effort limits times the margin, even shrunk to rest at its " +
+           "offsets; at rest in the middle of the moving joints' ranges, joint " +
+           std::to_string(torque_joints_[worst] + 1) + "'s torque is " +
+           shortest_text(tau[torque_joints_[worst]]) + " against " +
+           shortest_text(torque_limits_[worst]) + " (effort times margin): check the " +
+           "description's effort limits and a-priori values, or hold the joints elsewhere";
+  }
+
+  // The effort limits on the dense grid: when the a-priori torques leave them between the
+  // constraint points, every oscillation is shrunk by one factor (returned; 1: none needed).
+  double repair_torque_on_dense_grid(std::vector<double>& x) const {
+    if (!limits_torque()) return 1;
+    const double factor = shrink_for_torque(
+        x, 1.0, [this](const std::vector<double>& y) { return dense_torque_use(y); });
+    if (factor < 0) {
+      throw std::runtime_error(
+          "the design leaves an effort limit on the dense grid and cannot be shrunk into it: "
+          "the a-priori torque at rest at its offsets already exceeds the limit times the margin");
+    }
+    return factor;
+  }
+
   int evaluations = 0;
 
  private:
@@ -383,6 +566,8 @@ class Design {
   std::vector<AxisBounds> bounds_;
   std::vector<int> columns_;
   Eigen::VectorXd scale_;
+  std::vector<int> torque_joints_;     // joints with an effort limit, when a_priori is given
+  std::vector<double> torque_limits_;  // their margin * effort
 };
 
 double objective(unsigned n, const double* x, double* grad, void* data) {
@@ -398,13 +583,6 @@ double objective(unsigned n, const double* x, double* grad, void* data) {
 void constraint(unsigned /*m*/, double* result, unsigned /*n*/, const double* x, double* grad,
                 void* data) {
   static_cast<Design*>(data)->limit_constraints(x, result, grad);
-}
-
-std::string shortest_text(double value) {
-  std::ostringstream out;
-  out.precision(4);
-  out << value;
-  return out.str();
 }
 
 }  // namespace
@@ -448,11 +626,21 @@ double design_objective(const ExcitationDesignProblem& problem, const std::vecto
   return design.criterion(x, gradient).value;
 }
 
+std::vector<double> design_constraints(const ExcitationDesignProblem& problem,
+                                       const std::vector<double>& x, std::vector<double>* jacobian) {
+  Design design(problem);
+  std::vector<double> c(static_cast<std::size_t>(design.constraints()));
+  if (jacobian != nullptr) jacobian->assign(c.size() * x.size(), 0.0);
+  design.limit_constraints(x.data(), c.data(), jacobian != nullptr ? jacobian->data() : nullptr);
+  return c;
+}
+
 ExcitationDesign design_excitation(const ExcitationDesignProblem& problem) {
   if (problem.model == nullptr || problem.moving.empty() || problem.harmonics < 1 ||
       !(problem.period > 0) || problem.hold.size() != problem.model->dof() ||
       problem.limits.size() != static_cast<std::size_t>(problem.model->dof()) ||
-      problem.random_starts < 1 || problem.starts < 1) {
+      problem.random_starts < 1 || problem.starts < 1 ||
+      (problem.a_priori.size() != 0 && problem.a_priori.size() != problem.model->num_base_params())) {
     throw std::invalid_argument("design_excitation: inconsistent problem");
   }
   const auto say = [&problem](const std::string& line) {
@@ -464,7 +652,11 @@ ExcitationDesign design_excitation(const ExcitationDesignProblem& problem) {
   // Random feasible starts; the first three also decide which base parameters the moving axes
   // excite at all (a held axis leaves some unidentifiable: Swevers 2002 section 4.2).
   std::vector<std::vector<double>> starts;
-  for (int s = 0; s < problem.random_starts; ++s) starts.push_back(design.random_start(state));
+  for (int s = 0; s < problem.random_starts; ++s) {
+    std::vector<double> start = design.random_start(state);
+    if (!start.empty()) starts.push_back(std::move(start));
+  }
+  if (starts.empty()) throw std::runtime_error(design.explain_torque_at_rest(problem.random_starts));
   design.choose_columns({starts.begin(), starts.begin() + std::min<std::size_t>(3, starts.size())});
   design.choose_scale(starts);
   std::vector<std::pair<double, std::size_t>> ranked;
@@ -472,7 +664,7 @@ ExcitationDesign design_excitation(const ExcitationDesignProblem& problem) {
     ranked.emplace_back(design.criterion(starts[s], nullptr).value, s);
   }
   std::sort(ranked.begin(), ranked.end());
-  say(std::to_string(problem.random_starts) + " random feasible starts, best criterion " +
+  say(std::to_string(starts.size()) + " random feasible starts, best criterion " +
       shortest_text(ranked.front().first));
 
   ExcitationDesign result;
@@ -485,7 +677,7 @@ ExcitationDesign design_excitation(const ExcitationDesignProblem& problem) {
   std::vector<double> lower, upper, best, best_shrink;
   design.variable_bounds(lower, upper);
   double best_value = std::numeric_limits<double>::infinity();
-  const int optimised = std::min(problem.starts, problem.random_starts);
+  const int optimised = std::min(problem.starts, static_cast<int>(starts.size()));
   for (int s = 0; s < optimised; ++s) {
     std::vector<double> x = starts[ranked[static_cast<std::size_t>(s)].second];
     nlopt_opt opt = nlopt_create(NLOPT_LD_SLSQP, static_cast<unsigned>(x.size()));
@@ -502,15 +694,19 @@ ExcitationDesign design_excitation(const ExcitationDesignProblem& problem) {
     const nlopt_result code = nlopt_optimize(opt, x.data(), &value);
     nlopt_destroy(opt);
     const std::vector<double> shrink = design.repair_on_dense_grid(x);
+    const double torque_shrink = design.repair_torque_on_dense_grid(x);
     const double repaired = design.criterion(x, nullptr).value;
     say("start " + std::to_string(s + 1) + "/" + std::to_string(optimised) + ": " +
         shortest_text(ranked[static_cast<std::size_t>(s)].first) + " -> " + shortest_text(repaired) +
         " (" + std::to_string(design.evaluations - before) + " evaluations, NLopt code " +
         std::to_string(static_cast<int>(code)) + ")");
-    if (repaired < best_value) best_value = repaired, best = x, best_shrink = shrink;
+    if (repaired < best_value) {
+      best_value = repaired, best = x, best_shrink = shrink, result.torque_shrink = torque_shrink;
+    }
   }
   // The kept design, checked once more on the dense grid (a no-op unless it was repaired).
   design.repair_on_dense_grid(best);
+  design.repair_torque_on_dense_grid(best);
   result.shrink = best_shrink;
   design.coefficients(best, result.q0, result.a, result.b);
   result.after = design.criterion(best, nullptr);

@@ -12,6 +12,7 @@
 
 #include <gtest/gtest.h>
 
+#include "modelgen/model/number_text.hpp"
 #include "tests/support/cli_runner.hpp"
 #include "tests/support/test_support.hpp"
 
@@ -91,6 +92,64 @@ TEST(ModelidCheckTrajectory, NamesTheLimitsTheDescriptionLacks) {
   EXPECT_NE(run.err.find("no 'dq' limit for joint 1 ('J1'), joint 2 ('J2'); not checked"),
             std::string::npos)
       << run.err;
+}
+
+// The rows of the a-priori torque table: what follows its heading.
+std::string torque_table(const std::string& out) {
+  const auto at = out.find("a-priori joint torques");
+  if (at == std::string::npos) ADD_FAILURE() << "no torque table in:\n" << out;
+  return at == std::string::npos ? "" : out.substr(at);
+}
+
+constexpr const char* kEffortRobot = "tests/bad_inputs/robots/two_axes_effort.yaml";
+
+// Joint 1 alone moves, q1 = r sin(pi t + phase) (period 2 s), joint 2 held at 0; from the
+// closed form in two_axes_effort.yaml, |tau1| peaks at 0.75 r pi^2 and |tau2| at 0.05 r pi^2,
+// against the effort limits 4 and 0.3 N m there.
+std::string joint1_swing(double a, double b) {
+  return "period: 2\nform: position\njoints:\n  - {q0: 0, terms: [{l: 1, a: " + shortest_text(a) +
+         ", b: " + shortest_text(b) + "}]}\n  - {q0: 0, terms: []}\n";
+}
+
+TEST(ModelidCheckTrajectory, PrintsThePeakAPrioriTorqueAgainstTheEffortLimit) {
+  const fs::path dir = test_folder();
+  write_text(dir / "within.yaml", joint1_swing(0.24, 0.32));  // r = 0.4
+  const CliRun run = modelid("check-trajectory --robot " + quoted_source(kEffortRobot) +
+                             " --trajectory " + quoted(dir / "within.yaml"));
+  ASSERT_EQ(run.exit_code, 0) << run.out << run.err;
+  const double pi2 = std::numbers::pi * std::numbers::pi;
+  const std::string table = torque_table(run.out);
+  const std::vector<std::string> j1 = row_of(table, "1"), j2 = row_of(table, "2");
+  ASSERT_EQ(j1.size(), 6u) << table;  // 1 J1 peak time effort use
+  EXPECT_NEAR(std::stod(j1[2]), 0.75 * 0.4 * pi2, 1e-3);
+  EXPECT_EQ(std::stod(j1[4]), 4);
+  EXPECT_NEAR(fraction(j1[5]), 0.75 * 0.4 * pi2 / 4, 1e-3);
+  ASSERT_EQ(j2.size(), 6u) << table;
+  EXPECT_NEAR(std::stod(j2[2]), 0.05 * 0.4 * pi2, 1e-4);
+  EXPECT_NEAR(fraction(j2[5]), 0.05 * 0.4 * pi2 / 0.3, 1e-3);
+  EXPECT_EQ(run.out.find('!'), std::string::npos) << run.out;
+
+  write_text(dir / "beyond.yaml", joint1_swing(0.6, 0));  // tau1 = 0.45 pi^2 = 4.44 > 4
+  const CliRun beyond = modelid("check-trajectory --robot " + quoted_source(kEffortRobot) +
+                                " --trajectory " + quoted(dir / "beyond.yaml"));
+  EXPECT_EQ(beyond.exit_code, 1);
+  const std::vector<std::string> over = row_of(torque_table(beyond.out), "1");
+  ASSERT_EQ(over.size(), 6u) << beyond.out;
+  EXPECT_EQ(over[5], "111.0%!");  // 0.45 pi^2 / 4 = 1.1103
+  EXPECT_NE(beyond.err.find("1 limit is exceeded"), std::string::npos) << beyond.err;
+}
+
+TEST(ModelidCheckTrajectory, EffortLimitsWithoutInertialValuesAreNotedOnce) {
+  // robots/tx40.yaml gives effort limits and a-priori drive values, but no link inertials.
+  const CliRun run = modelid("check-trajectory --robot tx40 --trajectory " +
+                             quoted_source("robots/data/tx40/design.yaml"));
+  EXPECT_EQ(run.exit_code, 0) << run.err;
+  const std::string note =
+      "modelid check-trajectory: note: the description gives effort limits but no a-priori "
+      "inertial values (XX1 is not given: URDF <inertial>, YAML known:); joint torques are not "
+      "checked against them\n";
+  EXPECT_EQ(run.err, note);
+  EXPECT_EQ(run.out.find("a-priori joint torques"), std::string::npos) << run.out;
 }
 
 TEST(ModelidCheckTrajectory, BundledExcitationsAreWithinTheLimits) {

@@ -180,5 +180,52 @@ TEST(ModelidDesign, HeldAxisStaysWhereHeld) {
   EXPECT_FALSE(fs::exists(dir / "bad.yaml"));
 }
 
+// The largest |tau_j| / effort_j of a written design of two_axes_effort.yaml on a 1 kHz grid,
+// from the closed form its comment derives: tau1 = 0.75 ddq1 + 0.05 ddq2,
+// tau2 = 0.05 (ddq1 + ddq2), efforts 4 and 0.3 N m.
+std::vector<double> effort_use(const Series& series) {
+  std::vector<double> use(2, 0.0);
+  for (int k = 0; k < 2000; ++k) {
+    double q, dq, ddq1, ddq2;
+    series.at(0, k * 1e-3, q, dq, ddq1);
+    series.at(1, k * 1e-3, q, dq, ddq2);
+    use[0] = std::max(use[0], std::abs(0.75 * ddq1 + 0.05 * ddq2) / 4);
+    use[1] = std::max(use[1], std::abs(0.05 * (ddq1 + ddq2)) / 0.3);
+  }
+  return use;
+}
+
+TEST(ModelidDesign, EffortLimitsHoldTheAPrioriTorques) {
+  const fs::path dir = test_folder();
+  const std::string effort_robot = "tests/bad_inputs/robots/two_axes_effort.yaml";
+  const std::string options = " --period 2 --harmonics 2 --margin 0.9 --samples 60 --starts 2 --seed 5 -o ";
+  // The same robot without its effort limits: the design it gets asks for more torque than
+  // the limits allow.
+  std::string free_text = read_text(source_path(effort_robot));
+  for (const char* effort : {", effort: 4", ", effort: 0.3"}) {
+    const auto at = free_text.find(effort);
+    ASSERT_NE(at, std::string::npos) << effort;
+    free_text.erase(at, std::string(effort).size());
+  }
+  write_text(dir / "free_robot.yaml", free_text);
+  const CliRun free_run = modelid("design --robot " + quoted(dir / "free_robot.yaml") + options +
+                                  quoted(dir / "free.yaml"));
+  ASSERT_EQ(free_run.exit_code, 0) << free_run.err;
+  const std::vector<double> free_use = effort_use(read_series(dir / "free.yaml"));
+  EXPECT_GT(std::max(free_use[0], free_use[1]), 1.0) << free_use[0] << " " << free_use[1];
+
+  const CliRun run = modelid("design --robot " + quoted_source(effort_robot) + options +
+                             quoted(dir / "held.yaml"));
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const std::vector<double> use = effort_use(read_series(dir / "held.yaml"));
+  for (std::size_t j = 0; j < 2; ++j) {
+    EXPECT_LE(use[j], kMargin * (1 + 1e-9)) << "joint " << j + 1;
+  }
+  // The torque is a limit the design runs into, not one it avoids by standing still.
+  EXPECT_GT(std::max(use[0], use[1]), 0.95 * kMargin);
+  EXPECT_NE(run.out.find("held within the effort limits times the margin"), std::string::npos)
+      << run.out;
+}
+
 }  // namespace
 }  // namespace modelgen::test

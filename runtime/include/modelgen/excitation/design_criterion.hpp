@@ -32,4 +32,19 @@ struct CriterionValue {
 CriterionValue evaluate_criterion(const Eigen::MatrixXd& W, const Eigen::VectorXd& scale,
                                   DesignCriterion criterion, bool with_gradient);
 
+/// The two columns of W whose directions are closest, and the condition number no column
+/// scaling can bring W below because of them: for unit columns u, v with correlation
+/// rho = |u . v|, the 2-column block [u v] has singular values sqrt(1 +- rho), so
+/// cond(W D) >= sqrt((1 + rho) / (1 - rho)) for every diagonal D > 0 (interlacing: W's
+/// extreme singular values enclose those of any block of its columns; scaling a column does
+/// not change its direction, and the bound for [a u, b v] is smallest at a = b).
+struct CollinearPair {
+  int first = -1, second = -1;  ///< column indices, first < second
+  double correlation = 0;       ///< |cos| of the angle between them
+  double cond_floor = 1;        ///< sqrt((1 + correlation) / (1 - correlation))
+};
+
+/// The most collinear pair of W's columns (at least two, none zero).
+CollinearPair most_collinear_pair(const Eigen::MatrixXd& W);
+
 }  // namespace modelgen

@@ -3,7 +3,8 @@
 // stacked over one period, subject to the joint position, velocity and acceleration limits
 // times a margin. Solved by NLopt's SLSQP from the best of several random feasible starts;
 // the result is checked on a dense grid and, where it leaves a limit between the optimiser's
-// constraint points, that joint's oscillation is shrunk until it does not.
+// constraint points, that joint's oscillation is shrunk until it does not. With a-priori
+// parameters, the joint torques they give are held within the effort limits the same way.
 #pragma once
 
 #include <cstdint>
@@ -28,6 +29,11 @@ struct ExcitationDesignProblem {
   Eigen::VectorXd hold;             ///< dof positions; those of held joints are used
   std::vector<JointLimits> limits;  ///< dof; moving joints need q, dq and ddq
   double margin = 0.95;             ///< fraction of each limit the design may use
+  /// A-priori base parameters (model->num_base_params() values), or empty. When given, the
+  /// torque of every joint with an effort limit, model->inverse_dynamics at these values, is
+  /// held within margin * effort: at the constraint points during the optimisation, on the
+  /// dense grid after it (torque_use.hpp). Empty: effort limits are not looked at.
+  Eigen::VectorXd a_priori;
   DesignCriterion criterion = DesignCriterion::kCond;
   int samples = 0;          ///< regressor samples per period; 0: 40 per highest harmonic, >= 100
   int random_starts = 100;  ///< random feasible trajectories drawn
@@ -50,6 +56,9 @@ struct ExcitationDesign {
   CriterionValue before;                ///< the best random feasible start
   CriterionValue after;                 ///< the design
   std::vector<double> shrink;           ///< per joint, the dense-grid repair factor (1: none)
+  /// The factor every moving joint's oscillation was multiplied by to keep the a-priori
+  /// torques within the effort limits on the dense grid (1: none needed).
+  double torque_shrink = 1;
   int evaluations = 0;
   Eigen::MatrixXd regressor;            ///< the stacked regressor of the design (all columns)
 };
@@ -70,7 +79,16 @@ double design_objective(const ExcitationDesignProblem& problem, const std::vecto
                         const Eigen::VectorXd& scale, const std::vector<double>& x,
                         std::vector<double>* gradient);
 
-/// Throws std::invalid_argument for an inconsistent problem (the caller checks limits first).
+/// The inequality constraints c(x) <= 0 SLSQP is given at variables `x` (the limits of the
+/// moving joints at 16 points per period of the highest harmonic, then the effort limits when
+/// problem.a_priori is set), and their Jacobian (row-major, constraints x variables) when
+/// `jacobian` is not null: the optimiser's own, exposed for tests.
+std::vector<double> design_constraints(const ExcitationDesignProblem& problem,
+                                       const std::vector<double>& x, std::vector<double>* jacobian);
+
+/// Throws std::invalid_argument for an inconsistent problem (the caller checks limits first),
+/// std::runtime_error when the effort limits leave no feasible random start or cannot be met
+/// on the dense grid (the a-priori torque at rest already exceeds one).
 ExcitationDesign design_excitation(const ExcitationDesignProblem& problem);
 
 }  // namespace modelgen
