@@ -3,7 +3,9 @@
 #include "runtime/cli/data_files.hpp"
 
 #include <iostream>
+#include <stdexcept>
 
+#include "modelgen/signal/decimation.hpp"
 #include "runtime/cli/progress.hpp"
 
 namespace modelgen::internal {
@@ -101,7 +103,14 @@ PreparationOptions preparation_options(const CommandLine& args) {
   if (args.has("--harmonics")) options.harmonics = count(args, "--harmonics");
   if (args.has("--bandwidth")) options.bandwidth_hz = positive(args, "--bandwidth");
   if (args.has("--cutoff")) options.cutoff_hz = positive(args, "--cutoff");
-  if (args.has("--decimate")) options.decimation = count(args, "--decimate");
+  if (args.has("--decimate")) {
+    options.decimation = count(args, "--decimate");
+    try {
+      decimation_stages(*options.decimation);
+    } catch (const std::invalid_argument& e) {
+      throw UsageError{std::string("--decimate: ") + e.what()};
+    }
+  }
   return options;
 }
 

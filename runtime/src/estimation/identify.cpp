@@ -87,10 +87,17 @@ Identification identify(const IdentificationModel& model, const std::vector<Traj
       throw EstimationError(data[e].source + ": decimation factor " +
                             std::to_string(decimation[e]) + ": it must be at least 1");
     }
-    if (decimation[e] > 1 && decimated_rows(data[e].t.size(), decimation[e]) < 2) {
+    if (decimation[e] > 1) {
+      try {
+        decimation_stages(decimation[e]);
+      } catch (const std::invalid_argument& error) {
+        throw EstimationError(data[e].source + ": " + error.what());
+      }
+    }
+    if (decimation[e] > 1 && decimated_interior(data[e].t.size(), decimation[e]).count < 2) {
       throw EstimationError(data[e].source + ": decimation by " + std::to_string(decimation[e]) +
                             " leaves fewer than 2 of its " + std::to_string(data[e].t.size()) +
-                            " samples");
+                            " samples clear of the filter's edges");
     }
   }
   Eigen::Index samples = 0;

@@ -109,7 +109,8 @@ DecimatedExperiment build_decimated(const IdentificationModel& model, const Traj
                                     std::size_t e, int factor, bool power,
                                     LeastSquaresAccumulator& equations, Progress& progress) {
   const int n = model.dof(), nb = model.num_base_params();
-  const Eigen::Index m = x.t.size(), md = decimated_rows(m, factor);
+  const Eigen::Index m = x.t.size();
+  Eigen::Index md = decimated_rows(m, factor);
   Eigen::MatrixXd W(m * n, nb);
   Eigen::VectorXd tau(m * n);
   Eigen::MatrixXd P(power ? m : 0, nb);
@@ -138,10 +139,16 @@ DecimatedExperiment build_decimated(const IdentificationModel& model, const Traj
     decimate(joint_rows(tau.data(), tau.size(), 1, n, j), factor,
              joint_rows(out.tau.data(), out.tau.size(), 1, n, j));
   }
+  // Only the rows the end samples do not dominate (decimated_interior), the same for W, tau
+  // and the power equations.
+  const DecimatedRange kept = decimated_interior(m, factor);
+  md = kept.count;
+  out.W = out.W.middleRows(kept.first * n, md * n).eval();
+  out.tau = out.tau.segment(kept.first * n, md * n).eval();
   const int experiment = static_cast<int>(e);
   if (power) {
-    const Eigen::MatrixXd Pd = decimate(P, factor);
-    const Eigen::MatrixXd pd = decimate(p, factor);
+    const Eigen::MatrixXd Pd = decimate_interior(P, factor);
+    const Eigen::MatrixXd pd = decimate_interior(p, factor);
     equations.add(experiment, md, Pd.data(), 1, Pd.rows(), pd.data(), 1);
   } else {
     for (int j = 0; j < n; ++j) {
