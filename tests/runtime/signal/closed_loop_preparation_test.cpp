@@ -218,5 +218,16 @@ TEST_F(ClosedLoopPreparation, NonPeriodicDefaultReachesTheNoiseFloor) {
   EXPECT_GE(s.well_identified, 18);
 }
 
+TEST_F(ClosedLoopPreparation, HeldTorquesPairedHalfASampleLater) {
+  // The torque command is held over each sample: paired with the positions half a sample later
+  // the equations fit better than as recorded (0.025 against 0.031, truth 0.028 and 0.034).
+  PreparationOptions options;
+  const FitSummary as_recorded = fit(model_, beta_, record_, options);
+  options.torque_hold = true;
+  const FitSummary held = fit(model_, beta_, record_, options);
+  EXPECT_LT(held.truth_rel_error_norm, 0.9 * as_recorded.truth_rel_error_norm);
+  EXPECT_LT(held.rel_error_norm, 0.9 * as_recorded.rel_error_norm);
+}
+
 }  // namespace
 }  // namespace modelgen

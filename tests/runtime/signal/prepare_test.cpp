@@ -108,3 +108,33 @@ TEST(Prepare, DecimatedTrajectoriesKeepEveryNthTime) {
 
 }  // namespace
 }  // namespace modelgen
+
+namespace modelgen {
+namespace {
+
+TEST(Prepare, HeldTorqueCommandsArePairedHalfASampleLater) {
+  // A 20 Hz torque command held over each 1 ms sample acts, in its band, as the command
+  // delayed by half a sample: sin(w (t - Ts / 2)). As recorded it is off by w Ts / 2 = 0.063;
+  // with torque_hold by the linear interpolation's (w Ts)^2 / 8 = 2e-3 only.
+  const double ts = 1e-3, w = 2 * M_PI * 20;
+  Trajectory x;
+  x.source = "held.csv";
+  const Eigen::Index n = 200;
+  x.t = Eigen::VectorXd::LinSpaced(n, 0, ts * static_cast<double>(n - 1));
+  x.q = Eigen::MatrixXd::Zero(n, 1);
+  x.dq = x.q;
+  x.ddq = x.q;
+  x.tau = (w * x.t).array().sin().matrix();
+  x.has_velocity = true;
+  PreparationOptions options;
+  const PreparedExperiment as_sampled = prepare_experiment(x, DriveChain::identity(1), options);
+  options.torque_hold = true;
+  const PreparedExperiment held = prepare_experiment(x, DriveChain::identity(1), options);
+  const Eigen::VectorXd acting = (w * (x.t.array() - ts / 2)).sin().matrix();
+  EXPECT_GT((as_sampled.data.tau.col(0) - acting).cwiseAbs().maxCoeff(), 0.06);
+  EXPECT_LT((held.data.tau.col(0) - acting).cwiseAbs().maxCoeff(), 2.1e-3);
+  EXPECT_NE(held.summary.find("held over each sample"), std::string::npos) << held.summary;
+}
+
+}  // namespace
+}  // namespace modelgen
