@@ -114,7 +114,8 @@ class Plant {
 // at the torque of the reference's first state, as if the loop had been tracking it. Written
 // to the record: t_k, the measured q_k and the command tau_k.
 Trajectory closed_loop_record(const IdentificationModel& model, const Eigen::VectorXd& beta,
-                              const FourierTrajectory& ref, int samples, std::uint64_t seed) {
+                              const FourierTrajectory& ref, int samples, std::uint64_t seed,
+                              double encoder_noise = kEncoderNoise) {
   const Pid pid = tx40_pid();
   Plant plant(model, beta);
   test::Random random(seed);
@@ -132,7 +133,7 @@ Trajectory closed_loop_record(const IdentificationModel& model, const Eigen::Vec
     const double t = k * kSampleTime;
     ref.evaluate(t, qr, dqr, ddqr);
     Eigen::VectorXd measured = q;
-    for (int j = 0; j < kDof; ++j) measured[j] += kEncoderNoise * random.normal();
+    for (int j = 0; j < kDof; ++j) measured[j] += encoder_noise * random.normal();
     const Eigen::VectorXd e = qr - measured;
     if (k == 0) e_previous = e;
     integral += kSampleTime * pid.ki.cwiseProduct(e);
@@ -164,26 +165,40 @@ struct FitSummary {
   double truth_rel_error_norm = 0;  // the true parameters on the same prepared equations
   double worst_z = 0;               // max |estimate - truth| / sd over the well-identified ones
   std::string worst;
+  double worst_coulomb_z = 0;  // the same over the Coulomb parameters (Fc*)
   int well_identified = 0;
 };
 
 FitSummary fit(const IdentificationModel& model, const Eigen::VectorXd& beta,
-               const Trajectory& record, const PreparationOptions& options) {
+               const Trajectory& record, const PreparationOptions& options,
+               double min_speed = 0) {
   PreparedExperiment prepared = prepare_experiment(record, DriveChain::identity(kDof), options);
   std::cout << "[ prepared ] " << prepared.summary << "\n";
   std::vector<Trajectory> data{prepared.data};
   IdentifyOptions identify_options;
   identify_options.decimation = {prepared.decimation};
+  if (min_speed > 0) identify_options.min_speed.assign(kDof, min_speed);
   const Identification id = identify(model, data, Method::kWls, identify_options);
   FitSummary out;
   out.rel_error_norm = id.torque_rel_error_norm;
+  // The true parameters on the same equations: decimated alike (eq. 14), the same slow rows
+  // left out (dq decimated alike too).
   std::vector<Trajectory> compared = data;
-  out.truth_rel_error_norm =
-      predict_decimated(model, compared, beta, identify_options.decimation).rel_error_norm;
+  const TorquePrediction truth =
+      predict_decimated(model, compared, beta, identify_options.decimation);
+  double error_squares = 0, torque_squares = 0;
+  for (Eigen::Index s = 0; s < compared[0].t.size(); ++s) {
+    if (min_speed > 0 && (compared[0].dq.row(s).array().abs() < min_speed).any()) continue;
+    error_squares += truth.error[0].row(s).squaredNorm();
+    torque_squares += compared[0].tau.row(s).squaredNorm();
+  }
+  out.truth_rel_error_norm = std::sqrt(error_squares / torque_squares);
   for (int k = 0; k < model.num_base_params(); ++k) {
     if (!(id.fit.rel_std_dev[k] < 10)) continue;
     ++out.well_identified;
     const double z = std::abs(id.fit.value[k] - beta[k]) / id.fit.std_dev[k];
+    const std::string& name = model.base_param_names()[k];
+    if (name.rfind("Fc", 0) == 0) out.worst_coulomb_z = std::max(out.worst_coulomb_z, z);
     if (z > out.worst_z) {
       out.worst_z = z;
       out.worst = model.base_param_names()[k];
@@ -227,6 +242,40 @@ TEST_F(ClosedLoopPreparation, HeldTorquesPairedHalfASampleLater) {
   const FitSummary held = fit(model_, beta_, record_, options);
   EXPECT_LT(held.truth_rel_error_norm, 0.9 * as_recorded.truth_rel_error_norm);
   EXPECT_LT(held.rel_error_norm, 0.9 * as_recorded.rel_error_norm);
+}
+
+TEST_F(ClosedLoopPreparation, MinSpeedTakesTheCoulombBiasDown) {
+  // Where a joint reverses under the PID it sticks while the torque crosses the friction band:
+  // sign(dq) is wrong there whatever the parameters. Measured, torques paired half a sample
+  // later: Coulomb parameters off by up to 10.4 sd with every row, 5.0 sd without the rows
+  // slower than 0.1 rad/s (decimated dq); noise-free records show the same bias, so it is the
+  // model, not the noise. The rest of the bias sits in the rows next to a reversal that the
+  // decimation filter spreads it into.
+  PreparationOptions options;
+  options.torque_hold = true;
+  const FitSummary every_row = fit(model_, beta_, record_, options);
+  const FitSummary fast_rows = fit(model_, beta_, record_, options, 0.1);
+  EXPECT_GT(every_row.worst_coulomb_z, 8.0);
+  EXPECT_LT(fast_rows.worst_coulomb_z, 0.6 * every_row.worst_coulomb_z);
+  EXPECT_LT(fast_rows.worst_z, 6.0) << fast_rows.worst;
+  EXPECT_LT(fast_rows.rel_error_norm, fast_rows.truth_rel_error_norm);
+  EXPECT_LT(fast_rows.truth_rel_error_norm, 0.8 * every_row.truth_rel_error_norm);
+  EXPECT_GE(fast_rows.well_identified, 18);
+}
+
+TEST_F(ClosedLoopPreparation, PeriodicRouteKeepsTheTorqueBand) {
+  // Measured before: 87 harmonics of the positions and the averaged torques as they were, D
+  // term included: relative error norm 0.763 (truth 0.763). The torques now keep the lines that
+  // stand out of their noise (here up to harmonic 107, 21 Hz): 0.092 (truth 0.106). The
+  // positions' 87 harmonics stand out of their noise line by line: the tracking error of a
+  // loop that sticks at reversals is rich. The friction estimates of this route stay biased
+  // (every sample, reversals included: up to 46 sd); the non-periodic route with --min-speed
+  // is the one to use on such records.
+  PreparationOptions options;
+  options.periodic = true;
+  const FitSummary s = fit(model_, beta_, record_, options);
+  EXPECT_LT(s.truth_rel_error_norm, 0.15);
+  EXPECT_LT(s.rel_error_norm, s.truth_rel_error_norm);
 }
 
 }  // namespace
