@@ -325,3 +325,19 @@ TEST(ModelidFit, MinSpeedLeavesOutTheSamplesWhereAJointIsSlow) {
 
 }  // namespace
 }  // namespace modelgen
+
+namespace modelgen {
+namespace {
+
+TEST(ModelidFit, ADecimationFactorThatCannotBeStagedIsRefused) {
+  const CliRun run = test::modelid("fit --robot kr150 --data " + quoted_source(kData) +
+                                   " --method wls --decimate 22");
+  EXPECT_EQ(run.exit_code, 2);
+  EXPECT_NE(run.err.find("--decimate: decimation factor 22 has the prime factor 11, above 10"),
+            std::string::npos)
+      << run.err;
+  EXPECT_NE(run.err.find("use 21 or 24"), std::string::npos) << run.err;
+}
+
+}  // namespace
+}  // namespace modelgen
