@@ -9,7 +9,7 @@ namespace modelgen::internal {
 
 /// The options each command accepts, for parse_arguments.
 extern const std::map<std::string, OptionKind> kFitOptions, kPredictOptions, kSimulateOptions,
-    kExportOptions, kCheckTrajectoryOptions, kDesignOptions;
+    kExportOptions, kCheckTrajectoryOptions, kDesignOptions, kValidateOptions;
 
 /// modelid fit: base parameters from trajectories (fit_command.cpp).
 int run_fit(const CommandLine& args);
@@ -25,6 +25,8 @@ int run_export(const CommandLine& args);
 int run_check_trajectory(const CommandLine& args);
 /// modelid design: an optimal Fourier excitation within the joint limits.
 int run_design(const CommandLine& args);
+/// modelid validate: an estimate simulated under the controller along a closed-loop record.
+int run_validate(const CommandLine& args);
 /// modelid check ROBOT: loads a model and prints its sizes.
 int run_check(const CommandLine& args);
 

@@ -1,6 +1,7 @@
 // modelid fit: base parameters from measured trajectories by IDIM-OLS, IDIM-WLS or PIM-WLS
-// (Gautier & Briot eq. 14-21), their standard deviations (eq. 17-19), optionally the essential
-// parameters (iterative elimination with ratio r_sigma), torque plots and the EST.json file.
+// (Gautier & Briot eq. 14-21) or from closed-loop records by IDIM-IV or DIDIM, their standard
+// deviations (eq. 17-19), optionally the essential parameters (iterative elimination with
+// ratio r_sigma), torque plots and the EST.json file.
 
 #include <algorithm>
 #include <cmath>
@@ -15,6 +16,7 @@
 #include "modelgen/estimation/least_squares.hpp"
 #include "modelgen/estimation/predict.hpp"
 #include "modelgen/model/load_robot.hpp"
+#include "runtime/cli/closed_loop_fit.hpp"
 #include "runtime/cli/commands.hpp"
 #include "runtime/cli/data_files.hpp"
 #include "runtime/cli/estimate_file.hpp"
@@ -47,7 +49,8 @@ const std::map<std::string, OptionKind> kFitOptions =
                        {"--known", OptionKind::kOnce},
                        {"--physical", OptionKind::kFlag},
                        {"--prior-weight", OptionKind::kOnce},
-                       {"--min-speed", OptionKind::kOnce}});
+                       {"--min-speed", OptionKind::kOnce},
+                       {"--controller", OptionKind::kOnce}});
 
 namespace {
 
@@ -241,11 +244,24 @@ int run_fit(const CommandLine& args) {
   const IdentificationModel& model = *source.model;
   if (!args.has("--data")) throw UsageError{"fit needs at least one --data file"};
   const std::string& method_text = args.one("--method");
-  if (method_text != "ols" && method_text != "wls" && method_text != "pim-wls") {
-    throw UsageError{"--method must be ols, wls, pim-wls or ml, not '" + method_text + "'"};
+  const std::optional<ClosedLoopMethod> closed_loop = closed_loop_method(method_text);
+  if (method_text != "ols" && method_text != "wls" && method_text != "pim-wls" && !closed_loop) {
+    throw UsageError{"--method must be ols, wls, pim-wls, iv, didim or ml, not '" + method_text +
+                     "'"};
   }
-  const Method method = parse_method(method_text);
+  if (!closed_loop && args.has("--controller")) {
+    throw UsageError{"--controller belongs to the closed-loop methods, --method iv or didim"};
+  }
+  const Method method = closed_loop ? Method::kWls : parse_method(method_text);
+  const std::string label =
+      closed_loop ? closed_loop_method_name(*closed_loop) : method_name(method);
   const bool essential = args.has("--essential");
+  if (essential && closed_loop) {
+    throw UsageError{"--essential belongs to the linear methods ols, wls and pim-wls"};
+  }
+  if (args.has("--min-speed") && closed_loop) {
+    throw UsageError{"--min-speed belongs to the linear methods ols, wls and pim-wls"};
+  }
   double r_sigma = kDefaultRSigma;
   if (args.has("--r-sigma")) {
     if (!essential) throw UsageError{"--r-sigma is the ratio of --essential; add --essential"};
@@ -279,12 +295,16 @@ int run_fit(const CommandLine& args) {
     check_estimate_model(args.one("--truth"), model, "truth");
     truth = read_base_parameters(args.one("--truth"), model);
   }
-  const Identification id = identify(model, data, method, options);
+  std::ostringstream closed_loop_report;
+  const Identification id =
+      closed_loop ? fit_closed_loop(args, model, experiments, *closed_loop, closed_loop_report,
+                                    std::cerr)
+                  : identify(model, data, method, options);
   fitting.finish();
 
-  std::cout << "modelid fit: " << model.name() << ", " << method_name(method) << " on "
+  std::cout << "modelid fit: " << model.name() << ", " << label << " on "
             << data.size() << " experiment(s), " << id.samples << " samples\n"
-            << data_report.str();
+            << data_report.str() << closed_loop_report.str();
   if (!options.min_speed.empty()) {
     std::cout << "  --min-speed: " << id.slow_samples << " of " << id.samples + id.slow_samples
               << " samples left out (a joint slower than its minimum speed, after the "
@@ -338,13 +358,13 @@ int run_fit(const CommandLine& args) {
     std::vector<Trajectory> compared = data;
     const TorquePrediction prediction =
         predict_with_progress(model, compared, id.fit.value, experiments.decimation);
-    write_torque_plots(args.one("--plot"), model.name() + " " + method_name(method) + " fit",
+    write_torque_plots(args.one("--plot"), model.name() + " " + label + " fit",
                        compared, prediction, std::cout, std::cerr);
   }
   if (args.has("-o")) {
     estimate.model = model.name();
     estimate.description_sha256 = model.description_sha256();
-    estimate.method = method_name(method);
+    estimate.method = label;
     estimate.parameters = parameters;
     estimate.rel_error_norm = id.torque_rel_error_norm;
     estimate.condition_number = id.fit.condition_number;

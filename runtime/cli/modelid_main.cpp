@@ -24,6 +24,8 @@ constexpr const char* kUsage =
     "usage: modelid fit --robot ROBOT --data A.csv [--data B.csv ...] --method ols|wls|pim-wls\n"
     "                   [-o EST.json] [--truth TRUE.json] [--essential [--r-sigma R]]\n"
     "                   [--physical [--prior-weight W]] [--min-speed V[,...]] [--plot DIR]\n"
+    "       modelid fit --method iv|didim --controller C.yaml --robot ROBOT --data A.csv\n"
+    "                   [-o EST.json] [--truth TRUE.json] [--physical] [--plot DIR]\n"
     "       modelid fit --method ml --approach 1|2|3|all --robot DESCRIPTION.yaml --periodic\n"
     "                   --data A.csv [--unknown load,Rv,Rc,Rz] [--known KNOWN.json]\n"
     "                   [--truth TRUTH.json] [--physical [--prior-weight W]] [-o EST.json]\n"
@@ -35,6 +37,11 @@ constexpr const char* kUsage =
     "       modelid simulate --robot DESCRIPTION.yaml --drive THETA.json --trajectory TRAJ.yaml\n"
     "                   --noise SIGMA[,SIGMA2,...] [--seed N] [--sample-time S] [--periods K]\n"
     "                   -o A.csv\n"
+    "       modelid simulate --robot ROBOT [--params TRUE.json] --trajectory REF.yaml\n"
+    "                   --controller C.yaml [--noise-q S] [--noise-tau S]\n"
+    "                   [--encoder-resolution R] [--substeps N] [--seed N] [--periods K] -o A.csv\n"
+    "       modelid validate --robot ROBOT --params EST.json --controller C.yaml --data A.csv\n"
+    "                   [--plot DIR]\n"
     "       modelid export --robot DESCRIPTION --params EST.json -o IDENTIFIED\n"
     "       modelid check ROBOT\n"
     "       modelid check-trajectory --robot ROBOT --trajectory TRAJ.yaml\n"
@@ -45,6 +52,8 @@ constexpr const char* kUsage =
     "       (any command: --progress shows progress lines also when stderr is not a terminal)\n"
     "       modelid --version | --help\n"
     "\n"
+    "C.yaml: {type: pid, sample_time: S, kp: [..], ki: [..], kd: [..]}, one gain per joint; a\n"
+    "closed-loop record has columns t, q, tau (the command) and qr (the reference).\n"
     "simulate refuses a trajectory beyond the description's joint limits (checked at 1 kHz or\n"
     "finer over one period) unless --ignore-limits; check-trajectory prints each limit's use.\n"
     "ROBOT is a description (.yaml/.urdf, through the numeric reference) or the name of a\n"
@@ -78,6 +87,7 @@ int dispatch(int argc, char** argv) {
   if (command == "fit") return run_fit(parse_arguments(argc, argv, kFitOptions));
   if (command == "predict") return run_predict(parse_arguments(argc, argv, kPredictOptions));
   if (command == "simulate") return run_simulate(parse_arguments(argc, argv, kSimulateOptions));
+  if (command == "validate") return run_validate(parse_arguments(argc, argv, kValidateOptions));
   if (command == "export") return run_export(parse_arguments(argc, argv, kExportOptions));
   if (command == "design") return run_design(parse_arguments(argc, argv, kDesignOptions));
   if (command == "check-trajectory") {

@@ -1,26 +1,29 @@
 // modelid simulate: samples a Fourier excitation (Swevers 2002, eq. 15-17), computes the joint
 // torques of given base parameters by the model's inverse dynamics (Gautier & Briot eq. 4-6),
 // or the motor torques of the drive model (Swevers eq. 12, drive_simulation.hpp) mapped to the
-// joints, adds seeded Gaussian noise per axis, then writes the trajectory CSV.
+// joints, adds seeded Gaussian noise per axis, then writes the trajectory CSV. With
+// --controller the excitation is the reference of a joint PID that drives the simulated robot
+// (modelgen/closed_loop), as a real robot is recorded.
 
 #include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstdint>
 #include <iostream>
-#include <numbers>
 #include <optional>
-#include <random>
 #include <sstream>
 #include <stdexcept>
 #include <vector>
 
+#include "modelgen/closed_loop/closed_loop_simulation.hpp"
 #include "modelgen/data/trajectory.hpp"
 #include "modelgen/data/trajectory_csv.hpp"
 #include "modelgen/excitation/fourier_trajectory.hpp"
 #include "modelgen/ml/drive_model.hpp"
+#include "modelgen/signal/gaussian_noise.hpp"
 #include "modelgen/model/physical_consistency.hpp"
 #include "runtime/cli/commands.hpp"
+#include "runtime/cli/controller_file.hpp"
 #include "runtime/cli/drive_simulation.hpp"
 #include "runtime/cli/estimate_file.hpp"
 #include "runtime/cli/fourier_file.hpp"
@@ -41,27 +44,33 @@ const std::map<std::string, OptionKind> kSimulateOptions = {{"--robot", OptionKi
                                                             {"--sample-time", OptionKind::kOnce},
                                                             {"--periods", OptionKind::kOnce},
                                                             {"--ignore-limits", OptionKind::kFlag},
+                                                            {"--controller", OptionKind::kOnce},
+                                                            {"--noise-q", OptionKind::kOnce},
+                                                            {"--noise-tau", OptionKind::kOnce},
+                                                            {"--encoder-resolution", OptionKind::kOnce},
+                                                            {"--substeps", OptionKind::kOnce},
                                                             {"-o", OptionKind::kOnce}};
 
 namespace {
 
 // --noise S or S1,...,Sn: one standard deviation for every axis or one per axis (`axes` names
 // them in messages: joints or motors).
-std::vector<double> parse_noise(const std::string& text, int dof, const std::string& axes) {
+std::vector<double> parse_noise(const std::string& text, int dof, const std::string& axes,
+                                const std::string& option = "--noise",
+                                const std::string& what = "standard deviation") {
   std::vector<double> sigma;
   std::istringstream in(text);
   for (std::string item; std::getline(in, item, ',');) {
-    const double value = parse_number(item, "--noise");
+    const double value = parse_number(item, option);
     if (value < 0) {
-      throw UsageError{"--noise: a standard deviation cannot be negative, not '" + item + "'"};
+      throw UsageError{option + ": a " + what + " cannot be negative, not '" + item + "'"};
     }
     sigma.push_back(value);
   }
   if (sigma.size() == 1) sigma.assign(static_cast<std::size_t>(dof), sigma[0]);
   if (static_cast<int>(sigma.size()) != dof || text.empty() || text.back() == ',') {
-    throw UsageError{"--noise needs one standard deviation or " + std::to_string(dof) +
-                     " (one per " + axes + "), not " + std::to_string(sigma.size()) + ": '" + text +
-                     "'"};
+    throw UsageError{option + " needs one " + what + " or " + std::to_string(dof) + " (one per " +
+                     axes + "), not " + std::to_string(sigma.size()) + ": '" + text + "'"};
   }
   return sigma;
 }
@@ -119,6 +128,71 @@ Eigen::VectorXd a_priori_base_parameters(const ModelSource& source,
   return beta;
 }
 
+// --controller: the robot under its joint controller (modelgen/closed_loop), started on the
+// reference's state at t = 0; writes t, q (measured), tau (commanded, plus noise), qr.
+Trajectory simulate_under_controller(const CommandLine& args, const IdentificationModel& model,
+                                     const std::vector<double>& beta,
+                                     const FourierTrajectory& fourier, std::uint64_t seed) {
+  if (args.has("--noise") || args.has("--sample-time")) {
+    throw UsageError{"with --controller the torque noise is --noise-tau and the sample time the "
+                     "controller's sample_time; --noise and --sample-time are for open loop"};
+  }
+  const int n = model.dof();
+  PidController controller(read_controller(args.one("--controller"), n));
+  const double ts = controller.gains().sample_time;
+  const double periods =
+      args.has("--periods") ? parse_number(args.one("--periods"), "--periods") : 1.0;
+  if (!(periods > 0) || periods * fourier.period / ts > static_cast<double>(kMaxDataRows)) {
+    throw UsageError{"--periods must be positive and give at most " +
+                     std::to_string(kMaxDataRows) + " samples at the controller's rate"};
+  }
+  auto per_joint = [&](const char* option, const char* what) {
+    Eigen::VectorXd values;
+    if (args.has(option)) {
+      const std::vector<double> v = parse_noise(args.one(option), n, "joint", option, what);
+      values = Eigen::Map<const Eigen::VectorXd>(v.data(), n);
+    }
+    return values;
+  };
+  ClosedLoopOptions options;
+  options.q_noise = per_joint("--noise-q", "standard deviation");
+  options.tau_noise = per_joint("--noise-tau", "standard deviation");
+  options.encoder_resolution = per_joint("--encoder-resolution", "resolution");
+  options.seed = seed;
+  if (args.has("--substeps")) {
+    const double substeps = parse_number(args.one("--substeps"), "--substeps");
+    if (substeps < 1 || substeps > 1000 || substeps != std::floor(substeps)) {
+      throw UsageError{"--substeps must be a whole number from 1 to 1000, not '" +
+                       args.one("--substeps") + "'"};
+    }
+    options.substeps = static_cast<int>(substeps);
+  }
+  // The reference at the controller's samples, from the series itself.
+  const Trajectory reference = sample(fourier, ts, periods * fourier.period);
+  Progress progress("simulating the closed loop", 1);
+  ClosedLoopRun run;
+  try {
+    run = simulate_closed_loop(model, beta, controller, reference.q, reference.q.row(0).transpose(),
+                               reference.dq.row(0).transpose(), options);
+  } catch (const std::domain_error& e) {
+    throw std::runtime_error(args.one("--controller") + ": error: " + e.what());
+  }
+  progress.finish();
+  Trajectory x;
+  x.t = run.t;
+  x.q = run.q_measured;
+  x.tau = run.tau_recorded;
+  x.qr = run.qr;
+  x.dq = x.ddq = Eigen::MatrixXd::Zero(x.t.size(), n);
+  const Eigen::VectorXd error = (run.q - run.qr).cwiseAbs().colwise().maxCoeff().transpose();
+  std::cerr << "modelid simulate: " << x.t.size() << " samples of " << model.name()
+            << " under the PID at " << 1.0 / ts << " Hz written to " << args.one("-o")
+            << "; largest tracking error per joint (rad):";
+  for (int j = 0; j < n; ++j) std::cerr << " " << error[j];
+  std::cerr << "\n";
+  return x;
+}
+
 }  // namespace
 
 int run_simulate(const CommandLine& args) {
@@ -155,13 +229,6 @@ int run_simulate(const CommandLine& args) {
                          "modelid simulate: nothing written; modelid check-trajectory shows the use "
                          "of every limit, --ignore-limits simulates it anyway");
   }
-  const std::vector<double> noise =
-      parse_noise(args.one("--noise"), model.dof(), drive_mode ? "motor" : "joint");
-  const double sample_time = args.has("--sample-time")
-                                 ? parse_number(args.one("--sample-time"), "--sample-time")
-                                 : fourier.period / 1000.0;
-  const double periods =
-      args.has("--periods") ? parse_number(args.one("--periods"), "--periods") : 1.0;
   std::uint64_t seed = 1;
   if (args.has("--seed")) {
     const std::string& text = args.one("--seed");
@@ -170,6 +237,25 @@ int run_simulate(const CommandLine& args) {
       throw UsageError{"--seed must be a non-negative integer, not '" + text + "'"};
     }
   }
+  if (args.has("--controller")) {
+    if (drive_mode) {
+      throw UsageError{"--controller simulates the joint-side model of --params; the drive "
+                       "model of --drive is simulated open loop only"};
+    }
+    const std::vector<double> base(beta.data(), beta.data() + beta.size());
+    write_trajectory_csv(args.one("-o"), simulate_under_controller(args, model, base, fourier, seed));
+    return 0;
+  }
+  for (const char* option : {"--noise-q", "--noise-tau", "--encoder-resolution", "--substeps"}) {
+    if (args.has(option)) throw UsageError{std::string(option) + " belongs to --controller"};
+  }
+  const std::vector<double> noise =
+      parse_noise(args.one("--noise"), model.dof(), drive_mode ? "motor" : "joint");
+  const double sample_time = args.has("--sample-time")
+                                 ? parse_number(args.one("--sample-time"), "--sample-time")
+                                 : fourier.period / 1000.0;
+  const double periods =
+      args.has("--periods") ? parse_number(args.one("--periods"), "--periods") : 1.0;
   const std::string& output = args.one("-o");
   std::optional<ReferenceDriveModel> drive_model;
   DriveTruth truth;
@@ -196,13 +282,10 @@ int run_simulate(const CommandLine& args) {
     }
   }
   // Gaussian noise per axis by Box-Muller on a fixed generator: the same seed, the same file.
-  std::mt19937_64 engine(seed);
-  auto uniform = [&engine] { return (static_cast<double>(engine() >> 11) + 0.5) * 0x1.0p-53; };
+  GaussianNoise gaussian(seed);
   for (Eigen::Index s = 0; s < x.t.size(); ++s) {
     for (int j = 0; j < model.dof(); ++j) {
-      const double u1 = uniform(), u2 = uniform();  // named: operand order is unspecified
-      const double g = std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * std::numbers::pi * u2);
-      x.tau(s, j) = tau(s, j) + noise[static_cast<std::size_t>(j)] * g;
+      x.tau(s, j) = tau(s, j) + noise[static_cast<std::size_t>(j)] * gaussian();
     }
   }
   // Swevers eq. 10 / power balance: the joint torques the motor torques produce,

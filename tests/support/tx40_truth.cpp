@@ -1,21 +1,14 @@
-// The simulated TX-40's true base parameters (see tx40_truth.hpp).
+// The TX-40's true base parameters for simulations.
 
 #include "tests/support/tx40_truth.hpp"
 
 #include <algorithm>
 #include <iterator>
 #include <limits>
-#include <string>
-#include <vector>
 
 namespace modelgen::test {
 
 namespace {
-
-struct NamedValue {
-  const char* name;
-  double value;
-};
 
 // The simulated robot's true base parameters (kg m^2, kg m, N m s/rad, N m), one per base
 // parameter of robots/tx40.yaml. Sources:
@@ -91,9 +84,10 @@ constexpr NamedValue kTrueBase[] = {
 
 }  // namespace
 
-Eigen::VectorXd tx40_true_base(const IdentificationModel& model) {
-  const std::vector<std::string>& names = model.base_param_names();
-  Eigen::VectorXd beta = Eigen::VectorXd::Constant(model.num_base_params(),
+std::span<const NamedValue> tx40_true_base() { return kTrueBase; }
+
+Eigen::VectorXd tx40_true_base(const std::vector<std::string>& names) {
+  Eigen::VectorXd beta = Eigen::VectorXd::Constant(static_cast<Eigen::Index>(names.size()),
                                                    std::numeric_limits<double>::quiet_NaN());
   for (const NamedValue& v : kTrueBase) {
     const auto it = std::find(names.begin(), names.end(), v.name);
@@ -101,7 +95,5 @@ Eigen::VectorXd tx40_true_base(const IdentificationModel& model) {
   }
   return beta;
 }
-
-std::size_t tx40_true_base_entries() { return std::size(kTrueBase); }
 
 }  // namespace modelgen::test

@@ -1,23 +1,25 @@
-// The simulated Staubli TX-40's true base parameters, shared by the identification tests that
-// make their own data (open loop in tx40_identification_test, closed loop in
-// closed_loop_preparation_test).
+// The true base parameters of the simulated Staubli TX-40 (robots/tx40.yaml), for the tests that
+// simulate it: Gautier & Briot's identified values where the paper has them.
 #pragma once
 
-#include <cstddef>
+#include <span>
+#include <string>
+#include <vector>
 
 #include <Eigen/Core>
 
-#include "modelgen/model/identification_model.hpp"
-
 namespace modelgen::test {
 
-/// The true base parameters of robots/tx40.yaml in `model`'s base_param_names() order (kg m^2,
-/// kg m, N m s/rad, N m): Gautier & Briot Table II where the paper has the parameter, the
-/// description's a-priori drive values, and small plausible values for the rest (the source of
-/// each value is in tx40_truth.cpp). A name the table lacks is NaN.
-Eigen::VectorXd tx40_true_base(const IdentificationModel& model);
+struct NamedValue {
+  const char* name;
+  double value;
+};
 
-/// How many names the table has (one per base parameter of robots/tx40.yaml).
-std::size_t tx40_true_base_entries();
+/// One value per base parameter of robots/tx40.yaml (kg m^2, kg m, N m s/rad, N m); sources
+/// in tx40_truth.cpp.
+std::span<const NamedValue> tx40_true_base();
+
+/// tx40_true_base() in the order of `names`: NaN for a name the table lacks.
+Eigen::VectorXd tx40_true_base(const std::vector<std::string>& names);
 
 }  // namespace modelgen::test

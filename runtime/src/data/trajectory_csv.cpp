@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <cerrno>
 #include <charconv>
-#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
@@ -116,16 +115,29 @@ Trajectory read_trajectory_csv(const std::string& path, int dof, EffortColumns e
     measured = Measured::kNothing;
   }
   const std::string effort_prefix = measured == Measured::kCurrent ? "i" : "tau";
-  std::vector<int> q(dof), tau(dof, -1), dq(dof), ddq(dof);
-  bool velocity = true, any_derivative = false;
+  std::vector<int> q(dof), tau(dof, -1), dq(dof), ddq(dof), qr(dof);
+  bool velocity = true, any_derivative = false, reference = true, any_reference = false;
   for (int j = 0; j < dof; ++j) {
     const std::string k = std::to_string(j + 1);
     q[j] = find("q" + k, true);
     if (measured != Measured::kNothing) tau[j] = find(effort_prefix + k, true);
     dq[j] = find("dq" + k, false);
     ddq[j] = find("ddq" + k, false);
+    qr[j] = find("qr" + k, false);
+    reference = reference && qr[j] >= 0;
+    any_reference = any_reference || qr[j] >= 0;
     velocity = velocity && dq[j] >= 0 && ddq[j] >= 0;
     any_derivative = any_derivative || dq[j] >= 0 || ddq[j] >= 0;
+  }
+  // A closed-loop method given the references of some joints only would take the others' as 0.
+  if (any_reference && !reference) {
+    for (int j = 0; j < dof; ++j) {
+      if (qr[j] < 0) {
+        fail(path, line_number, "qr" + std::to_string(j + 1),
+             "missing column 'qr" + std::to_string(j + 1) + "': reference positions are given for "
+             "some joints, give qr1..qr" + std::to_string(dof) + " or none");
+      }
+    }
   }
   // Velocities without accelerations (or some axes only) would be silently ignored, the
   // derivatives all taken from the positions: refused, so that the user chooses.
@@ -225,11 +237,13 @@ Trajectory read_trajectory_csv(const std::string& path, int dof, EffortColumns e
   out.dq = Eigen::MatrixXd::Zero(n, dof);
   out.ddq = Eigen::MatrixXd::Zero(n, dof);
   out.has_velocity = velocity;
+  if (reference) out.qr.resize(n, dof);
   for (Eigen::Index s = 0; s < n; ++s) {
     out.t[s] = rows[s][t_column];
     for (int j = 0; j < dof; ++j) {
       out.q(s, j) = rows[s][q[j]];
       if (tau[j] >= 0) out.tau(s, j) = rows[s][tau[j]];
+      if (reference) out.qr(s, j) = rows[s][qr[j]];
       if (velocity) {
         out.dq(s, j) = rows[s][dq[j]];
         out.ddq(s, j) = rows[s][ddq[j]];
@@ -252,14 +266,18 @@ void write_trajectory_csv(const std::string& path, const Trajectory& x) {
   std::ofstream out(temporary);
   if (!out) throw failed(errno);
   const Eigen::Index dof = x.q.cols();
+  std::vector<std::pair<const char*, const Eigen::MatrixXd*>> columns = {{"q", &x.q}};
+  if (x.has_velocity) columns.insert(columns.end(), {{"dq", &x.dq}, {"ddq", &x.ddq}});
+  columns.push_back({"tau", &x.tau});
+  if (x.qr.size() != 0) columns.push_back({"qr", &x.qr});
   out << "t";
-  for (const char* prefix : {"q", "dq", "ddq", "tau"}) {
+  for (const auto& [prefix, m] : columns) {
     for (Eigen::Index j = 0; j < dof; ++j) out << "," << prefix << j + 1;
   }
   out << "\n";
   for (Eigen::Index s = 0; s < x.t.size(); ++s) {
     out << format(x.t[s]);
-    for (const Eigen::MatrixXd* m : {&x.q, &x.dq, &x.ddq, &x.tau}) {
+    for (const auto& [prefix, m] : columns) {
       for (Eigen::Index j = 0; j < dof; ++j) out << "," << format((*m)(s, j));
     }
     out << "\n";

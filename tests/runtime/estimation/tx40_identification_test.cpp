@@ -142,7 +142,7 @@ double binomial_upper_tail(int n, double p, int k) {
 class Tx40Identification : public testing::Test {
  protected:
   static void SetUpTestSuite() {
-    beta_ = test::tx40_true_base(model_);
+    beta_ = test::tx40_true_base(model_.base_param_names());
     reference_ = simulate(model_, excitation(kReferenceSeed), kSamples, beta_);
     const Eigen::VectorXd rms =
         (reference_.tau.colwise().squaredNorm() / static_cast<double>(reference_.tau.rows()))
@@ -168,10 +168,9 @@ class Tx40Identification : public testing::Test {
 };
 
 TEST_F(Tx40Identification, EveryBaseParameterHasATrueValue) {
-  // The table of tests/support/tx40_truth.cpp names each base parameter exactly once, so a
-  // change of the base parameter set of robots/tx40.yaml shows up here rather than as NaN in
-  // the other tests.
-  ASSERT_EQ(test::tx40_true_base_entries(), static_cast<std::size_t>(model_.num_base_params()));
+  // The truth table (tests/support/tx40_truth.cpp) names each base parameter exactly once, so a change of the base parameter
+  // set of robots/tx40.yaml shows up here rather than as NaN in the other tests.
+  ASSERT_EQ(test::tx40_true_base().size(), static_cast<std::size_t>(model_.num_base_params()));
   for (int k = 0; k < model_.num_base_params(); ++k) {
     EXPECT_TRUE(std::isfinite(beta_[k])) << model_.base_param_names()[k] << " has no true value";
   }

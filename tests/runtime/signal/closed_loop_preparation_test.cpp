@@ -214,7 +214,7 @@ FitSummary fit(const IdentificationModel& model, const Eigen::VectorXd& beta,
 class ClosedLoopPreparation : public testing::Test {
  protected:
   static void SetUpTestSuite() {
-    beta_ = test::tx40_true_base(model_);
+    beta_ = test::tx40_true_base(model_.base_param_names());
     record_ = closed_loop_record(model_, beta_, reference(13),
                                  static_cast<int>(kPeriods * kPeriod / kSampleTime), 7);
   }

@@ -20,6 +20,9 @@ struct Trajectory {
   Eigen::VectorXd t;
   Eigen::MatrixXd q, dq, ddq, tau;  ///< rad (m), rad/s, rad/s^2, N m (N)
   bool has_velocity = false;        ///< dq and ddq were in the file
+  /// Reference positions of a closed-loop record (columns qr1..qrn), samples x dof; empty
+  /// when the file has none.
+  Eigen::MatrixXd qr;
   Measured measured = Measured::kTorque;
 };
 

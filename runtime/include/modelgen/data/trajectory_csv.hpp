@@ -20,7 +20,8 @@ enum class EffortColumns { kRequired, kOptional };
 
 /// Reads a CSV file with a header row naming its columns: `t`, `q1`..`qn`, then either
 /// `tau1`..`taun` (torques) or `i1`..`in` (motor currents, converted by to_joint_side in
-/// modelgen/data/joint_side.hpp), and optionally `dq1`..`dqn` and `ddq1`..`ddqn` (any order;
+/// modelgen/data/joint_side.hpp), and optionally `dq1`..`dqn` and `ddq1`..`ddqn`, and the
+/// reference positions `qr1`..`qrn` of a closed-loop record (all or none; any order;
 /// other columns are ignored). Comma separated, one sample per line, time strictly increasing,
 /// every value finite. With EffortColumns::kOptional a file without tau and i columns is
 /// accepted (Measured::kNothing).
@@ -34,7 +35,8 @@ enum class EffortColumns { kRequired, kOptional };
 Trajectory read_trajectory_csv(const std::string& path, int dof,
                                EffortColumns effort = EffortColumns::kRequired);
 
-/// Writes a trajectory as CSV (t, q, dq, ddq, tau columns, shortest round-trip numbers).
+/// Writes a trajectory as CSV, shortest round-trip numbers: t, q, dq and ddq (when
+/// has_velocity), tau, and qr when the trajectory has reference positions.
 void write_trajectory_csv(const std::string& path, const Trajectory& trajectory);
 
 }  // namespace modelgen
