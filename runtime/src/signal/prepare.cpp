@@ -154,8 +154,11 @@ PreparedExperiment prepare_joint_side(Trajectory raw, const PreparationOptions& 
     apply_fourier(average.averaged, fourier);
     // Bona & Curatella 3.4: the averaged torques keep the lines that stand out of their noise;
     // the controller's content above them (the D term's encoder noise) is dropped.
+    // When every harmonic stands out (noise-free data), nothing is noise: the torques stay whole
+    // (projecting them would still drop an even period's Nyquist line).
     const int torque_harmonics = select_torque_harmonics(average, harmonics);
-    keep_harmonics(average.averaged, average.averaged.tau, torque_harmonics);
+    const bool whole = torque_harmonics >= (average.samples_per_period - 1) / 2;
+    if (!whole) keep_harmonics(average.averaged, average.averaged.tau, torque_harmonics);
     out.data = std::move(average.averaged);
     out.tau_noise_variance = average.tau_noise_variance;
     out.decimation = options.decimation.value_or(1);
@@ -163,10 +166,11 @@ PreparedExperiment prepare_joint_side(Trajectory raw, const PreparationOptions& 
                   std::to_string(average.samples_per_period) + " samples (period " +
                   number(average.period, 6) + " s" + (options.period ? "" : ", detected") +
                   ") averaged, " + std::to_string(harmonics) +
-                  " harmonics re-estimated, torques kept up to harmonic " +
-                  std::to_string(torque_harmonics) + " (" +
-                  number(torque_harmonics / average.period, 3) +
-                  " Hz); torque noise std of the averages:";
+                  " harmonics re-estimated, " +
+                  (whole ? std::string("torques kept whole (every harmonic above their noise)")
+                         : "torques kept up to harmonic " + std::to_string(torque_harmonics) +
+                               " (" + number(torque_harmonics / average.period, 3) + " Hz)") +
+                  "; torque noise std of the averages:";
     for (Eigen::Index j = 0; j < out.tau_noise_variance.size(); ++j) {
       out.summary += " " + number(std::sqrt(out.tau_noise_variance[j]), 3);
     }
