@@ -241,6 +241,9 @@ struct Model {
   static const double* motor_from_joint() { return kMotorFromJoint; }
   static const double* torque_constant() { return kTorqueConstant; }
   static const double* joint_offset() { return kJointOffset; }
+  static void joint_sincos(const double* q, double* sin_q, double* cos_q) {
+    ::modelgen::ur5::joint_sincos(q, sin_q, cos_q);
+  }
   static void base_from_standard(const double* p_standard, double* beta) {
     ::modelgen::ur5::base_from_standard(p_standard, beta);
   }
@@ -272,6 +275,23 @@ struct Model {
   }
   static void mass_matrix(const double* q, const double* beta, double* M) {
     ::modelgen::ur5::mass_matrix(q, beta, M);
+  }
+  static void idim_regressor_sincos(const double* q, const double* sin_q, const double* cos_q,
+                                    const double* dq, const double* ddq, double* W) {
+    ::modelgen::ur5::idim_regressor_sincos(q, sin_q, cos_q, dq, ddq, W);
+  }
+  static void inverse_dynamics_sincos(const double* q, const double* sin_q, const double* cos_q,
+                                      const double* dq, const double* ddq, const double* beta,
+                                      double* tau) {
+    ::modelgen::ur5::inverse_dynamics_sincos(q, sin_q, cos_q, dq, ddq, beta, tau);
+  }
+  static void power_regressor_sincos(const double* q, const double* sin_q, const double* cos_q,
+                                     const double* dq, const double* ddq, double* dh) {
+    ::modelgen::ur5::power_regressor_sincos(q, sin_q, cos_q, dq, ddq, dh);
+  }
+  static void mass_matrix_sincos(const double* q, const double* sin_q, const double* cos_q,
+                                 const double* beta, double* M) {
+    ::modelgen::ur5::mass_matrix_sincos(q, sin_q, cos_q, beta, M);
   }
 };
 

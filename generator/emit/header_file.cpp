@@ -32,14 +32,18 @@ std::vector<std::string> names(const std::vector<ArraySpec>& arrays) {
   return out;
 }
 
-std::string model_struct_member(const FunctionEntry& entry, const std::string& robot) {
-  const std::vector<std::string> inputs = names(entry.inputs), outputs = names(entry.outputs);
+// `sincos`: the entry's _sincos variant, sin_q and cos_q after q.
+std::string model_struct_member(const FunctionEntry& entry, const std::string& robot,
+                                bool sincos = false) {
+  std::vector<std::string> inputs = names(entry.inputs);
+  const std::vector<std::string> outputs = names(entry.outputs);
+  if (sincos) inputs.insert(inputs.begin() + 1, {"sin_q", "cos_q"});
   std::string arguments;
-  for (const std::vector<std::string>* list : {&inputs, &outputs}) {
+  for (const std::vector<std::string>* list : {static_cast<const std::vector<std::string>*>(&inputs), &outputs}) {
     for (const std::string& name : *list) arguments += (arguments.empty() ? "" : ", ") + name;
   }
   const std::string text = Printer(embedded_template("model_struct_member"))
-                               .set("function", entry.name)
+                               .set("function", std::string(entry.name) + (sincos ? "_sincos" : ""))
                                .set("robot", robot)
                                .set("parameters", parameter_list(inputs, outputs, Scalar::kDouble))
                                .set("arguments", arguments)
@@ -61,7 +65,11 @@ void write_model_struct(const RenderInput& in, CodeWriter& out) {
   // only with all its members (a --functions selection without them is for a controller).
   if (in.input.scalars.empty() || in.input.scalars.front() != Scalar::kDouble) return;
   for (const FunctionEntry& entry : function_registry()) {
-    if (entry.in_model_struct == InModelStruct::kYes && !emitted(in, entry.name)) return;
+    if (entry.in_model_struct == InModelStruct::kNo) continue;
+    if (!emitted(in, entry.name)) return;
+    if (entry.variants == Variants::kSincos && !emitted(in, (std::string(entry.name) + "_sincos").c_str())) {
+      return;
+    }
   }
   out.lines_of(Printer(embedded_template("model_struct"))
                    .set("robot", in.model.name)
@@ -71,6 +79,15 @@ void write_model_struct(const RenderInput& in, CodeWriter& out) {
                                 for (const FunctionEntry& entry : function_registry()) {
                                   if (entry.in_model_struct == InModelStruct::kNo) continue;
                                   members.lines_of(model_struct_member(entry, in.model.name));
+                                }
+                                // The _sincos variants, for a caller that needs several
+                                // functions at one q (forward dynamics: M and h).
+                                for (const FunctionEntry& entry : function_registry()) {
+                                  if (entry.in_model_struct == InModelStruct::kNo ||
+                                      entry.variants != Variants::kSincos) {
+                                    continue;
+                                  }
+                                  members.lines_of(model_struct_member(entry, in.model.name, true));
                                 }
                               })
                    .render());

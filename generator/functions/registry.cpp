@@ -39,7 +39,7 @@ const std::vector<FunctionEntry> kRegistry = {
     {"inverse_dynamics_standard", S::kStandard, Variants::kSincos, InModelStruct::kNo,
      {kQ, kDq, kDdq, {"p", E::kStandardParams}}, {{"tau", E::kDof}},
      build_inverse_dynamics_standard},
-    {"joint_sincos", S::kStandard, Variants::kPlain, InModelStruct::kNo,
+    {"joint_sincos", S::kStandard, Variants::kPlain, InModelStruct::kYes,
      {kQ}, {{"sin_q", E::kDof}, {"cos_q", E::kDof}}, build_joint_sincos},
     {"base_from_standard", S::kRegrouping, Variants::kPlain, InModelStruct::kYes,
      {{"p_standard", E::kStandardParams}}, {{"beta", E::kBaseParams}}, build_base_from_standard},

@@ -21,6 +21,13 @@ void IdentificationModel::mass_matrix(const double* q, const double* beta, doubl
   }
 }
 
+void IdentificationModel::mass_matrix_and_bias(const double* q, const double* dq,
+                                               const double* beta, double* M, double* h) const {
+  const std::vector<double> zero(static_cast<std::size_t>(dof()), 0.0);
+  mass_matrix(q, beta, M);
+  inverse_dynamics(q, dq, zero.data(), beta, h);
+}
+
 ReferenceModel::ReferenceModel(std::string name, RigidBodyTree tree, std::string description_sha256,
                                std::optional<DriveChain> drive)
     : name_(std::move(name)),

@@ -4,7 +4,6 @@
 
 #include <vector>
 
-#include <Eigen/Cholesky>
 #include <Eigen/Core>
 
 #include "modelgen/model/identification_model.hpp"
@@ -33,9 +32,8 @@ class ForwardDynamics {
   const IdentificationModel& model_;
   std::vector<double> beta_;
   int n_;
-  Eigen::MatrixXd M_;  // row-major values from the model, symmetric
-  Eigen::VectorXd h_, zero_, rhs_;
-  Eigen::LLT<Eigen::MatrixXd> llt_;
+  Eigen::MatrixXd M_;  // the model's values, then the Cholesky factor in place
+  Eigen::VectorXd h_, rhs_;
 };
 
 }  // namespace modelgen

@@ -45,6 +45,11 @@ class IdentificationModel {
   /// inverse_dynamics at zero velocity (M e_k = tau(q, 0, e_k) - tau(q, 0, 0): gravity and the
   /// torque offsets cancel, Coulomb friction is 0 at rest); generated models override it.
   virtual void mass_matrix(const double* q, const double* beta, double* M) const;
+  /// What forward dynamics needs at one state: mass_matrix into M and inverse_dynamics at
+  /// zero acceleration into h (dof() values). This default calls the two; generated models
+  /// compute the joints' sines and cosines once for both.
+  virtual void mass_matrix_and_bias(const double* q, const double* dq, const double* beta,
+                                    double* M, double* h) const;
   /// The regrouping relations: beta (num_base_params()) from standard parameters
   /// (num_standard_params()).
   virtual void base_from_standard(const double* p_standard, double* beta) const = 0;
@@ -124,6 +129,17 @@ class GeneratedModel final : public IdentificationModel {
   }
   void mass_matrix(const double* q, const double* beta, double* M) const override {
     Generated::mass_matrix(q, beta, M);
+  }
+  void mass_matrix_and_bias(const double* q, const double* dq, const double* beta, double* M,
+                            double* h) const override {
+    if constexpr (requires { Generated::mass_matrix_sincos(q, q, q, beta, M); }) {
+      double sin_q[Generated::kDof], cos_q[Generated::kDof], zero[Generated::kDof] = {};
+      Generated::joint_sincos(q, sin_q, cos_q);
+      Generated::mass_matrix_sincos(q, sin_q, cos_q, beta, M);
+      Generated::inverse_dynamics_sincos(q, sin_q, cos_q, dq, zero, beta, h);
+    } else {
+      IdentificationModel::mass_matrix_and_bias(q, dq, beta, M, h);
+    }
   }
   void base_from_standard(const double* p_standard, double* beta) const override {
     Generated::base_from_standard(p_standard, beta);
