@@ -3,7 +3,9 @@
 #include "runtime/cli/data_files.hpp"
 
 #include <iostream>
+#include <stdexcept>
 
+#include "modelgen/signal/decimation.hpp"
 #include "runtime/cli/progress.hpp"
 
 namespace modelgen::internal {
@@ -17,7 +19,8 @@ const std::vector<std::pair<std::string, OptionKind>>& data_options() {
       {"--motor-side", OptionKind::kFlag}, {"--periodic", OptionKind::kFlag},
       {"--period", OptionKind::kOnce},     {"--harmonics", OptionKind::kOnce},
       {"--raw", OptionKind::kFlag},        {"--bandwidth", OptionKind::kOnce},
-      {"--cutoff", OptionKind::kOnce},     {"--decimate", OptionKind::kOnce}};
+      {"--cutoff", OptionKind::kOnce},     {"--decimate", OptionKind::kOnce},
+      {"--torque-hold", OptionKind::kOnce}};
   return options;
 }
 
@@ -101,7 +104,22 @@ PreparationOptions preparation_options(const CommandLine& args) {
   if (args.has("--harmonics")) options.harmonics = count(args, "--harmonics");
   if (args.has("--bandwidth")) options.bandwidth_hz = positive(args, "--bandwidth");
   if (args.has("--cutoff")) options.cutoff_hz = positive(args, "--cutoff");
-  if (args.has("--decimate")) options.decimation = count(args, "--decimate");
+  if (args.has("--torque-hold")) {
+    const std::string& hold = args.one("--torque-hold");
+    if (hold != "zoh" && hold != "sampled") {
+      throw UsageError{"--torque-hold must be 'zoh' (torque commands held over each sample) or "
+                       "'sampled' (torques measured at the time stamps), not '" + hold + "'"};
+    }
+    options.torque_hold = hold == "zoh";
+  }
+  if (args.has("--decimate")) {
+    options.decimation = count(args, "--decimate");
+    try {
+      decimation_stages(*options.decimation);
+    } catch (const std::invalid_argument& e) {
+      throw UsageError{std::string("--decimate: ") + e.what()};
+    }
+  }
   return options;
 }
 

@@ -49,6 +49,7 @@ const std::map<std::string, OptionKind> kFitOptions =
                        {"--known", OptionKind::kOnce},
                        {"--physical", OptionKind::kFlag},
                        {"--prior-weight", OptionKind::kOnce},
+                       {"--min-speed", OptionKind::kOnce},
                        {"--controller", OptionKind::kOnce}});
 
 namespace {
@@ -202,13 +203,34 @@ std::vector<EstimatedParameter> estimated(const Eigen::VectorXd& value,
   return out;
 }
 
+// --min-speed V or V1,...,Vn: one speed for every joint or one per joint (rad/s, m/s), >= 0.
+std::vector<double> min_speed(const CommandLine& args, int dof) {
+  if (!args.has("--min-speed")) return {};
+  const std::string& text = args.one("--min-speed");
+  std::vector<double> speeds;
+  std::istringstream in(text);
+  for (std::string item; std::getline(in, item, ',');) {
+    const double value = parse_number(item, "--min-speed");
+    if (!(value >= 0) || !std::isfinite(value)) {
+      throw UsageError{"--min-speed: a speed must be a number >= 0, not '" + item + "'"};
+    }
+    speeds.push_back(value);
+  }
+  if (speeds.size() == 1) speeds.assign(static_cast<std::size_t>(dof), speeds[0]);
+  if (static_cast<int>(speeds.size()) != dof || text.empty() || text.back() == ',') {
+    throw UsageError{"--min-speed needs one speed or " + std::to_string(dof) +
+                     " (one per joint), not " + std::to_string(speeds.size()) + ": '" + text + "'"};
+  }
+  return speeds;
+}
+
 }  // namespace
 
 int run_fit(const CommandLine& args) {
   reject_positional(args);
   const double weight = prior_weight(args);
   if (args.has("--method") && args.one("--method") == "ml") {
-    for (const char* option : {"--essential", "--r-sigma", "--plot"}) {
+    for (const char* option : {"--essential", "--r-sigma", "--plot", "--min-speed"}) {
       if (args.has(option)) {
         throw UsageError{std::string(option) + " belongs to the linear methods, not --method ml"};
       }
@@ -237,6 +259,9 @@ int run_fit(const CommandLine& args) {
   if (essential && closed_loop) {
     throw UsageError{"--essential belongs to the linear methods ols, wls and pim-wls"};
   }
+  if (args.has("--min-speed") && closed_loop) {
+    throw UsageError{"--min-speed belongs to the linear methods ols, wls and pim-wls"};
+  }
   double r_sigma = kDefaultRSigma;
   if (args.has("--r-sigma")) {
     if (!essential) throw UsageError{"--r-sigma is the ratio of --essential; add --essential"};
@@ -257,6 +282,7 @@ int run_fit(const CommandLine& args) {
 
   IdentifyOptions options;
   options.decimation = experiments.decimation;
+  options.min_speed = min_speed(args, model.dof());
   if (essential) options.essential_r_sigma = r_sigma;
   Progress fitting("fitting", 1000);
   options.progress = [&fitting](double fraction) {
@@ -279,6 +305,11 @@ int run_fit(const CommandLine& args) {
   std::cout << "modelid fit: " << model.name() << ", " << label << " on "
             << data.size() << " experiment(s), " << id.samples << " samples\n"
             << data_report.str() << closed_loop_report.str();
+  if (!options.min_speed.empty()) {
+    std::cout << "  --min-speed: " << id.slow_samples << " of " << id.samples + id.slow_samples
+              << " samples left out (a joint slower than its minimum speed, after the "
+                 "decimation)\n";
+  }
   const std::vector<EstimatedParameter> parameters = estimated(id.fit, id.names, truth);
   if (print_parameter_table(parameters)) {
     std::cout << "  * %std above " << kPoorlyIdentifiedPercent

@@ -23,7 +23,7 @@ using namespace modelgen::internal;
 constexpr const char* kUsage =
     "usage: modelid fit --robot ROBOT --data A.csv [--data B.csv ...] --method ols|wls|pim-wls\n"
     "                   [-o EST.json] [--truth TRUE.json] [--essential [--r-sigma R]]\n"
-    "                   [--physical [--prior-weight W]] [--plot DIR]\n"
+    "                   [--physical [--prior-weight W]] [--min-speed V[,...]] [--plot DIR]\n"
     "       modelid fit --method iv|didim --controller C.yaml --robot ROBOT --data A.csv\n"
     "                   [-o EST.json] [--truth TRUE.json] [--physical] [--plot DIR]\n"
     "       modelid fit --method ml --approach 1|2|3|all --robot DESCRIPTION.yaml --periodic\n"

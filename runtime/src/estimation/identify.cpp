@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <string>
 #include <utility>
 #include <vector>
@@ -72,10 +73,76 @@ Identification identify(const IdentificationModel& model, const std::vector<Traj
   return identify(model, data, method, options);
 }
 
-Identification identify(const IdentificationModel& model, const std::vector<Trajectory>& data,
+namespace {
+
+// The largest |dq| of each joint of `x`, for messages.
+std::string largest_speeds(const Trajectory& x) {
+  std::string text;
+  for (Eigen::Index j = 0; j < x.dq.cols(); ++j) {
+    char value[32];
+    std::snprintf(value, sizeof value, "%.3g", x.dq.col(j).cwiseAbs().maxCoeff());
+    text += (j == 0 ? "" : ", ") + std::string(value);
+  }
+  return text;
+}
+
+std::string slow_error(const Trajectory& x, const std::vector<double>& min_speed,
+                       const std::string& rows) {
+  std::string speeds;
+  for (std::size_t j = 0; j < min_speed.size(); ++j) {
+    char value[32];
+    std::snprintf(value, sizeof value, "%.3g", min_speed[j]);
+    speeds += (j == 0 ? "" : ", ") + std::string(value);
+  }
+  return x.source + ": the minimum speed (" + speeds + ") leaves out every " + rows +
+         ": in each, some joint is slower (largest |dq| per joint: " + largest_speeds(x) +
+         "); give a smaller one";
+}
+
+}  // namespace
+
+Identification identify(const IdentificationModel& model, const std::vector<Trajectory>& all,
                         Method method, const IdentifyOptions& options) {
   const int n = model.dof(), nb = model.num_base_params();
-  if (data.empty()) throw EstimationError("no trajectories: identification needs data");
+  if (all.empty()) throw EstimationError("no trajectories: identification needs data");
+  const std::vector<double>& min_speed = options.min_speed;
+  if (!min_speed.empty()) {
+    if (static_cast<int>(min_speed.size()) != n) {
+      throw EstimationError(std::to_string(min_speed.size()) + " minimum speeds for " +
+                            std::to_string(n) + " joints: give one per joint");
+    }
+    for (const double v : min_speed) {
+      if (!(v >= 0) || !std::isfinite(v)) {
+        throw EstimationError("a minimum speed must be a finite number >= 0");
+      }
+    }
+  }
+  // Experiments streamed sample by sample lose their slow samples here; decimated ones lose
+  // their slow decimated rows in build_decimated (after eq. 13-14).
+  std::vector<Trajectory> fast;
+  Eigen::Index slow_samples = 0;
+  if (!min_speed.empty()) {
+    fast.reserve(all.size());
+    for (std::size_t e = 0; e < all.size(); ++e) {
+      const Trajectory& x = all[e];
+      const bool decimated = e < options.decimation.size() && options.decimation[e] > 1;
+      if (decimated || x.dq.rows() != x.t.size() || x.dq.cols() != n) {
+        fast.push_back(x);  // decimated, or malformed: the checks below say what is wrong
+        continue;
+      }
+      std::vector<Eigen::Index> kept;
+      for (Eigen::Index s = 0; s < x.t.size(); ++s) {
+        if (detail::fast_enough(x.dq.row(s), min_speed)) kept.push_back(s);
+      }
+      if (kept.empty() && x.t.size() > 0) throw EstimationError(slow_error(x, min_speed, "sample"));
+      slow_samples += x.t.size() - static_cast<Eigen::Index>(kept.size());
+      Trajectory y = x;
+      y.t = x.t(kept);
+      for (Eigen::MatrixXd* m : {&y.q, &y.dq, &y.ddq, &y.tau}) *m = (*m)(kept, Eigen::all).eval();
+      fast.push_back(std::move(y));
+    }
+  }
+  const std::vector<Trajectory>& data = min_speed.empty() ? all : fast;
   std::vector<int> decimation = options.decimation;
   if (decimation.empty()) decimation.assign(data.size(), 1);
   if (decimation.size() != data.size()) {
@@ -87,10 +154,17 @@ Identification identify(const IdentificationModel& model, const std::vector<Traj
       throw EstimationError(data[e].source + ": decimation factor " +
                             std::to_string(decimation[e]) + ": it must be at least 1");
     }
-    if (decimation[e] > 1 && decimated_rows(data[e].t.size(), decimation[e]) < 2) {
+    if (decimation[e] > 1) {
+      try {
+        decimation_stages(decimation[e]);
+      } catch (const std::invalid_argument& error) {
+        throw EstimationError(data[e].source + ": " + error.what());
+      }
+    }
+    if (decimation[e] > 1 && decimated_interior(data[e].t.size(), decimation[e]).count < 2) {
       throw EstimationError(data[e].source + ": decimation by " + std::to_string(decimation[e]) +
                             " leaves fewer than 2 of its " + std::to_string(data[e].t.size()) +
-                            " samples");
+                            " samples clear of the filter's edges");
     }
   }
   Eigen::Index samples = 0;
@@ -143,14 +217,19 @@ Identification identify(const IdentificationModel& model, const std::vector<Traj
       used_samples += data[e].t.size();
       continue;
     }
-    decimated.push_back(
-        build_decimated(model, data[e], e, decimation[e], power, equations[0], progress));
+    decimated.push_back(build_decimated(model, data[e], e, decimation[e], power, min_speed,
+                                        equations[0], progress));
+    if (decimated.back().W.rows() == 0) {
+      throw EstimationError(slow_error(data[e], min_speed, "decimated row"));
+    }
     used_samples += decimated.back().W.rows() / n;
+    slow_samples += decimated.back().slow_rows;
   }
 
   Identification out;
   out.names = model.base_param_names();
   out.samples = used_samples;
+  out.slow_samples = slow_samples;
   try {
     out.fit =
         method == Method::kOls ? equations[0].fit_ols(out.names) : equations[0].fit_wls(out.names);

@@ -107,9 +107,11 @@ void build_equations(const IdentificationModel& model, const std::vector<Traject
 
 DecimatedExperiment build_decimated(const IdentificationModel& model, const Trajectory& x,
                                     std::size_t e, int factor, bool power,
+                                    const std::vector<double>& min_speed,
                                     LeastSquaresAccumulator& equations, Progress& progress) {
   const int n = model.dof(), nb = model.num_base_params();
-  const Eigen::Index m = x.t.size(), md = decimated_rows(m, factor);
+  const Eigen::Index m = x.t.size();
+  Eigen::Index md = decimated_rows(m, factor);
   Eigen::MatrixXd W(m * n, nb);
   Eigen::VectorXd tau(m * n);
   Eigen::MatrixXd P(power ? m : 0, nb);
@@ -138,10 +140,38 @@ DecimatedExperiment build_decimated(const IdentificationModel& model, const Traj
     decimate(joint_rows(tau.data(), tau.size(), 1, n, j), factor,
              joint_rows(out.tau.data(), out.tau.size(), 1, n, j));
   }
+  // Only the rows the end samples do not dominate (decimated_interior), the same for W, tau
+  // and the power equations.
+  const DecimatedRange kept = decimated_interior(m, factor);
+  // And, with a minimum speed, the rows where a joint is slower, dq decimated alike.
+  std::vector<Eigen::Index> rows_kept;
+  const Eigen::MatrixXd dq_d =
+      min_speed.empty() ? Eigen::MatrixXd() : decimate_interior(x.dq, factor);
+  for (Eigen::Index i = 0; i < kept.count; ++i) {
+    if (min_speed.empty() || fast_enough(dq_d.row(i), min_speed)) rows_kept.push_back(i);
+  }
+  md = static_cast<Eigen::Index>(rows_kept.size());
+  out.slow_rows = kept.count - md;
+  Eigen::MatrixXd W_kept(md * n, nb);
+  Eigen::VectorXd tau_kept(md * n);
+  for (Eigen::Index r = 0; r < md; ++r) {
+    const Eigen::Index from = (kept.first + rows_kept[r]) * n;
+    W_kept.middleRows(r * n, n) = out.W.middleRows(from, n);
+    tau_kept.segment(r * n, n) = out.tau.segment(from, n);
+  }
+  out.W = std::move(W_kept);
+  out.tau = std::move(tau_kept);
   const int experiment = static_cast<int>(e);
+  if (md == 0) return out;  // identify() says which experiment lost every row
   if (power) {
-    const Eigen::MatrixXd Pd = decimate(P, factor);
-    const Eigen::MatrixXd pd = decimate(p, factor);
+    const Eigen::MatrixXd P_all = decimate_interior(P, factor);
+    const Eigen::MatrixXd p_all = decimate_interior(p, factor);
+    Eigen::MatrixXd Pd(md, nb);
+    Eigen::VectorXd pd(md);
+    for (Eigen::Index r = 0; r < md; ++r) {
+      Pd.row(r) = P_all.row(rows_kept[r]);
+      pd[r] = p_all(rows_kept[r], 0);
+    }
     equations.add(experiment, md, Pd.data(), 1, Pd.rows(), pd.data(), 1);
   } else {
     for (int j = 0; j < n; ++j) {

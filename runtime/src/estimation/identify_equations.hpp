@@ -74,14 +74,27 @@ struct DecimatedExperiment {
   std::size_t experiment = 0;
   Eigen::MatrixXd W;
   Eigen::VectorXd tau;
+  Eigen::Index slow_rows = 0;
 };
+
+// Whether every joint of `dq` (one row) moves at least at its min_speed (empty: true).
+inline bool fast_enough(const Eigen::Ref<const Eigen::RowVectorXd>& dq,
+                        const std::vector<double>& min_speed) {
+  for (std::size_t j = 0; j < min_speed.size(); ++j) {
+    if (std::abs(dq[static_cast<Eigen::Index>(j)]) < min_speed[j]) return false;
+  }
+  return true;
+}
 
 // Builds experiment e's whole IDIM W and torques, decimates every column of each joint's rows
 // and the torques with the same filter, and adds the result to `equations` (and, for the PIM,
 // the power rows dq^T W with the powers dq . tau, decimated the same way: both are linear in
 // the rows they combine, so the decimated equations still hold, eq. 14).
+// With `min_speed` (one per joint, or empty), the decimated rows where a joint's decimated
+// |dq| is below its value are left out too (DecimatedExperiment::slow_rows counts them).
 DecimatedExperiment build_decimated(const IdentificationModel& model, const Trajectory& x,
                                     std::size_t e, int factor, bool power,
+                                    const std::vector<double>& min_speed,
                                     LeastSquaresAccumulator& equations, Progress& progress);
 
 // Per joint, sums of squares of measured minus predicted torque and of measured torque over

@@ -97,8 +97,9 @@ TorquePrediction predict_decimated(const IdentificationModel& model, std::vector
   TorquePrediction full = predict_torques(model, data, beta, progress);
   for (std::size_t e = 0; e < data.size() && e < decimation.size(); ++e) {
     if (decimation[e] == 1) continue;
-    // Eq. 14: decimate(W) beta = decimate(W beta), the same filter on both sides.
-    full.tau_pred[e] = decimate(full.tau_pred[e], decimation[e]);
+    // Eq. 14: decimate(W) beta = decimate(W beta), the same filter on both sides, the same
+    // rows kept as identify() keeps.
+    full.tau_pred[e] = decimate_interior(full.tau_pred[e], decimation[e]);
     decimate_trajectory(data[e], decimation[e]);
   }
   return compare(data, std::move(full.tau_pred));

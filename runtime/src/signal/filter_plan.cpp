@@ -13,6 +13,7 @@
 
 #include <unsupported/Eigen/FFT>
 
+#include "modelgen/signal/decimation.hpp"
 #include "modelgen/signal/sampling.hpp"
 #include "runtime/src/signal/dft.hpp"
 #include "runtime/src/signal/trajectory_checks.hpp"
@@ -153,8 +154,9 @@ FilterPlan plan_filtering(double sample_rate_hz, double bandwidth_hz) {
   plan.bandwidth_hz = bandwidth_hz;
   const bool capped = 10.0 * bandwidth_hz > 0.8 * nyquist;
   plan.position_cutoff_hz = capped ? 0.8 * nyquist : 10.0 * bandwidth_hz;
-  plan.decimation_factor =
-      std::max(1, static_cast<int>(std::floor(0.8 * nyquist / (2.0 * bandwidth_hz))));
+  // The largest factor the rule allows that runs in stages of at most 10 (decimation_stages).
+  plan.decimation_factor = decimation_factor_below(
+      std::max(1, static_cast<int>(std::floor(0.8 * nyquist / (2.0 * bandwidth_hz)))));
   plan.decimation_cutoff_hz = 0.8 * nyquist / plan.decimation_factor;
   std::string text =
       "positions: zero-phase Butterworth order " + std::to_string(plan.position_order) + " at " +
@@ -165,10 +167,14 @@ FilterPlan plan_filtering(double sample_rate_hz, double bandwidth_hz) {
         "torques and regressor not decimated (a decimation filter at 2 x the bandwidth "
         "would need a higher sample rate)";
   } else {
+    std::string stages;
+    for (int stage : decimation_stages(plan.decimation_factor)) {
+      stages += (stages.empty() ? "" : " x ") + std::to_string(stage);
+    }
     text += "torques and regressor decimated by " + std::to_string(plan.decimation_factor) + " (" +
             format(sample_rate_hz) + " Hz to " + format(sample_rate_hz / plan.decimation_factor) +
-            " Hz, Chebyshev I order 8 zero-phase at " + format(plan.decimation_cutoff_hz) +
-            " Hz, at least 2 x the bandwidth)";
+            " Hz in stages " + stages + ", Chebyshev I order 8 zero-phase, last cut-off " +
+            format(plan.decimation_cutoff_hz) + " Hz, at least 2 x the bandwidth)";
   }
   plan.explanation = text;
   return plan;

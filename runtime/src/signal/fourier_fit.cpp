@@ -27,7 +27,80 @@ using detail::dft;
 using detail::fail;
 using detail::format;
 
+// Lines above this many times their noise variance are signal: exp(-25) = 1.4e-11 under noise.
+constexpr double kLineSignificance = 25.0;
+// The noise variance of a line: the mean over this many lines on either side (one line's
+// variance from P periods has only 2 (P - 1) degrees of freedom), then the largest such mean
+// within as many lines, so that a narrow peak of coloured noise is not averaged away.
+constexpr Eigen::Index kVarianceLines = 2;
+
+// The highest line 1..max_line of any column of x (one period) whose power stands out of its
+// line noise variance (rows 0..N/2 of `variance`), and of round-off (1e-18 of the largest line
+// power, as the per-axis rule's 1e-9 of the largest amplitude); 0 when none does.
+Eigen::Index highest_significant_line(const Eigen::MatrixXd& x, const Eigen::MatrixXd& variance,
+                                      Eigen::Index max_line) {
+  Eigen::Index highest = 0;
+  const Eigen::Index last = variance.rows() - 1;
+  std::vector<std::vector<Complex>> spectra;
+  double largest = 0;
+  for (Eigen::Index j = 0; j < x.cols(); ++j) {
+    spectra.push_back(dft(x.col(j)));
+    for (Eigen::Index l = 1; l <= max_line; ++l) largest = std::max(largest, std::norm(spectra[j][l]));
+  }
+  for (Eigen::Index j = 0; j < x.cols(); ++j) {
+    Eigen::VectorXd mean(last + 1);
+    for (Eigen::Index l = 0; l <= last; ++l) {
+      const Eigen::Index from = std::max<Eigen::Index>(1, l - kVarianceLines);
+      const Eigen::Index to = std::max(from, std::min(last, l + kVarianceLines));
+      mean[l] = variance.col(j).segment(from, to - from + 1).mean();
+    }
+    for (Eigen::Index l = max_line; l > highest; --l) {
+      const Eigen::Index from = std::max<Eigen::Index>(1, l - kVarianceLines);
+      const Eigen::Index to = std::min(last, l + kVarianceLines);
+      const double noise = mean.segment(from, to - from + 1).maxCoeff();
+      if (std::norm(spectra[j][l]) > std::max(kLineSignificance * noise, 1e-18 * largest)) {
+        highest = l;
+        break;
+      }
+    }
+  }
+  return highest;
+}
+
 }  // namespace
+
+int select_torque_harmonics(const PeriodicAverage& average, int position_harmonics) {
+  const Trajectory& x = average.averaged;
+  const Eigen::Index n = x.tau.rows();
+  const Eigen::Index max_harmonics = (n - 1) / 2;
+  if (average.tau_line_variance.rows() != n / 2 + 1 ||
+      average.tau_line_variance.cols() != x.tau.cols()) {
+    return position_harmonics;
+  }
+  check_finite(x, x.tau, "tau");
+  return static_cast<int>(std::max<Eigen::Index>(
+      position_harmonics, highest_significant_line(x.tau, average.tau_line_variance, max_harmonics)));
+}
+
+void keep_harmonics(Trajectory& one_period, Eigen::MatrixXd& columns, int harmonics) {
+  const Eigen::Index n = columns.rows();
+  if (harmonics < 0 || 2 * static_cast<Eigen::Index>(harmonics) >= n) {
+    fail(one_period, "cannot keep " + std::to_string(harmonics) + " harmonics of " +
+                         std::to_string(n) + " samples per period");
+  }
+  for (Eigen::Index j = 0; j < columns.cols(); ++j) {
+    const std::vector<Complex> spectrum = dft(columns.col(j));
+    for (Eigen::Index k = 0; k < n; ++k) {
+      double value = spectrum[0].real();
+      for (int l = 1; l <= harmonics; ++l) {
+        value += 2.0 * (spectrum[l] * std::polar(1.0, 2.0 * kPi * l * static_cast<double>(k) /
+                                                          static_cast<double>(n)))
+                           .real();
+      }
+      columns(k, j) = value / static_cast<double>(n);
+    }
+  }
+}
 
 int select_harmonics(const PeriodicAverage& average) {
   const Trajectory& x = average.averaged;
@@ -48,6 +121,10 @@ int select_harmonics(const PeriodicAverage& average) {
     for (Eigen::Index l = 1; l <= max_harmonics; ++l) {
       amplitude(l - 1, j) = 2.0 * std::abs(spectrum[l]) / static_cast<double>(n);
     }
+  }
+  if (average.q_line_variance.rows() == n / 2 + 1 && average.q_line_variance.cols() == dof) {
+    return static_cast<int>(std::max<Eigen::Index>(
+        1, highest_significant_line(x.q, average.q_line_variance, max_harmonics)));
   }
   const double floor = 1e-9 * amplitude.maxCoeff();
   Eigen::Index harmonics = 1;

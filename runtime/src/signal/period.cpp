@@ -232,7 +232,8 @@ PeriodicAverage average_periods(const Trajectory& x, double period) {
   avg.has_velocity = x.has_velocity;
   const double p = static_cast<double>(periods);
   // Mean over the periods of each sample of the period, and the sum of squared deviations.
-  auto average = [&](const Eigen::MatrixXd& in, Eigen::MatrixXd& mean, Eigen::VectorXd* var) {
+  auto average = [&](const Eigen::MatrixXd& in, Eigen::MatrixXd& mean, Eigen::VectorXd* var,
+                     Eigen::MatrixXd* lines) {
     mean = Eigen::MatrixXd::Zero(samples, dof);
     for (Eigen::Index i = 0; i < periods; ++i) mean += in.middleRows(i * samples, samples);
     mean /= p;
@@ -247,12 +248,23 @@ PeriodicAverage average_periods(const Trajectory& x, double period) {
       // N (P - 1) degrees of freedom make it unbiased.
       (*var)[j] = squares / (static_cast<double>(samples) * (p - 1.0)) / p;
     }
+    // The same spread line by line: the DFT of each period's deviation from the mean.
+    const Eigen::Index half = samples / 2;
+    lines->setZero(half + 1, dof);
+    for (Eigen::Index j = 0; j < dof; ++j) {
+      for (Eigen::Index i = 0; i < periods; ++i) {
+        const Eigen::VectorXd deviation = in.col(j).segment(i * samples, samples) - mean.col(j);
+        const std::vector<std::complex<double>> d = detail::dft(deviation);
+        for (Eigen::Index l = 0; l <= half; ++l) (*lines)(l, j) += std::norm(d[l]);
+      }
+    }
+    *lines /= p * (p - 1.0);
   };
-  average(x.q, avg.q, &out.q_noise_variance);
-  average(x.tau, avg.tau, &out.tau_noise_variance);
+  average(x.q, avg.q, &out.q_noise_variance, &out.q_line_variance);
+  average(x.tau, avg.tau, &out.tau_noise_variance, &out.tau_line_variance);
   if (x.has_velocity) {
-    average(x.dq, avg.dq, nullptr);
-    average(x.ddq, avg.ddq, nullptr);
+    average(x.dq, avg.dq, nullptr, nullptr);
+    average(x.ddq, avg.ddq, nullptr, nullptr);
   } else {
     avg.dq = Eigen::MatrixXd::Zero(samples, dof);
     avg.ddq = Eigen::MatrixXd::Zero(samples, dof);

@@ -38,6 +38,17 @@ double nominal_step(const Eigen::VectorXd& t) {
   return std::abs(mean - median) <= 0.01 * median ? mean : median;
 }
 
+// A command held over [t_k, t_k+1) acts, within the band, as the sampled signal delayed by half
+// a sample: at t_k it is best the mean of tau_k-1 and tau_k (linear interpolation half a sample
+// back); the first sample is extrapolated from the first two.
+void pair_held_torques(Trajectory& x) {
+  const Eigen::Index n = x.tau.rows();
+  if (n < 2) return;
+  const Eigen::RowVectorXd first = 1.5 * x.tau.row(0) - 0.5 * x.tau.row(1);
+  for (Eigen::Index k = n - 1; k > 0; --k) x.tau.row(k) = 0.5 * (x.tau.row(k) + x.tau.row(k - 1));
+  x.tau.row(0) = first;
+}
+
 // Same test as uniform_sample_time: every sample within 1% of dt of the uniform grid.
 bool is_uniform(const Eigen::VectorXd& t) {
   const Eigen::Index n = t.size();
@@ -80,7 +91,16 @@ PreparedExperiment prepare_joint_side(Trajectory raw, const PreparationOptions& 
 PreparedExperiment prepare_experiment(Trajectory raw, const DriveChain& drive,
                                       const PreparationOptions& options) {
   to_joint_side(raw, drive, options.side);
-  if (!options.every_sample) return prepare_joint_side(std::move(raw), options, false);
+  if (options.torque_hold) pair_held_torques(raw);
+  const std::string held = options.torque_hold
+                               ? "torque commands held over each sample, paired half a sample "
+                                 "later; "
+                               : "";
+  if (!options.every_sample) {
+    PreparedExperiment out = prepare_joint_side(std::move(raw), options, false);
+    out.summary = held + out.summary;
+    return out;
+  }
   // One row per input sample: the motion as the route makes it (filtered positions and their
   // derivatives, or the Fourier series), taken back to the file's own time stamps, with the
   // torques as measured; nothing decimated.
@@ -93,7 +113,7 @@ PreparedExperiment prepare_experiment(Trajectory raw, const DriveChain& drive,
   }
   out.data = std::move(raw);
   out.decimation = 1;
-  out.summary += "; every sample of the file kept (no decimation" +
+  out.summary = held + out.summary + "; every sample of the file kept (no decimation" +
                  std::string(options.periodic ? ", the series evaluated at each time stamp)"
                                               : ")");
   return out;
@@ -132,6 +152,13 @@ PreparedExperiment prepare_joint_side(Trajectory raw, const PreparationOptions& 
     const int harmonics = options.harmonics ? *options.harmonics : select_harmonics(average);
     const FourierTrajectory fourier = fit_fourier(average.averaged, average.period, harmonics);
     apply_fourier(average.averaged, fourier);
+    // Bona & Curatella 3.4: the averaged torques keep the lines that stand out of their noise;
+    // the controller's content above them (the D term's encoder noise) is dropped.
+    // When every harmonic stands out (noise-free data), nothing is noise: the torques stay whole
+    // (projecting them would still drop an even period's Nyquist line).
+    const int torque_harmonics = select_torque_harmonics(average, harmonics);
+    const bool whole = torque_harmonics >= (average.samples_per_period - 1) / 2;
+    if (!whole) keep_harmonics(average.averaged, average.averaged.tau, torque_harmonics);
     out.data = std::move(average.averaged);
     out.tau_noise_variance = average.tau_noise_variance;
     out.decimation = options.decimation.value_or(1);
@@ -139,7 +166,11 @@ PreparedExperiment prepare_joint_side(Trajectory raw, const PreparationOptions& 
                   std::to_string(average.samples_per_period) + " samples (period " +
                   number(average.period, 6) + " s" + (options.period ? "" : ", detected") +
                   ") averaged, " + std::to_string(harmonics) +
-                  " harmonics re-estimated; torque noise std of the averages:";
+                  " harmonics re-estimated, " +
+                  (whole ? std::string("torques kept whole (every harmonic above their noise)")
+                         : "torques kept up to harmonic " + std::to_string(torque_harmonics) +
+                               " (" + number(torque_harmonics / average.period, 3) + " Hz)") +
+                  "; torque noise std of the averages:";
     for (Eigen::Index j = 0; j < out.tau_noise_variance.size(); ++j) {
       out.summary += " " + number(std::sqrt(out.tau_noise_variance[j]), 3);
     }

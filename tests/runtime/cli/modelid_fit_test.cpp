@@ -289,3 +289,55 @@ TEST(ModelidFit, ImpossibleEstimatesAreFlagged) {
 
 }  // namespace
 }  // namespace modelgen
+
+namespace modelgen {
+namespace {
+
+TEST(ModelidFit, MinSpeedLeavesOutTheSamplesWhereAJointIsSlow) {
+  // The bundled run gives dq: no decimation, so the samples left out are those where some
+  // |dq_j| < 0.1, counted here from the file.
+  const Trajectory x =
+      read_trajectory_csv(test::source_path(kData), 6, EffortColumns::kRequired);
+  Eigen::Index slow = 0;
+  for (Eigen::Index s = 0; s < x.t.size(); ++s) {
+    if ((x.dq.row(s).array().abs() < 0.1).any()) ++slow;
+  }
+  ASSERT_GT(slow, 0);
+  const CliRun run = test::modelid("fit --robot kr150 --data " + quoted_source(kData) +
+                                   " --method wls --min-speed 0.1");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const std::string line = "--min-speed: " + std::to_string(slow) + " of " +
+                           std::to_string(x.t.size()) + " samples left out";
+  EXPECT_NE(run.out.find(line), std::string::npos) << line << "\n" << run.out;
+  EXPECT_NE(run.out.find(std::to_string(x.t.size() - slow) + " samples"), std::string::npos)
+      << run.out;
+
+  const CliRun everything =
+      test::modelid("fit --robot kr150 --data " + quoted_source(kData) + " --method wls --min-speed 50");
+  EXPECT_EQ(everything.exit_code, 1);
+  EXPECT_NE(everything.err.find("leaves out every sample"), std::string::npos) << everything.err;
+  const CliRun wrong =
+      test::modelid("fit --robot kr150 --data " + quoted_source(kData) + " --method wls --min-speed 0.1,0.2");
+  EXPECT_EQ(wrong.exit_code, 2);
+  EXPECT_NE(wrong.err.find("--min-speed needs one speed or 6 (one per joint)"), std::string::npos)
+      << wrong.err;
+}
+
+}  // namespace
+}  // namespace modelgen
+
+namespace modelgen {
+namespace {
+
+TEST(ModelidFit, ADecimationFactorThatCannotBeStagedIsRefused) {
+  const CliRun run = test::modelid("fit --robot kr150 --data " + quoted_source(kData) +
+                                   " --method wls --decimate 22");
+  EXPECT_EQ(run.exit_code, 2);
+  EXPECT_NE(run.err.find("--decimate: decimation factor 22 has the prime factor 11, above 10"),
+            std::string::npos)
+      << run.err;
+  EXPECT_NE(run.err.find("use 21 or 24"), std::string::npos) << run.err;
+}
+
+}  // namespace
+}  // namespace modelgen

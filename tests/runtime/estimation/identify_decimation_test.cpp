@@ -54,7 +54,10 @@ struct Stack {
 };
 
 // Appends experiment e's equations, decimated by `factor`, as identify() is documented to.
-void append(Stack& stack, const Trajectory& x, int e, int factor, bool power) {
+// With `min_speed` (a speed per joint), the rows where a joint is slower are left out: for a
+// decimated experiment judged on dq decimated like the equations.
+void append(Stack& stack, const Trajectory& x, int e, int factor, bool power,
+            const std::vector<double>& min_speed = {}) {
   const int n = 6, nb = kModel.num_base_params();
   const Eigen::Index m = x.t.size();
   Eigen::MatrixXd rows(power ? m : m * n, nb);
@@ -77,16 +80,27 @@ void append(Stack& stack, const Trajectory& x, int e, int factor, bool power) {
   }
   const int blocks = power ? 1 : n;
   for (int j = 0; j < blocks; ++j) {
-    const Eigen::MatrixXd Wj = factor > 1 ? decimate(rows.middleRows(j * m, m), factor)
+    // Decimated, only the rows clear of the filter's edges are equations.
+    const Eigen::MatrixXd Wj = factor > 1 ? decimate_interior(rows.middleRows(j * m, m), factor)
                                           : Eigen::MatrixXd(rows.middleRows(j * m, m));
-    const Eigen::MatrixXd yj =
-        factor > 1 ? decimate(y.segment(j * m, m), factor) : Eigen::MatrixXd(y.segment(j * m, m));
+    const Eigen::MatrixXd yj = factor > 1 ? decimate_interior(y.segment(j * m, m), factor)
+                                          : Eigen::MatrixXd(y.segment(j * m, m));
+    const Eigen::MatrixXd dq = factor > 1 ? decimate_interior(x.dq, factor) : x.dq;
+    std::vector<Eigen::Index> kept;
+    for (Eigen::Index r = 0; r < Wj.rows(); ++r) {
+      bool slow = false;
+      for (std::size_t k = 0; k < min_speed.size(); ++k) {
+        slow = slow || std::abs(dq(r, static_cast<Eigen::Index>(k))) < min_speed[k];
+      }
+      if (!slow) kept.push_back(r);
+    }
+    const auto count = static_cast<Eigen::Index>(kept.size());
     const Eigen::Index r0 = stack.W.rows();
-    stack.W.conservativeResize(r0 + Wj.rows(), nb);
-    stack.y.conservativeResize(r0 + Wj.rows());
-    stack.W.bottomRows(Wj.rows()) = Wj;
-    stack.y.tail(Wj.rows()) = yj.col(0);
-    for (Eigen::Index r = 0; r < Wj.rows(); ++r) stack.group.push_back(power ? e : e * n + j);
+    stack.W.conservativeResize(r0 + count, nb);
+    stack.y.conservativeResize(r0 + count);
+    stack.W.bottomRows(count) = Wj(kept, Eigen::all);
+    stack.y.tail(count) = yj(kept, 0);
+    for (Eigen::Index r = 0; r < count; ++r) stack.group.push_back(power ? e : e * n + j);
   }
 }
 
@@ -126,8 +140,10 @@ TEST_P(IdentifyDecimation, EqualsTheEquationsStackedByHand) {
     EXPECT_LT(test::relative_error(id.fit.value, expected.value, 1.0), 1e-9);
     EXPECT_LT(test::relative_error(id.fit.std_dev, expected.std_dev, 1.0), 1e-7);
   }
-  // Rows used: 5000 / 5, 5000 and 1000 / 3 samples (per joint for the IDIM).
-  EXPECT_EQ(id.samples, decimated_rows(5000, 5) + 5000 + decimated_rows(1000, 3));
+  // Rows used: 5000 / 5, 5000 and 1000 / 3 samples (per joint for the IDIM), less the
+  // decimated rows at the edges.
+  EXPECT_EQ(id.samples, decimated_interior(5000, 5).count + 5000 + decimated_interior(1000, 3).count);
+  EXPECT_LT(decimated_interior(5000, 5).count, decimated_rows(5000, 5));
   // Against a fit without decimation the estimates differ (the filter changed the equations),
   // so the comparison above can fail.
   const Identification plain = identify(kModel, data, method);
@@ -136,6 +152,40 @@ TEST_P(IdentifyDecimation, EqualsTheEquationsStackedByHand) {
 
 INSTANTIATE_TEST_SUITE_P(Methods, IdentifyDecimation,
                          testing::Values(Method::kOls, Method::kWls, Method::kPimWls));
+
+TEST(IdentifyDecimation, MinSpeedLeavesOutTheSlowRowsAfterTheDecimation) {
+  test::Random random(6);
+  const Eigen::VectorXd beta = random.vector(kModel.num_base_params(), -2, 2);
+  const std::vector<Trajectory> data = {experiment(beta, 1, 0.002, 10.0),
+                                        experiment(beta, 2, 0.002, 10.0)};
+  const std::vector<int> factors = {5, 1};
+  const std::vector<double> min_speed = {0.3, 0.2, 0.2, 0.1, 0.1, 0.1};
+  IdentifyOptions options;
+  options.decimation = factors;
+  options.min_speed = min_speed;
+  const Identification id = identify(kModel, data, Method::kWls, options);
+  Stack stack;
+  stack.W.resize(0, kModel.num_base_params());
+  for (int e = 0; e < 2; ++e) append(stack, data[e], e, factors[e], false, min_speed);
+  const LeastSquaresResult expected =
+      fit_wls(stack.W, stack.y, stack.group, kModel.base_param_names());
+  EXPECT_LT(test::relative_error(id.fit.value, expected.value, 1.0), 1e-9);
+  EXPECT_LT(test::relative_error(id.fit.std_dev, expected.std_dev, 1.0), 1e-7);
+  const Eigen::Index all = decimated_interior(5000, 5).count + 5000;
+  EXPECT_EQ(id.samples, stack.W.rows() / 6);
+  EXPECT_EQ(id.samples + id.slow_samples, all);
+  EXPECT_GT(id.slow_samples, all / 20);  // the joints reverse: some rows go
+  // A speed no sample reaches: refused, naming the experiment and its speeds.
+  options.min_speed.assign(6, 100.0);
+  try {
+    identify(kModel, data, Method::kWls, options);
+    ADD_FAILURE() << "a minimum speed that leaves nothing was accepted";
+  } catch (const EstimationError& e) {
+    EXPECT_NE(std::string(e.what()).find("leaves out every"), std::string::npos) << e.what();
+  }
+  options.min_speed = {0.1};
+  EXPECT_THROW(identify(kModel, data, Method::kWls, options), EstimationError);
+}
 
 TEST(IdentifyDecimation, FactorsAreChecked) {
   test::Random random(5);

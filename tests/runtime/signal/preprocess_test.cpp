@@ -233,6 +233,77 @@ TEST(FitFourier, NoisyAverageGivesCoefficientsWithinTheirStatisticalError) {
             0.3 * rms((avg.averaged.q - exact.q.topRows(n)).reshaped()));
 }
 
+// Noise concentrated in a band, as a closed loop's response to its encoder noise is (around
+// the loop's bandwidth): white noise through a resonance at `centre_hz`, per column.
+Eigen::MatrixXd resonant_noise(Eigen::Index rows, Eigen::Index cols, double dt, double centre_hz,
+                               double sigma, std::mt19937_64& engine) {
+  std::normal_distribution<double> white(0.0, 1.0);
+  const double r = 0.995, w = 2 * kPi * centre_hz * dt;
+  Eigen::MatrixXd out(rows, cols);
+  for (Eigen::Index j = 0; j < cols; ++j) {
+    double y1 = 0, y2 = 0;
+    for (Eigen::Index k = -2000; k < rows; ++k) {  // settled before the record starts
+      const double y = 2 * r * std::cos(w) * y1 - r * r * y2 + white(engine);
+      y2 = y1;
+      y1 = y;
+      if (k >= 0) out(k, j) = y;
+    }
+    out.col(j) *= sigma / std::sqrt(out.col(j).squaredNorm() / static_cast<double>(rows));
+  }
+  return out;
+}
+
+TEST(SelectHarmonics, ColouredNoiseIsNotTakenForSignal) {
+  // Five harmonics (0.5 Hz to 2.5 Hz) under noise whose power sits around 20 Hz (harmonic 40):
+  // averaged over the periods it is far below the excitation, but a line there is some 25
+  // times the mean noise line, and a threshold from the per-axis variance (white) took the
+  // lines up to about harmonic 45 for signal. The variance line by line does not.
+  const double period = 2.0, dt = 0.002;
+  const int periods = 8;
+  const FourierTrajectory f = three_axis_excitation(period);
+  Trajectory x = sample(f, dt, periods * period);
+  x.source = "loop.csv";
+  x.tau = torque_of(x);
+  std::mt19937_64 engine(17);
+  x.q += resonant_noise(x.q.rows(), 3, dt, 20.0, 2e-3, engine);
+  const PeriodicAverage avg = average_periods(x, period);
+  ASSERT_EQ(avg.q_line_variance.rows(), 501);
+  EXPECT_EQ(select_harmonics(avg), 5);
+  // The per-axis (white) rule, as select_harmonics applied it before, on the same average.
+  PeriodicAverage white = avg;
+  white.q_line_variance.resize(0, 0);
+  EXPECT_GT(select_harmonics(white), 20);
+  // The line variances follow the colour: around 20 Hz (line 40) far above those at 100 Hz.
+  EXPECT_GT(avg.q_line_variance.row(40).mean(), 20 * avg.q_line_variance.row(200).mean());
+}
+
+TEST(KeepHarmonics, TheAveragedTorqueKeepsItsBandOnly) {
+  // A torque with content at harmonics 2 and 7 and a controller's at 60: keep_harmonics(10)
+  // leaves exactly the first two; select_torque_harmonics keeps the band that stands out of
+  // the torque's noise (7 here), at least the positions' count.
+  const double period = 2.0, dt = 0.002;
+  const int periods = 6;
+  Trajectory x = sample(three_axis_excitation(period), dt, periods * period);
+  x.source = "torque.csv";
+  const Eigen::ArrayXd w = 2 * kPi / period * x.t.array();
+  const Eigen::VectorXd band = (2 * w).sin() + 0.5 * (7 * w).cos();
+  const Eigen::VectorXd above = 3.0 * (60 * w + 0.4).sin();
+  x.tau = Eigen::MatrixXd(x.t.size(), 3);
+  x.tau << band, band + above, band;
+  std::mt19937_64 engine(5);
+  add_noise(x.tau, 0.05, engine);
+  const PeriodicAverage avg = average_periods(x, period);
+  EXPECT_EQ(select_torque_harmonics(avg, 5), 60);  // the content at 60 is periodic: signal
+  EXPECT_EQ(select_torque_harmonics(avg, 80), 80);
+  Trajectory one = avg.averaged;
+  keep_harmonics(one, one.tau, 10);
+  const Eigen::Index n = one.t.size();
+  const double expected_noise = 0.05 / std::sqrt(periods) * std::sqrt(21.0 / n);  // 21 of n lines
+  EXPECT_LT(rms(one.tau.col(1) - band.head(n)), 5 * expected_noise);
+  EXPECT_GT(rms(avg.averaged.tau.col(1) - band.head(n)), 2.0);
+  EXPECT_THROW(keep_harmonics(one, one.tau, 500), DataError);
+}
+
 TEST(FitFourier, RejectsTooManyHarmonicsAndAWrongPeriod) {
   Trajectory x = sample(three_axis_excitation(1.0), 0.1, 1.0);  // 10 samples
   x.source = "one.csv";
@@ -510,6 +581,108 @@ TEST(Decimate, WorksOnOneJointsRowsOfAnInterleavedRegressor) {
   EXPECT_EQ(decimate(Eigen::MatrixXd(0, 4), factor).rows(), 0);
 }
 
+TEST(DecimationStages, SplitFactorsIntoStagesOfAtMostTen) {
+  EXPECT_EQ(decimation_stages(1), std::vector<int>{});
+  EXPECT_EQ(decimation_stages(7), std::vector<int>{7});
+  EXPECT_EQ(decimation_stages(100), (std::vector<int>{10, 10}));
+  EXPECT_EQ(decimation_stages(384), (std::vector<int>{8, 8, 6}));
+  EXPECT_EQ(decimation_stages(1000), (std::vector<int>{10, 10, 10}));
+  for (int factor = 2; factor <= 5000; ++factor) {
+    if (decimation_factor_below(factor) != factor) continue;
+    int product = 1;
+    for (int stage : decimation_stages(factor)) {
+      EXPECT_LE(stage, 10) << factor;
+      product *= stage;
+    }
+    EXPECT_EQ(product, factor);
+  }
+  // A prime above 10 cannot be a stage: refused, with the nearest factors that can.
+  try {
+    decimation_stages(385);
+    ADD_FAILURE() << "385 = 5 x 7 x 11 was accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("prime factor 11"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("use 384 or 392"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(decimate(Eigen::VectorXd::Zero(100), 11), std::invalid_argument);
+  EXPECT_EQ(decimation_factor_below(71), 70);
+  EXPECT_EQ(decimation_factor_below(13), 12);
+}
+
+TEST(Decimate, StagedKeepsAnInBandSineAndRemovesBroadbandContent) {
+  // 1 kHz, factor 100 (10 x 10): a 1 Hz sine under a multi-sine of 200 lines from 20 Hz to the
+  // Nyquist frequency, three times its amplitude (torque content a D term puts above the band).
+  const double fs = 1000, fin = 1.0;
+  const int factor = 100;
+  const Eigen::Index n = 40001;
+  std::mt19937_64 engine(3);
+  std::uniform_real_distribution<double> phase(0, 2 * kPi);
+  Eigen::VectorXd x(n), slow(n);
+  std::vector<double> phases(200);
+  for (double& p : phases) p = phase(engine);
+  for (Eigen::Index k = 0; k < n; ++k) {
+    const double t = static_cast<double>(k) / fs;
+    slow[k] = std::sin(2 * kPi * fin * t + 0.3);
+    double out_of_band = 0;
+    for (int l = 0; l < 200; ++l) out_of_band += std::sin(2 * kPi * (20 + 2.4 * l) * t + phases[l]);
+    x[k] = slow[k] + 3 * std::sqrt(2.0 / 200) * out_of_band;
+  }
+  // Expected gain at 1 Hz: the two stages' zero-phase gains |H|^2, each from the analytic
+  // Chebyshev magnitude at its own rate (cut-offs 40 Hz at 1 kHz, 4 Hz at 100 Hz).
+  const double eps2 = std::pow(10.0, 0.005) - 1;
+  double gain = 1;
+  for (const double rate : {1000.0, 100.0}) {
+    const double w = std::tan(kPi * fin / rate) / std::tan(kPi * 0.04);
+    const double tn = chebyshev_polynomial(8, w);
+    gain *= (1 + eps2) / (1 + eps2 * tn * tn);
+  }
+  const Eigen::VectorXd out = decimate(x, factor);
+  double worst = 0;
+  // Away from the ends (whose pinned samples decay over some ten rows).
+  for (Eigen::Index i = out.size() / 4; i < 3 * out.size() / 4; ++i) {
+    worst = std::max(worst, std::abs(out[i] - gain * slow[i * factor]));
+  }
+  EXPECT_LT(worst, 1e-4);
+  // The same operation on every column: eq. 14 still holds through the stages.
+  Eigen::MatrixXd w(n, 3);
+  w << x, slow, Eigen::VectorXd::LinSpaced(n, -1, 1);
+  const Eigen::Vector3d chi(0.7, -2, 5);
+  const Eigen::VectorXd y = w * chi;
+  EXPECT_LT((decimate(y, factor) - decimate(w, factor) * chi).cwiseAbs().maxCoeff(), 1e-12);
+}
+
+TEST(DecimatedInterior, DropsTheRowsTheEndSamplesDominate) {
+  // White noise: filtfilt's odd reflection pins each end to its end sample, so row 0 carries
+  // that sample's full-band noise. The kept rows carry no more than 1.5 x the noise of the
+  // rows in the middle (averaged over seeds); rows 0 and last, which do, are dropped.
+  for (const int factor : {10, 100, 1000}) {
+    const Eigen::Index n = 100 * factor + 1;
+    const DecimatedRange kept = decimated_interior(n, factor);
+    const Eigen::Index rows = decimated_rows(n, factor);
+    EXPECT_GT(kept.first, 0) << factor;
+    EXPECT_LT(kept.first + kept.count, rows) << factor;
+    EXPECT_GT(kept.count, rows * 8 / 10) << factor;
+    Eigen::VectorXd power = Eigen::VectorXd::Zero(rows);
+    const int seeds = 40;
+    for (int seed = 0; seed < seeds; ++seed) {
+      std::mt19937_64 engine(seed);
+      Eigen::MatrixXd noise = Eigen::MatrixXd::Zero(n, 1);
+      add_noise(noise, 1.0, engine);
+      power += decimate(noise, factor).col(0).array().square().matrix() / seeds;
+    }
+    const double middle = power.segment(rows / 4, rows / 2).mean();
+    EXPECT_GT(power[0], 5 * middle) << factor;
+    for (Eigen::Index i = kept.first; i < kept.first + kept.count; ++i) {
+      EXPECT_LT(power[i], 1.5 * 1.5 * middle) << factor << " row " << i;
+    }
+    // decimate_interior is decimate's rows [first, first + count).
+    Eigen::MatrixXd x = Eigen::MatrixXd::Zero(n, 1);
+    std::mt19937_64 engine(99);
+    add_noise(x, 1.0, engine);
+    EXPECT_EQ(decimate_interior(x, factor), decimate(x, factor).middleRows(kept.first, kept.count));
+  }
+}
+
 // ---------------------------------------------------------------------------------------------
 // Choosing the filters
 
@@ -526,6 +699,11 @@ TEST(PlanFiltering, FollowsTheDocumentedRule) {
   EXPECT_NE(fast.explanation.find("0.8 x Nyquist"), std::string::npos) << fast.explanation;
 
   EXPECT_EQ(plan_filtering(1000, 300).decimation_factor, 1);
+  // The rule's 71 (400 / 71 = 5.6 Hz >= 2 x 2.8 Hz) has a prime above 10: 70 = 10 x 7 runs in
+  // stages, and the explanation shows them.
+  const FilterPlan staged = plan_filtering(1000, 2.81);
+  EXPECT_EQ(staged.decimation_factor, 70);
+  EXPECT_NE(staged.explanation.find("stages 10 x 7"), std::string::npos) << staged.explanation;
   EXPECT_THROW(plan_filtering(1000, 600), std::invalid_argument);
   EXPECT_THROW(plan_filtering(0, 1), std::invalid_argument);
 }

@@ -36,6 +36,8 @@ struct Identification {
   /// ||tau - W beta|| / ||tau|| over all torque equations (Gautier & Briot Tables III-IV).
   double torque_rel_error_norm = 0;
   Eigen::Index samples = 0;  ///< samples used, after decimation
+  /// Samples (decimated rows for a decimated experiment) left out by IdentifyOptions::min_speed.
+  Eigen::Index slow_samples = 0;
   /// Essential parameters (IdentifyOptions::essential_r_sigma set): indices into `names`.
   EssentialParameters essential;
 };
@@ -50,6 +52,14 @@ struct IdentifyOptions {
   /// grows with that experiment's samples times the base parameters for the duration of its
   /// reduction.
   std::vector<int> decimation;
+  /// Per joint, a speed (rad/s, m/s for prismatic joints; >= 0) below which a sample is left
+  /// out: where a joint reverses, sign(dq) of the Coulomb model flips at a dq the preparation
+  /// only estimates, and the measured torque goes through the friction's true, smooth
+  /// transition; empty keeps every sample. A sample is left out when any joint is slower than
+  /// its speed. For a decimated experiment the test is made on the decimated rows, dq decimated
+  /// with the same filter as W and Y (after eq. 13-14: leaving out samples before the filter
+  /// would break the filter, not the equations).
+  std::vector<double> min_speed;
   ProgressCallback progress;
   /// When set, also the essential parameters for this r_sigma (Identification::essential).
   std::optional<double> essential_r_sigma;
@@ -68,9 +78,11 @@ struct IdentifyOptions {
 Identification identify(const IdentificationModel& model, const std::vector<Trajectory>& data,
                         Method method, const ProgressCallback& progress = nullptr);
 
-/// identify() with options (decimation, essential parameters). Also throws EstimationError
-/// for a decimation list that does not have one factor (>= 1) per experiment, or a factor that
-/// leaves an experiment too few samples.
+/// identify() with options (decimation, minimum speed, essential parameters). Also throws
+/// EstimationError for a decimation list that does not have one factor (>= 1) per experiment,
+/// a factor that leaves an experiment too few samples, a min_speed list that does not have one
+/// value (>= 0) per joint, or one that leaves out every sample of an experiment (the message
+/// gives the experiment's largest speed per joint).
 Identification identify(const IdentificationModel& model, const std::vector<Trajectory>& data,
                         Method method, const IdentifyOptions& options);
 

@@ -54,7 +54,8 @@ struct FilterPlan {
 /// Gautier's practice, as a rule: the position filter must not touch the dynamics, so its
 /// cut-off is 10 x the bandwidth (at most 0.8 x Nyquist); the decimation keeps the identified
 /// frequency range, so n_d is the largest factor whose decimation filter cut-off,
-/// 0.8 (fs / 2) / n_d, is still at least 2 x the bandwidth (n_d = 1 when none is).
+/// 0.8 (fs / 2) / n_d, is still at least 2 x the bandwidth (n_d = 1 when none is) and that
+/// runs in stages of at most 10 (decimation_factor_below: 71 becomes 70 = 10 x 7).
 /// Throws std::invalid_argument for a sample rate <= 0 or a bandwidth not in (0, fs / 2).
 FilterPlan plan_filtering(double sample_rate_hz, double bandwidth_hz);
 

@@ -38,6 +38,12 @@ struct PeriodicAverage {
   /// the sample variance over the periods divided by the number of periods (see
   /// average_periods).
   Eigen::VectorXd tau_noise_variance, q_noise_variance;
+  /// Per DFT line l = 0..N/2 (rows) and axis: the noise variance of line l of the averaged
+  /// torque and position, E |X_l - X_l,true|^2 with X_l = sum_k x_k exp(-2 pi i l k / N),
+  /// from the spread of each period's line about the average: sum_p |D_pl|^2 / (P (P - 1)).
+  /// Noise that is not white (a controller's response to the encoder noise, non-periodic
+  /// motion) has a colour the per-axis variances above do not show.
+  Eigen::MatrixXd tau_line_variance, q_line_variance;
   int periods = 0;                      ///< P, the whole periods averaged
   Eigen::Index samples_per_period = 0;  ///< N = round(period / dt)
   double period = 0;                    ///< N dt, s

@@ -36,6 +36,13 @@ struct PreparationOptions {
   /// as given) and linearly interpolated back to the time stamps when the route resampled,
   /// averaged or dropped samples; the filter's edges are kept; the decimation factor is 1.
   bool every_sample = false;
+  /// The torques are commands held over each sample, tau_k over [t_k, t_k+1) (a digital
+  /// controller's zero-order hold): the torque acting at t_k is then best (tau_k-1 + tau_k) / 2,
+  /// the held signal delayed by half a sample, and each tau_k is replaced by it before anything
+  /// else (the first sample extrapolated linearly). No filter undoes a delay, zero phase or not:
+  /// on the simulated TX-40 of closed_loop_preparation_test it takes the relative error norm
+  /// from 0.031 to 0.025.
+  bool torque_hold = false;
 };
 
 struct PreparedExperiment {
