@@ -23,7 +23,8 @@ const char* closed_loop_method_name(ClosedLoopMethod method) {
 }
 
 Identification fit_closed_loop(const CommandLine& args, const IdentificationModel& model,
-                               const Experiments& experiments, ClosedLoopMethod method,
+                               const Experiments& experiments,
+                               const std::vector<double>& min_speed, ClosedLoopMethod method,
                                std::ostream& report, std::ostream& log) {
   const char* name = closed_loop_method_name(method);
   if (!args.has("--controller")) {
@@ -47,6 +48,7 @@ Identification fit_closed_loop(const CommandLine& args, const IdentificationMode
     ClosedLoopRecord record;
     record.prepared = experiments.data[e];
     record.decimation = experiments.decimation[e];
+    record.torque_hold = args.has("--torque-hold");
     record.qr = raw.qr;
     record.t0 = raw.t[0];
     record.first_row = std::lround((record.prepared.t[0] - raw.t[0]) / gains.sample_time);
@@ -56,6 +58,10 @@ Identification fit_closed_loop(const CommandLine& args, const IdentificationMode
     records.push_back(std::move(record));
   }
   ClosedLoopFitOptions options;
+  if (!min_speed.empty()) {
+    options.min_speed = Eigen::Map<const Eigen::VectorXd>(min_speed.data(),
+                                                           static_cast<Eigen::Index>(min_speed.size()));
+  }
   options.on_iteration = [&log, name](int iteration, double move) {
     log << "modelid fit: " << name << " iteration " << iteration << ": largest change "
         << fixed(move, 0, 3) << " standard deviations\n";

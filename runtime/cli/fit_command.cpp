@@ -259,9 +259,6 @@ int run_fit(const CommandLine& args) {
   if (essential && closed_loop) {
     throw UsageError{"--essential belongs to the linear methods ols, wls and pim-wls"};
   }
-  if (args.has("--min-speed") && closed_loop) {
-    throw UsageError{"--min-speed belongs to the linear methods ols, wls and pim-wls"};
-  }
   double r_sigma = kDefaultRSigma;
   if (args.has("--r-sigma")) {
     if (!essential) throw UsageError{"--r-sigma is the ratio of --essential; add --essential"};
@@ -297,8 +294,8 @@ int run_fit(const CommandLine& args) {
   }
   std::ostringstream closed_loop_report;
   const Identification id =
-      closed_loop ? fit_closed_loop(args, model, experiments, *closed_loop, closed_loop_report,
-                                    std::cerr)
+      closed_loop ? fit_closed_loop(args, model, experiments, options.min_speed, *closed_loop,
+                                    closed_loop_report, std::cerr)
                   : identify(model, data, method, options);
   fitting.finish();
 

@@ -136,7 +136,7 @@ ClosedLoopIdentification identify_closed_loop(const IdentificationModel& model,
   for (std::size_t e = 0; e < records.size(); ++e) {
     const ClosedLoopRecord& r = records[e];
     const Trajectory& x = r.prepared;
-    equations[e].kept = kept_rows(decimate(x.dq, r.decimation), model.drive_chain().motor_from_joint,
+    equations[e].kept = kept_rows(decimate_interior(x.dq, r.decimation), model.drive_chain().motor_from_joint,
                                   options.min_speed);
     if (equations[e].kept.size() * static_cast<std::size_t>(n) <= static_cast<std::size_t>(b)) {
       throw EstimationError(x.source + ": " + std::to_string(equations[e].kept.size()) +
@@ -146,9 +146,9 @@ ClosedLoopIdentification identify_closed_loop(const IdentificationModel& model,
     const auto& kept = equations[e].kept;
     for (int j = 0; j < n; ++j) {
       equations[e].W.push_back(
-          decimate(joint_rows(model, x.q, x.dq, x.ddq, 0, x.t.size(), j), r.decimation)(
-              kept, Eigen::all));
-      equations[e].y.push_back(decimate(x.tau.col(j), r.decimation)(kept, 0));
+          decimate_interior(joint_rows(model, x.q, x.dq, x.ddq, 0, x.t.size(), j),
+                            r.decimation)(kept, Eigen::all));
+      equations[e].y.push_back(decimate_interior(x.tau.col(j), r.decimation)(kept, 0));
       measured[e].push_back(equations[e].W.back());
       torques[e].push_back(equations[e].y.back());
       rows += equations[e].y.back().size();
@@ -204,11 +204,23 @@ ClosedLoopIdentification identify_closed_loop(const IdentificationModel& model,
       }
       const Eigen::Index used = r.prepared.t.size();
       const auto& kept = equations[e].kept;
+      // The simulated command as the record's torque was prepared: held commands paired half
+      // a sample later (PreparationOptions::torque_hold) when the record's were.
+      Eigen::MatrixXd command = run.tau_command.middleRows(r.first_row, used);
+      if (r.torque_hold) {
+        const Eigen::RowVectorXd before =
+            r.first_row > 0 ? Eigen::RowVectorXd(run.tau_command.row(r.first_row - 1))
+                            : Eigen::RowVectorXd(2 * command.row(0) - command.row(1));
+        for (Eigen::Index k = used - 1; k > 0; --k) {
+          command.row(k) = 0.5 * (command.row(k) + command.row(k - 1));
+        }
+        command.row(0) = 0.5 * (command.row(0) + before);
+      }
       for (int j = 0; j < n; ++j) {
-        sim.W[e].push_back(decimate(joint_rows(model, run.q, run.dq, run.ddq, r.first_row, used, j),
-                                    r.decimation)(kept, Eigen::all));
-        sim.tau[e].push_back(
-            decimate(run.tau_command.col(j).segment(r.first_row, used), r.decimation)(kept, 0));
+        sim.W[e].push_back(
+            decimate_interior(joint_rows(model, run.q, run.dq, run.ddq, r.first_row, used, j),
+                              r.decimation)(kept, Eigen::all));
+        sim.tau[e].push_back(decimate_interior(command.col(j), r.decimation)(kept, 0));
       }
     }
     return true;
@@ -342,6 +354,11 @@ ClosedLoopIdentification identify_closed_loop(const IdentificationModel& model,
   out.id.rms_torque = (torque_squares / static_cast<double>(samples)).cwiseSqrt();
   out.id.torque_rel_error_norm = fit.relative_error_norm;
   out.id.samples = samples;
+  for (std::size_t e = 0; e < records.size(); ++e) {
+    const ClosedLoopRecord& r = records[e];
+    out.id.slow_samples += decimated_interior(r.prepared.t.size(), r.decimation).count -
+                           static_cast<Eigen::Index>(equations[e].kept.size());
+  }
   return out;
 }
 

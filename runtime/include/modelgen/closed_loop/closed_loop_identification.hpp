@@ -31,7 +31,12 @@ struct ClosedLoopRecord {
   /// modelgen/signal/prepare.hpp); its rows are the raw samples first_row, first_row + 1, ...
   Trajectory prepared;
   Eigen::Index first_row = 0;
-  int decimation = 1;  ///< parallel decimation factor of Y, W and the instruments (eq. 13-14)
+  /// Parallel decimation factor of Y, W and the instruments (eq. 13-14); the rows the end
+  /// samples dominate are left out (decimated_interior, modelgen/signal/decimation.hpp).
+  int decimation = 1;
+  /// The prepared torques pair held commands half a sample later
+  /// (PreparationOptions::torque_hold); DIDIM's simulated commands are paired the same way.
+  bool torque_hold = false;
   /// The reference of every raw sample (samples x dof), sample k at t0 + k Ts.
   Eigen::MatrixXd qr;
   double t0 = 0;
