@@ -48,7 +48,7 @@ Identification fit_closed_loop(const CommandLine& args, const IdentificationMode
     ClosedLoopRecord record;
     record.prepared = experiments.data[e];
     record.decimation = experiments.decimation[e];
-    record.torque_hold = args.has("--torque-hold");
+    record.torque_hold = args.has("--torque-hold") && args.one("--torque-hold") == "zoh";
     record.qr = raw.qr;
     record.t0 = raw.t[0];
     record.first_row = std::lround((record.prepared.t[0] - raw.t[0]) / gains.sample_time);

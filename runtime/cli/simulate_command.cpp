@@ -20,6 +20,7 @@
 #include "modelgen/data/trajectory_csv.hpp"
 #include "modelgen/excitation/fourier_trajectory.hpp"
 #include "modelgen/ml/drive_model.hpp"
+#include "modelgen/model/number_text.hpp"
 #include "modelgen/signal/gaussian_noise.hpp"
 #include "modelgen/model/physical_consistency.hpp"
 #include "runtime/cli/commands.hpp"
@@ -142,9 +143,12 @@ Trajectory simulate_under_controller(const CommandLine& args, const Identificati
   const double ts = controller.gains().sample_time;
   const double periods =
       args.has("--periods") ? parse_number(args.one("--periods"), "--periods") : 1.0;
-  if (!(periods > 0) || periods * fourier.period / ts > static_cast<double>(kMaxDataRows)) {
-    throw UsageError{"--periods must be positive and give at most " +
-                     std::to_string(kMaxDataRows) + " samples at the controller's rate"};
+  const double samples = periods * fourier.period / ts;
+  if (!(samples >= 3) || samples > static_cast<double>(kMaxDataRows)) {
+    throw UsageError{"--periods must give from 3 to " + std::to_string(kMaxDataRows) +
+                     " samples at the controller's rate (" + shortest_text(ts) + " s), not " +
+                     shortest_text(std::floor(samples)) + " ('" +
+                     (args.has("--periods") ? args.one("--periods") : std::string("1")) + "')"};
   }
   auto per_joint = [&](const char* option, const char* what) {
     Eigen::VectorXd values;

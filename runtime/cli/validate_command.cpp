@@ -48,6 +48,10 @@ int run_validate(const CommandLine& args) {
   if (args.has("--plot")) check_plot_folder(args.one("--plot"));
   const std::string& path = args.one("--data");
   const Trajectory record = read_trajectory_csv(path, n);
+  if (record.measured != Measured::kTorque) {
+    throw DataError(path + ": error: validate compares joint torques: the record needs columns "
+                    "tau1..tau" + std::to_string(n) + " (motor currents are not converted here)");
+  }
   if (record.qr.size() == 0) {
     throw DataError(path + ": error: validate simulates the controller along the record's "
                     "reference: it needs columns qr1..qr" + std::to_string(n));
@@ -105,7 +109,10 @@ int run_validate(const CommandLine& args) {
     prediction.samples = record.t.size();
     write_torque_plots(dir, model.name() + " simulated under the controller", {record},
                        prediction, std::cout, std::cerr);
-    std::ofstream out(std::filesystem::path(dir) / "positions.csv");
+    // Written beside its destination and renamed: never a half-written file.
+    const std::filesystem::path destination = std::filesystem::path(dir) / "positions.csv";
+    const std::filesystem::path temporary = destination.string() + ".tmp-modelid";
+    std::ofstream out(temporary);
     out << "t";
     for (const char* prefix : {"q", "q_sim", "error_deg"}) {
       for (int j = 1; j <= n; ++j) out << "," << prefix << j;
@@ -118,7 +125,13 @@ int run_validate(const CommandLine& args) {
       }
       out << "\n";
     }
-    if (!out) throw std::runtime_error(dir + "/positions.csv: error: cannot write the file");
+    out.close();
+    std::error_code renamed;
+    if (out) std::filesystem::rename(temporary, destination, renamed);
+    if (!out || renamed) {
+      std::filesystem::remove(temporary, renamed);
+      throw std::runtime_error(destination.string() + ": error: cannot write the file");
+    }
     std::cout << "  positions written to " << (std::filesystem::path(dir) / "positions.csv").string()
               << "\n";
   }

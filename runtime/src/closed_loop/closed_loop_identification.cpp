@@ -121,6 +121,10 @@ ClosedLoopIdentification identify_closed_loop(const IdentificationModel& model,
                                               const ClosedLoopFitOptions& options) {
   gains.check();
   const int n = model.dof(), b = model.num_base_params();
+  if (options.min_speed.size() != 0 && options.min_speed.size() != n) {
+    throw EstimationError(std::to_string(options.min_speed.size()) + " minimum speeds for " +
+                          std::to_string(n) + " joints");
+  }
   if (gains.dof() != n) {
     throw EstimationError("the controller has " + std::to_string(gains.dof()) +
                           " joints, the robot " + model.name() + " " + std::to_string(n));
@@ -251,13 +255,13 @@ ClosedLoopIdentification identify_closed_loop(const IdentificationModel& model,
       const Eigen::VectorXd step = result.value;
       Simulated trial;
       double alpha = 1;
-      int halvings = 0;
-      for (;; ++halvings, alpha /= 2) {
+      bool accepted = false;
+      for (int halvings = 0; halvings <= kMaxHalvings && !accepted; ++halvings, alpha /= 2) {
         next = beta + alpha * step;
-        if (simulate_with(next, trial) && output_error(trial) <= cost) break;
-        if (halvings == kMaxHalvings) break;
+        accepted = simulate_with(next, trial) && output_error(trial) <= cost;
       }
-      if (halvings == kMaxHalvings) {
+      if (!accepted) {
+        out.iterations = iteration;
         // The step leaves out how the states move with beta; within a standard deviation of
         // the minimum that is what is left of it.
         double full = 0;
@@ -294,11 +298,6 @@ ClosedLoopIdentification identify_closed_loop(const IdentificationModel& model,
       result.std_dev = covariance.diagonal().cwiseMax(0).cwiseSqrt();
       result.information = covariance.inverse();
       result.residual_std_dev = std::sqrt(variance);
-      if (!simulate_with(next, current)) {
-        throw EstimationError("iteration " + std::to_string(iteration) +
-                              ": the closed loop could not be simulated with the estimate (" +
-                              failure + "); try --physical on IDIM-WLS first");
-      }
     }
     double move = 0;
     for (int k = 0; k < b; ++k) {
@@ -315,6 +314,13 @@ ClosedLoopIdentification identify_closed_loop(const IdentificationModel& model,
     if (move < options.tolerance || settled) {
       out.converged = true;
       break;
+    }
+    // The next instruments: the closed loop of this estimate (DIDIM simulated it already).
+    if (method == ClosedLoopMethod::kIv && iteration < options.max_iterations &&
+        !simulate_with(beta, current)) {
+      throw EstimationError("iteration " + std::to_string(iteration) +
+                            ": the closed loop could not be simulated with the estimate (" +
+                            failure + "); try --physical on IDIM-WLS first");
     }
     // Changes that no longer shrink: the iterations circle (the smoothed friction of the
     // simulations moves with the estimate); more of them would not settle.

@@ -81,6 +81,11 @@ ClosedLoopRun simulate_closed_loop(const IdentificationModel& model, const std::
                                 "initial state must have " + std::to_string(n) +
                                 " joints like " + model.name());
   }
+  if (static_cast<int>(beta.size()) != model.num_base_params()) {
+    throw std::invalid_argument("closed-loop simulation: " + std::to_string(beta.size()) +
+                                " base parameters given, " + model.name() + " has " +
+                                std::to_string(model.num_base_params()));
+  }
   if (options.substeps < 1) {
     throw std::invalid_argument("closed-loop simulation: substeps must be at least 1");
   }

@@ -81,8 +81,8 @@ class ClosedLoopIdentificationTest : public testing::Test {
     raw.q = run.q_measured;
     raw.tau = run.tau_recorded;
     raw.dq = raw.ddq = Eigen::MatrixXd::Zero(run.t.size(), 6);
-    // The excitation's 0.5 Hz is far below the loop's bandwidth: positions filtered at 10 Hz,
-    // equations decimated by 20 (50 Hz), which keeps 3000 equations.
+    // Positions filtered at 100 Hz, well above the loop's 15 Hz (the motion carries its
+    // response), equations decimated by 10 (100 Hz).
     PreparationOptions preparation;
     preparation.cutoff_hz = 100;
     preparation.decimation = 10;

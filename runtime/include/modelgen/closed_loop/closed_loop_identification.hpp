@@ -72,7 +72,8 @@ struct ClosedLoopIdentification {
 
 /// Identifies the base parameters of `model` from closed-loop records under `gains` by
 /// `method`. Each row of joint j (and record e) is weighted by the inverse of the standard
-/// deviation of its IDIM-WLS residual (eq. 20), the weights kept fixed over the iterations.
+/// deviation of its residual in the OLS solution (eq. 20), the weights kept fixed over the
+/// iterations; the start is IDIM-WLS with these weights.
 ///   IV: beta = (Z^T W)^-1 Z^T Y, Z the regressor of the closed loop simulated with the last
 ///       estimate; covariance sigma^2 (Z^T W)^-1 Z^T Z (W^T Z)^-1.
 ///   DIDIM: Gauss-Newton on the output error Y - tau_s(beta), tau_s the simulated command,
