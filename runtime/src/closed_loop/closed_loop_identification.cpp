@@ -268,6 +268,9 @@ ClosedLoopIdentification identify_closed_loop(const IdentificationModel& model,
         for (int k = 0; k < b; ++k) {
           full = std::max(full, std::abs(step[k]) / std::max(result.std_dev[k], 1e-300));
         }
+        // The estimate stays; its statistics are those of this last linearisation.
+        result.value = beta;
+        fit = result;
         if (full < 1) {
           out.converged = true;
         } else {
