@@ -62,7 +62,7 @@ constexpr const char* kUsage =
     "--plot DIR writes DIR/trajectory.svg (q, dq, ddq per joint against the limits).\n"
     "ROBOT is a description (.yaml/.urdf, through the numeric reference) or the name of a\n"
     "compiled-in generated model (tx40, kr150, ur5, iiwa14, panda, kuka_kr150_2,\n"
-    "panda_arm). --angle-tolerance RAD (every command) reads a description as modelgen does\n"
+    "panda_arm, comau_smart_six). --angle-tolerance RAD (every command) reads a description as modelgen does\n"
     "(rounded quarter turns within RAD taken as exact; default 1e-4, 0: as written).\n"
     "Data files: CSV with a header t, q1..qn, tau1..taun and optionally dq1.., ddq1.. (without\n"
     "them, velocities and accelerations come from central differences). README.md has details.\n"

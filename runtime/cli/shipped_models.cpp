@@ -6,6 +6,7 @@
 #include <functional>
 #include <map>
 
+#include "comau_smart_six.hpp"
 #include "franka_panda.hpp"
 #include "modelgen/model/error.hpp"
 #include "modelgen/model/load_robot.hpp"
@@ -46,6 +47,8 @@ const std::map<std::string, Shipped>& registry() {
       {"panda", shipped<modelgen::panda::Model>("robots/urdf/franka_panda.urdf")},
       {"kuka_kr150_2", shipped<modelgen::kuka_kr150_2::Model>("robots/urdf/kuka_kr150_2.urdf")},
       {"panda_arm", shipped<modelgen::panda_arm::Model>("robots/panda_arm.yaml")},
+      {"comau_smart_six",
+       shipped<modelgen::comau_smart_six::Model>("robots/comau_smart_six.yaml")},
   };
   return kModels;
 }

@@ -24,7 +24,8 @@ TEST(IdentificationModel, GeneratedEqualsReferenceForEveryShippedRobot) {
                         {"iiwa14", "robots/urdf/kuka_iiwa14_drake.urdf"},
                         {"panda", "robots/urdf/franka_panda.urdf"},
                         {"kuka_kr150_2", "robots/urdf/kuka_kr150_2.urdf"},
-                        {"panda_arm", "robots/panda_arm.yaml"}};
+                        {"panda_arm", "robots/panda_arm.yaml"},
+                        {"comau_smart_six", "robots/comau_smart_six.yaml"}};
   EXPECT_EQ(internal::shipped_model_names().size(), std::size(cases));
   for (const Case& c : cases) {
     const std::unique_ptr<IdentificationModel> generated = internal::make_shipped_model(c.name);
