@@ -25,8 +25,10 @@ int fir_lags(const std::string& text) {
     used = 0;
   }
   if (used != text.size() || text.empty() || value < 0) {
-    throw UsageError{"--fir-lags must be a whole number >= 0 (the FIR's lags M on each side), "
-                     "not '" + text + "'"};
+    throw UsageError{
+        "--fir-lags must be a whole number >= 0 (the FIR's lags M on each side), "
+        "not '" +
+        text + "'"};
   }
   return value;
 }
@@ -34,12 +36,12 @@ int fir_lags(const std::string& text) {
 }  // namespace
 
 Identification fit_projection(const CommandLine& args, const IdentificationModel& model,
-                              const Experiments& experiments,
-                              const std::vector<double>& min_speed, std::ostream& report,
-                              std::ostream& log) {
+                              const Experiments& experiments, const std::vector<double>& min_speed,
+                              std::ostream& report, std::ostream& log) {
   if (args.has("--motor-side") || args.has("--periodic")) {
-    throw UsageError{"the projection method (--method pm) works on joint-side records, without "
-                     "--motor-side or --periodic"};
+    throw UsageError{
+        "the projection method (--method pm) works on joint-side records, without "
+        "--motor-side or --periodic"};
   }
   ProjectionOptions options;
   if (args.has("--fir-lags")) options.fir_lags = fir_lags(args.one("--fir-lags"));
@@ -49,7 +51,8 @@ Identification fit_projection(const CommandLine& args, const IdentificationModel
   for (std::size_t e = 0; e < paths.size(); ++e) {
     const Trajectory raw = read_trajectory_csv(paths[e], model.dof());
     if (raw.qr.size() == 0) {
-      throw DataError(paths[e] + ": error: the projection method (--method pm) needs the "
+      throw DataError(paths[e] +
+                      ": error: the projection method (--method pm) needs the "
                       "reference positions of the record, columns qr1..qr" +
                       std::to_string(model.dof()) + " (modelid simulate --controller writes them)");
     }
@@ -67,7 +70,8 @@ Identification fit_projection(const CommandLine& args, const IdentificationModel
     if (record.first_row < 0 || last >= samples ||
         std::abs(raw.t[record.first_row] - record.prepared.t[0]) > 0.01 * dt ||
         std::abs(raw.t[last] - record.prepared.t[used - 1]) > 0.01 * dt) {
-      throw DataError(paths[e] + ": error: the projection method needs uniformly sampled "
+      throw DataError(paths[e] +
+                      ": error: the projection method needs uniformly sampled "
                       "records (the preparation resampled this one), to delay the reference "
                       "on the torque's own samples");
     }
@@ -81,19 +85,21 @@ Identification fit_projection(const CommandLine& args, const IdentificationModel
   const DecorrelationTest& test = result.test;
   report << "  projection (Bona & Curatella eq. 10-12): non-causal FIR of lags -" << result.lags
          << ".." << result.lags << " (decimated samples) from the references, "
-         << (result.forced ? "M given by --fir-lags" : "M chosen by the decorrelation and residual tests")
+         << (result.forced ? "M given by --fir-lags"
+                           : "M chosen by the decorrelation and residual tests")
          << ", then IDIM-WLS on the projected torque; " << fixed(seconds, 0, 3) << " s\n"
          << "  decorrelation test: largest |correlation| of u - u^ with a reference at lags up "
             "to "
-         << test.window << " is " << fixed(test.worst, 0, 4) << " (joint "
-         << test.worst_channel + 1 << ", reference " << test.worst_reference + 1 << ", lag "
-         << test.worst_lag << "); band " << fixed(test.band, 0, 4) << " (the largest of "
-         << test.tested << " white-noise correlations stays within it 99 times in 100; one "
-         << "stays within " << fixed(test.single_band, 0, 4) << "): "
-         << (test.passed() ? "passed" : "NOT passed") << "\n";
+         << test.window << " is " << fixed(test.worst, 0, 4) << " (joint " << test.worst_channel + 1
+         << ", reference " << test.worst_reference + 1 << ", lag " << test.worst_lag << "); band "
+         << fixed(test.band, 0, 4) << " (the largest of " << test.tested
+         << " white-noise correlations stays within it 99 times in 100; one "
+         << "stays within " << fixed(test.single_band, 0, 4)
+         << "): " << (test.passed() ? "passed" : "NOT passed") << "\n";
   if (!result.forced && result.tried.size() > 1) {
     report << "    M tried (largest |correlation|):";
-    for (const auto& [lags, worst] : result.tried) report << " " << lags << " (" << fixed(worst, 0, 4) << ")";
+    for (const auto& [lags, worst] : result.tried)
+      report << " " << lags << " (" << fixed(worst, 0, 4) << ")";
     report << "\n";
   }
   report << "  torque discarded by the projection, ||u - u^|| / ||u|| per joint:";

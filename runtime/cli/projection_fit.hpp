@@ -24,8 +24,7 @@ inline constexpr double kDiscardedWarning = 0.03;
 /// --fir-lags; DataError for a file without qr columns or whose prepared samples are not its
 /// own (resampled); EstimationError from the method.
 Identification fit_projection(const CommandLine& args, const IdentificationModel& model,
-                              const Experiments& experiments,
-                              const std::vector<double>& min_speed, std::ostream& report,
-                              std::ostream& log);
+                              const Experiments& experiments, const std::vector<double>& min_speed,
+                              std::ostream& report, std::ostream& log);
 
 }  // namespace modelgen::internal

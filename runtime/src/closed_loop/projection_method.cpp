@@ -52,7 +52,8 @@ Eigen::MatrixXd shifted_reference(const Eigen::MatrixXd& qr, Eigen::Index first_
   Eigen::MatrixXd out(samples, qr.cols());
   for (Eigen::Index s = 0; s < samples; ++s) {
     const Eigen::Index r = first_row + s - shift;
-    out.row(s) = hold ? Eigen::RowVectorXd(0.5 * (row(r) + row(r - 1))) : Eigen::RowVectorXd(row(r));
+    out.row(s) =
+        hold ? Eigen::RowVectorXd(0.5 * (row(r) + row(r - 1))) : Eigen::RowVectorXd(row(r));
   }
   return out;
 }
@@ -164,9 +165,9 @@ FirProjection fit_fir_projection(const Eigen::MatrixXd& u, const LaggedReference
   const int window = decorrelation_window(lags);
   if (references.max_lag < window ||
       references.by_lag.size() != static_cast<std::size_t>(2 * references.max_lag + 1)) {
-    throw EstimationError("FIR projection: the references reach lag " +
-                          std::to_string(references.max_lag) + ", the test of M = " +
-                          std::to_string(lags) + " needs " + std::to_string(window));
+    throw EstimationError(
+        "FIR projection: the references reach lag " + std::to_string(references.max_lag) +
+        ", the test of M = " + std::to_string(lags) + " needs " + std::to_string(window));
   }
   const Eigen::Index rows = u.rows();
   for (const Eigen::MatrixXd& r : references.by_lag) {
@@ -183,7 +184,8 @@ FirProjection fit_fir_projection(const Eigen::MatrixXd& u, const LaggedReference
   for (Eigen::Index i = 0; i < references.at(0).cols(); ++i) {
     const Eigen::VectorXd r = references.at(0).col(i);
     const double range = r.maxCoeff() - r.minCoeff();
-    if (range > kHeld * std::max(1.0, r.cwiseAbs().maxCoeff())) out.moving.push_back(static_cast<int>(i));
+    if (range > kHeld * std::max(1.0, r.cwiseAbs().maxCoeff()))
+      out.moving.push_back(static_cast<int>(i));
   }
   // The constant: a linear FIR about the record's mean posture leaves an offset (gravity at
   // that posture, the friction's mean) that the references' lags would otherwise have to
@@ -208,7 +210,8 @@ FirProjection fit_fir_projection(const Eigen::MatrixXd& u, const LaggedReference
   out.full_rank = out.rank == p;
   const Eigen::MatrixXd residual = u - out.projected;
   out.residual_squares = residual.colwise().squaredNorm().transpose();
-  out.coefficient_std = Eigen::MatrixXd::Constant(p, u.cols(), std::numeric_limits<double>::quiet_NaN());
+  out.coefficient_std =
+      Eigen::MatrixXd::Constant(p, u.cols(), std::numeric_limits<double>::quiet_NaN());
   if (out.full_rank && rows > p) {
     const Eigen::MatrixXd inverse =
         (scaled.transpose() * scaled).ldlt().solve(Eigen::MatrixXd::Identity(p, p));
@@ -255,10 +258,10 @@ LaggedReferences lagged_references(const Eigen::MatrixXd& qr, Eigen::Index first
   LaggedReferences out;
   out.max_lag = max_lag;
   for (int k = -max_lag; k <= max_lag; ++k) {
-    out.by_lag.push_back(decimate_interior(
-        shifted_reference(qr, first_row, samples, torque_hold,
-                          static_cast<Eigen::Index>(k) * decimation),
-        decimation));
+    out.by_lag.push_back(
+        decimate_interior(shifted_reference(qr, first_row, samples, torque_hold,
+                                            static_cast<Eigen::Index>(k) * decimation),
+                          decimation));
   }
   out.constant = decimate_interior(Eigen::MatrixXd::Ones(samples, 1), decimation).col(0);
   return out;
@@ -275,8 +278,8 @@ ProjectedRecords project_records(int n, const std::vector<ProjectionRecord>& rec
                                  : r.prepared.source;
     const Eigen::Index samples = r.prepared.t.size();
     if (r.qr.cols() != n || r.prepared.tau.cols() != n || r.prepared.tau.rows() != samples) {
-      throw EstimationError(name + ": the record does not have the robot's " +
-                            std::to_string(n) + " joints (reference or torques)");
+      throw EstimationError(name + ": the record does not have the robot's " + std::to_string(n) +
+                            " joints (reference or torques)");
     }
     if (r.first_row < 0 || r.first_row + samples > r.qr.rows() || samples < 2) {
       throw EstimationError(name + ": the prepared samples are not within the reference's");
@@ -302,17 +305,15 @@ ProjectedRecords project_records(int n, const std::vector<ProjectionRecord>& rec
   std::vector<int> ladder;
   if (fir_lags) {
     if (*fir_lags < 0) {
-      throw EstimationError("the FIR's lags M must be >= 0, not " +
-                            std::to_string(*fir_lags));
+      throw EstimationError("the FIR's lags M must be >= 0, not " + std::to_string(*fir_lags));
     }
     ladder.push_back(*fir_lags);
   } else {
     ladder = fir_lag_ladder(fewest, moving, std::numeric_limits<int>::max());
     if (ladder.empty()) {
       throw EstimationError("the projection method: " + std::to_string(fewest) +
-                            " decimated rows are too few for a FIR from " +
-                            std::to_string(moving) + " moving references (" +
-                            std::to_string(kMinRowsPerCoefficient) +
+                            " decimated rows are too few for a FIR from " + std::to_string(moving) +
+                            " moving references (" + std::to_string(kMinRowsPerCoefficient) +
                             " rows per coefficient); record longer or decimate less");
     }
   }

@@ -33,11 +33,10 @@ class ModelidProjection : public testing::Test {
     truth_ = folder_ / "truth.json";
     write_text(truth_, truth.dump());
     data_ = folder_ / "run.csv";
-    const CliRun run = modelid("simulate --robot tx40 --params " + quoted(truth_) +
-                               " --trajectory " + quoted_source(kDesign) + " --controller " +
-                               quoted(controller_) + " --noise-tau 0.2 " +
-                               "--encoder-resolution 1.5e-6 --seed 3 --ignore-limits -o " +
-                               quoted(data_));
+    const CliRun run = modelid(
+        "simulate --robot tx40 --params " + quoted(truth_) + " --trajectory " +
+        quoted_source(kDesign) + " --controller " + quoted(controller_) + " --noise-tau 0.2 " +
+        "--encoder-resolution 1.5e-6 --seed 3 --ignore-limits -o " + quoted(data_));
     ASSERT_EQ(run.exit_code, 0) << run.err;
   }
 
@@ -86,14 +85,15 @@ TEST_F(ModelidProjection, Errors) {
       << run.err;
   // An open-loop file has no reference columns.
   const fs::path open_loop = folder_ / "open.csv";
-  ASSERT_EQ(modelid("simulate --robot tx40 --params " + quoted(truth_) + " --trajectory " +
-                    quoted_source(kDesign) + " --noise 0.01 --ignore-limits -o " +
-                    quoted(open_loop))
-                .exit_code,
-            0);
+  ASSERT_EQ(
+      modelid("simulate --robot tx40 --params " + quoted(truth_) + " --trajectory " +
+              quoted_source(kDesign) + " --noise 0.01 --ignore-limits -o " + quoted(open_loop))
+          .exit_code,
+      0);
   run = modelid("fit --robot tx40 --data " + quoted(open_loop) + " --method pm");
   EXPECT_EQ(run.exit_code, 1);
-  EXPECT_NE(run.err.find(open_loop.string() + ": error: the projection method (--method pm) "
+  EXPECT_NE(run.err.find(open_loop.string() +
+                         ": error: the projection method (--method pm) "
                          "needs the reference positions of the record, columns qr1..qr6"),
             std::string::npos)
       << run.err;

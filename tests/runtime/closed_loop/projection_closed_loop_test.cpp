@@ -45,7 +45,8 @@ Eigen::MatrixXd design_reference(const std::vector<int>& moving) {
       double q = joint["q0"].as<double>();
       for (std::size_t l = 0; moves && l < joint["a"].size(); ++l) {
         const double lwt = static_cast<double>(l + 1) * w * t;
-        q += joint["a"][l].as<double>() * std::sin(lwt) + joint["b"][l].as<double>() * std::cos(lwt);
+        q +=
+            joint["a"][l].as<double>() * std::sin(lwt) + joint["b"][l].as<double>() * std::cos(lwt);
       }
       qr(k, j) = q;
     }
@@ -80,9 +81,8 @@ class ProjectionClosedLoopTest : public testing::Test {
     options.tau_noise = Eigen::VectorXd::Constant(6, 0.2);
     options.seed = 11;
     const std::vector<double> values(beta.data(), beta.data() + beta.size());
-    const ClosedLoopRun run = simulate_closed_loop(*model_, values, controller, qr,
-                                                   qr.row(0).transpose(),
-                                                   Eigen::VectorXd::Zero(6), options);
+    const ClosedLoopRun run = simulate_closed_loop(
+        *model_, values, controller, qr, qr.row(0).transpose(), Eigen::VectorXd::Zero(6), options);
     Trajectory raw;
     raw.source = "simulated TX-40 under PID";
     raw.t = run.t;
@@ -119,7 +119,8 @@ TEST_F(ProjectionClosedLoopTest, OneJointAtATimeKeepsItsTorque) {
   // the projection (section 3.4): sign(dq) is no linear filter of the reference. Here the
   // simulated robot has none.
   Eigen::VectorXd beta = truth_;
-  for (const char* name : {"Fc1", "Fc2", "Fc3", "Fc4", "Fc5", "Fc6", "Fcm6"}) parameter(beta, name) = 0;
+  for (const char* name : {"Fc1", "Fc2", "Fc3", "Fc4", "Fc5", "Fc6", "Fcm6"})
+    parameter(beta, name) = 0;
   const Eigen::MatrixXd qr = design_reference({0});
   const ProjectionRecord r = record(beta, qr);
   const ProjectedRecords stage1 = project_records(6, {r}, std::nullopt);
@@ -127,6 +128,11 @@ TEST_F(ProjectionClosedLoopTest, OneJointAtATimeKeepsItsTorque) {
   for (int j = 0; j < 6; ++j) std::cout << " " << stage1.discarded[j];
   std::cout << ", all " << stage1.discarded_total << "\n";
   EXPECT_TRUE(stage1.decorrelated);
+  // Joint 1's torque is linear in its reference but for the noise (measured 0.5 %); the held
+  // joints' small torques carry dq1^2 (centrifugal), which no FIR makes: over all joints
+  // (measured 2.0 %) still below the CLI's 3 % warning.
+  EXPECT_LT(stage1.discarded[0], 0.02);
+  EXPECT_LT(stage1.discarded_total, 0.03);
 
   // What joint 1's motion identifies, the others held: the inertia about axis 1 at the held
   // posture, its viscous friction and its offset. Fitted here to u^_1 on the decimated rows,
@@ -144,8 +150,7 @@ TEST_F(ProjectionClosedLoopTest, OneJointAtATimeKeepsItsTorque) {
   const Eigen::VectorXd plain = Phi.colPivHouseholderQr().solve(measured);
   const Eigen::VectorXd residual = measured - Phi * plain;
   const double sigma = std::sqrt(residual.squaredNorm() / double(Phi.rows() - 3));
-  const Eigen::VectorXd sd =
-      sigma * (Phi.transpose() * Phi).inverse().diagonal().cwiseSqrt();
+  const Eigen::VectorXd sd = sigma * (Phi.transpose() * Phi).inverse().diagonal().cwiseSqrt();
   Eigen::VectorXd q = qr.row(0).transpose(), zero = Eigen::VectorXd::Zero(6), e1 = zero;
   e1[0] = 1;
   Eigen::MatrixXd W(6, beta.size()), W0(6, beta.size());
@@ -158,8 +163,14 @@ TEST_F(ProjectionClosedLoopTest, OneJointAtATimeKeepsItsTorque) {
   const Eigen::Vector3d expected(inertia, parameter(beta, "Fv1"), parameter(beta, "OFF1"));
   std::cout << "[ one joint ] joint 1 from u^: inertia " << estimate[0] << " (truth " << inertia
             << "), Fv1 " << estimate[1] << " (" << expected[1] << "), offset " << estimate[2]
-            << " (" << expected[2] << "); sd of the plain fit " << sd.transpose()
-            << "; plain fit " << plain.transpose() << "\n";
+            << " (" << expected[2] << "); sd of the plain fit " << sd.transpose() << "; plain fit "
+            << plain.transpose() << "\n";
+  // Within 4 sd of the plain least-squares fit on the measured torque, as in
+  // closed_loop_identification_test: these three columns lie in the span of the reference's
+  // lags, so the fit to u^ equals the plain one (to rounding), and what separates both from
+  // the truth (the inertia sits 3.0 sd off) is the preparation's (filter, decimation, held
+  // torque pairing), not the projection's.
+  EXPECT_LT((estimate - plain).norm(), 1e-3 * sd.minCoeff());
   for (int k = 0; k < 3; ++k) {
     EXPECT_LT(std::abs(estimate[k] - expected[k]), 4 * sd[k]) << k;
   }
@@ -171,8 +182,8 @@ TEST_F(ProjectionClosedLoopTest, MultiJointRunDiscardsMoreThanTheWarning) {
   const ProjectionIdentification pm = projection_method(*model_, {r});
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  const Identification wls = identify(*model_, {r.prepared}, Method::kWls,
-                                      IdentifyOptions{.decimation = {r.decimation}});
+  const Identification wls =
+      identify(*model_, {r.prepared}, Method::kWls, IdentifyOptions{.decimation = {r.decimation}});
   auto distance = [&](const LeastSquaresResult& fit) {
     double worst = 0, sum = 0;
     for (Eigen::Index k = 0; k < truth_.size(); ++k) {

@@ -19,7 +19,8 @@ namespace {
 constexpr Eigen::Index kFirstRow = 200, kSamples = 4000, kTotal = 4400;
 constexpr double kConstant = 0.5, kNoise = 0.3;
 // The true FIR: lag k -> coefficient, support -2..3 on reference 1, -1..1 on reference 2.
-const std::map<int, double> kFir1 = {{-2, 0.3}, {-1, -0.5}, {0, 1.0}, {1, 0.7}, {2, -0.4}, {3, 0.4}};
+const std::map<int, double> kFir1 = {{-2, 0.3}, {-1, -0.5}, {0, 1.0},
+                                     {1, 0.7},  {2, -0.4},  {3, 0.4}};
 const std::map<int, double> kFir2 = {{-1, 0.6}, {0, -0.8}, {1, 0.25}};
 
 struct Synthetic {
@@ -52,8 +53,7 @@ double true_coefficient(const std::map<int, double>& fir, int k) {
 TEST(ProjectionMethod, RecoversAKnownNonCausalFir) {
   const Synthetic x = make_synthetic(5);
   const int reach = decorrelation_window(32);
-  const LaggedReferences references =
-      lagged_references(x.qr, kFirstRow, kSamples, 1, false, reach);
+  const LaggedReferences references = lagged_references(x.qr, kFirstRow, kSamples, 1, false, reach);
   // The lagged references are the raw ones shifted (no decimation, no pairing).
   EXPECT_EQ(references.at(3)(10, 0), x.qr(kFirstRow + 10 - 3, 0));
   EXPECT_EQ(references.at(-2)(10, 1), x.qr(kFirstRow + 10 + 2, 1));

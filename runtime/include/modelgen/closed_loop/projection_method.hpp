@@ -44,11 +44,11 @@ struct LaggedReferences {
 /// 99 % probability (Sidak: each at the 1 - 0.01 / m level, about 3.5 / sqrt(N) for m = 74,
 /// 4.1 / sqrt(N) for m = 1000), so that white residuals pass 99 times in 100 whatever M.
 struct DecorrelationTest {
-  int window = 0;           ///< largest |k| tested
-  long long tested = 0;     ///< correlations tested (m)
-  double worst = 0;         ///< largest |correlation| over channels, references and lags
-  double band = 0;          ///< the 99 % band of the largest of m white-noise correlations
-  double single_band = 0;   ///< 2.58 / sqrt(N), the band of one correlation
+  int window = 0;          ///< largest |k| tested
+  long long tested = 0;    ///< correlations tested (m)
+  double worst = 0;        ///< largest |correlation| over channels, references and lags
+  double band = 0;         ///< the 99 % band of the largest of m white-noise correlations
+  double single_band = 0;  ///< 2.58 / sqrt(N), the band of one correlation
   int worst_channel = -1, worst_reference = -1, worst_lag = 0;
   bool passed() const { return worst <= band; }
 };
@@ -67,7 +67,7 @@ struct FirProjection {
   /// Least-squares standard deviations of the coefficients (sigma^2 (Phi^T Phi)^-1 per
   /// channel); NaN when the regressors are dependent.
   Eigen::MatrixXd coefficient_std;
-  Eigen::MatrixXd projected;  ///< u^ (eq. 11), rows x channels
+  Eigen::MatrixXd projected;         ///< u^ (eq. 11), rows x channels
   Eigen::VectorXd residual_squares;  ///< ||u - u^||^2 per channel
   Eigen::Index rank = 0;             ///< of the regressor (its independent columns)
   DecorrelationTest test;
@@ -98,7 +98,7 @@ struct FirChoice {
   std::vector<FirProjection> fits;  ///< per record
   int lags = 0;
   bool decorrelated = false;
-  DecorrelationTest test;  ///< the worst record's
+  DecorrelationTest test;                     ///< the worst record's
   std::vector<std::pair<int, double>> tried;  ///< per M tried: its largest |correlation|
 };
 FirChoice choose_fir_projection(const std::vector<Eigen::MatrixXd>& u,
@@ -125,8 +125,8 @@ LaggedReferences lagged_references(const Eigen::MatrixXd& qr, Eigen::Index first
 struct ProjectionRecord {
   Trajectory prepared;  ///< as prepare_experiment() made it; its rows are raw rows first_row...
   int decimation = 1;   ///< the parallel decimation factor identify() applies
-  bool torque_hold = false;   ///< the prepared torques were paired (PreparationOptions)
-  Eigen::MatrixXd qr;         ///< the reference of every raw sample (samples x dof)
+  bool torque_hold = false;  ///< the prepared torques were paired (PreparationOptions)
+  Eigen::MatrixXd qr;        ///< the reference of every raw sample (samples x dof)
   Eigen::Index first_row = 0;
 };
 
@@ -143,8 +143,8 @@ struct ProjectedRecords {
   /// references): identify()'s decimation of it gives the fitted u^ on its rows exactly, since
   /// decimation is linear.
   std::vector<Eigen::MatrixXd> projected;
-  int lags = 0;           ///< M
-  bool forced = false;    ///< M came from ProjectionOptions::fir_lags
+  int lags = 0;               ///< M
+  bool forced = false;        ///< M came from ProjectionOptions::fir_lags
   bool decorrelated = false;  ///< the chosen M passed the test on every record
   DecorrelationTest test;     ///< the worst record's test at the chosen M
   /// ||u - u^|| / ||u|| per joint and over all joints, on the decimated rows of every record.
