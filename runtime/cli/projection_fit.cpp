@@ -5,10 +5,12 @@
 
 #include <chrono>
 #include <cmath>
+#include <sstream>
 #include <string>
 
 #include "modelgen/closed_loop/projection_method.hpp"
 #include "modelgen/data/trajectory_csv.hpp"
+#include "modelgen/estimation/estimation_error.hpp"
 #include "runtime/cli/text_format.hpp"
 
 namespace modelgen::internal {
@@ -78,16 +80,16 @@ Identification fit_projection(const CommandLine& args, const IdentificationModel
     records.push_back(std::move(record));
   }
   const auto start = std::chrono::steady_clock::now();
-  ProjectionIdentification identification = projection_method(model, records, options);
-  const ProjectedRecords& result = identification.stage1;
+  const ProjectedRecords result = project_records(model.dof(), records, options.fir_lags);
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  std::ostringstream stage1;
   const DecorrelationTest& test = result.test;
-  report << "  projection (Bona & Curatella eq. 10-12): non-causal FIR of lags -" << result.lags
+  stage1 << "  projection (Bona & Curatella eq. 10-12): non-causal FIR of lags -" << result.lags
          << ".." << result.lags << " (decimated samples) from the references, "
          << (result.forced ? "M given by --fir-lags"
                            : "M chosen by the decorrelation and residual tests")
-         << ", then IDIM-WLS on the projected torque; " << fixed(seconds, 0, 3) << " s\n"
+         << ", fitted in " << fixed(seconds, 0, 3) << " s; then IDIM-WLS on the projected torque\n"
          << "  decorrelation test: largest |correlation| of u - u^ with a reference at lags up "
             "to "
          << test.window << " is " << fixed(test.worst, 0, 4) << " (joint " << test.worst_channel + 1
@@ -97,16 +99,16 @@ Identification fit_projection(const CommandLine& args, const IdentificationModel
          << "stays within " << fixed(test.single_band, 0, 4)
          << "): " << (test.passed() ? "passed" : "NOT passed") << "\n";
   if (!result.forced && result.tried.size() > 1) {
-    report << "    M tried (largest |correlation|):";
+    stage1 << "    M tried (largest |correlation|):";
     for (const auto& [lags, worst] : result.tried)
-      report << " " << lags << " (" << fixed(worst, 0, 4) << ")";
-    report << "\n";
+      stage1 << " " << lags << " (" << fixed(worst, 0, 4) << ")";
+    stage1 << "\n";
   }
-  report << "  torque discarded by the projection, ||u - u^|| / ||u|| per joint:";
+  stage1 << "  torque discarded by the projection, ||u - u^|| / ||u|| per joint:";
   for (Eigen::Index j = 0; j < result.discarded.size(); ++j) {
-    report << " " << fixed(100 * result.discarded[j], 0, 3) << "%";
+    stage1 << " " << fixed(100 * result.discarded[j], 0, 3) << "%";
   }
-  report << "; all joints " << fixed(100 * result.discarded_total, 0, 3) << "%\n"
+  stage1 << "; all joints " << fixed(100 * result.discarded_total, 0, 3) << "%\n"
          << "  (the rms and relative errors below compare the model with the projected torque)\n";
   if (!result.decorrelated) {
     log << "modelid: warning: the projection's residual stays correlated with the references ("
@@ -119,10 +121,20 @@ Identification fit_projection(const CommandLine& args, const IdentificationModel
         << "% of the torque norm (more than " << fixed(100 * kDiscardedWarning, 0, 3)
         << "%): a linear FIR from the references keeps only the torque at the references' "
            "harmonics; on a multi-joint nonlinear robot the rest of the torque is lost and the "
-           "estimate is biased. Move one joint at a time, as Bona & Curatella did, or use "
-           "--method iv or didim\n";
+           "estimate is biased (so is the Coulomb friction's sign(dq), even of one joint). "
+           "Move one joint at a time, with the Coulomb friction compensated, as Bona & "
+           "Curatella did (section 3.4), or use --method iv or didim\n";
   }
-  return std::move(identification.id);
+  // Stage 2; when it fails, what stage 1 found is still worth seeing.
+  try {
+    Identification id = identify_projected(model, records, result, options.min_speed);
+    report << stage1.str();
+    return id;
+  } catch (const EstimationError&) {
+    log << "modelid fit: the projection (stage 1) before the identification failed:\n"
+        << stage1.str();
+    throw;
+  }
 }
 
 }  // namespace modelgen::internal

@@ -359,25 +359,37 @@ ProjectedRecords project_records(int n, const std::vector<ProjectionRecord>& rec
   return out;
 }
 
-ProjectionIdentification projection_method(const IdentificationModel& model,
-                                           const std::vector<ProjectionRecord>& records,
-                                           const ProjectionOptions& options) {
-  ProjectionIdentification out;
-  out.stage1 = project_records(model.dof(), records, options.fir_lags);
+Identification identify_projected(const IdentificationModel& model,
+                                  const std::vector<ProjectionRecord>& records,
+                                  const ProjectedRecords& stage1,
+                                  const std::vector<double>& min_speed) {
+  if (stage1.projected.size() != records.size()) {
+    throw EstimationError("the projection method: stage 1 has " +
+                          std::to_string(stage1.projected.size()) + " records, stage 2 " +
+                          std::to_string(records.size()));
+  }
   std::vector<Trajectory> projected;
-  IdentifyOptions identify_options;
-  identify_options.min_speed = options.min_speed;
+  IdentifyOptions options;
+  options.min_speed = min_speed;
   for (std::size_t e = 0; e < records.size(); ++e) {
     Trajectory x = records[e].prepared;
-    x.tau = out.stage1.projected[e];
+    x.tau = stage1.projected[e];
     projected.push_back(std::move(x));
-    identify_options.decimation.push_back(records[e].decimation);
+    options.decimation.push_back(records[e].decimation);
   }
   // Bona fits eq. 12 by maximum likelihood. With independent Gaussian torque noise of one
   // variance per joint, the likelihood of the torques is maximal at the weighted least squares
   // of eq. 20 (each joint weighted by the inverse of its noise's standard deviation), which is
   // what IDIM-WLS computes.
-  out.id = identify(model, projected, Method::kWls, identify_options);
+  return identify(model, projected, Method::kWls, options);
+}
+
+ProjectionIdentification projection_method(const IdentificationModel& model,
+                                           const std::vector<ProjectionRecord>& records,
+                                           const ProjectionOptions& options) {
+  ProjectionIdentification out;
+  out.stage1 = project_records(model.dof(), records, options.fir_lags);
+  out.id = identify_projected(model, records, out.stage1, options.min_speed);
   return out;
 }
 

@@ -168,6 +168,15 @@ struct ProjectionIdentification {
   Identification id;
 };
 
+/// Stage 2 (eq. 12): IDIM-WLS (identify()) on `records` with each torque replaced by
+/// stage1.projected, leaving out the samples slower than `min_speed` (per joint, empty: none).
+/// Throws EstimationError as identify() does (a single record moving one joint is rank
+/// deficient: the records of every joint go in together).
+Identification identify_projected(const IdentificationModel& model,
+                                  const std::vector<ProjectionRecord>& records,
+                                  const ProjectedRecords& stage1,
+                                  const std::vector<double>& min_speed = {});
+
 /// The projection method on closed-loop records: stage 1 per record (fit_fir_projection on
 /// lagged_references, the same M for all), stage 2 identify() with IDIM-WLS, each record's
 /// torque replaced by u^ at the raw rate (the FIR applied to the delayed raw references, so
