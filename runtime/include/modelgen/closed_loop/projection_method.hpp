@@ -131,8 +131,8 @@ struct ProjectionRecord {
 };
 
 struct ProjectionOptions {
-  /// M forced; unset: the smallest of kFirLagLadder whose FIR passes the decorrelation test on
-  /// every record, or the largest the rows allow when none does.
+  /// M forced; unset: choose_fir_projection() on fir_lag_ladder() (the smallest M that passes
+  /// its tests on every record, or the largest the rows allow when none does).
   std::optional<int> fir_lags;
   std::vector<double> min_speed;  ///< per joint, for stage 2 (IdentifyOptions::min_speed)
 };
