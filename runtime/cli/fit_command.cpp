@@ -1,5 +1,6 @@
 // modelid fit: base parameters from measured trajectories by IDIM-OLS, IDIM-WLS or PIM-WLS
-// (Gautier & Briot eq. 14-21) or from closed-loop records by IDIM-IV or DIDIM, their standard
+// (Gautier & Briot eq. 14-21) or from closed-loop records by IDIM-IV, DIDIM or the projection
+// method (Bona & Curatella eq. 10-12), their standard
 // deviations (eq. 17-19), optionally the essential parameters (iterative elimination with
 // ratio r_sigma), torque plots and the EST.json file.
 
@@ -26,6 +27,7 @@
 #include "runtime/cli/parameter_file.hpp"
 #include "runtime/cli/physical_report.hpp"
 #include "runtime/cli/prediction_output.hpp"
+#include "runtime/cli/projection_fit.hpp"
 #include "runtime/cli/preparation_check.hpp"
 #include "runtime/cli/progress.hpp"
 #include "runtime/cli/shipped_models.hpp"
@@ -50,7 +52,8 @@ const std::map<std::string, OptionKind> kFitOptions =
                        {"--physical", OptionKind::kFlag},
                        {"--prior-weight", OptionKind::kOnce},
                        {"--min-speed", OptionKind::kOnce},
-                       {"--controller", OptionKind::kOnce}});
+                       {"--controller", OptionKind::kOnce},
+                       {"--fir-lags", OptionKind::kOnce}});
 
 namespace {
 
@@ -245,18 +248,24 @@ int run_fit(const CommandLine& args) {
   if (!args.has("--data")) throw UsageError{"fit needs at least one --data file"};
   const std::string& method_text = args.one("--method");
   const std::optional<ClosedLoopMethod> closed_loop = closed_loop_method(method_text);
-  if (method_text != "ols" && method_text != "wls" && method_text != "pim-wls" && !closed_loop) {
-    throw UsageError{"--method must be ols, wls, pim-wls, iv, didim or ml, not '" + method_text +
-                     "'"};
+  const bool projection = method_text == "pm";
+  if (method_text != "ols" && method_text != "wls" && method_text != "pim-wls" && !closed_loop &&
+      !projection) {
+    throw UsageError{"--method must be ols, wls, pim-wls, iv, didim, pm or ml, not '" +
+                     method_text + "'"};
+  }
+  if (!projection && args.has("--fir-lags")) {
+    throw UsageError{"--fir-lags belongs to the projection method, --method pm"};
   }
   if (!closed_loop && args.has("--controller")) {
     throw UsageError{"--controller belongs to the closed-loop methods, --method iv or didim"};
   }
-  const Method method = closed_loop ? Method::kWls : parse_method(method_text);
-  const std::string label =
-      closed_loop ? closed_loop_method_name(*closed_loop) : method_name(method);
+  const Method method = closed_loop || projection ? Method::kWls : parse_method(method_text);
+  const std::string label = closed_loop  ? closed_loop_method_name(*closed_loop)
+                            : projection ? "PM (projection, IDIM-WLS)"
+                                         : method_name(method);
   const bool essential = args.has("--essential");
-  if (essential && closed_loop) {
+  if (essential && (closed_loop || projection)) {
     throw UsageError{"--essential belongs to the linear methods ols, wls and pim-wls"};
   }
   double r_sigma = kDefaultRSigma;
@@ -294,9 +303,11 @@ int run_fit(const CommandLine& args) {
   }
   std::ostringstream closed_loop_report;
   const Identification id =
-      closed_loop ? fit_closed_loop(args, model, experiments, options.min_speed, *closed_loop,
+      closed_loop  ? fit_closed_loop(args, model, experiments, options.min_speed, *closed_loop,
+                                     closed_loop_report, std::cerr)
+      : projection ? fit_projection(args, model, experiments, options.min_speed,
                                     closed_loop_report, std::cerr)
-                  : identify(model, data, method, options);
+                   : identify(model, data, method, options);
   fitting.finish();
 
   std::cout << "modelid fit: " << model.name() << ", " << label << " on "

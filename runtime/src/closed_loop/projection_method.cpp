@@ -1,0 +1,396 @@
+// The projection method: a least-squares non-causal FIR from the references to the torque on
+// the decimated rows (Bona & Curatella eq. 10-11), its order by a decorrelation test, then
+// IDIM-WLS on the projected torque (eq. 12).
+
+#include "modelgen/closed_loop/projection_method.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include <Eigen/Cholesky>
+#include <Eigen/QR>
+
+#include "modelgen/estimation/estimation_error.hpp"
+#include "modelgen/signal/decimation.hpp"
+
+namespace modelgen {
+
+namespace {
+
+// Two-sided 99 % point of the standard normal: a white-noise correlation of N samples stays
+// within kBand99 / sqrt(N) with 99 % probability.
+constexpr double kBand99 = 2.58;
+// Lags the test looks beyond 2M: u~ left correlated with the references shows at the lags
+// just past the FIR's support.
+constexpr int kTestMargin = 10;
+// Singular values of the column-scaled regressor below this fraction of the largest are
+// treated as zero: a periodic reference of H harmonics makes its lags exactly dependent.
+constexpr double kRankThreshold = 1e-10;
+// A reference whose range is below this fraction of its size is held: its lags are the
+// constant column again.
+constexpr double kHeld = 1e-12;
+
+// The z with P(|N(0,1)| > z) = p, by bisection on erfc (monotone).
+double normal_two_sided(double p) {
+  double low = 0, high = 40;
+  for (int i = 0; i < 200; ++i) {
+    const double mid = 0.5 * (low + high);
+    (std::erfc(mid / std::sqrt(2.0)) > p ? low : high) = mid;
+  }
+  return 0.5 * (low + high);
+}
+
+// Raw reference rows first_row + s - shift, s = 0..samples-1, paired as held torques were
+// (the mean of a sample and the one before) when `hold`; rows outside the record take its
+// end value.
+Eigen::MatrixXd shifted_reference(const Eigen::MatrixXd& qr, Eigen::Index first_row,
+                                  Eigen::Index samples, bool hold, Eigen::Index shift) {
+  const Eigen::Index last = qr.rows() - 1;
+  auto row = [&](Eigen::Index r) { return qr.row(std::clamp<Eigen::Index>(r, 0, last)); };
+  Eigen::MatrixXd out(samples, qr.cols());
+  for (Eigen::Index s = 0; s < samples; ++s) {
+    const Eigen::Index r = first_row + s - shift;
+    out.row(s) =
+        hold ? Eigen::RowVectorXd(0.5 * (row(r) + row(r - 1))) : Eigen::RowVectorXd(row(r));
+  }
+  return out;
+}
+
+// The regressor of eq. 10 for lags -M..M of the moving references, after the constant.
+Eigen::MatrixXd fir_regressor(const LaggedReferences& references, const std::vector<int>& moving,
+                              int lags) {
+  const Eigen::Index rows = references.constant.size();
+  Eigen::MatrixXd phi(rows, 1 + static_cast<Eigen::Index>(moving.size()) * (2 * lags + 1));
+  phi.col(0) = references.constant;
+  Eigen::Index column = 1;
+  for (const int i : moving) {
+    for (int k = -lags; k <= lags; ++k) phi.col(column++) = references.at(k).col(i);
+  }
+  return phi;
+}
+
+double correlation(const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
+  const Eigen::VectorXd x = a.array() - a.mean(), y = b.array() - b.mean();
+  const double norms = x.norm() * y.norm();
+  return norms > 0 ? x.dot(y) / norms : 0.0;
+}
+
+// The one-sided 99 % point of chi-square with `dof` degrees of freedom (Wilson-Hilferty).
+double chi_square_99(double dof) {
+  const double z = 2.326, a = 2 / (9 * dof);
+  return dof * std::pow(1 - a + z * std::sqrt(a), 3);
+}
+
+// Whether `larger` (more lags) lowers some channel's residual by more than its extra
+// coefficients take of white noise: (RSS_s - RSS_l) / (RSS_l / (N - p_l)) above the 99 % point
+// of chi-square with p_l - p_s degrees of freedom.
+bool explains_more(const FirProjection& smaller, const FirProjection& larger) {
+  const Eigen::Index rows = larger.residual_squares.size() ? larger.projected.rows() : 0;
+  const Eigen::Index extra = larger.rank - smaller.rank;
+  if (extra <= 0 || rows <= larger.rank) return false;
+  for (Eigen::Index j = 0; j < larger.residual_squares.size(); ++j) {
+    const double variance = larger.residual_squares[j] / static_cast<double>(rows - larger.rank);
+    if (!(variance > 0)) continue;
+    const double drop = smaller.residual_squares[j] - larger.residual_squares[j];
+    if (drop / variance > chi_square_99(static_cast<double>(extra))) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+int decorrelation_window(int lags) { return 2 * lags + kTestMargin; }
+
+std::vector<int> fir_lag_ladder(Eigen::Index rows, Eigen::Index moving, int max_lag) {
+  std::vector<int> out;
+  for (const int lags : kFirLagLadder) {
+    if (rows >= kMinRowsPerCoefficient * (1 + moving * (2 * lags + 1)) &&
+        decorrelation_window(lags) <= max_lag) {
+      out.push_back(lags);
+    }
+  }
+  return out;
+}
+
+FirChoice choose_fir_projection(const std::vector<Eigen::MatrixXd>& u,
+                                const std::vector<LaggedReferences>& references,
+                                const std::vector<int>& ladder) {
+  if (ladder.empty() || u.size() != references.size() || u.empty()) {
+    throw EstimationError("FIR projection: no M to try, or not one reference set per record");
+  }
+  auto fit_all = [&](int lags) {
+    std::vector<FirProjection> fits;
+    for (std::size_t e = 0; e < u.size(); ++e) {
+      fits.push_back(fit_fir_projection(u[e], references[e], lags));
+    }
+    return fits;
+  };
+  FirChoice out;
+  std::vector<FirProjection> next = fit_all(ladder.front());
+  for (std::size_t l = 0; l < ladder.size(); ++l) {
+    std::vector<FirProjection> fits = std::move(next);
+    bool passed = true;
+    DecorrelationTest worst;
+    for (std::size_t e = 0; e < fits.size(); ++e) {
+      const DecorrelationTest& test = fits[e].test;
+      passed = passed && test.passed();
+      if (e == 0 || test.worst - test.band > worst.worst - worst.band) worst = test;
+    }
+    // The decorrelation test has little power when u~ is mostly torque no linear filter of the
+    // references makes (a multi-joint robot's): measured on the TX-40, M = 0 passes it with
+    // 57 % of the torque left in u~ where M = 1 leaves 22 %. So M must also explain as much as
+    // the next M of the ladder, within what the next M's extra coefficients take of white
+    // noise (an F test at 99 %, per channel and record).
+    if (l + 1 < ladder.size()) {
+      next = fit_all(ladder[l + 1]);
+      for (std::size_t e = 0; e < fits.size() && passed; ++e) {
+        passed = !explains_more(fits[e], next[e]);
+      }
+    }
+    out.tried.emplace_back(ladder[l], worst.worst);
+    out.lags = ladder[l];
+    out.test = worst;
+    out.fits = std::move(fits);
+    out.decorrelated = passed;
+    if (passed) break;
+  }
+  return out;
+}
+
+FirProjection fit_fir_projection(const Eigen::MatrixXd& u, const LaggedReferences& references,
+                                 int lags) {
+  if (lags < 0) throw EstimationError("FIR projection: lags " + std::to_string(lags) + " < 0");
+  const int window = decorrelation_window(lags);
+  if (references.max_lag < window ||
+      references.by_lag.size() != static_cast<std::size_t>(2 * references.max_lag + 1)) {
+    throw EstimationError(
+        "FIR projection: the references reach lag " + std::to_string(references.max_lag) +
+        ", the test of M = " + std::to_string(lags) + " needs " + std::to_string(window));
+  }
+  const Eigen::Index rows = u.rows();
+  for (const Eigen::MatrixXd& r : references.by_lag) {
+    if (r.rows() != rows || r.cols() != references.at(0).cols()) {
+      throw EstimationError("FIR projection: the references have " + std::to_string(r.rows()) +
+                            " rows, the torques " + std::to_string(rows));
+    }
+  }
+  if (references.constant.size() != rows) {
+    throw EstimationError("FIR projection: the constant regressor does not match the torques");
+  }
+  FirProjection out;
+  out.lags = lags;
+  for (Eigen::Index i = 0; i < references.at(0).cols(); ++i) {
+    const Eigen::VectorXd r = references.at(0).col(i);
+    const double range = r.maxCoeff() - r.minCoeff();
+    if (range > kHeld * std::max(1.0, r.cwiseAbs().maxCoeff()))
+      out.moving.push_back(static_cast<int>(i));
+  }
+  // The constant: a linear FIR about the record's mean posture leaves an offset (gravity at
+  // that posture, the friction's mean) that the references' lags would otherwise have to
+  // imitate through their own means, bending the filter.
+  const Eigen::MatrixXd phi = fir_regressor(references, out.moving, lags);
+  const Eigen::Index p = phi.cols();
+  if (rows < kMinRowsPerCoefficient * p) {
+    throw EstimationError("FIR projection: " + std::to_string(rows) + " rows for " +
+                          std::to_string(p) + " FIR coefficients (M = " + std::to_string(lags) +
+                          "); at least " + std::to_string(kMinRowsPerCoefficient) +
+                          " rows per coefficient are needed: choose a smaller M");
+  }
+  const Eigen::VectorXd scale = phi.colwise().norm().cwiseMax(1e-300).cwiseInverse();
+  const Eigen::MatrixXd scaled = phi * scale.asDiagonal();
+  // The threshold before the decomposition: the complete orthogonal step uses the rank.
+  Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod(scaled.rows(), scaled.cols());
+  cod.setThreshold(kRankThreshold);
+  cod.compute(scaled);
+  out.coefficients = scale.asDiagonal() * cod.solve(u);
+  out.projected = phi * out.coefficients;
+  out.rank = cod.rank();
+  out.full_rank = out.rank == p;
+  const Eigen::MatrixXd residual = u - out.projected;
+  out.residual_squares = residual.colwise().squaredNorm().transpose();
+  out.coefficient_std =
+      Eigen::MatrixXd::Constant(p, u.cols(), std::numeric_limits<double>::quiet_NaN());
+  if (out.full_rank && rows > p) {
+    const Eigen::MatrixXd inverse =
+        (scaled.transpose() * scaled).ldlt().solve(Eigen::MatrixXd::Identity(p, p));
+    const Eigen::VectorXd unit = scale.cwiseProduct(inverse.diagonal().cwiseMax(0).cwiseSqrt());
+    for (Eigen::Index j = 0; j < u.cols(); ++j) {
+      const double sigma = std::sqrt(residual.col(j).squaredNorm() / static_cast<double>(rows - p));
+      out.coefficient_std.col(j) = sigma * unit;
+    }
+  }
+  out.test.window = window;
+  out.test.tested = static_cast<long long>(u.cols()) * static_cast<long long>(out.moving.size()) *
+                    2 * (window - lags);
+  const double root_n = std::sqrt(static_cast<double>(rows));
+  out.test.single_band = kBand99 / root_n;
+  // Sidak: each correlation at the level that leaves all m within the band 99 times in 100.
+  const double each = 1 - std::pow(0.99, 1.0 / static_cast<double>(std::max(out.test.tested, 1LL)));
+  out.test.band = normal_two_sided(each) / root_n;
+  for (Eigen::Index j = 0; j < u.cols(); ++j) {
+    for (const int i : out.moving) {
+      for (int k = -window; k <= window; ++k) {
+        if (std::abs(k) <= lags) continue;  // zero by construction
+        const double c = std::abs(correlation(residual.col(j), references.at(k).col(i)));
+        if (c > out.test.worst) {
+          out.test.worst = c;
+          out.test.worst_channel = static_cast<int>(j);
+          out.test.worst_reference = i;
+          out.test.worst_lag = k;
+        }
+      }
+    }
+  }
+  return out;
+}
+
+LaggedReferences lagged_references(const Eigen::MatrixXd& qr, Eigen::Index first_row,
+                                   Eigen::Index samples, int decimation, bool torque_hold,
+                                   int max_lag) {
+  if (max_lag < 0 || decimation < 1 || samples < 2 || first_row < 0 ||
+      first_row + samples > qr.rows()) {
+    throw EstimationError("lagged references: rows " + std::to_string(first_row) + " to " +
+                          std::to_string(first_row + samples) + " are not within the " +
+                          std::to_string(qr.rows()) + " reference samples");
+  }
+  LaggedReferences out;
+  out.max_lag = max_lag;
+  for (int k = -max_lag; k <= max_lag; ++k) {
+    out.by_lag.push_back(
+        decimate_interior(shifted_reference(qr, first_row, samples, torque_hold,
+                                            static_cast<Eigen::Index>(k) * decimation),
+                          decimation));
+  }
+  out.constant = decimate_interior(Eigen::MatrixXd::Ones(samples, 1), decimation).col(0);
+  return out;
+}
+
+ProjectedRecords project_records(int n, const std::vector<ProjectionRecord>& records,
+                                 const std::optional<int>& fir_lags) {
+  if (records.empty()) throw EstimationError("the projection method needs a record");
+  std::vector<Eigen::MatrixXd> torques;  // u on each record's decimated rows
+  for (std::size_t e = 0; e < records.size(); ++e) {
+    const ProjectionRecord& r = records[e];
+    const std::string name = r.prepared.source.empty()
+                                 ? "closed-loop record " + std::to_string(e + 1)
+                                 : r.prepared.source;
+    const Eigen::Index samples = r.prepared.t.size();
+    if (r.qr.cols() != n || r.prepared.tau.cols() != n || r.prepared.tau.rows() != samples) {
+      throw EstimationError(name + ": the record does not have the robot's " + std::to_string(n) +
+                            " joints (reference or torques)");
+    }
+    if (r.first_row < 0 || r.first_row + samples > r.qr.rows() || samples < 2) {
+      throw EstimationError(name + ": the prepared samples are not within the reference's");
+    }
+    if (r.decimation < 1) throw EstimationError(name + ": decimation factor below 1");
+    torques.push_back(decimate_interior(r.prepared.tau, r.decimation));
+  }
+
+  // The M the rows allow: every moving reference's 2M + 1 lags and the constant, at least
+  // kMinRowsPerCoefficient rows each.
+  Eigen::Index fewest = std::numeric_limits<Eigen::Index>::max();
+  for (const Eigen::MatrixXd& u : torques) fewest = std::min(fewest, u.rows());
+  Eigen::Index moving = 0;
+  for (const ProjectionRecord& r : records) {
+    const Eigen::MatrixXd used = r.qr.middleRows(r.first_row, r.prepared.t.size());
+    Eigen::Index count = 0;
+    for (Eigen::Index i = 0; i < n; ++i) {
+      const double range = used.col(i).maxCoeff() - used.col(i).minCoeff();
+      if (range > kHeld * std::max(1.0, used.col(i).cwiseAbs().maxCoeff())) ++count;
+    }
+    moving = std::max(moving, count);
+  }
+  std::vector<int> ladder;
+  if (fir_lags) {
+    if (*fir_lags < 0) {
+      throw EstimationError("the FIR's lags M must be >= 0, not " + std::to_string(*fir_lags));
+    }
+    ladder.push_back(*fir_lags);
+  } else {
+    ladder = fir_lag_ladder(fewest, moving, std::numeric_limits<int>::max());
+    if (ladder.empty()) {
+      throw EstimationError("the projection method: " + std::to_string(fewest) +
+                            " decimated rows are too few for a FIR from " + std::to_string(moving) +
+                            " moving references (" + std::to_string(kMinRowsPerCoefficient) +
+                            " rows per coefficient); record longer or decimate less");
+    }
+  }
+  std::vector<LaggedReferences> references;
+  for (const ProjectionRecord& r : records) {
+    references.push_back(lagged_references(r.qr, r.first_row, r.prepared.t.size(), r.decimation,
+                                           r.torque_hold, decorrelation_window(ladder.back())));
+  }
+  FirChoice choice = choose_fir_projection(torques, references, ladder);
+  ProjectedRecords out;
+  out.forced = fir_lags.has_value();
+  out.lags = choice.lags;
+  out.decorrelated = choice.decorrelated;
+  out.test = choice.test;
+  out.tried = choice.tried;
+  const std::vector<FirProjection>& chosen = choice.fits;
+
+  // Discarded fraction on the decimated rows; u^ at the raw rate.
+  Eigen::VectorXd lost = Eigen::VectorXd::Zero(n), total = Eigen::VectorXd::Zero(n);
+  for (std::size_t e = 0; e < records.size(); ++e) {
+    const ProjectionRecord& r = records[e];
+    const FirProjection& fir = chosen[e];
+    lost += (torques[e] - fir.projected).colwise().squaredNorm().transpose();
+    total += torques[e].colwise().squaredNorm().transpose();
+    // u^ at the raw rate: decimation is linear, so identify()'s decimation of it is the fitted
+    // u^ on the same rows.
+    const Eigen::Index samples = r.prepared.t.size();
+    Eigen::MatrixXd u_hat = Eigen::MatrixXd::Ones(samples, 1) * fir.coefficients.row(0);
+    Eigen::Index row = 1;
+    for (const int i : fir.moving) {
+      for (int k = -fir.lags; k <= fir.lags; ++k, ++row) {
+        const Eigen::VectorXd delayed =
+            shifted_reference(r.qr, r.first_row, samples, r.torque_hold,
+                              static_cast<Eigen::Index>(k) * r.decimation)
+                .col(i);
+        u_hat += delayed * fir.coefficients.row(row);
+      }
+    }
+    out.projected.push_back(std::move(u_hat));
+  }
+  out.discarded = (lost.array() / total.array().max(1e-300)).sqrt();
+  out.discarded_total = std::sqrt(lost.sum() / std::max(total.sum(), 1e-300));
+  return out;
+}
+
+Identification identify_projected(const IdentificationModel& model,
+                                  const std::vector<ProjectionRecord>& records,
+                                  const ProjectedRecords& stage1,
+                                  const std::vector<double>& min_speed) {
+  if (stage1.projected.size() != records.size()) {
+    throw EstimationError("the projection method: stage 1 has " +
+                          std::to_string(stage1.projected.size()) + " records, stage 2 " +
+                          std::to_string(records.size()));
+  }
+  std::vector<Trajectory> projected;
+  IdentifyOptions options;
+  options.min_speed = min_speed;
+  for (std::size_t e = 0; e < records.size(); ++e) {
+    Trajectory x = records[e].prepared;
+    x.tau = stage1.projected[e];
+    projected.push_back(std::move(x));
+    options.decimation.push_back(records[e].decimation);
+  }
+  // Bona fits eq. 12 by maximum likelihood. With independent Gaussian torque noise of one
+  // variance per joint, the likelihood of the torques is maximal at the weighted least squares
+  // of eq. 20 (each joint weighted by the inverse of its noise's standard deviation), which is
+  // what IDIM-WLS computes.
+  return identify(model, projected, Method::kWls, options);
+}
+
+ProjectionIdentification projection_method(const IdentificationModel& model,
+                                           const std::vector<ProjectionRecord>& records,
+                                           const ProjectionOptions& options) {
+  ProjectionIdentification out;
+  out.stage1 = project_records(model.dof(), records, options.fir_lags);
+  out.id = identify_projected(model, records, out.stage1, options.min_speed);
+  return out;
+}
+
+}  // namespace modelgen
