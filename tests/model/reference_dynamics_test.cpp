@@ -118,7 +118,8 @@ TEST_P(ShippedRobot, PowerEqualsTimeDerivativeOfEnergy) {
       p[k] = std::abs(p[k]) + 0.1;
     }
     if (kind == ParamKind::kFv || kind == ParamKind::kFc || kind == ParamKind::kOff ||
-        kind == ParamKind::kFvm || kind == ParamKind::kFcm) {
+        kind == ParamKind::kFvm || kind == ParamKind::kFcm || kind == ParamKind::kFvPos ||
+        kind == ParamKind::kFvNeg || kind == ParamKind::kFcPos || kind == ParamKind::kFcNeg) {
       p[k] = 0;
     }
   }

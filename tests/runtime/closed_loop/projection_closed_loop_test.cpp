@@ -192,8 +192,9 @@ TEST_F(ProjectionClosedLoopTest, MultiJointRunDiscardsMoreThanTheWarning) {
   const ProjectionIdentification pm = projection_method(*model_, {r});
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  const Identification wls =
-      identify(*model_, {r.prepared}, Method::kWls, IdentifyOptions{.decimation = {r.decimation}});
+  IdentifyOptions wls_options;
+  wls_options.decimation = {r.decimation};
+  const Identification wls = identify(*model_, {r.prepared}, Method::kWls, wls_options);
   auto distance = [&](const LeastSquaresResult& fit) {
     double worst = 0, sum = 0;
     for (Eigen::Index k = 0; k < truth_.size(); ++k) {
