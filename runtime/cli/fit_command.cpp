@@ -17,6 +17,7 @@
 #include "modelgen/estimation/predict.hpp"
 #include "modelgen/model/load_robot.hpp"
 #include "runtime/cli/closed_loop_fit.hpp"
+#include "runtime/cli/eiv_fit.hpp"
 #include "runtime/cli/commands.hpp"
 #include "runtime/cli/data_files.hpp"
 #include "runtime/cli/estimate_file.hpp"
@@ -245,16 +246,21 @@ int run_fit(const CommandLine& args) {
   if (!args.has("--data")) throw UsageError{"fit needs at least one --data file"};
   const std::string& method_text = args.one("--method");
   const std::optional<ClosedLoopMethod> closed_loop = closed_loop_method(method_text);
-  if (method_text != "ols" && method_text != "wls" && method_text != "pim-wls" && !closed_loop) {
-    throw UsageError{"--method must be ols, wls, pim-wls, iv, didim or ml, not '" + method_text +
+  const bool eiv = is_eiv_method(method_text);
+  if (method_text != "ols" && method_text != "wls" && method_text != "pim-wls" && !closed_loop &&
+      !eiv) {
+    throw UsageError{"--method must be ols, wls, pim-wls, iv, didim, ml or ml-eiv, not '" +
+                     method_text +
                      "'"};
   }
   if (!closed_loop && args.has("--controller")) {
     throw UsageError{"--controller belongs to the closed-loop methods, --method iv or didim"};
   }
-  const Method method = closed_loop ? Method::kWls : parse_method(method_text);
-  const std::string label =
-      closed_loop ? closed_loop_method_name(*closed_loop) : method_name(method);
+  if (eiv) check_eiv_arguments(args);
+  const Method method = closed_loop || eiv ? Method::kWls : parse_method(method_text);
+  const std::string label = closed_loop ? closed_loop_method_name(*closed_loop)
+                            : eiv       ? "ML-EIV"
+                                        : method_name(method);
   const bool essential = args.has("--essential");
   if (essential && closed_loop) {
     throw UsageError{"--essential belongs to the linear methods ols, wls and pim-wls"};
@@ -296,6 +302,7 @@ int run_fit(const CommandLine& args) {
   const Identification id =
       closed_loop ? fit_closed_loop(args, model, experiments, options.min_speed, *closed_loop,
                                     closed_loop_report, std::cerr)
+      : eiv       ? fit_eiv(model, experiments, closed_loop_report)
                   : identify(model, data, method, options);
   fitting.finish();
 
