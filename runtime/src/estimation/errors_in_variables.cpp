@@ -53,6 +53,26 @@ void check_noise(const std::string& source, const char* what, const Eigen::Vecto
   }
 }
 
+// Keeps harmonics 0..H of every column (one period each) by the DFT: the same projection as
+// keep_harmonics (fourier_fit.hpp), line by line over all columns at once.
+void keep_lines(Eigen::MatrixXd& columns, Eigen::Index H) {
+  const Eigen::Index N = columns.rows();
+  Eigen::MatrixXcd X(H + 1, columns.cols());
+  for (Eigen::Index c = 0; c < columns.cols(); ++c) {
+    const std::vector<std::complex<double>> spectrum = detail::dft(columns.col(c));
+    for (Eigen::Index l = 0; l <= H; ++l) X(l, c) = spectrum[static_cast<std::size_t>(l)];
+  }
+  const Eigen::ArrayXd k = Eigen::ArrayXd::LinSpaced(N, 0.0, static_cast<double>(N - 1));
+  const double Nd = static_cast<double>(N);
+  columns = Eigen::VectorXd::Ones(N) * (X.row(0).real() / Nd);
+  for (Eigen::Index l = 1; l <= H; ++l) {
+    const Eigen::ArrayXd angle = k * (2.0 * std::numbers::pi * static_cast<double>(l) / Nd);
+    const Eigen::VectorXd c = angle.cos().matrix() * (2.0 / Nd), s = angle.sin().matrix() * (2.0 / Nd);
+    // 2 Re(X_l exp(i angle)) / N.
+    columns.noalias() += c * X.row(l).real() - s * X.row(l).imag();
+  }
+}
+
 }  // namespace
 
 ErrorsInVariablesObjective::ErrorsInVariablesObjective(const IdentificationModel& model,
@@ -90,6 +110,20 @@ ErrorsInVariablesObjective::ErrorsInVariablesObjective(const IdentificationModel
       }
     }
     data_.push_back(x);
+    projected_.push_back(Eigen::MatrixXd());
+    if (v.tau_lines.size() != 0) {
+      const int b = model.num_base_params();
+      const Eigen::Index N = x.q.rows();
+      Eigen::MatrixXd& rows = projected_.back();
+      rows.resize(N, static_cast<Eigen::Index>(n) * b);
+      RowMajor W(n, b);
+      for (Eigen::Index k = 0; k < N; ++k) {
+        const Eigen::VectorXd q = x.q.row(k), dq = x.dq.row(k), ddq = x.ddq.row(k);
+        model.regressor(q.data(), dq.data(), ddq.data(), W.data());
+        rows.row(k) = Eigen::Map<const Eigen::RowVectorXd>(W.data(), W.size());
+      }
+      keep_lines(rows, v.tau_lines.rows() - 1);
+    }
     first_.push_back(samples_);
     samples_ += x.q.rows();
   }
@@ -115,7 +149,11 @@ bool ErrorsInVariablesAccess::evaluate_block(const ErrorsInVariablesObjective& o
     q = x.q.row(k).transpose();
     dq = x.dq.row(k).transpose();
     ddq = x.ddq.row(k).transpose();
-    model.regressor(q.data(), dq.data(), ddq.data(), W.data());
+    if (o.projected_[e].size() != 0) {
+      W = Eigen::Map<const RowMajor>(o.projected_[e].row(k).eval().data(), n, b);
+    } else {
+      model.regressor(q.data(), dq.data(), ddq.data(), W.data());
+    }
     // b = -G = W theta - tau.
     const Eigen::VectorXd bi = W * th - x.tau.row(k).transpose();
     model.inverse_dynamics_state_jacobian(q.data(), dq.data(), ddq.data(), theta, Js.data());

@@ -24,6 +24,7 @@
 #include "modelgen/excitation/fourier_trajectory.hpp"
 #include "modelgen/model/identification_model.hpp"
 #include "modelgen/model/load_robot.hpp"
+#include "modelgen/signal/fourier_fit.hpp"
 #include "modelgen/signal/gaussian_noise.hpp"
 #include "modelgen/signal/prepare.hpp"
 #include "runtime/cli/shipped_models.hpp"
@@ -85,17 +86,7 @@ PreparedExperiment periodic(Trajectory raw, const IdentificationModel& model) {
   return prepare_experiment(std::move(raw), model.drive_chain(), options);
 }
 
-// The TX-40 with its true parameters, but without Coulomb friction (Fc1..6, Fcm6 = 0) when
-// `coulomb` is false: its torque jumps at every velocity reversal, and the periodic route keeps
-// the averaged torques only up to the harmonic where they stand out of their noise while the
-// regressor keeps sign(dq) whole, which biases the friction estimates of every method.
 struct Tx40 {
-  explicit Tx40(bool coulomb = true) {
-    if (coulomb) return;
-    for (std::size_t p = 0; p < model->base_param_names().size(); ++p) {
-      if (model->base_param_names()[p].rfind("Fc", 0) == 0) truth[static_cast<Eigen::Index>(p)] = 0;
-    }
-  }
   std::unique_ptr<IdentificationModel> model = internal::make_shipped_model("tx40");
   Eigen::VectorXd truth = test::tx40_true_base(model->base_param_names());
 };
@@ -137,12 +128,24 @@ TEST(ErrorsInVariables, ObjectiveEqualsAnIndependentComputation) {
     sigma(j, 2 * kDof + j) = sigma(2 * kDof + j, j) = v.q_ddq[j];
   }
   const Trajectory& d = prepared.data;
-  double cost = 0;
-  for (Eigen::Index s = 0; s < d.t.size(); ++s) {
+  auto state = [&](Eigen::Index s) {
     Eigen::VectorXd x(3 * kDof);
     x << d.q.row(s).transpose(), d.dq.row(s).transpose(), d.ddq.row(s).transpose();
+    return x;
+  };
+  // The model's torques over the period, projected on the harmonics the prepared torques kept.
+  Eigen::MatrixXd model_torque(d.t.size(), kDof);
+  for (Eigen::Index s = 0; s < d.t.size(); ++s) {
+    model_torque.row(s) = reference_torque(reference, state(s), theta).transpose();
+  }
+  ASSERT_GT(v.tau_lines.rows(), 0) << "the torques were kept whole: nothing projected";
+  Trajectory period = d;
+  keep_harmonics(period, model_torque, static_cast<int>(v.tau_lines.rows() - 1));
+  double cost = 0;
+  for (Eigen::Index s = 0; s < d.t.size(); ++s) {
+    const Eigen::VectorXd x = state(s);
     const Eigen::VectorXd tau = d.tau.row(s).transpose();
-    const Eigen::VectorXd b = -(tau - reference_torque(reference, x, theta));  // b = -G
+    const Eigen::VectorXd b = -(tau - model_torque.row(s).transpose());  // b = -G
     // B = dG/d(x, tau) = [-dtau/dx, I], dtau/dx by central differences; where a joint or
     // motor velocity crosses zero inside the stencil (the Coulomb torque jumps: the one-sided
     // differences disagree), the one-sided difference away from the jump (the smaller one).
@@ -198,7 +201,7 @@ TEST(ErrorsInVariables, JacobianMatchesDifferencesOfTheResiduals) {
 
 // The statistical fit, shared by the tests below (P = 8 periods of 2000 samples).
 struct Fitted {
-  Tx40 tx40{std::getenv("EIV_COULOMB") != nullptr};
+  Tx40 tx40;
   PreparedExperiment prepared;
   ErrorsInVariablesResult result;
 };
@@ -207,7 +210,7 @@ const Fitted& fitted() {
   static const Fitted* f = [] {
     auto* out = new Fitted;
     out->prepared = periodic(measured(*out->tx40.model, out->tx40.truth, 200, 8, kSigmaQ,
-                                      kSigmaTau, std::getenv("EIV_SEED") ? std::stoul(std::getenv("EIV_SEED")) : 11),
+                                      kSigmaTau, 11),
                              *out->tx40.model);
     out->result = fit_errors_in_variables(*out->tx40.model, {out->prepared.data},
                                           {out->prepared.noise});
@@ -257,7 +260,6 @@ TEST(ErrorsInVariables, EstimateCoversTheTruth) {
   for (Eigen::Index p = 0; p < eiv.fit.value.size(); ++p) {
     const double truth = f.tx40.truth[p], sd = eiv.fit.std_dev[p];
     ASSERT_TRUE(std::isfinite(truth)) << eiv.names[p];
-    if (truth == 0) continue;  // Coulomb friction, left out of the simulation
     const double eiv_distance = (eiv.fit.value[p] - truth) / sd;
     // WLS's distance in EIV standard deviations: its own are too small for the same reason as
     // white_std_dev (eq. 18 reads the correlated samples as independent).
