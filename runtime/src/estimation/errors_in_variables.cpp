@@ -54,9 +54,34 @@ void check_noise(const std::string& source, const char* what, const Eigen::Vecto
 }
 
 // Keeps harmonics 0..H of every column (one period each) by the DFT: the same projection as
-// keep_harmonics (fourier_fit.hpp), line by line over all columns at once.
+// keep_harmonics (fourier_fit.hpp). Few lines: summed line by line over all columns at once;
+// many: the spectrum Y with the other lines zeroed, transformed back by real DFTs,
+// x_k = (1/N) sum_l Y_l exp(2 pi i l k / N) = (Re DFT(Re Y) + Im DFT(Im Y))_k / N.
 void keep_lines(Eigen::MatrixXd& columns, Eigen::Index H) {
   const Eigen::Index N = columns.rows();
+  if (H > 32) {
+    Eigen::VectorXd re(N), im(N);
+    for (Eigen::Index c = 0; c < columns.cols(); ++c) {
+      const std::vector<std::complex<double>> X = detail::dft(columns.col(c));
+      re.setZero();
+      im.setZero();
+      for (Eigen::Index l = 0; l <= H; ++l) {
+        const std::complex<double> line = X[static_cast<std::size_t>(l)];
+        re[l] = line.real();
+        im[l] = line.imag();
+        if (l > 0) {  // the conjugate line N - l
+          re[N - l] = line.real();
+          im[N - l] = -line.imag();
+        }
+      }
+      const std::vector<std::complex<double>> a = detail::dft(re), b = detail::dft(im);
+      for (Eigen::Index k = 0; k < N; ++k) {
+        columns(k, c) = (a[static_cast<std::size_t>(k)].real() +
+                         b[static_cast<std::size_t>(k)].imag()) / static_cast<double>(N);
+      }
+    }
+    return;
+  }
   Eigen::MatrixXcd X(H + 1, columns.cols());
   for (Eigen::Index c = 0; c < columns.cols(); ++c) {
     const std::vector<std::complex<double>> spectrum = detail::dft(columns.col(c));
@@ -225,9 +250,14 @@ std::vector<std::complex<double>> low_lines(const Eigen::VectorXd& g, Eigen::Ind
   }
   out.assign(static_cast<std::size_t>(L + 1), 0.0);
   for (Eigen::Index l = 0; l <= L; ++l) {
-    const double step = -2.0 * std::numbers::pi * static_cast<double>(l) / static_cast<double>(N);
-    std::complex<double> sum = 0;
-    for (Eigen::Index k = 0; k < N; ++k) sum += g[k] * std::polar(1.0, step * static_cast<double>(k));
+    // exp(-2 pi i l k / N) by a rotating phasor (rounding grows like N eps, ~1e-12).
+    const std::complex<double> step =
+        std::polar(1.0, -2.0 * std::numbers::pi * static_cast<double>(l) / static_cast<double>(N));
+    std::complex<double> sum = 0, phasor = 1;
+    for (Eigen::Index k = 0; k < N; ++k) {
+      sum += g[k] * phasor;
+      phasor *= step;
+    }
     out[static_cast<std::size_t>(l)] = sum;
   }
   return out;
