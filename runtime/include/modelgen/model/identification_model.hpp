@@ -54,9 +54,10 @@ class IdentificationModel {
   /// eq. 15-16): J receives dof() x 3 dof() values, row-major, J[i * 3 dof() + k] = d tau_i / d x_k.
   /// It is linear in beta, like tau. This default takes central differences of
   /// inverse_dynamics, step h_k = 6e-6 max(1, |x_k|) (about the cube root of the machine
-  /// epsilon, balancing the h^2 truncation against the eps |tau| / h round-off): relative error
-  /// about 1e-10 of the torques' scale in the q and dq columns, round-off only in the ddq
-  /// columns (tau is linear in ddq). Coulomb friction jumps at dq = 0: a dq column whose stencil
+  /// epsilon, balancing the h^2 truncation against the eps |tau| / h round-off): errors of order
+  /// 1e-10 of the Jacobian's scale expected in the q and dq columns, round-off only in the ddq
+  /// columns (tau is linear in ddq); tests/model/state_jacobian_interface_test.cpp bounds it by
+  /// 1e-7 of the largest entry on four shipped robots. Coulomb friction jumps at dq = 0: a dq column whose stencil
   /// crosses a zero velocity is wrong there. Generated models override it with their generated
   /// inverse_dynamics_state_jacobian (exact, same friction convention) when they have one.
   virtual void inverse_dynamics_state_jacobian(const double* q, const double* dq,
