@@ -138,6 +138,7 @@ Experiments read_experiments(const std::vector<std::string>& paths,
     out.decimation.push_back(prepared.decimation);
     out.bandwidth_hz.push_back(prepared.bandwidth_hz);
     out.tau_noise_variance.push_back(std::move(prepared.tau_noise_variance));
+    out.noise.push_back(std::move(prepared.noise));
   }
   progress.update(static_cast<long long>(out.data.size()));
   return out;

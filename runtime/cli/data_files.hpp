@@ -43,6 +43,8 @@ struct Experiments {
   /// Per experiment: the joint-side torque noise variance per axis from the period average
   /// (N^2 m^2, dof values) with --periodic, empty otherwise (PreparedExperiment).
   std::vector<Eigen::VectorXd> tau_noise_variance;
+  /// Per experiment: the noise of its prepared q, dq, ddq, tau with --periodic, else empty.
+  std::vector<PeriodicNoise> noise;
 };
 
 /// Reads each CSV file (read_trajectory_csv: t, q1..qn, tau1..taun or currents i1..in,

@@ -18,6 +18,7 @@
 #include "modelgen/estimation/predict.hpp"
 #include "modelgen/model/load_robot.hpp"
 #include "runtime/cli/closed_loop_fit.hpp"
+#include "runtime/cli/eiv_fit.hpp"
 #include "runtime/cli/commands.hpp"
 #include "runtime/cli/data_files.hpp"
 #include "runtime/cli/estimate_file.hpp"
@@ -249,9 +250,10 @@ int run_fit(const CommandLine& args) {
   const std::string& method_text = args.one("--method");
   const std::optional<ClosedLoopMethod> closed_loop = closed_loop_method(method_text);
   const bool projection = method_text == "pm";
+  const bool eiv = is_eiv_method(method_text);
   if (method_text != "ols" && method_text != "wls" && method_text != "pim-wls" && !closed_loop &&
-      !projection) {
-    throw UsageError{"--method must be ols, wls, pim-wls, iv, didim, pm or ml, not '" +
+      !projection && !eiv) {
+    throw UsageError{"--method must be ols, wls, pim-wls, iv, didim, pm, ml or ml-eiv, not '" +
                      method_text + "'"};
   }
   if (!projection && args.has("--fir-lags")) {
@@ -260,9 +262,11 @@ int run_fit(const CommandLine& args) {
   if (!closed_loop && args.has("--controller")) {
     throw UsageError{"--controller belongs to the closed-loop methods, --method iv or didim"};
   }
-  const Method method = closed_loop || projection ? Method::kWls : parse_method(method_text);
+  if (eiv) check_eiv_arguments(args);
+  const Method method = closed_loop || projection || eiv ? Method::kWls : parse_method(method_text);
   const std::string label = closed_loop  ? closed_loop_method_name(*closed_loop)
                             : projection ? "PM (projection, IDIM-WLS)"
+                            : eiv        ? "ML-EIV"
                                          : method_name(method);
   const bool essential = args.has("--essential");
   if (essential && (closed_loop || projection)) {
@@ -307,6 +311,7 @@ int run_fit(const CommandLine& args) {
                                      closed_loop_report, std::cerr)
       : projection ? fit_projection(args, model, experiments, options.min_speed,
                                     closed_loop_report, std::cerr)
+      : eiv        ? fit_eiv(model, experiments, closed_loop_report)
                    : identify(model, data, method, options);
   fitting.finish();
 

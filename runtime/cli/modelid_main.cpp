@@ -28,6 +28,8 @@ constexpr const char* kUsage =
     "                   [-o EST.json] [--truth TRUE.json] [--physical] [--plot DIR]\n"
     "       modelid fit --method pm [--fir-lags M] --robot ROBOT --data A.csv\n"
     "                   [-o EST.json] [--truth TRUE.json] [--min-speed V[,...]] [--plot DIR]\n"
+    "       modelid fit --method ml-eiv --periodic --robot ROBOT --data A.csv\n"
+    "                   [-o EST.json] [--truth TRUE.json] [--physical] [--plot DIR]\n"
     "       modelid fit --method ml --approach 1|2|3|all --robot DESCRIPTION.yaml --periodic\n"
     "                   --data A.csv [--unknown load,Rv,Rc,Rz] [--known KNOWN.json]\n"
     "                   [--truth TRUTH.json] [--physical [--prior-weight W]] [-o EST.json]\n"

@@ -3,6 +3,8 @@
 
 #include "modelgen/model/identification_model.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <vector>
 
 #include <Eigen/Core>
@@ -26,6 +28,30 @@ void IdentificationModel::mass_matrix_and_bias(const double* q, const double* dq
   const std::vector<double> zero(static_cast<std::size_t>(dof()), 0.0);
   mass_matrix(q, beta, M);
   inverse_dynamics(q, dq, zero.data(), beta, h);
+}
+
+void IdentificationModel::inverse_dynamics_state_jacobian(const double* q, const double* dq,
+                                                          const double* ddq, const double* beta,
+                                                          double* J) const {
+  const int n = dof();
+  std::vector<double> x(q, q + n), plus(n), minus(n);
+  x.insert(x.end(), dq, dq + n);
+  x.insert(x.end(), ddq, ddq + n);
+  auto torque = [&](std::vector<double>& at, double* tau) {
+    inverse_dynamics(at.data(), at.data() + n, at.data() + 2 * n, beta, tau);
+  };
+  for (int k = 0; k < 3 * n; ++k) {
+    const double x_k = x[k];
+    const double h = 6e-6 * std::max(1.0, std::abs(x_k));
+    x[k] = x_k + h;
+    torque(x, plus.data());
+    x[k] = x_k - h;
+    torque(x, minus.data());
+    x[k] = x_k;
+    // The step actually taken, (x + h) - (x - h), rounded as the inputs were.
+    const double width = (x_k + h) - (x_k - h);
+    for (int i = 0; i < n; ++i) J[i * 3 * n + k] = (plus[i] - minus[i]) / width;
+  }
 }
 
 ReferenceModel::ReferenceModel(std::string name, RigidBodyTree tree, std::string description_sha256,

@@ -161,6 +161,7 @@ PreparedExperiment prepare_joint_side(Trajectory raw, const PreparationOptions& 
     if (!whole) keep_harmonics(average.averaged, average.averaged.tau, torque_harmonics);
     out.data = std::move(average.averaged);
     out.tau_noise_variance = average.tau_noise_variance;
+    out.noise = periodic_noise(average, harmonics, whole ? -1 : torque_harmonics);
     out.decimation = options.decimation.value_or(1);
     out.summary = resampled + "periodic: " + std::to_string(average.periods) + " periods of " +
                   std::to_string(average.samples_per_period) + " samples (period " +

@@ -417,7 +417,7 @@ TEST(ModelidMl, UsageErrors) {
 
   run = modelid("fit --method mle --robot " + robot + data);
   EXPECT_EQ(run.exit_code, 2);
-  EXPECT_NE(run.err.find("--method must be ols, wls, pim-wls, iv, didim, pm or ml, not 'mle'"), std::string::npos)
+  EXPECT_NE(run.err.find("--method must be ols, wls, pim-wls, iv, didim, pm, ml or ml-eiv, not 'mle'"), std::string::npos)
       << run.err;
 
   run = modelid("fit --method wls --approach 3 --robot " + robot + data);

@@ -50,6 +50,19 @@ class IdentificationModel {
   /// compute the joints' sines and cosines once for both.
   virtual void mass_matrix_and_bias(const double* q, const double* dq, const double* beta,
                                     double* M, double* h) const;
+  /// d tau / d x at one state x = [q, dq, ddq], for errors in variables (Bona & Curatella
+  /// eq. 15-16): J receives dof() x 3 dof() values, row-major, J[i * 3 dof() + k] = d tau_i / d x_k.
+  /// It is linear in beta, like tau. This default takes central differences of
+  /// inverse_dynamics, step h_k = 6e-6 max(1, |x_k|) (about the cube root of the machine
+  /// epsilon, balancing the h^2 truncation against the eps |tau| / h round-off): errors of order
+  /// 1e-10 of the Jacobian's scale expected in the q and dq columns, round-off only in the ddq
+  /// columns (tau is linear in ddq); tests/model/state_jacobian_interface_test.cpp bounds it by
+  /// 1e-7 of the largest entry on four shipped robots. Coulomb friction jumps at dq = 0: a dq column whose stencil
+  /// crosses a zero velocity is wrong there. Generated models override it with their generated
+  /// inverse_dynamics_state_jacobian (exact, same friction convention) when they have one.
+  virtual void inverse_dynamics_state_jacobian(const double* q, const double* dq,
+                                               const double* ddq, const double* beta,
+                                               double* J) const;
   /// The regrouping relations: beta (num_base_params()) from standard parameters
   /// (num_standard_params()).
   virtual void base_from_standard(const double* p_standard, double* beta) const = 0;
@@ -139,6 +152,14 @@ class GeneratedModel final : public IdentificationModel {
       Generated::inverse_dynamics_sincos(q, sin_q, cos_q, dq, zero, beta, h);
     } else {
       IdentificationModel::mass_matrix_and_bias(q, dq, beta, M, h);
+    }
+  }
+  void inverse_dynamics_state_jacobian(const double* q, const double* dq, const double* ddq,
+                                       const double* beta, double* J) const override {
+    if constexpr (requires { Generated::inverse_dynamics_state_jacobian(q, dq, ddq, beta, J); }) {
+      Generated::inverse_dynamics_state_jacobian(q, dq, ddq, beta, J);
+    } else {
+      IdentificationModel::inverse_dynamics_state_jacobian(q, dq, ddq, beta, J);
     }
   }
   void base_from_standard(const double* p_standard, double* beta) const override {

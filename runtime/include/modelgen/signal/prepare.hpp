@@ -14,6 +14,7 @@
 #include "modelgen/data/joint_side.hpp"
 #include "modelgen/data/trajectory.hpp"
 #include "modelgen/model/drive_chain.hpp"
+#include "modelgen/signal/periodic_noise.hpp"
 
 namespace modelgen {
 
@@ -53,6 +54,8 @@ struct PreparedExperiment {
   double bandwidth_hz = 0;
   /// Periodic route: noise variance of the averaged torque per axis ((N m)^2), else empty.
   Eigen::VectorXd tau_noise_variance;
+  /// Periodic route: the noise of the prepared q, dq, ddq and tau (periodic_noise()), else empty.
+  PeriodicNoise noise;
   std::string summary;  ///< what was done, in one or two lines, for the user
   std::string warning;  ///< e.g. the samples dropped after the last whole period; may be empty
 };
