@@ -20,7 +20,7 @@ const std::vector<std::pair<std::string, OptionKind>>& data_options() {
       {"--period", OptionKind::kOnce},     {"--harmonics", OptionKind::kOnce},
       {"--raw", OptionKind::kFlag},        {"--bandwidth", OptionKind::kOnce},
       {"--cutoff", OptionKind::kOnce},     {"--decimate", OptionKind::kOnce},
-      {"--torque-hold", OptionKind::kOnce}};
+      {"--torque-hold", OptionKind::kOnce}, {"--skip-periods", OptionKind::kOnce}};
   return options;
 }
 
@@ -83,7 +83,7 @@ PreparationOptions preparation_options(const CommandLine& args) {
         "--periodic and --raw exclude each other (the periodic route computes the "
         "derivatives from the Fourier series)"};
   }
-  for (const char* option : {"--period", "--harmonics"}) {
+  for (const char* option : {"--period", "--harmonics", "--skip-periods"}) {
     if (args.has(option) && !options.periodic) {
       throw UsageError{std::string(option) + " belongs to --periodic; add --periodic"};
     }
@@ -102,6 +102,7 @@ PreparationOptions preparation_options(const CommandLine& args) {
   }
   if (args.has("--period")) options.period = positive(args, "--period");
   if (args.has("--harmonics")) options.harmonics = count(args, "--harmonics");
+  if (args.has("--skip-periods")) options.skip_periods = count(args, "--skip-periods");
   if (args.has("--bandwidth")) options.bandwidth_hz = positive(args, "--bandwidth");
   if (args.has("--cutoff")) options.cutoff_hz = positive(args, "--cutoff");
   if (args.has("--torque-hold")) {

@@ -86,6 +86,26 @@ void motion_at_samples_of(const Trajectory& prepared, double period, Trajectory&
 PreparedExperiment prepare_joint_side(Trajectory raw, const PreparationOptions& options,
                                       bool keep_edges);
 
+// Drops the first `periods` whole periods of a uniformly sampled record (its start transient)
+// and says so for the summary. Throws DataError when fewer than two periods would be left.
+std::string skip_whole_periods(Trajectory& raw, double period, int periods) {
+  const double dt = uniform_sample_time(raw);
+  const auto skip = static_cast<Eigen::Index>(std::lround(periods * period / dt));
+  const Eigen::Index left = raw.t.size() - skip;
+  if (left < 2 * static_cast<Eigen::Index>(std::lround(period / dt))) {
+    throw DataError(raw.source + ": error: leaving out the first " + std::to_string(periods) +
+                    " period(s) of " + number(period, 6) + " s (--skip-periods) leaves " +
+                    number(std::max<Eigen::Index>(left, 0) * dt, 6) +
+                    " s, fewer than the 2 whole periods averaging needs");
+  }
+  raw.t = raw.t.tail(left).eval();
+  for (Eigen::MatrixXd* m : {&raw.q, &raw.dq, &raw.ddq, &raw.tau, &raw.qr}) {
+    if (m->rows() == skip + left) *m = m->bottomRows(left).eval();
+  }
+  return "first " + std::to_string(periods) + " period(s) (" + std::to_string(skip) +
+         " samples) left out as the start transient; ";
+}
+
 }  // namespace
 
 PreparedExperiment prepare_experiment(Trajectory raw, const DriveChain& drive,
@@ -148,6 +168,8 @@ PreparedExperiment prepare_joint_side(Trajectory raw, const PreparationOptions& 
       const double dt = uniform_sample_time(raw);
       period = std::round(detect_period(raw) / dt) * dt;
     }
+    std::string skipped;
+    if (options.skip_periods > 0) skipped = skip_whole_periods(raw, period, options.skip_periods);
     PeriodicAverage average = average_periods(raw, period);
     const int harmonics = options.harmonics ? *options.harmonics : select_harmonics(average);
     const FourierTrajectory fourier = fit_fourier(average.averaged, average.period, harmonics);
@@ -163,7 +185,8 @@ PreparedExperiment prepare_joint_side(Trajectory raw, const PreparationOptions& 
     out.tau_noise_variance = average.tau_noise_variance;
     out.noise = periodic_noise(average, harmonics, whole ? -1 : torque_harmonics);
     out.decimation = options.decimation.value_or(1);
-    out.summary = resampled + "periodic: " + std::to_string(average.periods) + " periods of " +
+    out.summary = resampled + skipped + "periodic: " + std::to_string(average.periods) +
+                  " periods of " +
                   std::to_string(average.samples_per_period) + " samples (period " +
                   number(average.period, 6) + " s" + (options.period ? "" : ", detected") +
                   ") averaged, " + std::to_string(harmonics) +

@@ -138,3 +138,68 @@ TEST(Prepare, HeldTorqueCommandsArePairedHalfASampleLater) {
 
 }  // namespace
 }  // namespace modelgen
+
+namespace modelgen {
+namespace {
+
+// A periodic record (period 1 s, 200 samples each) whose first period carries a decaying start
+// transient on the torque, as a controller's integrator settling would.
+Trajectory periodic_with_transient(int periods) {
+  const int per = 200;
+  const double dt = 1.0 / per;
+  Trajectory x;
+  x.source = "transient.csv";
+  const int n = periods * per;
+  x.t.resize(n);
+  x.q.resize(n, 1);
+  x.tau.resize(n, 1);
+  for (int s = 0; s < n; ++s) {
+    const double t = s * dt, w = 2 * M_PI;
+    x.t[s] = t;
+    x.q(s, 0) = 0.5 * std::sin(w * t) + 0.2 * std::cos(2 * w * t);
+    x.tau(s, 0) = 3.0 * std::cos(w * t) + 5.0 * std::exp(-t / 0.1);  // transient gone by t = 1
+  }
+  return x;
+}
+
+TEST(Prepare, SkippedPeriodsLeaveTheStartTransientOutOfTheAverage) {
+  PreparationOptions options;
+  options.periodic = true;
+  options.period = 1.0;
+  options.harmonics = 2;
+  const PreparedExperiment all = prepare_experiment(periodic_with_transient(4), DriveChain::identity(1), options);
+  options.skip_periods = 1;
+  const PreparedExperiment skipped = prepare_experiment(periodic_with_transient(4), DriveChain::identity(1), options);
+  // Averaged over periods 2-4 only, the torque is the periodic part (the transient has decayed
+  // to 5 e^-10 = 2.3e-4 at t = 1 s), and its spread over the periods is that remainder.
+  double worst = 0;
+  for (Eigen::Index s = 0; s < skipped.data.t.size(); ++s) {
+    const double clean = 3.0 * std::cos(2 * M_PI * skipped.data.t[s]);
+    worst = std::max(worst, std::abs(skipped.data.tau(s, 0) - clean));
+  }
+  EXPECT_LT(worst, 1e-3);
+  EXPECT_LT(skipped.tau_noise_variance[0], 1e-7);
+  // With the transient averaged in, it is noise: a variance orders of magnitude larger.
+  EXPECT_GT(all.tau_noise_variance[0], 1e3 * skipped.tau_noise_variance[0]);
+  EXPECT_NE(skipped.summary.find("first 1 period(s) (200 samples) left out"), std::string::npos)
+      << skipped.summary;
+  EXPECT_NE(skipped.summary.find("3 periods of 200 samples"), std::string::npos) << skipped.summary;
+}
+
+TEST(Prepare, SkippingAllButOnePeriodIsRefusedNamingTheOption) {
+  PreparationOptions options;
+  options.periodic = true;
+  options.period = 1.0;
+  options.skip_periods = 2;
+  try {
+    prepare_experiment(periodic_with_transient(3), DriveChain::identity(1), options);
+    FAIL() << "expected a DataError";
+  } catch (const DataError& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("transient.csv"), std::string::npos) << message;
+    EXPECT_NE(message.find("--skip-periods"), std::string::npos) << message;
+  }
+}
+
+}  // namespace
+}  // namespace modelgen

@@ -25,6 +25,11 @@ struct PreparationOptions {
   bool periodic = false;
   std::optional<double> period;  ///< s; detected from the positions when unset
   std::optional<int> harmonics;  ///< Fourier harmonics kept; select_harmonics() when unset
+  /// Periodic route: whole periods at the start of the record left out of the average. A
+  /// record under a controller starts with a transient (the integrator settling, the start
+  /// from rest) that is not periodic: averaged in, it counts as noise, the noise estimates
+  /// (and every weight built on them) grow, and the averaged period is biased.
+  int skip_periods = 0;
   /// Non-periodic data without dq/ddq columns: no position filter and no decimation, only
   /// central differences (for clean, e.g. simulated, data).
   bool raw = false;
