@@ -16,12 +16,12 @@
 namespace modelgen::internal {
 
 /// `options` plus the data options of fit and predict: --motor-side, --periodic, --period,
-/// --harmonics, --raw, --bandwidth, --cutoff, --decimate, --torque-hold.
+/// --harmonics, --raw, --bandwidth, --cutoff, --decimate, --torque-hold, --skip-periods.
 std::map<std::string, OptionKind> with_data_options(std::map<std::string, OptionKind> options);
 
 /// The data options given in `args`, as command-line words in a fixed order (--motor-side,
 /// --periodic, --period S, --harmonics H, --raw, --bandwidth HZ, --cutoff HZ, --decimate N,
-/// --torque-hold H):
+/// --torque-hold H, --skip-periods K):
 /// what fit writes into EST.json so that predict prepares data the same way.
 std::vector<std::string> data_option_words(const CommandLine& args);
 

@@ -1,6 +1,7 @@
 // modelid fit: base parameters from measured trajectories by IDIM-OLS, IDIM-WLS or PIM-WLS
-// (Gautier & Briot eq. 14-21) or from closed-loop records by IDIM-IV, DIDIM or the projection
-// method (Bona & Curatella eq. 10-12), their standard
+// (Gautier & Briot eq. 14-21), from closed-loop records by IDIM-IV, DIDIM or the projection
+// method (Bona & Curatella eq. 10-12), or from averaged periods by the errors-in-variables ML
+// (eq. 13-16), their standard
 // deviations (eq. 17-19), optionally the essential parameters (iterative elimination with
 // ratio r_sigma), torque plots and the EST.json file.
 

@@ -307,6 +307,21 @@ ProjectedRecords project_records(int n, const std::vector<ProjectionRecord>& rec
     if (*fir_lags < 0) {
       throw EstimationError("the FIR's lags M must be >= 0, not " + std::to_string(*fir_lags));
     }
+    // Checked before the lagged references are built: their 4M + 21 shifted copies of a
+    // reference would take memory (and 2M + 10 overflow) long before the fit could refuse M.
+    const Eigen::Index coefficients = 1 + moving * (2 * static_cast<Eigen::Index>(*fir_lags) + 1);
+    if (fewest < kMinRowsPerCoefficient * coefficients) {
+      // The largest M with 1 + moving (2M + 1) coefficients of kMinRowsPerCoefficient rows.
+      const Eigen::Index largest =
+          moving == 0 ? -1 : (fewest / kMinRowsPerCoefficient - 1 - moving) / (2 * moving);
+      throw EstimationError(
+          "the projection method: M = " + std::to_string(*fir_lags) + " lags need " +
+          std::to_string(kMinRowsPerCoefficient * coefficients) + " decimated rows (" +
+          std::to_string(kMinRowsPerCoefficient) + " per coefficient), the records have " +
+          std::to_string(fewest) +
+          (largest < 0 ? std::string("; record longer or decimate less")
+                       : "; choose M <= " + std::to_string(largest)));
+    }
     ladder.push_back(*fir_lags);
   } else {
     ladder = fir_lag_ladder(fewest, moving, std::numeric_limits<int>::max());

@@ -284,7 +284,10 @@ void add_line_covariance(const Eigen::MatrixXcd& K, const Eigen::VectorXd& v, do
 // g_q(k) = A_k Js_k[:, j], etc. Lines independent with E|E_l|^2 = v_l give
 // Cov = (1/N^2) [v_0 K_0 K_0' + 2 sum_{l>=1} v_l Re(K_l K_l^H)]; the torques likewise over
 // their kept lines, or white (sum_k g g' sigma^2) when kept whole. Nullopt when the noise has
-// no lines (not from periodic_noise()).
+// no lines (not from periodic_noise()). When the regressor is projected on the torques' kept
+// harmonics, the state noise reaches the residual through that projection too, which this
+// leaves out: the state noise above the kept harmonics is counted, and the standard
+// deviations err on the large side.
 std::optional<Eigen::MatrixXd> ErrorsInVariablesAccess::score_covariance(
     const ErrorsInVariablesObjective& o, const Eigen::VectorXd& theta, const Eigen::MatrixXd& J) {
   const IdentificationModel& model = o.model_;

@@ -86,6 +86,15 @@ void motion_at_samples_of(const Trajectory& prepared, double period, Trajectory&
 PreparedExperiment prepare_joint_side(Trajectory raw, const PreparationOptions& options,
                                       bool keep_edges);
 
+// Drops the first `rows` samples of every column the record has.
+void drop_leading_rows(Trajectory& raw, Eigen::Index rows) {
+  const Eigen::Index left = raw.t.size() - rows;
+  for (Eigen::MatrixXd* m : {&raw.q, &raw.dq, &raw.ddq, &raw.tau, &raw.qr}) {
+    if (m->rows() == raw.t.size()) *m = m->bottomRows(left).eval();
+  }
+  raw.t = raw.t.tail(left).eval();
+}
+
 // Drops the first `periods` whole periods of a uniformly sampled record (its start transient)
 // and says so for the summary. Throws DataError when fewer than two periods would be left.
 std::string skip_whole_periods(Trajectory& raw, double period, int periods) {
@@ -98,10 +107,7 @@ std::string skip_whole_periods(Trajectory& raw, double period, int periods) {
                     number(std::max<Eigen::Index>(left, 0) * dt, 6) +
                     " s, fewer than the 2 whole periods averaging needs");
   }
-  raw.t = raw.t.tail(left).eval();
-  for (Eigen::MatrixXd* m : {&raw.q, &raw.dq, &raw.ddq, &raw.tau, &raw.qr}) {
-    if (m->rows() == skip + left) *m = m->bottomRows(left).eval();
-  }
+  drop_leading_rows(raw, skip);
   return "first " + std::to_string(periods) + " period(s) (" + std::to_string(skip) +
          " samples) left out as the start transient; ";
 }
@@ -128,12 +134,23 @@ PreparedExperiment prepare_experiment(Trajectory raw, const DriveChain& drive,
   const double period = options.periodic ? out.data.t[out.data.t.size() - 1] - out.data.t[0] +
                                                (out.data.t[1] - out.data.t[0])
                                          : 0.0;
+  if (options.periodic && options.skip_periods > 0) {
+    // The start transient the average left out is left out of the comparison too.
+    const double start =
+        raw.t[0] + options.skip_periods * period - 0.5 * (out.data.t[1] - out.data.t[0]);
+    Eigen::Index first = 0;
+    while (first < raw.t.size() && raw.t[first] < start) ++first;
+    drop_leading_rows(raw, first);
+  }
   if (options.periodic || !raw.has_velocity) {
     motion_at_samples_of(out.data, period, raw);
   }
   out.data = std::move(raw);
   out.decimation = 1;
-  out.summary = held + out.summary + "; every sample of the file kept (no decimation" +
+  const bool skipped = options.periodic && options.skip_periods > 0;
+  out.summary = held + out.summary +
+                (skipped ? "; every sample after them kept (no decimation"
+                         : "; every sample of the file kept (no decimation") +
                  std::string(options.periodic ? ", the series evaluated at each time stamp)"
                                               : ")");
   return out;

@@ -79,6 +79,12 @@ TEST_F(ModelidProjection, Errors) {
   run = modelid(fit + " --method pm --fir-lags -1");
   EXPECT_EQ(run.exit_code, 2);
   EXPECT_NE(run.err.find("--fir-lags must be a whole number >= 0"), std::string::npos) << run.err;
+  // More lags than the rows carry: refused before the lagged references are built (they would
+  // take gigabytes), with the largest M that fits.
+  run = modelid(fit + " --method pm --fir-lags 2000000000");
+  EXPECT_EQ(run.exit_code, 1);
+  EXPECT_NE(run.err.find("M = 2000000000 lags need"), std::string::npos) << run.err;
+  EXPECT_NE(run.err.find("choose M <= "), std::string::npos) << run.err;
   run = modelid(fit + " --method pm --controller " + quoted(controller_));
   EXPECT_EQ(run.exit_code, 2);
   EXPECT_NE(run.err.find("--controller belongs to the closed-loop methods"), std::string::npos)

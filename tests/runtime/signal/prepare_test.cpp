@@ -186,6 +186,22 @@ TEST(Prepare, SkippedPeriodsLeaveTheStartTransientOutOfTheAverage) {
   EXPECT_NE(skipped.summary.find("3 periods of 200 samples"), std::string::npos) << skipped.summary;
 }
 
+TEST(Prepare, PredictionRowsLeaveTheSkippedPeriodsOutToo) {
+  PreparationOptions options;
+  options.periodic = true;
+  options.period = 1.0;
+  options.harmonics = 2;
+  options.skip_periods = 1;
+  options.every_sample = true;
+  const PreparedExperiment rows =
+      prepare_experiment(periodic_with_transient(4), DriveChain::identity(1), options);
+  ASSERT_EQ(rows.data.t.size(), 600);
+  EXPECT_DOUBLE_EQ(rows.data.t[0], 1.0);
+  // The measured torques of the kept rows are the file's own, transient decayed.
+  EXPECT_NEAR(rows.data.tau(0, 0), 3.0 + 5.0 * std::exp(-10.0), 1e-12);
+  EXPECT_NEAR(rows.data.q(0, 0), 0.2, 1e-9);  // the series at t = 1: 0.5 sin 2pi + 0.2 cos 4pi
+}
+
 TEST(Prepare, SkippingAllButOnePeriodIsRefusedNamingTheOption) {
   PreparationOptions options;
   options.periodic = true;

@@ -39,10 +39,11 @@ struct LaggedReferences {
 /// cross-correlation of u~_j with every moving reference r_i(t - k) for M < |k| <= 2M + 10
 /// (within M it is zero by construction): it finds what the FIR left in u~ that the references
 /// explain. One white-noise correlation of N samples stays within 2.58 / sqrt(N) with 99 %
-/// probability; of m such correlations, though, one crosses that band more often than not
-/// (m = 74 for M = 4 and two references). The band is therefore the one all m stay within with
-/// 99 % probability (Sidak: each at the 1 - 0.01 / m level, about 3.5 / sqrt(N) for m = 74,
-/// 4.1 / sqrt(N) for m = 1000), so that white residuals pass 99 times in 100 whatever M.
+/// probability; of m such correlations (channels x moving references x 2 (M + 10) lags),
+/// though, one crosses that band more often than not. The band is therefore the one all m stay
+/// within with 99 % probability (Sidak: each at the 1 - 0.01 / m level, computed for the m of
+/// the test; about 3.8 / sqrt(N) for m = 74, 4.4 / sqrt(N) for m = 1000), so that white
+/// residuals pass 99 times in 100 whatever M.
 struct DecorrelationTest {
   int window = 0;          ///< largest |k| tested
   long long tested = 0;    ///< correlations tested (m)
