@@ -4,7 +4,7 @@
 // The generated code belongs to the owner of the robot description.
 //
 // Function                              mul    add  sin/cos
-// base_from_standard                     44     74        0
+// base_from_standard                     14     74        0
 #include "comau_smart_six.hpp"
 
 namespace modelgen {
@@ -14,30 +14,30 @@ namespace comau_smart_six {
 // Input p_standard: kStandardParams values in the order of kStandardParamNames.
 // Output beta: kBaseParams values in the order of kBaseParamNames.
 void base_from_standard(const double* p_standard, double* beta) {
-  beta[0] = p_standard[10] + p_standard[18] + p_standard[33] + p_standard[5] + 0.0225 * p_standard[24] + 0.3706 * p_standard[39] + 0.3875 * p_standard[54] + 0.3875 * p_standard[69] + 0.3875 * p_standard[84] + 0.3875 * p_standard[99];  // ZZ1R
+  beta[0] = p_standard[10] + p_standard[18] + p_standard[33] + p_standard[5] + 0.0225 * p_standard[24] + 0.3706 * p_standard[39] + 0.3875 * (p_standard[54] + p_standard[69] + p_standard[84] + p_standard[99]);  // ZZ1R
   beta[1] = p_standard[11];  // Fvp1
   beta[2] = p_standard[12];  // Fvn1
   beta[3] = p_standard[13];  // Fcp1
   beta[4] = p_standard[14];  // Fcn1
-  beta[5] = p_standard[15] - p_standard[18] - 0.3481 * p_standard[39] - 0.3481 * p_standard[54] - 0.3481 * p_standard[69] - 0.3481 * p_standard[84] - 0.3481 * p_standard[99];  // XX2R
+  beta[5] = p_standard[15] - p_standard[18] - 0.3481 * (p_standard[39] + p_standard[54] + p_standard[69] + p_standard[84] + p_standard[99]);  // XX2R
   beta[6] = p_standard[16];  // XY2
   beta[7] = p_standard[17] + 0.59 * p_standard[38];  // XZ2R
   beta[8] = p_standard[19];  // YZ2
-  beta[9] = p_standard[20] + p_standard[25] + 0.3481 * p_standard[39] + 0.3481 * p_standard[54] + 0.3481 * p_standard[69] + 0.3481 * p_standard[84] + 0.3481 * p_standard[99];  // ZZ2R
-  beta[10] = p_standard[21] + 0.59 * p_standard[39] + 0.59 * p_standard[54] + 0.59 * p_standard[69] + 0.59 * p_standard[84] + 0.59 * p_standard[99];  // MX2R
+  beta[9] = p_standard[20] + p_standard[25] + 0.3481 * (p_standard[39] + p_standard[54] + p_standard[69] + p_standard[84] + p_standard[99]);  // ZZ2R
+  beta[10] = p_standard[21] + 0.59 * (p_standard[39] + p_standard[54] + p_standard[69] + p_standard[84] + p_standard[99]);  // MX2R
   beta[11] = p_standard[22];  // MY2
   beta[12] = p_standard[26];  // Fvp2
   beta[13] = p_standard[27];  // Fvn2
   beta[14] = p_standard[28];  // Fcp2
   beta[15] = p_standard[29];  // Fcn2
   const double t0 = -1.29414 * p_standard[53];
-  beta[16] = p_standard[30] + p_standard[48] + t0 - p_standard[33] + 0.4017995849 * p_standard[54] + 0.4017995849 * p_standard[69] + 0.4017995849 * p_standard[84] + 0.4017995849 * p_standard[99];  // XX3R
-  beta[17] = p_standard[31] - 0.13 * p_standard[53] + 0.0841191 * p_standard[54] + 0.0841191 * p_standard[69] + 0.0841191 * p_standard[84] + 0.0841191 * p_standard[99];  // XY3R
+  beta[16] = p_standard[30] + p_standard[48] + t0 - p_standard[33] + 0.4017995849 * (p_standard[54] + p_standard[69] + p_standard[84] + p_standard[99]);  // XX3R
+  beta[17] = p_standard[31] - 0.13 * p_standard[53] + 0.0841191 * (p_standard[54] + p_standard[69] + p_standard[84] + p_standard[99]);  // XY3R
   beta[18] = p_standard[32];  // XZ3
   beta[19] = p_standard[34];  // YZ3
-  beta[20] = p_standard[35] + p_standard[48] + t0 + 0.4355995849 * p_standard[54] + 0.4355995849 * p_standard[69] + 0.4355995849 * p_standard[84] + 0.4355995849 * p_standard[99];  // ZZ3R
-  beta[21] = p_standard[36] + 0.13 * p_standard[54] + 0.13 * p_standard[69] + 0.13 * p_standard[84] + 0.13 * p_standard[99];  // MX3R
-  beta[22] = p_standard[37] + p_standard[53] - 0.64707 * p_standard[54] - 0.64707 * p_standard[69] - 0.64707 * p_standard[84] - 0.64707 * p_standard[99];  // MY3R
+  beta[20] = p_standard[35] + p_standard[48] + t0 + 0.4355995849 * (p_standard[54] + p_standard[69] + p_standard[84] + p_standard[99]);  // ZZ3R
+  beta[21] = p_standard[36] + 0.13 * (p_standard[54] + p_standard[69] + p_standard[84] + p_standard[99]);  // MX3R
+  beta[22] = p_standard[37] + p_standard[53] - 0.64707 * (p_standard[54] + p_standard[69] + p_standard[84] + p_standard[99]);  // MY3R
   beta[23] = p_standard[40];  // Ia3
   beta[24] = p_standard[41];  // Fvp3
   beta[25] = p_standard[42];  // Fvn3
@@ -85,30 +85,30 @@ void base_from_standard(const double* p_standard, double* beta) {
 // Input p_standard: kStandardParams values in the order of kStandardParamNames.
 // Output beta: kBaseParams values in the order of kBaseParamNames.
 void base_from_standard(const float* p_standard, float* beta) {
-  beta[0] = p_standard[10] + p_standard[18] + p_standard[33] + p_standard[5] + 0.0225f * p_standard[24] + 0.3706f * p_standard[39] + 0.3875f * p_standard[54] + 0.3875f * p_standard[69] + 0.3875f * p_standard[84] + 0.3875f * p_standard[99];  // ZZ1R
+  beta[0] = p_standard[10] + p_standard[18] + p_standard[33] + p_standard[5] + 0.0225f * p_standard[24] + 0.3706f * p_standard[39] + 0.3875f * (p_standard[54] + p_standard[69] + p_standard[84] + p_standard[99]);  // ZZ1R
   beta[1] = p_standard[11];  // Fvp1
   beta[2] = p_standard[12];  // Fvn1
   beta[3] = p_standard[13];  // Fcp1
   beta[4] = p_standard[14];  // Fcn1
-  beta[5] = p_standard[15] - p_standard[18] - 0.3481f * p_standard[39] - 0.3481f * p_standard[54] - 0.3481f * p_standard[69] - 0.3481f * p_standard[84] - 0.3481f * p_standard[99];  // XX2R
+  beta[5] = p_standard[15] - p_standard[18] - 0.3481f * (p_standard[39] + p_standard[54] + p_standard[69] + p_standard[84] + p_standard[99]);  // XX2R
   beta[6] = p_standard[16];  // XY2
   beta[7] = p_standard[17] + 0.59f * p_standard[38];  // XZ2R
   beta[8] = p_standard[19];  // YZ2
-  beta[9] = p_standard[20] + p_standard[25] + 0.3481f * p_standard[39] + 0.3481f * p_standard[54] + 0.3481f * p_standard[69] + 0.3481f * p_standard[84] + 0.3481f * p_standard[99];  // ZZ2R
-  beta[10] = p_standard[21] + 0.59f * p_standard[39] + 0.59f * p_standard[54] + 0.59f * p_standard[69] + 0.59f * p_standard[84] + 0.59f * p_standard[99];  // MX2R
+  beta[9] = p_standard[20] + p_standard[25] + 0.3481f * (p_standard[39] + p_standard[54] + p_standard[69] + p_standard[84] + p_standard[99]);  // ZZ2R
+  beta[10] = p_standard[21] + 0.59f * (p_standard[39] + p_standard[54] + p_standard[69] + p_standard[84] + p_standard[99]);  // MX2R
   beta[11] = p_standard[22];  // MY2
   beta[12] = p_standard[26];  // Fvp2
   beta[13] = p_standard[27];  // Fvn2
   beta[14] = p_standard[28];  // Fcp2
   beta[15] = p_standard[29];  // Fcn2
   const float t0 = -1.29414f * p_standard[53];
-  beta[16] = p_standard[30] + p_standard[48] + t0 - p_standard[33] + 0.4017996f * p_standard[54] + 0.4017996f * p_standard[69] + 0.4017996f * p_standard[84] + 0.4017996f * p_standard[99];  // XX3R
-  beta[17] = p_standard[31] - 0.13f * p_standard[53] + 0.0841191f * p_standard[54] + 0.0841191f * p_standard[69] + 0.0841191f * p_standard[84] + 0.0841191f * p_standard[99];  // XY3R
+  beta[16] = p_standard[30] + p_standard[48] + t0 - p_standard[33] + 0.4017996f * (p_standard[54] + p_standard[69] + p_standard[84] + p_standard[99]);  // XX3R
+  beta[17] = p_standard[31] - 0.13f * p_standard[53] + 0.0841191f * (p_standard[54] + p_standard[69] + p_standard[84] + p_standard[99]);  // XY3R
   beta[18] = p_standard[32];  // XZ3
   beta[19] = p_standard[34];  // YZ3
-  beta[20] = p_standard[35] + p_standard[48] + t0 + 0.4355996f * p_standard[54] + 0.4355996f * p_standard[69] + 0.4355996f * p_standard[84] + 0.4355996f * p_standard[99];  // ZZ3R
-  beta[21] = p_standard[36] + 0.13f * p_standard[54] + 0.13f * p_standard[69] + 0.13f * p_standard[84] + 0.13f * p_standard[99];  // MX3R
-  beta[22] = p_standard[37] + p_standard[53] - 0.64707f * p_standard[54] - 0.64707f * p_standard[69] - 0.64707f * p_standard[84] - 0.64707f * p_standard[99];  // MY3R
+  beta[20] = p_standard[35] + p_standard[48] + t0 + 0.4355996f * (p_standard[54] + p_standard[69] + p_standard[84] + p_standard[99]);  // ZZ3R
+  beta[21] = p_standard[36] + 0.13f * (p_standard[54] + p_standard[69] + p_standard[84] + p_standard[99]);  // MX3R
+  beta[22] = p_standard[37] + p_standard[53] - 0.64707f * (p_standard[54] + p_standard[69] + p_standard[84] + p_standard[99]);  // MY3R
   beta[23] = p_standard[40];  // Ia3
   beta[24] = p_standard[41];  // Fvp3
   beta[25] = p_standard[42];  // Fvn3

@@ -4,7 +4,7 @@
 // The generated code belongs to the owner of the robot description.
 //
 // Function                              mul    add  sin/cos
-// energy_regressor                      125     54       10
+// energy_regressor                      131     53       10
 #include "comau_smart_six.hpp"
 
 #include <cmath>
@@ -16,6 +16,9 @@ namespace comau_smart_six {
 // energy of links and drives is H = h * beta, up to a constant that depends on the parameters
 // only. Inputs q, dq: kDof joint positions and velocities. Output h: kBaseParams values, in the
 // order of kBaseParamNames.
+// h: 40 of its 64 entries are written; the others are zero for every input
+// and never written (the manifest lists them under "unwritten"): zero h once before the
+// first call.
 void energy_regressor(const double* q, const double* dq, double* h) {
   const double s2 = std::sin(q[1]);
   const double c2 = std::cos(q[1]);
@@ -28,104 +31,83 @@ void energy_regressor(const double* q, const double* dq, double* h) {
   const double s6 = std::sin(q[5]);
   const double c6 = std::cos(q[5]);
   h[0] = 0.5 * dq[0] * dq[0];  // ZZ1R
-  h[1] = 0.0;  // Fvp1
-  h[2] = 0.0;  // Fvn1
-  h[3] = 0.0;  // Fcp1
-  h[4] = 0.0;  // Fcn1
-  const double t0 = -c2 * dq[0];
+  const double t0 = c2 * dq[0];
   h[5] = 0.5 * t0 * t0;  // XX2R
   const double t1 = dq[0] * s2;
-  h[6] = t0 * t1;  // XY2
-  h[7] = dq[1] * t0;  // XZ2R
+  h[6] = -t0 * t1;  // XY2
+  h[7] = -dq[1] * t0;  // XZ2R
   h[8] = dq[1] * t1;  // YZ2
   h[9] = 0.5 * dq[1] * dq[1];  // ZZ2R
   h[10] = 9.81 * c2 + 0.15 * dq[0] * t1;  // MX2R
-  h[11] = -9.81 * s2 - 0.15 * dq[0] * t0;  // MY2
-  h[12] = 0.0;  // Fvp2
-  h[13] = 0.0;  // Fvn2
-  h[14] = 0.0;  // Fcp2
-  h[15] = 0.0;  // Fcn2
-  const double t2 = -c3 * t1 - s3 * t0;
+  h[11] = 0.15 * dq[0] * t0 - 9.81 * s2;  // MY2
+  const double t2 = c3 * t1 - s3 * t0;
   h[16] = 0.5 * t2 * t2;  // XX3R
-  const double t3 = s3 * t1 - c3 * t0;
-  h[17] = t3 * t2;  // XY3R
-  const double t4 = dq[2] - dq[1];
+  const double t3 = c3 * t0 + s3 * t1;
+  h[17] = -t3 * t2;  // XY3R
+  const double t4 = dq[1] - dq[2];
   h[18] = t4 * t2;  // XZ3
-  h[19] = t4 * t3;  // YZ3
+  h[19] = -t4 * t3;  // YZ3
   h[20] = 0.5 * t4 * t4;  // ZZ3R
-  const double t5 = 9.81 * c2 * s3 - 9.81 * c3 * s2;
-  const double t6 = 0.59 * dq[1] * s3;
+  const double t5 = dq[1] * s3;
+  const double t6 = c2 * s3 - c3 * s2;
   const double t7 = 0.15 * dq[0] + 0.59 * t1;
-  h[21] = t6 * t4 - t5 - t7 * t3;  // MX3R
-  const double t8 = -0.59 * c3 * dq[1];
-  const double t9 = 9.81 * c2 * c3 + 9.81 * s2 * s3;
-  h[22] = t7 * t2 - t8 * t4 - t9;  // MY3R
+  h[21] = -0.59 * t5 * t4 - 9.81 * t6 - t7 * t3;  // MX3R
+  const double t8 = c2 * c3 + s2 * s3;
+  const double t9 = c3 * dq[1];
+  h[22] = -9.81 * t8 - 0.59 * t9 * t4 - t7 * t2;  // MY3R
   h[23] = 0.5 * dq[2] * dq[2];  // Ia3
-  h[24] = 0.0;  // Fvp3
-  h[25] = 0.0;  // Fvn3
-  h[26] = 0.0;  // Fcp3
-  h[27] = 0.0;  // Fcn3
-  const double t10 = c4 * t2 - s4 * t4;
+  const double t10 = s4 * t4 - c4 * t2;
   h[28] = 0.5 * t10 * t10;  // XX4R
-  const double t11 = -c4 * t4 - s4 * t2;
+  const double t11 = c4 * t4 + s4 * t2;
   h[29] = t11 * t10;  // XY4
   const double t12 = dq[3] + t3;
   h[30] = t12 * t10;  // XZ4
   h[31] = t12 * t11;  // YZ4
   h[32] = 0.5 * t12 * t12;  // ZZ4R
-  const double t13 = c4 * t5;
-  const double t14 = t6 + 0.13 * t4;
-  const double t15 = t8 + 0.64707 * t4;
-  const double t16 = t7 - 0.64707 * t2 - 0.13 * t3;
-  const double t17 = -s4 * t15 - c4 * t16;
-  h[33] = t12 * t17 - t13 - t14 * t11;  // MX4
-  const double t18 = -s4 * t5;
-  const double t19 = c4 * t15 - s4 * t16;
-  h[34] = t14 * t10 - t18 - t12 * t19;  // MY4R
+  const double t13 = c4 * t6;
+  const double t14 = 0.59 * t5 - 0.13 * t4;
+  const double t15 = 0.59 * t9 + 0.64707 * t4;
+  const double t16 = t7 - 0.13 * t3 + 0.64707 * t2;
+  const double t17 = s4 * t15 - c4 * t16;
+  h[33] = t12 * t17 - 9.81 * t13 - t14 * t11;  // MX4
+  const double t18 = s4 * t6;
+  const double t19 = c4 * t15 + s4 * t16;
+  h[34] = 9.81 * t18 + t14 * t10 + t12 * t19;  // MY4R
   h[35] = 0.5 * dq[3] * dq[3];  // Ia4
-  h[36] = 0.0;  // Fvp4
-  h[37] = 0.0;  // Fvn4
-  h[38] = 0.0;  // Fcp4
-  h[39] = 0.0;  // Fcn4
-  const double t20 = c5 * t10 - s5 * t12;
+  const double t20 = s5 * t12 - c5 * t10;
   h[40] = 0.5 * t20 * t20;  // XX5R
-  const double t21 = -c5 * t12 - s5 * t10;
+  const double t21 = c5 * t12 + s5 * t10;
   h[41] = t21 * t20;  // XY5
   const double t22 = dq[4] + t11;
-  h[42] = t22 * t20;  // XZ5
-  h[43] = t22 * t21;  // YZ5
+  h[42] = -t22 * t20;  // XZ5
+  h[43] = -t22 * t21;  // YZ5
   h[44] = 0.5 * t22 * t22;  // ZZ5R
-  const double t23 = c5 * t13 - s5 * t9;
-  const double t24 = -c5 * t14 - s5 * t19;
-  h[45] = t22 * t24 - t23 - t17 * t21;  // MX5
-  const double t25 = c5 * t19 - s5 * t14;
-  h[46] = c5 * t9 + s5 * t13 + t17 * t20 - t22 * t25;  // MY5R
+  const double t23 = s5 * t8 - c5 * t13;
+  const double t24 = c5 * t14 - s5 * t19;
+  h[45] = 9.81 * t23 + t17 * t21 - t22 * t24;  // MX5
+  const double t25 = s5 * t14 + c5 * t19;
+  h[46] = 9.81 * (c5 * t8 + s5 * t13) - t17 * t20 + t22 * t25;  // MY5R
   h[47] = 0.5 * dq[4] * dq[4];  // Ia5
-  h[48] = 0.0;  // Fvp5
-  h[49] = 0.0;  // Fvn5
-  h[50] = 0.0;  // Fcp5
-  h[51] = 0.0;  // Fcn5
-  const double t26 = s6 * t22 + c6 * t20;
+  const double t26 = s6 * t22 - c6 * t20;
   h[52] = 0.5 * t26 * t26;  // XX6R
-  const double t27 = c6 * t22 - s6 * t20;
+  const double t27 = c6 * t22 + s6 * t20;
   h[53] = t27 * t26;  // XY6R
-  const double t28 = dq[5] - t21;
+  const double t28 = dq[5] + t21;
   h[54] = t28 * t26;  // XZ6R
   h[55] = t28 * t27;  // YZ6R
   h[56] = 0.5 * t28 * t28;  // ZZ6R
-  h[57] = t24 * t27 - s6 * t18 - c6 * t23 + t28 * (c6 * t17 - s6 * t25);  // MX6R
-  h[58] = s6 * t23 - c6 * t18 - t24 * t26 - t28 * (s6 * t17 + c6 * t25);  // MY6R
+  h[57] = 9.81 * (s6 * t18 + c6 * t23) - t24 * t27 + t28 * (c6 * t17 + s6 * t25);  // MX6R
+  h[58] = 9.81 * (c6 * t18 - s6 * t23) + t24 * t26 - t28 * (s6 * t17 - c6 * t25);  // MY6R
   h[59] = 0.5 * dq[5] * dq[5];  // Ia6
-  h[60] = 0.0;  // Fvp6
-  h[61] = 0.0;  // Fvn6
-  h[62] = 0.0;  // Fcp6
-  h[63] = 0.0;  // Fcn6
 }
 
 // Energy regressor of the power identification model (Gautier & Briot eq. 8): the total
 // energy of links and drives is H = h * beta, up to a constant that depends on the parameters
 // only. Inputs q, dq: kDof joint positions and velocities. Output h: kBaseParams values, in the
 // order of kBaseParamNames.
+// h: 40 of its 64 entries are written; the others are zero for every input
+// and never written (the manifest lists them under "unwritten"): zero h once before the
+// first call.
 void energy_regressor(const float* q, const float* dq, float* h) {
   const float s2 = std::sin(q[1]);
   const float c2 = std::cos(q[1]);
@@ -138,98 +120,74 @@ void energy_regressor(const float* q, const float* dq, float* h) {
   const float s6 = std::sin(q[5]);
   const float c6 = std::cos(q[5]);
   h[0] = 0.5f * dq[0] * dq[0];  // ZZ1R
-  h[1] = 0.0f;  // Fvp1
-  h[2] = 0.0f;  // Fvn1
-  h[3] = 0.0f;  // Fcp1
-  h[4] = 0.0f;  // Fcn1
-  const float t0 = -c2 * dq[0];
+  const float t0 = c2 * dq[0];
   h[5] = 0.5f * t0 * t0;  // XX2R
   const float t1 = dq[0] * s2;
-  h[6] = t0 * t1;  // XY2
-  h[7] = dq[1] * t0;  // XZ2R
+  h[6] = -t0 * t1;  // XY2
+  h[7] = -dq[1] * t0;  // XZ2R
   h[8] = dq[1] * t1;  // YZ2
   h[9] = 0.5f * dq[1] * dq[1];  // ZZ2R
   h[10] = 9.81f * c2 + 0.15f * dq[0] * t1;  // MX2R
-  h[11] = -9.81f * s2 - 0.15f * dq[0] * t0;  // MY2
-  h[12] = 0.0f;  // Fvp2
-  h[13] = 0.0f;  // Fvn2
-  h[14] = 0.0f;  // Fcp2
-  h[15] = 0.0f;  // Fcn2
-  const float t2 = -c3 * t1 - s3 * t0;
+  h[11] = 0.15f * dq[0] * t0 - 9.81f * s2;  // MY2
+  const float t2 = c3 * t1 - s3 * t0;
   h[16] = 0.5f * t2 * t2;  // XX3R
-  const float t3 = s3 * t1 - c3 * t0;
-  h[17] = t3 * t2;  // XY3R
-  const float t4 = dq[2] - dq[1];
+  const float t3 = c3 * t0 + s3 * t1;
+  h[17] = -t3 * t2;  // XY3R
+  const float t4 = dq[1] - dq[2];
   h[18] = t4 * t2;  // XZ3
-  h[19] = t4 * t3;  // YZ3
+  h[19] = -t4 * t3;  // YZ3
   h[20] = 0.5f * t4 * t4;  // ZZ3R
-  const float t5 = 9.81f * c2 * s3 - 9.81f * c3 * s2;
-  const float t6 = 0.59f * dq[1] * s3;
+  const float t5 = dq[1] * s3;
+  const float t6 = c2 * s3 - c3 * s2;
   const float t7 = 0.15f * dq[0] + 0.59f * t1;
-  h[21] = t6 * t4 - t5 - t7 * t3;  // MX3R
-  const float t8 = -0.59f * c3 * dq[1];
-  const float t9 = 9.81f * c2 * c3 + 9.81f * s2 * s3;
-  h[22] = t7 * t2 - t8 * t4 - t9;  // MY3R
+  h[21] = -0.59f * t5 * t4 - 9.81f * t6 - t7 * t3;  // MX3R
+  const float t8 = c2 * c3 + s2 * s3;
+  const float t9 = c3 * dq[1];
+  h[22] = -9.81f * t8 - 0.59f * t9 * t4 - t7 * t2;  // MY3R
   h[23] = 0.5f * dq[2] * dq[2];  // Ia3
-  h[24] = 0.0f;  // Fvp3
-  h[25] = 0.0f;  // Fvn3
-  h[26] = 0.0f;  // Fcp3
-  h[27] = 0.0f;  // Fcn3
-  const float t10 = c4 * t2 - s4 * t4;
+  const float t10 = s4 * t4 - c4 * t2;
   h[28] = 0.5f * t10 * t10;  // XX4R
-  const float t11 = -c4 * t4 - s4 * t2;
+  const float t11 = c4 * t4 + s4 * t2;
   h[29] = t11 * t10;  // XY4
   const float t12 = dq[3] + t3;
   h[30] = t12 * t10;  // XZ4
   h[31] = t12 * t11;  // YZ4
   h[32] = 0.5f * t12 * t12;  // ZZ4R
-  const float t13 = c4 * t5;
-  const float t14 = t6 + 0.13f * t4;
-  const float t15 = t8 + 0.64707f * t4;
-  const float t16 = t7 - 0.64707f * t2 - 0.13f * t3;
-  const float t17 = -s4 * t15 - c4 * t16;
-  h[33] = t12 * t17 - t13 - t14 * t11;  // MX4
-  const float t18 = -s4 * t5;
-  const float t19 = c4 * t15 - s4 * t16;
-  h[34] = t14 * t10 - t18 - t12 * t19;  // MY4R
+  const float t13 = c4 * t6;
+  const float t14 = 0.59f * t5 - 0.13f * t4;
+  const float t15 = 0.59f * t9 + 0.64707f * t4;
+  const float t16 = t7 - 0.13f * t3 + 0.64707f * t2;
+  const float t17 = s4 * t15 - c4 * t16;
+  h[33] = t12 * t17 - 9.81f * t13 - t14 * t11;  // MX4
+  const float t18 = s4 * t6;
+  const float t19 = c4 * t15 + s4 * t16;
+  h[34] = 9.81f * t18 + t14 * t10 + t12 * t19;  // MY4R
   h[35] = 0.5f * dq[3] * dq[3];  // Ia4
-  h[36] = 0.0f;  // Fvp4
-  h[37] = 0.0f;  // Fvn4
-  h[38] = 0.0f;  // Fcp4
-  h[39] = 0.0f;  // Fcn4
-  const float t20 = c5 * t10 - s5 * t12;
+  const float t20 = s5 * t12 - c5 * t10;
   h[40] = 0.5f * t20 * t20;  // XX5R
-  const float t21 = -c5 * t12 - s5 * t10;
+  const float t21 = c5 * t12 + s5 * t10;
   h[41] = t21 * t20;  // XY5
   const float t22 = dq[4] + t11;
-  h[42] = t22 * t20;  // XZ5
-  h[43] = t22 * t21;  // YZ5
+  h[42] = -t22 * t20;  // XZ5
+  h[43] = -t22 * t21;  // YZ5
   h[44] = 0.5f * t22 * t22;  // ZZ5R
-  const float t23 = c5 * t13 - s5 * t9;
-  const float t24 = -c5 * t14 - s5 * t19;
-  h[45] = t22 * t24 - t23 - t17 * t21;  // MX5
-  const float t25 = c5 * t19 - s5 * t14;
-  h[46] = c5 * t9 + s5 * t13 + t17 * t20 - t22 * t25;  // MY5R
+  const float t23 = s5 * t8 - c5 * t13;
+  const float t24 = c5 * t14 - s5 * t19;
+  h[45] = 9.81f * t23 + t17 * t21 - t22 * t24;  // MX5
+  const float t25 = s5 * t14 + c5 * t19;
+  h[46] = 9.81f * (c5 * t8 + s5 * t13) - t17 * t20 + t22 * t25;  // MY5R
   h[47] = 0.5f * dq[4] * dq[4];  // Ia5
-  h[48] = 0.0f;  // Fvp5
-  h[49] = 0.0f;  // Fvn5
-  h[50] = 0.0f;  // Fcp5
-  h[51] = 0.0f;  // Fcn5
-  const float t26 = s6 * t22 + c6 * t20;
+  const float t26 = s6 * t22 - c6 * t20;
   h[52] = 0.5f * t26 * t26;  // XX6R
-  const float t27 = c6 * t22 - s6 * t20;
+  const float t27 = c6 * t22 + s6 * t20;
   h[53] = t27 * t26;  // XY6R
-  const float t28 = dq[5] - t21;
+  const float t28 = dq[5] + t21;
   h[54] = t28 * t26;  // XZ6R
   h[55] = t28 * t27;  // YZ6R
   h[56] = 0.5f * t28 * t28;  // ZZ6R
-  h[57] = t24 * t27 - s6 * t18 - c6 * t23 + t28 * (c6 * t17 - s6 * t25);  // MX6R
-  h[58] = s6 * t23 - c6 * t18 - t24 * t26 - t28 * (s6 * t17 + c6 * t25);  // MY6R
+  h[57] = 9.81f * (s6 * t18 + c6 * t23) - t24 * t27 + t28 * (c6 * t17 + s6 * t25);  // MX6R
+  h[58] = 9.81f * (c6 * t18 - s6 * t23) + t24 * t26 - t28 * (s6 * t17 - c6 * t25);  // MY6R
   h[59] = 0.5f * dq[5] * dq[5];  // Ia6
-  h[60] = 0.0f;  // Fvp6
-  h[61] = 0.0f;  // Fvn6
-  h[62] = 0.0f;  // Fcp6
-  h[63] = 0.0f;  // Fcn6
 }
 
 }  // namespace comau_smart_six

@@ -4,26 +4,26 @@
 // The generated code belongs to the owner of the robot description.
 //
 // Function                              mul    add  sin/cos
-// idim_regressor_standard              1522   1150       12
-// inverse_dynamics_standard             714    558       12
+// idim_regressor_standard              1362   1130       12
+// inverse_dynamics_standard             671    551       12
 // joint_sincos                            0      0       18
-// idim_regressor_standard_sincos       1522   1150        0
-// inverse_dynamics_standard_sincos      714    558        0
-// base_from_standard                     56    105        0
-// idim_regressor                       1218    918       12
-// inverse_dynamics                      604    461       12
-// mass_matrix                          1446   1052       12
-// idim_regressor_sincos                1218    918        0
-// inverse_dynamics_sincos               604    461        0
-// mass_matrix_sincos                   1446   1052        0
-// inverse_dynamics_state_jacobian      8067   6314       12
-// energy_regressor                      219    120       12
-// power_regressor                       511    299       12
-// energy_regressor_sincos               219    120        0
-// power_regressor_sincos                511    299        0
-// drive_torque                          777    576       12
-// drive_torque_jacobian                3259   2023       12
-// drive_torque_state_jacobian          9024   6925       24
+// idim_regressor_standard_sincos       1362   1130        0
+// inverse_dynamics_standard_sincos      671    551        0
+// base_from_standard                     33    103        0
+// idim_regressor                       1120    874       12
+// inverse_dynamics                      561    449       12
+// mass_matrix                          1323   1028       12
+// idim_regressor_sincos                1120    874        0
+// inverse_dynamics_sincos               561    449        0
+// mass_matrix_sincos                   1323   1028        0
+// inverse_dynamics_state_jacobian      6968   6006       12
+// energy_regressor                      217    114       12
+// power_regressor                       477    285       12
+// energy_regressor_sincos               217    114        0
+// power_regressor_sincos                477    285        0
+// drive_torque                          725    569       12
+// drive_torque_jacobian                3909   2003       12
+// drive_torque_state_jacobian          8084   6603       24
 #ifndef MODELGEN_PANDA_HPP_
 #define MODELGEN_PANDA_HPP_
 
@@ -31,7 +31,7 @@ namespace modelgen {
 namespace panda {
 
 // Version of this generated interface; the runtime's adapter for generated models checks it.
-constexpr int kFormatVersion = 3;
+constexpr int kFormatVersion = 4;
 // Moving joints: the length of q, dq, ddq and tau.
 constexpr int kDof = 9;
 // Standard dynamic parameters (Gautier & Briot eq. 3): the length of p, the columns of W.
@@ -65,7 +65,10 @@ extern const double kJointOffset[kDof];
 // Standard regressor of the inverse dynamic identification model (Gautier & Briot eq. 2):
 // tau = W * p. Inputs q, dq, ddq: kDof joint positions (rad or m), velocities and accelerations.
 // Output W: kDof x kStandardParams, row-major: W[i * kStandardParams + k] is the torque of joint
-// i per unit of parameter kStandardParamNames[k]. Every entry is written.
+// i per unit of parameter kStandardParamNames[k].
+// W: 437 of its 1134 entries are written; the others are zero for every input
+// and never written (the manifest lists them under "unwritten"): zero W once before the
+// first call.
 void idim_regressor_standard(const double* q, const double* dq, const double* ddq, double* W);
 void idim_regressor_standard(const float* q, const float* dq, const float* ddq, float* W);
 
@@ -86,6 +89,9 @@ void joint_sincos(const float* q, float* sin_q, float* cos_q);
 
 // idim_regressor_standard with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
 // computing them; identical results.
+// W: 437 of its 1134 entries are written; the others are zero for every input
+// and never written (the manifest lists them under "unwritten"): zero W once before the
+// first call.
 void idim_regressor_standard_sincos(const double* q, const double* sin_q, const double* cos_q,
                                     const double* dq, const double* ddq, double* W);
 void idim_regressor_standard_sincos(const float* q, const float* sin_q, const float* cos_q,
@@ -110,6 +116,9 @@ void base_from_standard(const float* p_standard, float* beta);
 // Briot eq. 4-6): tau = W * beta. Inputs q, dq, ddq: kDof joint positions (rad or m),
 // velocities and accelerations. Output W: kDof x kBaseParams, row-major:
 // W[i * kBaseParams + k] is the torque of joint i per unit of kBaseParamNames[k].
+// W: 285 of its 765 entries are written; the others are zero for every input
+// and never written (the manifest lists them under "unwritten"): zero W once before the
+// first call.
 void idim_regressor(const double* q, const double* dq, const double* ddq, double* W);
 void idim_regressor(const float* q, const float* dq, const float* ddq, float* W);
 
@@ -126,11 +135,17 @@ void inverse_dynamics(const float* q, const float* dq, const float* ddq, const f
 // ddq = M^-1 (tau - inverse_dynamics(q, dq, 0, beta)). Inputs q (kDof) and beta (kBaseParams,
 // as for inverse_dynamics). Output M: kDof x kDof, row-major, M[i * kDof + k] = d tau_i / d ddq_k
 // (drive inertias included; symmetric, and positive definite for physical parameters).
+// M: 79 of its 81 entries are written; the others are zero for every input
+// and never written (the manifest lists them under "unwritten"): zero M once before the
+// first call.
 void mass_matrix(const double* q, const double* beta, double* M);
 void mass_matrix(const float* q, const float* beta, float* M);
 
 // idim_regressor with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
 // computing them; identical results.
+// W: 285 of its 765 entries are written; the others are zero for every input
+// and never written (the manifest lists them under "unwritten"): zero W once before the
+// first call.
 void idim_regressor_sincos(const double* q, const double* sin_q, const double* cos_q,
                            const double* dq, const double* ddq, double* W);
 void idim_regressor_sincos(const float* q, const float* sin_q, const float* cos_q,
@@ -145,6 +160,9 @@ void inverse_dynamics_sincos(const float* q, const float* sin_q, const float* co
 
 // mass_matrix with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
 // computing them; identical results.
+// M: 79 of its 81 entries are written; the others are zero for every input
+// and never written (the manifest lists them under "unwritten"): zero M once before the
+// first call.
 void mass_matrix_sincos(const double* q, const double* sin_q, const double* cos_q,
                         const double* beta, double* M);
 void mass_matrix_sincos(const float* q, const float* sin_q, const float* cos_q, const float* beta,
@@ -156,6 +174,9 @@ void mass_matrix_sincos(const float* q, const float* sin_q, const float* cos_q, 
 // inverse_dynamics. Coulomb friction counts as locally constant: the dq columns are exact
 // wherever no joint velocity (nor, for coupled drives, motor velocity) is zero; the friction
 // torque jumps there.
+// J: 228 of its 243 entries are written; the others are zero for every input
+// and never written (the manifest lists them under "unwritten"): zero J once before the
+// first call.
 void inverse_dynamics_state_jacobian(const double* q, const double* dq, const double* ddq,
                                      const double* beta, double* J);
 void inverse_dynamics_state_jacobian(const float* q, const float* dq, const float* ddq,
@@ -165,6 +186,9 @@ void inverse_dynamics_state_jacobian(const float* q, const float* dq, const floa
 // energy of links and drives is H = h * beta, up to a constant that depends on the parameters
 // only. Inputs q, dq: kDof joint positions and velocities. Output h: kBaseParams values, in the
 // order of kBaseParamNames.
+// h: 58 of its 85 entries are written; the others are zero for every input
+// and never written (the manifest lists them under "unwritten"): zero h once before the
+// first call.
 void energy_regressor(const double* q, const double* dq, double* h);
 void energy_regressor(const float* q, const float* dq, float* h);
 
@@ -176,6 +200,9 @@ void power_regressor(const float* q, const float* dq, const float* ddq, float* d
 
 // energy_regressor with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
 // computing them; identical results.
+// h: 58 of its 85 entries are written; the others are zero for every input
+// and never written (the manifest lists them under "unwritten"): zero h once before the
+// first call.
 void energy_regressor_sincos(const double* q, const double* sin_q, const double* cos_q,
                              const double* dq, double* h);
 void energy_regressor_sincos(const float* q, const float* sin_q, const float* cos_q,
@@ -207,6 +234,9 @@ void drive_torque(const float* q, const float* dq, const float* ddq, const float
 // efficiency branch and the Coulomb friction sign count as constant: exact wherever no motor
 // velocity and no power flow tau'_G dq_M is zero. Calls idim_regressor_standard into a local
 // array of kDof * kStandardParams values (on the stack) and applies the chain rule to it.
+// J: 846 of its 1134 entries are written; the others are zero for every input
+// and never written (the manifest lists them under "unwritten"): zero J once before the
+// first call.
 void drive_torque_jacobian(const double* q, const double* dq, const double* ddq,
                            const double* theta, double* tau_M, double* J);
 void drive_torque_jacobian(const float* q, const float* dq, const float* ddq, const float* theta,

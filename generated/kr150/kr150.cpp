@@ -4,26 +4,26 @@
 // The generated code belongs to the owner of the robot description.
 //
 // Function                              mul    add  sin/cos
-// idim_regressor_standard               685    550       10
-// inverse_dynamics_standard             496    394       10
+// idim_regressor_standard               593    536       10
+// inverse_dynamics_standard             472    385       10
 // joint_sincos                            0      0       12
-// idim_regressor_standard_sincos        685    550        0
-// inverse_dynamics_standard_sincos      496    394        0
-// base_from_standard                     49     81        0
-// idim_regressor                        477    375       10
-// inverse_dynamics                      379    293       10
-// mass_matrix                           419    356       10
-// idim_regressor_sincos                 477    375        0
-// inverse_dynamics_sincos               379    293        0
-// mass_matrix_sincos                    419    356        0
-// inverse_dynamics_state_jacobian      2606   2353       10
-// energy_regressor                      132     55       10
-// power_regressor                       325    164       10
-// energy_regressor_sincos               132     55        0
-// power_regressor_sincos                325    164        0
-// drive_torque                          517    400       10
-// drive_torque_jacobian                1822   1231       10
-// drive_torque_state_jacobian          3244   2823       20
+// idim_regressor_standard_sincos        593    536        0
+// inverse_dynamics_standard_sincos      472    385        0
+// base_from_standard                     19     81        0
+// idim_regressor                        417    351       10
+// inverse_dynamics                      358    279       10
+// mass_matrix                           394    314       10
+// idim_regressor_sincos                 417    351        0
+// inverse_dynamics_sincos               358    279        0
+// mass_matrix_sincos                    394    314        0
+// inverse_dynamics_state_jacobian      2180   1972       10
+// energy_regressor                      138     56       10
+// power_regressor                       319    163       10
+// energy_regressor_sincos               138     56        0
+// power_regressor_sincos                319    163        0
+// drive_torque                          502    391       10
+// drive_torque_jacobian                2150   1223       10
+// drive_torque_state_jacobian          2863   2428       20
 #include "kr150.hpp"
 
 namespace modelgen {

@@ -4,7 +4,7 @@
 // The generated code belongs to the owner of the robot description.
 //
 // Function                              mul    add  sin/cos
-// base_from_standard                     49     81        0
+// base_from_standard                     19     81        0
 #include "kr150.hpp"
 
 namespace modelgen {
@@ -14,26 +14,26 @@ namespace kr150 {
 // Input p_standard: kStandardParams values in the order of kStandardParamNames.
 // Output beta: kBaseParams values in the order of kBaseParamNames.
 void base_from_standard(const double* p_standard, double* beta) {
-  beta[0] = p_standard[10] + p_standard[16] + p_standard[29] + p_standard[5] + 0.1225 * p_standard[22] + 1.685 * p_standard[35] + 1.688025 * p_standard[48] + 1.688025 * p_standard[61] + 1.688025 * p_standard[77] + 1.688025 * p_standard[93];  // ZZ1R
+  beta[0] = p_standard[10] + p_standard[16] + p_standard[29] + p_standard[5] + 0.1225 * p_standard[22] + 1.685 * p_standard[35] + 1.688025 * (p_standard[48] + p_standard[61] + p_standard[77] + p_standard[93]);  // ZZ1R
   beta[1] = p_standard[11];  // Fv1
   beta[2] = p_standard[12];  // Fc1
-  beta[3] = p_standard[13] - 1.5625 * p_standard[35] - 1.5625 * p_standard[48] - 1.5625 * p_standard[61] - 1.5625 * p_standard[77] - 1.5625 * p_standard[93] - p_standard[16];  // XX2R
+  beta[3] = p_standard[13] - 1.5625 * (p_standard[35] + p_standard[48] + p_standard[61] + p_standard[77] + p_standard[93]) - p_standard[16];  // XX2R
   beta[4] = p_standard[14];  // XY2
   beta[5] = p_standard[15] - 1.25 * p_standard[34];  // XZ2R
   beta[6] = p_standard[17];  // YZ2
-  beta[7] = p_standard[18] + p_standard[23] + 1.5625 * p_standard[35] + 1.5625 * p_standard[48] + 1.5625 * p_standard[61] + 1.5625 * p_standard[77] + 1.5625 * p_standard[93];  // ZZ2R
-  beta[8] = p_standard[19] + 1.25 * p_standard[35] + 1.25 * p_standard[48] + 1.25 * p_standard[61] + 1.25 * p_standard[77] + 1.25 * p_standard[93];  // MX2R
+  beta[7] = p_standard[18] + p_standard[23] + 1.5625 * (p_standard[35] + p_standard[48] + p_standard[61] + p_standard[77] + p_standard[93]);  // ZZ2R
+  beta[8] = p_standard[19] + 1.25 * (p_standard[35] + p_standard[48] + p_standard[61] + p_standard[77] + p_standard[93]);  // MX2R
   beta[9] = p_standard[20];  // MY2
   beta[10] = p_standard[24];  // Fv2
   beta[11] = p_standard[25];  // Fc2
   const double t0 = -2.2 * p_standard[47];
-  beta[12] = p_standard[26] + p_standard[42] + t0 - p_standard[29] + 1.206975 * p_standard[48] + 1.206975 * p_standard[61] + 1.206975 * p_standard[77] + 1.206975 * p_standard[93];  // XX3R
-  beta[13] = p_standard[27] - 0.055 * p_standard[47] + 0.0605 * p_standard[48] + 0.0605 * p_standard[61] + 0.0605 * p_standard[77] + 0.0605 * p_standard[93];  // XY3R
+  beta[12] = p_standard[26] + p_standard[42] + t0 - p_standard[29] + 1.206975 * (p_standard[48] + p_standard[61] + p_standard[77] + p_standard[93]);  // XX3R
+  beta[13] = p_standard[27] - 0.055 * p_standard[47] + 0.0605 * (p_standard[48] + p_standard[61] + p_standard[77] + p_standard[93]);  // XY3R
   beta[14] = p_standard[28];  // XZ3
   beta[15] = p_standard[30];  // YZ3
-  beta[16] = p_standard[31] + p_standard[42] + t0 + 1.213025 * p_standard[48] + 1.213025 * p_standard[61] + 1.213025 * p_standard[77] + 1.213025 * p_standard[93];  // ZZ3R
-  beta[17] = p_standard[32] + 0.055 * p_standard[48] + 0.055 * p_standard[61] + 0.055 * p_standard[77] + 0.055 * p_standard[93];  // MX3R
-  beta[18] = p_standard[33] + p_standard[47] - 1.1 * p_standard[48] - 1.1 * p_standard[61] - 1.1 * p_standard[77] - 1.1 * p_standard[93];  // MY3R
+  beta[16] = p_standard[31] + p_standard[42] + t0 + 1.213025 * (p_standard[48] + p_standard[61] + p_standard[77] + p_standard[93]);  // ZZ3R
+  beta[17] = p_standard[32] + 0.055 * (p_standard[48] + p_standard[61] + p_standard[77] + p_standard[93]);  // MX3R
+  beta[18] = p_standard[33] + p_standard[47] - 1.1 * (p_standard[48] + p_standard[61] + p_standard[77] + p_standard[93]);  // MY3R
   beta[19] = p_standard[36];  // Ia3
   beta[20] = p_standard[37];  // Fv3
   beta[21] = p_standard[38];  // Fc3
@@ -81,26 +81,26 @@ void base_from_standard(const double* p_standard, double* beta) {
 // Input p_standard: kStandardParams values in the order of kStandardParamNames.
 // Output beta: kBaseParams values in the order of kBaseParamNames.
 void base_from_standard(const float* p_standard, float* beta) {
-  beta[0] = p_standard[10] + p_standard[16] + p_standard[29] + p_standard[5] + 0.1225f * p_standard[22] + 1.685f * p_standard[35] + 1.688025f * p_standard[48] + 1.688025f * p_standard[61] + 1.688025f * p_standard[77] + 1.688025f * p_standard[93];  // ZZ1R
+  beta[0] = p_standard[10] + p_standard[16] + p_standard[29] + p_standard[5] + 0.1225f * p_standard[22] + 1.685f * p_standard[35] + 1.688025f * (p_standard[48] + p_standard[61] + p_standard[77] + p_standard[93]);  // ZZ1R
   beta[1] = p_standard[11];  // Fv1
   beta[2] = p_standard[12];  // Fc1
-  beta[3] = p_standard[13] - 1.5625f * p_standard[35] - 1.5625f * p_standard[48] - 1.5625f * p_standard[61] - 1.5625f * p_standard[77] - 1.5625f * p_standard[93] - p_standard[16];  // XX2R
+  beta[3] = p_standard[13] - 1.5625f * (p_standard[35] + p_standard[48] + p_standard[61] + p_standard[77] + p_standard[93]) - p_standard[16];  // XX2R
   beta[4] = p_standard[14];  // XY2
   beta[5] = p_standard[15] - 1.25f * p_standard[34];  // XZ2R
   beta[6] = p_standard[17];  // YZ2
-  beta[7] = p_standard[18] + p_standard[23] + 1.5625f * p_standard[35] + 1.5625f * p_standard[48] + 1.5625f * p_standard[61] + 1.5625f * p_standard[77] + 1.5625f * p_standard[93];  // ZZ2R
-  beta[8] = p_standard[19] + 1.25f * p_standard[35] + 1.25f * p_standard[48] + 1.25f * p_standard[61] + 1.25f * p_standard[77] + 1.25f * p_standard[93];  // MX2R
+  beta[7] = p_standard[18] + p_standard[23] + 1.5625f * (p_standard[35] + p_standard[48] + p_standard[61] + p_standard[77] + p_standard[93]);  // ZZ2R
+  beta[8] = p_standard[19] + 1.25f * (p_standard[35] + p_standard[48] + p_standard[61] + p_standard[77] + p_standard[93]);  // MX2R
   beta[9] = p_standard[20];  // MY2
   beta[10] = p_standard[24];  // Fv2
   beta[11] = p_standard[25];  // Fc2
   const float t0 = -2.2f * p_standard[47];
-  beta[12] = p_standard[26] + p_standard[42] + t0 - p_standard[29] + 1.206975f * p_standard[48] + 1.206975f * p_standard[61] + 1.206975f * p_standard[77] + 1.206975f * p_standard[93];  // XX3R
-  beta[13] = p_standard[27] - 0.055f * p_standard[47] + 0.0605f * p_standard[48] + 0.0605f * p_standard[61] + 0.0605f * p_standard[77] + 0.0605f * p_standard[93];  // XY3R
+  beta[12] = p_standard[26] + p_standard[42] + t0 - p_standard[29] + 1.206975f * (p_standard[48] + p_standard[61] + p_standard[77] + p_standard[93]);  // XX3R
+  beta[13] = p_standard[27] - 0.055f * p_standard[47] + 0.0605f * (p_standard[48] + p_standard[61] + p_standard[77] + p_standard[93]);  // XY3R
   beta[14] = p_standard[28];  // XZ3
   beta[15] = p_standard[30];  // YZ3
-  beta[16] = p_standard[31] + p_standard[42] + t0 + 1.213025f * p_standard[48] + 1.213025f * p_standard[61] + 1.213025f * p_standard[77] + 1.213025f * p_standard[93];  // ZZ3R
-  beta[17] = p_standard[32] + 0.055f * p_standard[48] + 0.055f * p_standard[61] + 0.055f * p_standard[77] + 0.055f * p_standard[93];  // MX3R
-  beta[18] = p_standard[33] + p_standard[47] - 1.1f * p_standard[48] - 1.1f * p_standard[61] - 1.1f * p_standard[77] - 1.1f * p_standard[93];  // MY3R
+  beta[16] = p_standard[31] + p_standard[42] + t0 + 1.213025f * (p_standard[48] + p_standard[61] + p_standard[77] + p_standard[93]);  // ZZ3R
+  beta[17] = p_standard[32] + 0.055f * (p_standard[48] + p_standard[61] + p_standard[77] + p_standard[93]);  // MX3R
+  beta[18] = p_standard[33] + p_standard[47] - 1.1f * (p_standard[48] + p_standard[61] + p_standard[77] + p_standard[93]);  // MY3R
   beta[19] = p_standard[36];  // Ia3
   beta[20] = p_standard[37];  // Fv3
   beta[21] = p_standard[38];  // Fc3

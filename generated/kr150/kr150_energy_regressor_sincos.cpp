@@ -4,7 +4,7 @@
 // The generated code belongs to the owner of the robot description.
 //
 // Function                              mul    add  sin/cos
-// energy_regressor_sincos               132     55        0
+// energy_regressor_sincos               138     56        0
 #include "kr150.hpp"
 
 namespace modelgen {
@@ -12,6 +12,9 @@ namespace kr150 {
 
 // energy_regressor with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
 // computing them; identical results.
+// h: 42 of its 58 entries are written; the others are zero for every input
+// and never written (the manifest lists them under "unwritten"): zero h once before the
+// first call.
 void energy_regressor_sincos(const double* q, const double* sin_q, const double* cos_q,
                              const double* dq, double* h) {
   static_cast<void>(q);
@@ -26,8 +29,6 @@ void energy_regressor_sincos(const double* q, const double* sin_q, const double*
   const double s6 = sin_q[5];
   const double c6 = cos_q[5];
   h[0] = 0.5 * dq[0] * dq[0];  // ZZ1R
-  h[1] = 0.0;  // Fv1
-  h[2] = 0.0;  // Fc1
   const double t0 = dq[0] * s2;
   h[3] = 0.5 * t0 * t0;  // XX2R
   const double t1 = c2 * dq[0];
@@ -37,87 +38,76 @@ void energy_regressor_sincos(const double* q, const double* sin_q, const double*
   h[7] = 0.5 * dq[1] * dq[1];  // ZZ2R
   h[8] = 0.35 * dq[0] * t1 - 9.81 * s2;  // MX2R
   h[9] = -9.81 * c2 - 0.35 * dq[0] * t0;  // MY2
-  h[10] = 0.0;  // Fv2
-  h[11] = 0.0;  // Fc2
   const double t2 = c3 * t1 - s3 * t0;
   h[12] = 0.5 * t2 * t2;  // XX3R
-  const double t3 = -c3 * t0 - s3 * t1;
-  h[13] = t3 * t2;  // XY3R
+  const double t3 = c3 * t0 + s3 * t1;
+  h[13] = -t3 * t2;  // XY3R
   const double t4 = dq[1] + dq[2];
   h[14] = t4 * t2;  // XZ3
-  h[15] = t4 * t3;  // YZ3
+  h[15] = -t4 * t3;  // YZ3
   h[16] = 0.5 * t4 * t4;  // ZZ3R
-  const double t5 = -1.25 * dq[1] * s3;
-  const double t6 = 9.81 * c2 * c3 - 9.81 * s2 * s3;
-  const double t7 = -0.35 * dq[0] - 1.25 * t1;
-  h[17] = t4 * t5 - t6 - t7 * t3;  // MX3R
-  const double t8 = 1.25 * c3 * dq[1];
-  const double t9 = -9.81 * c2 * s3 - 9.81 * c3 * s2;
-  h[18] = t7 * t2 - t4 * t8 - t9;  // MY3R
+  const double t5 = dq[1] * s3;
+  const double t6 = c2 * c3 - s2 * s3;
+  const double t7 = 0.35 * dq[0] + 1.25 * t1;
+  h[17] = -1.25 * t4 * t5 - 9.81 * t6 - t7 * t3;  // MX3R
+  const double t8 = c3 * dq[1];
+  const double t9 = c2 * s3 + c3 * s2;
+  h[18] = 9.81 * t9 - 1.25 * t4 * t8 - t7 * t2;  // MY3R
   h[19] = 0.5 * dq[2] * dq[2];  // Ia3
-  h[20] = 0.0;  // Fv3
-  h[21] = 0.0;  // Fc3
-  const double t10 = c4 * t2 - s4 * t4;
+  const double t10 = s4 * t4 - c4 * t2;
   h[22] = 0.5 * t10 * t10;  // XX4R
-  const double t11 = -c4 * t4 - s4 * t2;
+  const double t11 = c4 * t4 + s4 * t2;
   h[23] = t11 * t10;  // XY4
-  const double t12 = dq[3] + t3;
-  h[24] = t12 * t10;  // XZ4
-  h[25] = t12 * t11;  // YZ4
+  const double t12 = dq[3] - t3;
+  h[24] = -t12 * t10;  // XZ4
+  h[25] = -t12 * t11;  // YZ4
   h[26] = 0.5 * t12 * t12;  // ZZ4R
   const double t13 = c4 * t6;
-  const double t14 = t5 + 0.055 * t4;
-  const double t15 = t8 + 1.1 * t4;
-  const double t16 = t7 - 1.1 * t2 - 0.055 * t3;
-  const double t17 = -s4 * t15 - c4 * t16;
-  h[27] = t12 * t17 - t13 - t14 * t11;  // MX4
-  const double t18 = -s4 * t6;
-  const double t19 = c4 * t15 - s4 * t16;
-  h[28] = t14 * t10 - t18 - t12 * t19;  // MY4R
+  const double t14 = 0.055 * t4 - 1.25 * t5;
+  const double t15 = 1.1 * t4 + 1.25 * t8;
+  const double t16 = t7 - 0.055 * t3 + 1.1 * t2;
+  const double t17 = s4 * t15 - c4 * t16;
+  h[27] = t14 * t11 - 9.81 * t13 - t12 * t17;  // MX4
+  const double t18 = s4 * t6;
+  const double t19 = c4 * t15 + s4 * t16;
+  h[28] = 9.81 * t18 - t14 * t10 - t12 * t19;  // MY4R
   h[29] = 0.5 * dq[3] * dq[3];  // Ia4
-  h[30] = 0.0;  // Fv4
-  h[31] = 0.0;  // Fc4
-  const double t20 = s5 * t12 + c5 * t10;
+  const double t20 = s5 * t12 - c5 * t10;
   h[32] = 0.5 * t20 * t20;  // XX5R
-  const double t21 = c5 * t12 - s5 * t10;
+  const double t21 = c5 * t12 + s5 * t10;
   h[33] = t21 * t20;  // XY5
-  const double t22 = dq[4] - t11;
+  const double t22 = dq[4] + t11;
   h[34] = t22 * t20;  // XZ5
   h[35] = t22 * t21;  // YZ5
   h[36] = 0.5 * t22 * t22;  // ZZ5R
-  const double t23 = s5 * t9 + c5 * t13;
+  const double t23 = s5 * t9 - c5 * t13;
   const double t24 = c5 * t14 - s5 * t19;
-  h[37] = t17 * t21 - t23 + t22 * t24;  // MX5
+  h[37] = 9.81 * t23 - t17 * t21 + t22 * t24;  // MX5
   const double t25 = s5 * t14 + c5 * t19;
-  h[38] = s5 * t13 - c5 * t9 - t17 * t20 - t22 * t25;  // MY5R
+  h[38] = 9.81 * (c5 * t9 + s5 * t13) + t17 * t20 - t22 * t25;  // MY5R
   h[39] = 0.5 * dq[4] * dq[4];  // Ia5
-  h[40] = 0.0;  // Fv5
-  h[41] = 0.0;  // Fc5
-  const double t26 = dq[4] - 0.0093 * dq[3];
+  const double t26 = 0.0093 * dq[3] - dq[4];
   h[42] = 0.5 * t26 * t26;  // Iam5
-  h[43] = 0.0;  // Fvm5
-  h[44] = 0.0;  // Fcm5
-  const double t27 = c6 * t20 - s6 * t22;
+  const double t27 = s6 * t22 - c6 * t20;
   h[45] = 0.5 * t27 * t27;  // XX6R
-  const double t28 = -c6 * t22 - s6 * t20;
+  const double t28 = c6 * t22 + s6 * t20;
   h[46] = t28 * t27;  // XY6R
   const double t29 = dq[5] + t21;
-  h[47] = t29 * t27;  // XZ6R
-  h[48] = t29 * t28;  // YZ6R
+  h[47] = -t29 * t27;  // XZ6R
+  h[48] = -t29 * t28;  // YZ6R
   h[49] = 0.5 * t29 * t29;  // ZZ6R
-  h[50] = t29 * (c6 * t17 - s6 * t25) - s6 * t18 - c6 * t23 - t24 * t28;  // MX6R
-  h[51] = s6 * t23 - c6 * t18 + t24 * t27 - t29 * (s6 * t17 + c6 * t25);  // MY6R
+  h[50] = 9.81 * (s6 * t18 + c6 * t23) + t24 * t28 - t29 * (c6 * t17 + s6 * t25);  // MX6R
+  h[51] = 9.81 * (c6 * t18 - s6 * t23) - t24 * t27 + t29 * (s6 * t17 - c6 * t25);  // MY6R
   h[52] = 0.5 * dq[5] * dq[5];  // Ia6
-  h[53] = 0.0;  // Fv6
-  h[54] = 0.0;  // Fc6
-  const double t30 = dq[5] - 0.0139302 * dq[3] + 0.014 * dq[4];
+  const double t30 = 0.0139302 * dq[3] - dq[5] - 0.014 * dq[4];
   h[55] = 0.5 * t30 * t30;  // Iam6
-  h[56] = 0.0;  // Fvm6
-  h[57] = 0.0;  // Fcm6
 }
 
 // energy_regressor with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
 // computing them; identical results.
+// h: 42 of its 58 entries are written; the others are zero for every input
+// and never written (the manifest lists them under "unwritten"): zero h once before the
+// first call.
 void energy_regressor_sincos(const float* q, const float* sin_q, const float* cos_q,
                              const float* dq, float* h) {
   static_cast<void>(q);
@@ -132,8 +122,6 @@ void energy_regressor_sincos(const float* q, const float* sin_q, const float* co
   const float s6 = sin_q[5];
   const float c6 = cos_q[5];
   h[0] = 0.5f * dq[0] * dq[0];  // ZZ1R
-  h[1] = 0.0f;  // Fv1
-  h[2] = 0.0f;  // Fc1
   const float t0 = dq[0] * s2;
   h[3] = 0.5f * t0 * t0;  // XX2R
   const float t1 = c2 * dq[0];
@@ -143,83 +131,69 @@ void energy_regressor_sincos(const float* q, const float* sin_q, const float* co
   h[7] = 0.5f * dq[1] * dq[1];  // ZZ2R
   h[8] = 0.35f * dq[0] * t1 - 9.81f * s2;  // MX2R
   h[9] = -9.81f * c2 - 0.35f * dq[0] * t0;  // MY2
-  h[10] = 0.0f;  // Fv2
-  h[11] = 0.0f;  // Fc2
   const float t2 = c3 * t1 - s3 * t0;
   h[12] = 0.5f * t2 * t2;  // XX3R
-  const float t3 = -c3 * t0 - s3 * t1;
-  h[13] = t3 * t2;  // XY3R
+  const float t3 = c3 * t0 + s3 * t1;
+  h[13] = -t3 * t2;  // XY3R
   const float t4 = dq[1] + dq[2];
   h[14] = t4 * t2;  // XZ3
-  h[15] = t4 * t3;  // YZ3
+  h[15] = -t4 * t3;  // YZ3
   h[16] = 0.5f * t4 * t4;  // ZZ3R
-  const float t5 = -1.25f * dq[1] * s3;
-  const float t6 = 9.81f * c2 * c3 - 9.81f * s2 * s3;
-  const float t7 = -0.35f * dq[0] - 1.25f * t1;
-  h[17] = t4 * t5 - t6 - t7 * t3;  // MX3R
-  const float t8 = 1.25f * c3 * dq[1];
-  const float t9 = -9.81f * c2 * s3 - 9.81f * c3 * s2;
-  h[18] = t7 * t2 - t4 * t8 - t9;  // MY3R
+  const float t5 = dq[1] * s3;
+  const float t6 = c2 * c3 - s2 * s3;
+  const float t7 = 0.35f * dq[0] + 1.25f * t1;
+  h[17] = -1.25f * t4 * t5 - 9.81f * t6 - t7 * t3;  // MX3R
+  const float t8 = c3 * dq[1];
+  const float t9 = c2 * s3 + c3 * s2;
+  h[18] = 9.81f * t9 - 1.25f * t4 * t8 - t7 * t2;  // MY3R
   h[19] = 0.5f * dq[2] * dq[2];  // Ia3
-  h[20] = 0.0f;  // Fv3
-  h[21] = 0.0f;  // Fc3
-  const float t10 = c4 * t2 - s4 * t4;
+  const float t10 = s4 * t4 - c4 * t2;
   h[22] = 0.5f * t10 * t10;  // XX4R
-  const float t11 = -c4 * t4 - s4 * t2;
+  const float t11 = c4 * t4 + s4 * t2;
   h[23] = t11 * t10;  // XY4
-  const float t12 = dq[3] + t3;
-  h[24] = t12 * t10;  // XZ4
-  h[25] = t12 * t11;  // YZ4
+  const float t12 = dq[3] - t3;
+  h[24] = -t12 * t10;  // XZ4
+  h[25] = -t12 * t11;  // YZ4
   h[26] = 0.5f * t12 * t12;  // ZZ4R
   const float t13 = c4 * t6;
-  const float t14 = t5 + 0.055f * t4;
-  const float t15 = t8 + 1.1f * t4;
-  const float t16 = t7 - 1.1f * t2 - 0.055f * t3;
-  const float t17 = -s4 * t15 - c4 * t16;
-  h[27] = t12 * t17 - t13 - t14 * t11;  // MX4
-  const float t18 = -s4 * t6;
-  const float t19 = c4 * t15 - s4 * t16;
-  h[28] = t14 * t10 - t18 - t12 * t19;  // MY4R
+  const float t14 = 0.055f * t4 - 1.25f * t5;
+  const float t15 = 1.1f * t4 + 1.25f * t8;
+  const float t16 = t7 - 0.055f * t3 + 1.1f * t2;
+  const float t17 = s4 * t15 - c4 * t16;
+  h[27] = t14 * t11 - 9.81f * t13 - t12 * t17;  // MX4
+  const float t18 = s4 * t6;
+  const float t19 = c4 * t15 + s4 * t16;
+  h[28] = 9.81f * t18 - t14 * t10 - t12 * t19;  // MY4R
   h[29] = 0.5f * dq[3] * dq[3];  // Ia4
-  h[30] = 0.0f;  // Fv4
-  h[31] = 0.0f;  // Fc4
-  const float t20 = s5 * t12 + c5 * t10;
+  const float t20 = s5 * t12 - c5 * t10;
   h[32] = 0.5f * t20 * t20;  // XX5R
-  const float t21 = c5 * t12 - s5 * t10;
+  const float t21 = c5 * t12 + s5 * t10;
   h[33] = t21 * t20;  // XY5
-  const float t22 = dq[4] - t11;
+  const float t22 = dq[4] + t11;
   h[34] = t22 * t20;  // XZ5
   h[35] = t22 * t21;  // YZ5
   h[36] = 0.5f * t22 * t22;  // ZZ5R
-  const float t23 = s5 * t9 + c5 * t13;
+  const float t23 = s5 * t9 - c5 * t13;
   const float t24 = c5 * t14 - s5 * t19;
-  h[37] = t17 * t21 - t23 + t22 * t24;  // MX5
+  h[37] = 9.81f * t23 - t17 * t21 + t22 * t24;  // MX5
   const float t25 = s5 * t14 + c5 * t19;
-  h[38] = s5 * t13 - c5 * t9 - t17 * t20 - t22 * t25;  // MY5R
+  h[38] = 9.81f * (c5 * t9 + s5 * t13) + t17 * t20 - t22 * t25;  // MY5R
   h[39] = 0.5f * dq[4] * dq[4];  // Ia5
-  h[40] = 0.0f;  // Fv5
-  h[41] = 0.0f;  // Fc5
-  const float t26 = dq[4] - 0.0093f * dq[3];
+  const float t26 = 0.0093f * dq[3] - dq[4];
   h[42] = 0.5f * t26 * t26;  // Iam5
-  h[43] = 0.0f;  // Fvm5
-  h[44] = 0.0f;  // Fcm5
-  const float t27 = c6 * t20 - s6 * t22;
+  const float t27 = s6 * t22 - c6 * t20;
   h[45] = 0.5f * t27 * t27;  // XX6R
-  const float t28 = -c6 * t22 - s6 * t20;
+  const float t28 = c6 * t22 + s6 * t20;
   h[46] = t28 * t27;  // XY6R
   const float t29 = dq[5] + t21;
-  h[47] = t29 * t27;  // XZ6R
-  h[48] = t29 * t28;  // YZ6R
+  h[47] = -t29 * t27;  // XZ6R
+  h[48] = -t29 * t28;  // YZ6R
   h[49] = 0.5f * t29 * t29;  // ZZ6R
-  h[50] = t29 * (c6 * t17 - s6 * t25) - s6 * t18 - c6 * t23 - t24 * t28;  // MX6R
-  h[51] = s6 * t23 - c6 * t18 + t24 * t27 - t29 * (s6 * t17 + c6 * t25);  // MY6R
+  h[50] = 9.81f * (s6 * t18 + c6 * t23) + t24 * t28 - t29 * (c6 * t17 + s6 * t25);  // MX6R
+  h[51] = 9.81f * (c6 * t18 - s6 * t23) - t24 * t27 + t29 * (s6 * t17 - c6 * t25);  // MY6R
   h[52] = 0.5f * dq[5] * dq[5];  // Ia6
-  h[53] = 0.0f;  // Fv6
-  h[54] = 0.0f;  // Fc6
-  const float t30 = dq[5] - 0.0139302f * dq[3] + 0.014f * dq[4];
+  const float t30 = 0.0139302f * dq[3] - dq[5] - 0.014f * dq[4];
   h[55] = 0.5f * t30 * t30;  // Iam6
-  h[56] = 0.0f;  // Fvm6
-  h[57] = 0.0f;  // Fcm6
 }
 
 }  // namespace kr150

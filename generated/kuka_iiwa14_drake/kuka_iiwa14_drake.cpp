@@ -4,26 +4,26 @@
 // The generated code belongs to the owner of the robot description.
 //
 // Function                              mul    add  sin/cos
-// idim_regressor_standard              1007    713       12
-// inverse_dynamics_standard             484    379       12
+// idim_regressor_standard               869    676       12
+// inverse_dynamics_standard             469    379       12
 // joint_sincos                            0      0       14
-// idim_regressor_standard_sincos       1007    713        0
-// inverse_dynamics_standard_sincos      484    379        0
-// base_from_standard                     23     59        0
-// idim_regressor                        798    564       12
-// inverse_dynamics                      422    324       12
-// mass_matrix                           750    554       12
-// idim_regressor_sincos                 798    564        0
-// inverse_dynamics_sincos               422    324        0
-// mass_matrix_sincos                    750    554        0
-// inverse_dynamics_state_jacobian      4349   3543       12
-// energy_regressor                      148     60       12
-// power_regressor                       378    191       12
-// energy_regressor_sincos               148     60        0
-// power_regressor_sincos                378    191        0
-// drive_torque                          533    393       12
-// drive_torque_jacobian                2078   1252       12
-// drive_torque_state_jacobian          4983   3961       24
+// idim_regressor_standard_sincos        869    676        0
+// inverse_dynamics_standard_sincos      469    379        0
+// base_from_standard                     19     59        0
+// idim_regressor                        695    536       12
+// inverse_dynamics                      407    319       12
+// mass_matrix                           732    516       12
+// idim_regressor_sincos                 695    536        0
+// inverse_dynamics_sincos               407    319        0
+// mass_matrix_sincos                    732    516        0
+// inverse_dynamics_state_jacobian      4045   3345       12
+// energy_regressor                      152     53       12
+// power_regressor                       354    175       12
+// energy_regressor_sincos               152     53        0
+// power_regressor_sincos                354    175        0
+// drive_torque                          511    393       12
+// drive_torque_jacobian                2430   1215       12
+// drive_torque_state_jacobian          4793   3758       24
 #include "kuka_iiwa14_drake.hpp"
 
 namespace modelgen {

@@ -4,26 +4,26 @@
 // The generated code belongs to the owner of the robot description.
 //
 // Function                              mul    add  sin/cos
-// idim_regressor_standard              1007    713       12
-// inverse_dynamics_standard             484    379       12
+// idim_regressor_standard               869    676       12
+// inverse_dynamics_standard             469    379       12
 // joint_sincos                            0      0       14
-// idim_regressor_standard_sincos       1007    713        0
-// inverse_dynamics_standard_sincos      484    379        0
-// base_from_standard                     23     59        0
-// idim_regressor                        798    564       12
-// inverse_dynamics                      422    324       12
-// mass_matrix                           750    554       12
-// idim_regressor_sincos                 798    564        0
-// inverse_dynamics_sincos               422    324        0
-// mass_matrix_sincos                    750    554        0
-// inverse_dynamics_state_jacobian      4349   3543       12
-// energy_regressor                      148     60       12
-// power_regressor                       378    191       12
-// energy_regressor_sincos               148     60        0
-// power_regressor_sincos                378    191        0
-// drive_torque                          533    393       12
-// drive_torque_jacobian                2078   1252       12
-// drive_torque_state_jacobian          4983   3961       24
+// idim_regressor_standard_sincos        869    676        0
+// inverse_dynamics_standard_sincos      469    379        0
+// base_from_standard                     19     59        0
+// idim_regressor                        695    536       12
+// inverse_dynamics                      407    319       12
+// mass_matrix                           732    516       12
+// idim_regressor_sincos                 695    536        0
+// inverse_dynamics_sincos               407    319        0
+// mass_matrix_sincos                    732    516        0
+// inverse_dynamics_state_jacobian      4045   3345       12
+// energy_regressor                      152     53       12
+// power_regressor                       354    175       12
+// energy_regressor_sincos               152     53        0
+// power_regressor_sincos                354    175        0
+// drive_torque                          511    393       12
+// drive_torque_jacobian                2430   1215       12
+// drive_torque_state_jacobian          4793   3758       24
 #ifndef MODELGEN_IIWA14_HPP_
 #define MODELGEN_IIWA14_HPP_
 
@@ -31,7 +31,7 @@ namespace modelgen {
 namespace iiwa14 {
 
 // Version of this generated interface; the runtime's adapter for generated models checks it.
-constexpr int kFormatVersion = 3;
+constexpr int kFormatVersion = 4;
 // Moving joints: the length of q, dq, ddq and tau.
 constexpr int kDof = 7;
 // Standard dynamic parameters (Gautier & Briot eq. 3): the length of p, the columns of W.
@@ -65,7 +65,10 @@ extern const double kJointOffset[kDof];
 // Standard regressor of the inverse dynamic identification model (Gautier & Briot eq. 2):
 // tau = W * p. Inputs q, dq, ddq: kDof joint positions (rad or m), velocities and accelerations.
 // Output W: kDof x kStandardParams, row-major: W[i * kStandardParams + k] is the torque of joint
-// i per unit of parameter kStandardParamNames[k]. Every entry is written.
+// i per unit of parameter kStandardParamNames[k].
+// W: 280 of its 686 entries are written; the others are zero for every input
+// and never written (the manifest lists them under "unwritten"): zero W once before the
+// first call.
 void idim_regressor_standard(const double* q, const double* dq, const double* ddq, double* W);
 void idim_regressor_standard(const float* q, const float* dq, const float* ddq, float* W);
 
@@ -86,6 +89,9 @@ void joint_sincos(const float* q, float* sin_q, float* cos_q);
 
 // idim_regressor_standard with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
 // computing them; identical results.
+// W: 280 of its 686 entries are written; the others are zero for every input
+// and never written (the manifest lists them under "unwritten"): zero W once before the
+// first call.
 void idim_regressor_standard_sincos(const double* q, const double* sin_q, const double* cos_q,
                                     const double* dq, const double* ddq, double* W);
 void idim_regressor_standard_sincos(const float* q, const float* sin_q, const float* cos_q,
@@ -110,6 +116,9 @@ void base_from_standard(const float* p_standard, float* beta);
 // Briot eq. 4-6): tau = W * beta. Inputs q, dq, ddq: kDof joint positions (rad or m),
 // velocities and accelerations. Output W: kDof x kBaseParams, row-major:
 // W[i * kBaseParams + k] is the torque of joint i per unit of kBaseParamNames[k].
+// W: 213 of its 483 entries are written; the others are zero for every input
+// and never written (the manifest lists them under "unwritten"): zero W once before the
+// first call.
 void idim_regressor(const double* q, const double* dq, const double* ddq, double* W);
 void idim_regressor(const float* q, const float* dq, const float* ddq, float* W);
 
@@ -131,6 +140,9 @@ void mass_matrix(const float* q, const float* beta, float* M);
 
 // idim_regressor with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
 // computing them; identical results.
+// W: 213 of its 483 entries are written; the others are zero for every input
+// and never written (the manifest lists them under "unwritten"): zero W once before the
+// first call.
 void idim_regressor_sincos(const double* q, const double* sin_q, const double* cos_q,
                            const double* dq, const double* ddq, double* W);
 void idim_regressor_sincos(const float* q, const float* sin_q, const float* cos_q,
@@ -156,6 +168,9 @@ void mass_matrix_sincos(const float* q, const float* sin_q, const float* cos_q, 
 // inverse_dynamics. Coulomb friction counts as locally constant: the dq columns are exact
 // wherever no joint velocity (nor, for coupled drives, motor velocity) is zero; the friction
 // torque jumps there.
+// J: 140 of its 147 entries are written; the others are zero for every input
+// and never written (the manifest lists them under "unwritten"): zero J once before the
+// first call.
 void inverse_dynamics_state_jacobian(const double* q, const double* dq, const double* ddq,
                                      const double* beta, double* J);
 void inverse_dynamics_state_jacobian(const float* q, const float* dq, const float* ddq,
@@ -165,6 +180,9 @@ void inverse_dynamics_state_jacobian(const float* q, const float* dq, const floa
 // energy of links and drives is H = h * beta, up to a constant that depends on the parameters
 // only. Inputs q, dq: kDof joint positions and velocities. Output h: kBaseParams values, in the
 // order of kBaseParamNames.
+// h: 48 of its 69 entries are written; the others are zero for every input
+// and never written (the manifest lists them under "unwritten"): zero h once before the
+// first call.
 void energy_regressor(const double* q, const double* dq, double* h);
 void energy_regressor(const float* q, const float* dq, float* h);
 
@@ -176,6 +194,9 @@ void power_regressor(const float* q, const float* dq, const float* ddq, float* d
 
 // energy_regressor with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
 // computing them; identical results.
+// h: 48 of its 69 entries are written; the others are zero for every input
+// and never written (the manifest lists them under "unwritten"): zero h once before the
+// first call.
 void energy_regressor_sincos(const double* q, const double* sin_q, const double* cos_q,
                              const double* dq, double* h);
 void energy_regressor_sincos(const float* q, const float* sin_q, const float* cos_q,
@@ -207,6 +228,9 @@ void drive_torque(const float* q, const float* dq, const float* ddq, const float
 // efficiency branch and the Coulomb friction sign count as constant: exact wherever no motor
 // velocity and no power flow tau'_G dq_M is zero. Calls idim_regressor_standard into a local
 // array of kDof * kStandardParams values (on the stack) and applies the chain rule to it.
+// J: 518 of its 686 entries are written; the others are zero for every input
+// and never written (the manifest lists them under "unwritten"): zero J once before the
+// first call.
 void drive_torque_jacobian(const double* q, const double* dq, const double* ddq,
                            const double* theta, double* tau_M, double* J);
 void drive_torque_jacobian(const float* q, const float* dq, const float* ddq, const float* theta,

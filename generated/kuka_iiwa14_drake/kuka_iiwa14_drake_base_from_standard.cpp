@@ -4,7 +4,7 @@
 // The generated code belongs to the owner of the robot description.
 //
 // Function                              mul    add  sin/cos
-// base_from_standard                     23     59        0
+// base_from_standard                     19     59        0
 #include "kuka_iiwa14_drake.hpp"
 
 namespace modelgen {
@@ -30,7 +30,7 @@ void base_from_standard(const double* p_standard, double* beta) {
   beta[7] = p_standard[18];  // YZ2
   beta[8] = p_standard[19] + p_standard[24] + p_standard[31] + t0 + t1 + t2 + t3 + t4 + t5;  // ZZ2R
   beta[9] = p_standard[20];  // MX2
-  beta[10] = p_standard[21] + p_standard[36] + 0.2045 * p_standard[37] + 0.42 * p_standard[51] + 0.42 * p_standard[65] + 0.42 * p_standard[79] + 0.42 * p_standard[93];  // MY2R
+  beta[10] = p_standard[21] + p_standard[36] + 0.2045 * p_standard[37] + 0.42 * (p_standard[51] + p_standard[65] + p_standard[79] + p_standard[93]);  // MY2R
   beta[11] = p_standard[25];  // Fv2
   beta[12] = p_standard[26];  // Fc2
   beta[13] = p_standard[27];  // OFF2
@@ -55,7 +55,7 @@ void base_from_standard(const double* p_standard, double* beta) {
   beta[28] = p_standard[46];  // YZ4
   beta[29] = p_standard[47] + p_standard[59] + t6 + t7 + t8 + t9;  // ZZ4R
   beta[30] = p_standard[48];  // MX4
-  beta[31] = p_standard[49] + p_standard[64] + 0.1845 * p_standard[65] + 0.4 * p_standard[79] + 0.4 * p_standard[93];  // MY4R
+  beta[31] = p_standard[49] + p_standard[64] + 0.1845 * p_standard[65] + 0.4 * (p_standard[79] + p_standard[93]);  // MY4R
   beta[32] = p_standard[52];  // Ia4
   beta[33] = p_standard[53];  // Fv4
   beta[34] = p_standard[54];  // Fc4
@@ -117,7 +117,7 @@ void base_from_standard(const float* p_standard, float* beta) {
   beta[7] = p_standard[18];  // YZ2
   beta[8] = p_standard[19] + p_standard[24] + p_standard[31] + t0 + t1 + t2 + t3 + t4 + t5;  // ZZ2R
   beta[9] = p_standard[20];  // MX2
-  beta[10] = p_standard[21] + p_standard[36] + 0.2045f * p_standard[37] + 0.42f * p_standard[51] + 0.42f * p_standard[65] + 0.42f * p_standard[79] + 0.42f * p_standard[93];  // MY2R
+  beta[10] = p_standard[21] + p_standard[36] + 0.2045f * p_standard[37] + 0.42f * (p_standard[51] + p_standard[65] + p_standard[79] + p_standard[93]);  // MY2R
   beta[11] = p_standard[25];  // Fv2
   beta[12] = p_standard[26];  // Fc2
   beta[13] = p_standard[27];  // OFF2
@@ -142,7 +142,7 @@ void base_from_standard(const float* p_standard, float* beta) {
   beta[28] = p_standard[46];  // YZ4
   beta[29] = p_standard[47] + p_standard[59] + t6 + t7 + t8 + t9;  // ZZ4R
   beta[30] = p_standard[48];  // MX4
-  beta[31] = p_standard[49] + p_standard[64] + 0.1845f * p_standard[65] + 0.4f * p_standard[79] + 0.4f * p_standard[93];  // MY4R
+  beta[31] = p_standard[49] + p_standard[64] + 0.1845f * p_standard[65] + 0.4f * (p_standard[79] + p_standard[93]);  // MY4R
   beta[32] = p_standard[52];  // Ia4
   beta[33] = p_standard[53];  // Fv4
   beta[34] = p_standard[54];  // Fc4

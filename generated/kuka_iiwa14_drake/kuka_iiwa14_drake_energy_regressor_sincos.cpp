@@ -4,7 +4,7 @@
 // The generated code belongs to the owner of the robot description.
 //
 // Function                              mul    add  sin/cos
-// energy_regressor_sincos               148     60        0
+// energy_regressor_sincos               152     53        0
 #include "kuka_iiwa14_drake.hpp"
 
 namespace modelgen {
@@ -12,6 +12,9 @@ namespace iiwa14 {
 
 // energy_regressor with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
 // computing them; identical results.
+// h: 48 of its 69 entries are written; the others are zero for every input
+// and never written (the manifest lists them under "unwritten"): zero h once before the
+// first call.
 void energy_regressor_sincos(const double* q, const double* sin_q, const double* cos_q,
                              const double* dq, double* h) {
   static_cast<void>(q);
@@ -28,9 +31,6 @@ void energy_regressor_sincos(const double* q, const double* sin_q, const double*
   const double s7 = sin_q[6];
   const double c7 = cos_q[6];
   h[0] = 0.5 * dq[0] * dq[0];  // ZZ1R
-  h[1] = 0.0;  // Fv1
-  h[2] = 0.0;  // Fc1
-  h[3] = 0.0;  // OFF1
   const double t0 = dq[0] * s2;
   h[4] = 0.5 * t0 * t0;  // XX2R
   const double t1 = c2 * dq[0];
@@ -40,106 +40,89 @@ void energy_regressor_sincos(const double* q, const double* sin_q, const double*
   h[8] = 0.5 * dq[1] * dq[1];  // ZZ2R
   h[9] = 9.81 * s2;  // MX2
   h[10] = 9.81 * c2;  // MY2R
-  h[11] = 0.0;  // Fv2
-  h[12] = 0.0;  // Fc2
-  h[13] = 0.0;  // OFF2
   const double t2 = dq[1] * s3 - c3 * t0;
   h[14] = 0.5 * t2 * t2;  // XX3R
   const double t3 = c3 * dq[1] + s3 * t0;
   h[15] = t3 * t2;  // XY3
   const double t4 = dq[2] + t1;
-  h[16] = t4 * t2;  // XZ3
-  h[17] = t4 * t3;  // YZ3R
+  const double t5 = t4 * t2;
+  h[16] = t5;  // XZ3
+  const double t6 = t4 * t3;
+  h[17] = t6;  // YZ3R
   h[18] = 0.5 * t4 * t4;  // ZZ3R
-  const double t5 = 9.81 * c3 * s2;
-  const double t6 = 0.2045 * c3 * t0 - 0.2045 * dq[1] * s3;
-  h[19] = t4 * t6 - t5;  // MX3
-  const double t7 = -9.81 * s2 * s3;
-  const double t8 = 0.2045 * c3 * dq[1] + 0.2045 * s3 * t0;
-  h[20] = -t7 - t4 * t8;  // MY3R
+  const double t7 = c3 * s2;
+  h[19] = -9.81 * t7 - 0.2045 * t5;  // MX3
+  const double t8 = s2 * s3;
+  h[20] = 9.81 * t8 - 0.2045 * t6;  // MY3R
   h[21] = 0.5 * dq[2] * dq[2];  // Ia3
-  h[22] = 0.0;  // Fv3
-  h[23] = 0.0;  // Fc3
-  h[24] = 0.0;  // OFF3
   const double t9 = s4 * t4 + c4 * t2;
   h[25] = 0.5 * t9 * t9;  // XX4R
   const double t10 = c4 * t4 - s4 * t2;
-  h[26] = t10 * t9;  // XY4
+  h[26] = t9 * t10;  // XY4
   const double t11 = dq[3] - t3;
   h[27] = t11 * t9;  // XZ4
   h[28] = t11 * t10;  // YZ4
   h[29] = 0.5 * t11 * t11;  // ZZ4R
-  const double t12 = c4 * t5 - 9.81 * c2 * s4;
-  const double t13 = 0.2155 * t2 - t6;
-  const double t14 = t8 + 0.2155 * t3;
-  const double t15 = -s4 * t14;
-  h[30] = t11 * t15 - t12 - t10 * t13;  // MX4
-  const double t16 = -9.81 * c2 * c4 - s4 * t5;
-  const double t17 = c4 * t14;
-  h[31] = t9 * t13 - t16 - t11 * t17;  // MY4R
+  const double t12 = c2 * s4 - c4 * t7;
+  const double t13 = s4 * t3;
+  h[30] = 9.81 * t12 - 0.42 * (t13 * t11 + t2 * t10);  // MX4
+  const double t14 = c2 * c4 + s4 * t7;
+  const double t15 = c4 * t3;
+  h[31] = 9.81 * t14 + 0.42 * (t2 * t9 - t15 * t11);  // MY4R
   h[32] = 0.5 * dq[3] * dq[3];  // Ia4
-  h[33] = 0.0;  // Fv4
-  h[34] = 0.0;  // Fc4
-  h[35] = 0.0;  // OFF4
-  const double t18 = s5 * t11 - c5 * t9;
-  h[36] = 0.5 * t18 * t18;  // XX5R
-  const double t19 = c5 * t11 + s5 * t9;
-  h[37] = t18 * t19;  // XY5
-  const double t20 = dq[4] + t10;
-  h[38] = t20 * t18;  // XZ5
-  h[39] = t20 * t19;  // YZ5R
-  h[40] = 0.5 * t20 * t20;  // ZZ5R
-  const double t21 = -s5 * t7 - c5 * t12;
-  const double t22 = t13 + 0.1845 * t9;
-  const double t23 = t17 - 0.1845 * t11;
-  const double t24 = c5 * t22 + s5 * t23;
-  h[41] = t20 * t24 - t21 - t15 * t19;  // MX5
-  const double t25 = s5 * t12 - c5 * t7;
-  const double t26 = s5 * t22 - c5 * t23;
-  h[42] = t15 * t18 - t25 - t20 * t26;  // MY5R
+  const double t16 = s5 * t11 - c5 * t9;
+  h[36] = 0.5 * t16 * t16;  // XX5R
+  const double t17 = c5 * t11 + s5 * t9;
+  h[37] = t17 * t16;  // XY5
+  const double t18 = dq[4] + t10;
+  h[38] = t18 * t16;  // XZ5
+  h[39] = t18 * t17;  // YZ5R
+  h[40] = 0.5 * t18 * t18;  // ZZ5R
+  const double t19 = s5 * t8 + c5 * t12;
+  const double t20 = 0.42 * t15 - 0.1845 * t11;
+  const double t21 = 0.42 * t2 + 0.1845 * t9;
+  const double t22 = s5 * t20 + c5 * t21;
+  h[41] = 0.42 * t13 * t17 - 9.81 * t19 + t18 * t22;  // MX5
+  const double t23 = c5 * t8 - s5 * t12;
+  const double t24 = c5 * t20 - s5 * t21;
+  h[42] = t18 * t24 - 9.81 * t23 - 0.42 * t13 * t16;  // MY5R
   h[43] = 0.5 * dq[4] * dq[4];  // Ia5
-  h[44] = 0.0;  // Fv5
-  h[45] = 0.0;  // Fc5
-  h[46] = 0.0;  // OFF5
-  const double t27 = s6 * t20 + c6 * t18;
-  h[47] = 0.5 * t27 * t27;  // XX6R
-  const double t28 = c6 * t20 - s6 * t18;
-  h[48] = t28 * t27;  // XY6
-  const double t29 = dq[5] - t19;
-  h[49] = t29 * t27;  // XZ6
-  h[50] = t29 * t28;  // YZ6
-  h[51] = 0.5 * t29 * t29;  // ZZ6R
-  const double t30 = s6 * t16 + c6 * t21;
-  const double t31 = 0.2155 * t18 - t24;
-  const double t32 = 0.2155 * t19 + t26;
-  const double t33 = c6 * t15 - s6 * t32;
-  h[52] = t29 * t33 - t30 - t28 * t31;  // MX6
-  const double t34 = s6 * t15 + c6 * t32;
-  h[53] = s6 * t21 - c6 * t16 + t27 * t31 - t29 * t34;  // MY6R
+  const double t25 = s6 * t18 + c6 * t16;
+  h[47] = 0.5 * t25 * t25;  // XX6R
+  const double t26 = c6 * t18 - s6 * t16;
+  h[48] = t25 * t26;  // XY6
+  const double t27 = dq[5] - t17;
+  h[49] = t27 * t25;  // XZ6
+  h[50] = t27 * t26;  // YZ6
+  h[51] = 0.5 * t27 * t27;  // ZZ6R
+  const double t28 = s6 * t14 - c6 * t19;
+  const double t29 = 0.2155 * t16 - t22;
+  const double t30 = 0.2155 * t17 - t24;
+  const double t31 = 0.42 * c6 * t13 + s6 * t30;
+  h[52] = 9.81 * t28 - t26 * t29 - t27 * t31;  // MX6
+  const double t32 = 0.42 * s6 * t13 - c6 * t30;
+  h[53] = 9.81 * (c6 * t14 + s6 * t19) + t25 * t29 + t27 * t32;  // MY6R
   h[54] = 0.5 * dq[5] * dq[5];  // Ia6
-  h[55] = 0.0;  // Fv6
-  h[56] = 0.0;  // Fc6
-  h[57] = 0.0;  // OFF6
-  const double t35 = s7 * t29 - c7 * t27;
-  h[58] = 0.5 * t35 * t35;  // XX7R
-  const double t36 = c7 * t29 + s7 * t27;
-  h[59] = t35 * t36;  // XY7
-  const double t37 = dq[6] + t28;
-  h[60] = t37 * t35;  // XZ7
-  h[61] = t37 * t36;  // YZ7
-  h[62] = 0.5 * t37 * t37;  // ZZ7
-  const double t38 = 0.081 * t27 + t31;
-  const double t39 = t34 - 0.081 * t29;
-  h[63] = s7 * t25 + c7 * t30 - t33 * t36 + t37 * (c7 * t38 + s7 * t39);  // MX7
-  h[64] = c7 * t25 - s7 * t30 + t33 * t35 - t37 * (s7 * t38 - c7 * t39);  // MY7
+  const double t33 = s7 * t27 - c7 * t25;
+  h[58] = 0.5 * t33 * t33;  // XX7R
+  const double t34 = c7 * t27 + s7 * t25;
+  h[59] = t34 * t33;  // XY7
+  const double t35 = dq[6] + t26;
+  h[60] = t35 * t33;  // XZ7
+  h[61] = t35 * t34;  // YZ7
+  h[62] = 0.5 * t35 * t35;  // ZZ7
+  const double t36 = 0.081 * t25 + t29;
+  const double t37 = 0.081 * t27 + t32;
+  h[63] = 9.81 * (s7 * t23 - c7 * t28) + t34 * t31 + t35 * (c7 * t36 - s7 * t37);  // MX7
+  h[64] = 9.81 * (c7 * t23 + s7 * t28) - t33 * t31 - t35 * (s7 * t36 + c7 * t37);  // MY7
   h[65] = 0.5 * dq[6] * dq[6];  // Ia7
-  h[66] = 0.0;  // Fv7
-  h[67] = 0.0;  // Fc7
-  h[68] = 0.0;  // OFF7
 }
 
 // energy_regressor with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
 // computing them; identical results.
+// h: 48 of its 69 entries are written; the others are zero for every input
+// and never written (the manifest lists them under "unwritten"): zero h once before the
+// first call.
 void energy_regressor_sincos(const float* q, const float* sin_q, const float* cos_q,
                              const float* dq, float* h) {
   static_cast<void>(q);
@@ -156,9 +139,6 @@ void energy_regressor_sincos(const float* q, const float* sin_q, const float* co
   const float s7 = sin_q[6];
   const float c7 = cos_q[6];
   h[0] = 0.5f * dq[0] * dq[0];  // ZZ1R
-  h[1] = 0.0f;  // Fv1
-  h[2] = 0.0f;  // Fc1
-  h[3] = 0.0f;  // OFF1
   const float t0 = dq[0] * s2;
   h[4] = 0.5f * t0 * t0;  // XX2R
   const float t1 = c2 * dq[0];
@@ -168,102 +148,82 @@ void energy_regressor_sincos(const float* q, const float* sin_q, const float* co
   h[8] = 0.5f * dq[1] * dq[1];  // ZZ2R
   h[9] = 9.81f * s2;  // MX2
   h[10] = 9.81f * c2;  // MY2R
-  h[11] = 0.0f;  // Fv2
-  h[12] = 0.0f;  // Fc2
-  h[13] = 0.0f;  // OFF2
   const float t2 = dq[1] * s3 - c3 * t0;
   h[14] = 0.5f * t2 * t2;  // XX3R
   const float t3 = c3 * dq[1] + s3 * t0;
   h[15] = t3 * t2;  // XY3
   const float t4 = dq[2] + t1;
-  h[16] = t4 * t2;  // XZ3
-  h[17] = t4 * t3;  // YZ3R
+  const float t5 = t4 * t2;
+  h[16] = t5;  // XZ3
+  const float t6 = t4 * t3;
+  h[17] = t6;  // YZ3R
   h[18] = 0.5f * t4 * t4;  // ZZ3R
-  const float t5 = 9.81f * c3 * s2;
-  const float t6 = 0.2045f * c3 * t0 - 0.2045f * dq[1] * s3;
-  h[19] = t4 * t6 - t5;  // MX3
-  const float t7 = -9.81f * s2 * s3;
-  const float t8 = 0.2045f * c3 * dq[1] + 0.2045f * s3 * t0;
-  h[20] = -t7 - t4 * t8;  // MY3R
+  const float t7 = c3 * s2;
+  h[19] = -9.81f * t7 - 0.2045f * t5;  // MX3
+  const float t8 = s2 * s3;
+  h[20] = 9.81f * t8 - 0.2045f * t6;  // MY3R
   h[21] = 0.5f * dq[2] * dq[2];  // Ia3
-  h[22] = 0.0f;  // Fv3
-  h[23] = 0.0f;  // Fc3
-  h[24] = 0.0f;  // OFF3
   const float t9 = s4 * t4 + c4 * t2;
   h[25] = 0.5f * t9 * t9;  // XX4R
   const float t10 = c4 * t4 - s4 * t2;
-  h[26] = t10 * t9;  // XY4
+  h[26] = t9 * t10;  // XY4
   const float t11 = dq[3] - t3;
   h[27] = t11 * t9;  // XZ4
   h[28] = t11 * t10;  // YZ4
   h[29] = 0.5f * t11 * t11;  // ZZ4R
-  const float t12 = c4 * t5 - 9.81f * c2 * s4;
-  const float t13 = 0.2155f * t2 - t6;
-  const float t14 = t8 + 0.2155f * t3;
-  const float t15 = -s4 * t14;
-  h[30] = t11 * t15 - t12 - t10 * t13;  // MX4
-  const float t16 = -9.81f * c2 * c4 - s4 * t5;
-  const float t17 = c4 * t14;
-  h[31] = t9 * t13 - t16 - t11 * t17;  // MY4R
+  const float t12 = c2 * s4 - c4 * t7;
+  const float t13 = s4 * t3;
+  h[30] = 9.81f * t12 - 0.42f * (t13 * t11 + t2 * t10);  // MX4
+  const float t14 = c2 * c4 + s4 * t7;
+  const float t15 = c4 * t3;
+  h[31] = 9.81f * t14 + 0.42f * (t2 * t9 - t15 * t11);  // MY4R
   h[32] = 0.5f * dq[3] * dq[3];  // Ia4
-  h[33] = 0.0f;  // Fv4
-  h[34] = 0.0f;  // Fc4
-  h[35] = 0.0f;  // OFF4
-  const float t18 = s5 * t11 - c5 * t9;
-  h[36] = 0.5f * t18 * t18;  // XX5R
-  const float t19 = c5 * t11 + s5 * t9;
-  h[37] = t18 * t19;  // XY5
-  const float t20 = dq[4] + t10;
-  h[38] = t20 * t18;  // XZ5
-  h[39] = t20 * t19;  // YZ5R
-  h[40] = 0.5f * t20 * t20;  // ZZ5R
-  const float t21 = -s5 * t7 - c5 * t12;
-  const float t22 = t13 + 0.1845f * t9;
-  const float t23 = t17 - 0.1845f * t11;
-  const float t24 = c5 * t22 + s5 * t23;
-  h[41] = t20 * t24 - t21 - t15 * t19;  // MX5
-  const float t25 = s5 * t12 - c5 * t7;
-  const float t26 = s5 * t22 - c5 * t23;
-  h[42] = t15 * t18 - t25 - t20 * t26;  // MY5R
+  const float t16 = s5 * t11 - c5 * t9;
+  h[36] = 0.5f * t16 * t16;  // XX5R
+  const float t17 = c5 * t11 + s5 * t9;
+  h[37] = t17 * t16;  // XY5
+  const float t18 = dq[4] + t10;
+  h[38] = t18 * t16;  // XZ5
+  h[39] = t18 * t17;  // YZ5R
+  h[40] = 0.5f * t18 * t18;  // ZZ5R
+  const float t19 = s5 * t8 + c5 * t12;
+  const float t20 = 0.42f * t15 - 0.1845f * t11;
+  const float t21 = 0.42f * t2 + 0.1845f * t9;
+  const float t22 = s5 * t20 + c5 * t21;
+  h[41] = 0.42f * t13 * t17 - 9.81f * t19 + t18 * t22;  // MX5
+  const float t23 = c5 * t8 - s5 * t12;
+  const float t24 = c5 * t20 - s5 * t21;
+  h[42] = t18 * t24 - 9.81f * t23 - 0.42f * t13 * t16;  // MY5R
   h[43] = 0.5f * dq[4] * dq[4];  // Ia5
-  h[44] = 0.0f;  // Fv5
-  h[45] = 0.0f;  // Fc5
-  h[46] = 0.0f;  // OFF5
-  const float t27 = s6 * t20 + c6 * t18;
-  h[47] = 0.5f * t27 * t27;  // XX6R
-  const float t28 = c6 * t20 - s6 * t18;
-  h[48] = t28 * t27;  // XY6
-  const float t29 = dq[5] - t19;
-  h[49] = t29 * t27;  // XZ6
-  h[50] = t29 * t28;  // YZ6
-  h[51] = 0.5f * t29 * t29;  // ZZ6R
-  const float t30 = s6 * t16 + c6 * t21;
-  const float t31 = 0.2155f * t18 - t24;
-  const float t32 = 0.2155f * t19 + t26;
-  const float t33 = c6 * t15 - s6 * t32;
-  h[52] = t29 * t33 - t30 - t28 * t31;  // MX6
-  const float t34 = s6 * t15 + c6 * t32;
-  h[53] = s6 * t21 - c6 * t16 + t27 * t31 - t29 * t34;  // MY6R
+  const float t25 = s6 * t18 + c6 * t16;
+  h[47] = 0.5f * t25 * t25;  // XX6R
+  const float t26 = c6 * t18 - s6 * t16;
+  h[48] = t25 * t26;  // XY6
+  const float t27 = dq[5] - t17;
+  h[49] = t27 * t25;  // XZ6
+  h[50] = t27 * t26;  // YZ6
+  h[51] = 0.5f * t27 * t27;  // ZZ6R
+  const float t28 = s6 * t14 - c6 * t19;
+  const float t29 = 0.2155f * t16 - t22;
+  const float t30 = 0.2155f * t17 - t24;
+  const float t31 = 0.42f * c6 * t13 + s6 * t30;
+  h[52] = 9.81f * t28 - t26 * t29 - t27 * t31;  // MX6
+  const float t32 = 0.42f * s6 * t13 - c6 * t30;
+  h[53] = 9.81f * (c6 * t14 + s6 * t19) + t25 * t29 + t27 * t32;  // MY6R
   h[54] = 0.5f * dq[5] * dq[5];  // Ia6
-  h[55] = 0.0f;  // Fv6
-  h[56] = 0.0f;  // Fc6
-  h[57] = 0.0f;  // OFF6
-  const float t35 = s7 * t29 - c7 * t27;
-  h[58] = 0.5f * t35 * t35;  // XX7R
-  const float t36 = c7 * t29 + s7 * t27;
-  h[59] = t35 * t36;  // XY7
-  const float t37 = dq[6] + t28;
-  h[60] = t37 * t35;  // XZ7
-  h[61] = t37 * t36;  // YZ7
-  h[62] = 0.5f * t37 * t37;  // ZZ7
-  const float t38 = 0.081f * t27 + t31;
-  const float t39 = t34 - 0.081f * t29;
-  h[63] = s7 * t25 + c7 * t30 - t33 * t36 + t37 * (c7 * t38 + s7 * t39);  // MX7
-  h[64] = c7 * t25 - s7 * t30 + t33 * t35 - t37 * (s7 * t38 - c7 * t39);  // MY7
+  const float t33 = s7 * t27 - c7 * t25;
+  h[58] = 0.5f * t33 * t33;  // XX7R
+  const float t34 = c7 * t27 + s7 * t25;
+  h[59] = t34 * t33;  // XY7
+  const float t35 = dq[6] + t26;
+  h[60] = t35 * t33;  // XZ7
+  h[61] = t35 * t34;  // YZ7
+  h[62] = 0.5f * t35 * t35;  // ZZ7
+  const float t36 = 0.081f * t25 + t29;
+  const float t37 = 0.081f * t27 + t32;
+  h[63] = 9.81f * (s7 * t23 - c7 * t28) + t34 * t31 + t35 * (c7 * t36 - s7 * t37);  // MX7
+  h[64] = 9.81f * (c7 * t23 + s7 * t28) - t33 * t31 - t35 * (s7 * t36 + c7 * t37);  // MY7
   h[65] = 0.5f * dq[6] * dq[6];  // Ia7
-  h[66] = 0.0f;  // Fv7
-  h[67] = 0.0f;  // Fc7
-  h[68] = 0.0f;  // OFF7
 }
 
 }  // namespace iiwa14

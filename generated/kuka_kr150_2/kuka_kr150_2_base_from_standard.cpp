@@ -4,7 +4,7 @@
 // The generated code belongs to the owner of the robot description.
 //
 // Function                              mul    add  sin/cos
-// base_from_standard                     37     75        0
+// base_from_standard                     23     72        0
 #include "kuka_kr150_2.hpp"
 
 namespace modelgen {
@@ -15,42 +15,39 @@ namespace kuka_kr150_2 {
 // Output beta: kBaseParams values in the order of kBaseParamNames.
 void base_from_standard(const double* p_standard, double* beta) {
   const double t0 = 0.46 * p_standard[76];
-  beta[0] = p_standard[10] + p_standard[19] + p_standard[33] + p_standard[47] + p_standard[5] + p_standard[61] + p_standard[75] + 0.1225 * p_standard[23] + t0 + 1.685 * p_standard[37] + 1.685 * p_standard[51] + 2.895 * p_standard[65] + 2.9479 * p_standard[79];  // ZZ1R
+  beta[0] = p_standard[10] + p_standard[19] + p_standard[33] + p_standard[47] + p_standard[5] + p_standard[61] + p_standard[75] + 0.1225 * p_standard[23] + t0 + 1.685 * (p_standard[37] + p_standard[51]) + 2.895 * p_standard[65] + 2.9479 * p_standard[79];  // ZZ1R
   beta[1] = p_standard[11];  // Fv1
   beta[2] = p_standard[12];  // Fc1
   beta[3] = p_standard[13];  // OFF1
-  beta[4] = p_standard[14] - 1.5625 * p_standard[37] - 1.5625 * p_standard[51] - 1.5625 * p_standard[65] - 1.5625 * p_standard[79] - p_standard[19];  // XX2R
+  beta[4] = p_standard[14] - 1.5625 * (p_standard[37] + p_standard[51] + p_standard[65] + p_standard[79]) - p_standard[19];  // XX2R
   beta[5] = p_standard[15] - 1.25 * p_standard[35];  // XY2R
   beta[6] = p_standard[16];  // XZ2
-  beta[7] = p_standard[17] + p_standard[24] + 1.5625 * p_standard[37] + 1.5625 * p_standard[51] + 1.5625 * p_standard[65] + 1.5625 * p_standard[79];  // YY2R
+  beta[7] = p_standard[17] + p_standard[24] + 1.5625 * (p_standard[37] + p_standard[51] + p_standard[65] + p_standard[79]);  // YY2R
   beta[8] = p_standard[18];  // YZ2
-  beta[9] = p_standard[20] + 1.25 * p_standard[37] + 1.25 * p_standard[51] + 1.25 * p_standard[65] + 1.25 * p_standard[79];  // MX2R
+  beta[9] = p_standard[20] + 1.25 * (p_standard[37] + p_standard[51] + p_standard[65] + p_standard[79]);  // MX2R
   beta[10] = p_standard[22];  // MZ2
   beta[11] = p_standard[25];  // Fv2
   beta[12] = p_standard[26];  // Fc2
   beta[13] = p_standard[27];  // OFF2
-  const double t1 = -p_standard[47];
-  const double t2 = -p_standard[61];
-  const double t3 = -p_standard[75];
-  const double t4 = -0.46 * p_standard[76];
-  const double t5 = 0.003025 * p_standard[51];
-  beta[14] = p_standard[28] - 1.259875 * p_standard[79] - 1.206975 * p_standard[65] - p_standard[33] + t1 + t2 + t3 + t4 + t5;  // XX3R
+  const double t1 = -0.46 * p_standard[76];
+  const double t2 = 0.003025 * p_standard[51];
+  beta[14] = p_standard[28] - 1.259875 * p_standard[79] - 1.206975 * p_standard[65] - p_standard[33] - p_standard[47] - p_standard[61] - p_standard[75] + t1 + t2;  // XX3R
   beta[15] = p_standard[29];  // XY3
-  beta[16] = p_standard[30] + 0.055 * p_standard[48] + 0.0605 * p_standard[65] + 0.0605 * p_standard[79];  // XZ3R
-  beta[17] = p_standard[31] + p_standard[47] + p_standard[61] + p_standard[75] + t5 + t0 + 1.213025 * p_standard[65] + 1.265925 * p_standard[79];  // YY3R
+  beta[16] = p_standard[30] + 0.055 * p_standard[48] + 0.0605 * (p_standard[65] + p_standard[79]);  // XZ3R
+  beta[17] = p_standard[31] + p_standard[47] + p_standard[61] + p_standard[75] + t2 + t0 + 1.213025 * p_standard[65] + 1.265925 * p_standard[79];  // YY3R
   beta[18] = p_standard[32];  // YZ3
-  beta[19] = p_standard[34] + p_standard[48] + 1.1 * p_standard[65] + 1.1 * p_standard[79];  // MX3R
-  beta[20] = p_standard[36] - 0.055 * p_standard[51] - 0.055 * p_standard[65] - 0.055 * p_standard[79];  // MZ3R
+  beta[19] = p_standard[34] + p_standard[48] + 1.1 * (p_standard[65] + p_standard[79]);  // MX3R
+  beta[20] = p_standard[36] - 0.055 * (p_standard[51] + p_standard[65] + p_standard[79]);  // MZ3R
   beta[21] = p_standard[38];  // Ia3
   beta[22] = p_standard[39];  // Fv3
   beta[23] = p_standard[40];  // Fc3
   beta[24] = p_standard[41];  // OFF3
-  const double t6 = 0.0529 * p_standard[79];
-  beta[25] = p_standard[42] + p_standard[61] + p_standard[75] + t6 + t0;  // XX4R
+  const double t3 = 0.0529 * p_standard[79];
+  beta[25] = p_standard[42] + p_standard[61] + p_standard[75] + t3 + t0;  // XX4R
   beta[26] = p_standard[43] - 1.1 * p_standard[63];  // XY4R
   beta[27] = p_standard[44];  // XZ4
-  const double t7 = -0.0529 * p_standard[79];
-  beta[28] = p_standard[45] + t1 + t2 + t3 + t4 + t7;  // YY4R
+  const double t4 = -0.0529 * p_standard[79];
+  beta[28] = p_standard[45] - p_standard[47] - p_standard[61] - p_standard[75] + t1 + t4;  // YY4R
   beta[29] = p_standard[46];  // YZ4
   beta[30] = p_standard[49] + p_standard[63];  // MY4R
   beta[31] = p_standard[50];  // MZ4
@@ -58,10 +55,10 @@ void base_from_standard(const double* p_standard, double* beta) {
   beta[33] = p_standard[53];  // Fv4
   beta[34] = p_standard[54];  // Fc4
   beta[35] = p_standard[55];  // OFF4
-  beta[36] = p_standard[56] + t2 + t3 + t4 + t7;  // XX5R
+  beta[36] = p_standard[56] - p_standard[61] - p_standard[75] + t1 + t4;  // XX5R
   beta[37] = p_standard[57];  // XY5
   beta[38] = p_standard[58];  // XZ5
-  beta[39] = p_standard[59] + p_standard[75] + t6 + t0;  // YY5R
+  beta[39] = p_standard[59] + p_standard[75] + t3 + t0;  // YY5R
   beta[40] = p_standard[60];  // YZ5
   beta[41] = p_standard[62] + p_standard[76] + 0.23 * p_standard[79];  // MX5R
   beta[42] = p_standard[64];  // MZ5
@@ -72,7 +69,7 @@ void base_from_standard(const double* p_standard, double* beta) {
   beta[47] = p_standard[70];  // XX6
   beta[48] = p_standard[71];  // XY6
   beta[49] = p_standard[72];  // XZ6
-  beta[50] = p_standard[73] + t3;  // YY6R
+  beta[50] = p_standard[73] - p_standard[75];  // YY6R
   beta[51] = p_standard[74];  // YZ6
   beta[52] = p_standard[77];  // MY6
   beta[53] = p_standard[78];  // MZ6
@@ -87,42 +84,39 @@ void base_from_standard(const double* p_standard, double* beta) {
 // Output beta: kBaseParams values in the order of kBaseParamNames.
 void base_from_standard(const float* p_standard, float* beta) {
   const float t0 = 0.46f * p_standard[76];
-  beta[0] = p_standard[10] + p_standard[19] + p_standard[33] + p_standard[47] + p_standard[5] + p_standard[61] + p_standard[75] + 0.1225f * p_standard[23] + t0 + 1.685f * p_standard[37] + 1.685f * p_standard[51] + 2.895f * p_standard[65] + 2.9479f * p_standard[79];  // ZZ1R
+  beta[0] = p_standard[10] + p_standard[19] + p_standard[33] + p_standard[47] + p_standard[5] + p_standard[61] + p_standard[75] + 0.1225f * p_standard[23] + t0 + 1.685f * (p_standard[37] + p_standard[51]) + 2.895f * p_standard[65] + 2.9479f * p_standard[79];  // ZZ1R
   beta[1] = p_standard[11];  // Fv1
   beta[2] = p_standard[12];  // Fc1
   beta[3] = p_standard[13];  // OFF1
-  beta[4] = p_standard[14] - 1.5625f * p_standard[37] - 1.5625f * p_standard[51] - 1.5625f * p_standard[65] - 1.5625f * p_standard[79] - p_standard[19];  // XX2R
+  beta[4] = p_standard[14] - 1.5625f * (p_standard[37] + p_standard[51] + p_standard[65] + p_standard[79]) - p_standard[19];  // XX2R
   beta[5] = p_standard[15] - 1.25f * p_standard[35];  // XY2R
   beta[6] = p_standard[16];  // XZ2
-  beta[7] = p_standard[17] + p_standard[24] + 1.5625f * p_standard[37] + 1.5625f * p_standard[51] + 1.5625f * p_standard[65] + 1.5625f * p_standard[79];  // YY2R
+  beta[7] = p_standard[17] + p_standard[24] + 1.5625f * (p_standard[37] + p_standard[51] + p_standard[65] + p_standard[79]);  // YY2R
   beta[8] = p_standard[18];  // YZ2
-  beta[9] = p_standard[20] + 1.25f * p_standard[37] + 1.25f * p_standard[51] + 1.25f * p_standard[65] + 1.25f * p_standard[79];  // MX2R
+  beta[9] = p_standard[20] + 1.25f * (p_standard[37] + p_standard[51] + p_standard[65] + p_standard[79]);  // MX2R
   beta[10] = p_standard[22];  // MZ2
   beta[11] = p_standard[25];  // Fv2
   beta[12] = p_standard[26];  // Fc2
   beta[13] = p_standard[27];  // OFF2
-  const float t1 = -p_standard[47];
-  const float t2 = -p_standard[61];
-  const float t3 = -p_standard[75];
-  const float t4 = -0.46f * p_standard[76];
-  const float t5 = 0.003025f * p_standard[51];
-  beta[14] = p_standard[28] - 1.259875f * p_standard[79] - 1.206975f * p_standard[65] - p_standard[33] + t1 + t2 + t3 + t4 + t5;  // XX3R
+  const float t1 = -0.46f * p_standard[76];
+  const float t2 = 0.003025f * p_standard[51];
+  beta[14] = p_standard[28] - 1.259875f * p_standard[79] - 1.206975f * p_standard[65] - p_standard[33] - p_standard[47] - p_standard[61] - p_standard[75] + t1 + t2;  // XX3R
   beta[15] = p_standard[29];  // XY3
-  beta[16] = p_standard[30] + 0.055f * p_standard[48] + 0.0605f * p_standard[65] + 0.0605f * p_standard[79];  // XZ3R
-  beta[17] = p_standard[31] + p_standard[47] + p_standard[61] + p_standard[75] + t5 + t0 + 1.213025f * p_standard[65] + 1.265925f * p_standard[79];  // YY3R
+  beta[16] = p_standard[30] + 0.055f * p_standard[48] + 0.0605f * (p_standard[65] + p_standard[79]);  // XZ3R
+  beta[17] = p_standard[31] + p_standard[47] + p_standard[61] + p_standard[75] + t2 + t0 + 1.213025f * p_standard[65] + 1.265925f * p_standard[79];  // YY3R
   beta[18] = p_standard[32];  // YZ3
-  beta[19] = p_standard[34] + p_standard[48] + 1.1f * p_standard[65] + 1.1f * p_standard[79];  // MX3R
-  beta[20] = p_standard[36] - 0.055f * p_standard[51] - 0.055f * p_standard[65] - 0.055f * p_standard[79];  // MZ3R
+  beta[19] = p_standard[34] + p_standard[48] + 1.1f * (p_standard[65] + p_standard[79]);  // MX3R
+  beta[20] = p_standard[36] - 0.055f * (p_standard[51] + p_standard[65] + p_standard[79]);  // MZ3R
   beta[21] = p_standard[38];  // Ia3
   beta[22] = p_standard[39];  // Fv3
   beta[23] = p_standard[40];  // Fc3
   beta[24] = p_standard[41];  // OFF3
-  const float t6 = 0.0529f * p_standard[79];
-  beta[25] = p_standard[42] + p_standard[61] + p_standard[75] + t6 + t0;  // XX4R
+  const float t3 = 0.0529f * p_standard[79];
+  beta[25] = p_standard[42] + p_standard[61] + p_standard[75] + t3 + t0;  // XX4R
   beta[26] = p_standard[43] - 1.1f * p_standard[63];  // XY4R
   beta[27] = p_standard[44];  // XZ4
-  const float t7 = -0.0529f * p_standard[79];
-  beta[28] = p_standard[45] + t1 + t2 + t3 + t4 + t7;  // YY4R
+  const float t4 = -0.0529f * p_standard[79];
+  beta[28] = p_standard[45] - p_standard[47] - p_standard[61] - p_standard[75] + t1 + t4;  // YY4R
   beta[29] = p_standard[46];  // YZ4
   beta[30] = p_standard[49] + p_standard[63];  // MY4R
   beta[31] = p_standard[50];  // MZ4
@@ -130,10 +124,10 @@ void base_from_standard(const float* p_standard, float* beta) {
   beta[33] = p_standard[53];  // Fv4
   beta[34] = p_standard[54];  // Fc4
   beta[35] = p_standard[55];  // OFF4
-  beta[36] = p_standard[56] + t2 + t3 + t4 + t7;  // XX5R
+  beta[36] = p_standard[56] - p_standard[61] - p_standard[75] + t1 + t4;  // XX5R
   beta[37] = p_standard[57];  // XY5
   beta[38] = p_standard[58];  // XZ5
-  beta[39] = p_standard[59] + p_standard[75] + t6 + t0;  // YY5R
+  beta[39] = p_standard[59] + p_standard[75] + t3 + t0;  // YY5R
   beta[40] = p_standard[60];  // YZ5
   beta[41] = p_standard[62] + p_standard[76] + 0.23f * p_standard[79];  // MX5R
   beta[42] = p_standard[64];  // MZ5
@@ -144,7 +138,7 @@ void base_from_standard(const float* p_standard, float* beta) {
   beta[47] = p_standard[70];  // XX6
   beta[48] = p_standard[71];  // XY6
   beta[49] = p_standard[72];  // XZ6
-  beta[50] = p_standard[73] + t3;  // YY6R
+  beta[50] = p_standard[73] - p_standard[75];  // YY6R
   beta[51] = p_standard[74];  // YZ6
   beta[52] = p_standard[77];  // MY6
   beta[53] = p_standard[78];  // MZ6

@@ -4,7 +4,7 @@
 // The generated code belongs to the owner of the robot description.
 //
 // Function                              mul    add  sin/cos
-// energy_regressor_sincos               127     51        0
+// energy_regressor_sincos               134     59        0
 #include "kuka_kr150_2.hpp"
 
 namespace modelgen {
@@ -12,6 +12,9 @@ namespace kuka_kr150_2 {
 
 // energy_regressor with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
 // computing them; identical results.
+// h: 40 of its 58 entries are written; the others are zero for every input
+// and never written (the manifest lists them under "unwritten"): zero h once before the
+// first call.
 void energy_regressor_sincos(const double* q, const double* sin_q, const double* cos_q,
                              const double* dq, double* h) {
   static_cast<void>(q);
@@ -26,99 +29,84 @@ void energy_regressor_sincos(const double* q, const double* sin_q, const double*
   const double s6 = sin_q[5];
   const double c6 = cos_q[5];
   h[0] = 0.5 * dq[0] * dq[0];  // ZZ1R
-  h[1] = 0.0;  // Fv1
-  h[2] = 0.0;  // Fc1
-  h[3] = 0.0;  // OFF1
   const double t0 = dq[0] * s2;
   h[4] = 0.5 * t0 * t0;  // XX2R
   h[5] = dq[1] * t0;  // XY2R
-  const double t1 = -c2 * dq[0];
-  h[6] = t1 * t0;  // XZ2
+  const double t1 = c2 * dq[0];
+  h[6] = -t1 * t0;  // XZ2
   h[7] = 0.5 * dq[1] * dq[1];  // YY2R
-  h[8] = dq[1] * t1;  // YZ2
-  h[9] = -9.81 * s2 - 0.35 * dq[0] * t1;  // MX2R
+  h[8] = -dq[1] * t1;  // YZ2
+  h[9] = 0.35 * dq[0] * t1 - 9.81 * s2;  // MX2R
   h[10] = 9.81 * c2 + 0.35 * dq[0] * t0;  // MZ2
-  h[11] = 0.0;  // Fv2
-  h[12] = 0.0;  // Fc2
-  h[13] = 0.0;  // OFF2
-  const double t2 = c3 * t0 - s3 * t1;
+  const double t2 = c3 * t0 + s3 * t1;
   h[14] = 0.5 * t2 * t2;  // XX3R
   const double t3 = dq[1] + dq[2];
   h[15] = t3 * t2;  // XY3
-  const double t4 = c3 * t1 + s3 * t0;
-  h[16] = t2 * t4;  // XZ3R
+  const double t4 = c3 * t1 - s3 * t0;
+  h[16] = -t2 * t4;  // XZ3R
   h[17] = 0.5 * t3 * t3;  // YY3R
-  h[18] = t3 * t4;  // YZ3
-  const double t5 = -1.25 * c3 * dq[1];
-  const double t6 = 9.81 * c2 * s3 + 9.81 * c3 * s2;
-  const double t7 = 1.25 * t1 - 0.35 * dq[0];
-  h[19] = t7 * t4 - t3 * t5 - t6;  // MX3R
-  const double t8 = 1.25 * dq[1] * s3;
-  const double t9 = 9.81 * s2 * s3 - 9.81 * c2 * c3;
-  h[20] = t3 * t8 - t9 - t7 * t2;  // MZ3R
+  h[18] = -t3 * t4;  // YZ3
+  const double t5 = c3 * dq[1];
+  const double t6 = c2 * s3 + c3 * s2;
+  const double t7 = 0.35 * dq[0] + 1.25 * t1;
+  h[19] = 1.25 * t3 * t5 - 9.81 * t6 + t7 * t4;  // MX3R
+  const double t8 = dq[1] * s3;
+  const double t9 = c2 * c3 - s2 * s3;
+  h[20] = 1.25 * t3 * t8 + 9.81 * t9 + t7 * t2;  // MZ3R
   h[21] = 0.5 * dq[2] * dq[2];  // Ia3
-  h[22] = 0.0;  // Fv3
-  h[23] = 0.0;  // Fc3
-  h[24] = 0.0;  // OFF3
-  const double t10 = t2 - dq[3];
+  const double t10 = dq[3] - t2;
   h[25] = 0.5 * t10 * t10;  // XX4R
-  const double t11 = c4 * t3 - s4 * t4;
-  h[26] = t10 * t11;  // XY4R
-  const double t12 = s4 * t3 + c4 * t4;
-  h[27] = t10 * t12;  // XZ4
+  const double t11 = c4 * t3 + s4 * t4;
+  h[26] = -t10 * t11;  // XY4R
+  const double t12 = s4 * t3 - c4 * t4;
+  h[27] = -t10 * t12;  // XZ4
   h[28] = 0.5 * t11 * t11;  // YY4R
   h[29] = t11 * t12;  // YZ4
-  const double t13 = -s4 * t9;
-  const double t14 = t8 - 0.055 * t3;
-  const double t15 = t7 + 0.055 * t2;
-  const double t16 = c4 * t5 + s4 * t15;
-  h[30] = t10 * t16 - t13 - t14 * t12;  // MY4R
+  const double t13 = s4 * t9;
+  const double t14 = 0.055 * t3 - 1.25 * t8;
+  const double t15 = t7 - 0.055 * t2;
+  const double t16 = 1.25 * c4 * t5 + s4 * t15;
+  h[30] = t14 * t12 - 9.81 * t13 + t10 * t16;  // MY4R
   const double t17 = c4 * t9;
-  const double t18 = c4 * t15 - s4 * t5;
-  h[31] = t14 * t11 - t17 - t10 * t18;  // MZ4
+  const double t18 = 1.25 * s4 * t5 - c4 * t15;
+  h[31] = 9.81 * t17 - t14 * t11 + t10 * t18;  // MZ4
   h[32] = 0.5 * dq[3] * dq[3];  // Ia4
-  h[33] = 0.0;  // Fv4
-  h[34] = 0.0;  // Fc4
-  h[35] = 0.0;  // OFF4
-  const double t19 = c5 * t10 - s5 * t12;
+  const double t19 = c5 * t10 + s5 * t12;
   h[36] = 0.5 * t19 * t19;  // XX5R
   const double t20 = dq[4] + t11;
-  h[37] = t20 * t19;  // XY5
-  const double t21 = s5 * t10 + c5 * t12;
+  h[37] = -t20 * t19;  // XY5
+  const double t21 = s5 * t10 - c5 * t12;
   h[38] = t19 * t21;  // XZ5
   h[39] = 0.5 * t20 * t20;  // YY5R
-  h[40] = t20 * t21;  // YZ5
+  h[40] = -t20 * t21;  // YZ5
   const double t22 = 1.1 * t12 + t18;
-  const double t23 = t16 - 1.1 * t11;
+  const double t23 = 1.1 * t11 + t16;
   const double t24 = s5 * t14 + c5 * t23;
-  h[41] = s5 * t17 - c5 * t6 + t21 * t22 - t20 * t24;  // MX5R
-  const double t25 = s5 * t6 + c5 * t17;
+  h[41] = t20 * t24 - 9.81 * (c5 * t6 + s5 * t17) - t22 * t21;  // MX5R
+  const double t25 = s5 * t6 - c5 * t17;
   const double t26 = c5 * t14 - s5 * t23;
-  h[42] = t20 * t26 - t25 - t19 * t22;  // MZ5
+  h[42] = t19 * t22 - 9.81 * t25 - t20 * t26;  // MZ5
   h[43] = 0.5 * dq[4] * dq[4];  // Ia5
-  h[44] = 0.0;  // Fv5
-  h[45] = 0.0;  // Fc5
-  h[46] = 0.0;  // OFF5
-  const double t27 = t19 - dq[5];
+  const double t27 = dq[5] + t19;
   h[47] = 0.5 * t27 * t27;  // XX6
-  const double t28 = c6 * t20 - s6 * t21;
-  h[48] = t27 * t28;  // XY6
-  const double t29 = s6 * t20 + c6 * t21;
-  h[49] = t27 * t29;  // XZ6
+  const double t28 = c6 * t20 + s6 * t21;
+  h[48] = -t27 * t28;  // XY6
+  const double t29 = s6 * t20 - c6 * t21;
+  h[49] = -t27 * t29;  // XZ6
   h[50] = 0.5 * t28 * t28;  // YY6R
   h[51] = t28 * t29;  // YZ6
-  const double t30 = 0.23 * t21 + t22;
-  const double t31 = t24 - 0.23 * t20;
-  h[52] = s6 * t25 - c6 * t13 - t26 * t29 + t27 * (s6 * t30 + c6 * t31);  // MY6
-  h[53] = t26 * t28 - s6 * t13 - c6 * t25 - t27 * (c6 * t30 - s6 * t31);  // MZ6
+  const double t30 = t22 - 0.23 * t21;
+  const double t31 = 0.23 * t20 + t24;
+  h[52] = t26 * t29 - 9.81 * (c6 * t13 - s6 * t25) - t27 * (s6 * t30 - c6 * t31);  // MY6
+  h[53] = t27 * (c6 * t30 + s6 * t31) - 9.81 * (s6 * t13 + c6 * t25) - t26 * t28;  // MZ6
   h[54] = 0.5 * dq[5] * dq[5];  // Ia6
-  h[55] = 0.0;  // Fv6
-  h[56] = 0.0;  // Fc6
-  h[57] = 0.0;  // OFF6
 }
 
 // energy_regressor with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
 // computing them; identical results.
+// h: 40 of its 58 entries are written; the others are zero for every input
+// and never written (the manifest lists them under "unwritten"): zero h once before the
+// first call.
 void energy_regressor_sincos(const float* q, const float* sin_q, const float* cos_q,
                              const float* dq, float* h) {
   static_cast<void>(q);
@@ -133,95 +121,77 @@ void energy_regressor_sincos(const float* q, const float* sin_q, const float* co
   const float s6 = sin_q[5];
   const float c6 = cos_q[5];
   h[0] = 0.5f * dq[0] * dq[0];  // ZZ1R
-  h[1] = 0.0f;  // Fv1
-  h[2] = 0.0f;  // Fc1
-  h[3] = 0.0f;  // OFF1
   const float t0 = dq[0] * s2;
   h[4] = 0.5f * t0 * t0;  // XX2R
   h[5] = dq[1] * t0;  // XY2R
-  const float t1 = -c2 * dq[0];
-  h[6] = t1 * t0;  // XZ2
+  const float t1 = c2 * dq[0];
+  h[6] = -t1 * t0;  // XZ2
   h[7] = 0.5f * dq[1] * dq[1];  // YY2R
-  h[8] = dq[1] * t1;  // YZ2
-  h[9] = -9.81f * s2 - 0.35f * dq[0] * t1;  // MX2R
+  h[8] = -dq[1] * t1;  // YZ2
+  h[9] = 0.35f * dq[0] * t1 - 9.81f * s2;  // MX2R
   h[10] = 9.81f * c2 + 0.35f * dq[0] * t0;  // MZ2
-  h[11] = 0.0f;  // Fv2
-  h[12] = 0.0f;  // Fc2
-  h[13] = 0.0f;  // OFF2
-  const float t2 = c3 * t0 - s3 * t1;
+  const float t2 = c3 * t0 + s3 * t1;
   h[14] = 0.5f * t2 * t2;  // XX3R
   const float t3 = dq[1] + dq[2];
   h[15] = t3 * t2;  // XY3
-  const float t4 = c3 * t1 + s3 * t0;
-  h[16] = t2 * t4;  // XZ3R
+  const float t4 = c3 * t1 - s3 * t0;
+  h[16] = -t2 * t4;  // XZ3R
   h[17] = 0.5f * t3 * t3;  // YY3R
-  h[18] = t3 * t4;  // YZ3
-  const float t5 = -1.25f * c3 * dq[1];
-  const float t6 = 9.81f * c2 * s3 + 9.81f * c3 * s2;
-  const float t7 = 1.25f * t1 - 0.35f * dq[0];
-  h[19] = t7 * t4 - t3 * t5 - t6;  // MX3R
-  const float t8 = 1.25f * dq[1] * s3;
-  const float t9 = 9.81f * s2 * s3 - 9.81f * c2 * c3;
-  h[20] = t3 * t8 - t9 - t7 * t2;  // MZ3R
+  h[18] = -t3 * t4;  // YZ3
+  const float t5 = c3 * dq[1];
+  const float t6 = c2 * s3 + c3 * s2;
+  const float t7 = 0.35f * dq[0] + 1.25f * t1;
+  h[19] = 1.25f * t3 * t5 - 9.81f * t6 + t7 * t4;  // MX3R
+  const float t8 = dq[1] * s3;
+  const float t9 = c2 * c3 - s2 * s3;
+  h[20] = 1.25f * t3 * t8 + 9.81f * t9 + t7 * t2;  // MZ3R
   h[21] = 0.5f * dq[2] * dq[2];  // Ia3
-  h[22] = 0.0f;  // Fv3
-  h[23] = 0.0f;  // Fc3
-  h[24] = 0.0f;  // OFF3
-  const float t10 = t2 - dq[3];
+  const float t10 = dq[3] - t2;
   h[25] = 0.5f * t10 * t10;  // XX4R
-  const float t11 = c4 * t3 - s4 * t4;
-  h[26] = t10 * t11;  // XY4R
-  const float t12 = s4 * t3 + c4 * t4;
-  h[27] = t10 * t12;  // XZ4
+  const float t11 = c4 * t3 + s4 * t4;
+  h[26] = -t10 * t11;  // XY4R
+  const float t12 = s4 * t3 - c4 * t4;
+  h[27] = -t10 * t12;  // XZ4
   h[28] = 0.5f * t11 * t11;  // YY4R
   h[29] = t11 * t12;  // YZ4
-  const float t13 = -s4 * t9;
-  const float t14 = t8 - 0.055f * t3;
-  const float t15 = t7 + 0.055f * t2;
-  const float t16 = c4 * t5 + s4 * t15;
-  h[30] = t10 * t16 - t13 - t14 * t12;  // MY4R
+  const float t13 = s4 * t9;
+  const float t14 = 0.055f * t3 - 1.25f * t8;
+  const float t15 = t7 - 0.055f * t2;
+  const float t16 = 1.25f * c4 * t5 + s4 * t15;
+  h[30] = t14 * t12 - 9.81f * t13 + t10 * t16;  // MY4R
   const float t17 = c4 * t9;
-  const float t18 = c4 * t15 - s4 * t5;
-  h[31] = t14 * t11 - t17 - t10 * t18;  // MZ4
+  const float t18 = 1.25f * s4 * t5 - c4 * t15;
+  h[31] = 9.81f * t17 - t14 * t11 + t10 * t18;  // MZ4
   h[32] = 0.5f * dq[3] * dq[3];  // Ia4
-  h[33] = 0.0f;  // Fv4
-  h[34] = 0.0f;  // Fc4
-  h[35] = 0.0f;  // OFF4
-  const float t19 = c5 * t10 - s5 * t12;
+  const float t19 = c5 * t10 + s5 * t12;
   h[36] = 0.5f * t19 * t19;  // XX5R
   const float t20 = dq[4] + t11;
-  h[37] = t20 * t19;  // XY5
-  const float t21 = s5 * t10 + c5 * t12;
+  h[37] = -t20 * t19;  // XY5
+  const float t21 = s5 * t10 - c5 * t12;
   h[38] = t19 * t21;  // XZ5
   h[39] = 0.5f * t20 * t20;  // YY5R
-  h[40] = t20 * t21;  // YZ5
+  h[40] = -t20 * t21;  // YZ5
   const float t22 = 1.1f * t12 + t18;
-  const float t23 = t16 - 1.1f * t11;
+  const float t23 = 1.1f * t11 + t16;
   const float t24 = s5 * t14 + c5 * t23;
-  h[41] = s5 * t17 - c5 * t6 + t21 * t22 - t20 * t24;  // MX5R
-  const float t25 = s5 * t6 + c5 * t17;
+  h[41] = t20 * t24 - 9.81f * (c5 * t6 + s5 * t17) - t22 * t21;  // MX5R
+  const float t25 = s5 * t6 - c5 * t17;
   const float t26 = c5 * t14 - s5 * t23;
-  h[42] = t20 * t26 - t25 - t19 * t22;  // MZ5
+  h[42] = t19 * t22 - 9.81f * t25 - t20 * t26;  // MZ5
   h[43] = 0.5f * dq[4] * dq[4];  // Ia5
-  h[44] = 0.0f;  // Fv5
-  h[45] = 0.0f;  // Fc5
-  h[46] = 0.0f;  // OFF5
-  const float t27 = t19 - dq[5];
+  const float t27 = dq[5] + t19;
   h[47] = 0.5f * t27 * t27;  // XX6
-  const float t28 = c6 * t20 - s6 * t21;
-  h[48] = t27 * t28;  // XY6
-  const float t29 = s6 * t20 + c6 * t21;
-  h[49] = t27 * t29;  // XZ6
+  const float t28 = c6 * t20 + s6 * t21;
+  h[48] = -t27 * t28;  // XY6
+  const float t29 = s6 * t20 - c6 * t21;
+  h[49] = -t27 * t29;  // XZ6
   h[50] = 0.5f * t28 * t28;  // YY6R
   h[51] = t28 * t29;  // YZ6
-  const float t30 = 0.23f * t21 + t22;
-  const float t31 = t24 - 0.23f * t20;
-  h[52] = s6 * t25 - c6 * t13 - t26 * t29 + t27 * (s6 * t30 + c6 * t31);  // MY6
-  h[53] = t26 * t28 - s6 * t13 - c6 * t25 - t27 * (c6 * t30 - s6 * t31);  // MZ6
+  const float t30 = t22 - 0.23f * t21;
+  const float t31 = 0.23f * t20 + t24;
+  h[52] = t26 * t29 - 9.81f * (c6 * t13 - s6 * t25) - t27 * (s6 * t30 - c6 * t31);  // MY6
+  h[53] = t27 * (c6 * t30 + s6 * t31) - 9.81f * (s6 * t13 + c6 * t25) - t26 * t28;  // MZ6
   h[54] = 0.5f * dq[5] * dq[5];  // Ia6
-  h[55] = 0.0f;  // Fv6
-  h[56] = 0.0f;  // Fc6
-  h[57] = 0.0f;  // OFF6
 }
 
 }  // namespace kuka_kr150_2

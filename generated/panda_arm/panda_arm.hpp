@@ -4,26 +4,26 @@
 // The generated code belongs to the owner of the robot description.
 //
 // Function                              mul    add  sin/cos
-// idim_regressor_standard              1117    833       12
-// inverse_dynamics_standard             538    432       12
+// idim_regressor_standard               968    825       12
+// inverse_dynamics_standard             523    425       12
 // joint_sincos                            0      0       14
-// idim_regressor_standard_sincos       1117    833        0
-// inverse_dynamics_standard_sincos      538    432        0
-// base_from_standard                     61    106        0
-// idim_regressor                        800    586       12
-// inverse_dynamics                      415    326       12
-// mass_matrix                           775    568       12
-// idim_regressor_sincos                 800    586        0
-// inverse_dynamics_sincos               415    326        0
-// mass_matrix_sincos                    775    568        0
-// inverse_dynamics_state_jacobian      4325   3606       12
-// energy_regressor                      141     63       12
-// power_regressor                       385    197       12
-// energy_regressor_sincos               141     63        0
-// power_regressor_sincos                385    197        0
-// drive_torque                          594    453       12
-// drive_torque_jacobian                2328   1442       12
-// drive_torque_state_jacobian          4990   4073       24
+// idim_regressor_standard_sincos        968    825        0
+// inverse_dynamics_standard_sincos      523    425        0
+// base_from_standard                     35    106        0
+// idim_regressor                        703    544       12
+// inverse_dynamics                      403    314       12
+// mass_matrix                           733    532       12
+// idim_regressor_sincos                 703    544        0
+// inverse_dynamics_sincos               403    314        0
+// mass_matrix_sincos                    733    532        0
+// inverse_dynamics_state_jacobian      4055   3367       12
+// energy_regressor                      140     60       12
+// power_regressor                       349    186       12
+// energy_regressor_sincos               140     60        0
+// power_regressor_sincos                349    186        0
+// drive_torque                          572    446       12
+// drive_torque_jacobian                2739   1434       12
+// drive_torque_state_jacobian          4815   3822       24
 #ifndef MODELGEN_PANDA_ARM_HPP_
 #define MODELGEN_PANDA_ARM_HPP_
 
@@ -31,7 +31,7 @@ namespace modelgen {
 namespace panda_arm {
 
 // Version of this generated interface; the runtime's adapter for generated models checks it.
-constexpr int kFormatVersion = 3;
+constexpr int kFormatVersion = 4;
 // Moving joints: the length of q, dq, ddq and tau.
 constexpr int kDof = 7;
 // Standard dynamic parameters (Gautier & Briot eq. 3): the length of p, the columns of W.
@@ -65,7 +65,10 @@ extern const double kJointOffset[kDof];
 // Standard regressor of the inverse dynamic identification model (Gautier & Briot eq. 2):
 // tau = W * p. Inputs q, dq, ddq: kDof joint positions (rad or m), velocities and accelerations.
 // Output W: kDof x kStandardParams, row-major: W[i * kStandardParams + k] is the torque of joint
-// i per unit of parameter kStandardParamNames[k]. Every entry is written.
+// i per unit of parameter kStandardParamNames[k].
+// W: 342 of its 707 entries are written; the others are zero for every input
+// and never written (the manifest lists them under "unwritten"): zero W once before the
+// first call.
 void idim_regressor_standard(const double* q, const double* dq, const double* ddq, double* W);
 void idim_regressor_standard(const float* q, const float* dq, const float* ddq, float* W);
 
@@ -86,6 +89,9 @@ void joint_sincos(const float* q, float* sin_q, float* cos_q);
 
 // idim_regressor_standard with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
 // computing them; identical results.
+// W: 342 of its 707 entries are written; the others are zero for every input
+// and never written (the manifest lists them under "unwritten"): zero W once before the
+// first call.
 void idim_regressor_standard_sincos(const double* q, const double* sin_q, const double* cos_q,
                                     const double* dq, const double* ddq, double* W);
 void idim_regressor_standard_sincos(const float* q, const float* sin_q, const float* cos_q,
@@ -110,6 +116,9 @@ void base_from_standard(const float* p_standard, float* beta);
 // Briot eq. 4-6): tau = W * beta. Inputs q, dq, ddq: kDof joint positions (rad or m),
 // velocities and accelerations. Output W: kDof x kBaseParams, row-major:
 // W[i * kBaseParams + k] is the torque of joint i per unit of kBaseParamNames[k].
+// W: 208 of its 448 entries are written; the others are zero for every input
+// and never written (the manifest lists them under "unwritten"): zero W once before the
+// first call.
 void idim_regressor(const double* q, const double* dq, const double* ddq, double* W);
 void idim_regressor(const float* q, const float* dq, const float* ddq, float* W);
 
@@ -131,6 +140,9 @@ void mass_matrix(const float* q, const float* beta, float* M);
 
 // idim_regressor with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
 // computing them; identical results.
+// W: 208 of its 448 entries are written; the others are zero for every input
+// and never written (the manifest lists them under "unwritten"): zero W once before the
+// first call.
 void idim_regressor_sincos(const double* q, const double* sin_q, const double* cos_q,
                            const double* dq, const double* ddq, double* W);
 void idim_regressor_sincos(const float* q, const float* sin_q, const float* cos_q,
@@ -156,6 +168,9 @@ void mass_matrix_sincos(const float* q, const float* sin_q, const float* cos_q, 
 // inverse_dynamics. Coulomb friction counts as locally constant: the dq columns are exact
 // wherever no joint velocity (nor, for coupled drives, motor velocity) is zero; the friction
 // torque jumps there.
+// J: 140 of its 147 entries are written; the others are zero for every input
+// and never written (the manifest lists them under "unwritten"): zero J once before the
+// first call.
 void inverse_dynamics_state_jacobian(const double* q, const double* dq, const double* ddq,
                                      const double* beta, double* J);
 void inverse_dynamics_state_jacobian(const float* q, const float* dq, const float* ddq,
@@ -165,6 +180,9 @@ void inverse_dynamics_state_jacobian(const float* q, const float* dq, const floa
 // energy of links and drives is H = h * beta, up to a constant that depends on the parameters
 // only. Inputs q, dq: kDof joint positions and velocities. Output h: kBaseParams values, in the
 // order of kBaseParamNames.
+// h: 43 of its 64 entries are written; the others are zero for every input
+// and never written (the manifest lists them under "unwritten"): zero h once before the
+// first call.
 void energy_regressor(const double* q, const double* dq, double* h);
 void energy_regressor(const float* q, const float* dq, float* h);
 
@@ -176,6 +194,9 @@ void power_regressor(const float* q, const float* dq, const float* ddq, float* d
 
 // energy_regressor with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
 // computing them; identical results.
+// h: 43 of its 64 entries are written; the others are zero for every input
+// and never written (the manifest lists them under "unwritten"): zero h once before the
+// first call.
 void energy_regressor_sincos(const double* q, const double* sin_q, const double* cos_q,
                              const double* dq, double* h);
 void energy_regressor_sincos(const float* q, const float* sin_q, const float* cos_q,
@@ -207,6 +228,9 @@ void drive_torque(const float* q, const float* dq, const float* ddq, const float
 // efficiency branch and the Coulomb friction sign count as constant: exact wherever no motor
 // velocity and no power flow tau'_G dq_M is zero. Calls idim_regressor_standard into a local
 // array of kDof * kStandardParams values (on the stack) and applies the chain rule to it.
+// J: 588 of its 756 entries are written; the others are zero for every input
+// and never written (the manifest lists them under "unwritten"): zero J once before the
+// first call.
 void drive_torque_jacobian(const double* q, const double* dq, const double* ddq,
                            const double* theta, double* tau_M, double* J);
 void drive_torque_jacobian(const float* q, const float* dq, const float* ddq, const float* theta,

@@ -4,26 +4,26 @@
 // The generated code belongs to the owner of the robot description.
 //
 // Function                              mul    add  sin/cos
-// idim_regressor_standard               585    459       10
-// inverse_dynamics_standard             441    367       10
+// idim_regressor_standard               508    467       10
+// inverse_dynamics_standard             434    358       10
 // joint_sincos                            0      0       12
-// idim_regressor_standard_sincos        585    459        0
-// inverse_dynamics_standard_sincos      441    367        0
-// base_from_standard                     32     70        0
-// idim_regressor                        468    362       10
-// inverse_dynamics                      338    276       10
-// mass_matrix                           425    333       10
-// idim_regressor_sincos                 468    362        0
-// inverse_dynamics_sincos               338    276        0
-// mass_matrix_sincos                    425    333        0
-// inverse_dynamics_state_jacobian      2588   2313       10
-// energy_regressor                      126     51       10
-// power_regressor                       318    159       10
-// energy_regressor_sincos               126     51        0
-// power_regressor_sincos                318    159        0
-// drive_torque                          501    374       10
-// drive_torque_jacobian                2029    995       10
-// drive_torque_state_jacobian          3244   2711       20
+// idim_regressor_standard_sincos        508    467        0
+// inverse_dynamics_standard_sincos      434    358        0
+// base_from_standard                     13     70        0
+// idim_regressor                        403    337       10
+// inverse_dynamics                      331    263       10
+// mass_matrix                           404    308       10
+// idim_regressor_sincos                 403    337        0
+// inverse_dynamics_sincos               331    263        0
+// mass_matrix_sincos                    404    308        0
+// inverse_dynamics_state_jacobian      2170   1931       10
+// energy_regressor                      128     52       10
+// power_regressor                       302    156       10
+// energy_regressor_sincos               128     52        0
+// power_regressor_sincos                302    156        0
+// drive_torque                          473    365       10
+// drive_torque_jacobian                1864   1003       10
+// drive_torque_state_jacobian          2766   2316       20
 #include "tx40.hpp"
 
 namespace modelgen {

@@ -4,7 +4,7 @@
 // The generated code belongs to the owner of the robot description.
 //
 // Function                              mul    add  sin/cos
-// base_from_standard                     32     70        0
+// base_from_standard                     13     70        0
 #include "tx40.hpp"
 
 namespace modelgen {
@@ -14,20 +14,20 @@ namespace tx40 {
 // Input p_standard: kStandardParams values in the order of kStandardParamNames.
 // Output beta: kBaseParams values in the order of kBaseParamNames.
 void base_from_standard(const double* p_standard, double* beta) {
-  beta[0] = p_standard[10] + p_standard[17] + p_standard[31] + p_standard[5] + 0.05185 * p_standard[37] + 0.05185 * p_standard[51] + 0.05185 * p_standard[65] + 0.05185 * p_standard[79] + 0.05185 * p_standard[96] + 0.07 * p_standard[36];  // ZZ1R
+  beta[0] = p_standard[10] + p_standard[17] + p_standard[31] + p_standard[5] + 0.05185 * (p_standard[37] + p_standard[51] + p_standard[65] + p_standard[79] + p_standard[96]) + 0.07 * p_standard[36];  // ZZ1R
   beta[1] = p_standard[11];  // Fv1
   beta[2] = p_standard[12];  // Fc1
   beta[3] = p_standard[13];  // OFF1
-  beta[4] = p_standard[14] - p_standard[17] - 0.050625 * p_standard[37] - 0.050625 * p_standard[51] - 0.050625 * p_standard[65] - 0.050625 * p_standard[79] - 0.050625 * p_standard[96];  // XX2R
+  beta[4] = p_standard[14] - p_standard[17] - 0.050625 * (p_standard[37] + p_standard[51] + p_standard[65] + p_standard[79] + p_standard[96]);  // XX2R
   beta[5] = p_standard[15];  // XY2
-  beta[6] = p_standard[16] - 0.225 * p_standard[36] - 0.007875 * p_standard[37] - 0.007875 * p_standard[51] - 0.007875 * p_standard[65] - 0.007875 * p_standard[79] - 0.007875 * p_standard[96];  // XZ2R
+  beta[6] = p_standard[16] - 0.225 * p_standard[36] - 0.007875 * (p_standard[37] + p_standard[51] + p_standard[65] + p_standard[79] + p_standard[96]);  // XZ2R
   beta[7] = p_standard[18];  // YZ2
   const double t0 = 0.050625 * p_standard[51];
   const double t1 = 0.050625 * p_standard[65];
   const double t2 = 0.050625 * p_standard[79];
   const double t3 = 0.050625 * p_standard[96];
   beta[8] = p_standard[19] + p_standard[24] + 0.050625 * p_standard[37] + t0 + t1 + t2 + t3;  // ZZ2R
-  beta[9] = p_standard[20] + 0.225 * p_standard[37] + 0.225 * p_standard[51] + 0.225 * p_standard[65] + 0.225 * p_standard[79] + 0.225 * p_standard[96];  // MX2R
+  beta[9] = p_standard[20] + 0.225 * (p_standard[37] + p_standard[51] + p_standard[65] + p_standard[79] + p_standard[96]);  // MX2R
   beta[10] = p_standard[21];  // MY2
   beta[11] = p_standard[25];  // Fv2
   beta[12] = p_standard[26];  // Fc2
@@ -39,7 +39,7 @@ void base_from_standard(const double* p_standard, double* beta) {
   beta[17] = p_standard[32];  // YZ3
   beta[18] = p_standard[33] + p_standard[45] + t0 + t1 + t2 + t3 + t4;  // ZZ3R
   beta[19] = p_standard[34];  // MX3
-  beta[20] = p_standard[35] - p_standard[50] - 0.225 * p_standard[51] - 0.225 * p_standard[65] - 0.225 * p_standard[79] - 0.225 * p_standard[96];  // MY3R
+  beta[20] = p_standard[35] - p_standard[50] - 0.225 * (p_standard[51] + p_standard[65] + p_standard[79] + p_standard[96]);  // MY3R
   beta[21] = p_standard[38];  // Ia3
   beta[22] = p_standard[39];  // Fv3
   beta[23] = p_standard[40];  // Fc3
@@ -86,20 +86,20 @@ void base_from_standard(const double* p_standard, double* beta) {
 // Input p_standard: kStandardParams values in the order of kStandardParamNames.
 // Output beta: kBaseParams values in the order of kBaseParamNames.
 void base_from_standard(const float* p_standard, float* beta) {
-  beta[0] = p_standard[10] + p_standard[17] + p_standard[31] + p_standard[5] + 0.05185f * p_standard[37] + 0.05185f * p_standard[51] + 0.05185f * p_standard[65] + 0.05185f * p_standard[79] + 0.05185f * p_standard[96] + 0.07f * p_standard[36];  // ZZ1R
+  beta[0] = p_standard[10] + p_standard[17] + p_standard[31] + p_standard[5] + 0.05185f * (p_standard[37] + p_standard[51] + p_standard[65] + p_standard[79] + p_standard[96]) + 0.07f * p_standard[36];  // ZZ1R
   beta[1] = p_standard[11];  // Fv1
   beta[2] = p_standard[12];  // Fc1
   beta[3] = p_standard[13];  // OFF1
-  beta[4] = p_standard[14] - p_standard[17] - 0.050625f * p_standard[37] - 0.050625f * p_standard[51] - 0.050625f * p_standard[65] - 0.050625f * p_standard[79] - 0.050625f * p_standard[96];  // XX2R
+  beta[4] = p_standard[14] - p_standard[17] - 0.050625f * (p_standard[37] + p_standard[51] + p_standard[65] + p_standard[79] + p_standard[96]);  // XX2R
   beta[5] = p_standard[15];  // XY2
-  beta[6] = p_standard[16] - 0.225f * p_standard[36] - 0.007875f * p_standard[37] - 0.007875f * p_standard[51] - 0.007875f * p_standard[65] - 0.007875f * p_standard[79] - 0.007875f * p_standard[96];  // XZ2R
+  beta[6] = p_standard[16] - 0.225f * p_standard[36] - 0.007875f * (p_standard[37] + p_standard[51] + p_standard[65] + p_standard[79] + p_standard[96]);  // XZ2R
   beta[7] = p_standard[18];  // YZ2
   const float t0 = 0.050625f * p_standard[51];
   const float t1 = 0.050625f * p_standard[65];
   const float t2 = 0.050625f * p_standard[79];
   const float t3 = 0.050625f * p_standard[96];
   beta[8] = p_standard[19] + p_standard[24] + 0.050625f * p_standard[37] + t0 + t1 + t2 + t3;  // ZZ2R
-  beta[9] = p_standard[20] + 0.225f * p_standard[37] + 0.225f * p_standard[51] + 0.225f * p_standard[65] + 0.225f * p_standard[79] + 0.225f * p_standard[96];  // MX2R
+  beta[9] = p_standard[20] + 0.225f * (p_standard[37] + p_standard[51] + p_standard[65] + p_standard[79] + p_standard[96]);  // MX2R
   beta[10] = p_standard[21];  // MY2
   beta[11] = p_standard[25];  // Fv2
   beta[12] = p_standard[26];  // Fc2
@@ -111,7 +111,7 @@ void base_from_standard(const float* p_standard, float* beta) {
   beta[17] = p_standard[32];  // YZ3
   beta[18] = p_standard[33] + p_standard[45] + t0 + t1 + t2 + t3 + t4;  // ZZ3R
   beta[19] = p_standard[34];  // MX3
-  beta[20] = p_standard[35] - p_standard[50] - 0.225f * p_standard[51] - 0.225f * p_standard[65] - 0.225f * p_standard[79] - 0.225f * p_standard[96];  // MY3R
+  beta[20] = p_standard[35] - p_standard[50] - 0.225f * (p_standard[51] + p_standard[65] + p_standard[79] + p_standard[96]);  // MY3R
   beta[21] = p_standard[38];  // Ia3
   beta[22] = p_standard[39];  // Fv3
   beta[23] = p_standard[40];  // Fc3

@@ -4,7 +4,7 @@
 // The generated code belongs to the owner of the robot description.
 //
 // Function                              mul    add  sin/cos
-// energy_regressor_sincos               126     51        0
+// energy_regressor_sincos               128     52        0
 #include "tx40.hpp"
 
 namespace modelgen {
@@ -12,6 +12,9 @@ namespace tx40 {
 
 // energy_regressor with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
 // computing them; identical results.
+// h: 41 of its 61 entries are written; the others are zero for every input
+// and never written (the manifest lists them under "unwritten"): zero h once before the
+// first call.
 void energy_regressor_sincos(const double* q, const double* sin_q, const double* cos_q,
                              const double* dq, double* h) {
   static_cast<void>(q);
@@ -26,99 +29,84 @@ void energy_regressor_sincos(const double* q, const double* sin_q, const double*
   const double s6 = sin_q[5];
   const double c6 = cos_q[5];
   h[0] = 0.5 * dq[0] * dq[0];  // ZZ1R
-  h[1] = 0.0;  // Fv1
-  h[2] = 0.0;  // Fc1
-  h[3] = 0.0;  // OFF1
   const double t0 = c2 * dq[0];
   h[4] = 0.5 * t0 * t0;  // XX2R
-  const double t1 = -dq[0] * s2;
-  h[5] = t1 * t0;  // XY2
+  const double t1 = dq[0] * s2;
+  h[5] = -t0 * t1;  // XY2
   h[6] = dq[1] * t0;  // XZ2R
-  h[7] = dq[1] * t1;  // YZ2
+  h[7] = -dq[1] * t1;  // YZ2
   h[8] = 0.5 * dq[1] * dq[1];  // ZZ2R
   h[9] = 9.81 * c2;  // MX2R
   h[10] = -9.81 * s2;  // MY2
-  h[11] = 0.0;  // Fv2
-  h[12] = 0.0;  // Fc2
-  h[13] = 0.0;  // OFF2
-  const double t2 = c3 * t1 - s3 * t0;
-  h[14] = 0.5 * t2 * t2;  // XX3R
-  const double t3 = -c3 * t0 - s3 * t1;
-  h[15] = t3 * t2;  // XY3
-  const double t4 = dq[1] + dq[2];
-  h[16] = t4 * t2;  // XZ3
-  h[17] = t4 * t3;  // YZ3
-  h[18] = 0.5 * t4 * t4;  // ZZ3R
-  const double t5 = 9.81 * c2 * s3 + 9.81 * c3 * s2;
-  const double t6 = 0.225 * dq[1] - 0.035 * t0;
-  const double t7 = -0.035 * c3 * t1 - s3 * t6;
-  h[19] = 0.225 * t1 * t3 - t5 + t4 * t7;  // MX3
-  const double t8 = 9.81 * c2 * c3 - 9.81 * s2 * s3;
-  const double t9 = c3 * t6 - 0.035 * s3 * t1;
-  h[20] = -0.225 * t1 * t2 - t8 - t4 * t9;  // MY3R
+  const double t2 = c3 * t1;
+  const double t3 = t2 + s3 * t0;
+  h[14] = 0.5 * t3 * t3;  // XX3R
+  const double t4 = s3 * t1;
+  const double t5 = c3 * t0 - t4;
+  h[15] = t3 * t5;  // XY3
+  const double t6 = dq[1] + dq[2];
+  h[16] = -t6 * t3;  // XZ3
+  h[17] = -t6 * t5;  // YZ3
+  h[18] = 0.5 * t6 * t6;  // ZZ3R
+  const double t7 = c2 * s3 + c3 * s2;
+  const double t8 = 0.225 * dq[1] - 0.035 * t0;
+  const double t9 = 0.035 * t2 - s3 * t8;
+  h[19] = 0.225 * t1 * t5 - 9.81 * t7 + t6 * t9;  // MX3
+  const double t10 = c2 * c3 - s2 * s3;
+  const double t11 = 0.035 * t4 + c3 * t8;
+  h[20] = -9.81 * t10 - 0.225 * t1 * t3 - t6 * t11;  // MY3R
   h[21] = 0.5 * dq[2] * dq[2];  // Ia3
-  h[22] = 0.0;  // Fv3
-  h[23] = 0.0;  // Fc3
-  h[24] = 0.0;  // OFF3
-  const double t10 = s4 * t4 + c4 * t2;
-  h[25] = 0.5 * t10 * t10;  // XX4R
-  const double t11 = c4 * t4 - s4 * t2;
-  h[26] = t11 * t10;  // XY4
-  const double t12 = dq[3] - t3;
-  h[27] = t12 * t10;  // XZ4
-  h[28] = t12 * t11;  // YZ4
-  h[29] = 0.5 * t12 * t12;  // ZZ4R
-  const double t13 = c4 * t5;
-  const double t14 = -0.225 * t1 - 0.225 * t2;
-  const double t15 = 0.225 * t4 + t9;
-  const double t16 = c4 * t14 - s4 * t15;
-  h[30] = t7 * t11 - t13 + t12 * t16;  // MX4
-  const double t17 = -s4 * t5;
-  const double t18 = s4 * t14 + c4 * t15;
-  h[31] = -t17 - t7 * t10 - t12 * t18;  // MY4R
+  const double t12 = s4 * t6 - c4 * t3;
+  h[25] = 0.5 * t12 * t12;  // XX4R
+  const double t13 = c4 * t6 + s4 * t3;
+  h[26] = t13 * t12;  // XY4
+  const double t14 = dq[3] + t5;
+  h[27] = t14 * t12;  // XZ4
+  h[28] = t14 * t13;  // YZ4
+  h[29] = 0.5 * t14 * t14;  // ZZ4R
+  const double t15 = c4 * t7;
+  const double t16 = t1 + t3;
+  const double t17 = 0.225 * t6 + t11;
+  const double t18 = 0.225 * c4 * t16 - s4 * t17;
+  h[30] = t13 * t9 - 9.81 * t15 + t14 * t18;  // MX4
+  const double t19 = s4 * t7;
+  const double t20 = 0.225 * s4 * t16 + c4 * t17;
+  h[31] = 9.81 * t19 - t9 * t12 - t14 * t20;  // MY4R
   h[32] = 0.5 * dq[3] * dq[3];  // Ia4
-  h[33] = 0.0;  // Fv4
-  h[34] = 0.0;  // Fc4
-  h[35] = 0.0;  // OFF4
-  const double t19 = c5 * t10 - s5 * t12;
-  h[36] = 0.5 * t19 * t19;  // XX5R
-  const double t20 = -c5 * t12 - s5 * t10;
-  h[37] = t20 * t19;  // XY5
-  const double t21 = dq[4] + t11;
-  h[38] = t21 * t19;  // XZ5
-  h[39] = t21 * t20;  // YZ5
-  h[40] = 0.5 * t21 * t21;  // ZZ5R
-  const double t22 = s5 * t8 + c5 * t13;
-  const double t23 = c5 * t7 - s5 * t18;
-  h[41] = t21 * t23 - t22 - t16 * t20;  // MX5
-  const double t24 = s5 * t7 + c5 * t18;
-  h[42] = s5 * t13 - c5 * t8 + t16 * t19 - t21 * t24;  // MY5R
+  const double t21 = s5 * t14 - c5 * t12;
+  h[36] = 0.5 * t21 * t21;  // XX5R
+  const double t22 = c5 * t14 + s5 * t12;
+  h[37] = t22 * t21;  // XY5
+  const double t23 = dq[4] + t13;
+  h[38] = -t23 * t21;  // XZ5
+  h[39] = -t23 * t22;  // YZ5
+  h[40] = 0.5 * t23 * t23;  // ZZ5R
+  const double t24 = s5 * t10 + c5 * t15;
+  const double t25 = c5 * t9 - s5 * t20;
+  h[41] = t22 * t18 - 9.81 * t24 + t23 * t25;  // MX5
+  const double t26 = s5 * t9 + c5 * t20;
+  h[42] = -9.81 * (c5 * t10 - s5 * t15) - t18 * t21 - t23 * t26;  // MY5R
   h[43] = 0.5 * dq[4] * dq[4];  // Ia5
-  h[44] = 0.0;  // Fv5
-  h[45] = 0.0;  // Fc5
-  h[46] = 0.0;  // OFF5
-  const double t25 = s6 * t21 + c6 * t19;
-  h[47] = 0.5 * t25 * t25;  // XX6R
-  const double t26 = c6 * t21 - s6 * t19;
-  h[48] = t26 * t25;  // XY6R
-  const double t27 = dq[5] - t20;
-  h[49] = t27 * t25;  // XZ6R
-  h[50] = t27 * t26;  // YZ6R
-  h[51] = 0.5 * t27 * t27;  // ZZ6R
-  h[52] = t23 * t26 - s6 * t17 - c6 * t22 + t27 * (c6 * t16 - s6 * t24);  // MX6R
-  h[53] = s6 * t22 - c6 * t17 - t23 * t25 - t27 * (s6 * t16 + c6 * t24);  // MY6R
+  const double t27 = s6 * t23 - c6 * t21;
+  h[47] = 0.5 * t27 * t27;  // XX6R
+  const double t28 = c6 * t23 + s6 * t21;
+  h[48] = t28 * t27;  // XY6R
+  const double t29 = dq[5] + t22;
+  h[49] = t29 * t27;  // XZ6R
+  h[50] = t29 * t28;  // YZ6R
+  h[51] = 0.5 * t29 * t29;  // ZZ6R
+  h[52] = 9.81 * (s6 * t19 - c6 * t24) + t25 * t28 + t29 * (c6 * t18 - s6 * t26);  // MX6R
+  h[53] = 9.81 * (c6 * t19 + s6 * t24) - t25 * t27 - t29 * (s6 * t18 + c6 * t26);  // MY6R
   h[54] = 0.5 * dq[5] * dq[5];  // Ia6
-  h[55] = 0.0;  // Fv6
-  h[56] = 0.0;  // Fc6
-  h[57] = 0.0;  // OFF6
-  const double t28 = dq[4] + dq[5];
-  h[58] = 0.5 * t28 * t28;  // Iam6
-  h[59] = 0.0;  // Fvm6
-  h[60] = 0.0;  // Fcm6
+  const double t30 = dq[4] + dq[5];
+  h[58] = 0.5 * t30 * t30;  // Iam6
 }
 
 // energy_regressor with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
 // computing them; identical results.
+// h: 41 of its 61 entries are written; the others are zero for every input
+// and never written (the manifest lists them under "unwritten"): zero h once before the
+// first call.
 void energy_regressor_sincos(const float* q, const float* sin_q, const float* cos_q,
                              const float* dq, float* h) {
   static_cast<void>(q);
@@ -133,95 +121,77 @@ void energy_regressor_sincos(const float* q, const float* sin_q, const float* co
   const float s6 = sin_q[5];
   const float c6 = cos_q[5];
   h[0] = 0.5f * dq[0] * dq[0];  // ZZ1R
-  h[1] = 0.0f;  // Fv1
-  h[2] = 0.0f;  // Fc1
-  h[3] = 0.0f;  // OFF1
   const float t0 = c2 * dq[0];
   h[4] = 0.5f * t0 * t0;  // XX2R
-  const float t1 = -dq[0] * s2;
-  h[5] = t1 * t0;  // XY2
+  const float t1 = dq[0] * s2;
+  h[5] = -t0 * t1;  // XY2
   h[6] = dq[1] * t0;  // XZ2R
-  h[7] = dq[1] * t1;  // YZ2
+  h[7] = -dq[1] * t1;  // YZ2
   h[8] = 0.5f * dq[1] * dq[1];  // ZZ2R
   h[9] = 9.81f * c2;  // MX2R
   h[10] = -9.81f * s2;  // MY2
-  h[11] = 0.0f;  // Fv2
-  h[12] = 0.0f;  // Fc2
-  h[13] = 0.0f;  // OFF2
-  const float t2 = c3 * t1 - s3 * t0;
-  h[14] = 0.5f * t2 * t2;  // XX3R
-  const float t3 = -c3 * t0 - s3 * t1;
-  h[15] = t3 * t2;  // XY3
-  const float t4 = dq[1] + dq[2];
-  h[16] = t4 * t2;  // XZ3
-  h[17] = t4 * t3;  // YZ3
-  h[18] = 0.5f * t4 * t4;  // ZZ3R
-  const float t5 = 9.81f * c2 * s3 + 9.81f * c3 * s2;
-  const float t6 = 0.225f * dq[1] - 0.035f * t0;
-  const float t7 = -0.035f * c3 * t1 - s3 * t6;
-  h[19] = 0.225f * t1 * t3 - t5 + t4 * t7;  // MX3
-  const float t8 = 9.81f * c2 * c3 - 9.81f * s2 * s3;
-  const float t9 = c3 * t6 - 0.035f * s3 * t1;
-  h[20] = -0.225f * t1 * t2 - t8 - t4 * t9;  // MY3R
+  const float t2 = c3 * t1;
+  const float t3 = t2 + s3 * t0;
+  h[14] = 0.5f * t3 * t3;  // XX3R
+  const float t4 = s3 * t1;
+  const float t5 = c3 * t0 - t4;
+  h[15] = t3 * t5;  // XY3
+  const float t6 = dq[1] + dq[2];
+  h[16] = -t6 * t3;  // XZ3
+  h[17] = -t6 * t5;  // YZ3
+  h[18] = 0.5f * t6 * t6;  // ZZ3R
+  const float t7 = c2 * s3 + c3 * s2;
+  const float t8 = 0.225f * dq[1] - 0.035f * t0;
+  const float t9 = 0.035f * t2 - s3 * t8;
+  h[19] = 0.225f * t1 * t5 - 9.81f * t7 + t6 * t9;  // MX3
+  const float t10 = c2 * c3 - s2 * s3;
+  const float t11 = 0.035f * t4 + c3 * t8;
+  h[20] = -9.81f * t10 - 0.225f * t1 * t3 - t6 * t11;  // MY3R
   h[21] = 0.5f * dq[2] * dq[2];  // Ia3
-  h[22] = 0.0f;  // Fv3
-  h[23] = 0.0f;  // Fc3
-  h[24] = 0.0f;  // OFF3
-  const float t10 = s4 * t4 + c4 * t2;
-  h[25] = 0.5f * t10 * t10;  // XX4R
-  const float t11 = c4 * t4 - s4 * t2;
-  h[26] = t11 * t10;  // XY4
-  const float t12 = dq[3] - t3;
-  h[27] = t12 * t10;  // XZ4
-  h[28] = t12 * t11;  // YZ4
-  h[29] = 0.5f * t12 * t12;  // ZZ4R
-  const float t13 = c4 * t5;
-  const float t14 = -0.225f * t1 - 0.225f * t2;
-  const float t15 = 0.225f * t4 + t9;
-  const float t16 = c4 * t14 - s4 * t15;
-  h[30] = t7 * t11 - t13 + t12 * t16;  // MX4
-  const float t17 = -s4 * t5;
-  const float t18 = s4 * t14 + c4 * t15;
-  h[31] = -t17 - t7 * t10 - t12 * t18;  // MY4R
+  const float t12 = s4 * t6 - c4 * t3;
+  h[25] = 0.5f * t12 * t12;  // XX4R
+  const float t13 = c4 * t6 + s4 * t3;
+  h[26] = t13 * t12;  // XY4
+  const float t14 = dq[3] + t5;
+  h[27] = t14 * t12;  // XZ4
+  h[28] = t14 * t13;  // YZ4
+  h[29] = 0.5f * t14 * t14;  // ZZ4R
+  const float t15 = c4 * t7;
+  const float t16 = t1 + t3;
+  const float t17 = 0.225f * t6 + t11;
+  const float t18 = 0.225f * c4 * t16 - s4 * t17;
+  h[30] = t13 * t9 - 9.81f * t15 + t14 * t18;  // MX4
+  const float t19 = s4 * t7;
+  const float t20 = 0.225f * s4 * t16 + c4 * t17;
+  h[31] = 9.81f * t19 - t9 * t12 - t14 * t20;  // MY4R
   h[32] = 0.5f * dq[3] * dq[3];  // Ia4
-  h[33] = 0.0f;  // Fv4
-  h[34] = 0.0f;  // Fc4
-  h[35] = 0.0f;  // OFF4
-  const float t19 = c5 * t10 - s5 * t12;
-  h[36] = 0.5f * t19 * t19;  // XX5R
-  const float t20 = -c5 * t12 - s5 * t10;
-  h[37] = t20 * t19;  // XY5
-  const float t21 = dq[4] + t11;
-  h[38] = t21 * t19;  // XZ5
-  h[39] = t21 * t20;  // YZ5
-  h[40] = 0.5f * t21 * t21;  // ZZ5R
-  const float t22 = s5 * t8 + c5 * t13;
-  const float t23 = c5 * t7 - s5 * t18;
-  h[41] = t21 * t23 - t22 - t16 * t20;  // MX5
-  const float t24 = s5 * t7 + c5 * t18;
-  h[42] = s5 * t13 - c5 * t8 + t16 * t19 - t21 * t24;  // MY5R
+  const float t21 = s5 * t14 - c5 * t12;
+  h[36] = 0.5f * t21 * t21;  // XX5R
+  const float t22 = c5 * t14 + s5 * t12;
+  h[37] = t22 * t21;  // XY5
+  const float t23 = dq[4] + t13;
+  h[38] = -t23 * t21;  // XZ5
+  h[39] = -t23 * t22;  // YZ5
+  h[40] = 0.5f * t23 * t23;  // ZZ5R
+  const float t24 = s5 * t10 + c5 * t15;
+  const float t25 = c5 * t9 - s5 * t20;
+  h[41] = t22 * t18 - 9.81f * t24 + t23 * t25;  // MX5
+  const float t26 = s5 * t9 + c5 * t20;
+  h[42] = -9.81f * (c5 * t10 - s5 * t15) - t18 * t21 - t23 * t26;  // MY5R
   h[43] = 0.5f * dq[4] * dq[4];  // Ia5
-  h[44] = 0.0f;  // Fv5
-  h[45] = 0.0f;  // Fc5
-  h[46] = 0.0f;  // OFF5
-  const float t25 = s6 * t21 + c6 * t19;
-  h[47] = 0.5f * t25 * t25;  // XX6R
-  const float t26 = c6 * t21 - s6 * t19;
-  h[48] = t26 * t25;  // XY6R
-  const float t27 = dq[5] - t20;
-  h[49] = t27 * t25;  // XZ6R
-  h[50] = t27 * t26;  // YZ6R
-  h[51] = 0.5f * t27 * t27;  // ZZ6R
-  h[52] = t23 * t26 - s6 * t17 - c6 * t22 + t27 * (c6 * t16 - s6 * t24);  // MX6R
-  h[53] = s6 * t22 - c6 * t17 - t23 * t25 - t27 * (s6 * t16 + c6 * t24);  // MY6R
+  const float t27 = s6 * t23 - c6 * t21;
+  h[47] = 0.5f * t27 * t27;  // XX6R
+  const float t28 = c6 * t23 + s6 * t21;
+  h[48] = t28 * t27;  // XY6R
+  const float t29 = dq[5] + t22;
+  h[49] = t29 * t27;  // XZ6R
+  h[50] = t29 * t28;  // YZ6R
+  h[51] = 0.5f * t29 * t29;  // ZZ6R
+  h[52] = 9.81f * (s6 * t19 - c6 * t24) + t25 * t28 + t29 * (c6 * t18 - s6 * t26);  // MX6R
+  h[53] = 9.81f * (c6 * t19 + s6 * t24) - t25 * t27 - t29 * (s6 * t18 + c6 * t26);  // MY6R
   h[54] = 0.5f * dq[5] * dq[5];  // Ia6
-  h[55] = 0.0f;  // Fv6
-  h[56] = 0.0f;  // Fc6
-  h[57] = 0.0f;  // OFF6
-  const float t28 = dq[4] + dq[5];
-  h[58] = 0.5f * t28 * t28;  // Iam6
-  h[59] = 0.0f;  // Fvm6
-  h[60] = 0.0f;  // Fcm6
+  const float t30 = dq[4] + dq[5];
+  h[58] = 0.5f * t30 * t30;  // Iam6
 }
 
 }  // namespace tx40

@@ -4,26 +4,26 @@
 // The generated code belongs to the owner of the robot description.
 //
 // Function                              mul    add  sin/cos
-// idim_regressor_standard               577    446       10
-// inverse_dynamics_standard             434    347       10
+// idim_regressor_standard               484    410       10
+// inverse_dynamics_standard             422    341       10
 // joint_sincos                            0      0       12
-// idim_regressor_standard_sincos        577    446        0
-// inverse_dynamics_standard_sincos      434    347        0
-// base_from_standard                     36     60        0
-// idim_regressor                        454    351       10
-// inverse_dynamics                      378    296       10
-// mass_matrix                           420    348       10
-// idim_regressor_sincos                 454    351        0
-// inverse_dynamics_sincos               378    296        0
-// mass_matrix_sincos                    420    348        0
-// inverse_dynamics_state_jacobian      2707   2409       10
-// energy_regressor                      133     59       10
-// power_regressor                       338    175       10
-// energy_regressor_sincos               133     59        0
-// power_regressor_sincos                338    175        0
-// drive_torque                          476    359       10
-// drive_torque_jacobian                1375    848       10
-// drive_torque_state_jacobian          3265   2795       20
+// idim_regressor_standard_sincos        484    410        0
+// inverse_dynamics_standard_sincos      422    341        0
+// base_from_standard                     24     60        0
+// idim_regressor                        371    317       10
+// inverse_dynamics                      366    285       10
+// mass_matrix                           389    311       10
+// idim_regressor_sincos                 371    317        0
+// inverse_dynamics_sincos               366    285        0
+// mass_matrix_sincos                    389    311        0
+// inverse_dynamics_state_jacobian      2008   1913       10
+// energy_regressor                      132     57       10
+// power_regressor                       310    169       10
+// energy_regressor_sincos               132     57        0
+// power_regressor_sincos                310    169        0
+// drive_torque                          458    353       10
+// drive_torque_jacobian                1642    812       10
+// drive_torque_state_jacobian          2638   2288       20
 #include "ur5.hpp"
 
 namespace modelgen {

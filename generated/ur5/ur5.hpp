@@ -4,26 +4,26 @@
 // The generated code belongs to the owner of the robot description.
 //
 // Function                              mul    add  sin/cos
-// idim_regressor_standard               577    446       10
-// inverse_dynamics_standard             434    347       10
+// idim_regressor_standard               484    410       10
+// inverse_dynamics_standard             422    341       10
 // joint_sincos                            0      0       12
-// idim_regressor_standard_sincos        577    446        0
-// inverse_dynamics_standard_sincos      434    347        0
-// base_from_standard                     36     60        0
-// idim_regressor                        454    351       10
-// inverse_dynamics                      378    296       10
-// mass_matrix                           420    348       10
-// idim_regressor_sincos                 454    351        0
-// inverse_dynamics_sincos               378    296        0
-// mass_matrix_sincos                    420    348        0
-// inverse_dynamics_state_jacobian      2707   2409       10
-// energy_regressor                      133     59       10
-// power_regressor                       338    175       10
-// energy_regressor_sincos               133     59        0
-// power_regressor_sincos                338    175        0
-// drive_torque                          476    359       10
-// drive_torque_jacobian                1375    848       10
-// drive_torque_state_jacobian          3265   2795       20
+// idim_regressor_standard_sincos        484    410        0
+// inverse_dynamics_standard_sincos      422    341        0
+// base_from_standard                     24     60        0
+// idim_regressor                        371    317       10
+// inverse_dynamics                      366    285       10
+// mass_matrix                           389    311       10
+// idim_regressor_sincos                 371    317        0
+// inverse_dynamics_sincos               366    285        0
+// mass_matrix_sincos                    389    311        0
+// inverse_dynamics_state_jacobian      2008   1913       10
+// energy_regressor                      132     57       10
+// power_regressor                       310    169       10
+// energy_regressor_sincos               132     57        0
+// power_regressor_sincos                310    169        0
+// drive_torque                          458    353       10
+// drive_torque_jacobian                1642    812       10
+// drive_torque_state_jacobian          2638   2288       20
 #ifndef MODELGEN_UR5_HPP_
 #define MODELGEN_UR5_HPP_
 
@@ -31,7 +31,7 @@ namespace modelgen {
 namespace ur5 {
 
 // Version of this generated interface; the runtime's adapter for generated models checks it.
-constexpr int kFormatVersion = 3;
+constexpr int kFormatVersion = 4;
 // Moving joints: the length of q, dq, ddq and tau.
 constexpr int kDof = 6;
 // Standard dynamic parameters (Gautier & Briot eq. 3): the length of p, the columns of W.
@@ -65,7 +65,10 @@ extern const double kJointOffset[kDof];
 // Standard regressor of the inverse dynamic identification model (Gautier & Briot eq. 2):
 // tau = W * p. Inputs q, dq, ddq: kDof joint positions (rad or m), velocities and accelerations.
 // Output W: kDof x kStandardParams, row-major: W[i * kStandardParams + k] is the torque of joint
-// i per unit of parameter kStandardParamNames[k]. Every entry is written.
+// i per unit of parameter kStandardParamNames[k].
+// W: 210 of its 504 entries are written; the others are zero for every input
+// and never written (the manifest lists them under "unwritten"): zero W once before the
+// first call.
 void idim_regressor_standard(const double* q, const double* dq, const double* ddq, double* W);
 void idim_regressor_standard(const float* q, const float* dq, const float* ddq, float* W);
 
@@ -86,6 +89,9 @@ void joint_sincos(const float* q, float* sin_q, float* cos_q);
 
 // idim_regressor_standard with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
 // computing them; identical results.
+// W: 210 of its 504 entries are written; the others are zero for every input
+// and never written (the manifest lists them under "unwritten"): zero W once before the
+// first call.
 void idim_regressor_standard_sincos(const double* q, const double* sin_q, const double* cos_q,
                                     const double* dq, const double* ddq, double* W);
 void idim_regressor_standard_sincos(const float* q, const float* sin_q, const float* cos_q,
@@ -110,6 +116,9 @@ void base_from_standard(const float* p_standard, float* beta);
 // Briot eq. 4-6): tau = W * beta. Inputs q, dq, ddq: kDof joint positions (rad or m),
 // velocities and accelerations. Output W: kDof x kBaseParams, row-major:
 // W[i * kBaseParams + k] is the torque of joint i per unit of kBaseParamNames[k].
+// W: 160 of its 348 entries are written; the others are zero for every input
+// and never written (the manifest lists them under "unwritten"): zero W once before the
+// first call.
 void idim_regressor(const double* q, const double* dq, const double* ddq, double* W);
 void idim_regressor(const float* q, const float* dq, const float* ddq, float* W);
 
@@ -131,6 +140,9 @@ void mass_matrix(const float* q, const float* beta, float* M);
 
 // idim_regressor with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
 // computing them; identical results.
+// W: 160 of its 348 entries are written; the others are zero for every input
+// and never written (the manifest lists them under "unwritten"): zero W once before the
+// first call.
 void idim_regressor_sincos(const double* q, const double* sin_q, const double* cos_q,
                            const double* dq, const double* ddq, double* W);
 void idim_regressor_sincos(const float* q, const float* sin_q, const float* cos_q,
@@ -156,6 +168,9 @@ void mass_matrix_sincos(const float* q, const float* sin_q, const float* cos_q, 
 // inverse_dynamics. Coulomb friction counts as locally constant: the dq columns are exact
 // wherever no joint velocity (nor, for coupled drives, motor velocity) is zero; the friction
 // torque jumps there.
+// J: 102 of its 108 entries are written; the others are zero for every input
+// and never written (the manifest lists them under "unwritten"): zero J once before the
+// first call.
 void inverse_dynamics_state_jacobian(const double* q, const double* dq, const double* ddq,
                                      const double* beta, double* J);
 void inverse_dynamics_state_jacobian(const float* q, const float* dq, const float* ddq,
@@ -165,6 +180,9 @@ void inverse_dynamics_state_jacobian(const float* q, const float* dq, const floa
 // energy of links and drives is H = h * beta, up to a constant that depends on the parameters
 // only. Inputs q, dq: kDof joint positions and velocities. Output h: kBaseParams values, in the
 // order of kBaseParamNames.
+// h: 40 of its 58 entries are written; the others are zero for every input
+// and never written (the manifest lists them under "unwritten"): zero h once before the
+// first call.
 void energy_regressor(const double* q, const double* dq, double* h);
 void energy_regressor(const float* q, const float* dq, float* h);
 
@@ -176,6 +194,9 @@ void power_regressor(const float* q, const float* dq, const float* ddq, float* d
 
 // energy_regressor with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
 // computing them; identical results.
+// h: 40 of its 58 entries are written; the others are zero for every input
+// and never written (the manifest lists them under "unwritten"): zero h once before the
+// first call.
 void energy_regressor_sincos(const double* q, const double* sin_q, const double* cos_q,
                              const double* dq, double* h);
 void energy_regressor_sincos(const float* q, const float* sin_q, const float* cos_q,
@@ -207,6 +228,9 @@ void drive_torque(const float* q, const float* dq, const float* ddq, const float
 // efficiency branch and the Coulomb friction sign count as constant: exact wherever no motor
 // velocity and no power flow tau'_G dq_M is zero. Calls idim_regressor_standard into a local
 // array of kDof * kStandardParams values (on the stack) and applies the chain rule to it.
+// J: 384 of its 504 entries are written; the others are zero for every input
+// and never written (the manifest lists them under "unwritten"): zero J once before the
+// first call.
 void drive_torque_jacobian(const double* q, const double* dq, const double* ddq,
                            const double* theta, double* tau_M, double* J);
 void drive_torque_jacobian(const float* q, const float* dq, const float* ddq, const float* theta,

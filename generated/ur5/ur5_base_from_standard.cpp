@@ -4,7 +4,7 @@
 // The generated code belongs to the owner of the robot description.
 //
 // Function                              mul    add  sin/cos
-// base_from_standard                     36     60        0
+// base_from_standard                     24     60        0
 #include "ur5.hpp"
 
 namespace modelgen {
@@ -14,7 +14,7 @@ namespace ur5 {
 // Input p_standard: kStandardParams values in the order of kStandardParamNames.
 // Output beta: kBaseParams values in the order of kBaseParamNames.
 void base_from_standard(const double* p_standard, double* beta) {
-  beta[0] = p_standard[10] + p_standard[19] + p_standard[33] + p_standard[47] + p_standard[5] + 0.0002608225 * p_standard[37] + 0.0002608225 * p_standard[51] + 0.0119137225 * p_standard[65] + 0.0119137225 * p_standard[79] + 0.0184552225 * p_standard[23] + 0.0323 * p_standard[35] + 0.0323 * p_standard[49] + 0.2717 * p_standard[21];  // ZZ1R
+  beta[0] = p_standard[10] + p_standard[19] + p_standard[33] + p_standard[47] + p_standard[5] + 0.0002608225 * (p_standard[37] + p_standard[51]) + 0.0119137225 * (p_standard[65] + p_standard[79]) + 0.0184552225 * p_standard[23] + 0.0323 * (p_standard[35] + p_standard[49]) + 0.2717 * p_standard[21];  // ZZ1R
   beta[1] = p_standard[11];  // Fv1
   beta[2] = p_standard[12];  // Fc1
   beta[3] = p_standard[13];  // OFF1
@@ -26,9 +26,9 @@ void base_from_standard(const double* p_standard, double* beta) {
   beta[5] = p_standard[15];  // XY2
   beta[6] = p_standard[16];  // XZ2
   beta[7] = p_standard[17] + p_standard[24] + t0 + t1 + t2 + t3;  // YY2R
-  beta[8] = p_standard[18] - 0.425 * p_standard[35] - 0.425 * p_standard[49] + 0.0113475 * p_standard[65] + 0.0113475 * p_standard[79] + 0.0508725 * p_standard[37] + 0.0508725 * p_standard[51];  // YZ2R
+  beta[8] = p_standard[18] - 0.425 * (p_standard[35] + p_standard[49]) + 0.0113475 * (p_standard[65] + p_standard[79]) + 0.0508725 * (p_standard[37] + p_standard[51]);  // YZ2R
   beta[9] = p_standard[20];  // MX2
-  beta[10] = p_standard[22] + 0.425 * p_standard[37] + 0.425 * p_standard[51] + 0.425 * p_standard[65] + 0.425 * p_standard[79];  // MZ2R
+  beta[10] = p_standard[22] + 0.425 * (p_standard[37] + p_standard[51] + p_standard[65] + p_standard[79]);  // MZ2R
   beta[11] = p_standard[25];  // Fv2
   beta[12] = p_standard[26];  // Fc2
   beta[13] = p_standard[27];  // OFF2
@@ -39,9 +39,9 @@ void base_from_standard(const double* p_standard, double* beta) {
   beta[15] = p_standard[29];  // XY3
   beta[16] = p_standard[30];  // XZ3
   beta[17] = p_standard[31] + t4 + t5 + t6;  // YY3R
-  beta[18] = p_standard[32] - 0.39225 * p_standard[49] - 0.03647925 * p_standard[65] - 0.03647925 * p_standard[79];  // YZ3R
+  beta[18] = p_standard[32] - 0.39225 * p_standard[49] - 0.03647925 * (p_standard[65] + p_standard[79]);  // YZ3R
   beta[19] = p_standard[34];  // MX3
-  beta[20] = p_standard[36] + 0.39225 * p_standard[51] + 0.39225 * p_standard[65] + 0.39225 * p_standard[79];  // MZ3R
+  beta[20] = p_standard[36] + 0.39225 * (p_standard[51] + p_standard[65] + p_standard[79]);  // MZ3R
   beta[21] = p_standard[38];  // Ia3
   beta[22] = p_standard[39];  // Fv3
   beta[23] = p_standard[40];  // Fc3
@@ -86,7 +86,7 @@ void base_from_standard(const double* p_standard, double* beta) {
 // Input p_standard: kStandardParams values in the order of kStandardParamNames.
 // Output beta: kBaseParams values in the order of kBaseParamNames.
 void base_from_standard(const float* p_standard, float* beta) {
-  beta[0] = p_standard[10] + p_standard[19] + p_standard[33] + p_standard[47] + p_standard[5] + 0.0002608225f * p_standard[37] + 0.0002608225f * p_standard[51] + 0.011913722f * p_standard[65] + 0.011913722f * p_standard[79] + 0.018455222f * p_standard[23] + 0.0323f * p_standard[35] + 0.0323f * p_standard[49] + 0.2717f * p_standard[21];  // ZZ1R
+  beta[0] = p_standard[10] + p_standard[19] + p_standard[33] + p_standard[47] + p_standard[5] + 0.0002608225f * (p_standard[37] + p_standard[51]) + 0.011913722f * (p_standard[65] + p_standard[79]) + 0.018455222f * p_standard[23] + 0.0323f * (p_standard[35] + p_standard[49]) + 0.2717f * p_standard[21];  // ZZ1R
   beta[1] = p_standard[11];  // Fv1
   beta[2] = p_standard[12];  // Fc1
   beta[3] = p_standard[13];  // OFF1
@@ -98,9 +98,9 @@ void base_from_standard(const float* p_standard, float* beta) {
   beta[5] = p_standard[15];  // XY2
   beta[6] = p_standard[16];  // XZ2
   beta[7] = p_standard[17] + p_standard[24] + t0 + t1 + t2 + t3;  // YY2R
-  beta[8] = p_standard[18] - 0.425f * p_standard[35] - 0.425f * p_standard[49] + 0.0113475f * p_standard[65] + 0.0113475f * p_standard[79] + 0.0508725f * p_standard[37] + 0.0508725f * p_standard[51];  // YZ2R
+  beta[8] = p_standard[18] - 0.425f * (p_standard[35] + p_standard[49]) + 0.0113475f * (p_standard[65] + p_standard[79]) + 0.0508725f * (p_standard[37] + p_standard[51]);  // YZ2R
   beta[9] = p_standard[20];  // MX2
-  beta[10] = p_standard[22] + 0.425f * p_standard[37] + 0.425f * p_standard[51] + 0.425f * p_standard[65] + 0.425f * p_standard[79];  // MZ2R
+  beta[10] = p_standard[22] + 0.425f * (p_standard[37] + p_standard[51] + p_standard[65] + p_standard[79]);  // MZ2R
   beta[11] = p_standard[25];  // Fv2
   beta[12] = p_standard[26];  // Fc2
   beta[13] = p_standard[27];  // OFF2
@@ -111,9 +111,9 @@ void base_from_standard(const float* p_standard, float* beta) {
   beta[15] = p_standard[29];  // XY3
   beta[16] = p_standard[30];  // XZ3
   beta[17] = p_standard[31] + t4 + t5 + t6;  // YY3R
-  beta[18] = p_standard[32] - 0.39225f * p_standard[49] - 0.03647925f * p_standard[65] - 0.03647925f * p_standard[79];  // YZ3R
+  beta[18] = p_standard[32] - 0.39225f * p_standard[49] - 0.03647925f * (p_standard[65] + p_standard[79]);  // YZ3R
   beta[19] = p_standard[34];  // MX3
-  beta[20] = p_standard[36] + 0.39225f * p_standard[51] + 0.39225f * p_standard[65] + 0.39225f * p_standard[79];  // MZ3R
+  beta[20] = p_standard[36] + 0.39225f * (p_standard[51] + p_standard[65] + p_standard[79]);  // MZ3R
   beta[21] = p_standard[38];  // Ia3
   beta[22] = p_standard[39];  // Fv3
   beta[23] = p_standard[40];  // Fc3

@@ -11,6 +11,7 @@
 #include "generator/functions/build_context.hpp"
 #include "generator/functions/entry_points.hpp"
 #include "generator/functions/registry.hpp"
+#include "generator/symbolic/output_simplifier.hpp"
 
 namespace modelgen::gen {
 
@@ -35,11 +36,12 @@ void check_output_count(const Built& built, const ModelSizes& sizes) {
   }
 }
 
-// The builders of the chosen entry points, in registry order. Operand order depends on
+// The builders of the chosen entry points, in registry order, their outputs simplified
+// (exact zeros removed, sign-normal form: output_simplifier.hpp). Operand order depends on
 // structure only (ExprGraph), so a body is the same whichever builders ran before it.
 std::vector<Built> run_builders(const RobotModel& model, const BaseParameterSet& base,
                                 ExprGraph& graph, const std::vector<Scalar>& scalars,
-                                const std::vector<EntryPoint>& chosen) {
+                                const std::vector<EntryPoint>& chosen, ModelSizes& sizes) {
   BuildContext context{model, base, graph, make_symbolic_inputs(graph, model.tree), scalars};
   std::vector<Built> built;
   for (const FunctionEntry& entry : function_registry()) {
@@ -47,15 +49,37 @@ std::vector<Built> run_builders(const RobotModel& model, const BaseParameterSet&
                                     [&](const EntryPoint& p) { return p.entry == &entry; });
     if (wanted) built.push_back({&entry, entry.build(context)});
   }
-  const ModelSizes sizes{model.tree.dof, context.num_params(), context.num_base(),
-                         static_cast<int>(make_drive_parameters(graph, model.tree).theta.size())};
+  sizes = {model.tree.dof, context.num_params(), context.num_base(),
+           static_cast<int>(make_drive_parameters(graph, model.tree).theta.size())};
   for (const Built& b : built) check_output_count(b, sizes);
+  // After every builder: the simplifier probes the nodes that exist when it is made.
+  OutputSimplifier simplify(graph);
+  for (Built& b : built) {
+    for (FunctionOutput& output : b.definition.outputs) output.value = simplify(output.value);
+  }
   return built;
+}
+
+// The outputs that are the constant 0, which the statement writer leaves out, per array. The
+// builders write each array's entries in index order (row_major_outputs, vector_outputs).
+std::vector<UnwrittenEntries> unwritten_entries(const Built& built, const ExprGraph& graph,
+                                                const ModelSizes& sizes) {
+  std::vector<UnwrittenEntries> result;
+  std::size_t next = 0;
+  for (const ArraySpec& array : built.entry->outputs) {
+    UnwrittenEntries entries{array.name, array_size(array, sizes), {}};
+    if (built.definition.outputs_written_by_call) continue;
+    for (int k = 0; k < entries.total; ++k, ++next) {
+      if (graph.is_zero(built.definition.outputs[next].value)) entries.indices.push_back(k);
+    }
+    if (!entries.indices.empty()) result.push_back(std::move(entries));
+  }
+  return result;
 }
 
 // The entry point of `built` (plain or _sincos) with its statements for every scalar type.
 EmittedFunction emit(const Built& built, bool sincos, const ExprGraph& graph,
-                     const std::vector<Scalar>& scalars) {
+                     const std::vector<Scalar>& scalars, const ModelSizes& sizes) {
   EmittedFunction function;
   function.name = EntryPoint{built.entry, sincos}.name();
   function.entry = built.entry;
@@ -71,6 +95,7 @@ EmittedFunction emit(const Built& built, bool sincos, const ExprGraph& graph,
   }
   for (const ArraySpec& array : built.entry->outputs) function.outputs.push_back(array.name);
   const FunctionDefinition& definition = built.definition;
+  function.unwritten = unwritten_entries(built, graph, sizes);
   for (Scalar scalar : scalars) {
     FunctionBody body = write_statements(graph, definition.outputs, scalar,
                                          sincos ? TrigSource::kGiven : TrigSource::kCompute);
@@ -110,12 +135,13 @@ std::vector<EmittedFunction> emit_functions(const RobotModel& model, const BaseP
                                             const std::vector<std::string>& selection,
                                             std::vector<std::string>* added) {
   const std::vector<EntryPoint> chosen = select_entry_points(selection, with_estimate, added);
-  const std::vector<Built> built = run_builders(model, base, graph, scalars, chosen);
+  ModelSizes sizes;
+  const std::vector<Built> built = run_builders(model, base, graph, scalars, chosen, sizes);
   std::vector<EmittedFunction> functions;
   for (const EntryPoint& point : chosen) {
     const auto b = std::find_if(built.begin(), built.end(),
                                 [&](const Built& item) { return item.entry == point.entry; });
-    functions.push_back(emit(*b, point.sincos, graph, scalars));
+    functions.push_back(emit(*b, point.sincos, graph, scalars, sizes));
   }
   add_callee_counts(functions);
   return functions;

@@ -13,6 +13,14 @@
 
 namespace modelgen::gen {
 
+/// The entries of one output array that are zero for every input, which the function does not
+/// write (the caller zeroes the array once).
+struct UnwrittenEntries {
+  std::string array;
+  int total = 0;             ///< the array's size
+  std::vector<int> indices;  ///< ascending
+};
+
 struct EmittedFunction {
   std::string name;  ///< the entry point: the registry name, suffixed _sincos for a variant
   const FunctionEntry* entry = nullptr;
@@ -23,6 +31,7 @@ struct EmittedFunction {
   std::vector<std::string> calls;    ///< entry points the body calls, which come before it
   std::vector<FunctionBody> bodies;  ///< one per scalar type asked for, in that order
   OpCounts counts;                   ///< of the body, plus those of the entry points it calls
+  std::vector<UnwrittenEntries> unwritten;  ///< per output array with entries left unwritten
 };
 
 /// Every entry point in the order of the generated files: the sections in their order, each

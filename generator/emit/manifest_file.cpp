@@ -76,10 +76,17 @@ Json files(const RenderInput& in) {
 Json functions(const RenderInput& in) {
   Json list = Json::array();
   for (const EmittedFunction& f : in.functions) {
-    list.push_back(Json{{"name", f.name},
-                        {"mul", f.counts.mul},
-                        {"add", f.counts.add},
-                        {"sin_cos", f.counts.trig}});
+    Json entry{{"name", f.name},
+               {"mul", f.counts.mul},
+               {"add", f.counts.add},
+               {"sin_cos", f.counts.trig}};
+    // Entries zero for every input, which the function leaves to the caller's zeroed array.
+    if (!f.unwritten.empty()) {
+      Json unwritten = Json::object();
+      for (const UnwrittenEntries& entries : f.unwritten) unwritten[entries.array] = entries.indices;
+      entry["unwritten"] = unwritten;
+    }
+    list.push_back(entry);
   }
   return list;
 }

@@ -12,12 +12,18 @@ namespace {
 constexpr std::size_t kPrototypeWidth = 98;
 
 std::string documentation(const EmittedFunction& function) {
-  if (!function.sincos) {
-    return Printer(embedded_template(std::string("functions/") + function.entry->name)).render();
+  std::string text =
+      function.sincos
+          ? Printer(embedded_template("sincos_variant")).set("function", function.entry->name).render()
+          : Printer(embedded_template(std::string("functions/") + function.entry->name)).render();
+  for (const UnwrittenEntries& entries : function.unwritten) {
+    text += Printer(embedded_template("unwritten_entries"))
+                .set("array", entries.array)
+                .set("written", static_cast<long long>(entries.total - entries.indices.size()))
+                .set("total", static_cast<long long>(entries.total))
+                .render();
   }
-  return Printer(embedded_template("sincos_variant"))
-      .set("function", function.entry->name)
-      .render();
+  return text;
 }
 
 }  // namespace

@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 
 #include "generator/emit/printer.hpp"
 
@@ -39,6 +40,7 @@ class StatementWriter {
     count_uses(outputs);
     std::vector<std::string> body;
     for (const FunctionOutput& out : outputs) {
+      if (g_.is_zero(out.value)) continue;  // zero for every input: the caller zeroes it once
       prepare(out.value, body);
       const std::string value = expression(out.value, Context::kTop);
       if (out.comment.empty()) {
@@ -66,6 +68,17 @@ class StatementWriter {
            op == Op::kInv;
   }
 
+  // x for a negation -x (a product of -1 and one factor), else `id` itself. A negation is
+  // never a temporary: its uses count as uses of x, and each prints as a subtraction.
+  ExprId negated(ExprId id) const {
+    const Node& n = g_.node(id);
+    if (n.op == Op::kMul && n.args.size() == 2 && g_.is_constant(n.args[0]) &&
+        g_.constant_value(n.args[0]) == -1.0) {
+      return n.args[1];
+    }
+    return id;
+  }
+
   // A shared intermediate used once is printed as its expression.
   ExprId resolve(ExprId id) const {
     while (g_.node(id).op == Op::kShare && name_[id].empty()) id = g_.node(id).args[0];
@@ -75,9 +88,13 @@ class StatementWriter {
   void count_uses(const std::vector<FunctionOutput>& outputs) {
     std::vector<bool> visited(g_.size(), false);
     std::vector<ExprId> stack;
+    auto use = [&](ExprId id) {
+      id = negated(id);
+      ++uses_[id];
+      stack.push_back(id);
+    };
     for (const FunctionOutput& out : outputs) {
-      ++uses_[out.value];
-      stack.push_back(out.value);
+      if (!g_.is_zero(out.value)) use(out.value);
     }
     while (!stack.empty()) {
       const ExprId id = stack.back();
@@ -85,10 +102,9 @@ class StatementWriter {
       if (visited[id]) continue;
       visited[id] = true;
       for (ExprId arg : g_.node(id).args) {
-        ++uses_[arg];
+        use(arg);
         // A sign reads its argument twice ((x > 0) - (x < 0)): make it a temporary.
-        if (g_.node(id).op == Op::kSign) ++uses_[arg];
-        stack.push_back(arg);
+        if (g_.node(id).op == Op::kSign) ++uses_[negated(arg)];
       }
     }
   }
@@ -103,6 +119,10 @@ class StatementWriter {
       return;
     }
     if (!is_operation(id)) return;
+    if (negated(id) != id) {
+      prepare(negated(id), body);
+      return;
+    }
     for (ExprId arg : n.args) prepare(arg, body);
     if (n.op == Op::kSign) {
       name_[id] = "t" + std::to_string(temporaries_++);
@@ -182,7 +202,8 @@ class StatementWriter {
   // One term of a printed sum: its sign and its magnitude's text.
   struct Term {
     bool negative = false;
-    std::string magnitude;
+    double coefficient = 1.0;   // a literal factor of `rest`, printed in front of it
+    std::string rest;           // the term without its literal factor (or the literal alone)
     bool literal_sign = false;  // the sign can be folded into a numeric literal ("-2.0 * x")
   };
 
@@ -208,26 +229,70 @@ class StatementWriter {
     term.negative = negate;
     if (inline_node && n.op == Op::kConstant) {
       term.negative = (n.value < 0) != negate;
-      term.magnitude = format_literal(std::abs(n.value), scalar_);
+      term.rest = format_literal(std::abs(n.value), scalar_);
       term.literal_sign = true;
     } else if (inline_node && n.op == Op::kMul && g_.is_constant(n.args[0])) {
       const double c = coefficient(n);
       term.negative = (c < 0) != negate;
-      term.magnitude = product(n, std::abs(c));
+      term.coefficient = std::abs(c);
+      term.rest = product(n, 1.0);
       term.literal_sign = std::abs(c) != 1.0;
     } else {
-      term.magnitude = expression(id, Context::kTop);
+      term.rest = expression(id, Context::kTop);
     }
     terms.push_back(std::move(term));
   }
 
-  // A sum's text. It leads with a positive term where there is one (b - a, not -a + b), else
-  // with a negative literal; only a sum of negated names starts with a negation.
+  // Terms with one literal factor print it once: 0.035 * a - 0.035 * b * c becomes
+  // 0.035 * (a - b * c), one multiplication instead of two. The group takes the place of its
+  // first term; a group of only negative terms is negated as a whole.
+  void group_coefficients(std::vector<Term>& terms) {
+    std::map<double, std::vector<std::size_t>> groups;
+    for (std::size_t i = 0; i < terms.size(); ++i) {
+      if (terms[i].coefficient != 1.0) groups[terms[i].coefficient].push_back(i);
+    }
+    std::vector<bool> removed(terms.size(), false);
+    for (const auto& [c, members] : groups) {
+      if (members.size() < 2) continue;
+      std::vector<Term> inner;
+      bool all_negative = true;
+      for (std::size_t i : members) {
+        Term t = terms[i];
+        t.coefficient = 1.0;
+        t.literal_sign = false;
+        all_negative = all_negative && t.negative;
+        inner.push_back(std::move(t));
+      }
+      if (all_negative) {
+        for (Term& t : inner) t.negative = false;
+      }
+      Term group;
+      group.negative = all_negative;
+      group.coefficient = c;
+      group.rest = "(" + join(inner) + ")";
+      group.literal_sign = true;
+      terms[members.front()] = std::move(group);
+      for (std::size_t k = 1; k < members.size(); ++k) removed[members[k]] = true;
+    }
+    std::vector<Term> kept;
+    for (std::size_t i = 0; i < terms.size(); ++i) {
+      if (!removed[i]) kept.push_back(std::move(terms[i]));
+    }
+    terms = std::move(kept);
+  }
+
+  // One term's magnitude: its literal factor (one multiplication) and the rest.
+  std::string magnitude(const Term& t) {
+    if (t.coefficient == 1.0) return t.rest;
+    ++counts_.mul;
+    return format_literal(t.coefficient, scalar_) + " * " + t.rest;
+  }
+
+  // Terms joined into a sum. It leads with a positive term where there is one (b - a, not
+  // -a + b), else with a negative literal; only a sum of negated names starts with a negation.
   // Counting: each " + " or " - " is one addition; a leading "-" is a negation (one addition)
   // unless it is the sign of a numeric literal ("-2.0", "-0.5 * x"), which costs nothing.
-  std::string sum(ExprId id) {
-    std::vector<Term> terms;
-    collect_terms(id, false, terms);
+  std::string join(std::vector<Term> terms) {
     auto lead = std::find_if(terms.begin(), terms.end(), [](const Term& t) { return !t.negative; });
     if (lead == terms.end()) {
       lead = std::find_if(terms.begin(), terms.end(), [](const Term& t) { return t.literal_sign; });
@@ -239,13 +304,20 @@ class StatementWriter {
       const Term& t = terms[i];
       if (i == 0) {
         if (t.negative && !t.literal_sign) ++counts_.add;  // negation
-        out += t.negative ? "-" + t.magnitude : t.magnitude;
+        out += t.negative ? "-" + magnitude(t) : magnitude(t);
       } else {
         ++counts_.add;
-        out += (t.negative ? " - " : " + ") + t.magnitude;
+        out += (t.negative ? " - " : " + ") + magnitude(t);
       }
     }
     return out;
+  }
+
+  std::string sum(ExprId id) {
+    std::vector<Term> terms;
+    collect_terms(id, false, terms);
+    group_coefficients(terms);
+    return join(std::move(terms));
   }
 
   std::string expression(ExprId id, Context context) {
@@ -261,6 +333,14 @@ class StatementWriter {
       case Op::kSymbol: return g_.symbols()[n.symbol].name;
       case Op::kMul: {
         const double c = coefficient(n);
+        if (negated(id) != id) {
+          const ExprId inner = resolve(negated(id));
+          if (name_[inner].empty() && g_.node(inner).op == Op::kAdd) {
+            // -(a - b) prints as b - a: the negation costs nothing.
+            const std::string out = sum(id);
+            return context == Context::kFactor ? "(" + out + ")" : out;
+          }
+        }
         if (c == -1.0) {
           ++counts_.add;  // negation
           const std::string magnitude = product(n, 1.0);

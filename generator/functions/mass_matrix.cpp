@@ -2,7 +2,8 @@
 // tau = M(q) ddq + (velocity, gravity, friction and offset terms, none of which depends on ddq),
 // so M = d tau / d ddq of the Newton-Euler on the base parameters, taken at dq = 0 and without
 // gravity so that only the inertial terms are derived at all. Drive inertias (Ia, and the rotor
-// inertia of a motor driving several joints) are inertial terms and stay in M.
+// inertia of a motor driving several joints) are inertial terms and stay in M. Only the upper
+// triangle is derived; the lower one is the same values.
 
 #include <algorithm>
 
@@ -23,7 +24,10 @@ FunctionDefinition build_mass_matrix(BuildContext& context) {
   const std::vector<ExprId> tau = derive_inverse_dynamics(graph, without_gravity, at_rest);
   const std::vector<ExprId> M = jacobian(graph, tau, at_rest.ddq);
   const int n = context.dof();
-  return {row_major_outputs("M", n, n, [&](int i, int k) { return M[i * n + k]; })};
+  // M is symmetric, but the derivatives of the two triangles are different expressions of one
+  // value: the lower triangle takes the upper's, and is not computed a second time.
+  return {row_major_outputs("M", n, n,
+                            [&](int i, int k) { return M[std::min(i, k) * n + std::max(i, k)]; })};
 }
 
 }  // namespace modelgen::gen

@@ -63,7 +63,8 @@ TEST_F(GeneratedMassMatrix, EqualsTheReferenceOnRandomStates) {
   const int n = model::kDof, nb = model::kBaseParams;
   test::Random random(4242);
   std::vector<double> beta(nb), s(n), c(n);
-  RowMajor M(n, n), M_sincos(n, n), M_struct(n, n);
+  // Zeroed once: generated functions leave the entries that are zero for every input unwritten.
+  RowMajor M = RowMajor::Zero(n, n), M_sincos = M, M_struct = M;
   double worst = 0;
   for (int state = 0; state < kStates; ++state) {
     const Eigen::VectorXd q = random.vector(n, -3.2, 3.2);
@@ -90,7 +91,7 @@ TEST_F(GeneratedMassMatrix, IsSymmetricPositiveDefiniteAndFloatAgrees) {
   test::Random random(77);
   std::vector<double> beta(nb);
   std::vector<float> qf(n), betaf(nb), Mf(n * n);
-  RowMajor M(n, n);
+  RowMajor M = RowMajor::Zero(n, n);  // zeroed once: zero entries are not written
   for (int state = 0; state < 1000; ++state) {
     const Eigen::VectorXd q = random.vector(n, -3.2, 3.2);
     const Eigen::VectorXd p = test::random_physical_parameters(description_.tree, random);

@@ -73,7 +73,7 @@ class GeneratedStateJacobian : public testing::Test {
 
   RowMajor generated_jacobian(const Eigen::VectorXd& x, const std::vector<double>& beta) const {
     const int n = model::kDof;
-    RowMajor J(n, 3 * n);
+    RowMajor J = RowMajor::Zero(n, 3 * n);  // zero entries are not written
     model::inverse_dynamics_state_jacobian(x.data(), x.data() + n, x.data() + 2 * n, beta.data(),
                                            J.data());
     return J;

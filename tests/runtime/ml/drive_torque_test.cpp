@@ -182,7 +182,7 @@ class DriveTorque : public testing::Test {
   // d tau_M / d theta; `tau`, when not null, receives the torques the same call writes.
   RowMajor theta_jacobian(const Eigen::VectorXd& x, const Eigen::VectorXd& theta,
                           Eigen::VectorXd* tau = nullptr) const {
-    RowMajor J(n, m);
+    RowMajor J = RowMajor::Zero(n, m);  // zero entries are not written
     Eigen::VectorXd tau_M(n);
     Model::drive_torque_jacobian(x.data(), x.data() + n, x.data() + 2 * n, theta.data(),
                                  tau_M.data(), J.data());
@@ -191,7 +191,7 @@ class DriveTorque : public testing::Test {
   }
 
   RowMajor state_jacobian(const Eigen::VectorXd& x, const Eigen::VectorXd& theta) const {
-    RowMajor J(n, 3 * n);
+    RowMajor J = RowMajor::Zero(n, 3 * n);  // zero entries are not written
     Model::drive_torque_state_jacobian(x.data(), x.data() + n, x.data() + 2 * n, theta.data(),
                                        J.data());
     return J;
@@ -378,7 +378,7 @@ TYPED_TEST(DriveTorque, FloatJacobiansAgreeWithDouble) {
     const Eigen::VectorXd theta = this->random_theta(random);
     const Eigen::VectorXd x = this->smooth_state(random, theta, 1e-3);
     const Eigen::VectorXf xf = x.cast<float>(), thetaf = theta.cast<float>();
-    RowMajorF J(n, m), S(n, 3 * n);
+    RowMajorF J = RowMajorF::Zero(n, m), S = RowMajorF::Zero(n, 3 * n);  // zeros unwritten
     Eigen::VectorXf tau(n);
     TypeParam::drive_torque_jacobian_float(xf.data(), xf.data() + n, xf.data() + 2 * n,
                                            thetaf.data(), tau.data(), J.data());
@@ -490,7 +490,7 @@ TYPED_TEST(DriveTorque, StateJacobianEqualsJetDerivativesThroughTheRigidBodyJaco
     // Jacobian; eq. 7-10 are differentiated by the Jets.
     const Eigen::VectorXd p = this->standard(theta);
     Model::base_from_standard(p.data(), beta.data());
-    RowMajor dtau_G(n, 3 * n);
+    RowMajor dtau_G = RowMajor::Zero(n, 3 * n);  // zero entries are not written
     Model::inverse_dynamics_state_jacobian(x.data(), x.data() + n, x.data() + 2 * n, beta.data(),
                                            dtau_G.data());
     const Eigen::VectorXd tau_G_value =

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -142,6 +143,8 @@ class GeneratedDriveModel final : public DriveModel {
   }
   void torque_jacobian(Eigen::Index s, const double* theta, double* tau_M,
                        double* J) const override {
+    // The generated Jacobian leaves its entries that are zero for every input unwritten.
+    std::fill_n(J, Generated::kDof * Generated::kDriveParams, 0.0);
     Generated::drive_torque_jacobian(q_.col(s).data(), dq_.col(s).data(), ddq_.col(s).data(), theta,
                                      tau_M, J);
   }

@@ -4,6 +4,7 @@
 // same numbers; tests/model/identification_model_test.cpp checks it.
 #pragma once
 
+#include <algorithm>
 #include <memory>
 #include <optional>
 #include <string>
@@ -104,7 +105,11 @@ class ReferenceModel final : public IdentificationModel {
   std::vector<std::string> standard_, base_names_;
 };
 
-/// A generated model compiled in: GeneratedModel<modelgen::tx40::Model>.
+/// A generated model compiled in: GeneratedModel<modelgen::tx40::Model>. Generated functions
+/// leave the entries that are zero for every input unwritten (their callers zero the arrays
+/// once); this adapter keeps the interface's contract (every entry written) by zeroing each
+/// output first, one memset of the array per call. A loop that wants to avoid it calls the
+/// generated function directly on an array it zeroed once.
 template <class Generated>
 class GeneratedModel final : public IdentificationModel {
   static_assert(Generated::kFormatVersion == kGeneratedFormatVersion,
@@ -130,10 +135,12 @@ class GeneratedModel final : public IdentificationModel {
   const std::vector<std::string>& standard_param_names() const override { return standard_; }
   const std::vector<std::string>& base_param_names() const override { return base_; }
   void regressor(const double* q, const double* dq, const double* ddq, double* W) const override {
+    std::fill_n(W, Generated::kDof * Generated::kBaseParams, 0.0);
     Generated::idim_regressor(q, dq, ddq, W);
   }
   void power_regressor(const double* q, const double* dq, const double* ddq,
                        double* dh) const override {
+    std::fill_n(dh, Generated::kBaseParams, 0.0);
     Generated::power_regressor(q, dq, ddq, dh);
   }
   void inverse_dynamics(const double* q, const double* dq, const double* ddq, const double* beta,
@@ -141,6 +148,7 @@ class GeneratedModel final : public IdentificationModel {
     Generated::inverse_dynamics(q, dq, ddq, beta, tau);
   }
   void mass_matrix(const double* q, const double* beta, double* M) const override {
+    std::fill_n(M, Generated::kDof * Generated::kDof, 0.0);
     Generated::mass_matrix(q, beta, M);
   }
   void mass_matrix_and_bias(const double* q, const double* dq, const double* beta, double* M,
@@ -148,6 +156,7 @@ class GeneratedModel final : public IdentificationModel {
     if constexpr (requires { Generated::mass_matrix_sincos(q, q, q, beta, M); }) {
       double sin_q[Generated::kDof], cos_q[Generated::kDof], zero[Generated::kDof] = {};
       Generated::joint_sincos(q, sin_q, cos_q);
+      std::fill_n(M, Generated::kDof * Generated::kDof, 0.0);
       Generated::mass_matrix_sincos(q, sin_q, cos_q, beta, M);
       Generated::inverse_dynamics_sincos(q, sin_q, cos_q, dq, zero, beta, h);
     } else {
@@ -157,6 +166,7 @@ class GeneratedModel final : public IdentificationModel {
   void inverse_dynamics_state_jacobian(const double* q, const double* dq, const double* ddq,
                                        const double* beta, double* J) const override {
     if constexpr (requires { Generated::inverse_dynamics_state_jacobian(q, dq, ddq, beta, J); }) {
+      std::fill_n(J, 3 * Generated::kDof * Generated::kDof, 0.0);
       Generated::inverse_dynamics_state_jacobian(q, dq, ddq, beta, J);
     } else {
       IdentificationModel::inverse_dynamics_state_jacobian(q, dq, ddq, beta, J);

@@ -1,0 +1,269 @@
+// Post-order rewrite of the original nodes: each node's arguments are rewritten first, the node
+// rebuilt from them through ExprGraph's constructors (so a zero argument folds its parents),
+// then put in sign-normal form.
+
+#include "generator/symbolic/output_simplifier.hpp"
+
+#include <cmath>
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+
+namespace modelgen::gen {
+
+namespace {
+
+// Pseudo-random value in +-[0.3, 2] for an input name and probe: a function of the name alone
+// (FNV-1a, then splitmix64), so the generated code never depends on the order nodes are visited.
+double probe_input(const std::string& name, int probe) {
+  std::uint64_t h = 1469598103934665603ull;
+  for (char ch : name) h = (h ^ static_cast<unsigned char>(ch)) * 1099511628211ull;
+  h += 0x9e3779b97f4a7c15ull * static_cast<std::uint64_t>(probe + 1);
+  h = (h ^ (h >> 30)) * 0xbf58476d1ce4e5b9ull;
+  h = (h ^ (h >> 27)) * 0x94d049bb133111ebull;
+  h ^= h >> 31;
+  const double unit = static_cast<double>(h >> 11) * 0x1.0p-53;  // [0, 1)
+  const double magnitude = 0.3 + 1.7 * unit;
+  return (h & 1) ? -magnitude : magnitude;
+}
+
+}  // namespace
+
+OutputSimplifier::OutputSimplifier(ExprGraph& graph)
+    : graph_(graph),
+      original_size_(graph.size()),
+      forms_(graph),
+      done_(graph.size(), kNotDone),
+      value_(graph.size()),
+      magnitude_(graph.size()),
+      value_done_(graph.size(), false),
+      magnitude_done_(graph.size(), false) {}
+
+ExprId OutputSimplifier::operator()(ExprId id) {
+  if (id >= original_size_) {
+    throw std::logic_error("OutputSimplifier: node created after the simplifier");
+  }
+  return rewrite(id);
+}
+
+OutputSimplifier::Probe OutputSimplifier::leaf_value(const Symbol& symbol) const {
+  Probe out{};
+  for (int k = 0; k < kProbes; ++k) {
+    const double x = probe_input(symbol.kind == SymbolKind::kInput ? symbol.name : symbol.input, k);
+    switch (symbol.kind) {
+      case SymbolKind::kInput: out[k] = x; break;
+      case SymbolKind::kSin: out[k] = std::sin(x); break;
+      case SymbolKind::kCos: out[k] = std::cos(x); break;
+      case SymbolKind::kSign: out[k] = x > 0 ? 1.0 : -1.0; break;  // probes are never 0
+      case SymbolKind::kPositive: out[k] = x > 0 ? 1.0 : 0.0; break;
+      case SymbolKind::kNegative: out[k] = x < 0 ? 1.0 : 0.0; break;
+    }
+  }
+  return out;
+}
+
+const OutputSimplifier::Probe& OutputSimplifier::value(ExprId id) {
+  if (id >= value_.size()) {  // a node the rewrite made
+    value_.resize(graph_.size());
+    value_done_.resize(graph_.size(), false);
+  }
+  if (value_done_[id]) return value_[id];
+  const Node n = graph_.node(id);  // a copy: nothing here grows the graph, but stay safe
+  Probe out{};
+  switch (n.op) {
+    case Op::kConstant: out.fill(n.value); break;
+    case Op::kSymbol: out = leaf_value(graph_.symbols()[n.symbol]); break;
+    case Op::kAdd:
+      out.fill(0.0);
+      for (ExprId a : n.args) {
+        const Probe& v = value(a);
+        for (int k = 0; k < kProbes; ++k) out[k] += v[k];
+      }
+      break;
+    case Op::kMul:
+      out.fill(1.0);
+      for (ExprId a : n.args) {
+        const Probe& v = value(a);
+        for (int k = 0; k < kProbes; ++k) out[k] *= v[k];
+      }
+      break;
+    case Op::kShare: out = value(n.args[0]); break;
+    case Op::kSign: {
+      const Probe& v = value(n.args[0]);
+      for (int k = 0; k < kProbes; ++k) out[k] = v[k] > 0 ? 1.0 : (v[k] < 0 ? -1.0 : 0.0);
+      break;
+    }
+    case Op::kInv: {
+      const Probe& v = value(n.args[0]);
+      for (int k = 0; k < kProbes; ++k) out[k] = 1.0 / v[k];
+      break;
+    }
+  }
+  value_[id] = out;
+  value_done_[id] = true;
+  return value_[id];
+}
+
+const OutputSimplifier::Probe& OutputSimplifier::magnitude(ExprId id) {
+  if (id >= magnitude_.size()) {
+    magnitude_.resize(graph_.size());
+    magnitude_done_.resize(graph_.size(), false);
+  }
+  if (magnitude_done_[id]) return magnitude_[id];
+  const Node n = graph_.node(id);
+  Probe out{};
+  switch (n.op) {
+    case Op::kAdd:
+      out.fill(0.0);
+      for (ExprId a : n.args) {
+        const Probe& m = magnitude(a);
+        for (int k = 0; k < kProbes; ++k) out[k] += m[k];
+      }
+      break;
+    case Op::kMul:
+      out.fill(1.0);
+      for (ExprId a : n.args) {
+        const Probe& m = magnitude(a);
+        for (int k = 0; k < kProbes; ++k) out[k] *= m[k];
+      }
+      break;
+    case Op::kShare: out = magnitude(n.args[0]); break;
+    default: {  // leaves, signs and reciprocals: their own size
+      const Probe& v = value(id);
+      for (int k = 0; k < kProbes; ++k) out[k] = std::abs(v[k]);
+    }
+  }
+  magnitude_[id] = out;
+  magnitude_done_[id] = true;
+  return magnitude_[id];
+}
+
+bool OutputSimplifier::evaluates_to_zero(ExprId id, double tolerance) {
+  const Probe m = magnitude(id);  // copies: probing may grow the tables
+  const Probe v = value(id);
+  for (int k = 0; k < kProbes; ++k) {
+    if (!(std::abs(v[k]) <= tolerance * m[k])) return false;
+  }
+  return true;
+}
+
+ExprId OutputSimplifier::rewrite(ExprId id) {
+  if (done_[id] != kNotDone) return done_[id];
+  const Node n = graph_.node(id);  // a copy: rebuilding grows the graph
+  ExprId result = id;
+  switch (n.op) {
+    case Op::kConstant:
+    case Op::kSymbol: break;
+    case Op::kAdd: {
+      std::vector<ExprId> terms;
+      for (ExprId a : n.args) terms.push_back(rewrite(a));
+      drop_cancelling_pairs(terms);
+      const ExprId sum = graph_.add(std::move(terms));
+      // Only a sum can cancel: a product is zero only through a zero factor. The rebuilt sum
+      // is tested, as its terms may cancel only once theirs are rewritten.
+      result = graph_.node(sum).op == Op::kAdd && is_zero_sum(sum) ? graph_.zero()
+                                                                    : normal_form(sum);
+      break;
+    }
+    case Op::kMul: {
+      std::vector<ExprId> factors;
+      for (ExprId a : n.args) factors.push_back(rewrite(a));
+      result = normal_form(graph_.mul(std::move(factors)));
+      break;
+    }
+    case Op::kShare: result = graph_.share(rewrite(n.args[0])); break;
+    case Op::kSign: result = graph_.sign(rewrite(n.args[0])); break;
+    case Op::kInv: {
+      const ExprId divisor = rewrite(n.args[0]);
+      if (graph_.is_zero(divisor)) {
+        throw std::logic_error("OutputSimplifier: a divisor is identically zero");
+      }
+      result = graph_.inv(divisor);
+      break;
+    }
+  }
+  done_[id] = result;
+  return result;
+}
+
+bool OutputSimplifier::is_zero_sum(ExprId sum) {
+  if (!evaluates_to_zero(sum, 1e-9)) return false;
+  const std::optional<bool> zero = forms_.is_zero(sum);
+  if (zero.value_or(false)) {
+    ++exact_zeros_;
+    return true;
+  }
+  // Too deep to expand (the state Jacobians): round-off alone at every probe is taken as zero;
+  // a term it could hide is below 1e-13 of the sum's terms, under the 1e-12 the generated code
+  // is held to against the numeric reference.
+  if (!zero && evaluates_to_zero(sum, 1e-13)) {
+    ++numeric_zeros_;
+    return true;
+  }
+  return false;
+}
+
+void OutputSimplifier::drop_cancelling_pairs(std::vector<ExprId>& terms) {
+  if (terms.size() < 3) return;  // a sum of two that cancels is the whole sum
+  std::vector<bool> dropped(terms.size(), false);
+  for (std::size_t i = 0; i < terms.size(); ++i) {
+    for (std::size_t k = i + 1; k < terms.size() && !dropped[i]; ++k) {
+      if (dropped[k]) continue;
+      const Probe a = value(terms[i]);  // copies: probing may grow the tables
+      const Probe b = value(terms[k]);
+      bool opposite = true;
+      for (int p = 0; p < kProbes && opposite; ++p) {
+        opposite = std::abs(a[p] + b[p]) <= 1e-9 * (std::abs(a[p]) + std::abs(b[p]));
+      }
+      if (!opposite) continue;
+      const ExprId pair = graph_.add(terms[i], terms[k]);
+      if (graph_.is_zero(pair) || (graph_.node(pair).op == Op::kAdd && is_zero_sum(pair))) {
+        dropped[i] = dropped[k] = true;
+      }
+    }
+  }
+  std::vector<ExprId> kept;
+  for (std::size_t i = 0; i < terms.size(); ++i) {
+    if (!dropped[i]) kept.push_back(terms[i]);
+  }
+  terms = std::move(kept);
+}
+
+ExprId OutputSimplifier::normal_form(ExprId id) {
+  const Node n = graph_.node(id);
+  if (n.op == Op::kMul) {
+    const bool has_coefficient = graph_.is_constant(n.args[0]);
+    std::vector<ExprId> rest(n.args.begin() + (has_coefficient ? 1 : 0), n.args.end());
+    if (rest.size() < 2) return id;  // c x: one multiplication wherever it is used
+    const ExprId product = graph_.share(graph_.mul(std::move(rest)));
+    return has_coefficient ? graph_.mul(n.args[0], product) : product;
+  }
+  if (n.op == Op::kAdd) {
+    // The coefficient of the term whose base (the term without its constant coefficient)
+    // comes first canonically: the same base in s and -s, so both choose one representative.
+    // When every term has a coefficient of that magnitude, s = c (a + b - c ...) shares
+    // (a + b - c ...) and costs one multiplication instead of one per term.
+    ExprId first_base = 0;
+    double first = 0;
+    bool equal_magnitudes = true;
+    for (ExprId term : n.args) {
+      if (graph_.is_constant(term)) continue;
+      const Node& t = graph_.node(term);
+      const bool scaled = t.op == Op::kMul && graph_.is_constant(t.args[0]) && t.args.size() == 2;
+      const ExprId base = scaled ? t.args[1] : term;
+      const double coefficient = scaled ? graph_.constant_value(t.args[0]) : 1.0;
+      if (first != 0 && std::abs(coefficient) != std::abs(first)) equal_magnitudes = false;
+      if (first == 0 || graph_.canonical_before(base, first_base)) {
+        first_base = base;
+        first = coefficient;
+      }
+    }
+    const double factor = equal_magnitudes ? first : (first < 0 ? -1.0 : 1.0);
+    if (factor == 1.0) return graph_.share(id);
+    const ExprId unit = graph_.share(graph_.mul(graph_.constant(1.0 / factor), id));
+    return graph_.mul(graph_.constant(factor), unit);
+  }
+  return id;
+}
+
+}  // namespace modelgen::gen
