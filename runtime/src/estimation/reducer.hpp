@@ -1,6 +1,6 @@
 // Least squares through orthogonal factorizations only, never W^T W. Rows are reduced block by
 // block per group (TSQR): the factor R_g of [W_g y_g] is the Householder QR of the previous
-// factor stacked on the next rows, over the columns the group has seen nonzero. The Reducer
+// factor stacked on the next rows (fold_rows), over the columns the group has seen nonzero. The Reducer
 // holds the factors; LeastSquaresAccumulator, fit_ols, fit_wls and essential_parameters work
 // through it.
 #pragma once
@@ -19,10 +19,11 @@
 
 namespace modelgen::detail {
 
-// Rows gathered below a group's factor before a reduction: the factor's own rows (at most
-// b + 1) are then a small part of each QR, and the block still fits in the core's L2 cache.
-// 1024 measured fastest among 256..2048 for the TX-40 (tests/benchmarks/README.md).
-constexpr Eigen::Index kBlockRows = 1024;
+// Rows gathered below a group's factor before a reduction (fold_rows, which does not touch the
+// factor's zeros, so blocks need not be tall). 256 measured fastest among 128..1024 for the
+// TX-40 (tests/benchmarks/README.md): a buffer of (b + 257) x (b + 1) doubles stays under
+// malloc's mmap threshold, so it is reused rather than mapped and zeroed anew per call.
+constexpr Eigen::Index kBlockRows = 256;
 // A group's first block; blocks double up to kBlockRows, so small groups need little memory.
 constexpr Eigen::Index kFirstBlockRows = 32;
 
@@ -194,8 +195,8 @@ class Reducer {
   // Column k of W joins the group's factor (zero in the rows so far).
   void add_column(Group& g, int k);
 
-  // Householder QR in place of the factor stacked on the pending rows (Eigen's blocked
-  // HouseholderQR); R replaces the factor.
+  // Householder QR of the factor stacked on the pending rows (fold_rows, structured: the
+  // factor's zeros cost nothing); R replaces the factor, the pending rows are scratch.
   static void reduce(Group& g);
 
   int params_;
