@@ -7,8 +7,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdint>
-#include <cstring>
 #include <string>
 #include <utility>
 #include <vector>
@@ -100,12 +98,18 @@ class Reducer {
         squares += out[i] * out[i];
       }
       if constexpr (source == kRows) {
-        // The column maxima came with the scan for new columns (row_max_).
-        for (Eigen::Index i = 0; i < n; ++i) {
-          const double* r = access(done + i);
-          for (Eigen::Index p = 1; p < w; ++p) out[i + p * ld] = r[columns[p]];
+        // Column by column: the maximum stays in a register, and the rows' cache lines are
+        // reused across neighbouring columns.
+        for (Eigen::Index p = 1; p < w; ++p) {
+          double* column = out + p * ld;
+          const int k = columns[p];
+          double big = 0;
+          for (Eigen::Index i = 0; i < n; ++i) {
+            column[i] = access(done + i)[k];
+            big = std::max(big, std::abs(column[i]));
+          }
+          largest[p] = big;
         }
-        for (Eigen::Index p = 1; p < w; ++p) largest[p] = row_max_[columns[p]];
       } else {
         for (Eigen::Index p = 1; p < w; ++p) {
           double* column = out + p * ld;
@@ -152,38 +156,24 @@ class Reducer {
 
  private:
   // A column joins a group's factor when it is first nonzero in the group's rows; until then
-  // those rows are zero there. Any set bit but the sign is nonzero: NaN counts, so that it
-  // reaches the factor and is reported; -0.0 does not.
+  // those rows are zero there. NaN counts (it compares unequal to 0), so that it reaches the
+  // factor and is reported; -0.0 does not. Only the columns not yet in the factor are scanned,
+  // each up to its first nonzero: a structurally zero column costs one pass over the rows.
   template <Source source, class Access>
   void add_new_columns(Group& group, Eigen::Index done, Eigen::Index n, const Access& access) {
-    if constexpr (source == kRows) {
-      // Contiguous rows: one vectorized pass over every column, which also finds the column
-      // maxima (row_max_) for the gather.
-      bits_.assign(static_cast<std::size_t>(params_), 0);
-      row_max_.assign(static_cast<std::size_t>(params_), 0.0);
-      std::uint64_t* bits = bits_.data();
-      double* largest = row_max_.data();
+    if (group.width() == params_ + 1) return;
+    for (int k = 0; k < params_; ++k) {
+      if (group.position[static_cast<std::size_t>(k)] >= 0) continue;
       for (Eigen::Index i = 0; i < n; ++i) {
-        const double* r = access(done + i);
-        for (int k = 0; k < params_; ++k) {
-          std::uint64_t b;
-          std::memcpy(&b, r + k, sizeof b);
-          bits[k] |= b << 1;
-          largest[k] = std::max(largest[k], std::abs(r[k]));
+        double entry;
+        if constexpr (source == kRows) {
+          entry = access(done + i)[k];
+        } else {
+          entry = access(done + i, k);
         }
-      }
-      for (int k = 0; k < params_; ++k) {
-        if (bits[k] != 0 && group.position[static_cast<std::size_t>(k)] < 0) add_column(group, k);
-      }
-    } else {
-      if (group.width() == params_ + 1) return;
-      for (int k = 0; k < params_; ++k) {
-        if (group.position[static_cast<std::size_t>(k)] >= 0) continue;
-        for (Eigen::Index i = 0; i < n; ++i) {
-          if (access(done + i, k) != 0.0) {
-            add_column(group, k);
-            break;
-          }
+        if (entry != 0.0) {
+          add_column(group, k);
+          break;
         }
       }
     }
@@ -202,8 +192,6 @@ class Reducer {
   int params_;
   std::vector<Group> groups_;
   std::vector<std::string> labels_;
-  std::vector<std::uint64_t> bits_;  // scratch of add_new_columns()
-  std::vector<double> row_max_;      // scratch of add_new_columns()
   std::vector<double> largest_;      // scratch of append()
 };
 
