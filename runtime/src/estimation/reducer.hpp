@@ -7,6 +7,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <string>
 #include <utility>
 #include <vector>
@@ -98,18 +100,13 @@ class Reducer {
         squares += out[i] * out[i];
       }
       if constexpr (source == kRows) {
-        // Column by column: the maximum stays in a register, and the rows' cache lines are
-        // reused across neighbouring columns.
-        for (Eigen::Index p = 1; p < w; ++p) {
-          double* column = out + p * ld;
-          const int k = columns[p];
-          double big = 0;
-          for (Eigen::Index i = 0; i < n; ++i) {
-            column[i] = access(done + i)[k];
-            big = std::max(big, std::abs(column[i]));
-          }
-          largest[p] = big;
+        // Row by row (each row's entries share a few cache lines), then each column's maximum
+        // over the contiguous copy, on four running maxima to keep the latency chain short.
+        for (Eigen::Index i = 0; i < n; ++i) {
+          const double* r = access(done + i);
+          for (Eigen::Index p = 1; p < w; ++p) out[i + p * ld] = r[columns[p]];
         }
+        for (Eigen::Index p = 1; p < w; ++p) largest[p] = largest_magnitude(out + p * ld, n);
       } else {
         for (Eigen::Index p = 1; p < w; ++p) {
           double* column = out + p * ld;
@@ -157,11 +154,28 @@ class Reducer {
  private:
   // A column joins a group's factor when it is first nonzero in the group's rows; until then
   // those rows are zero there. NaN counts (it compares unequal to 0), so that it reaches the
-  // factor and is reported; -0.0 does not. Only the columns not yet in the factor are scanned,
-  // each up to its first nonzero: a structurally zero column costs one pass over the rows.
+  // factor and is reported; -0.0 does not. Only the columns not yet in the factor are
+  // examined: contiguous rows first in one pass that ORs their bits (any bit but the sign set
+  // means some nonzero), then, only if so, column by column up to the first nonzero.
   template <Source source, class Access>
   void add_new_columns(Group& group, Eigen::Index done, Eigen::Index n, const Access& access) {
     if (group.width() == params_ + 1) return;
+    if constexpr (source == kRows) {
+      absent_.clear();
+      for (int k = 0; k < params_; ++k) {
+        if (group.position[static_cast<std::size_t>(k)] < 0) absent_.push_back(k);
+      }
+      std::uint64_t bits = 0;
+      for (Eigen::Index i = 0; i < n; ++i) {
+        const double* r = access(done + i);
+        for (const int k : absent_) {
+          std::uint64_t b;
+          std::memcpy(&b, r + k, sizeof b);
+          bits |= b;
+        }
+      }
+      if ((bits << 1) == 0) return;
+    }
     for (int k = 0; k < params_; ++k) {
       if (group.position[static_cast<std::size_t>(k)] >= 0) continue;
       for (Eigen::Index i = 0; i < n; ++i) {
@@ -179,6 +193,20 @@ class Reducer {
     }
   }
 
+  // max |x_i| over n contiguous entries (NaN skipped, as std::max does).
+  static double largest_magnitude(const double* x, Eigen::Index n) {
+    double m0 = 0, m1 = 0, m2 = 0, m3 = 0;
+    Eigen::Index i = 0;
+    for (; i + 4 <= n; i += 4) {
+      m0 = std::max(m0, std::abs(x[i]));
+      m1 = std::max(m1, std::abs(x[i + 1]));
+      m2 = std::max(m2, std::abs(x[i + 2]));
+      m3 = std::max(m3, std::abs(x[i + 3]));
+    }
+    for (; i < n; ++i) m0 = std::max(m0, std::abs(x[i]));
+    return std::max(std::max(m0, m1), std::max(m2, m3));
+  }
+
   // A row buffer of `capacity` rows below the factor, pending rows kept.
   static void grow(Group& g, Eigen::Index capacity);
 
@@ -193,6 +221,7 @@ class Reducer {
   std::vector<Group> groups_;
   std::vector<std::string> labels_;
   std::vector<double> largest_;      // scratch of append()
+  std::vector<int> absent_;          // scratch of add_new_columns()
 };
 
 /// Every column index 0..b-1, ascending: a fit on all columns.
