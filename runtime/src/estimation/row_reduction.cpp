@@ -3,7 +3,7 @@
 // v = [e_k; u] with u in B's rows, so it changes row k of R and the columns of B only:
 // 2 m w^2 flops for m new rows, none spent on R's zeros (a dense QR of the stack spends
 // 2 (m + w) w^2). Reflectors are made four at a time (a panel, level-2 within it) and then
-// applied together to each later column: one pass over the column for the four dot products,
+// applied together to later columns, three at a time: one pass for the dot products,
 // one for the update (compact WY, Schreiber & Van Loan, with the small triangular factor
 // written out as the Gram matrix of the panel's u), so that each load and store of B serves
 // four reflections. Row chunks keep B's part and R in L1 between the passes.
@@ -170,11 +170,14 @@ __attribute__((always_inline)) inline void fold_chunk_body(double* R, std::ptrdi
       for (int b = 0; b < a; ++b) g[a][b] = dot(u[a], u[b], m, m4);
     }
     std::ptrdiff_t j = k + kPanel;
-    for (; j + 1 < w; j += 2) {
+    for (; j + 2 < w; j += 3) {
+      double* y[3] = {B + j * ldb, B + (j + 1) * ldb, B + (j + 2) * ldb};
+      reflect_panel<3>(u, tau, g, R, ldr, k, y, j, m, m4);
+    }
+    if (j + 1 < w) {
       double* y[2] = {B + j * ldb, B + (j + 1) * ldb};
       reflect_panel<2>(u, tau, g, R, ldr, k, y, j, m, m4);
-    }
-    if (j < w) {
+    } else if (j < w) {
       double* y[1] = {B + j * ldb};
       reflect_panel<1>(u, tau, g, R, ldr, k, y, j, m, m4);
     }
