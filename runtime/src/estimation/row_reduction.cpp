@@ -6,7 +6,7 @@
 // applied together to later columns, three at a time: one pass for the dot products,
 // one for the update (compact WY, Schreiber & Van Loan, with the small triangular factor
 // written out as the Gram matrix of the panel's u), so that each load and store of B serves
-// four reflections. Row chunks keep B's part and R in L1 between the passes.
+// four reflections (three columns: u loaded once for three).
 
 #include "runtime/src/estimation/row_reduction.hpp"
 
@@ -27,9 +27,10 @@ namespace modelgen::detail {
 
 namespace {
 
-// Rows of B folded per pass: a 64 x w chunk and the w x w triangle of R stay in a 32 KB L1
-// data cache for the TX-40's groups (w <= 39); 32 and 48 measured no faster.
-constexpr std::ptrdiff_t kChunkRows = 64;
+// Rows of B folded per pass. Within a pass the panel's four u columns and the columns being
+// updated (256 rows: 2 KB each) stay in L1 while B streams from L2; 64, 128, 256 and 512
+// measured within noise of each other, 256 (one full block of the Reducer) slightly fastest.
+constexpr std::ptrdiff_t kChunkRows = 256;
 // Reflectors applied together.
 constexpr int kPanel = 4;
 
@@ -147,7 +148,7 @@ __attribute__((always_inline)) inline void reflect_panel(const double* const* u,
 }
 
 // One chunk (m <= kChunkRows rows of B). Inlined into each clone with m a constant for full
-// chunks, so that the loops over rows unroll.
+// chunks (the compiler's choice of unrolling then sees the trip count).
 __attribute__((always_inline)) inline void fold_chunk_body(double* R, std::ptrdiff_t ldr,
                                                            double* B, std::ptrdiff_t ldb,
                                                            std::ptrdiff_t m, std::ptrdiff_t w) {

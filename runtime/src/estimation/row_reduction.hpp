@@ -11,7 +11,7 @@ namespace modelgen::detail {
 /// factor of [R; B] for B (m x w, column-major, leading dimension ldb); B is used as scratch
 /// and holds no meaning afterwards. R's strictly lower part is neither read nor written.
 /// The same reflections as a dense Householder QR of the stack (LAPACK dlarfg convention,
-/// diagonal of either sign), applied to B in row chunks that stay in the L1 cache.
+/// diagonal of either sign), applied to B in row chunks.
 /// NaN or infinity in B or R ends up in R.
 void fold_rows(double* R, std::ptrdiff_t ldr, double* B, std::ptrdiff_t ldb, std::ptrdiff_t m,
                std::ptrdiff_t w);
