@@ -100,13 +100,17 @@ class Reducer {
         squares += out[i] * out[i];
       }
       if constexpr (source == kRows) {
-        // Row by row (each row's entries share a few cache lines), then each column's maximum
-        // over the contiguous copy, on four running maxima to keep the latency chain short.
-        for (Eigen::Index i = 0; i < n; ++i) {
-          const double* r = access(done + i);
-          for (Eigen::Index p = 1; p < w; ++p) out[i + p * ld] = r[columns[p]];
+        // Column by column into contiguous stores (the rows' lines stay cached across
+        // neighbouring columns), then each column's maximum over the copy.
+        rows_.resize(static_cast<std::size_t>(n));
+        for (Eigen::Index i = 0; i < n; ++i) rows_[static_cast<std::size_t>(i)] = access(done + i);
+        const double* const* rows = rows_.data();
+        for (Eigen::Index p = 1; p < w; ++p) {
+          double* column = out + p * ld;
+          const int k = columns[p];
+          for (Eigen::Index i = 0; i < n; ++i) column[i] = rows[i][k];
+          largest[p] = largest_magnitude(column, n);
         }
-        for (Eigen::Index p = 1; p < w; ++p) largest[p] = largest_magnitude(out + p * ld, n);
       } else {
         for (Eigen::Index p = 1; p < w; ++p) {
           double* column = out + p * ld;
@@ -222,6 +226,7 @@ class Reducer {
   std::vector<std::string> labels_;
   std::vector<double> largest_;      // scratch of append()
   std::vector<int> absent_;          // scratch of add_new_columns()
+  std::vector<const double*> rows_;  // scratch of append()
 };
 
 /// Every column index 0..b-1, ascending: a fit on all columns.
