@@ -46,10 +46,10 @@ __attribute__((always_inline)) inline Lanes load(const double* p) {
   std::memcpy(&a, p, sizeof a);
   return a;
 }
-__attribute__((always_inline)) inline void store(double* p, Lanes a) {
+__attribute__((always_inline)) inline void store(double* p, const Lanes& a) {
   std::memcpy(p, &a, sizeof a);
 }
-__attribute__((always_inline)) inline double sum(Lanes a) { return (a[0] + a[1]) + (a[2] + a[3]); }
+__attribute__((always_inline)) inline double sum(const Lanes& a) { return (a[0] + a[1]) + (a[2] + a[3]); }
 __attribute__((always_inline)) inline Lanes splat(double x) { return Lanes{x, x, x, x}; }
 
 // u . y over m entries (m4 = m rounded down to a multiple of 4).
