@@ -1,8 +1,8 @@
 // Least squares through orthogonal factorizations only, never W^T W. Rows are reduced block by
 // block per group (TSQR): the factor R_g of [W_g y_g] is the Householder QR of the previous
-// factor stacked on the next rows (fold_rows), over the columns the group has seen nonzero. The Reducer
-// holds the factors; LeastSquaresAccumulator, fit_ols, fit_wls and essential_parameters work
-// through it.
+// factor stacked on the next rows (fold_rows), over the columns the group has seen nonzero.
+// The Reducer holds the factors; LeastSquaresAccumulator, fit_ols, fit_wls and
+// essential_parameters work through it.
 #pragma once
 
 #include <algorithm>
@@ -20,9 +20,9 @@
 namespace modelgen::detail {
 
 // Rows gathered below a group's factor before a reduction (fold_rows, which does not touch the
-// factor's zeros, so blocks need not be tall). 256 measured fastest among 128..1024 for the
-// TX-40 (tests/benchmarks/README.md): a buffer of (b + 257) x (b + 1) doubles stays under
-// malloc's mmap threshold, so it is reused rather than mapped and zeroed anew per call.
+// factor's zeros, so blocks need not be tall). For the TX-40 (tests/benchmarks/README.md) 256
+// and 512 measured alike, 128 and 1024 slower; at 256 a buffer of (b + 257) x (b + 1) doubles
+// stays under malloc's mmap threshold, so it is reused rather than mapped anew per call.
 constexpr Eigen::Index kBlockRows = 256;
 // A group's first block; blocks double up to kBlockRows, so small groups need little memory.
 constexpr Eigen::Index kFirstBlockRows = 32;

@@ -49,12 +49,14 @@ __attribute__((always_inline)) inline Lanes load(const double* p) {
 __attribute__((always_inline)) inline void store(double* p, const Lanes& a) {
   std::memcpy(p, &a, sizeof a);
 }
-__attribute__((always_inline)) inline double sum(const Lanes& a) { return (a[0] + a[1]) + (a[2] + a[3]); }
+__attribute__((always_inline)) inline double sum(const Lanes& a) {
+  return (a[0] + a[1]) + (a[2] + a[3]);
+}
 __attribute__((always_inline)) inline Lanes splat(double x) { return Lanes{x, x, x, x}; }
 
 // u . y over m entries (m4 = m rounded down to a multiple of 4).
-__attribute__((always_inline)) inline double dot(const double* u, const double* y,
-                                                 std::ptrdiff_t m, std::ptrdiff_t m4) {
+__attribute__((always_inline)) inline double dot(const double* u, const double* y, std::ptrdiff_t m,
+                                                 std::ptrdiff_t m4) {
   Lanes s0 = {0, 0, 0, 0}, s1 = s0;
   std::ptrdiff_t i = 0;
   for (; i + 8 <= m4; i += 8) {
@@ -86,8 +88,7 @@ __attribute__((always_inline)) inline double make_reflector(double& diagonal, do
 
 // H = I - tau v v^T on one column [top; y]: s = tau (top + u . y), top -= s, y -= s u.
 __attribute__((always_inline)) inline void reflect(const double* u, double tau, double& top,
-                                                   double* y, std::ptrdiff_t m,
-                                                   std::ptrdiff_t m4) {
+                                                   double* y, std::ptrdiff_t m, std::ptrdiff_t m4) {
   if (tau == 0) return;
   const double s = tau * (top + dot(u, y, m, m4));
   top -= s;
@@ -101,8 +102,7 @@ __attribute__((always_inline)) inline void reflect(const double* u, double tau, 
 // u_c . y - sum_{b<c} s_b g(c, b), so s_c = tau_c (R(k+c, j) + d_c - sum_{b<c} s_b g(c, b));
 // then y -= sum_c s_c u_c in one pass.
 template <int Cols>
-__attribute__((always_inline)) inline void reflect_panel(const double* const* u,
-                                                         const double* tau,
+__attribute__((always_inline)) inline void reflect_panel(const double* const* u, const double* tau,
                                                          const double (*g)[kPanel], double* R,
                                                          std::ptrdiff_t ldr, std::ptrdiff_t k,
                                                          double* const* y, std::ptrdiff_t j,
@@ -112,8 +112,7 @@ __attribute__((always_inline)) inline void reflect_panel(const double* const* u,
     for (int p = 0; p < kPanel; ++p) acc[c][p] = Lanes{0, 0, 0, 0};
   }
   for (std::ptrdiff_t i = 0; i < m4; i += 4) {
-    const Lanes u0 = load(u[0] + i), u1 = load(u[1] + i), u2 = load(u[2] + i),
-                u3 = load(u[3] + i);
+    const Lanes u0 = load(u[0] + i), u1 = load(u[1] + i), u2 = load(u[2] + i), u3 = load(u[3] + i);
     for (int c = 0; c < Cols; ++c) {
       const Lanes x = load(y[c] + i);
       acc[c][0] += u0 * x;
@@ -134,12 +133,11 @@ __attribute__((always_inline)) inline void reflect_panel(const double* const* u,
     }
   }
   for (int c = 0; c < Cols; ++c) {
-    const Lanes s0 = splat(s[c][0]), s1 = splat(s[c][1]), s2 = splat(s[c][2]),
-                s3 = splat(s[c][3]);
+    const Lanes s0 = splat(s[c][0]), s1 = splat(s[c][1]), s2 = splat(s[c][2]), s3 = splat(s[c][3]);
     double* x = y[c];
     for (std::ptrdiff_t i = 0; i < m4; i += 4) {
-      store(x + i, load(x + i) - s0 * load(u[0] + i) - s1 * load(u[1] + i) -
-                       s2 * load(u[2] + i) - s3 * load(u[3] + i));
+      store(x + i, load(x + i) - s0 * load(u[0] + i) - s1 * load(u[1] + i) - s2 * load(u[2] + i) -
+                       s3 * load(u[3] + i));
     }
     for (std::ptrdiff_t i = m4; i < m; ++i) {
       x[i] -= s[c][0] * u[0][i] + s[c][1] * u[1][i] + s[c][2] * u[2][i] + s[c][3] * u[3][i];
@@ -149,9 +147,9 @@ __attribute__((always_inline)) inline void reflect_panel(const double* const* u,
 
 // One chunk (m <= kChunkRows rows of B). Inlined into each clone with m a constant for full
 // chunks (the compiler's choice of unrolling then sees the trip count).
-__attribute__((always_inline)) inline void fold_chunk_body(double* R, std::ptrdiff_t ldr,
-                                                           double* B, std::ptrdiff_t ldb,
-                                                           std::ptrdiff_t m, std::ptrdiff_t w) {
+__attribute__((always_inline)) inline void fold_chunk_body(double* R, std::ptrdiff_t ldr, double* B,
+                                                           std::ptrdiff_t ldb, std::ptrdiff_t m,
+                                                           std::ptrdiff_t w) {
   const std::ptrdiff_t m4 = m - m % 4;
   for (std::ptrdiff_t k = 0; k < w; k += kPanel) {
     const std::ptrdiff_t width = std::min<std::ptrdiff_t>(kPanel, w - k);

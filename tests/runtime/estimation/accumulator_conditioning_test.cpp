@@ -86,7 +86,8 @@ Dense dense_wls(const Problem& p) {
     out.group_std_dev.push_back(sigma);
     for (Eigen::Index r : rows) weight[static_cast<std::size_t>(r)] = 1 / sigma;
   }
-  const Eigen::Map<const Eigen::VectorXd> w(weight.data(), static_cast<Eigen::Index>(weight.size()));
+  const Eigen::Map<const Eigen::VectorXd> w(weight.data(),
+                                            static_cast<Eigen::Index>(weight.size()));
   out.weighted_W = w.asDiagonal() * p.W;
   out.weighted_y = w.cwiseProduct(p.y);
   const Eigen::JacobiSVD<Eigen::MatrixXd> svd(out.weighted_W,
@@ -130,7 +131,8 @@ TEST(AccumulatorConditioning, IllConditionedWlsMatchesDenseSvd) {
   test::Random random(3);
   for (int g = 0; g < kGroups; ++g) {
     const std::vector<Eigen::Index>& m = members[static_cast<std::size_t>(g)];
-    const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> rows = p.W(m, Eigen::all);
+    const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> rows =
+        p.W(m, Eigen::all);
     const Eigen::VectorXd y = p.y(m);
     for (Eigen::Index start = 0; start < rows.rows();) {
       const Eigen::Index count = std::min<Eigen::Index>(

@@ -43,8 +43,7 @@ TEST(RowReduction, FactorHasTheGramMatrixOfTheStack) {
       const double scale = static_cast<double>(gram.cwiseAbs().maxCoeff());
       EXPECT_LT(static_cast<double>((RtR - gram).cwiseAbs().maxCoeff()), 1e-13 * scale)
           << "w " << w << ", m " << m;
-      EXPECT_EQ(R.triangularView<Eigen::StrictlyLower>().toDenseMatrix().cwiseAbs().maxCoeff(),
-                0.0)
+      EXPECT_EQ(R.triangularView<Eigen::StrictlyLower>().toDenseMatrix().cwiseAbs().maxCoeff(), 0.0)
           << "w " << w << ", m " << m;
     }
   }
