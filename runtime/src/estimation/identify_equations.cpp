@@ -67,7 +67,9 @@ void build_equations(const IdentificationModel& model, const std::vector<Traject
                      LeastSquaresAccumulator& equations, Progress& progress, bool caller) {
   const int n = model.dof(), nb = model.num_base_params();
   const Eigen::Index width = power ? nb : static_cast<Eigen::Index>(n) * nb;
-  std::vector<double> block(static_cast<std::size_t>(kChunkSamples * width));
+  // Zeroed once here and written by one function only (regressor or power_regressor): a
+  // generated regressor may store only its structurally nonzero entries.
+  std::vector<double> block(static_cast<std::size_t>(kChunkSamples * width), 0.0);
   std::vector<double> power_in(static_cast<std::size_t>(kChunkSamples));
   State state(n);
   for (const Piece& piece : pieces) {
@@ -117,7 +119,7 @@ DecimatedExperiment build_decimated(const IdentificationModel& model, const Traj
   Eigen::MatrixXd P(power ? m : 0, nb);
   Eigen::VectorXd p(power ? m : 0);
   State state(n);
-  std::vector<double> rows(static_cast<std::size_t>(n) * nb);
+  std::vector<double> rows(static_cast<std::size_t>(n) * nb, 0.0);  // zeroed once, as above
   for (Eigen::Index s = 0; s < m; ++s) {
     state.load(x, s);
     model.regressor(state.q(), state.dq(), state.ddq(), rows.data());

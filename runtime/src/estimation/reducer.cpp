@@ -3,7 +3,7 @@
 
 #include "runtime/src/estimation/reducer.hpp"
 
-#include <Eigen/QR>
+#include "runtime/src/estimation/row_reduction.hpp"
 
 namespace modelgen::detail {
 
@@ -81,10 +81,8 @@ void Reducer::add_column(Group& g, int k) {
 
 void Reducer::reduce(Group& g) {
   if (g.pending == 0) return;
-  const Eigen::Index w = g.width();
-  Eigen::Ref<Eigen::MatrixXd> stacked = g.S.topRows(w + g.pending);
-  const Eigen::HouseholderQR<Eigen::Ref<Eigen::MatrixXd>> qr(stacked);
-  g.S.topRows(w).triangularView<Eigen::StrictlyLower>().setZero();
+  const Eigen::Index w = g.width(), ld = g.S.rows();
+  fold_rows(g.S.data(), ld, g.S.data() + w, ld, g.pending, w);
   g.pending = 0;
 }
 

@@ -1,8 +1,8 @@
 // Least squares through orthogonal factorizations only, never W^T W. Rows are reduced block by
 // block per group (TSQR): the factor R_g of [W_g y_g] is the Householder QR of the previous
-// factor stacked on the next rows, over the columns the group has seen nonzero. The Reducer
-// holds the factors; LeastSquaresAccumulator, fit_ols, fit_wls and essential_parameters work
-// through it.
+// factor stacked on the next rows (fold_rows), over the columns the group has seen nonzero.
+// The Reducer holds the factors; LeastSquaresAccumulator, fit_ols, fit_wls and
+// essential_parameters work through it.
 #pragma once
 
 #include <algorithm>
@@ -19,10 +19,11 @@
 
 namespace modelgen::detail {
 
-// Rows gathered below a group's factor before a reduction: the factor's own rows (at most
-// b + 1) are then a small part of each QR, and the block still fits in the core's L2 cache.
-// 1024 measured fastest among 256..2048 for the TX-40 (tests/benchmarks/README.md).
-constexpr Eigen::Index kBlockRows = 1024;
+// Rows gathered below a group's factor before a reduction (fold_rows, which does not touch the
+// factor's zeros, so blocks need not be tall). For the TX-40 (tests/benchmarks/README.md) 256
+// and 512 measured alike, 128 and 1024 slower; at 256 a buffer of (b + 257) x (b + 1) doubles
+// stays under malloc's mmap threshold, so it is reused rather than mapped anew per call.
+constexpr Eigen::Index kBlockRows = 256;
 // A group's first block; blocks double up to kBlockRows, so small groups need little memory.
 constexpr Eigen::Index kFirstBlockRows = 32;
 
@@ -99,12 +100,17 @@ class Reducer {
         squares += out[i] * out[i];
       }
       if constexpr (source == kRows) {
-        // The column maxima came with the scan for new columns (row_max_).
-        for (Eigen::Index i = 0; i < n; ++i) {
-          const double* r = access(done + i);
-          for (Eigen::Index p = 1; p < w; ++p) out[i + p * ld] = r[columns[p]];
+        // Column by column into contiguous stores (the rows' lines stay cached across
+        // neighbouring columns), then each column's maximum over the copy.
+        rows_.resize(static_cast<std::size_t>(n));
+        for (Eigen::Index i = 0; i < n; ++i) rows_[static_cast<std::size_t>(i)] = access(done + i);
+        const double* const* rows = rows_.data();
+        for (Eigen::Index p = 1; p < w; ++p) {
+          double* column = out + p * ld;
+          const int k = columns[p];
+          for (Eigen::Index i = 0; i < n; ++i) column[i] = rows[i][k];
+          largest[p] = largest_magnitude(column, n);
         }
-        for (Eigen::Index p = 1; p < w; ++p) largest[p] = row_max_[columns[p]];
       } else {
         for (Eigen::Index p = 1; p < w; ++p) {
           double* column = out + p * ld;
@@ -151,41 +157,58 @@ class Reducer {
 
  private:
   // A column joins a group's factor when it is first nonzero in the group's rows; until then
-  // those rows are zero there. Any set bit but the sign is nonzero: NaN counts, so that it
-  // reaches the factor and is reported; -0.0 does not.
+  // those rows are zero there. NaN counts (it compares unequal to 0), so that it reaches the
+  // factor and is reported; -0.0 does not. Only the columns not yet in the factor are
+  // examined: contiguous rows first in one pass that ORs their bits (any bit but the sign set
+  // means some nonzero), then, only if so, column by column up to the first nonzero.
   template <Source source, class Access>
   void add_new_columns(Group& group, Eigen::Index done, Eigen::Index n, const Access& access) {
+    if (group.width() == params_ + 1) return;
     if constexpr (source == kRows) {
-      // Contiguous rows: one vectorized pass over every column, which also finds the column
-      // maxima (row_max_) for the gather.
-      bits_.assign(static_cast<std::size_t>(params_), 0);
-      row_max_.assign(static_cast<std::size_t>(params_), 0.0);
-      std::uint64_t* bits = bits_.data();
-      double* largest = row_max_.data();
+      absent_.clear();
+      for (int k = 0; k < params_; ++k) {
+        if (group.position[static_cast<std::size_t>(k)] < 0) absent_.push_back(k);
+      }
+      std::uint64_t bits = 0;
       for (Eigen::Index i = 0; i < n; ++i) {
         const double* r = access(done + i);
-        for (int k = 0; k < params_; ++k) {
+        for (const int k : absent_) {
           std::uint64_t b;
           std::memcpy(&b, r + k, sizeof b);
-          bits[k] |= b << 1;
-          largest[k] = std::max(largest[k], std::abs(r[k]));
+          bits |= b;
         }
       }
-      for (int k = 0; k < params_; ++k) {
-        if (bits[k] != 0 && group.position[static_cast<std::size_t>(k)] < 0) add_column(group, k);
-      }
-    } else {
-      if (group.width() == params_ + 1) return;
-      for (int k = 0; k < params_; ++k) {
-        if (group.position[static_cast<std::size_t>(k)] >= 0) continue;
-        for (Eigen::Index i = 0; i < n; ++i) {
-          if (access(done + i, k) != 0.0) {
-            add_column(group, k);
-            break;
-          }
+      if ((bits << 1) == 0) return;
+    }
+    for (int k = 0; k < params_; ++k) {
+      if (group.position[static_cast<std::size_t>(k)] >= 0) continue;
+      for (Eigen::Index i = 0; i < n; ++i) {
+        double entry;
+        if constexpr (source == kRows) {
+          entry = access(done + i)[k];
+        } else {
+          entry = access(done + i, k);
+        }
+        if (entry != 0.0) {
+          add_column(group, k);
+          break;
         }
       }
     }
+  }
+
+  // max |x_i| over n contiguous entries (NaN skipped, as std::max does).
+  static double largest_magnitude(const double* x, Eigen::Index n) {
+    double m0 = 0, m1 = 0, m2 = 0, m3 = 0;
+    Eigen::Index i = 0;
+    for (; i + 4 <= n; i += 4) {
+      m0 = std::max(m0, std::abs(x[i]));
+      m1 = std::max(m1, std::abs(x[i + 1]));
+      m2 = std::max(m2, std::abs(x[i + 2]));
+      m3 = std::max(m3, std::abs(x[i + 3]));
+    }
+    for (; i < n; ++i) m0 = std::max(m0, std::abs(x[i]));
+    return std::max(std::max(m0, m1), std::max(m2, m3));
   }
 
   // A row buffer of `capacity` rows below the factor, pending rows kept.
@@ -194,16 +217,16 @@ class Reducer {
   // Column k of W joins the group's factor (zero in the rows so far).
   void add_column(Group& g, int k);
 
-  // Householder QR in place of the factor stacked on the pending rows (Eigen's blocked
-  // HouseholderQR); R replaces the factor.
+  // Householder QR of the factor stacked on the pending rows (fold_rows, structured: the
+  // factor's zeros cost nothing); R replaces the factor, the pending rows are scratch.
   static void reduce(Group& g);
 
   int params_;
   std::vector<Group> groups_;
   std::vector<std::string> labels_;
-  std::vector<std::uint64_t> bits_;  // scratch of add_new_columns()
-  std::vector<double> row_max_;      // scratch of add_new_columns()
   std::vector<double> largest_;      // scratch of append()
+  std::vector<int> absent_;          // scratch of add_new_columns()
+  std::vector<const double*> rows_;  // scratch of append()
 };
 
 /// Every column index 0..b-1, ascending: a fit on all columns.
