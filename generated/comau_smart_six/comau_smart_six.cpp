@@ -3,27 +3,30 @@
 // Input SHA-256: ee4f6f7c889285e256804be82accad1ba27e9d6891f8737bb0fed1b88f13d161
 // The generated code belongs to the owner of the robot description.
 //
-// Function                              mul    add  sin/cos
-// idim_regressor_standard               657    508       10
-// inverse_dynamics_standard             478    378       10
-// joint_sincos                            0      0       12
-// idim_regressor_standard_sincos        657    508        0
-// inverse_dynamics_standard_sincos      478    378        0
-// base_from_standard                     44     74        0
-// idim_regressor                        530    406       10
-// inverse_dynamics                      373    285       10
-// mass_matrix                           470    364       10
-// idim_regressor_sincos                 530    406        0
-// inverse_dynamics_sincos               373    285        0
-// mass_matrix_sincos                    470    364        0
-// inverse_dynamics_state_jacobian      2744   2362       10
-// energy_regressor                      125     54       10
-// power_regressor                       337    166       10
-// energy_regressor_sincos               125     54        0
-// power_regressor_sincos                337    166        0
-// drive_torque                          496    384       10
-// drive_torque_jacobian                1575    970       10
-// drive_torque_state_jacobian          3305   2751       20
+// Function                                   mul    add  sin/cos
+// idim_regressor_standard                    657    508       10
+// inverse_dynamics_standard                  478    378       10
+// joint_sincos                                 0      0       12
+// idim_regressor_standard_sincos             657    508        0
+// inverse_dynamics_standard_sincos           478    378        0
+// base_from_standard                          44     74        0
+// idim_regressor                             530    406       10
+// inverse_dynamics                           373    285       10
+// mass_matrix                                470    364       10
+// idim_regressor_sincos                      530    406        0
+// inverse_dynamics_sincos                    373    285        0
+// mass_matrix_sincos                         470    364        0
+// inverse_dynamics_state_jacobian           2744   2362       10
+// energy_regressor                           125     54       10
+// power_regressor                            337    166       10
+// energy_regressor_sincos                    125     54        0
+// power_regressor_sincos                     337    166        0
+// drive_torque                               496    384       10
+// drive_torque_jacobian                     1575    970       10
+// drive_torque_state_jacobian               3305   2751       20
+// drive_regressor                            657    508       10
+// drive_torque_given_regressor               304    274        0
+// drive_torque_jacobian_given_regressor      566    286        0
 #include "comau_smart_six.hpp"
 
 namespace modelgen {

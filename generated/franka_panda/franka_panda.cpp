@@ -3,27 +3,30 @@
 // Input SHA-256: 63792d2679f22c4e41cda2c4d9d903644e628970ad0656b9eec8485113941555
 // The generated code belongs to the owner of the robot description.
 //
-// Function                              mul    add  sin/cos
-// idim_regressor_standard              1522   1150       12
-// inverse_dynamics_standard             714    558       12
-// joint_sincos                            0      0       18
-// idim_regressor_standard_sincos       1522   1150        0
-// inverse_dynamics_standard_sincos      714    558        0
-// base_from_standard                     56    105        0
-// idim_regressor                       1218    918       12
-// inverse_dynamics                      604    461       12
-// mass_matrix                          1446   1052       12
-// idim_regressor_sincos                1218    918        0
-// inverse_dynamics_sincos               604    461        0
-// mass_matrix_sincos                   1446   1052        0
-// inverse_dynamics_state_jacobian      8067   6314       12
-// energy_regressor                      219    120       12
-// power_regressor                       511    299       12
-// energy_regressor_sincos               219    120        0
-// power_regressor_sincos                511    299        0
-// drive_torque                          777    576       12
-// drive_torque_jacobian                3259   2023       12
-// drive_torque_state_jacobian          9024   6925       24
+// Function                                   mul    add  sin/cos
+// idim_regressor_standard                   1522   1150       12
+// inverse_dynamics_standard                  714    558       12
+// joint_sincos                                 0      0       18
+// idim_regressor_standard_sincos            1522   1150        0
+// inverse_dynamics_standard_sincos           714    558        0
+// base_from_standard                          56    105        0
+// idim_regressor                            1218    918       12
+// inverse_dynamics                           604    461       12
+// mass_matrix                               1446   1052       12
+// idim_regressor_sincos                     1218    918        0
+// inverse_dynamics_sincos                    604    461        0
+// mass_matrix_sincos                        1446   1052        0
+// inverse_dynamics_state_jacobian           8067   6314       12
+// energy_regressor                           219    120       12
+// power_regressor                            511    299       12
+// energy_regressor_sincos                    219    120        0
+// power_regressor_sincos                     511    299        0
+// drive_torque                               777    576       12
+// drive_torque_jacobian                     3259   2023       12
+// drive_torque_state_jacobian               9024   6925       24
+// drive_regressor                           1522   1150       12
+// drive_torque_given_regressor               492    447        0
+// drive_torque_jacobian_given_regressor      921    465        0
 #include "franka_panda.hpp"
 
 namespace modelgen {

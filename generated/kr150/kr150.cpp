@@ -3,27 +3,30 @@
 // Input SHA-256: 1c4837146f484cb7efe5fd3e090ce53bed25e0a1be72f4464282b41a70849232
 // The generated code belongs to the owner of the robot description.
 //
-// Function                              mul    add  sin/cos
-// idim_regressor_standard               685    550       10
-// inverse_dynamics_standard             496    394       10
-// joint_sincos                            0      0       12
-// idim_regressor_standard_sincos        685    550        0
-// inverse_dynamics_standard_sincos      496    394        0
-// base_from_standard                     49     81        0
-// idim_regressor                        477    375       10
-// inverse_dynamics                      379    293       10
-// mass_matrix                           419    356       10
-// idim_regressor_sincos                 477    375        0
-// inverse_dynamics_sincos               379    293        0
-// mass_matrix_sincos                    419    356        0
-// inverse_dynamics_state_jacobian      2606   2353       10
-// energy_regressor                      132     55       10
-// power_regressor                       325    164       10
-// energy_regressor_sincos               132     55        0
-// power_regressor_sincos                325    164        0
-// drive_torque                          517    400       10
-// drive_torque_jacobian                1822   1231       10
-// drive_torque_state_jacobian          3244   2823       20
+// Function                                   mul    add  sin/cos
+// idim_regressor_standard                    685    550       10
+// inverse_dynamics_standard                  496    394       10
+// joint_sincos                                 0      0       12
+// idim_regressor_standard_sincos             685    550        0
+// inverse_dynamics_standard_sincos           496    394        0
+// base_from_standard                          49     81        0
+// idim_regressor                             477    375       10
+// inverse_dynamics                           379    293       10
+// mass_matrix                                419    356       10
+// idim_regressor_sincos                      477    375        0
+// inverse_dynamics_sincos                    379    293        0
+// mass_matrix_sincos                         419    356        0
+// inverse_dynamics_state_jacobian           2606   2353       10
+// energy_regressor                           132     55       10
+// power_regressor                            325    164       10
+// energy_regressor_sincos                    132     55        0
+// power_regressor_sincos                     325    164        0
+// drive_torque                               517    400       10
+// drive_torque_jacobian                     1822   1231       10
+// drive_torque_state_jacobian               3244   2823       20
+// drive_regressor                            750    615       10
+// drive_torque_given_regressor               306    276        0
+// drive_torque_jacobian_given_regressor      570    288        0
 #include "kr150.hpp"
 
 namespace modelgen {

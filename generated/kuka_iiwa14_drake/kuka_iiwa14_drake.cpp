@@ -3,27 +3,30 @@
 // Input SHA-256: e9f934b402dc71dcd3de1f216272250ece58e755e59c0d64b48121c2bc8b1f6f
 // The generated code belongs to the owner of the robot description.
 //
-// Function                              mul    add  sin/cos
-// idim_regressor_standard              1007    713       12
-// inverse_dynamics_standard             484    379       12
-// joint_sincos                            0      0       14
-// idim_regressor_standard_sincos       1007    713        0
-// inverse_dynamics_standard_sincos      484    379        0
-// base_from_standard                     23     59        0
-// idim_regressor                        798    564       12
-// inverse_dynamics                      422    324       12
-// mass_matrix                           750    554       12
-// idim_regressor_sincos                 798    564        0
-// inverse_dynamics_sincos               422    324        0
-// mass_matrix_sincos                    750    554        0
-// inverse_dynamics_state_jacobian      4349   3543       12
-// energy_regressor                      148     60       12
-// power_regressor                       378    191       12
-// energy_regressor_sincos               148     60        0
-// power_regressor_sincos                378    191        0
-// drive_torque                          533    393       12
-// drive_torque_jacobian                2078   1252       12
-// drive_torque_state_jacobian          4983   3961       24
+// Function                                   mul    add  sin/cos
+// idim_regressor_standard                   1007    713       12
+// inverse_dynamics_standard                  484    379       12
+// joint_sincos                                 0      0       14
+// idim_regressor_standard_sincos            1007    713        0
+// inverse_dynamics_standard_sincos           484    379        0
+// base_from_standard                          23     59        0
+// idim_regressor                             798    564       12
+// inverse_dynamics                           422    324       12
+// mass_matrix                                750    554       12
+// idim_regressor_sincos                      798    564        0
+// inverse_dynamics_sincos                    422    324        0
+// mass_matrix_sincos                         750    554        0
+// inverse_dynamics_state_jacobian           4349   3543       12
+// energy_regressor                           148     60       12
+// power_regressor                            378    191       12
+// energy_regressor_sincos                    148     60        0
+// power_regressor_sincos                     378    191        0
+// drive_torque                               533    393       12
+// drive_torque_jacobian                     2078   1252       12
+// drive_torque_state_jacobian               4983   3961       24
+// drive_regressor                           1007    713       12
+// drive_torque_given_regressor               323    288        0
+// drive_torque_jacobian_given_regressor      597    302        0
 #include "kuka_iiwa14_drake.hpp"
 
 namespace modelgen {

@@ -3,27 +3,30 @@
 // Input SHA-256: de5a482507ed6e873e2616c284e9729f8dd74ced6c3a006f53fa0e11dc70e382
 // The generated code belongs to the owner of the robot description.
 //
-// Function                              mul    add  sin/cos
-// idim_regressor_standard               614    481       10
-// inverse_dynamics_standard             419    327       10
-// joint_sincos                            0      0       12
-// idim_regressor_standard_sincos        614    481        0
-// inverse_dynamics_standard_sincos      419    327        0
-// base_from_standard                     37     75        0
-// idim_regressor                        490    379       10
-// inverse_dynamics                      365    279       10
-// mass_matrix                           430    361       10
-// idim_regressor_sincos                 490    379        0
-// inverse_dynamics_sincos               365    279        0
-// mass_matrix_sincos                    430    361        0
-// inverse_dynamics_state_jacobian      2816   2474       10
-// energy_regressor                      127     51       10
-// power_regressor                       317    159       10
-// energy_regressor_sincos               127     51        0
-// power_regressor_sincos                317    159        0
-// drive_torque                          461    339       10
-// drive_torque_jacobian                1412    883       10
-// drive_torque_state_jacobian          3362   2858       20
+// Function                                   mul    add  sin/cos
+// idim_regressor_standard                    614    481       10
+// inverse_dynamics_standard                  419    327       10
+// joint_sincos                                 0      0       12
+// idim_regressor_standard_sincos             614    481        0
+// inverse_dynamics_standard_sincos           419    327        0
+// base_from_standard                          37     75        0
+// idim_regressor                             490    379       10
+// inverse_dynamics                           365    279       10
+// mass_matrix                                430    361       10
+// idim_regressor_sincos                      490    379        0
+// inverse_dynamics_sincos                    365    279        0
+// mass_matrix_sincos                         430    361        0
+// inverse_dynamics_state_jacobian           2816   2474       10
+// energy_regressor                           127     51       10
+// power_regressor                            317    159       10
+// energy_regressor_sincos                    127     51        0
+// power_regressor_sincos                     317    159        0
+// drive_torque                               461    339       10
+// drive_torque_jacobian                     1412    883       10
+// drive_torque_state_jacobian               3362   2858       20
+// drive_regressor                            614    481       10
+// drive_torque_given_regressor               250    220        0
+// drive_torque_jacobian_given_regressor      458    232        0
 #include "kuka_kr150_2.hpp"
 
 namespace modelgen {

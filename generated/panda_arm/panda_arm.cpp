@@ -3,27 +3,30 @@
 // Input SHA-256: 34cec84491d57075fac203949931c596055ce9bd67a2638ffa101c4ea0fd3fed
 // The generated code belongs to the owner of the robot description.
 //
-// Function                              mul    add  sin/cos
-// idim_regressor_standard              1117    833       12
-// inverse_dynamics_standard             538    432       12
-// joint_sincos                            0      0       14
-// idim_regressor_standard_sincos       1117    833        0
-// inverse_dynamics_standard_sincos      538    432        0
-// base_from_standard                     61    106        0
-// idim_regressor                        800    586       12
-// inverse_dynamics                      415    326       12
-// mass_matrix                           775    568       12
-// idim_regressor_sincos                 800    586        0
-// inverse_dynamics_sincos               415    326        0
-// mass_matrix_sincos                    775    568        0
-// inverse_dynamics_state_jacobian      4325   3606       12
-// energy_regressor                      141     63       12
-// power_regressor                       385    197       12
-// energy_regressor_sincos               141     63        0
-// power_regressor_sincos                385    197        0
-// drive_torque                          594    453       12
-// drive_torque_jacobian                2328   1442       12
-// drive_torque_state_jacobian          4990   4073       24
+// Function                                   mul    add  sin/cos
+// idim_regressor_standard                   1117    833       12
+// inverse_dynamics_standard                  538    432       12
+// joint_sincos                                 0      0       14
+// idim_regressor_standard_sincos            1117    833        0
+// inverse_dynamics_standard_sincos           538    432        0
+// base_from_standard                          61    106        0
+// idim_regressor                             800    586       12
+// inverse_dynamics                           415    326       12
+// mass_matrix                                775    568       12
+// idim_regressor_sincos                      800    586        0
+// inverse_dynamics_sincos                    415    326        0
+// mass_matrix_sincos                         775    568        0
+// inverse_dynamics_state_jacobian           4325   3606       12
+// energy_regressor                           141     63       12
+// power_regressor                            385    197       12
+// energy_regressor_sincos                    141     63        0
+// power_regressor_sincos                     385    197        0
+// drive_torque                               594    453       12
+// drive_torque_jacobian                     2328   1442       12
+// drive_torque_state_jacobian               4990   4073       24
+// drive_regressor                           1117    833       12
+// drive_torque_given_regressor               392    357        0
+// drive_torque_jacobian_given_regressor      735    371        0
 #include "panda_arm.hpp"
 
 namespace modelgen {

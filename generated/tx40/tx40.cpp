@@ -3,27 +3,30 @@
 // Input SHA-256: 8a2f905d78aeaa2a733324532df16a3f3b000f2d2ef68a724a12c92f21ed3654
 // The generated code belongs to the owner of the robot description.
 //
-// Function                              mul    add  sin/cos
-// idim_regressor_standard               585    459       10
-// inverse_dynamics_standard             441    367       10
-// joint_sincos                            0      0       12
-// idim_regressor_standard_sincos        585    459        0
-// inverse_dynamics_standard_sincos      441    367        0
-// base_from_standard                     32     70        0
-// idim_regressor                        468    362       10
-// inverse_dynamics                      338    276       10
-// mass_matrix                           425    333       10
-// idim_regressor_sincos                 468    362        0
-// inverse_dynamics_sincos               338    276        0
-// mass_matrix_sincos                    425    333        0
-// inverse_dynamics_state_jacobian      2588   2313       10
-// energy_regressor                      126     51       10
-// power_regressor                       318    159       10
-// energy_regressor_sincos               126     51        0
-// power_regressor_sincos                318    159        0
-// drive_torque                          501    374       10
-// drive_torque_jacobian                2029    995       10
-// drive_torque_state_jacobian          3244   2711       20
+// Function                                   mul    add  sin/cos
+// idim_regressor_standard                    585    459       10
+// inverse_dynamics_standard                  441    367       10
+// joint_sincos                                 0      0       12
+// idim_regressor_standard_sincos             585    459        0
+// inverse_dynamics_standard_sincos           441    367        0
+// base_from_standard                          32     70        0
+// idim_regressor                             468    362       10
+// inverse_dynamics                           338    276       10
+// mass_matrix                                425    333       10
+// idim_regressor_sincos                      468    362        0
+// inverse_dynamics_sincos                    338    276        0
+// mass_matrix_sincos                         425    333        0
+// inverse_dynamics_state_jacobian           2588   2313       10
+// energy_regressor                           126     51       10
+// power_regressor                            318    159       10
+// energy_regressor_sincos                    126     51        0
+// power_regressor_sincos                     318    159        0
+// drive_torque                               501    374       10
+// drive_torque_jacobian                     2029    995       10
+// drive_torque_state_jacobian               3244   2711       20
+// drive_regressor                            855    478       10
+// drive_torque_given_regressor               300    270        0
+// drive_torque_jacobian_given_regressor      558    282        0
 #include "tx40.hpp"
 
 namespace modelgen {

@@ -3,27 +3,30 @@
 // Input SHA-256: 21a125fe2f6a18d2d94caba5026df3c58b4248084a3d33d33763da6fb6b232ca
 // The generated code belongs to the owner of the robot description.
 //
-// Function                              mul    add  sin/cos
-// idim_regressor_standard               577    446       10
-// inverse_dynamics_standard             434    347       10
-// joint_sincos                            0      0       12
-// idim_regressor_standard_sincos        577    446        0
-// inverse_dynamics_standard_sincos      434    347        0
-// base_from_standard                     36     60        0
-// idim_regressor                        454    351       10
-// inverse_dynamics                      378    296       10
-// mass_matrix                           420    348       10
-// idim_regressor_sincos                 454    351        0
-// inverse_dynamics_sincos               378    296        0
-// mass_matrix_sincos                    420    348        0
-// inverse_dynamics_state_jacobian      2707   2409       10
-// energy_regressor                      133     59       10
-// power_regressor                       338    175       10
-// energy_regressor_sincos               133     59        0
-// power_regressor_sincos                338    175        0
-// drive_torque                          476    359       10
-// drive_torque_jacobian                1375    848       10
-// drive_torque_state_jacobian          3265   2795       20
+// Function                                   mul    add  sin/cos
+// idim_regressor_standard                    577    446       10
+// inverse_dynamics_standard                  434    347       10
+// joint_sincos                                 0      0       12
+// idim_regressor_standard_sincos             577    446        0
+// inverse_dynamics_standard_sincos           434    347        0
+// base_from_standard                          36     60        0
+// idim_regressor                             454    351       10
+// inverse_dynamics                           378    296       10
+// mass_matrix                                420    348       10
+// idim_regressor_sincos                      454    351        0
+// inverse_dynamics_sincos                    378    296        0
+// mass_matrix_sincos                         420    348        0
+// inverse_dynamics_state_jacobian           2707   2409       10
+// energy_regressor                           133     59       10
+// power_regressor                            338    175       10
+// energy_regressor_sincos                    133     59        0
+// power_regressor_sincos                     338    175        0
+// drive_torque                               476    359       10
+// drive_torque_jacobian                     1375    848       10
+// drive_torque_state_jacobian               3265   2795       20
+// drive_regressor                            577    446       10
+// drive_torque_given_regressor               249    219        0
+// drive_torque_jacobian_given_regressor      456    231        0
 #include "ur5.hpp"
 
 namespace modelgen {

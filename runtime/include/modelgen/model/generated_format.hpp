@@ -6,6 +6,6 @@
 
 namespace modelgen {
 
-constexpr int kGeneratedFormatVersion = 3;
+constexpr int kGeneratedFormatVersion = 4;
 
 }  // namespace modelgen
