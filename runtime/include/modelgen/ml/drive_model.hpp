@@ -163,6 +163,9 @@ class GeneratedDriveModel final : public DriveModel {
   }
   void torque_jacobian(Eigen::Index s, const double* theta, double* tau_M,
                        double* J) const override {
+    // The generated function writes every entry of J, its structural zeros too (checked on
+    // NaN-filled buffers by generated_drive_model_test); were it to skip them, J would have to be
+    // zeroed here.
     Generated::drive_torque_jacobian_given_regressor(regressor(s), theta, tau_M, J);
   }
 
