@@ -3,27 +3,30 @@
 // Input SHA-256: 63792d2679f22c4e41cda2c4d9d903644e628970ad0656b9eec8485113941555
 // The generated code belongs to the owner of the robot description.
 //
-// Function                              mul    add  sin/cos
-// idim_regressor_standard              1362   1130       12
-// inverse_dynamics_standard             671    551       12
-// joint_sincos                            0      0       18
-// idim_regressor_standard_sincos       1362   1130        0
-// inverse_dynamics_standard_sincos      671    551        0
-// base_from_standard                     33    103        0
-// idim_regressor                       1120    874       12
-// inverse_dynamics                      561    449       12
-// mass_matrix                          1323   1028       12
-// idim_regressor_sincos                1120    874        0
-// inverse_dynamics_sincos               561    449        0
-// mass_matrix_sincos                   1323   1028        0
-// inverse_dynamics_state_jacobian      6968   6006       12
-// energy_regressor                      217    114       12
-// power_regressor                       477    285       12
-// energy_regressor_sincos               217    114        0
-// power_regressor_sincos                477    285        0
-// drive_torque                          725    569       12
-// drive_torque_jacobian                3909   2003       12
-// drive_torque_state_jacobian          8084   6603       24
+// Function                                   mul    add  sin/cos
+// idim_regressor_standard                   1362   1130       12
+// inverse_dynamics_standard                  671    551       12
+// joint_sincos                                 0      0       18
+// idim_regressor_standard_sincos            1362   1130        0
+// inverse_dynamics_standard_sincos           671    551        0
+// base_from_standard                          33    103        0
+// idim_regressor                            1120    874       12
+// inverse_dynamics                           561    449       12
+// mass_matrix                               1323   1028       12
+// idim_regressor_sincos                     1120    874        0
+// inverse_dynamics_sincos                    561    449        0
+// mass_matrix_sincos                        1323   1028        0
+// inverse_dynamics_state_jacobian           6968   6006       12
+// energy_regressor                           217    114       12
+// power_regressor                            477    285       12
+// energy_regressor_sincos                    217    114        0
+// power_regressor_sincos                     477    285        0
+// drive_torque                               725    569       12
+// drive_torque_jacobian                     3909   2003       12
+// drive_torque_state_jacobian               8084   6603       24
+// drive_regressor                           1362   1130       12
+// drive_torque_given_regressor               483    447        0
+// drive_torque_jacobian_given_regressor     1323    465        0
 #include "franka_panda.hpp"
 
 namespace modelgen {

@@ -3,27 +3,30 @@
 // Input SHA-256: 63792d2679f22c4e41cda2c4d9d903644e628970ad0656b9eec8485113941555
 // The generated code belongs to the owner of the robot description.
 //
-// Function                              mul    add  sin/cos
-// idim_regressor_standard              1362   1130       12
-// inverse_dynamics_standard             671    551       12
-// joint_sincos                            0      0       18
-// idim_regressor_standard_sincos       1362   1130        0
-// inverse_dynamics_standard_sincos      671    551        0
-// base_from_standard                     33    103        0
-// idim_regressor                       1120    874       12
-// inverse_dynamics                      561    449       12
-// mass_matrix                          1323   1028       12
-// idim_regressor_sincos                1120    874        0
-// inverse_dynamics_sincos               561    449        0
-// mass_matrix_sincos                   1323   1028        0
-// inverse_dynamics_state_jacobian      6968   6006       12
-// energy_regressor                      217    114       12
-// power_regressor                       477    285       12
-// energy_regressor_sincos               217    114        0
-// power_regressor_sincos                477    285        0
-// drive_torque                          725    569       12
-// drive_torque_jacobian                3909   2003       12
-// drive_torque_state_jacobian          8084   6603       24
+// Function                                   mul    add  sin/cos
+// idim_regressor_standard                   1362   1130       12
+// inverse_dynamics_standard                  671    551       12
+// joint_sincos                                 0      0       18
+// idim_regressor_standard_sincos            1362   1130        0
+// inverse_dynamics_standard_sincos           671    551        0
+// base_from_standard                          33    103        0
+// idim_regressor                            1120    874       12
+// inverse_dynamics                           561    449       12
+// mass_matrix                               1323   1028       12
+// idim_regressor_sincos                     1120    874        0
+// inverse_dynamics_sincos                    561    449        0
+// mass_matrix_sincos                        1323   1028        0
+// inverse_dynamics_state_jacobian           6968   6006       12
+// energy_regressor                           217    114       12
+// power_regressor                            477    285       12
+// energy_regressor_sincos                    217    114        0
+// power_regressor_sincos                     477    285        0
+// drive_torque                               725    569       12
+// drive_torque_jacobian                     3909   2003       12
+// drive_torque_state_jacobian               8084   6603       24
+// drive_regressor                           1362   1130       12
+// drive_torque_given_regressor               483    447        0
+// drive_torque_jacobian_given_regressor     1323    465        0
 #ifndef MODELGEN_PANDA_HPP_
 #define MODELGEN_PANDA_HPP_
 
@@ -255,6 +258,48 @@ void drive_torque_state_jacobian(const double* q, const double* dq, const double
 void drive_torque_state_jacobian(const float* q, const float* dq, const float* ddq,
                                  const float* theta, float* J);
 
+// Regressor Y of the drive model with unit efficiencies (Swevers et al. 2002, the linear model
+// of section 3.2): drive_torque(q, dq, ddq, theta) = Y theta whenever every Rz in theta is 1.
+// Inputs as for drive_torque, without theta. Output Y: kDof x kDriveParams, row-major, in the
+// order of kDriveParamNames. With K = kMotorFromJoint, row i holds (K^-T W)[i, :] in the
+// inertial columns (W the inertial columns of idim_regressor_standard, eq. 10), ddq_M_i,
+// dq_M_i and sign(dq_M_i) (eq. 9) in the columns of JM, Rv and Rc of motor i, and 0 elsewhere
+// (the Rz columns too). Y does not depend on theta: a fit computes it once per sample and
+// passes it to drive_torque_given_regressor and drive_torque_jacobian_given_regressor, which
+// read only its entries that are not structurally zero. Calls idim_regressor_standard into a
+// local array of kDof * kStandardParams values (on the stack).
+// Y: 429 of its 1134 entries are written; the others are zero for every input
+// and never written (the manifest lists them under "unwritten"): zero Y once before the
+// first call.
+void drive_regressor(const double* q, const double* dq, const double* ddq, double* Y);
+void drive_regressor(const float* q, const float* dq, const float* ddq, float* Y);
+
+// drive_torque from the sample's drive regressor Y (kDof x kDriveParams, row-major, as
+// drive_regressor writes it for that sample's q, dq, ddq) instead of q, dq, ddq: the same
+// motor torques tau_M (kDof) for the parameters theta (kDriveParams), with no Newton-Euler
+// pass. tau'_G = Y theta over the inertial columns (eq. 10), the efficiency branch (eq. 8) and
+// the motor terms (eq. 5-7) as in drive_torque. Reads only the entries of Y that
+// drive_regressor does not leave structurally zero; every Rz must be non-zero.
+void drive_torque_given_regressor(const double* Y, const double* theta, double* tau_M);
+void drive_torque_given_regressor(const float* Y, const float* theta, float* tau_M);
+
+// drive_torque_jacobian from the sample's drive regressor Y (kDof x kDriveParams, row-major,
+// as drive_regressor writes it for that sample's q, dq, ddq) instead of q, dq, ddq: tau_M
+// (kDof) and J = d tau_M / d theta (kDof x kDriveParams, row-major, J[i * kDriveParams + k])
+// for the parameters theta, with no Newton-Euler pass, for the iterations of a
+// maximum-likelihood fit (Swevers et al. 2002 eq. 18). The inertial columns of row i are c_i Y
+// (c_i the efficiency factor of eq. 8), those of JM, Rv, Rc of motor i are copied from Y. The
+// efficiency branch and the Coulomb friction sign count as constant, as in
+// drive_torque_jacobian. Reads only the entries of Y that drive_regressor does not leave
+// structurally zero; every Rz must be non-zero.
+// J: 438 of its 1134 entries are written; the others are zero for every input
+// and never written (the manifest lists them under "unwritten"): zero J once before the
+// first call.
+void drive_torque_jacobian_given_regressor(const double* Y, const double* theta, double* tau_M,
+                                           double* J);
+void drive_torque_jacobian_given_regressor(const float* Y, const float* theta, float* tau_M,
+                                           float* J);
+
 // The entry points above in one type, so that generic code such as the modelgen runtime's
 // modelgen::GeneratedModel<modelgen::panda::Model> can use this robot by its type.
 struct Model {
@@ -305,6 +350,16 @@ struct Model {
   }
   static void mass_matrix(const double* q, const double* beta, double* M) {
     ::modelgen::panda::mass_matrix(q, beta, M);
+  }
+  static void drive_regressor(const double* q, const double* dq, const double* ddq, double* Y) {
+    ::modelgen::panda::drive_regressor(q, dq, ddq, Y);
+  }
+  static void drive_torque_given_regressor(const double* Y, const double* theta, double* tau_M) {
+    ::modelgen::panda::drive_torque_given_regressor(Y, theta, tau_M);
+  }
+  static void drive_torque_jacobian_given_regressor(const double* Y, const double* theta,
+                                                    double* tau_M, double* J) {
+    ::modelgen::panda::drive_torque_jacobian_given_regressor(Y, theta, tau_M, J);
   }
   static void idim_regressor_sincos(const double* q, const double* sin_q, const double* cos_q,
                                     const double* dq, const double* ddq, double* W) {

@@ -3,27 +3,30 @@
 // Input SHA-256: 1c4837146f484cb7efe5fd3e090ce53bed25e0a1be72f4464282b41a70849232
 // The generated code belongs to the owner of the robot description.
 //
-// Function                              mul    add  sin/cos
-// idim_regressor_standard               593    536       10
-// inverse_dynamics_standard             472    385       10
-// joint_sincos                            0      0       12
-// idim_regressor_standard_sincos        593    536        0
-// inverse_dynamics_standard_sincos      472    385        0
-// base_from_standard                     19     81        0
-// idim_regressor                        417    351       10
-// inverse_dynamics                      358    279       10
-// mass_matrix                           394    314       10
-// idim_regressor_sincos                 417    351        0
-// inverse_dynamics_sincos               358    279        0
-// mass_matrix_sincos                    394    314        0
-// inverse_dynamics_state_jacobian      2180   1972       10
-// energy_regressor                      138     56       10
-// power_regressor                       319    163       10
-// energy_regressor_sincos               138     56        0
-// power_regressor_sincos                319    163        0
-// drive_torque                          502    391       10
-// drive_torque_jacobian                2150   1223       10
-// drive_torque_state_jacobian          2863   2428       20
+// Function                                   mul    add  sin/cos
+// idim_regressor_standard                    593    536       10
+// inverse_dynamics_standard                  472    385       10
+// joint_sincos                                 0      0       12
+// idim_regressor_standard_sincos             593    536        0
+// inverse_dynamics_standard_sincos           472    385        0
+// base_from_standard                          19     81        0
+// idim_regressor                             417    351       10
+// inverse_dynamics                           358    279       10
+// mass_matrix                                394    314       10
+// idim_regressor_sincos                      417    351        0
+// inverse_dynamics_sincos                    358    279        0
+// mass_matrix_sincos                         394    314        0
+// inverse_dynamics_state_jacobian           2180   1972       10
+// energy_regressor                           138     56       10
+// power_regressor                            319    163       10
+// energy_regressor_sincos                    138     56        0
+// power_regressor_sincos                     319    163        0
+// drive_torque                               502    391       10
+// drive_torque_jacobian                     2150   1223       10
+// drive_torque_state_jacobian               2863   2428       20
+// drive_regressor                            658    605       10
+// drive_torque_given_regressor               300    276        0
+// drive_torque_jacobian_given_regressor      816    288        0
 #include "kr150.hpp"
 
 namespace modelgen {

@@ -3,27 +3,30 @@
 // Input SHA-256: e9f934b402dc71dcd3de1f216272250ece58e755e59c0d64b48121c2bc8b1f6f
 // The generated code belongs to the owner of the robot description.
 //
-// Function                              mul    add  sin/cos
-// idim_regressor_standard               869    676       12
-// inverse_dynamics_standard             469    379       12
-// joint_sincos                            0      0       14
-// idim_regressor_standard_sincos        869    676        0
-// inverse_dynamics_standard_sincos      469    379        0
-// base_from_standard                     19     59        0
-// idim_regressor                        695    536       12
-// inverse_dynamics                      407    319       12
-// mass_matrix                           732    516       12
-// idim_regressor_sincos                 695    536        0
-// inverse_dynamics_sincos               407    319        0
-// mass_matrix_sincos                    732    516        0
-// inverse_dynamics_state_jacobian      4045   3345       12
-// energy_regressor                      152     53       12
-// power_regressor                       354    175       12
-// energy_regressor_sincos               152     53        0
-// power_regressor_sincos                354    175        0
-// drive_torque                          511    393       12
-// drive_torque_jacobian                2430   1215       12
-// drive_torque_state_jacobian          4793   3758       24
+// Function                                   mul    add  sin/cos
+// idim_regressor_standard                    869    676       12
+// inverse_dynamics_standard                  469    379       12
+// joint_sincos                                 0      0       14
+// idim_regressor_standard_sincos             869    676        0
+// inverse_dynamics_standard_sincos           469    379        0
+// base_from_standard                          19     59        0
+// idim_regressor                             695    536       12
+// inverse_dynamics                           407    319       12
+// mass_matrix                                732    516       12
+// idim_regressor_sincos                      695    536        0
+// inverse_dynamics_sincos                    407    319        0
+// mass_matrix_sincos                         732    516        0
+// inverse_dynamics_state_jacobian           4045   3345       12
+// energy_regressor                           152     53       12
+// power_regressor                            354    175       12
+// energy_regressor_sincos                    152     53        0
+// power_regressor_sincos                     354    175        0
+// drive_torque                               511    393       12
+// drive_torque_jacobian                     2430   1215       12
+// drive_torque_state_jacobian               4793   3758       24
+// drive_regressor                            869    676       12
+// drive_torque_given_regressor               316    288        0
+// drive_torque_jacobian_given_regressor      850    302        0
 #include "kuka_iiwa14_drake.hpp"
 
 namespace modelgen {

@@ -3,27 +3,30 @@
 // Input SHA-256: 21a125fe2f6a18d2d94caba5026df3c58b4248084a3d33d33763da6fb6b232ca
 // The generated code belongs to the owner of the robot description.
 //
-// Function                              mul    add  sin/cos
-// idim_regressor_standard               484    410       10
-// inverse_dynamics_standard             422    341       10
-// joint_sincos                            0      0       12
-// idim_regressor_standard_sincos        484    410        0
-// inverse_dynamics_standard_sincos      422    341        0
-// base_from_standard                     24     60        0
-// idim_regressor                        371    317       10
-// inverse_dynamics                      366    285       10
-// mass_matrix                           389    311       10
-// idim_regressor_sincos                 371    317        0
-// inverse_dynamics_sincos               366    285        0
-// mass_matrix_sincos                    389    311        0
-// inverse_dynamics_state_jacobian      2008   1913       10
-// energy_regressor                      132     57       10
-// power_regressor                       310    169       10
-// energy_regressor_sincos               132     57        0
-// power_regressor_sincos                310    169        0
-// drive_torque                          458    353       10
-// drive_torque_jacobian                1642    812       10
-// drive_torque_state_jacobian          2638   2288       20
+// Function                                   mul    add  sin/cos
+// idim_regressor_standard                    484    410       10
+// inverse_dynamics_standard                  422    341       10
+// joint_sincos                                 0      0       12
+// idim_regressor_standard_sincos             484    410        0
+// inverse_dynamics_standard_sincos           422    341        0
+// base_from_standard                          24     60        0
+// idim_regressor                             371    317       10
+// inverse_dynamics                           366    285       10
+// mass_matrix                                389    311       10
+// idim_regressor_sincos                      371    317        0
+// inverse_dynamics_sincos                    366    285        0
+// mass_matrix_sincos                         389    311        0
+// inverse_dynamics_state_jacobian           2008   1913       10
+// energy_regressor                           132     57       10
+// power_regressor                            310    169       10
+// energy_regressor_sincos                    132     57        0
+// power_regressor_sincos                     310    169        0
+// drive_torque                               458    353       10
+// drive_torque_jacobian                     1642    812       10
+// drive_torque_state_jacobian               2638   2288       20
+// drive_regressor                            484    410       10
+// drive_torque_given_regressor               243    219        0
+// drive_torque_jacobian_given_regressor      645    231        0
 #include "ur5.hpp"
 
 namespace modelgen {

@@ -43,6 +43,9 @@ set(MODELGEN_ENTRY_POINTS
   drive_torque
   drive_torque_jacobian:idim_regressor_standard
   drive_torque_state_jacobian:base_from_standard,inverse_dynamics,inverse_dynamics_state_jacobian
+  drive_regressor:idim_regressor_standard
+  drive_torque_given_regressor
+  drive_torque_jacobian_given_regressor
   inverse_dynamics_identified:inverse_dynamics)
 
 set(MODELGEN_EXECUTABLE "" CACHE FILEPATH

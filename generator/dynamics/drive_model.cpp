@@ -4,6 +4,7 @@
 
 #include "generator/dynamics/drive_model.hpp"
 
+#include <algorithm>
 #include <stdexcept>
 #include <string>
 
@@ -36,6 +37,13 @@ ExprId velocity_sign(ExprGraph& g, const SymbolicInputs& in, ExprId e) {
     if (x == in.dq[i]) return c > 0 ? in.sign_dq[i] : g.neg(in.sign_dq[i]);
   }
   return g.sign(e);
+}
+
+// The column of theta that holds `parameter` (one of parameters.theta).
+std::size_t column_of(const DriveParameters& parameters, ExprId parameter) {
+  return static_cast<std::size_t>(
+      std::find(parameters.theta.begin(), parameters.theta.end(), parameter) -
+      parameters.theta.begin());
 }
 
 }  // namespace
@@ -79,16 +87,16 @@ std::vector<ExprId> rigid_body_parameters(ExprGraph& g, const RigidBodyTree& tre
 Eigen::MatrixXd joint_from_motor(const Eigen::MatrixXd& K, int dof) {
   if (K.rows() != dof || K.cols() != dof) {
     throw std::logic_error("joint_from_motor: motor_from_joint is " + std::to_string(K.rows()) +
-                           " x " + std::to_string(K.cols()) + ", expected " +
-                           std::to_string(dof) + " x " + std::to_string(dof));
+                           " x " + std::to_string(K.cols()) + ", expected " + std::to_string(dof) +
+                           " x " + std::to_string(dof));
   }
   const Eigen::FullPivLU<Eigen::MatrixXd> lu(K);
   if (!lu.isInvertible()) throw std::logic_error("joint_from_motor: motor_from_joint is singular");
   return lu.inverse();
 }
 
-DriveTorques derive_drive_torques(ExprGraph& g, const Eigen::MatrixXd& K,
-                                  const SymbolicInputs& in, const DriveParameters& parameters,
+DriveTorques derive_drive_torques(ExprGraph& g, const Eigen::MatrixXd& K, const SymbolicInputs& in,
+                                  const DriveParameters& parameters,
                                   const std::vector<ExprId>& tau_G) {
   const int dof = static_cast<int>(tau_G.size());
   // Swevers eq. 9-10: q_G = V q_M with V = K^-1, and tau'_G = V^T tau_G.
@@ -96,26 +104,84 @@ DriveTorques derive_drive_torques(ExprGraph& g, const Eigen::MatrixXd& K,
   std::vector<ExprId> shared_tau_G;
   for (ExprId t : tau_G) shared_tau_G.push_back(g.share(t));
   DriveTorques out;
-  const ExprId half = g.constant(0.5);
   for (int i = 0; i < dof; ++i) {
     // Eq. 9: motor velocity and acceleration (link side).
     const ExprId dq_M = combination(g, K.row(i).transpose(), in.dq);
     const ExprId ddq_M = combination(g, K.row(i).transpose(), in.ddq);
     // Eq. 10: net actuator torque at the transmission output.
     const ExprId tau_out = combination(g, V.col(i), shared_tau_G);
-    // Eq. 8 inverted, branch by the sign of the power flow (see the header for s = 0).
-    const ExprId s = g.sign(g.mul(tau_out, dq_M));
-    const ExprId Rz = parameters.Rz[i];
-    const ExprId c = g.share(g.add(g.mul(g.add(half, g.mul(half, s)), g.inv(Rz)),
-                                   g.mul(g.sub(half, g.mul(half, s)), Rz)));
-    // Eq. 5-7: rotor inertia, viscous and Coulomb friction of the motor.
+    ExprId c = 0;
+    const ExprId tau_M =
+        motor_torque(g, parameters, i, tau_out, dq_M, velocity_sign(g, in, dq_M), ddq_M, &c);
     out.tau_out.push_back(tau_out);
     out.efficiency.push_back(c);
-    out.tau_M.push_back(g.add({g.mul(tau_out, c), g.mul(parameters.JM[i], ddq_M),
-                               g.mul(parameters.Rv[i], dq_M),
-                               g.mul(parameters.Rc[i], velocity_sign(g, in, dq_M))}));
+    out.tau_M.push_back(tau_M);
   }
   return out;
+}
+
+ExprId motor_torque(ExprGraph& g, const DriveParameters& parameters, int i, ExprId tau_out,
+                    ExprId dq_M, ExprId sign_dq_M, ExprId ddq_M, ExprId* efficiency) {
+  // Eq. 8 inverted, branch by the sign of the power flow (see the header for s = 0).
+  const ExprId half = g.constant(0.5);
+  const ExprId s = g.sign(g.mul(tau_out, dq_M));
+  const ExprId Rz = parameters.Rz[i];
+  const ExprId c = g.share(
+      g.add(g.mul(g.add(half, g.mul(half, s)), g.inv(Rz)), g.mul(g.sub(half, g.mul(half, s)), Rz)));
+  *efficiency = c;
+  // Eq. 5-7: rotor inertia, viscous and Coulomb friction of the motor.
+  return g.add({g.mul(tau_out, c), g.mul(parameters.JM[i], ddq_M), g.mul(parameters.Rv[i], dq_M),
+                g.mul(parameters.Rc[i], sign_dq_M)});
+}
+
+std::vector<ExprId> derive_drive_regressor(ExprGraph& g, const Eigen::MatrixXd& K,
+                                           const SymbolicInputs& in,
+                                           const DriveParameters& parameters,
+                                           const std::vector<ExprId>& W) {
+  const int dof = static_cast<int>(in.dq.size());
+  const int columns = static_cast<int>(parameters.theta.size());
+  const int standard = dof == 0 ? 0 : static_cast<int>(W.size()) / dof;
+  const Eigen::MatrixXd V = joint_from_motor(K, dof);
+  std::vector<ExprId> Y(static_cast<std::size_t>(dof) * columns, g.zero());
+  for (int i = 0; i < dof; ++i) {
+    ExprId* row = &Y[static_cast<std::size_t>(i) * columns];
+    // Eq. 10: tau'_G = V^T W p, so column k of row i is sum_j V(j, i) W(j, k).
+    for (std::size_t k = 0; k < parameters.standard_index.size(); ++k) {
+      std::vector<ExprId> terms;
+      for (int j = 0; j < dof; ++j) {
+        terms.push_back(
+            g.mul(g.constant(V(j, i)),
+                  W[static_cast<std::size_t>(j) * standard + parameters.standard_index[k]]));
+      }
+      row[k] = g.add(std::move(terms));
+    }
+    // Eq. 5-7 and 9: the motor terms are linear in JM, Rv, Rc already.
+    const ExprId dq_M = combination(g, K.row(i).transpose(), in.dq);
+    row[column_of(parameters, parameters.JM[i])] = combination(g, K.row(i).transpose(), in.ddq);
+    row[column_of(parameters, parameters.Rv[i])] = dq_M;
+    row[column_of(parameters, parameters.Rc[i])] = velocity_sign(g, in, dq_M);
+  }
+  return Y;
+}
+
+std::vector<ExprId> drive_torques_from_regressor(ExprGraph& g, const DriveParameters& parameters,
+                                                 const std::vector<ExprId>& Y) {
+  const std::size_t columns = parameters.theta.size();
+  std::vector<ExprId> tau_M;
+  for (std::size_t i = 0; i < parameters.JM.size(); ++i) {
+    const ExprId* row = &Y[i * columns];
+    std::vector<ExprId> terms;
+    for (std::size_t k = 0; k < parameters.standard_index.size(); ++k) {
+      terms.push_back(g.mul(row[k], parameters.theta[k]));
+    }
+    const ExprId tau_out = g.share(g.add(std::move(terms)));
+    ExprId c = 0;
+    tau_M.push_back(motor_torque(g, parameters, static_cast<int>(i), tau_out,
+                                 row[column_of(parameters, parameters.Rv[i])],
+                                 row[column_of(parameters, parameters.Rc[i])],
+                                 row[column_of(parameters, parameters.JM[i])], &c));
+  }
+  return tau_M;
 }
 
 }  // namespace modelgen::gen

@@ -66,4 +66,28 @@ DriveTorques derive_drive_torques(ExprGraph& graph, const Eigen::MatrixXd& motor
                                   const SymbolicInputs& in, const DriveParameters& parameters,
                                   const std::vector<ExprId>& tau_G);
 
+/// One motor i: tau_M_i of eq. 7 from the net actuator torque tau'_G_i (`tau_out`), the motor
+/// velocity dq_M_i, its sign and the acceleration ddq_M_i; `efficiency` receives c_i (shared).
+ExprId motor_torque(ExprGraph& graph, const DriveParameters& parameters, int i, ExprId tau_out,
+                    ExprId dq_M, ExprId sign_dq_M, ExprId ddq_M, ExprId* efficiency);
+
+/// The regressor Y of the drive model with unit efficiencies (Swevers section 3.2's linear
+/// model), row-major dof x theta.size(): tau_M = Y theta whenever every Rz is 1. Row i holds
+/// V^T W (eq. 10) in the inertial columns, ddq_M_i, dq_M_i and sign(dq_M_i) (eq. 5-7, 9) in the
+/// columns of JM_i, Rv_i and Rc_i, and zero elsewhere (the Rz columns too). W is the standard
+/// regressor, row-major dof x tree.params (any expressions: symbolic, or input symbols).
+/// Everything in Y is independent of theta, so a fit can evaluate it once per sample.
+std::vector<ExprId> derive_drive_regressor(ExprGraph& graph,
+                                           const Eigen::MatrixXd& motor_from_joint,
+                                           const SymbolicInputs& in,
+                                           const DriveParameters& parameters,
+                                           const std::vector<ExprId>& W);
+
+/// tau_M of eq. 7 from the drive regressor Y (layout of derive_drive_regressor, any
+/// expressions) and theta: tau'_G_i = sum over the inertial k of Y(i, k) theta_k (eq. 10), the
+/// motor motion read from the JM, Rv and Rc columns, then motor_torque.
+std::vector<ExprId> drive_torques_from_regressor(ExprGraph& graph,
+                                                 const DriveParameters& parameters,
+                                                 const std::vector<ExprId>& Y);
+
 }  // namespace modelgen::gen

@@ -59,6 +59,27 @@ std::vector<FunctionOutput> vector_outputs(const std::string& array,
   return outputs;
 }
 
+std::vector<ExprId> drive_regressor_on_standard_inputs(BuildContext& context,
+                                                       const DriveParameters& drive) {
+  ExprGraph& graph = context.graph;
+  const std::vector<ExprId> symbolic =
+      derive_standard_regressor(graph, context.tree(), context.symbols);
+  std::vector<ExprId> W(symbolic.size(), graph.zero());
+  for (std::size_t k = 0; k < W.size(); ++k) {
+    if (!graph.is_zero(symbolic[k])) W[k] = input_symbol(graph, "W_std", static_cast<int>(k));
+  }
+  return derive_drive_regressor(graph, context.model.drives.motor_from_joint, context.symbols,
+                                drive, W);
+}
+
+std::vector<ExprId> drive_regressor_input(BuildContext& context, const DriveParameters& drive) {
+  std::vector<ExprId> Y = drive_regressor_on_standard_inputs(context, drive);
+  for (std::size_t k = 0; k < Y.size(); ++k) {
+    if (!context.graph.is_zero(Y[k])) Y[k] = input_symbol(context.graph, "Y", static_cast<int>(k));
+  }
+  return Y;
+}
+
 std::string local_array(Scalar scalar, const std::string& name, const std::string& size) {
   return render_statement("statements/local_array",
                           {{"scalar", scalar_name(scalar)}, {"name", name}, {"size", size}});

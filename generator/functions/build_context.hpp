@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "generator/dynamics/drive_model.hpp"
 #include "generator/dynamics/newton_euler.hpp"
 #include "generator/functions/function_entry.hpp"
 #include "generator/symbolic/expr.hpp"
@@ -19,7 +20,7 @@ struct BuildContext {
   const RobotModel& model;
   const BaseParameterSet& base;
   ExprGraph& graph;
-  SymbolicInputs symbols;  ///< q, dq, ddq, sin/cos, signs and the standard parameters p
+  SymbolicInputs symbols;       ///< q, dq, ddq, sin/cos, signs and the standard parameters p
   std::vector<Scalar> scalars;  ///< the scalar types of the entry points, in file order
 
   const RigidBodyTree& tree() const { return model.tree; }
@@ -52,6 +53,17 @@ std::vector<FunctionOutput> row_major_outputs(
 /// Outputs `array[i] = values[i]`, without comments.
 std::vector<FunctionOutput> vector_outputs(const std::string& array,
                                            const std::vector<ExprId>& values);
+
+/// The drive regressor Y (derive_drive_regressor) on the standard regressor read from the input
+/// array W_std: an entry of W_std that is zero in the symbolic regressor is zero here too, so
+/// Y's structurally zero entries are known. drive_regressor writes this Y; the functions given
+/// it read only its other entries.
+std::vector<ExprId> drive_regressor_on_standard_inputs(BuildContext& context,
+                                                       const DriveParameters& drive);
+
+/// The input array Y of the functions given the drive regressor: the symbol Y[k] where
+/// drive_regressor writes an entry that is not structurally zero, zero elsewhere.
+std::vector<ExprId> drive_regressor_input(BuildContext& context, const DriveParameters& drive);
 
 /// A zero-initialized local array and a call to another entry point, as prologue statements.
 std::string local_array(Scalar scalar, const std::string& name, const std::string& size);

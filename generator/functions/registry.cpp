@@ -20,6 +20,9 @@ FunctionDefinition build_energy_regressor(BuildContext& context);
 FunctionDefinition build_power_regressor(BuildContext& context);
 FunctionDefinition build_mass_matrix(BuildContext& context);
 FunctionDefinition build_inverse_dynamics_identified(BuildContext& context);
+FunctionDefinition build_drive_regressor(BuildContext& context);
+FunctionDefinition build_drive_torque_given_regressor(BuildContext& context);
+FunctionDefinition build_drive_torque_jacobian_given_regressor(BuildContext& context);
 
 namespace {
 
@@ -28,6 +31,8 @@ using S = Section;
 
 // The arrays most functions share.
 const ArraySpec kQ{"q", E::kDof}, kDq{"dq", E::kDof}, kDdq{"ddq", E::kDof};
+// The drive regressor of one sample, written by drive_regressor.
+const ArraySpec kY{"Y", E::kDof, E::kDriveParams};
 
 // Not every function has a _sincos variant: the state Jacobian's body is several times that of
 // the inverse dynamics, so sharing the sines and cosines would save under 1 % of its work for
@@ -69,6 +74,15 @@ const std::vector<FunctionEntry> kRegistry = {
     {"inverse_dynamics_identified", S::kIdentified, Variants::kPlain, InModelStruct::kNo,
      {kQ, kDq, kDdq}, {{"tau", E::kDof}}, build_inverse_dynamics_identified,
      Emitted::kWithEstimate, {"inverse_dynamics"}},
+    {"drive_regressor", S::kDriveModel, Variants::kPlain, InModelStruct::kYes,
+     {kQ, kDq, kDdq}, {kY}, build_drive_regressor,
+     Emitted::kAlways, {"idim_regressor_standard"}},
+    {"drive_torque_given_regressor", S::kDriveModel, Variants::kPlain, InModelStruct::kYes,
+     {kY, {"theta", E::kDriveParams}}, {{"tau_M", E::kDof}}, build_drive_torque_given_regressor},
+    {"drive_torque_jacobian_given_regressor", S::kDriveModel, Variants::kPlain,
+     InModelStruct::kYes, {kY, {"theta", E::kDriveParams}},
+     {{"tau_M", E::kDof}, {"J", E::kDof, E::kDriveParams}},
+     build_drive_torque_jacobian_given_regressor},
 };
 // clang-format on
 

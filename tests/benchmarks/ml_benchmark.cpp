@@ -344,6 +344,30 @@ void evaluate_benchmark(benchmark::State& state, const Variant& variant) {
   set_size_counters(state);
 }
 
+// One pass of the drive model over the bound samples at the initial guess's theta, as
+// MlProblem's blocks call it (through DriveModel): torque_jacobian (`jacobian`) or torque alone
+// (the residual-only evaluations of Levenberg-Marquardt's trial steps). No chain rule, no
+// weighting: the drive model's own share of an evaluation.
+void drive_model_benchmark(benchmark::State& state, const MlProblem& problem, bool jacobian) {
+  const DriveModel& model = problem.model();
+  const Eigen::VectorXd theta =
+      problem.drive_parameters(problem.with_unknowns(workload->theta1_initial));
+  std::vector<double> tau(static_cast<size_t>(model.dof())),
+      J(static_cast<size_t>(model.dof() * model.num_params()));
+  for (auto _ : state) {
+    for (Eigen::Index s = 0; s < model.num_samples(); ++s) {
+      if (jacobian) {
+        model.torque_jacobian(s, theta.data(), tau.data(), J.data());
+      } else {
+        model.torque(s, theta.data(), tau.data());
+      }
+      benchmark::DoNotOptimize(J.data());
+      benchmark::DoNotOptimize(tau.data());
+    }
+  }
+  set_size_counters(state);
+}
+
 // Building the problem: checks, stacking, binding the samples to the drive model. The reference
 // drive model computes its regressor for every sample here (the autodiff variant's set-up too).
 void problem_benchmark(benchmark::State& state, DriveModel& model) {
@@ -364,6 +388,17 @@ void register_all() {
                                 fit ? fit_benchmark(state, variant)
                                     : evaluate_benchmark(state, variant);
                               });
+    }
+  }
+  for (const bool jacobian : {true, false}) {
+    for (const std::string variant : {"generated", "reference"}) {
+      benchmarks.emplace_back(
+          "BM_kr150_drive_" + std::string(jacobian ? "jacobian" : "torque") + "_" + variant,
+          [variant, jacobian](benchmark::State& state) {
+            drive_model_benchmark(
+                state, variant == "generated" ? *workload->generated : *workload->reference,
+                jacobian);
+          });
     }
   }
   benchmarks.emplace_back("BM_kr150_ml_problem_generated", [](benchmark::State& state) {
@@ -408,6 +443,20 @@ void print_summary(const KeptRuns& runs, std::ostream& out) {
     out << printf_string(
         "Autodiff / %s: whole fit %.2fx, per LM iteration (Ceres) %.2fx, one Jacobian %.2fx\n",
         analytic.c_str(), ratio("fit"), per_iteration, ratio("evaluate"));
+  }
+  // The drive model alone, one pass over the samples: the generated code against the reference.
+  for (const std::string what : {"jacobian", "torque"}) {
+    const double generated = runs.cpu_time("BM_kr150_drive_" + what + "_generated");
+    const double reference = runs.cpu_time("BM_kr150_drive_" + what + "_reference");
+    if (std::isnan(generated) || std::isnan(reference)) continue;
+    out << printf_string(
+        "Drive model %s over the %d samples (CPU): generated %.3f ms, reference %.3f ms, "
+        "reference / generated %.2fx%s\n",
+        what == "jacobian" ? "torque_jacobian" : "torque", test::Kr150LoadScenario::kSamples,
+        generated, reference, reference / generated,
+        what == "jacobian"
+            ? (reference / generated >= 2 ? " (target 2x: met)" : " (target 2x: MISSED)")
+            : "");
   }
   const double fit = runs.real_time("BM_kr150_ml_fit_generated");
   if (!std::isnan(fit)) {

@@ -10,12 +10,14 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/LU>
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
+#include "modelgen/model/generated_format.hpp"
 #include "modelgen/model/load_robot.hpp"
 #include "modelgen/model/reference_dynamics.hpp"
 #include "tests/support/kdl_oracle.hpp"
@@ -172,7 +174,12 @@ TEST(ReferenceDriveModel, JacobianMatchesAutodiffAndCentralDifferences) {
 }
 
 // A stand-in for generated code with the drive-model interface, computed by a reference model.
+// Its "drive regressor" holds the index of the sample whose q, dq, ddq it was given (-1 for an
+// unknown state) and leaves every other entry unwritten; the functions given it check that
+// those entries are zero (the adapter's buffer is zero-filled) and answer with the reference's
+// values for that sample, NaN otherwise.
 struct FakeGenerated {
+  static constexpr int kFormatVersion = kGeneratedFormatVersion;
   static constexpr int kDof = 6;
   static constexpr int kDriveParams = 94;
   static const ReferenceDriveModel* reference;
@@ -183,44 +190,66 @@ struct FakeGenerated {
     }
     return names.data();
   }
-  // The reference binds samples; the stand-in finds the sample by its q.
-  static Eigen::MatrixXd* states;
-  static Eigen::Index find(const double* q) {
-    for (Eigen::Index s = 0; s < states->rows(); ++s) {
-      if (states->row(s) == Eigen::Map<const Eigen::RowVectorXd>(q, 6)) return s;
+  static const States* states;
+  static void drive_regressor(const double* q, const double* dq, const double* ddq, double* Y) {
+    Y[0] = -1;
+    for (Eigen::Index s = 0; s < states->q.rows(); ++s) {
+      if (states->q.row(s) == Eigen::Map<const Eigen::RowVectorXd>(q, kDof) &&
+          states->dq.row(s) == Eigen::Map<const Eigen::RowVectorXd>(dq, kDof) &&
+          states->ddq.row(s) == Eigen::Map<const Eigen::RowVectorXd>(ddq, kDof)) {
+        Y[0] = static_cast<double>(s);
+      }
     }
-    return -1;
   }
-  static void drive_torque(const double* q, const double*, const double*, const double* theta,
-                           double* tau) {
-    reference->torque(find(q), theta, tau);
+  // The sample of Y, or -1 when Y is not what drive_regressor wrote into a zeroed buffer.
+  static Eigen::Index sample(const double* Y) {
+    for (int k = 1; k < kDof * kDriveParams; ++k) {
+      if (Y[k] != 0) return -1;
+    }
+    return static_cast<Eigen::Index>(Y[0]);
   }
-  static void drive_torque_jacobian(const double* q, const double*, const double*,
-                                    const double* theta, double* tau_M, double* J) {
-    reference->torque_jacobian(find(q), theta, tau_M, J);
+  static void drive_torque_given_regressor(const double* Y, const double* theta, double* tau) {
+    const Eigen::Index s = sample(Y);
+    if (s < 0) {
+      std::fill(tau, tau + kDof, std::nan(""));
+      return;
+    }
+    reference->torque(s, theta, tau);
+  }
+  static void drive_torque_jacobian_given_regressor(const double* Y, const double* theta,
+                                                    double* tau_M, double* J) {
+    const Eigen::Index s = sample(Y);
+    if (s < 0) {
+      std::fill(tau_M, tau_M + kDof, std::nan(""));
+      std::fill(J, J + kDof * kDriveParams, std::nan(""));
+      return;
+    }
+    reference->torque_jacobian(s, theta, tau_M, J);
   }
 };
 const ReferenceDriveModel* FakeGenerated::reference = nullptr;
-Eigen::MatrixXd* FakeGenerated::states = nullptr;
+const States* FakeGenerated::states = nullptr;
 
 TEST(GeneratedDriveModel, AdapterPassesEachSamplesStateAndParameters) {
   const Kr150 robot;
   ReferenceDriveModel reference(robot.description.tree, robot.drive());
   test::Random random(13);
-  States x = random_states(robot, random, 7);
+  const States x = random_states(robot, random, 7);
   reference.set_samples(x.q, x.dq, x.ddq);
   FakeGenerated::reference = &reference;
-  FakeGenerated::states = &x.q;
+  FakeGenerated::states = &x;
   GeneratedDriveModel<FakeGenerated> adapter;
   EXPECT_EQ(adapter.param_names(), reference.param_names());
   adapter.set_samples(x.q, x.dq, x.ddq);
   ASSERT_EQ(adapter.num_samples(), 7);
   const Eigen::VectorXd theta = random_theta(robot, reference, random);
   for (int s = 0; s < 7; ++s) {
-    std::vector<double> a(6), b(6), Ja(6 * 94), Jb(6 * 94);
+    std::vector<double> a(6), b(6), c(6), Ja(6 * 94), Jb(6 * 94);
     adapter.torque_jacobian(s, theta.data(), a.data(), Ja.data());
+    adapter.torque(s, theta.data(), c.data());
     reference.torque_jacobian(s, theta.data(), b.data(), Jb.data());
     EXPECT_EQ(a, b);
+    EXPECT_EQ(c, b);
     EXPECT_EQ(Ja, Jb);
   }
   EXPECT_THROW(adapter.set_samples(x.q, x.dq.topRows(3), x.ddq), std::invalid_argument);

@@ -21,8 +21,8 @@
 #include <Eigen/LU>
 #include <nlohmann/json.hpp>
 
-#include "modelgen/model/load_robot.hpp"
 #include "kr150.hpp"
+#include "modelgen/model/load_robot.hpp"
 #include "modelgen/model/reference_dynamics.hpp"
 #include "tests/support/kdl_oracle.hpp"
 #include "tests/support/test_support.hpp"
@@ -51,6 +51,13 @@ struct Kr150 {
                                                 const float* theta, float* J) {
     ::modelgen::kr150::drive_torque_state_jacobian(q, dq, ddq, theta, J);
   }
+  static void drive_regressor_float(const float* q, const float* dq, const float* ddq, float* Y) {
+    ::modelgen::kr150::drive_regressor(q, dq, ddq, Y);
+  }
+  static void drive_torque_jacobian_given_regressor_float(const float* Y, const float* theta,
+                                                          float* tau_M, float* J) {
+    ::modelgen::kr150::drive_torque_jacobian_given_regressor(Y, theta, tau_M, J);
+  }
 };
 
 struct Tx40 {
@@ -68,6 +75,13 @@ struct Tx40 {
   static void drive_torque_state_jacobian_float(const float* q, const float* dq, const float* ddq,
                                                 const float* theta, float* J) {
     ::modelgen::tx40::drive_torque_state_jacobian(q, dq, ddq, theta, J);
+  }
+  static void drive_regressor_float(const float* q, const float* dq, const float* ddq, float* Y) {
+    ::modelgen::tx40::drive_regressor(q, dq, ddq, Y);
+  }
+  static void drive_torque_jacobian_given_regressor_float(const float* Y, const float* theta,
+                                                          float* tau_M, float* J) {
+    ::modelgen::tx40::drive_torque_jacobian_given_regressor(Y, theta, tau_M, J);
   }
 };
 
@@ -187,6 +201,57 @@ class DriveTorque : public testing::Test {
     Model::drive_torque_jacobian(x.data(), x.data() + n, x.data() + 2 * n, theta.data(),
                                  tau_M.data(), J.data());
     if (tau != nullptr) *tau = tau_M;
+    return J;
+  }
+
+  // The drive regressor Y of state x (kDof x kDriveParams), into a zeroed buffer as a caller
+  // binding samples prepares it.
+  RowMajor regressor(const Eigen::VectorXd& x) const {
+    RowMajor Y = RowMajor::Zero(n, m);
+    Model::drive_regressor(x.data(), x.data() + n, x.data() + 2 * n, Y.data());
+    return Y;
+  }
+
+  Eigen::VectorXd given_regressor(const RowMajor& Y, const Eigen::VectorXd& theta) const {
+    Eigen::VectorXd tau = Eigen::VectorXd::Constant(n, std::nan(""));
+    Model::drive_torque_given_regressor(Y.data(), theta.data(), tau.data());
+    return tau;
+  }
+
+  // d tau_M / d theta from Y into a zeroed J; `tau` (NaN-filled before the call) receives the
+  // torques of the same call.
+  RowMajor jacobian_given_regressor(const RowMajor& Y, const Eigen::VectorXd& theta,
+                                    Eigen::VectorXd* tau = nullptr) const {
+    RowMajor J = RowMajor::Zero(n, m);
+    Eigen::VectorXd tau_M = Eigen::VectorXd::Constant(n, std::nan(""));
+    Model::drive_torque_jacobian_given_regressor(Y.data(), theta.data(), tau_M.data(), J.data());
+    if (tau != nullptr) *tau = tau_M;
+    return J;
+  }
+
+  // ceres::Jet derivatives of the numeric model (reference regressor, eq. 7-10 by hand in
+  // motor_torques) with respect to theta; `tau` receives its values.
+  template <int kParams>
+  RowMajor jet_jacobian(const Eigen::VectorXd& x, const Eigen::VectorXd& theta,
+                        Eigen::VectorXd* tau = nullptr) const {
+    using Jet = ceres::Jet<double, kParams>;
+    Vector<Jet> theta_jet(m);
+    for (int k = 0; k < m; ++k) theta_jet[k] = Jet(theta[k], k);
+    // tau_G = W p is linear in the inertial parameters: Jets through the numeric regressor.
+    const RowMajor W = reference_.standard_regressor(x.head(n), x.segment(n, n), x.tail(n));
+    Vector<Jet> p(reference_.num_params());
+    for (Eigen::Index k = 0; k < p.size(); ++k) p[k] = Jet(0.0);
+    for (std::size_t k = 0; k < inertial_.size(); ++k) p[inertial_[k]] = theta_jet[k];
+    const Vector<Jet> tau_G = W.cast<Jet>() * p;
+    const Vector<Jet> tau_M =
+        motor_torques<Jet>(K_, x.segment(n, n).cast<Jet>(), x.tail(n).cast<Jet>(), tau_G,
+                           theta_jet.tail(4 * n), nullptr);
+    RowMajor J(n, m);
+    for (int i = 0; i < n; ++i) J.row(i) = tau_M[i].v.transpose();
+    if (tau != nullptr) {
+      tau->resize(n);
+      for (int i = 0; i < n; ++i) (*tau)[i] = tau_M[i].a;
+    }
     return J;
   }
 
@@ -416,6 +481,109 @@ TYPED_TEST(DriveTorque, ParameterJacobianEqualsJetDerivativesOfTheNumericModel) 
   std::cout << "[ DRIVE    ] " << TypeParam::kDescription
             << ": d tau_M / d theta vs ceres::Jet, worst relative difference " << worst << "\n";
   EXPECT_LT(worst, 1e-12);
+}
+
+// With every efficiency Rz = 1 the drive model is linear in the other parameters, and Y is
+// its regressor: Y equals the Jet derivatives of the numeric model there, Rz columns zero.
+TYPED_TEST(DriveTorque, DriveRegressorIsTheJacobianAtUnitEfficiency) {
+  constexpr int n = TestFixture::n, m = TestFixture::m;
+  test::Random random(2101);
+  double worst = 0;
+  for (int s = 0; s < 100; ++s) {
+    Eigen::VectorXd theta = this->random_theta(random);
+    for (int i = 0; i < n; ++i) theta[m - 4 * n + 4 * i + 3] = 1.0;  // Rz
+    const Eigen::VectorXd x = this->random_state(random);
+    const RowMajor Y = this->regressor(x);
+    ASSERT_TRUE(Y.allFinite());
+    Eigen::VectorXd tau;
+    RowMajor expected = this->template jet_jacobian<m>(x, theta, &tau);
+    for (int i = 0; i < n; ++i) expected.col(m - 4 * n + 4 * i + 3).setZero();
+    worst = std::max(worst, relative_difference(Y, expected));
+    // tau_M = Y theta at unit efficiency (the numeric model's value).
+    EXPECT_LT(test::relative_error(Y * theta, tau, 1.0), 1e-12);
+  }
+  std::cout << "[ DRIVE    ] " << TypeParam::kDescription
+            << ": drive_regressor vs ceres::Jet at Rz = 1, worst relative difference " << worst
+            << "\n";
+  EXPECT_LT(worst, 1e-12);
+}
+
+// The torques from a sample's Y are the numeric model's (and drive_torque's) on both branches
+// of eq. 8.
+TYPED_TEST(DriveTorque, GivenRegressorEqualsTheNumericModel) {
+  constexpr int n = TestFixture::n;
+  test::Random random(2201);
+  std::vector<int> driving(n, 0), driven(n, 0), branch(n);
+  double worst = 0;
+  for (int s = 0; s < 1000; ++s) {
+    const Eigen::VectorXd theta = this->random_theta(random);
+    const Eigen::VectorXd x = this->random_state(random);
+    const Eigen::VectorXd tau = this->given_regressor(this->regressor(x), theta);
+    ASSERT_TRUE(tau.allFinite()) << "tau_M is not written";
+    const Eigen::VectorXd expected = this->numeric(x, theta, &branch);
+    worst = std::max(worst, test::relative_error(tau, expected, 1.0));
+    EXPECT_LT(test::relative_error(tau, this->generated(x, theta), 1.0), 1e-12);
+    for (int i = 0; i < n; ++i) {
+      driving[i] += branch[i] > 0;
+      driven[i] += branch[i] < 0;
+    }
+  }
+  std::cout << "[ DRIVE    ] " << TypeParam::kDescription
+            << ": drive_torque_given_regressor vs numeric model, worst relative difference "
+            << worst << "\n";
+  EXPECT_LT(worst, 1e-12);
+  for (int i = 0; i < n; ++i) {
+    EXPECT_GT(driving[i], 100) << "joint " << i + 1 << ": motor-driving branch of eq. 8";
+    EXPECT_GT(driven[i], 100) << "joint " << i + 1 << ": driven branch of eq. 8";
+  }
+}
+
+// tau_M and J from a sample's Y against ceres::Jet derivatives of the numeric model and against
+// drive_torque_jacobian on the state.
+TYPED_TEST(DriveTorque, JacobianGivenRegressorEqualsJetDerivativesOfTheNumericModel) {
+  constexpr int m = TestFixture::m;
+  test::Random random(2301);
+  double worst = 0, worst_tau = 0, worst_state_call = 0;
+  for (int s = 0; s < 200; ++s) {
+    const Eigen::VectorXd theta = this->random_theta(random);
+    const Eigen::VectorXd x = this->smooth_state(random, theta, 1e-6);
+    Eigen::VectorXd tau, tau_jet, tau_state;
+    const RowMajor J = this->jacobian_given_regressor(this->regressor(x), theta, &tau);
+    const RowMajor expected = this->template jet_jacobian<m>(x, theta, &tau_jet);
+    ASSERT_TRUE(J.allFinite() && tau.allFinite());
+    worst = std::max(worst, relative_difference(J, expected));
+    worst_tau = std::max(worst_tau, test::relative_error(tau, tau_jet, 1.0));
+    const RowMajor J_state = this->theta_jacobian(x, theta, &tau_state);
+    worst_state_call = std::max({worst_state_call, relative_difference(J, J_state),
+                                 test::relative_error(tau, tau_state, 1.0)});
+  }
+  std::cout << "[ DRIVE    ] " << TypeParam::kDescription
+            << ": drive_torque_jacobian_given_regressor vs ceres::Jet, worst relative difference "
+            << worst << " (tau_M " << worst_tau << "); vs drive_torque_jacobian "
+            << worst_state_call << "\n";
+  EXPECT_LT(worst, 1e-12);
+  EXPECT_LT(worst_tau, 1e-12);
+  EXPECT_LT(worst_state_call, 1e-12);
+}
+
+TYPED_TEST(DriveTorque, FloatGivenRegressorAgreesWithDouble) {
+  constexpr int n = TestFixture::n, m = TestFixture::m;
+  using RowMajorF = Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+  test::Random random(2401);
+  double worst = 0;
+  for (int s = 0; s < 100; ++s) {
+    const Eigen::VectorXd theta = this->random_theta(random);
+    const Eigen::VectorXd x = this->smooth_state(random, theta, 1e-3);
+    const Eigen::VectorXf xf = x.cast<float>(), thetaf = theta.cast<float>();
+    RowMajorF Y = RowMajorF::Zero(n, m), J(n, m);
+    Eigen::VectorXf tau(n);
+    TypeParam::drive_regressor_float(xf.data(), xf.data() + n, xf.data() + 2 * n, Y.data());
+    TypeParam::drive_torque_jacobian_given_regressor_float(Y.data(), thetaf.data(), tau.data(),
+                                                           J.data());
+    worst = std::max(worst, relative_difference(Y.cast<double>(), this->regressor(x)));
+    worst = std::max(worst, relative_difference(J.cast<double>(), this->theta_jacobian(x, theta)));
+  }
+  EXPECT_LT(worst, 1e-4);
 }
 
 TYPED_TEST(DriveTorque, ParameterJacobianEqualsDifferencesOfTheGeneratedModel) {
