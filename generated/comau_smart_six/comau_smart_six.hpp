@@ -4,29 +4,29 @@
 // The generated code belongs to the owner of the robot description.
 //
 // Function                                   mul    add  sin/cos
-// idim_regressor_standard                    512    474       10
+// idim_regressor_standard                    498    478       10
 // inverse_dynamics_standard                  472    368       10
 // joint_sincos                                 0      0       12
-// idim_regressor_standard_sincos             512    474        0
+// idim_regressor_standard_sincos             498    478        0
 // inverse_dynamics_standard_sincos           472    368        0
 // base_from_standard                          14     74        0
-// idim_regressor                             414    346       10
+// idim_regressor                             408    346       10
 // inverse_dynamics                           367    270       10
-// mass_matrix                                387    305       10
-// idim_regressor_sincos                      414    346        0
+// mass_matrix                                380    305       10
+// idim_regressor_sincos                      408    346        0
 // inverse_dynamics_sincos                    367    270        0
-// mass_matrix_sincos                         387    305        0
-// inverse_dynamics_state_jacobian           2181   1958       10
-// energy_regressor                           131     53       10
-// power_regressor                            331    163       10
-// energy_regressor_sincos                    131     53        0
-// power_regressor_sincos                     331    163        0
+// mass_matrix_sincos                         380    305        0
+// inverse_dynamics_state_jacobian           2173   1959       10
+// energy_regressor                           125     53       10
+// power_regressor                            327    163       10
+// energy_regressor_sincos                    125     53        0
+// power_regressor_sincos                     327    163        0
 // drive_torque                               484    374       10
-// drive_torque_jacobian                     1850    936       10
-// drive_torque_state_jacobian               2802   2332       20
-// drive_regressor                            512    474       10
-// drive_torque_given_regressor               298    274        0
-// drive_torque_jacobian_given_regressor      810    286        0
+// drive_torque_jacobian                     1052   1008       10
+// drive_torque_state_jacobian               2686   2423       20
+// drive_regressor                            498    478       10
+// drive_torque_given_regressor               295    271        0
+// drive_torque_jacobian_given_regressor      554    530        0
 #ifndef MODELGEN_COMAU_SMART_SIX_HPP_
 #define MODELGEN_COMAU_SMART_SIX_HPP_
 
@@ -231,7 +231,7 @@ void drive_torque(const float* q, const float* dq, const float* ddq, const float
 // efficiency branch and the Coulomb friction sign count as constant: exact wherever no motor
 // velocity and no power flow tau'_G dq_M is zero. Calls idim_regressor_standard into a local
 // array of kDof * kStandardParams values (on the stack) and applies the chain rule to it.
-// J: 444 of its 564 entries are written; the others are zero for every input
+// J: 265 of its 564 entries are written; the others are zero for every input
 // and never written (the manifest lists them under "unwritten"): zero J once before the
 // first call.
 void drive_torque_jacobian(const double* q, const double* dq, const double* ddq,
@@ -247,6 +247,9 @@ void drive_torque_jacobian(const float* q, const float* dq, const float* ddq, co
 // Calls base_from_standard, inverse_dynamics and inverse_dynamics_state_jacobian into local
 // arrays (kStandardParams + kBaseParams + kDof + 3 kDof^2 values, on the stack) and applies the
 // chain rule to them.
+// J: 102 of its 108 entries are written; the others are zero for every input
+// and never written (the manifest lists them under "unwritten"): zero J once before the
+// first call.
 void drive_torque_state_jacobian(const double* q, const double* dq, const double* ddq,
                                  const double* theta, double* J);
 void drive_torque_state_jacobian(const float* q, const float* dq, const float* ddq,
@@ -262,7 +265,7 @@ void drive_torque_state_jacobian(const float* q, const float* dq, const float* d
 // passes it to drive_torque_given_regressor and drive_torque_jacobian_given_regressor, which
 // read only its entries that are not structurally zero. Calls idim_regressor_standard into a
 // local array of kDof * kStandardParams values (on the stack).
-// Y: 262 of its 564 entries are written; the others are zero for every input
+// Y: 259 of its 564 entries are written; the others are zero for every input
 // and never written (the manifest lists them under "unwritten"): zero Y once before the
 // first call.
 void drive_regressor(const double* q, const double* dq, const double* ddq, double* Y);
@@ -286,7 +289,7 @@ void drive_torque_given_regressor(const float* Y, const float* theta, float* tau
 // efficiency branch and the Coulomb friction sign count as constant, as in
 // drive_torque_jacobian. Reads only the entries of Y that drive_regressor does not leave
 // structurally zero; every Rz must be non-zero.
-// J: 268 of its 564 entries are written; the others are zero for every input
+// J: 265 of its 564 entries are written; the others are zero for every input
 // and never written (the manifest lists them under "unwritten"): zero J once before the
 // first call.
 void drive_torque_jacobian_given_regressor(const double* Y, const double* theta, double* tau_M,

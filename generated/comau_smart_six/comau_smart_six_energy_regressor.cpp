@@ -4,7 +4,7 @@
 // The generated code belongs to the owner of the robot description.
 //
 // Function                              mul    add  sin/cos
-// energy_regressor                      131     53       10
+// energy_regressor                      125     53       10
 #include "comau_smart_six.hpp"
 
 #include <cmath>
@@ -48,13 +48,13 @@ void energy_regressor(const double* q, const double* dq, double* h) {
   h[18] = t4 * t2;  // XZ3
   h[19] = -t4 * t3;  // YZ3
   h[20] = 0.5 * t4 * t4;  // ZZ3R
-  const double t5 = dq[1] * s3;
-  const double t6 = c2 * s3 - c3 * s2;
+  const double t5 = 9.81 * (c2 * s3 - c3 * s2);
+  const double t6 = dq[1] * s3;
   const double t7 = 0.15 * dq[0] + 0.59 * t1;
-  h[21] = -0.59 * t5 * t4 - 9.81 * t6 - t7 * t3;  // MX3R
-  const double t8 = c2 * c3 + s2 * s3;
+  h[21] = -0.59 * t6 * t4 - t5 - t7 * t3;  // MX3R
+  const double t8 = 9.81 * (c2 * c3 + s2 * s3);
   const double t9 = c3 * dq[1];
-  h[22] = -9.81 * t8 - 0.59 * t9 * t4 - t7 * t2;  // MY3R
+  h[22] = -0.59 * t9 * t4 - t8 - t7 * t2;  // MY3R
   h[23] = 0.5 * dq[2] * dq[2];  // Ia3
   const double t10 = s4 * t4 - c4 * t2;
   h[28] = 0.5 * t10 * t10;  // XX4R
@@ -64,15 +64,15 @@ void energy_regressor(const double* q, const double* dq, double* h) {
   h[30] = t12 * t10;  // XZ4
   h[31] = t12 * t11;  // YZ4
   h[32] = 0.5 * t12 * t12;  // ZZ4R
-  const double t13 = c4 * t6;
-  const double t14 = 0.59 * t5 - 0.13 * t4;
+  const double t13 = c4 * t5;
+  const double t14 = 0.59 * t6 - 0.13 * t4;
   const double t15 = 0.59 * t9 + 0.64707 * t4;
   const double t16 = t7 - 0.13 * t3 + 0.64707 * t2;
   const double t17 = s4 * t15 - c4 * t16;
-  h[33] = t12 * t17 - 9.81 * t13 - t14 * t11;  // MX4
-  const double t18 = s4 * t6;
+  h[33] = t12 * t17 - t13 - t14 * t11;  // MX4
+  const double t18 = s4 * t5;
   const double t19 = c4 * t15 + s4 * t16;
-  h[34] = 9.81 * t18 + t14 * t10 + t12 * t19;  // MY4R
+  h[34] = t18 + t14 * t10 + t12 * t19;  // MY4R
   h[35] = 0.5 * dq[3] * dq[3];  // Ia4
   const double t20 = s5 * t12 - c5 * t10;
   h[40] = 0.5 * t20 * t20;  // XX5R
@@ -84,9 +84,9 @@ void energy_regressor(const double* q, const double* dq, double* h) {
   h[44] = 0.5 * t22 * t22;  // ZZ5R
   const double t23 = s5 * t8 - c5 * t13;
   const double t24 = c5 * t14 - s5 * t19;
-  h[45] = 9.81 * t23 + t17 * t21 - t22 * t24;  // MX5
+  h[45] = t23 + t17 * t21 - t22 * t24;  // MX5
   const double t25 = s5 * t14 + c5 * t19;
-  h[46] = 9.81 * (c5 * t8 + s5 * t13) - t17 * t20 + t22 * t25;  // MY5R
+  h[46] = c5 * t8 + s5 * t13 - t17 * t20 + t22 * t25;  // MY5R
   h[47] = 0.5 * dq[4] * dq[4];  // Ia5
   const double t26 = s6 * t22 - c6 * t20;
   h[52] = 0.5 * t26 * t26;  // XX6R
@@ -96,8 +96,8 @@ void energy_regressor(const double* q, const double* dq, double* h) {
   h[54] = t28 * t26;  // XZ6R
   h[55] = t28 * t27;  // YZ6R
   h[56] = 0.5 * t28 * t28;  // ZZ6R
-  h[57] = 9.81 * (s6 * t18 + c6 * t23) - t24 * t27 + t28 * (c6 * t17 + s6 * t25);  // MX6R
-  h[58] = 9.81 * (c6 * t18 - s6 * t23) + t24 * t26 - t28 * (s6 * t17 - c6 * t25);  // MY6R
+  h[57] = s6 * t18 + c6 * t23 - t24 * t27 + t28 * (c6 * t17 + s6 * t25);  // MX6R
+  h[58] = c6 * t18 - s6 * t23 + t24 * t26 - t28 * (s6 * t17 - c6 * t25);  // MY6R
   h[59] = 0.5 * dq[5] * dq[5];  // Ia6
 }
 
@@ -137,13 +137,13 @@ void energy_regressor(const float* q, const float* dq, float* h) {
   h[18] = t4 * t2;  // XZ3
   h[19] = -t4 * t3;  // YZ3
   h[20] = 0.5f * t4 * t4;  // ZZ3R
-  const float t5 = dq[1] * s3;
-  const float t6 = c2 * s3 - c3 * s2;
+  const float t5 = 9.81f * (c2 * s3 - c3 * s2);
+  const float t6 = dq[1] * s3;
   const float t7 = 0.15f * dq[0] + 0.59f * t1;
-  h[21] = -0.59f * t5 * t4 - 9.81f * t6 - t7 * t3;  // MX3R
-  const float t8 = c2 * c3 + s2 * s3;
+  h[21] = -0.59f * t6 * t4 - t5 - t7 * t3;  // MX3R
+  const float t8 = 9.81f * (c2 * c3 + s2 * s3);
   const float t9 = c3 * dq[1];
-  h[22] = -9.81f * t8 - 0.59f * t9 * t4 - t7 * t2;  // MY3R
+  h[22] = -0.59f * t9 * t4 - t8 - t7 * t2;  // MY3R
   h[23] = 0.5f * dq[2] * dq[2];  // Ia3
   const float t10 = s4 * t4 - c4 * t2;
   h[28] = 0.5f * t10 * t10;  // XX4R
@@ -153,15 +153,15 @@ void energy_regressor(const float* q, const float* dq, float* h) {
   h[30] = t12 * t10;  // XZ4
   h[31] = t12 * t11;  // YZ4
   h[32] = 0.5f * t12 * t12;  // ZZ4R
-  const float t13 = c4 * t6;
-  const float t14 = 0.59f * t5 - 0.13f * t4;
+  const float t13 = c4 * t5;
+  const float t14 = 0.59f * t6 - 0.13f * t4;
   const float t15 = 0.59f * t9 + 0.64707f * t4;
   const float t16 = t7 - 0.13f * t3 + 0.64707f * t2;
   const float t17 = s4 * t15 - c4 * t16;
-  h[33] = t12 * t17 - 9.81f * t13 - t14 * t11;  // MX4
-  const float t18 = s4 * t6;
+  h[33] = t12 * t17 - t13 - t14 * t11;  // MX4
+  const float t18 = s4 * t5;
   const float t19 = c4 * t15 + s4 * t16;
-  h[34] = 9.81f * t18 + t14 * t10 + t12 * t19;  // MY4R
+  h[34] = t18 + t14 * t10 + t12 * t19;  // MY4R
   h[35] = 0.5f * dq[3] * dq[3];  // Ia4
   const float t20 = s5 * t12 - c5 * t10;
   h[40] = 0.5f * t20 * t20;  // XX5R
@@ -173,9 +173,9 @@ void energy_regressor(const float* q, const float* dq, float* h) {
   h[44] = 0.5f * t22 * t22;  // ZZ5R
   const float t23 = s5 * t8 - c5 * t13;
   const float t24 = c5 * t14 - s5 * t19;
-  h[45] = 9.81f * t23 + t17 * t21 - t22 * t24;  // MX5
+  h[45] = t23 + t17 * t21 - t22 * t24;  // MX5
   const float t25 = s5 * t14 + c5 * t19;
-  h[46] = 9.81f * (c5 * t8 + s5 * t13) - t17 * t20 + t22 * t25;  // MY5R
+  h[46] = c5 * t8 + s5 * t13 - t17 * t20 + t22 * t25;  // MY5R
   h[47] = 0.5f * dq[4] * dq[4];  // Ia5
   const float t26 = s6 * t22 - c6 * t20;
   h[52] = 0.5f * t26 * t26;  // XX6R
@@ -185,8 +185,8 @@ void energy_regressor(const float* q, const float* dq, float* h) {
   h[54] = t28 * t26;  // XZ6R
   h[55] = t28 * t27;  // YZ6R
   h[56] = 0.5f * t28 * t28;  // ZZ6R
-  h[57] = 9.81f * (s6 * t18 + c6 * t23) - t24 * t27 + t28 * (c6 * t17 + s6 * t25);  // MX6R
-  h[58] = 9.81f * (c6 * t18 - s6 * t23) + t24 * t26 - t28 * (s6 * t17 - c6 * t25);  // MY6R
+  h[57] = s6 * t18 + c6 * t23 - t24 * t27 + t28 * (c6 * t17 + s6 * t25);  // MX6R
+  h[58] = c6 * t18 - s6 * t23 + t24 * t26 - t28 * (s6 * t17 - c6 * t25);  // MY6R
   h[59] = 0.5f * dq[5] * dq[5];  // Ia6
 }
 

@@ -4,7 +4,7 @@
 // The generated code belongs to the owner of the robot description.
 //
 // Function                              mul    add  sin/cos
-// idim_regressor_sincos                 414    346        0
+// idim_regressor_sincos                 408    346        0
 #include "comau_smart_six.hpp"
 
 namespace modelgen {
@@ -88,9 +88,9 @@ void idim_regressor_sincos(const double* q, const double* sin_q, const double* c
   const double t31 = t25 - t26;
   W[19] = -t18 * (t28 - t30) - t14 * t31;  // YZ3
   const double t32 = 0.15 * ddq[0] + 0.59 * (t5 + t1);
-  const double t33 = 0.2542372881355932 + s2;
-  W[21] = 0.59 * t33 * t24 - t14 * t32;  // MX3R
-  W[22] = t18 * t32 - 0.59 * t33 * t22;  // MY3R
+  const double t33 = 0.15 + 0.59 * s2;
+  W[21] = t33 * t24 - t14 * t32;  // MX3R
+  W[22] = t18 * t32 - t33 * t22;  // MY3R
   const double t34 = c4 * t15 + s4 * t16;
   const double t35 = s4 * t15 - c4 * t16;
   const double t36 = t34 * t35;
@@ -127,7 +127,7 @@ void idim_regressor_sincos(const double* q, const double* sin_q, const double* c
   const double t62 = 0.59 * (ddq[1] - t10) - t61;
   const double t63 = c3 * t60 + s3 * t62;
   const double t64 = 0.13 * t25 - 0.64707 * t28 + t16 * t58 - t63;
-  const double t65 = 0.59 * t33 - 0.13 * t14 - 0.64707 * t18;
+  const double t65 = t33 - 0.13 * t14 - 0.64707 * t18;
   const double t66 = s4 * t65;
   const double t67 = t52 + t43;
   const double t68 = c4 * t65;
@@ -248,13 +248,13 @@ void idim_regressor_sincos(const double* q, const double* sin_q, const double* c
   const double t145 = s4 * t46 - t138;
   W[96] = t145;
   const double t146 = c4 * t64;
-  const double t147 = 1.0967288135593223 + c3;
+  const double t147 = 0.64707 + 0.59 * c3;
   const double t148 = c4 * t147;
   const double t149 = s4 * t147;
-  const double t150 = s3 - 0.22033898305084748;
-  W[97] = t146 + 0.59 * (t148 * t67 + t149 * t51 + t150 * t49);
+  const double t150 = 0.59 * s3 - 0.13;
+  W[97] = t146 + t148 * t67 + t149 * t51 + t150 * t49;
   const double t151 = s4 * t64;
-  W[98] = 0.59 * (t148 * t56 - t149 * t73 + t150 * t47) - t151;
+  W[98] = t148 * t56 - t151 - t149 * t73 + t150 * t47;
   const double t152 = s4 * s5;
   const double t153 = t152 * t80;
   const double t154 = c5 * s4;
@@ -272,10 +272,10 @@ void idim_regressor_sincos(const double* q, const double* sin_q, const double* c
   const double t161 = s5 * t150 + c5 * t148;
   const double t162 = c5 * t150 - s5 * t148;
   const double t163 = c4 * t102;
-  W[109] = 0.59 * (t161 * t100 - t162 * t92 - t149 * t90) - t160 + t163;
+  W[109] = t161 * t100 - t160 - t162 * t92 + t163 - t149 * t90;
   const double t164 = t154 * t72;
   const double t165 = c4 * t104;
-  W[110] = 0.59 * (t162 * t103 + t161 * t97 - t149 * t88) - t164 - t165;
+  W[110] = t162 * t103 - t164 + t161 * t97 - t149 * t88 - t165;
   const double t166 = c4 * c6 - s6 * t154;
   const double t167 = t166 * t110;
   const double t168 = c4 * s6 + c6 * t154;
@@ -293,10 +293,10 @@ void idim_regressor_sincos(const double* q, const double* sin_q, const double* c
   const double t175 = s6 * t149 - c6 * t161;
   const double t176 = c6 * t149 + s6 * t161;
   const double t177 = t152 * t132;
-  W[121] = t174 + 0.59 * (t176 * t122 - t175 * t130 + t162 * t120) - t177;
+  W[121] = t174 - t175 * t130 + t176 * t122 - t177 + t162 * t120;
   const double t178 = t168 * t102;
   const double t179 = t152 * t134;
-  W[122] = 0.59 * (t162 * t118 - t176 * t133 - t175 * t127) - t178 + t179;
+  W[122] = t162 * t118 - t178 - t176 * t133 - t175 * t127 + t179;
   W[144] = t26;
   W[145] = -t135;
   W[146] = t136;
@@ -476,9 +476,9 @@ void idim_regressor_sincos(const float* q, const float* sin_q, const float* cos_
   const float t31 = t25 - t26;
   W[19] = -t18 * (t28 - t30) - t14 * t31;  // YZ3
   const float t32 = 0.15f * ddq[0] + 0.59f * (t5 + t1);
-  const float t33 = 0.2542373f + s2;
-  W[21] = 0.59f * t33 * t24 - t14 * t32;  // MX3R
-  W[22] = t18 * t32 - 0.59f * t33 * t22;  // MY3R
+  const float t33 = 0.15f + 0.59f * s2;
+  W[21] = t33 * t24 - t14 * t32;  // MX3R
+  W[22] = t18 * t32 - t33 * t22;  // MY3R
   const float t34 = c4 * t15 + s4 * t16;
   const float t35 = s4 * t15 - c4 * t16;
   const float t36 = t34 * t35;
@@ -515,7 +515,7 @@ void idim_regressor_sincos(const float* q, const float* sin_q, const float* cos_
   const float t62 = 0.59f * (ddq[1] - t10) - t61;
   const float t63 = c3 * t60 + s3 * t62;
   const float t64 = 0.13f * t25 - 0.64707f * t28 + t16 * t58 - t63;
-  const float t65 = 0.59f * t33 - 0.13f * t14 - 0.64707f * t18;
+  const float t65 = t33 - 0.13f * t14 - 0.64707f * t18;
   const float t66 = s4 * t65;
   const float t67 = t52 + t43;
   const float t68 = c4 * t65;
@@ -636,13 +636,13 @@ void idim_regressor_sincos(const float* q, const float* sin_q, const float* cos_
   const float t145 = s4 * t46 - t138;
   W[96] = t145;
   const float t146 = c4 * t64;
-  const float t147 = 1.0967288f + c3;
+  const float t147 = 0.64707f + 0.59f * c3;
   const float t148 = c4 * t147;
   const float t149 = s4 * t147;
-  const float t150 = s3 - 0.22033899f;
-  W[97] = t146 + 0.59f * (t148 * t67 + t149 * t51 + t150 * t49);
+  const float t150 = 0.59f * s3 - 0.13f;
+  W[97] = t146 + t148 * t67 + t149 * t51 + t150 * t49;
   const float t151 = s4 * t64;
-  W[98] = 0.59f * (t148 * t56 - t149 * t73 + t150 * t47) - t151;
+  W[98] = t148 * t56 - t151 - t149 * t73 + t150 * t47;
   const float t152 = s4 * s5;
   const float t153 = t152 * t80;
   const float t154 = c5 * s4;
@@ -660,10 +660,10 @@ void idim_regressor_sincos(const float* q, const float* sin_q, const float* cos_
   const float t161 = s5 * t150 + c5 * t148;
   const float t162 = c5 * t150 - s5 * t148;
   const float t163 = c4 * t102;
-  W[109] = 0.59f * (t161 * t100 - t162 * t92 - t149 * t90) - t160 + t163;
+  W[109] = t161 * t100 - t160 - t162 * t92 + t163 - t149 * t90;
   const float t164 = t154 * t72;
   const float t165 = c4 * t104;
-  W[110] = 0.59f * (t162 * t103 + t161 * t97 - t149 * t88) - t164 - t165;
+  W[110] = t162 * t103 - t164 + t161 * t97 - t149 * t88 - t165;
   const float t166 = c4 * c6 - s6 * t154;
   const float t167 = t166 * t110;
   const float t168 = c4 * s6 + c6 * t154;
@@ -681,10 +681,10 @@ void idim_regressor_sincos(const float* q, const float* sin_q, const float* cos_
   const float t175 = s6 * t149 - c6 * t161;
   const float t176 = c6 * t149 + s6 * t161;
   const float t177 = t152 * t132;
-  W[121] = t174 + 0.59f * (t176 * t122 - t175 * t130 + t162 * t120) - t177;
+  W[121] = t174 - t175 * t130 + t176 * t122 - t177 + t162 * t120;
   const float t178 = t168 * t102;
   const float t179 = t152 * t134;
-  W[122] = 0.59f * (t162 * t118 - t176 * t133 - t175 * t127) - t178 + t179;
+  W[122] = t162 * t118 - t178 - t176 * t133 - t175 * t127 + t179;
   W[144] = t26;
   W[145] = -t135;
   W[146] = t136;

@@ -4,29 +4,29 @@
 // The generated code belongs to the owner of the robot description.
 //
 // Function                                   mul    add  sin/cos
-// idim_regressor_standard                   1362   1130       12
-// inverse_dynamics_standard                  671    551       12
+// idim_regressor_standard                   1361   1131       12
+// inverse_dynamics_standard                  670    551       12
 // joint_sincos                                 0      0       18
-// idim_regressor_standard_sincos            1362   1130        0
-// inverse_dynamics_standard_sincos           671    551        0
+// idim_regressor_standard_sincos            1361   1131        0
+// inverse_dynamics_standard_sincos           670    551        0
 // base_from_standard                          33    103        0
-// idim_regressor                            1120    874       12
-// inverse_dynamics                           561    449       12
+// idim_regressor                            1119    875       12
+// inverse_dynamics                           560    449       12
 // mass_matrix                               1323   1028       12
-// idim_regressor_sincos                     1120    874        0
-// inverse_dynamics_sincos                    561    449        0
+// idim_regressor_sincos                     1119    875        0
+// inverse_dynamics_sincos                    560    449        0
 // mass_matrix_sincos                        1323   1028        0
-// inverse_dynamics_state_jacobian           6968   6006       12
-// energy_regressor                           217    114       12
-// power_regressor                            477    285       12
-// energy_regressor_sincos                    217    114        0
-// power_regressor_sincos                     477    285        0
-// drive_torque                               725    569       12
-// drive_torque_jacobian                     3909   2003       12
-// drive_torque_state_jacobian               8084   6603       24
-// drive_regressor                           1362   1130       12
-// drive_torque_given_regressor               483    447        0
-// drive_torque_jacobian_given_regressor     1323    465        0
+// inverse_dynamics_state_jacobian           6958   6011       12
+// energy_regressor                           215    116       12
+// power_regressor                            485    294       12
+// energy_regressor_sincos                    215    116        0
+// power_regressor_sincos                     485    294        0
+// drive_torque                               724    569       12
+// drive_torque_jacobian                     2271   2005       12
+// drive_torque_state_jacobian               7824   6818       24
+// drive_regressor                           1361   1131       12
+// drive_torque_given_regressor               482    446        0
+// drive_torque_jacobian_given_regressor      910    874        0
 #ifndef MODELGEN_PANDA_HPP_
 #define MODELGEN_PANDA_HPP_
 
@@ -237,7 +237,7 @@ void drive_torque(const float* q, const float* dq, const float* ddq, const float
 // efficiency branch and the Coulomb friction sign count as constant: exact wherever no motor
 // velocity and no power flow tau'_G dq_M is zero. Calls idim_regressor_standard into a local
 // array of kDof * kStandardParams values (on the stack) and applies the chain rule to it.
-// J: 846 of its 1134 entries are written; the others are zero for every input
+// J: 437 of its 1134 entries are written; the others are zero for every input
 // and never written (the manifest lists them under "unwritten"): zero J once before the
 // first call.
 void drive_torque_jacobian(const double* q, const double* dq, const double* ddq,
@@ -253,6 +253,9 @@ void drive_torque_jacobian(const float* q, const float* dq, const float* ddq, co
 // Calls base_from_standard, inverse_dynamics and inverse_dynamics_state_jacobian into local
 // arrays (kStandardParams + kBaseParams + kDof + 3 kDof^2 values, on the stack) and applies the
 // chain rule to them.
+// J: 228 of its 243 entries are written; the others are zero for every input
+// and never written (the manifest lists them under "unwritten"): zero J once before the
+// first call.
 void drive_torque_state_jacobian(const double* q, const double* dq, const double* ddq,
                                  const double* theta, double* J);
 void drive_torque_state_jacobian(const float* q, const float* dq, const float* ddq,
@@ -268,7 +271,7 @@ void drive_torque_state_jacobian(const float* q, const float* dq, const float* d
 // passes it to drive_torque_given_regressor and drive_torque_jacobian_given_regressor, which
 // read only its entries that are not structurally zero. Calls idim_regressor_standard into a
 // local array of kDof * kStandardParams values (on the stack).
-// Y: 429 of its 1134 entries are written; the others are zero for every input
+// Y: 428 of its 1134 entries are written; the others are zero for every input
 // and never written (the manifest lists them under "unwritten"): zero Y once before the
 // first call.
 void drive_regressor(const double* q, const double* dq, const double* ddq, double* Y);
@@ -292,7 +295,7 @@ void drive_torque_given_regressor(const float* Y, const float* theta, float* tau
 // efficiency branch and the Coulomb friction sign count as constant, as in
 // drive_torque_jacobian. Reads only the entries of Y that drive_regressor does not leave
 // structurally zero; every Rz must be non-zero.
-// J: 438 of its 1134 entries are written; the others are zero for every input
+// J: 437 of its 1134 entries are written; the others are zero for every input
 // and never written (the manifest lists them under "unwritten"): zero J once before the
 // first call.
 void drive_torque_jacobian_given_regressor(const double* Y, const double* theta, double* tau_M,

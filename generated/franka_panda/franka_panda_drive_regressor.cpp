@@ -4,7 +4,7 @@
 // The generated code belongs to the owner of the robot description.
 //
 // Function                              mul    add  sin/cos
-// drive_regressor                      1362   1130       12
+// drive_regressor                      1361   1131       12
 #include "franka_panda.hpp"
 
 namespace modelgen {
@@ -20,7 +20,7 @@ namespace panda {
 // passes it to drive_torque_given_regressor and drive_torque_jacobian_given_regressor, which
 // read only its entries that are not structurally zero. Calls idim_regressor_standard into a
 // local array of kDof * kStandardParams values (on the stack).
-// Y: 429 of its 1134 entries are written; the others are zero for every input
+// Y: 428 of its 1134 entries are written; the others are zero for every input
 // and never written (the manifest lists them under "unwritten"): zero Y once before the
 // first call.
 void drive_regressor(const double* q, const double* dq, const double* ddq, double* Y) {
@@ -41,7 +41,6 @@ void drive_regressor(const double* q, const double* dq, const double* ddq, doubl
   Y[12] = W_std[16];  // XZ2
   Y[13] = W_std[17];  // YY2
   Y[14] = W_std[18];  // YZ2
-  Y[15] = W_std[19];  // ZZ2
   Y[20] = W_std[28];  // XX3
   Y[21] = W_std[29];  // XY3
   Y[22] = W_std[30];  // XZ3
@@ -476,7 +475,7 @@ void drive_regressor(const double* q, const double* dq, const double* ddq, doubl
 // passes it to drive_torque_given_regressor and drive_torque_jacobian_given_regressor, which
 // read only its entries that are not structurally zero. Calls idim_regressor_standard into a
 // local array of kDof * kStandardParams values (on the stack).
-// Y: 429 of its 1134 entries are written; the others are zero for every input
+// Y: 428 of its 1134 entries are written; the others are zero for every input
 // and never written (the manifest lists them under "unwritten"): zero Y once before the
 // first call.
 void drive_regressor(const float* q, const float* dq, const float* ddq, float* Y) {
@@ -497,7 +496,6 @@ void drive_regressor(const float* q, const float* dq, const float* ddq, float* Y
   Y[12] = W_std[16];  // XZ2
   Y[13] = W_std[17];  // YY2
   Y[14] = W_std[18];  // YZ2
-  Y[15] = W_std[19];  // ZZ2
   Y[20] = W_std[28];  // XX3
   Y[21] = W_std[29];  // XY3
   Y[22] = W_std[30];  // XZ3

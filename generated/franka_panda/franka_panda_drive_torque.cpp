@@ -4,7 +4,7 @@
 // The generated code belongs to the owner of the robot description.
 //
 // Function                              mul    add  sin/cos
-// drive_torque                          725    569       12
+// drive_torque                          724    569       12
 #include "franka_panda.hpp"
 
 #include <cmath>
@@ -55,12 +55,12 @@ void drive_torque(const double* q, const double* dq, const double* ddq, const do
   const double t9 = dq[1] * s3 - c3 * t2;
   const double t10 = dq[2] + t3;
   const double t11 = theta[24] * t10 + theta[23] * t7 + theta[21] * t9;
-  const double t12 = t0 + dq[1] * t3;
-  const double t13 = 0.316 * (ddq[1] - t3 * t2) - 9.81 * s2;
-  const double t14 = 0.316 * s3 * t12 + c3 * t13;
+  const double t12 = 0.316 * (ddq[1] - t3 * t2) - 9.81 * s2;
+  const double t13 = 0.316 * (t0 + dq[1] * t3);
+  const double t14 = c3 * t12 + s3 * t13;
   const double t15 = theta[22] * t10 + theta[21] * t7 + theta[20] * t9;
   const double t16 = c3 * ddq[1] + s3 * t0 - dq[2] * t9;
-  const double t17 = 0.316 * c3 * t12 - s3 * t13;
+  const double t17 = c3 * t13 - s3 * t12;
   const double t18 = 0.0825 * (t6 + t7 * t9) + t17;
   const double t19 = s4 * t10 + c4 * t9;
   const double t20 = c4 * t6 - s4 * t8 - dq[3] * t19;
@@ -221,32 +221,41 @@ void drive_torque(const double* q, const double* dq, const double* ddq, const do
   const double t175 = ddq[0] * theta[5] - c2 * (ddq[1] * theta[14] - 9.81 * s2 * theta[18] - theta[11] * t0 - theta[13] * t1 + dq[1] * t4 + t2 * t5 - t161) - s2 * (ddq[1] * theta[12] + 9.81 * c2 * theta[18] - theta[10] * t0 - theta[11] * t1 - dq[1] * t162 - t3 * t5 + c3 * t164 - s3 * t171 - 0.316 * (c3 * t173 - s3 * t174));
   const double t176 = dq[0] * t175;
   const double t177 = static_cast<double>((t176 > 0.0) - (t176 < 0.0));
-  tau_M[0] = ddq[0] * theta[90] + dq[0] * theta[91] + sg1 * theta[92] - 0.5 * t175 * (theta[93] * (t177 - 1.0) - (1.0 / theta[93]) * (1.0 + t177));
-  const double t178 = 9.81 * (c2 * theta[16] - s2 * theta[17]) - ddq[1] * theta[15] + theta[12] * t0 + theta[14] * t1 + t2 * t162 - t3 * t4 - s3 * t164 - c3 * t171 + 0.316 * (s3 * t173 + c3 * t174);
-  const double t179 = dq[1] * t178;
-  const double t180 = static_cast<double>((t179 > 0.0) - (t179 < 0.0));
-  tau_M[1] = ddq[1] * theta[94] + dq[1] * theta[95] + sg2 * theta[96] - 0.5 * t178 * (theta[97] * (1.0 + t180) - (1.0 / theta[97]) * (t180 - 1.0));
-  const double t181 = dq[2] * t161;
-  const double t182 = static_cast<double>((t181 > 0.0) - (t181 < 0.0));
-  tau_M[2] = ddq[2] * theta[98] + dq[2] * theta[99] + sg3 * theta[100] - 0.5 * t161 * (theta[101] * (t182 - 1.0) - (1.0 / theta[101]) * (1.0 + t182));
-  const double t183 = dq[3] * t167;
+  const double t178 = 0.5 * t177;
+  tau_M[0] = ddq[0] * theta[90] + dq[0] * theta[91] + sg1 * theta[92] - t175 * (theta[93] * (t178 - 0.5) - (1.0 / theta[93]) * (0.5 + t178));
+  const double t179 = 9.81 * (c2 * theta[16] - s2 * theta[17]) - ddq[1] * theta[15] + theta[12] * t0 + theta[14] * t1 + t2 * t162 - t3 * t4 - s3 * t164 - c3 * t171 + 0.316 * (s3 * t173 + c3 * t174);
+  const double t180 = dq[1] * t179;
+  const double t181 = static_cast<double>((t180 > 0.0) - (t180 < 0.0));
+  const double t182 = 0.5 * t181;
+  tau_M[1] = ddq[1] * theta[94] + dq[1] * theta[95] + sg2 * theta[96] - t179 * (theta[97] * (0.5 + t182) - (1.0 / theta[97]) * (t182 - 0.5));
+  const double t183 = dq[2] * t161;
   const double t184 = static_cast<double>((t183 > 0.0) - (t183 < 0.0));
-  tau_M[3] = ddq[3] * theta[102] + dq[3] * theta[103] + sg4 * theta[104] - 0.5 * t167 * (theta[105] * (t184 - 1.0) - (1.0 / theta[105]) * (1.0 + t184));
-  const double t185 = dq[4] * t153;
-  const double t186 = static_cast<double>((t185 > 0.0) - (t185 < 0.0));
-  tau_M[4] = ddq[4] * theta[106] + dq[4] * theta[107] + sg5 * theta[108] - 0.5 * t153 * (theta[109] * (t186 - 1.0) - (1.0 / theta[109]) * (1.0 + t186));
-  const double t187 = dq[5] * t157;
-  const double t188 = static_cast<double>((t187 > 0.0) - (t187 < 0.0));
-  tau_M[5] = ddq[5] * theta[110] + dq[5] * theta[111] + sg6 * theta[112] - 0.5 * t157 * (theta[113] * (t188 - 1.0) - (1.0 / theta[113]) * (1.0 + t188));
-  const double t189 = dq[6] * t151;
+  const double t185 = 0.5 * t184;
+  tau_M[2] = ddq[2] * theta[98] + dq[2] * theta[99] + sg3 * theta[100] - t161 * (theta[101] * (t185 - 0.5) - (1.0 / theta[101]) * (0.5 + t185));
+  const double t186 = dq[3] * t167;
+  const double t187 = static_cast<double>((t186 > 0.0) - (t186 < 0.0));
+  const double t188 = 0.5 * t187;
+  tau_M[3] = ddq[3] * theta[102] + dq[3] * theta[103] + sg4 * theta[104] - t167 * (theta[105] * (t188 - 0.5) - (1.0 / theta[105]) * (0.5 + t188));
+  const double t189 = dq[4] * t153;
   const double t190 = static_cast<double>((t189 > 0.0) - (t189 < 0.0));
-  tau_M[6] = ddq[6] * theta[114] + dq[6] * theta[115] + sg7 * theta[116] - 0.5 * t151 * (theta[117] * (t190 - 1.0) - (1.0 / theta[117]) * (1.0 + t190));
-  const double t191 = dq[7] * t83;
-  const double t192 = static_cast<double>((t191 > 0.0) - (t191 < 0.0));
-  tau_M[7] = ddq[7] * theta[118] + dq[7] * theta[119] + sg8 * theta[120] - 0.5 * t83 * (theta[121] * (t192 - 1.0) - (1.0 / theta[121]) * (1.0 + t192));
-  const double t193 = dq[8] * t100;
-  const double t194 = static_cast<double>((t193 > 0.0) - (t193 < 0.0));
-  tau_M[8] = ddq[8] * theta[122] + dq[8] * theta[123] + sg9 * theta[124] - 0.5 * t100 * (theta[125] * (1.0 + t194) - (1.0 / theta[125]) * (t194 - 1.0));
+  const double t191 = 0.5 * t190;
+  tau_M[4] = ddq[4] * theta[106] + dq[4] * theta[107] + sg5 * theta[108] - t153 * (theta[109] * (t191 - 0.5) - (1.0 / theta[109]) * (0.5 + t191));
+  const double t192 = dq[5] * t157;
+  const double t193 = static_cast<double>((t192 > 0.0) - (t192 < 0.0));
+  const double t194 = 0.5 * t193;
+  tau_M[5] = ddq[5] * theta[110] + dq[5] * theta[111] + sg6 * theta[112] - t157 * (theta[113] * (t194 - 0.5) - (1.0 / theta[113]) * (0.5 + t194));
+  const double t195 = dq[6] * t151;
+  const double t196 = static_cast<double>((t195 > 0.0) - (t195 < 0.0));
+  const double t197 = 0.5 * t196;
+  tau_M[6] = ddq[6] * theta[114] + dq[6] * theta[115] + sg7 * theta[116] - t151 * (theta[117] * (t197 - 0.5) - (1.0 / theta[117]) * (0.5 + t197));
+  const double t198 = dq[7] * t83;
+  const double t199 = static_cast<double>((t198 > 0.0) - (t198 < 0.0));
+  const double t200 = 0.5 * t199;
+  tau_M[7] = ddq[7] * theta[118] + dq[7] * theta[119] + sg8 * theta[120] - t83 * (theta[121] * (t200 - 0.5) - (1.0 / theta[121]) * (0.5 + t200));
+  const double t201 = dq[8] * t100;
+  const double t202 = static_cast<double>((t201 > 0.0) - (t201 < 0.0));
+  const double t203 = 0.5 * t202;
+  tau_M[8] = ddq[8] * theta[122] + dq[8] * theta[123] + sg9 * theta[124] - t100 * (theta[125] * (0.5 + t203) - (1.0 / theta[125]) * (t203 - 0.5));
 }
 
 // Motor torques tau_M (kDof) of the nonlinear drive model F of Swevers et al. 2002 (eq. 7-12)
@@ -292,12 +301,12 @@ void drive_torque(const float* q, const float* dq, const float* ddq, const float
   const float t9 = dq[1] * s3 - c3 * t2;
   const float t10 = dq[2] + t3;
   const float t11 = theta[24] * t10 + theta[23] * t7 + theta[21] * t9;
-  const float t12 = t0 + dq[1] * t3;
-  const float t13 = 0.316f * (ddq[1] - t3 * t2) - 9.81f * s2;
-  const float t14 = 0.316f * s3 * t12 + c3 * t13;
+  const float t12 = 0.316f * (ddq[1] - t3 * t2) - 9.81f * s2;
+  const float t13 = 0.316f * (t0 + dq[1] * t3);
+  const float t14 = c3 * t12 + s3 * t13;
   const float t15 = theta[22] * t10 + theta[21] * t7 + theta[20] * t9;
   const float t16 = c3 * ddq[1] + s3 * t0 - dq[2] * t9;
-  const float t17 = 0.316f * c3 * t12 - s3 * t13;
+  const float t17 = c3 * t13 - s3 * t12;
   const float t18 = 0.0825f * (t6 + t7 * t9) + t17;
   const float t19 = s4 * t10 + c4 * t9;
   const float t20 = c4 * t6 - s4 * t8 - dq[3] * t19;
@@ -458,32 +467,41 @@ void drive_torque(const float* q, const float* dq, const float* ddq, const float
   const float t175 = ddq[0] * theta[5] - c2 * (ddq[1] * theta[14] - 9.81f * s2 * theta[18] - theta[11] * t0 - theta[13] * t1 + dq[1] * t4 + t2 * t5 - t161) - s2 * (ddq[1] * theta[12] + 9.81f * c2 * theta[18] - theta[10] * t0 - theta[11] * t1 - dq[1] * t162 - t3 * t5 + c3 * t164 - s3 * t171 - 0.316f * (c3 * t173 - s3 * t174));
   const float t176 = dq[0] * t175;
   const float t177 = static_cast<float>((t176 > 0.0f) - (t176 < 0.0f));
-  tau_M[0] = ddq[0] * theta[90] + dq[0] * theta[91] + sg1 * theta[92] - 0.5f * t175 * (theta[93] * (t177 - 1.0f) - (1.0f / theta[93]) * (1.0f + t177));
-  const float t178 = 9.81f * (c2 * theta[16] - s2 * theta[17]) - ddq[1] * theta[15] + theta[12] * t0 + theta[14] * t1 + t2 * t162 - t3 * t4 - s3 * t164 - c3 * t171 + 0.316f * (s3 * t173 + c3 * t174);
-  const float t179 = dq[1] * t178;
-  const float t180 = static_cast<float>((t179 > 0.0f) - (t179 < 0.0f));
-  tau_M[1] = ddq[1] * theta[94] + dq[1] * theta[95] + sg2 * theta[96] - 0.5f * t178 * (theta[97] * (1.0f + t180) - (1.0f / theta[97]) * (t180 - 1.0f));
-  const float t181 = dq[2] * t161;
-  const float t182 = static_cast<float>((t181 > 0.0f) - (t181 < 0.0f));
-  tau_M[2] = ddq[2] * theta[98] + dq[2] * theta[99] + sg3 * theta[100] - 0.5f * t161 * (theta[101] * (t182 - 1.0f) - (1.0f / theta[101]) * (1.0f + t182));
-  const float t183 = dq[3] * t167;
+  const float t178 = 0.5f * t177;
+  tau_M[0] = ddq[0] * theta[90] + dq[0] * theta[91] + sg1 * theta[92] - t175 * (theta[93] * (t178 - 0.5f) - (1.0f / theta[93]) * (0.5f + t178));
+  const float t179 = 9.81f * (c2 * theta[16] - s2 * theta[17]) - ddq[1] * theta[15] + theta[12] * t0 + theta[14] * t1 + t2 * t162 - t3 * t4 - s3 * t164 - c3 * t171 + 0.316f * (s3 * t173 + c3 * t174);
+  const float t180 = dq[1] * t179;
+  const float t181 = static_cast<float>((t180 > 0.0f) - (t180 < 0.0f));
+  const float t182 = 0.5f * t181;
+  tau_M[1] = ddq[1] * theta[94] + dq[1] * theta[95] + sg2 * theta[96] - t179 * (theta[97] * (0.5f + t182) - (1.0f / theta[97]) * (t182 - 0.5f));
+  const float t183 = dq[2] * t161;
   const float t184 = static_cast<float>((t183 > 0.0f) - (t183 < 0.0f));
-  tau_M[3] = ddq[3] * theta[102] + dq[3] * theta[103] + sg4 * theta[104] - 0.5f * t167 * (theta[105] * (t184 - 1.0f) - (1.0f / theta[105]) * (1.0f + t184));
-  const float t185 = dq[4] * t153;
-  const float t186 = static_cast<float>((t185 > 0.0f) - (t185 < 0.0f));
-  tau_M[4] = ddq[4] * theta[106] + dq[4] * theta[107] + sg5 * theta[108] - 0.5f * t153 * (theta[109] * (t186 - 1.0f) - (1.0f / theta[109]) * (1.0f + t186));
-  const float t187 = dq[5] * t157;
-  const float t188 = static_cast<float>((t187 > 0.0f) - (t187 < 0.0f));
-  tau_M[5] = ddq[5] * theta[110] + dq[5] * theta[111] + sg6 * theta[112] - 0.5f * t157 * (theta[113] * (t188 - 1.0f) - (1.0f / theta[113]) * (1.0f + t188));
-  const float t189 = dq[6] * t151;
+  const float t185 = 0.5f * t184;
+  tau_M[2] = ddq[2] * theta[98] + dq[2] * theta[99] + sg3 * theta[100] - t161 * (theta[101] * (t185 - 0.5f) - (1.0f / theta[101]) * (0.5f + t185));
+  const float t186 = dq[3] * t167;
+  const float t187 = static_cast<float>((t186 > 0.0f) - (t186 < 0.0f));
+  const float t188 = 0.5f * t187;
+  tau_M[3] = ddq[3] * theta[102] + dq[3] * theta[103] + sg4 * theta[104] - t167 * (theta[105] * (t188 - 0.5f) - (1.0f / theta[105]) * (0.5f + t188));
+  const float t189 = dq[4] * t153;
   const float t190 = static_cast<float>((t189 > 0.0f) - (t189 < 0.0f));
-  tau_M[6] = ddq[6] * theta[114] + dq[6] * theta[115] + sg7 * theta[116] - 0.5f * t151 * (theta[117] * (t190 - 1.0f) - (1.0f / theta[117]) * (1.0f + t190));
-  const float t191 = dq[7] * t83;
-  const float t192 = static_cast<float>((t191 > 0.0f) - (t191 < 0.0f));
-  tau_M[7] = ddq[7] * theta[118] + dq[7] * theta[119] + sg8 * theta[120] - 0.5f * t83 * (theta[121] * (t192 - 1.0f) - (1.0f / theta[121]) * (1.0f + t192));
-  const float t193 = dq[8] * t100;
-  const float t194 = static_cast<float>((t193 > 0.0f) - (t193 < 0.0f));
-  tau_M[8] = ddq[8] * theta[122] + dq[8] * theta[123] + sg9 * theta[124] - 0.5f * t100 * (theta[125] * (1.0f + t194) - (1.0f / theta[125]) * (t194 - 1.0f));
+  const float t191 = 0.5f * t190;
+  tau_M[4] = ddq[4] * theta[106] + dq[4] * theta[107] + sg5 * theta[108] - t153 * (theta[109] * (t191 - 0.5f) - (1.0f / theta[109]) * (0.5f + t191));
+  const float t192 = dq[5] * t157;
+  const float t193 = static_cast<float>((t192 > 0.0f) - (t192 < 0.0f));
+  const float t194 = 0.5f * t193;
+  tau_M[5] = ddq[5] * theta[110] + dq[5] * theta[111] + sg6 * theta[112] - t157 * (theta[113] * (t194 - 0.5f) - (1.0f / theta[113]) * (0.5f + t194));
+  const float t195 = dq[6] * t151;
+  const float t196 = static_cast<float>((t195 > 0.0f) - (t195 < 0.0f));
+  const float t197 = 0.5f * t196;
+  tau_M[6] = ddq[6] * theta[114] + dq[6] * theta[115] + sg7 * theta[116] - t151 * (theta[117] * (t197 - 0.5f) - (1.0f / theta[117]) * (0.5f + t197));
+  const float t198 = dq[7] * t83;
+  const float t199 = static_cast<float>((t198 > 0.0f) - (t198 < 0.0f));
+  const float t200 = 0.5f * t199;
+  tau_M[7] = ddq[7] * theta[118] + dq[7] * theta[119] + sg8 * theta[120] - t83 * (theta[121] * (t200 - 0.5f) - (1.0f / theta[121]) * (0.5f + t200));
+  const float t201 = dq[8] * t100;
+  const float t202 = static_cast<float>((t201 > 0.0f) - (t201 < 0.0f));
+  const float t203 = 0.5f * t202;
+  tau_M[8] = ddq[8] * theta[122] + dq[8] * theta[123] + sg9 * theta[124] - t100 * (theta[125] * (0.5f + t203) - (1.0f / theta[125]) * (t203 - 0.5f));
 }
 
 }  // namespace panda

@@ -4,7 +4,7 @@
 // The generated code belongs to the owner of the robot description.
 //
 // Function                              mul    add  sin/cos
-// inverse_dynamics                      561    449       12
+// inverse_dynamics                      560    449       12
 #include "franka_panda.hpp"
 
 #include <cmath>
@@ -50,12 +50,12 @@ void inverse_dynamics(const double* q, const double* dq, const double* ddq, cons
   const double t9 = dq[1] * s3 - c3 * t1;
   const double t10 = dq[2] + t2;
   const double t11 = beta[17] * t10 + beta[15] * t9;
-  const double t12 = t0 + dq[1] * t2;
-  const double t13 = 0.316 * (ddq[1] - t2 * t1) - 9.81 * s2;
-  const double t14 = 0.316 * s3 * t12 + c3 * t13;
+  const double t12 = 0.316 * (ddq[1] - t2 * t1) - 9.81 * s2;
+  const double t13 = 0.316 * (t0 + dq[1] * t2);
+  const double t14 = c3 * t12 + s3 * t13;
   const double t15 = beta[16] * t10 + beta[15] * t7 + beta[14] * t9;
   const double t16 = c3 * ddq[1] + s3 * t0 - dq[2] * t9;
-  const double t17 = 0.316 * c3 * t12 - s3 * t13;
+  const double t17 = c3 * t13 - s3 * t12;
   const double t18 = s4 * t10 + c4 * t9;
   const double t19 = dq[3] - t7;
   const double t20 = beta[30] * t19;
@@ -256,12 +256,12 @@ void inverse_dynamics(const float* q, const float* dq, const float* ddq, const f
   const float t9 = dq[1] * s3 - c3 * t1;
   const float t10 = dq[2] + t2;
   const float t11 = beta[17] * t10 + beta[15] * t9;
-  const float t12 = t0 + dq[1] * t2;
-  const float t13 = 0.316f * (ddq[1] - t2 * t1) - 9.81f * s2;
-  const float t14 = 0.316f * s3 * t12 + c3 * t13;
+  const float t12 = 0.316f * (ddq[1] - t2 * t1) - 9.81f * s2;
+  const float t13 = 0.316f * (t0 + dq[1] * t2);
+  const float t14 = c3 * t12 + s3 * t13;
   const float t15 = beta[16] * t10 + beta[15] * t7 + beta[14] * t9;
   const float t16 = c3 * ddq[1] + s3 * t0 - dq[2] * t9;
-  const float t17 = 0.316f * c3 * t12 - s3 * t13;
+  const float t17 = c3 * t13 - s3 * t12;
   const float t18 = s4 * t10 + c4 * t9;
   const float t19 = dq[3] - t7;
   const float t20 = beta[30] * t19;

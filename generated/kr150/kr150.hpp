@@ -4,29 +4,29 @@
 // The generated code belongs to the owner of the robot description.
 //
 // Function                                   mul    add  sin/cos
-// idim_regressor_standard                    593    536       10
+// idim_regressor_standard                    573    539       10
 // inverse_dynamics_standard                  472    385       10
 // joint_sincos                                 0      0       12
-// idim_regressor_standard_sincos             593    536        0
+// idim_regressor_standard_sincos             573    539        0
 // inverse_dynamics_standard_sincos           472    385        0
 // base_from_standard                          19     81        0
-// idim_regressor                             417    351       10
+// idim_regressor                             411    352       10
 // inverse_dynamics                           358    279       10
-// mass_matrix                                394    314       10
-// idim_regressor_sincos                      417    351        0
+// mass_matrix                                387    314       10
+// idim_regressor_sincos                      411    352        0
 // inverse_dynamics_sincos                    358    279        0
-// mass_matrix_sincos                         394    314        0
-// inverse_dynamics_state_jacobian           2180   1972       10
-// energy_regressor                           138     56       10
-// power_regressor                            319    163       10
-// energy_regressor_sincos                    138     56        0
-// power_regressor_sincos                     319    163        0
+// mass_matrix_sincos                         387    314        0
+// inverse_dynamics_state_jacobian           2172   1973       10
+// energy_regressor                           132     56       10
+// power_regressor                            315    163       10
+// energy_regressor_sincos                    132     56        0
+// power_regressor_sincos                     315    163        0
 // drive_torque                               502    391       10
-// drive_torque_jacobian                     2150   1223       10
-// drive_torque_state_jacobian               2863   2428       20
-// drive_regressor                            658    605       10
-// drive_torque_given_regressor               300    276        0
-// drive_torque_jacobian_given_regressor      816    288        0
+// drive_torque_jacobian                     1199   1102       10
+// drive_torque_state_jacobian               2744   2491       20
+// drive_regressor                            638    608       10
+// drive_torque_given_regressor               297    273        0
+// drive_torque_jacobian_given_regressor      558    534        0
 #ifndef MODELGEN_KR150_HPP_
 #define MODELGEN_KR150_HPP_
 
@@ -231,7 +231,7 @@ void drive_torque(const float* q, const float* dq, const float* ddq, const float
 // efficiency branch and the Coulomb friction sign count as constant: exact wherever no motor
 // velocity and no power flow tau'_G dq_M is zero. Calls idim_regressor_standard into a local
 // array of kDof * kStandardParams values (on the stack) and applies the chain rule to it.
-// J: 444 of its 564 entries are written; the others are zero for every input
+// J: 267 of its 564 entries are written; the others are zero for every input
 // and never written (the manifest lists them under "unwritten"): zero J once before the
 // first call.
 void drive_torque_jacobian(const double* q, const double* dq, const double* ddq,
@@ -247,6 +247,9 @@ void drive_torque_jacobian(const float* q, const float* dq, const float* ddq, co
 // Calls base_from_standard, inverse_dynamics and inverse_dynamics_state_jacobian into local
 // arrays (kStandardParams + kBaseParams + kDof + 3 kDof^2 values, on the stack) and applies the
 // chain rule to them.
+// J: 102 of its 108 entries are written; the others are zero for every input
+// and never written (the manifest lists them under "unwritten"): zero J once before the
+// first call.
 void drive_torque_state_jacobian(const double* q, const double* dq, const double* ddq,
                                  const double* theta, double* J);
 void drive_torque_state_jacobian(const float* q, const float* dq, const float* ddq,
@@ -262,7 +265,7 @@ void drive_torque_state_jacobian(const float* q, const float* dq, const float* d
 // passes it to drive_torque_given_regressor and drive_torque_jacobian_given_regressor, which
 // read only its entries that are not structurally zero. Calls idim_regressor_standard into a
 // local array of kDof * kStandardParams values (on the stack).
-// Y: 264 of its 564 entries are written; the others are zero for every input
+// Y: 261 of its 564 entries are written; the others are zero for every input
 // and never written (the manifest lists them under "unwritten"): zero Y once before the
 // first call.
 void drive_regressor(const double* q, const double* dq, const double* ddq, double* Y);
@@ -286,7 +289,7 @@ void drive_torque_given_regressor(const float* Y, const float* theta, float* tau
 // efficiency branch and the Coulomb friction sign count as constant, as in
 // drive_torque_jacobian. Reads only the entries of Y that drive_regressor does not leave
 // structurally zero; every Rz must be non-zero.
-// J: 270 of its 564 entries are written; the others are zero for every input
+// J: 267 of its 564 entries are written; the others are zero for every input
 // and never written (the manifest lists them under "unwritten"): zero J once before the
 // first call.
 void drive_torque_jacobian_given_regressor(const double* Y, const double* theta, double* tau_M,

@@ -4,7 +4,7 @@
 // The generated code belongs to the owner of the robot description.
 //
 // Function                              mul    add  sin/cos
-// drive_regressor                       658    605       10
+// drive_regressor                       638    608       10
 #include "kr150.hpp"
 
 namespace modelgen {
@@ -20,7 +20,7 @@ namespace kr150 {
 // passes it to drive_torque_given_regressor and drive_torque_jacobian_given_regressor, which
 // read only its entries that are not structurally zero. Calls idim_regressor_standard into a
 // local array of kDof * kStandardParams values (on the stack).
-// Y: 264 of its 564 entries are written; the others are zero for every input
+// Y: 261 of its 564 entries are written; the others are zero for every input
 // and never written (the manifest lists them under "unwritten"): zero Y once before the
 // first call.
 void drive_regressor(const double* q, const double* dq, const double* ddq, double* Y) {
@@ -36,17 +36,14 @@ void drive_regressor(const double* q, const double* dq, const double* ddq, doubl
   Y[12] = W_std[15];  // XZ2
   Y[13] = W_std[16];  // YY2
   Y[14] = W_std[17];  // YZ2
-  Y[15] = W_std[18];  // ZZ2
   Y[16] = W_std[19];  // MX2
   Y[17] = W_std[20];  // MY2
-  Y[18] = W_std[21];  // MZ2
   Y[19] = W_std[22];  // M2
   Y[20] = W_std[26];  // XX3
   Y[21] = W_std[27];  // XY3
   Y[22] = W_std[28];  // XZ3
   Y[23] = W_std[29];  // YY3
   Y[24] = W_std[30];  // YZ3
-  Y[25] = W_std[31];  // ZZ3
   Y[26] = W_std[32];  // MX3
   Y[27] = W_std[33];  // MY3
   Y[28] = W_std[34];  // MZ3
@@ -310,7 +307,7 @@ void drive_regressor(const double* q, const double* dq, const double* ddq, doubl
 // passes it to drive_torque_given_regressor and drive_torque_jacobian_given_regressor, which
 // read only its entries that are not structurally zero. Calls idim_regressor_standard into a
 // local array of kDof * kStandardParams values (on the stack).
-// Y: 264 of its 564 entries are written; the others are zero for every input
+// Y: 261 of its 564 entries are written; the others are zero for every input
 // and never written (the manifest lists them under "unwritten"): zero Y once before the
 // first call.
 void drive_regressor(const float* q, const float* dq, const float* ddq, float* Y) {
@@ -326,17 +323,14 @@ void drive_regressor(const float* q, const float* dq, const float* ddq, float* Y
   Y[12] = W_std[15];  // XZ2
   Y[13] = W_std[16];  // YY2
   Y[14] = W_std[17];  // YZ2
-  Y[15] = W_std[18];  // ZZ2
   Y[16] = W_std[19];  // MX2
   Y[17] = W_std[20];  // MY2
-  Y[18] = W_std[21];  // MZ2
   Y[19] = W_std[22];  // M2
   Y[20] = W_std[26];  // XX3
   Y[21] = W_std[27];  // XY3
   Y[22] = W_std[28];  // XZ3
   Y[23] = W_std[29];  // YY3
   Y[24] = W_std[30];  // YZ3
-  Y[25] = W_std[31];  // ZZ3
   Y[26] = W_std[32];  // MX3
   Y[27] = W_std[33];  // MY3
   Y[28] = W_std[34];  // MZ3

@@ -4,7 +4,7 @@
 // The generated code belongs to the owner of the robot description.
 //
 // Function                              mul    add  sin/cos
-// energy_regressor_sincos               138     56        0
+// energy_regressor_sincos               132     56        0
 #include "kr150.hpp"
 
 namespace modelgen {
@@ -47,12 +47,12 @@ void energy_regressor_sincos(const double* q, const double* sin_q, const double*
   h[15] = -t4 * t3;  // YZ3
   h[16] = 0.5 * t4 * t4;  // ZZ3R
   const double t5 = dq[1] * s3;
-  const double t6 = c2 * c3 - s2 * s3;
+  const double t6 = 9.81 * (c2 * c3 - s2 * s3);
   const double t7 = 0.35 * dq[0] + 1.25 * t1;
-  h[17] = -1.25 * t4 * t5 - 9.81 * t6 - t7 * t3;  // MX3R
+  h[17] = -1.25 * t4 * t5 - t6 - t7 * t3;  // MX3R
   const double t8 = c3 * dq[1];
-  const double t9 = c2 * s3 + c3 * s2;
-  h[18] = 9.81 * t9 - 1.25 * t4 * t8 - t7 * t2;  // MY3R
+  const double t9 = 9.81 * (c2 * s3 + c3 * s2);
+  h[18] = t9 - 1.25 * t4 * t8 - t7 * t2;  // MY3R
   h[19] = 0.5 * dq[2] * dq[2];  // Ia3
   const double t10 = s4 * t4 - c4 * t2;
   h[22] = 0.5 * t10 * t10;  // XX4R
@@ -67,10 +67,10 @@ void energy_regressor_sincos(const double* q, const double* sin_q, const double*
   const double t15 = 1.1 * t4 + 1.25 * t8;
   const double t16 = t7 - 0.055 * t3 + 1.1 * t2;
   const double t17 = s4 * t15 - c4 * t16;
-  h[27] = t14 * t11 - 9.81 * t13 - t12 * t17;  // MX4
+  h[27] = t14 * t11 - t13 - t12 * t17;  // MX4
   const double t18 = s4 * t6;
   const double t19 = c4 * t15 + s4 * t16;
-  h[28] = 9.81 * t18 - t14 * t10 - t12 * t19;  // MY4R
+  h[28] = t18 - t14 * t10 - t12 * t19;  // MY4R
   h[29] = 0.5 * dq[3] * dq[3];  // Ia4
   const double t20 = s5 * t12 - c5 * t10;
   h[32] = 0.5 * t20 * t20;  // XX5R
@@ -82,9 +82,9 @@ void energy_regressor_sincos(const double* q, const double* sin_q, const double*
   h[36] = 0.5 * t22 * t22;  // ZZ5R
   const double t23 = s5 * t9 - c5 * t13;
   const double t24 = c5 * t14 - s5 * t19;
-  h[37] = 9.81 * t23 - t17 * t21 + t22 * t24;  // MX5
+  h[37] = t23 - t17 * t21 + t22 * t24;  // MX5
   const double t25 = s5 * t14 + c5 * t19;
-  h[38] = 9.81 * (c5 * t9 + s5 * t13) + t17 * t20 - t22 * t25;  // MY5R
+  h[38] = c5 * t9 + s5 * t13 + t17 * t20 - t22 * t25;  // MY5R
   h[39] = 0.5 * dq[4] * dq[4];  // Ia5
   const double t26 = 0.0093 * dq[3] - dq[4];
   h[42] = 0.5 * t26 * t26;  // Iam5
@@ -96,8 +96,8 @@ void energy_regressor_sincos(const double* q, const double* sin_q, const double*
   h[47] = -t29 * t27;  // XZ6R
   h[48] = -t29 * t28;  // YZ6R
   h[49] = 0.5 * t29 * t29;  // ZZ6R
-  h[50] = 9.81 * (s6 * t18 + c6 * t23) + t24 * t28 - t29 * (c6 * t17 + s6 * t25);  // MX6R
-  h[51] = 9.81 * (c6 * t18 - s6 * t23) - t24 * t27 + t29 * (s6 * t17 - c6 * t25);  // MY6R
+  h[50] = s6 * t18 + c6 * t23 + t24 * t28 - t29 * (c6 * t17 + s6 * t25);  // MX6R
+  h[51] = c6 * t18 - s6 * t23 - t24 * t27 + t29 * (s6 * t17 - c6 * t25);  // MY6R
   h[52] = 0.5 * dq[5] * dq[5];  // Ia6
   const double t30 = 0.0139302 * dq[3] - dq[5] - 0.014 * dq[4];
   h[55] = 0.5 * t30 * t30;  // Iam6
@@ -140,12 +140,12 @@ void energy_regressor_sincos(const float* q, const float* sin_q, const float* co
   h[15] = -t4 * t3;  // YZ3
   h[16] = 0.5f * t4 * t4;  // ZZ3R
   const float t5 = dq[1] * s3;
-  const float t6 = c2 * c3 - s2 * s3;
+  const float t6 = 9.81f * (c2 * c3 - s2 * s3);
   const float t7 = 0.35f * dq[0] + 1.25f * t1;
-  h[17] = -1.25f * t4 * t5 - 9.81f * t6 - t7 * t3;  // MX3R
+  h[17] = -1.25f * t4 * t5 - t6 - t7 * t3;  // MX3R
   const float t8 = c3 * dq[1];
-  const float t9 = c2 * s3 + c3 * s2;
-  h[18] = 9.81f * t9 - 1.25f * t4 * t8 - t7 * t2;  // MY3R
+  const float t9 = 9.81f * (c2 * s3 + c3 * s2);
+  h[18] = t9 - 1.25f * t4 * t8 - t7 * t2;  // MY3R
   h[19] = 0.5f * dq[2] * dq[2];  // Ia3
   const float t10 = s4 * t4 - c4 * t2;
   h[22] = 0.5f * t10 * t10;  // XX4R
@@ -160,10 +160,10 @@ void energy_regressor_sincos(const float* q, const float* sin_q, const float* co
   const float t15 = 1.1f * t4 + 1.25f * t8;
   const float t16 = t7 - 0.055f * t3 + 1.1f * t2;
   const float t17 = s4 * t15 - c4 * t16;
-  h[27] = t14 * t11 - 9.81f * t13 - t12 * t17;  // MX4
+  h[27] = t14 * t11 - t13 - t12 * t17;  // MX4
   const float t18 = s4 * t6;
   const float t19 = c4 * t15 + s4 * t16;
-  h[28] = 9.81f * t18 - t14 * t10 - t12 * t19;  // MY4R
+  h[28] = t18 - t14 * t10 - t12 * t19;  // MY4R
   h[29] = 0.5f * dq[3] * dq[3];  // Ia4
   const float t20 = s5 * t12 - c5 * t10;
   h[32] = 0.5f * t20 * t20;  // XX5R
@@ -175,9 +175,9 @@ void energy_regressor_sincos(const float* q, const float* sin_q, const float* co
   h[36] = 0.5f * t22 * t22;  // ZZ5R
   const float t23 = s5 * t9 - c5 * t13;
   const float t24 = c5 * t14 - s5 * t19;
-  h[37] = 9.81f * t23 - t17 * t21 + t22 * t24;  // MX5
+  h[37] = t23 - t17 * t21 + t22 * t24;  // MX5
   const float t25 = s5 * t14 + c5 * t19;
-  h[38] = 9.81f * (c5 * t9 + s5 * t13) + t17 * t20 - t22 * t25;  // MY5R
+  h[38] = c5 * t9 + s5 * t13 + t17 * t20 - t22 * t25;  // MY5R
   h[39] = 0.5f * dq[4] * dq[4];  // Ia5
   const float t26 = 0.0093f * dq[3] - dq[4];
   h[42] = 0.5f * t26 * t26;  // Iam5
@@ -189,8 +189,8 @@ void energy_regressor_sincos(const float* q, const float* sin_q, const float* co
   h[47] = -t29 * t27;  // XZ6R
   h[48] = -t29 * t28;  // YZ6R
   h[49] = 0.5f * t29 * t29;  // ZZ6R
-  h[50] = 9.81f * (s6 * t18 + c6 * t23) + t24 * t28 - t29 * (c6 * t17 + s6 * t25);  // MX6R
-  h[51] = 9.81f * (c6 * t18 - s6 * t23) - t24 * t27 + t29 * (s6 * t17 - c6 * t25);  // MY6R
+  h[50] = s6 * t18 + c6 * t23 + t24 * t28 - t29 * (c6 * t17 + s6 * t25);  // MX6R
+  h[51] = c6 * t18 - s6 * t23 - t24 * t27 + t29 * (s6 * t17 - c6 * t25);  // MY6R
   h[52] = 0.5f * dq[5] * dq[5];  // Ia6
   const float t30 = 0.0139302f * dq[3] - dq[5] - 0.014f * dq[4];
   h[55] = 0.5f * t30 * t30;  // Iam6

@@ -4,7 +4,7 @@
 // The generated code belongs to the owner of the robot description.
 //
 // Function                              mul    add  sin/cos
-// idim_regressor_sincos                 417    351        0
+// idim_regressor_sincos                 411    352        0
 #include "kr150.hpp"
 
 namespace modelgen {
@@ -80,9 +80,9 @@ void idim_regressor_sincos(const double* q, const double* sin_q, const double* c
   const double t31 = t19 * t19;
   W[15] = -t14 * t30 - t18 * (t25 - t31);  // YZ3
   const double t32 = 0.35 * ddq[0] + 1.25 * (t8 - t1);
-  const double t33 = 0.27999999999999997 + c2;
-  W[17] = -1.25 * t33 * t24 - t14 * t32;  // MX3R
-  W[18] = 1.25 * t33 * t22 - t18 * t32;  // MY3R
+  const double t33 = 0.35 + 1.25 * c2;
+  W[17] = -t14 * t32 - t33 * t24;  // MX3R
+  W[18] = t33 * t22 - t18 * t32;  // MY3R
   const double t34 = c4 * t15 + s4 * t16;
   const double t35 = s4 * t15 - c4 * t16;
   const double t36 = t34 * t35;
@@ -119,7 +119,7 @@ void idim_regressor_sincos(const double* q, const double* sin_q, const double* c
   const double t62 = 1.25 * (ddq[1] + t10) - t61;
   const double t63 = c3 * t60 - s3 * t62;
   const double t64 = 0.055 * t27 + 1.1 * t25 - t16 * t58 + t63;
-  const double t65 = 1.25 * t33 - 0.055 * t14 + 1.1 * t18;
+  const double t65 = t33 - 0.055 * t14 + 1.1 * t18;
   const double t66 = s4 * t65;
   const double t67 = t52 + t43;
   const double t68 = c4 * t65;
@@ -238,13 +238,13 @@ void idim_regressor_sincos(const double* q, const double* sin_q, const double* c
   const double t145 = s4 * t46 - t138;
   W[84] = t145;
   const double t146 = c4 * t64;
-  const double t147 = 0.8800000000000001 + c3;
+  const double t147 = 1.1 + 1.25 * c3;
   const double t148 = c4 * t147;
   const double t149 = s4 * t147;
-  const double t150 = s3 - 0.044000000000000004;
-  W[85] = t146 + 1.25 * (t150 * t49 - t148 * t67 - t149 * t51);
+  const double t150 = 1.25 * s3 - 0.055;
+  W[85] = t146 - t148 * t67 - t149 * t51 + t150 * t49;
   const double t151 = s4 * t64;
-  W[86] = 1.25 * (t149 * t73 + t150 * t47 - t148 * t56) - t151;
+  W[86] = t149 * t73 - t151 - t148 * t56 + t150 * t47;
   const double t152 = s4 * s5;
   const double t153 = t152 * t80;
   const double t154 = c5 * s4;
@@ -262,10 +262,10 @@ void idim_regressor_sincos(const double* q, const double* sin_q, const double* c
   const double t161 = s5 * t150 - c5 * t148;
   const double t162 = c5 * t150 + s5 * t148;
   const double t163 = c4 * t102;
-  W[95] = t160 + 1.25 * (t161 * t100 - t162 * t92 + t149 * t90) + t163;
+  W[95] = t160 + t161 * t100 - t162 * t92 + t163 + t149 * t90;
   const double t164 = t154 * t72;
   const double t165 = c4 * t104;
-  W[96] = t164 + 1.25 * (t162 * t103 + t149 * t88 + t161 * t97) - t165;
+  W[96] = t164 + t162 * t103 + t149 * t88 + t161 * t97 - t165;
   const double t166 = c4 * c6 - s6 * t154;
   const double t167 = t166 * t110;
   const double t168 = c4 * s6 + c6 * t154;
@@ -283,10 +283,10 @@ void idim_regressor_sincos(const double* q, const double* sin_q, const double* c
   const double t175 = s6 * t149 + c6 * t161;
   const double t176 = c6 * t149 - s6 * t161;
   const double t177 = t152 * t132;
-  W[108] = t174 + 1.25 * (t175 * t130 - t176 * t122 + t162 * t120) + t177;
+  W[108] = t174 + t175 * t130 - t176 * t122 + t177 + t162 * t120;
   const double t178 = t168 * t102;
   const double t179 = t152 * t134;
-  W[109] = 1.25 * (t176 * t133 + t162 * t118 + t175 * t127) - t178 - t179;
+  W[109] = t176 * t133 - t178 - t179 + t162 * t118 + t175 * t127;
   W[128] = t28;
   W[129] = -t135;
   W[130] = t136;
@@ -471,9 +471,9 @@ void idim_regressor_sincos(const float* q, const float* sin_q, const float* cos_
   const float t31 = t19 * t19;
   W[15] = -t14 * t30 - t18 * (t25 - t31);  // YZ3
   const float t32 = 0.35f * ddq[0] + 1.25f * (t8 - t1);
-  const float t33 = 0.28f + c2;
-  W[17] = -1.25f * t33 * t24 - t14 * t32;  // MX3R
-  W[18] = 1.25f * t33 * t22 - t18 * t32;  // MY3R
+  const float t33 = 0.35f + 1.25f * c2;
+  W[17] = -t14 * t32 - t33 * t24;  // MX3R
+  W[18] = t33 * t22 - t18 * t32;  // MY3R
   const float t34 = c4 * t15 + s4 * t16;
   const float t35 = s4 * t15 - c4 * t16;
   const float t36 = t34 * t35;
@@ -510,7 +510,7 @@ void idim_regressor_sincos(const float* q, const float* sin_q, const float* cos_
   const float t62 = 1.25f * (ddq[1] + t10) - t61;
   const float t63 = c3 * t60 - s3 * t62;
   const float t64 = 0.055f * t27 + 1.1f * t25 - t16 * t58 + t63;
-  const float t65 = 1.25f * t33 - 0.055f * t14 + 1.1f * t18;
+  const float t65 = t33 - 0.055f * t14 + 1.1f * t18;
   const float t66 = s4 * t65;
   const float t67 = t52 + t43;
   const float t68 = c4 * t65;
@@ -629,13 +629,13 @@ void idim_regressor_sincos(const float* q, const float* sin_q, const float* cos_
   const float t145 = s4 * t46 - t138;
   W[84] = t145;
   const float t146 = c4 * t64;
-  const float t147 = 0.88f + c3;
+  const float t147 = 1.1f + 1.25f * c3;
   const float t148 = c4 * t147;
   const float t149 = s4 * t147;
-  const float t150 = s3 - 0.044f;
-  W[85] = t146 + 1.25f * (t150 * t49 - t148 * t67 - t149 * t51);
+  const float t150 = 1.25f * s3 - 0.055f;
+  W[85] = t146 - t148 * t67 - t149 * t51 + t150 * t49;
   const float t151 = s4 * t64;
-  W[86] = 1.25f * (t149 * t73 + t150 * t47 - t148 * t56) - t151;
+  W[86] = t149 * t73 - t151 - t148 * t56 + t150 * t47;
   const float t152 = s4 * s5;
   const float t153 = t152 * t80;
   const float t154 = c5 * s4;
@@ -653,10 +653,10 @@ void idim_regressor_sincos(const float* q, const float* sin_q, const float* cos_
   const float t161 = s5 * t150 - c5 * t148;
   const float t162 = c5 * t150 + s5 * t148;
   const float t163 = c4 * t102;
-  W[95] = t160 + 1.25f * (t161 * t100 - t162 * t92 + t149 * t90) + t163;
+  W[95] = t160 + t161 * t100 - t162 * t92 + t163 + t149 * t90;
   const float t164 = t154 * t72;
   const float t165 = c4 * t104;
-  W[96] = t164 + 1.25f * (t162 * t103 + t149 * t88 + t161 * t97) - t165;
+  W[96] = t164 + t162 * t103 + t149 * t88 + t161 * t97 - t165;
   const float t166 = c4 * c6 - s6 * t154;
   const float t167 = t166 * t110;
   const float t168 = c4 * s6 + c6 * t154;
@@ -674,10 +674,10 @@ void idim_regressor_sincos(const float* q, const float* sin_q, const float* cos_
   const float t175 = s6 * t149 + c6 * t161;
   const float t176 = c6 * t149 - s6 * t161;
   const float t177 = t152 * t132;
-  W[108] = t174 + 1.25f * (t175 * t130 - t176 * t122 + t162 * t120) + t177;
+  W[108] = t174 + t175 * t130 - t176 * t122 + t177 + t162 * t120;
   const float t178 = t168 * t102;
   const float t179 = t152 * t134;
-  W[109] = 1.25f * (t176 * t133 + t162 * t118 + t175 * t127) - t178 - t179;
+  W[109] = t176 * t133 - t178 - t179 + t162 * t118 + t175 * t127;
   W[128] = t28;
   W[129] = -t135;
   W[130] = t136;

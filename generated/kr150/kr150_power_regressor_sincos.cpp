@@ -4,7 +4,7 @@
 // The generated code belongs to the owner of the robot description.
 //
 // Function                              mul    add  sin/cos
-// power_regressor_sincos                319    163        0
+// power_regressor_sincos                315    163        0
 #include "kr150.hpp"
 
 namespace modelgen {
@@ -59,15 +59,15 @@ void power_regressor_sincos(const double* q, const double* sin_q, const double* 
   dh[15] = -t8 * t7 - t9 * t6;  // YZ3
   dh[16] = t8 * t9;  // ZZ3R
   const double t10 = dq[1] * s3;
-  const double t11 = c2 * dq[1] * s3 + c2 * dq[2] * s3 + c3 * dq[1] * s2 + c3 * dq[2] * s2;
-  const double t12 = c3 * dq[1] * dq[2] + ddq[1] * s3;
+  const double t11 = 9.81 * (c2 * dq[1] * s3 + c2 * dq[2] * s3 + c3 * dq[1] * s2 + c3 * dq[2] * s2);
+  const double t12 = 1.25 * (c3 * dq[1] * dq[2] + ddq[1] * s3);
   const double t13 = 0.35 * ddq[0] + 1.25 * t3;
   const double t14 = 0.35 * dq[0] + 1.25 * t2;
-  dh[17] = 9.81 * t11 - 1.25 * (t8 * t10 + t9 * t12) - t7 * t13 - t14 * t6;  // MX3R
+  dh[17] = t11 - 1.25 * t8 * t10 - t9 * t12 - t7 * t13 - t14 * t6;  // MX3R
   const double t15 = c3 * dq[1];
-  const double t16 = c2 * c3 * dq[1] + c2 * c3 * dq[2] - dq[1] * s2 * s3 - dq[2] * s2 * s3;
-  const double t17 = c3 * ddq[1] - dq[1] * dq[2] * s3;
-  dh[18] = 9.81 * t16 - 1.25 * (t8 * t15 + t9 * t17) - t4 * t13 + t14 * t5;  // MY3R
+  const double t16 = 9.81 * (c2 * c3 * dq[1] - dq[1] * s2 * s3 - dq[2] * s2 * s3 + c2 * c3 * dq[2]);
+  const double t17 = 1.25 * (c3 * ddq[1] - dq[1] * dq[2] * s3);
+  dh[18] = t16 - 1.25 * t8 * t15 - t9 * t17 - t4 * t13 + t14 * t5;  // MY3R
   dh[19] = ddq[2] * dq[2];  // Ia3
   dh[20] = dq[2] * dq[2];  // Fv3
   dh[21] = dq[2] * sg3;  // Fc3
@@ -82,21 +82,21 @@ void power_regressor_sincos(const double* q, const double* sin_q, const double* 
   dh[24] = -t22 * t18 - t23 * t19;  // XZ4
   dh[25] = -t20 * t22 - t23 * t21;  // YZ4
   dh[26] = t23 * t22;  // ZZ4R
-  const double t24 = c2 * c3 - s2 * s3;
+  const double t24 = 9.81 * (c2 * c3 - s2 * s3);
   const double t25 = c4 * t11 + dq[3] * s4 * t24;
-  const double t26 = 0.055 * t8 - 1.25 * t12;
+  const double t26 = 0.055 * t8 - t12;
   const double t27 = 0.055 * t9 - 1.25 * t10;
   const double t28 = 1.1 * t9 + 1.25 * t15;
   const double t29 = t14 - 0.055 * t7 + 1.1 * t4;
   const double t30 = s4 * t28 - c4 * t29;
-  const double t31 = 1.1 * t8 + 1.25 * t17;
+  const double t31 = 1.1 * t8 + t17;
   const double t32 = t13 - 0.055 * t6 - 1.1 * t5;
   const double t33 = c4 * dq[3] * t28 + s4 * t31 + dq[3] * s4 * t29 - c4 * t32;
-  dh[27] = 9.81 * t25 + t26 * t20 + t27 * t21 - t22 * t30 - t23 * t33;  // MX4
-  const double t34 = s4 * t11 - c4 * dq[3] * t24;
+  dh[27] = t25 + t26 * t20 + t27 * t21 - t22 * t30 - t23 * t33;  // MX4
+  const double t34 = c4 * dq[3] * t24 - s4 * t11;
   const double t35 = c4 * t28 + s4 * t29;
   const double t36 = dq[3] * s4 * t28 - c4 * t31 - c4 * dq[3] * t29 - s4 * t32;
-  dh[28] = t23 * t36 - 9.81 * t34 - t26 * t18 - t27 * t19 - t22 * t35;  // MY4R
+  dh[28] = t34 - t26 * t18 - t27 * t19 - t22 * t35 + t23 * t36;  // MY4R
   dh[29] = ddq[3] * dq[3];  // Ia4
   dh[30] = dq[3] * dq[3];  // Fv4
   dh[31] = dq[3] * sg4;  // Fc4
@@ -111,15 +111,15 @@ void power_regressor_sincos(const double* q, const double* sin_q, const double* 
   dh[34] = t41 * t37 + t42 * t38;  // XZ5
   dh[35] = t39 * t41 - t42 * t40;  // YZ5
   dh[36] = t42 * t41;  // ZZ5R
-  const double t43 = c2 * s3 + c3 * s2;
+  const double t43 = 9.81 * (c2 * s3 + c3 * s2);
   const double t44 = c4 * t24;
   const double t45 = c5 * dq[4] * t43 + s5 * t16 + dq[4] * s5 * t44 + c5 * t25;
   const double t46 = c5 * t27 - s5 * t35;
   const double t47 = dq[4] * s5 * t27 - c5 * t26 + c5 * dq[4] * t35 - s5 * t36;
-  dh[37] = 9.81 * t45 - t39 * t33 + t30 * t40 + t41 * t46 - t42 * t47;  // MX5
+  dh[37] = t45 - t39 * t33 + t30 * t40 + t41 * t46 - t42 * t47;  // MX5
   const double t48 = s5 * t27 + c5 * t35;
   const double t49 = c5 * dq[4] * t27 + s5 * t26 - dq[4] * s5 * t35 - c5 * t36;
-  dh[38] = t37 * t33 - 9.81 * (dq[4] * s5 * t43 - c5 * t16 - c5 * dq[4] * t44 + s5 * t25) - t41 * t48 + t30 * t38 - t42 * t49;  // MY5R
+  dh[38] = c5 * t16 - dq[4] * s5 * t43 + c5 * dq[4] * t44 - s5 * t25 + t37 * t33 - t41 * t48 + t30 * t38 - t42 * t49;  // MY5R
   dh[39] = ddq[4] * dq[4];  // Ia5
   dh[40] = dq[4] * dq[4];  // Fv5
   dh[41] = dq[4] * sg5;  // Fc5
@@ -141,8 +141,8 @@ void power_regressor_sincos(const double* q, const double* sin_q, const double* 
   dh[49] = t57 * t56;  // ZZ6R
   const double t58 = s4 * t24;
   const double t59 = s5 * t43 - c5 * t44;
-  dh[50] = 9.81 * (c6 * dq[5] * t58 - s6 * t34 - dq[5] * s6 * t59 + c6 * t45) - t56 * (c6 * t30 + s6 * t48) - t54 * t47 - t46 * t55 + t57 * (dq[5] * s6 * t30 - c6 * dq[5] * t48 - c6 * t33 - s6 * t49);  // MX6R
-  dh[51] = t56 * (s6 * t30 - c6 * t48) - 9.81 * (dq[5] * s6 * t58 + c6 * t34 + c6 * dq[5] * t59 + s6 * t45) + t52 * t47 - t46 * t53 + t57 * (c6 * dq[5] * t30 + dq[5] * s6 * t48 + s6 * t33 - c6 * t49);  // MY6R
+  dh[50] = c6 * dq[5] * t58 + s6 * t34 - dq[5] * s6 * t59 + c6 * t45 - t56 * (c6 * t30 + s6 * t48) - t54 * t47 - t46 * t55 + t57 * (dq[5] * s6 * t30 - c6 * dq[5] * t48 - c6 * t33 - s6 * t49);  // MX6R
+  dh[51] = c6 * t34 - dq[5] * s6 * t58 - c6 * dq[5] * t59 - s6 * t45 + t56 * (s6 * t30 - c6 * t48) + t52 * t47 - t46 * t53 + t57 * (c6 * dq[5] * t30 + dq[5] * s6 * t48 + s6 * t33 - c6 * t49);  // MY6R
   dh[52] = ddq[5] * dq[5];  // Ia6
   dh[53] = dq[5] * dq[5];  // Fv6
   dh[54] = dq[5] * sg6;  // Fc6
@@ -202,15 +202,15 @@ void power_regressor_sincos(const float* q, const float* sin_q, const float* cos
   dh[15] = -t8 * t7 - t9 * t6;  // YZ3
   dh[16] = t8 * t9;  // ZZ3R
   const float t10 = dq[1] * s3;
-  const float t11 = c2 * dq[1] * s3 + c2 * dq[2] * s3 + c3 * dq[1] * s2 + c3 * dq[2] * s2;
-  const float t12 = c3 * dq[1] * dq[2] + ddq[1] * s3;
+  const float t11 = 9.81f * (c2 * dq[1] * s3 + c2 * dq[2] * s3 + c3 * dq[1] * s2 + c3 * dq[2] * s2);
+  const float t12 = 1.25f * (c3 * dq[1] * dq[2] + ddq[1] * s3);
   const float t13 = 0.35f * ddq[0] + 1.25f * t3;
   const float t14 = 0.35f * dq[0] + 1.25f * t2;
-  dh[17] = 9.81f * t11 - 1.25f * (t8 * t10 + t9 * t12) - t7 * t13 - t14 * t6;  // MX3R
+  dh[17] = t11 - 1.25f * t8 * t10 - t9 * t12 - t7 * t13 - t14 * t6;  // MX3R
   const float t15 = c3 * dq[1];
-  const float t16 = c2 * c3 * dq[1] + c2 * c3 * dq[2] - dq[1] * s2 * s3 - dq[2] * s2 * s3;
-  const float t17 = c3 * ddq[1] - dq[1] * dq[2] * s3;
-  dh[18] = 9.81f * t16 - 1.25f * (t8 * t15 + t9 * t17) - t4 * t13 + t14 * t5;  // MY3R
+  const float t16 = 9.81f * (c2 * c3 * dq[1] - dq[1] * s2 * s3 - dq[2] * s2 * s3 + c2 * c3 * dq[2]);
+  const float t17 = 1.25f * (c3 * ddq[1] - dq[1] * dq[2] * s3);
+  dh[18] = t16 - 1.25f * t8 * t15 - t9 * t17 - t4 * t13 + t14 * t5;  // MY3R
   dh[19] = ddq[2] * dq[2];  // Ia3
   dh[20] = dq[2] * dq[2];  // Fv3
   dh[21] = dq[2] * sg3;  // Fc3
@@ -225,21 +225,21 @@ void power_regressor_sincos(const float* q, const float* sin_q, const float* cos
   dh[24] = -t22 * t18 - t23 * t19;  // XZ4
   dh[25] = -t20 * t22 - t23 * t21;  // YZ4
   dh[26] = t23 * t22;  // ZZ4R
-  const float t24 = c2 * c3 - s2 * s3;
+  const float t24 = 9.81f * (c2 * c3 - s2 * s3);
   const float t25 = c4 * t11 + dq[3] * s4 * t24;
-  const float t26 = 0.055f * t8 - 1.25f * t12;
+  const float t26 = 0.055f * t8 - t12;
   const float t27 = 0.055f * t9 - 1.25f * t10;
   const float t28 = 1.1f * t9 + 1.25f * t15;
   const float t29 = t14 - 0.055f * t7 + 1.1f * t4;
   const float t30 = s4 * t28 - c4 * t29;
-  const float t31 = 1.1f * t8 + 1.25f * t17;
+  const float t31 = 1.1f * t8 + t17;
   const float t32 = t13 - 0.055f * t6 - 1.1f * t5;
   const float t33 = c4 * dq[3] * t28 + s4 * t31 + dq[3] * s4 * t29 - c4 * t32;
-  dh[27] = 9.81f * t25 + t26 * t20 + t27 * t21 - t22 * t30 - t23 * t33;  // MX4
-  const float t34 = s4 * t11 - c4 * dq[3] * t24;
+  dh[27] = t25 + t26 * t20 + t27 * t21 - t22 * t30 - t23 * t33;  // MX4
+  const float t34 = c4 * dq[3] * t24 - s4 * t11;
   const float t35 = c4 * t28 + s4 * t29;
   const float t36 = dq[3] * s4 * t28 - c4 * t31 - c4 * dq[3] * t29 - s4 * t32;
-  dh[28] = t23 * t36 - 9.81f * t34 - t26 * t18 - t27 * t19 - t22 * t35;  // MY4R
+  dh[28] = t34 - t26 * t18 - t27 * t19 - t22 * t35 + t23 * t36;  // MY4R
   dh[29] = ddq[3] * dq[3];  // Ia4
   dh[30] = dq[3] * dq[3];  // Fv4
   dh[31] = dq[3] * sg4;  // Fc4
@@ -254,15 +254,15 @@ void power_regressor_sincos(const float* q, const float* sin_q, const float* cos
   dh[34] = t41 * t37 + t42 * t38;  // XZ5
   dh[35] = t39 * t41 - t42 * t40;  // YZ5
   dh[36] = t42 * t41;  // ZZ5R
-  const float t43 = c2 * s3 + c3 * s2;
+  const float t43 = 9.81f * (c2 * s3 + c3 * s2);
   const float t44 = c4 * t24;
   const float t45 = c5 * dq[4] * t43 + s5 * t16 + dq[4] * s5 * t44 + c5 * t25;
   const float t46 = c5 * t27 - s5 * t35;
   const float t47 = dq[4] * s5 * t27 - c5 * t26 + c5 * dq[4] * t35 - s5 * t36;
-  dh[37] = 9.81f * t45 - t39 * t33 + t30 * t40 + t41 * t46 - t42 * t47;  // MX5
+  dh[37] = t45 - t39 * t33 + t30 * t40 + t41 * t46 - t42 * t47;  // MX5
   const float t48 = s5 * t27 + c5 * t35;
   const float t49 = c5 * dq[4] * t27 + s5 * t26 - dq[4] * s5 * t35 - c5 * t36;
-  dh[38] = t37 * t33 - 9.81f * (dq[4] * s5 * t43 - c5 * t16 - c5 * dq[4] * t44 + s5 * t25) - t41 * t48 + t30 * t38 - t42 * t49;  // MY5R
+  dh[38] = c5 * t16 - dq[4] * s5 * t43 + c5 * dq[4] * t44 - s5 * t25 + t37 * t33 - t41 * t48 + t30 * t38 - t42 * t49;  // MY5R
   dh[39] = ddq[4] * dq[4];  // Ia5
   dh[40] = dq[4] * dq[4];  // Fv5
   dh[41] = dq[4] * sg5;  // Fc5
@@ -284,8 +284,8 @@ void power_regressor_sincos(const float* q, const float* sin_q, const float* cos
   dh[49] = t57 * t56;  // ZZ6R
   const float t58 = s4 * t24;
   const float t59 = s5 * t43 - c5 * t44;
-  dh[50] = 9.81f * (c6 * dq[5] * t58 - s6 * t34 - dq[5] * s6 * t59 + c6 * t45) - t56 * (c6 * t30 + s6 * t48) - t54 * t47 - t46 * t55 + t57 * (dq[5] * s6 * t30 - c6 * dq[5] * t48 - c6 * t33 - s6 * t49);  // MX6R
-  dh[51] = t56 * (s6 * t30 - c6 * t48) - 9.81f * (dq[5] * s6 * t58 + c6 * t34 + c6 * dq[5] * t59 + s6 * t45) + t52 * t47 - t46 * t53 + t57 * (c6 * dq[5] * t30 + dq[5] * s6 * t48 + s6 * t33 - c6 * t49);  // MY6R
+  dh[50] = c6 * dq[5] * t58 + s6 * t34 - dq[5] * s6 * t59 + c6 * t45 - t56 * (c6 * t30 + s6 * t48) - t54 * t47 - t46 * t55 + t57 * (dq[5] * s6 * t30 - c6 * dq[5] * t48 - c6 * t33 - s6 * t49);  // MX6R
+  dh[51] = c6 * t34 - dq[5] * s6 * t58 - c6 * dq[5] * t59 - s6 * t45 + t56 * (s6 * t30 - c6 * t48) + t52 * t47 - t46 * t53 + t57 * (c6 * dq[5] * t30 + dq[5] * s6 * t48 + s6 * t33 - c6 * t49);  // MY6R
   dh[52] = ddq[5] * dq[5];  // Ia6
   dh[53] = dq[5] * dq[5];  // Fv6
   dh[54] = dq[5] * sg6;  // Fc6

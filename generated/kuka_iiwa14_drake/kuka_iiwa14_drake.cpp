@@ -4,29 +4,29 @@
 // The generated code belongs to the owner of the robot description.
 //
 // Function                                   mul    add  sin/cos
-// idim_regressor_standard                    869    676       12
-// inverse_dynamics_standard                  469    379       12
+// idim_regressor_standard                    868    677       12
+// inverse_dynamics_standard                  468    379       12
 // joint_sincos                                 0      0       14
-// idim_regressor_standard_sincos             869    676        0
-// inverse_dynamics_standard_sincos           469    379        0
+// idim_regressor_standard_sincos             868    677        0
+// inverse_dynamics_standard_sincos           468    379        0
 // base_from_standard                          19     59        0
-// idim_regressor                             695    536       12
-// inverse_dynamics                           407    319       12
+// idim_regressor                             694    537       12
+// inverse_dynamics                           406    319       12
 // mass_matrix                                732    516       12
-// idim_regressor_sincos                      695    536        0
-// inverse_dynamics_sincos                    407    319        0
+// idim_regressor_sincos                      694    537        0
+// inverse_dynamics_sincos                    406    319        0
 // mass_matrix_sincos                         732    516        0
-// inverse_dynamics_state_jacobian           4045   3345       12
-// energy_regressor                           152     53       12
-// power_regressor                            354    175       12
-// energy_regressor_sincos                    152     53        0
-// power_regressor_sincos                     354    175        0
-// drive_torque                               511    393       12
-// drive_torque_jacobian                     2430   1215       12
-// drive_torque_state_jacobian               4793   3758       24
-// drive_regressor                            869    676       12
-// drive_torque_given_regressor               316    288        0
-// drive_torque_jacobian_given_regressor      850    302        0
+// inverse_dynamics_state_jacobian           4043   3346       12
+// energy_regressor                           144     58       12
+// power_regressor                            352    188       12
+// energy_regressor_sincos                    144     58        0
+// power_regressor_sincos                     352    188        0
+// drive_torque                               510    393       12
+// drive_torque_jacobian                     1456   1237       12
+// drive_torque_state_jacobian               4643   3885       24
+// drive_regressor                            868    677       12
+// drive_torque_given_regressor               315    287        0
+// drive_torque_jacobian_given_regressor      588    560        0
 #include "kuka_iiwa14_drake.hpp"
 
 namespace modelgen {

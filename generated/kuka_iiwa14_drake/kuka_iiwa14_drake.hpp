@@ -4,29 +4,29 @@
 // The generated code belongs to the owner of the robot description.
 //
 // Function                                   mul    add  sin/cos
-// idim_regressor_standard                    869    676       12
-// inverse_dynamics_standard                  469    379       12
+// idim_regressor_standard                    868    677       12
+// inverse_dynamics_standard                  468    379       12
 // joint_sincos                                 0      0       14
-// idim_regressor_standard_sincos             869    676        0
-// inverse_dynamics_standard_sincos           469    379        0
+// idim_regressor_standard_sincos             868    677        0
+// inverse_dynamics_standard_sincos           468    379        0
 // base_from_standard                          19     59        0
-// idim_regressor                             695    536       12
-// inverse_dynamics                           407    319       12
+// idim_regressor                             694    537       12
+// inverse_dynamics                           406    319       12
 // mass_matrix                                732    516       12
-// idim_regressor_sincos                      695    536        0
-// inverse_dynamics_sincos                    407    319        0
+// idim_regressor_sincos                      694    537        0
+// inverse_dynamics_sincos                    406    319        0
 // mass_matrix_sincos                         732    516        0
-// inverse_dynamics_state_jacobian           4045   3345       12
-// energy_regressor                           152     53       12
-// power_regressor                            354    175       12
-// energy_regressor_sincos                    152     53        0
-// power_regressor_sincos                     354    175        0
-// drive_torque                               511    393       12
-// drive_torque_jacobian                     2430   1215       12
-// drive_torque_state_jacobian               4793   3758       24
-// drive_regressor                            869    676       12
-// drive_torque_given_regressor               316    288        0
-// drive_torque_jacobian_given_regressor      850    302        0
+// inverse_dynamics_state_jacobian           4043   3346       12
+// energy_regressor                           144     58       12
+// power_regressor                            352    188       12
+// energy_regressor_sincos                    144     58        0
+// power_regressor_sincos                     352    188        0
+// drive_torque                               510    393       12
+// drive_torque_jacobian                     1456   1237       12
+// drive_torque_state_jacobian               4643   3885       24
+// drive_regressor                            868    677       12
+// drive_torque_given_regressor               315    287        0
+// drive_torque_jacobian_given_regressor      588    560        0
 #ifndef MODELGEN_IIWA14_HPP_
 #define MODELGEN_IIWA14_HPP_
 
@@ -231,7 +231,7 @@ void drive_torque(const float* q, const float* dq, const float* ddq, const float
 // efficiency branch and the Coulomb friction sign count as constant: exact wherever no motor
 // velocity and no power flow tau'_G dq_M is zero. Calls idim_regressor_standard into a local
 // array of kDof * kStandardParams values (on the stack) and applies the chain rule to it.
-// J: 518 of its 686 entries are written; the others are zero for every input
+// J: 280 of its 686 entries are written; the others are zero for every input
 // and never written (the manifest lists them under "unwritten"): zero J once before the
 // first call.
 void drive_torque_jacobian(const double* q, const double* dq, const double* ddq,
@@ -247,6 +247,9 @@ void drive_torque_jacobian(const float* q, const float* dq, const float* ddq, co
 // Calls base_from_standard, inverse_dynamics and inverse_dynamics_state_jacobian into local
 // arrays (kStandardParams + kBaseParams + kDof + 3 kDof^2 values, on the stack) and applies the
 // chain rule to them.
+// J: 140 of its 147 entries are written; the others are zero for every input
+// and never written (the manifest lists them under "unwritten"): zero J once before the
+// first call.
 void drive_torque_state_jacobian(const double* q, const double* dq, const double* ddq,
                                  const double* theta, double* J);
 void drive_torque_state_jacobian(const float* q, const float* dq, const float* ddq,
@@ -262,7 +265,7 @@ void drive_torque_state_jacobian(const float* q, const float* dq, const float* d
 // passes it to drive_torque_given_regressor and drive_torque_jacobian_given_regressor, which
 // read only its entries that are not structurally zero. Calls idim_regressor_standard into a
 // local array of kDof * kStandardParams values (on the stack).
-// Y: 274 of its 686 entries are written; the others are zero for every input
+// Y: 273 of its 686 entries are written; the others are zero for every input
 // and never written (the manifest lists them under "unwritten"): zero Y once before the
 // first call.
 void drive_regressor(const double* q, const double* dq, const double* ddq, double* Y);
@@ -286,7 +289,7 @@ void drive_torque_given_regressor(const float* Y, const float* theta, float* tau
 // efficiency branch and the Coulomb friction sign count as constant, as in
 // drive_torque_jacobian. Reads only the entries of Y that drive_regressor does not leave
 // structurally zero; every Rz must be non-zero.
-// J: 281 of its 686 entries are written; the others are zero for every input
+// J: 280 of its 686 entries are written; the others are zero for every input
 // and never written (the manifest lists them under "unwritten"): zero J once before the
 // first call.
 void drive_torque_jacobian_given_regressor(const double* Y, const double* theta, double* tau_M,

@@ -4,7 +4,7 @@
 // The generated code belongs to the owner of the robot description.
 //
 // Function                              mul    add  sin/cos
-// drive_torque                          511    393       12
+// drive_torque                          510    393       12
 #include "kuka_iiwa14_drake.hpp"
 
 #include <cmath>
@@ -53,12 +53,12 @@ void drive_torque(const double* q, const double* dq, const double* ddq, const do
   const double t9 = dq[1] * s3 - c3 * t2;
   const double t10 = dq[2] + t3;
   const double t11 = theta[24] * t10 + theta[23] * t7 + theta[21] * t9;
-  const double t12 = t0 + dq[1] * t3;
-  const double t13 = 0.2045 * (ddq[1] - t3 * t2) - 9.81 * s2;
-  const double t14 = 0.2045 * s3 * t12 + c3 * t13;
+  const double t12 = 0.2045 * (ddq[1] - t3 * t2) - 9.81 * s2;
+  const double t13 = 0.2045 * (t0 + dq[1] * t3);
+  const double t14 = c3 * t12 + s3 * t13;
   const double t15 = theta[22] * t10 + theta[21] * t7 + theta[20] * t9;
   const double t16 = c3 * ddq[1] + s3 * t0 - dq[2] * t9;
-  const double t17 = 0.2045 * c3 * t12 - s3 * t13;
+  const double t17 = c3 * t13 - s3 * t12;
   const double t18 = 0.2155 * (t10 * t7 - t8) + t17;
   const double t19 = ddq[3] - t16;
   const double t20 = c4 * t10 - s4 * t9;
@@ -165,26 +165,33 @@ void drive_torque(const double* q, const double* dq, const double* ddq, const do
   const double t121 = ddq[0] * theta[5] + c2 * (ddq[1] * theta[14] + 9.81 * s2 * theta[18] + theta[11] * t0 + theta[13] * t1 + dq[1] * t4 - t2 * t5 + t106) - s2 * (9.81 * c2 * theta[18] - ddq[1] * theta[12] - theta[10] * t0 - theta[11] * t1 + dq[1] * t107 - t3 * t5 + c3 * t112 - s3 * t117 - 0.2045 * (c3 * t119 - s3 * t120));
   const double t122 = dq[0] * t121;
   const double t123 = static_cast<double>((t122 > 0.0) - (t122 < 0.0));
-  tau_M[0] = ddq[0] * theta[70] + dq[0] * theta[71] + sg1 * theta[72] - 0.5 * t121 * (theta[73] * (t123 - 1.0) - (1.0 / theta[73]) * (1.0 + t123));
-  const double t124 = ddq[1] * theta[15] + 9.81 * (c2 * theta[16] - s2 * theta[17]) + theta[12] * t0 + theta[14] * t1 + t2 * t107 - t3 * t4 + s3 * t112 + c3 * t117 - 0.2045 * (s3 * t119 + c3 * t120);
-  const double t125 = dq[1] * t124;
-  const double t126 = static_cast<double>((t125 > 0.0) - (t125 < 0.0));
-  tau_M[1] = ddq[1] * theta[74] + dq[1] * theta[75] + sg2 * theta[76] - 0.5 * t124 * (theta[77] * (t126 - 1.0) - (1.0 / theta[77]) * (1.0 + t126));
-  const double t127 = dq[2] * t106;
-  const double t128 = static_cast<double>((t127 > 0.0) - (t127 < 0.0));
-  tau_M[2] = ddq[2] * theta[78] + dq[2] * theta[79] + sg3 * theta[80] - 0.5 * t106 * (theta[81] * (t128 - 1.0) - (1.0 / theta[81]) * (1.0 + t128));
-  const double t129 = dq[3] * t114;
+  const double t124 = 0.5 * t123;
+  tau_M[0] = ddq[0] * theta[70] + dq[0] * theta[71] + sg1 * theta[72] - t121 * (theta[73] * (t124 - 0.5) - (1.0 / theta[73]) * (0.5 + t124));
+  const double t125 = ddq[1] * theta[15] + 9.81 * (c2 * theta[16] - s2 * theta[17]) + theta[12] * t0 + theta[14] * t1 + t2 * t107 - t3 * t4 + s3 * t112 + c3 * t117 - 0.2045 * (s3 * t119 + c3 * t120);
+  const double t126 = dq[1] * t125;
+  const double t127 = static_cast<double>((t126 > 0.0) - (t126 < 0.0));
+  const double t128 = 0.5 * t127;
+  tau_M[1] = ddq[1] * theta[74] + dq[1] * theta[75] + sg2 * theta[76] - t125 * (theta[77] * (t128 - 0.5) - (1.0 / theta[77]) * (0.5 + t128));
+  const double t129 = dq[2] * t106;
   const double t130 = static_cast<double>((t129 > 0.0) - (t129 < 0.0));
-  tau_M[3] = ddq[3] * theta[82] + dq[3] * theta[83] + sg4 * theta[84] - 0.5 * t114 * (theta[85] * (t130 - 1.0) - (1.0 / theta[85]) * (1.0 + t130));
-  const double t131 = dq[4] * t84;
-  const double t132 = static_cast<double>((t131 > 0.0) - (t131 < 0.0));
-  tau_M[4] = ddq[4] * theta[86] + dq[4] * theta[87] + sg5 * theta[88] - 0.5 * t84 * (theta[89] * (t132 - 1.0) - (1.0 / theta[89]) * (1.0 + t132));
-  const double t133 = dq[5] * t93;
-  const double t134 = static_cast<double>((t133 > 0.0) - (t133 < 0.0));
-  tau_M[5] = ddq[5] * theta[90] + dq[5] * theta[91] + sg6 * theta[92] - 0.5 * t93 * (theta[93] * (t134 - 1.0) - (1.0 / theta[93]) * (1.0 + t134));
-  const double t135 = dq[6] * t69;
+  const double t131 = 0.5 * t130;
+  tau_M[2] = ddq[2] * theta[78] + dq[2] * theta[79] + sg3 * theta[80] - t106 * (theta[81] * (t131 - 0.5) - (1.0 / theta[81]) * (0.5 + t131));
+  const double t132 = dq[3] * t114;
+  const double t133 = static_cast<double>((t132 > 0.0) - (t132 < 0.0));
+  const double t134 = 0.5 * t133;
+  tau_M[3] = ddq[3] * theta[82] + dq[3] * theta[83] + sg4 * theta[84] - t114 * (theta[85] * (t134 - 0.5) - (1.0 / theta[85]) * (0.5 + t134));
+  const double t135 = dq[4] * t84;
   const double t136 = static_cast<double>((t135 > 0.0) - (t135 < 0.0));
-  tau_M[6] = ddq[6] * theta[94] + dq[6] * theta[95] + sg7 * theta[96] - 0.5 * t69 * (theta[97] * (t136 - 1.0) - (1.0 / theta[97]) * (1.0 + t136));
+  const double t137 = 0.5 * t136;
+  tau_M[4] = ddq[4] * theta[86] + dq[4] * theta[87] + sg5 * theta[88] - t84 * (theta[89] * (t137 - 0.5) - (1.0 / theta[89]) * (0.5 + t137));
+  const double t138 = dq[5] * t93;
+  const double t139 = static_cast<double>((t138 > 0.0) - (t138 < 0.0));
+  const double t140 = 0.5 * t139;
+  tau_M[5] = ddq[5] * theta[90] + dq[5] * theta[91] + sg6 * theta[92] - t93 * (theta[93] * (t140 - 0.5) - (1.0 / theta[93]) * (0.5 + t140));
+  const double t141 = dq[6] * t69;
+  const double t142 = static_cast<double>((t141 > 0.0) - (t141 < 0.0));
+  const double t143 = 0.5 * t142;
+  tau_M[6] = ddq[6] * theta[94] + dq[6] * theta[95] + sg7 * theta[96] - t69 * (theta[97] * (t143 - 0.5) - (1.0 / theta[97]) * (0.5 + t143));
 }
 
 // Motor torques tau_M (kDof) of the nonlinear drive model F of Swevers et al. 2002 (eq. 7-12)
@@ -228,12 +235,12 @@ void drive_torque(const float* q, const float* dq, const float* ddq, const float
   const float t9 = dq[1] * s3 - c3 * t2;
   const float t10 = dq[2] + t3;
   const float t11 = theta[24] * t10 + theta[23] * t7 + theta[21] * t9;
-  const float t12 = t0 + dq[1] * t3;
-  const float t13 = 0.2045f * (ddq[1] - t3 * t2) - 9.81f * s2;
-  const float t14 = 0.2045f * s3 * t12 + c3 * t13;
+  const float t12 = 0.2045f * (ddq[1] - t3 * t2) - 9.81f * s2;
+  const float t13 = 0.2045f * (t0 + dq[1] * t3);
+  const float t14 = c3 * t12 + s3 * t13;
   const float t15 = theta[22] * t10 + theta[21] * t7 + theta[20] * t9;
   const float t16 = c3 * ddq[1] + s3 * t0 - dq[2] * t9;
-  const float t17 = 0.2045f * c3 * t12 - s3 * t13;
+  const float t17 = c3 * t13 - s3 * t12;
   const float t18 = 0.2155f * (t10 * t7 - t8) + t17;
   const float t19 = ddq[3] - t16;
   const float t20 = c4 * t10 - s4 * t9;
@@ -340,26 +347,33 @@ void drive_torque(const float* q, const float* dq, const float* ddq, const float
   const float t121 = ddq[0] * theta[5] + c2 * (ddq[1] * theta[14] + 9.81f * s2 * theta[18] + theta[11] * t0 + theta[13] * t1 + dq[1] * t4 - t2 * t5 + t106) - s2 * (9.81f * c2 * theta[18] - ddq[1] * theta[12] - theta[10] * t0 - theta[11] * t1 + dq[1] * t107 - t3 * t5 + c3 * t112 - s3 * t117 - 0.2045f * (c3 * t119 - s3 * t120));
   const float t122 = dq[0] * t121;
   const float t123 = static_cast<float>((t122 > 0.0f) - (t122 < 0.0f));
-  tau_M[0] = ddq[0] * theta[70] + dq[0] * theta[71] + sg1 * theta[72] - 0.5f * t121 * (theta[73] * (t123 - 1.0f) - (1.0f / theta[73]) * (1.0f + t123));
-  const float t124 = ddq[1] * theta[15] + 9.81f * (c2 * theta[16] - s2 * theta[17]) + theta[12] * t0 + theta[14] * t1 + t2 * t107 - t3 * t4 + s3 * t112 + c3 * t117 - 0.2045f * (s3 * t119 + c3 * t120);
-  const float t125 = dq[1] * t124;
-  const float t126 = static_cast<float>((t125 > 0.0f) - (t125 < 0.0f));
-  tau_M[1] = ddq[1] * theta[74] + dq[1] * theta[75] + sg2 * theta[76] - 0.5f * t124 * (theta[77] * (t126 - 1.0f) - (1.0f / theta[77]) * (1.0f + t126));
-  const float t127 = dq[2] * t106;
-  const float t128 = static_cast<float>((t127 > 0.0f) - (t127 < 0.0f));
-  tau_M[2] = ddq[2] * theta[78] + dq[2] * theta[79] + sg3 * theta[80] - 0.5f * t106 * (theta[81] * (t128 - 1.0f) - (1.0f / theta[81]) * (1.0f + t128));
-  const float t129 = dq[3] * t114;
+  const float t124 = 0.5f * t123;
+  tau_M[0] = ddq[0] * theta[70] + dq[0] * theta[71] + sg1 * theta[72] - t121 * (theta[73] * (t124 - 0.5f) - (1.0f / theta[73]) * (0.5f + t124));
+  const float t125 = ddq[1] * theta[15] + 9.81f * (c2 * theta[16] - s2 * theta[17]) + theta[12] * t0 + theta[14] * t1 + t2 * t107 - t3 * t4 + s3 * t112 + c3 * t117 - 0.2045f * (s3 * t119 + c3 * t120);
+  const float t126 = dq[1] * t125;
+  const float t127 = static_cast<float>((t126 > 0.0f) - (t126 < 0.0f));
+  const float t128 = 0.5f * t127;
+  tau_M[1] = ddq[1] * theta[74] + dq[1] * theta[75] + sg2 * theta[76] - t125 * (theta[77] * (t128 - 0.5f) - (1.0f / theta[77]) * (0.5f + t128));
+  const float t129 = dq[2] * t106;
   const float t130 = static_cast<float>((t129 > 0.0f) - (t129 < 0.0f));
-  tau_M[3] = ddq[3] * theta[82] + dq[3] * theta[83] + sg4 * theta[84] - 0.5f * t114 * (theta[85] * (t130 - 1.0f) - (1.0f / theta[85]) * (1.0f + t130));
-  const float t131 = dq[4] * t84;
-  const float t132 = static_cast<float>((t131 > 0.0f) - (t131 < 0.0f));
-  tau_M[4] = ddq[4] * theta[86] + dq[4] * theta[87] + sg5 * theta[88] - 0.5f * t84 * (theta[89] * (t132 - 1.0f) - (1.0f / theta[89]) * (1.0f + t132));
-  const float t133 = dq[5] * t93;
-  const float t134 = static_cast<float>((t133 > 0.0f) - (t133 < 0.0f));
-  tau_M[5] = ddq[5] * theta[90] + dq[5] * theta[91] + sg6 * theta[92] - 0.5f * t93 * (theta[93] * (t134 - 1.0f) - (1.0f / theta[93]) * (1.0f + t134));
-  const float t135 = dq[6] * t69;
+  const float t131 = 0.5f * t130;
+  tau_M[2] = ddq[2] * theta[78] + dq[2] * theta[79] + sg3 * theta[80] - t106 * (theta[81] * (t131 - 0.5f) - (1.0f / theta[81]) * (0.5f + t131));
+  const float t132 = dq[3] * t114;
+  const float t133 = static_cast<float>((t132 > 0.0f) - (t132 < 0.0f));
+  const float t134 = 0.5f * t133;
+  tau_M[3] = ddq[3] * theta[82] + dq[3] * theta[83] + sg4 * theta[84] - t114 * (theta[85] * (t134 - 0.5f) - (1.0f / theta[85]) * (0.5f + t134));
+  const float t135 = dq[4] * t84;
   const float t136 = static_cast<float>((t135 > 0.0f) - (t135 < 0.0f));
-  tau_M[6] = ddq[6] * theta[94] + dq[6] * theta[95] + sg7 * theta[96] - 0.5f * t69 * (theta[97] * (t136 - 1.0f) - (1.0f / theta[97]) * (1.0f + t136));
+  const float t137 = 0.5f * t136;
+  tau_M[4] = ddq[4] * theta[86] + dq[4] * theta[87] + sg5 * theta[88] - t84 * (theta[89] * (t137 - 0.5f) - (1.0f / theta[89]) * (0.5f + t137));
+  const float t138 = dq[5] * t93;
+  const float t139 = static_cast<float>((t138 > 0.0f) - (t138 < 0.0f));
+  const float t140 = 0.5f * t139;
+  tau_M[5] = ddq[5] * theta[90] + dq[5] * theta[91] + sg6 * theta[92] - t93 * (theta[93] * (t140 - 0.5f) - (1.0f / theta[93]) * (0.5f + t140));
+  const float t141 = dq[6] * t69;
+  const float t142 = static_cast<float>((t141 > 0.0f) - (t141 < 0.0f));
+  const float t143 = 0.5f * t142;
+  tau_M[6] = ddq[6] * theta[94] + dq[6] * theta[95] + sg7 * theta[96] - t69 * (theta[97] * (t143 - 0.5f) - (1.0f / theta[97]) * (0.5f + t143));
 }
 
 }  // namespace iiwa14

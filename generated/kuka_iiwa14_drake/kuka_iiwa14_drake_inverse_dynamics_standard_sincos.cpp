@@ -4,7 +4,7 @@
 // The generated code belongs to the owner of the robot description.
 //
 // Function                              mul    add  sin/cos
-// inverse_dynamics_standard_sincos      469    379        0
+// inverse_dynamics_standard_sincos      468    379        0
 #include "kuka_iiwa14_drake.hpp"
 
 namespace modelgen {
@@ -47,12 +47,12 @@ void inverse_dynamics_standard_sincos(const double* q, const double* sin_q, cons
   const double t9 = dq[1] * s3 - c3 * t2;
   const double t10 = dq[2] + t3;
   const double t11 = p[32] * t10 + p[31] * t7 + p[29] * t9;
-  const double t12 = t0 + dq[1] * t3;
-  const double t13 = 0.2045 * (ddq[1] - t3 * t2) - 9.81 * s2;
-  const double t14 = 0.2045 * s3 * t12 + c3 * t13;
+  const double t12 = 0.2045 * (ddq[1] - t3 * t2) - 9.81 * s2;
+  const double t13 = 0.2045 * (t0 + dq[1] * t3);
+  const double t14 = c3 * t12 + s3 * t13;
   const double t15 = p[30] * t10 + p[29] * t7 + p[28] * t9;
   const double t16 = c3 * ddq[1] + s3 * t0 - dq[2] * t9;
-  const double t17 = 0.2045 * c3 * t12 - s3 * t13;
+  const double t17 = c3 * t13 - s3 * t12;
   const double t18 = 0.2155 * (t10 * t7 - t8) + t17;
   const double t19 = ddq[3] - t16;
   const double t20 = c4 * t10 - s4 * t9;
@@ -202,12 +202,12 @@ void inverse_dynamics_standard_sincos(const float* q, const float* sin_q, const 
   const float t9 = dq[1] * s3 - c3 * t2;
   const float t10 = dq[2] + t3;
   const float t11 = p[32] * t10 + p[31] * t7 + p[29] * t9;
-  const float t12 = t0 + dq[1] * t3;
-  const float t13 = 0.2045f * (ddq[1] - t3 * t2) - 9.81f * s2;
-  const float t14 = 0.2045f * s3 * t12 + c3 * t13;
+  const float t12 = 0.2045f * (ddq[1] - t3 * t2) - 9.81f * s2;
+  const float t13 = 0.2045f * (t0 + dq[1] * t3);
+  const float t14 = c3 * t12 + s3 * t13;
   const float t15 = p[30] * t10 + p[29] * t7 + p[28] * t9;
   const float t16 = c3 * ddq[1] + s3 * t0 - dq[2] * t9;
-  const float t17 = 0.2045f * c3 * t12 - s3 * t13;
+  const float t17 = c3 * t13 - s3 * t12;
   const float t18 = 0.2155f * (t10 * t7 - t8) + t17;
   const float t19 = ddq[3] - t16;
   const float t20 = c4 * t10 - s4 * t9;

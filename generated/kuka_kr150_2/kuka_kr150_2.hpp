@@ -4,29 +4,29 @@
 // The generated code belongs to the owner of the robot description.
 //
 // Function                                   mul    add  sin/cos
-// idim_regressor_standard                    514    452       10
+// idim_regressor_standard                    509    452       10
 // inverse_dynamics_standard                  407    326       10
 // joint_sincos                                 0      0       12
-// idim_regressor_standard_sincos             514    452        0
+// idim_regressor_standard_sincos             509    452        0
 // inverse_dynamics_standard_sincos           407    326        0
 // base_from_standard                          23     72        0
-// idim_regressor                             410    359       10
+// idim_regressor                             407    359       10
 // inverse_dynamics                           353    273       10
-// mass_matrix                                403    322       10
-// idim_regressor_sincos                      410    359        0
+// mass_matrix                                398    322       10
+// idim_regressor_sincos                      407    359        0
 // inverse_dynamics_sincos                    353    273        0
-// mass_matrix_sincos                         403    322        0
-// inverse_dynamics_state_jacobian           2308   2092       10
-// energy_regressor                           134     59       10
-// power_regressor                            313    164       10
-// energy_regressor_sincos                    134     59        0
-// power_regressor_sincos                     313    164        0
+// mass_matrix_sincos                         398    322        0
+// inverse_dynamics_state_jacobian           2303   2095       10
+// energy_regressor                           128     59       10
+// power_regressor                            310    164       10
+// energy_regressor_sincos                    128     59        0
+// power_regressor_sincos                     310    164        0
 // drive_torque                               443    338       10
-// drive_torque_jacobian                     1672    854       10
-// drive_torque_state_jacobian               2924   2467       20
-// drive_regressor                            514    452       10
-// drive_torque_given_regressor               244    220        0
-// drive_torque_jacobian_given_regressor      648    232        0
+// drive_torque_jacobian                      955    874       10
+// drive_torque_state_jacobian               2811   2560       20
+// drive_regressor                            509    452       10
+// drive_torque_given_regressor               241    217        0
+// drive_torque_jacobian_given_regressor      446    422        0
 #ifndef MODELGEN_KUKA_KR150_2_HPP_
 #define MODELGEN_KUKA_KR150_2_HPP_
 
@@ -231,7 +231,7 @@ void drive_torque(const float* q, const float* dq, const float* ddq, const float
 // efficiency branch and the Coulomb friction sign count as constant: exact wherever no motor
 // velocity and no power flow tau'_G dq_M is zero. Calls idim_regressor_standard into a local
 // array of kDof * kStandardParams values (on the stack) and applies the chain rule to it.
-// J: 384 of its 504 entries are written; the others are zero for every input
+// J: 211 of its 504 entries are written; the others are zero for every input
 // and never written (the manifest lists them under "unwritten"): zero J once before the
 // first call.
 void drive_torque_jacobian(const double* q, const double* dq, const double* ddq,
@@ -247,6 +247,9 @@ void drive_torque_jacobian(const float* q, const float* dq, const float* ddq, co
 // Calls base_from_standard, inverse_dynamics and inverse_dynamics_state_jacobian into local
 // arrays (kStandardParams + kBaseParams + kDof + 3 kDof^2 values, on the stack) and applies the
 // chain rule to them.
+// J: 102 of its 108 entries are written; the others are zero for every input
+// and never written (the manifest lists them under "unwritten"): zero J once before the
+// first call.
 void drive_torque_state_jacobian(const double* q, const double* dq, const double* ddq,
                                  const double* theta, double* J);
 void drive_torque_state_jacobian(const float* q, const float* dq, const float* ddq,
@@ -262,7 +265,7 @@ void drive_torque_state_jacobian(const float* q, const float* dq, const float* d
 // passes it to drive_torque_given_regressor and drive_torque_jacobian_given_regressor, which
 // read only its entries that are not structurally zero. Calls idim_regressor_standard into a
 // local array of kDof * kStandardParams values (on the stack).
-// Y: 208 of its 504 entries are written; the others are zero for every input
+// Y: 205 of its 504 entries are written; the others are zero for every input
 // and never written (the manifest lists them under "unwritten"): zero Y once before the
 // first call.
 void drive_regressor(const double* q, const double* dq, const double* ddq, double* Y);
@@ -286,7 +289,7 @@ void drive_torque_given_regressor(const float* Y, const float* theta, float* tau
 // efficiency branch and the Coulomb friction sign count as constant, as in
 // drive_torque_jacobian. Reads only the entries of Y that drive_regressor does not leave
 // structurally zero; every Rz must be non-zero.
-// J: 214 of its 504 entries are written; the others are zero for every input
+// J: 211 of its 504 entries are written; the others are zero for every input
 // and never written (the manifest lists them under "unwritten"): zero J once before the
 // first call.
 void drive_torque_jacobian_given_regressor(const double* Y, const double* theta, double* tau_M,

@@ -4,7 +4,7 @@
 // The generated code belongs to the owner of the robot description.
 //
 // Function                              mul    add  sin/cos
-// drive_regressor                       514    452       10
+// drive_regressor                       509    452       10
 #include "kuka_kr150_2.hpp"
 
 namespace modelgen {
@@ -20,7 +20,7 @@ namespace kuka_kr150_2 {
 // passes it to drive_torque_given_regressor and drive_torque_jacobian_given_regressor, which
 // read only its entries that are not structurally zero. Calls idim_regressor_standard into a
 // local array of kDof * kStandardParams values (on the stack).
-// Y: 208 of its 504 entries are written; the others are zero for every input
+// Y: 205 of its 504 entries are written; the others are zero for every input
 // and never written (the manifest lists them under "unwritten"): zero Y once before the
 // first call.
 void drive_regressor(const double* q, const double* dq, const double* ddq, double* Y) {
@@ -36,17 +36,14 @@ void drive_regressor(const double* q, const double* dq, const double* ddq, doubl
   Y[10] = W_std[14];  // XX2
   Y[11] = W_std[15];  // XY2
   Y[12] = W_std[16];  // XZ2
-  Y[13] = W_std[17];  // YY2
   Y[14] = W_std[18];  // YZ2
   Y[15] = W_std[19];  // ZZ2
   Y[16] = W_std[20];  // MX2
-  Y[17] = W_std[21];  // MY2
   Y[18] = W_std[22];  // MZ2
   Y[19] = W_std[23];  // M2
   Y[20] = W_std[28];  // XX3
   Y[21] = W_std[29];  // XY3
   Y[22] = W_std[30];  // XZ3
-  Y[23] = W_std[31];  // YY3
   Y[24] = W_std[32];  // YZ3
   Y[25] = W_std[33];  // ZZ3
   Y[26] = W_std[34];  // MX3
@@ -252,7 +249,7 @@ void drive_regressor(const double* q, const double* dq, const double* ddq, doubl
 // passes it to drive_torque_given_regressor and drive_torque_jacobian_given_regressor, which
 // read only its entries that are not structurally zero. Calls idim_regressor_standard into a
 // local array of kDof * kStandardParams values (on the stack).
-// Y: 208 of its 504 entries are written; the others are zero for every input
+// Y: 205 of its 504 entries are written; the others are zero for every input
 // and never written (the manifest lists them under "unwritten"): zero Y once before the
 // first call.
 void drive_regressor(const float* q, const float* dq, const float* ddq, float* Y) {
@@ -268,17 +265,14 @@ void drive_regressor(const float* q, const float* dq, const float* ddq, float* Y
   Y[10] = W_std[14];  // XX2
   Y[11] = W_std[15];  // XY2
   Y[12] = W_std[16];  // XZ2
-  Y[13] = W_std[17];  // YY2
   Y[14] = W_std[18];  // YZ2
   Y[15] = W_std[19];  // ZZ2
   Y[16] = W_std[20];  // MX2
-  Y[17] = W_std[21];  // MY2
   Y[18] = W_std[22];  // MZ2
   Y[19] = W_std[23];  // M2
   Y[20] = W_std[28];  // XX3
   Y[21] = W_std[29];  // XY3
   Y[22] = W_std[30];  // XZ3
-  Y[23] = W_std[31];  // YY3
   Y[24] = W_std[32];  // YZ3
   Y[25] = W_std[33];  // ZZ3
   Y[26] = W_std[34];  // MX3

@@ -4,7 +4,7 @@
 // The generated code belongs to the owner of the robot description.
 //
 // Function                              mul    add  sin/cos
-// energy_regressor_sincos               134     59        0
+// energy_regressor_sincos               128     59        0
 #include "kuka_kr150_2.hpp"
 
 namespace modelgen {
@@ -47,12 +47,12 @@ void energy_regressor_sincos(const double* q, const double* sin_q, const double*
   h[17] = 0.5 * t3 * t3;  // YY3R
   h[18] = -t3 * t4;  // YZ3
   const double t5 = c3 * dq[1];
-  const double t6 = c2 * s3 + c3 * s2;
+  const double t6 = 9.81 * (c2 * s3 + c3 * s2);
   const double t7 = 0.35 * dq[0] + 1.25 * t1;
-  h[19] = 1.25 * t3 * t5 - 9.81 * t6 + t7 * t4;  // MX3R
+  h[19] = 1.25 * t3 * t5 - t6 + t7 * t4;  // MX3R
   const double t8 = dq[1] * s3;
-  const double t9 = c2 * c3 - s2 * s3;
-  h[20] = 1.25 * t3 * t8 + 9.81 * t9 + t7 * t2;  // MZ3R
+  const double t9 = 9.81 * (c2 * c3 - s2 * s3);
+  h[20] = 1.25 * t3 * t8 + t9 + t7 * t2;  // MZ3R
   h[21] = 0.5 * dq[2] * dq[2];  // Ia3
   const double t10 = dq[3] - t2;
   h[25] = 0.5 * t10 * t10;  // XX4R
@@ -66,10 +66,10 @@ void energy_regressor_sincos(const double* q, const double* sin_q, const double*
   const double t14 = 0.055 * t3 - 1.25 * t8;
   const double t15 = t7 - 0.055 * t2;
   const double t16 = 1.25 * c4 * t5 + s4 * t15;
-  h[30] = t14 * t12 - 9.81 * t13 + t10 * t16;  // MY4R
+  h[30] = t14 * t12 - t13 + t10 * t16;  // MY4R
   const double t17 = c4 * t9;
   const double t18 = 1.25 * s4 * t5 - c4 * t15;
-  h[31] = 9.81 * t17 - t14 * t11 + t10 * t18;  // MZ4
+  h[31] = t17 - t14 * t11 + t10 * t18;  // MZ4
   h[32] = 0.5 * dq[3] * dq[3];  // Ia4
   const double t19 = c5 * t10 + s5 * t12;
   h[36] = 0.5 * t19 * t19;  // XX5R
@@ -82,10 +82,10 @@ void energy_regressor_sincos(const double* q, const double* sin_q, const double*
   const double t22 = 1.1 * t12 + t18;
   const double t23 = 1.1 * t11 + t16;
   const double t24 = s5 * t14 + c5 * t23;
-  h[41] = t20 * t24 - 9.81 * (c5 * t6 + s5 * t17) - t22 * t21;  // MX5R
+  h[41] = t20 * t24 - c5 * t6 - s5 * t17 - t22 * t21;  // MX5R
   const double t25 = s5 * t6 - c5 * t17;
   const double t26 = c5 * t14 - s5 * t23;
-  h[42] = t19 * t22 - 9.81 * t25 - t20 * t26;  // MZ5
+  h[42] = t19 * t22 - t25 - t20 * t26;  // MZ5
   h[43] = 0.5 * dq[4] * dq[4];  // Ia5
   const double t27 = dq[5] + t19;
   h[47] = 0.5 * t27 * t27;  // XX6
@@ -97,8 +97,8 @@ void energy_regressor_sincos(const double* q, const double* sin_q, const double*
   h[51] = t28 * t29;  // YZ6
   const double t30 = t22 - 0.23 * t21;
   const double t31 = 0.23 * t20 + t24;
-  h[52] = t26 * t29 - 9.81 * (c6 * t13 - s6 * t25) - t27 * (s6 * t30 - c6 * t31);  // MY6
-  h[53] = t27 * (c6 * t30 + s6 * t31) - 9.81 * (s6 * t13 + c6 * t25) - t26 * t28;  // MZ6
+  h[52] = s6 * t25 - c6 * t13 + t26 * t29 - t27 * (s6 * t30 - c6 * t31);  // MY6
+  h[53] = t27 * (c6 * t30 + s6 * t31) - s6 * t13 - c6 * t25 - t26 * t28;  // MZ6
   h[54] = 0.5 * dq[5] * dq[5];  // Ia6
 }
 
@@ -139,12 +139,12 @@ void energy_regressor_sincos(const float* q, const float* sin_q, const float* co
   h[17] = 0.5f * t3 * t3;  // YY3R
   h[18] = -t3 * t4;  // YZ3
   const float t5 = c3 * dq[1];
-  const float t6 = c2 * s3 + c3 * s2;
+  const float t6 = 9.81f * (c2 * s3 + c3 * s2);
   const float t7 = 0.35f * dq[0] + 1.25f * t1;
-  h[19] = 1.25f * t3 * t5 - 9.81f * t6 + t7 * t4;  // MX3R
+  h[19] = 1.25f * t3 * t5 - t6 + t7 * t4;  // MX3R
   const float t8 = dq[1] * s3;
-  const float t9 = c2 * c3 - s2 * s3;
-  h[20] = 1.25f * t3 * t8 + 9.81f * t9 + t7 * t2;  // MZ3R
+  const float t9 = 9.81f * (c2 * c3 - s2 * s3);
+  h[20] = 1.25f * t3 * t8 + t9 + t7 * t2;  // MZ3R
   h[21] = 0.5f * dq[2] * dq[2];  // Ia3
   const float t10 = dq[3] - t2;
   h[25] = 0.5f * t10 * t10;  // XX4R
@@ -158,10 +158,10 @@ void energy_regressor_sincos(const float* q, const float* sin_q, const float* co
   const float t14 = 0.055f * t3 - 1.25f * t8;
   const float t15 = t7 - 0.055f * t2;
   const float t16 = 1.25f * c4 * t5 + s4 * t15;
-  h[30] = t14 * t12 - 9.81f * t13 + t10 * t16;  // MY4R
+  h[30] = t14 * t12 - t13 + t10 * t16;  // MY4R
   const float t17 = c4 * t9;
   const float t18 = 1.25f * s4 * t5 - c4 * t15;
-  h[31] = 9.81f * t17 - t14 * t11 + t10 * t18;  // MZ4
+  h[31] = t17 - t14 * t11 + t10 * t18;  // MZ4
   h[32] = 0.5f * dq[3] * dq[3];  // Ia4
   const float t19 = c5 * t10 + s5 * t12;
   h[36] = 0.5f * t19 * t19;  // XX5R
@@ -174,10 +174,10 @@ void energy_regressor_sincos(const float* q, const float* sin_q, const float* co
   const float t22 = 1.1f * t12 + t18;
   const float t23 = 1.1f * t11 + t16;
   const float t24 = s5 * t14 + c5 * t23;
-  h[41] = t20 * t24 - 9.81f * (c5 * t6 + s5 * t17) - t22 * t21;  // MX5R
+  h[41] = t20 * t24 - c5 * t6 - s5 * t17 - t22 * t21;  // MX5R
   const float t25 = s5 * t6 - c5 * t17;
   const float t26 = c5 * t14 - s5 * t23;
-  h[42] = t19 * t22 - 9.81f * t25 - t20 * t26;  // MZ5
+  h[42] = t19 * t22 - t25 - t20 * t26;  // MZ5
   h[43] = 0.5f * dq[4] * dq[4];  // Ia5
   const float t27 = dq[5] + t19;
   h[47] = 0.5f * t27 * t27;  // XX6
@@ -189,8 +189,8 @@ void energy_regressor_sincos(const float* q, const float* sin_q, const float* co
   h[51] = t28 * t29;  // YZ6
   const float t30 = t22 - 0.23f * t21;
   const float t31 = 0.23f * t20 + t24;
-  h[52] = t26 * t29 - 9.81f * (c6 * t13 - s6 * t25) - t27 * (s6 * t30 - c6 * t31);  // MY6
-  h[53] = t27 * (c6 * t30 + s6 * t31) - 9.81f * (s6 * t13 + c6 * t25) - t26 * t28;  // MZ6
+  h[52] = s6 * t25 - c6 * t13 + t26 * t29 - t27 * (s6 * t30 - c6 * t31);  // MY6
+  h[53] = t27 * (c6 * t30 + s6 * t31) - s6 * t13 - c6 * t25 - t26 * t28;  // MZ6
   h[54] = 0.5f * dq[5] * dq[5];  // Ia6
 }
 

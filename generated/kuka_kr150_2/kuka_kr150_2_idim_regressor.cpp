@@ -4,7 +4,7 @@
 // The generated code belongs to the owner of the robot description.
 //
 // Function                              mul    add  sin/cos
-// idim_regressor                        410    359       10
+// idim_regressor                        407    359       10
 #include "kuka_kr150_2.hpp"
 
 #include <cmath>
@@ -83,9 +83,9 @@ void idim_regressor(const double* q, const double* dq, const double* ddq, double
   const double t31 = t21 - t22;
   W[18] = t18 * (t24 - t30) - t14 * t31;  // YZ3
   const double t32 = 0.35 * ddq[0] + 1.25 * (t11 - t1);
-  const double t33 = 0.27999999999999997 + c2;
-  W[19] = t14 * t32 - 1.25 * t33 * t27;  // MX3R
-  W[20] = t18 * t32 + 1.25 * t33 * t29;  // MZ3R
+  const double t33 = 0.35 + 1.25 * c2;
+  W[19] = t14 * t32 - t33 * t27;  // MX3R
+  W[20] = t18 * t32 + t33 * t29;  // MZ3R
   const double t34 = c4 * t14;
   const double t35 = dq[3] - t16;
   const double t36 = c4 * t15 + s4 * t19;
@@ -121,7 +121,7 @@ void idim_regressor(const double* q, const double* dq, const double* ddq, double
   const double t61 = 1.25 * (ddq[1] + t5) - t60;
   const double t62 = c3 * t59 - s3 * t61;
   const double t63 = 0.055 * (t21 - t22) + t62;
-  const double t64 = 1.25 * t33 - 0.055 * t18;
+  const double t64 = t33 - 0.055 * t18;
   const double t65 = c4 * t64;
   const double t66 = t43 + t51;
   const double t67 = s4 * t64;
@@ -250,11 +250,11 @@ void idim_regressor(const double* q, const double* dq, const double* ddq, double
   W[87] = t152;
   const double t153 = s4 * t63;
   const double t154 = c3 * s4;
-  const double t155 = s3 - 0.044000000000000004;
+  const double t155 = 1.25 * s3 - 0.055;
   const double t156 = c3 * c4;
-  W[88] = t153 + 1.25 * (t156 * t47 - t154 * t66 - t155 * t56);
+  W[88] = t153 + 1.25 * (t156 * t47 - t154 * t66) - t155 * t56;
   const double t157 = c4 * t63;
-  W[89] = 1.25 * (t156 * t72 + t154 * t50 - t155 * t57) - t157;
+  W[89] = 1.25 * (t156 * t72 + t154 * t50) - t157 - t155 * t57;
   const double t158 = c5 * s4;
   const double t159 = t158 * t77;
   const double t160 = s4 * s5;
@@ -270,10 +270,10 @@ void idim_regressor(const double* q, const double* dq, const double* ddq, double
   W[98] = t165;
   const double t166 = t158 * t98;
   const double t167 = 1.1 * c4 + 1.25 * t156;
-  const double t168 = 1.25 * c5 * t155 + s5 * t167;
+  const double t168 = c5 * t155 + s5 * t167;
   const double t169 = 1.1 * s4;
   const double t170 = t169 + 1.25 * t154;
-  const double t171 = 1.25 * s5 * t155 - c5 * t167;
+  const double t171 = s5 * t155 - c5 * t167;
   const double t172 = c4 * t106;
   W[99] = t172 - t166 - t168 * t101 - t170 * t93 - t171 * t87;
   const double t173 = t160 * t98;
@@ -478,9 +478,9 @@ void idim_regressor(const float* q, const float* dq, const float* ddq, float* W)
   const float t31 = t21 - t22;
   W[18] = t18 * (t24 - t30) - t14 * t31;  // YZ3
   const float t32 = 0.35f * ddq[0] + 1.25f * (t11 - t1);
-  const float t33 = 0.28f + c2;
-  W[19] = t14 * t32 - 1.25f * t33 * t27;  // MX3R
-  W[20] = t18 * t32 + 1.25f * t33 * t29;  // MZ3R
+  const float t33 = 0.35f + 1.25f * c2;
+  W[19] = t14 * t32 - t33 * t27;  // MX3R
+  W[20] = t18 * t32 + t33 * t29;  // MZ3R
   const float t34 = c4 * t14;
   const float t35 = dq[3] - t16;
   const float t36 = c4 * t15 + s4 * t19;
@@ -516,7 +516,7 @@ void idim_regressor(const float* q, const float* dq, const float* ddq, float* W)
   const float t61 = 1.25f * (ddq[1] + t5) - t60;
   const float t62 = c3 * t59 - s3 * t61;
   const float t63 = 0.055f * (t21 - t22) + t62;
-  const float t64 = 1.25f * t33 - 0.055f * t18;
+  const float t64 = t33 - 0.055f * t18;
   const float t65 = c4 * t64;
   const float t66 = t43 + t51;
   const float t67 = s4 * t64;
@@ -645,11 +645,11 @@ void idim_regressor(const float* q, const float* dq, const float* ddq, float* W)
   W[87] = t152;
   const float t153 = s4 * t63;
   const float t154 = c3 * s4;
-  const float t155 = s3 - 0.044f;
+  const float t155 = 1.25f * s3 - 0.055f;
   const float t156 = c3 * c4;
-  W[88] = t153 + 1.25f * (t156 * t47 - t154 * t66 - t155 * t56);
+  W[88] = t153 + 1.25f * (t156 * t47 - t154 * t66) - t155 * t56;
   const float t157 = c4 * t63;
-  W[89] = 1.25f * (t156 * t72 + t154 * t50 - t155 * t57) - t157;
+  W[89] = 1.25f * (t156 * t72 + t154 * t50) - t157 - t155 * t57;
   const float t158 = c5 * s4;
   const float t159 = t158 * t77;
   const float t160 = s4 * s5;
@@ -665,10 +665,10 @@ void idim_regressor(const float* q, const float* dq, const float* ddq, float* W)
   W[98] = t165;
   const float t166 = t158 * t98;
   const float t167 = 1.1f * c4 + 1.25f * t156;
-  const float t168 = 1.25f * c5 * t155 + s5 * t167;
+  const float t168 = c5 * t155 + s5 * t167;
   const float t169 = 1.1f * s4;
   const float t170 = t169 + 1.25f * t154;
-  const float t171 = 1.25f * s5 * t155 - c5 * t167;
+  const float t171 = s5 * t155 - c5 * t167;
   const float t172 = c4 * t106;
   W[99] = t172 - t166 - t168 * t101 - t170 * t93 - t171 * t87;
   const float t173 = t160 * t98;

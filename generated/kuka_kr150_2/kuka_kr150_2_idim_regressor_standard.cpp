@@ -4,7 +4,7 @@
 // The generated code belongs to the owner of the robot description.
 //
 // Function                              mul    add  sin/cos
-// idim_regressor_standard               514    452       10
+// idim_regressor_standard               509    452       10
 #include "kuka_kr150_2.hpp"
 
 #include <cmath>
@@ -87,17 +87,17 @@ void idim_regressor_standard(const double* q, const double* dq, const double* dd
   W[32] = t18 * (t24 - t30) - t14 * t31;  // YZ3
   W[33] = -t18 * t28 - t14 * t26;  // ZZ3
   const double t32 = 0.35 * ddq[0] + 1.25 * (t11 - t1);
-  const double t33 = 0.27999999999999997 + c2;
-  W[34] = t14 * t32 - 1.25 * t33 * t27;  // MX3
+  const double t33 = 0.35 + 1.25 * c2;
+  W[34] = t14 * t32 - t33 * t27;  // MX3
   const double t34 = 9.81 * s2 + 0.35 * c2 * dq[0] * dq[0];
   const double t35 = 1.25 * (t6 + t13) + t34;
   const double t36 = 9.81 * c2 - 0.35 * dq[0] * dq[0] * s2;
   const double t37 = 1.25 * (ddq[1] + t5) - t36;
   const double t38 = s3 * t35 + c3 * t37;
   const double t39 = c3 * t35 - s3 * t37;
-  W[35] = 1.25 * t33 * (t25 + t30) - t18 * t38 - t14 * t39;  // MY3
-  W[36] = t18 * t32 + 1.25 * t33 * t29;  // MZ3
-  W[37] = 1.25 * t33 * t32;  // M3
+  W[35] = t33 * (t25 + t30) - t18 * t38 - t14 * t39;  // MY3
+  W[36] = t18 * t32 + t33 * t29;  // MZ3
+  W[37] = t33 * t32;  // M3
   const double t40 = c4 * t14;
   const double t41 = dq[3] - t16;
   const double t42 = c4 * t15 + s4 * t19;
@@ -130,7 +130,7 @@ void idim_regressor_standard(const double* q, const double* dq, const double* dd
   const double t65 = t48 - t55;
   W[46] = t18 * t63 + t46 * t64 + t40 * t65;  // YZ4
   W[47] = t62 + t49 - t40 * t60;  // ZZ4
-  const double t66 = 1.25 * t33 - 0.055 * t18;
+  const double t66 = t33 - 0.055 * t18;
   const double t67 = c4 * t66;
   const double t68 = t32 - 0.055 * (t28 + t20);
   const double t69 = 0.055 * (t24 + t25) - t38;
@@ -279,18 +279,18 @@ void idim_regressor_standard(const double* q, const double* dq, const double* dd
   W[130] = t161;
   const double t162 = t156 + s4 * t60;
   W[131] = t162;
-  const double t163 = s3 - 0.044000000000000004;
+  const double t163 = 1.25 * s3 - 0.055;
   const double t164 = t51 + t58;
   const double t165 = c3 * s4;
   const double t166 = s4 * t70;
   const double t167 = c3 * c4;
   const double t168 = c4 * t72;
-  W[132] = 1.25 * (t167 * t56 - t163 * t164 - t165 * t61) - t166 + t168;
+  W[132] = 1.25 * (t167 * t56 - t165 * t61) - t163 * t164 - t166 + t168;
   const double t169 = s4 * t73;
-  W[133] = t169 + 1.25 * (t167 * t54 - t165 * t74 - t163 * t64);
+  W[133] = t169 + 1.25 * (t167 * t54 - t165 * t74) - t163 * t64;
   const double t170 = c4 * t73;
-  W[134] = 1.25 * (t167 * t75 + t165 * t57 - t163 * t65) - t170;
-  W[135] = -1.25 * (t163 * t73 + t165 * t70 - t167 * t72);
+  W[134] = 1.25 * (t167 * t75 + t165 * t57) - t170 - t163 * t65;
+  W[135] = 1.25 * (t167 * t72 - t165 * t70) - t163 * t73;
   const double t171 = c5 * s4;
   const double t172 = t171 * t79;
   const double t173 = c4 * t82;
@@ -310,10 +310,10 @@ void idim_regressor_standard(const double* q, const double* dq, const double* dd
   W[145] = -t181;
   const double t182 = t171 * t102;
   const double t183 = 1.1 * c4 + 1.25 * t167;
-  const double t184 = 1.25 * c5 * t163 + s5 * t183;
+  const double t184 = c5 * t163 + s5 * t183;
   const double t185 = 1.1 * s4;
   const double t186 = t185 + 1.25 * t165;
-  const double t187 = 1.25 * s5 * t163 - c5 * t183;
+  const double t187 = s5 * t163 - c5 * t183;
   const double t188 = c4 * t110;
   W[146] = t188 - t182 - t184 * t105 - t186 * t96 - t187 * t90;
   const double t189 = t174 * t110;
@@ -563,17 +563,17 @@ void idim_regressor_standard(const float* q, const float* dq, const float* ddq, 
   W[32] = t18 * (t24 - t30) - t14 * t31;  // YZ3
   W[33] = -t18 * t28 - t14 * t26;  // ZZ3
   const float t32 = 0.35f * ddq[0] + 1.25f * (t11 - t1);
-  const float t33 = 0.28f + c2;
-  W[34] = t14 * t32 - 1.25f * t33 * t27;  // MX3
+  const float t33 = 0.35f + 1.25f * c2;
+  W[34] = t14 * t32 - t33 * t27;  // MX3
   const float t34 = 9.81f * s2 + 0.35f * c2 * dq[0] * dq[0];
   const float t35 = 1.25f * (t6 + t13) + t34;
   const float t36 = 9.81f * c2 - 0.35f * dq[0] * dq[0] * s2;
   const float t37 = 1.25f * (ddq[1] + t5) - t36;
   const float t38 = s3 * t35 + c3 * t37;
   const float t39 = c3 * t35 - s3 * t37;
-  W[35] = 1.25f * t33 * (t25 + t30) - t18 * t38 - t14 * t39;  // MY3
-  W[36] = t18 * t32 + 1.25f * t33 * t29;  // MZ3
-  W[37] = 1.25f * t33 * t32;  // M3
+  W[35] = t33 * (t25 + t30) - t18 * t38 - t14 * t39;  // MY3
+  W[36] = t18 * t32 + t33 * t29;  // MZ3
+  W[37] = t33 * t32;  // M3
   const float t40 = c4 * t14;
   const float t41 = dq[3] - t16;
   const float t42 = c4 * t15 + s4 * t19;
@@ -606,7 +606,7 @@ void idim_regressor_standard(const float* q, const float* dq, const float* ddq, 
   const float t65 = t48 - t55;
   W[46] = t18 * t63 + t46 * t64 + t40 * t65;  // YZ4
   W[47] = t62 + t49 - t40 * t60;  // ZZ4
-  const float t66 = 1.25f * t33 - 0.055f * t18;
+  const float t66 = t33 - 0.055f * t18;
   const float t67 = c4 * t66;
   const float t68 = t32 - 0.055f * (t28 + t20);
   const float t69 = 0.055f * (t24 + t25) - t38;
@@ -755,18 +755,18 @@ void idim_regressor_standard(const float* q, const float* dq, const float* ddq, 
   W[130] = t161;
   const float t162 = t156 + s4 * t60;
   W[131] = t162;
-  const float t163 = s3 - 0.044f;
+  const float t163 = 1.25f * s3 - 0.055f;
   const float t164 = t51 + t58;
   const float t165 = c3 * s4;
   const float t166 = s4 * t70;
   const float t167 = c3 * c4;
   const float t168 = c4 * t72;
-  W[132] = 1.25f * (t167 * t56 - t163 * t164 - t165 * t61) - t166 + t168;
+  W[132] = 1.25f * (t167 * t56 - t165 * t61) - t163 * t164 - t166 + t168;
   const float t169 = s4 * t73;
-  W[133] = t169 + 1.25f * (t167 * t54 - t165 * t74 - t163 * t64);
+  W[133] = t169 + 1.25f * (t167 * t54 - t165 * t74) - t163 * t64;
   const float t170 = c4 * t73;
-  W[134] = 1.25f * (t167 * t75 + t165 * t57 - t163 * t65) - t170;
-  W[135] = -1.25f * (t163 * t73 + t165 * t70 - t167 * t72);
+  W[134] = 1.25f * (t167 * t75 + t165 * t57) - t170 - t163 * t65;
+  W[135] = 1.25f * (t167 * t72 - t165 * t70) - t163 * t73;
   const float t171 = c5 * s4;
   const float t172 = t171 * t79;
   const float t173 = c4 * t82;
@@ -786,10 +786,10 @@ void idim_regressor_standard(const float* q, const float* dq, const float* ddq, 
   W[145] = -t181;
   const float t182 = t171 * t102;
   const float t183 = 1.1f * c4 + 1.25f * t167;
-  const float t184 = 1.25f * c5 * t163 + s5 * t183;
+  const float t184 = c5 * t163 + s5 * t183;
   const float t185 = 1.1f * s4;
   const float t186 = t185 + 1.25f * t165;
-  const float t187 = 1.25f * s5 * t163 - c5 * t183;
+  const float t187 = s5 * t163 - c5 * t183;
   const float t188 = c4 * t110;
   W[146] = t188 - t182 - t184 * t105 - t186 * t96 - t187 * t90;
   const float t189 = t174 * t110;

@@ -4,7 +4,7 @@
 // The generated code belongs to the owner of the robot description.
 //
 // Function                              mul    add  sin/cos
-// mass_matrix                           403    322       10
+// mass_matrix                           398    322       10
 #include "kuka_kr150_2.hpp"
 
 #include <cmath>
@@ -44,8 +44,8 @@ void mass_matrix(const double* q, const double* beta, double* M) {
   const double t13 = c5 * (beta[41] * t9 - t10) + s5 * (beta[42] * t9 - beta[52] * t11 + beta[53] * t12);
   const double t14 = c4 * (beta[31] * t0 + t8) - s4 * (beta[30] * t0 - t13);
   const double t15 = beta[20] * t0 + beta[19] * t1 + t14;
-  const double t16 = 0.27999999999999997 + c2;
-  const double t17 = 1.25 * t16 - 0.055 * t0;
+  const double t16 = 0.35 + 1.25 * c2;
+  const double t17 = t16 - 0.055 * t0;
   const double t18 = c4 * t17;
   const double t19 = 1.1 * t2 + t18;
   const double t20 = s4 * t17;
@@ -58,8 +58,8 @@ void mass_matrix(const double* q, const double* beta, double* M) {
   const double t27 = 0.23 * t9 + t26;
   const double t28 = t19 - 0.23 * t4;
   const double t29 = beta[37] * t9 + beta[36] * t3 + beta[42] * t19 + beta[38] * t4 + beta[47] * t3 + beta[49] * t11 + beta[48] * t12 - beta[52] * (c6 * t27 + s6 * t28) + beta[53] * (c6 * t28 - s6 * t27);
-  const double t30 = 1.25 * beta[19] * t16 - beta[16] * t0 - c4 * (beta[27] * t0 + beta[29] * t9 - 1.1 * t8 + c5 * t25 - s5 * t29) + s4 * (beta[26] * t0 + beta[28] * t9 - beta[29] * t2 + beta[39] * t9 + beta[37] * t3 + beta[40] * t4 + beta[41] * t26 + beta[42] * t22 - 0.23 * t10 + c6 * t24 + s6 * t23 + 1.1 * t13);
-  const double t31 = 1.25 * beta[20] * t16 + beta[14] * t0 - beta[16] * t1 + beta[25] * t0 + beta[26] * t9 - beta[27] * t2 + beta[31] * t18 - beta[30] * t20 + c5 * t29 + s5 * t25 - 0.055 * t14;
+  const double t30 = beta[19] * t16 - beta[16] * t0 - c4 * (beta[27] * t0 + beta[29] * t9 - 1.1 * t8 + c5 * t25 - s5 * t29) + s4 * (beta[26] * t0 + beta[28] * t9 - beta[29] * t2 + beta[39] * t9 + beta[37] * t3 + beta[40] * t4 + beta[41] * t26 + beta[42] * t22 - 0.23 * t10 + c6 * t24 + s6 * t23 + 1.1 * t13);
+  const double t31 = beta[20] * t16 + beta[14] * t0 - beta[16] * t1 + beta[25] * t0 + beta[26] * t9 - beta[27] * t2 + beta[31] * t18 - beta[30] * t20 + c5 * t29 + s5 * t25 - 0.055 * t14;
   M[0] = beta[0] + 0.35 * (beta[10] * s2 + beta[9] * c2 + t15) + c2 * (0.35 * beta[9] - beta[6] * s2 + c3 * t30 + 1.25 * t15 + s3 * t31) + s2 * (0.35 * beta[10] + beta[4] * s2 - beta[6] * c2 - s3 * t30 + c3 * t31);
   const double t32 = beta[26] * c4;
   const double t33 = beta[27] * s4;
@@ -78,9 +78,9 @@ void mass_matrix(const double* q, const double* beta, double* M) {
   const double t46 = c5 * s4;
   const double t47 = c4 * c6 - s6 * t46;
   const double t48 = beta[51] * t47;
-  const double t49 = s3 - 0.044000000000000004;
+  const double t49 = 1.25 * s3 - 0.055;
   const double t50 = 1.1 * c4 + 1.25 * t34;
-  const double t51 = 1.25 * c5 * t49 + s5 * t50;
+  const double t51 = c5 * t49 + s5 * t50;
   const double t52 = t45 - t48 + beta[52] * t51;
   const double t53 = beta[48] * t37;
   const double t54 = c4 * s6 + c6 * t46;
@@ -97,7 +97,7 @@ void mass_matrix(const double* q, const double* beta, double* M) {
   const double t65 = 0.23 * t46;
   const double t66 = t65 + t40;
   const double t67 = 0.23 * c4;
-  const double t68 = 1.25 * s5 * t49 - c5 * t50;
+  const double t68 = s5 * t49 - c5 * t50;
   const double t69 = t67 - t68;
   const double t70 = t59 + t60 - t61 - beta[42] * t40 - t62 + t63 + t64 - beta[53] * (c6 * t66 + s6 * t69) + beta[52] * (s6 * t66 - c6 * t69);
   const double t71 = beta[15] + t32 + t33 - 1.25 * (beta[30] * t34 + beta[31] * t35) + s5 * t58 + c5 * t70;
@@ -111,11 +111,11 @@ void mass_matrix(const double* q, const double* beta, double* M) {
   const double t79 = beta[41] * c4 + t77;
   const double t80 = beta[42] * c4 - beta[52] * t54 + beta[53] * t47;
   const double t81 = c5 * t79 + s5 * t80;
-  const double t82 = t72 + t73 + 1.25 * beta[31] * t49 + t74 + t75 - t76 + t78 + beta[42] * t51 - beta[41] * t68 - s6 * t52 - c6 * t57 + 1.1 * t81;
+  const double t82 = t72 + t73 + beta[31] * t49 + t74 + t75 - t76 + t78 + beta[42] * t51 - beta[41] * t68 - s6 * t52 - c6 * t57 + 1.1 * t81;
   const double t83 = beta[29] * c4;
   const double t84 = beta[41] * t46 + beta[42] * t37 + t43;
   const double t85 = 1.1 * t84;
-  const double t86 = t83 - 1.25 * beta[30] * t49 + t85 + c5 * t58 - s5 * t70;
+  const double t86 = t83 - beta[30] * t49 + t85 + c5 * t58 - s5 * t70;
   const double t87 = beta[18] - s4 * t82 + c4 * t86;
   const double t88 = c2 * (beta[8] - s3 * t71 + c3 * t87) - s2 * (beta[5] + c3 * t71 + s3 * t87);
   M[1] = -t88;
@@ -266,8 +266,8 @@ void mass_matrix(const float* q, const float* beta, float* M) {
   const float t13 = c5 * (beta[41] * t9 - t10) + s5 * (beta[42] * t9 - beta[52] * t11 + beta[53] * t12);
   const float t14 = c4 * (beta[31] * t0 + t8) - s4 * (beta[30] * t0 - t13);
   const float t15 = beta[20] * t0 + beta[19] * t1 + t14;
-  const float t16 = 0.28f + c2;
-  const float t17 = 1.25f * t16 - 0.055f * t0;
+  const float t16 = 0.35f + 1.25f * c2;
+  const float t17 = t16 - 0.055f * t0;
   const float t18 = c4 * t17;
   const float t19 = 1.1f * t2 + t18;
   const float t20 = s4 * t17;
@@ -280,8 +280,8 @@ void mass_matrix(const float* q, const float* beta, float* M) {
   const float t27 = 0.23f * t9 + t26;
   const float t28 = t19 - 0.23f * t4;
   const float t29 = beta[37] * t9 + beta[36] * t3 + beta[42] * t19 + beta[38] * t4 + beta[47] * t3 + beta[49] * t11 + beta[48] * t12 - beta[52] * (c6 * t27 + s6 * t28) + beta[53] * (c6 * t28 - s6 * t27);
-  const float t30 = 1.25f * beta[19] * t16 - beta[16] * t0 - c4 * (beta[27] * t0 + beta[29] * t9 - 1.1f * t8 + c5 * t25 - s5 * t29) + s4 * (beta[26] * t0 + beta[28] * t9 - beta[29] * t2 + beta[39] * t9 + beta[37] * t3 + beta[40] * t4 + beta[41] * t26 + beta[42] * t22 - 0.23f * t10 + c6 * t24 + s6 * t23 + 1.1f * t13);
-  const float t31 = 1.25f * beta[20] * t16 + beta[14] * t0 - beta[16] * t1 + beta[25] * t0 + beta[26] * t9 - beta[27] * t2 + beta[31] * t18 - beta[30] * t20 + c5 * t29 + s5 * t25 - 0.055f * t14;
+  const float t30 = beta[19] * t16 - beta[16] * t0 - c4 * (beta[27] * t0 + beta[29] * t9 - 1.1f * t8 + c5 * t25 - s5 * t29) + s4 * (beta[26] * t0 + beta[28] * t9 - beta[29] * t2 + beta[39] * t9 + beta[37] * t3 + beta[40] * t4 + beta[41] * t26 + beta[42] * t22 - 0.23f * t10 + c6 * t24 + s6 * t23 + 1.1f * t13);
+  const float t31 = beta[20] * t16 + beta[14] * t0 - beta[16] * t1 + beta[25] * t0 + beta[26] * t9 - beta[27] * t2 + beta[31] * t18 - beta[30] * t20 + c5 * t29 + s5 * t25 - 0.055f * t14;
   M[0] = beta[0] + 0.35f * (beta[10] * s2 + beta[9] * c2 + t15) + c2 * (0.35f * beta[9] - beta[6] * s2 + c3 * t30 + 1.25f * t15 + s3 * t31) + s2 * (0.35f * beta[10] + beta[4] * s2 - beta[6] * c2 - s3 * t30 + c3 * t31);
   const float t32 = beta[26] * c4;
   const float t33 = beta[27] * s4;
@@ -300,9 +300,9 @@ void mass_matrix(const float* q, const float* beta, float* M) {
   const float t46 = c5 * s4;
   const float t47 = c4 * c6 - s6 * t46;
   const float t48 = beta[51] * t47;
-  const float t49 = s3 - 0.044f;
+  const float t49 = 1.25f * s3 - 0.055f;
   const float t50 = 1.1f * c4 + 1.25f * t34;
-  const float t51 = 1.25f * c5 * t49 + s5 * t50;
+  const float t51 = c5 * t49 + s5 * t50;
   const float t52 = t45 - t48 + beta[52] * t51;
   const float t53 = beta[48] * t37;
   const float t54 = c4 * s6 + c6 * t46;
@@ -319,7 +319,7 @@ void mass_matrix(const float* q, const float* beta, float* M) {
   const float t65 = 0.23f * t46;
   const float t66 = t65 + t40;
   const float t67 = 0.23f * c4;
-  const float t68 = 1.25f * s5 * t49 - c5 * t50;
+  const float t68 = s5 * t49 - c5 * t50;
   const float t69 = t67 - t68;
   const float t70 = t59 + t60 - t61 - beta[42] * t40 - t62 + t63 + t64 - beta[53] * (c6 * t66 + s6 * t69) + beta[52] * (s6 * t66 - c6 * t69);
   const float t71 = beta[15] + t32 + t33 - 1.25f * (beta[30] * t34 + beta[31] * t35) + s5 * t58 + c5 * t70;
@@ -333,11 +333,11 @@ void mass_matrix(const float* q, const float* beta, float* M) {
   const float t79 = beta[41] * c4 + t77;
   const float t80 = beta[42] * c4 - beta[52] * t54 + beta[53] * t47;
   const float t81 = c5 * t79 + s5 * t80;
-  const float t82 = t72 + t73 + 1.25f * beta[31] * t49 + t74 + t75 - t76 + t78 + beta[42] * t51 - beta[41] * t68 - s6 * t52 - c6 * t57 + 1.1f * t81;
+  const float t82 = t72 + t73 + beta[31] * t49 + t74 + t75 - t76 + t78 + beta[42] * t51 - beta[41] * t68 - s6 * t52 - c6 * t57 + 1.1f * t81;
   const float t83 = beta[29] * c4;
   const float t84 = beta[41] * t46 + beta[42] * t37 + t43;
   const float t85 = 1.1f * t84;
-  const float t86 = t83 - 1.25f * beta[30] * t49 + t85 + c5 * t58 - s5 * t70;
+  const float t86 = t83 - beta[30] * t49 + t85 + c5 * t58 - s5 * t70;
   const float t87 = beta[18] - s4 * t82 + c4 * t86;
   const float t88 = c2 * (beta[8] - s3 * t71 + c3 * t87) - s2 * (beta[5] + c3 * t71 + s3 * t87);
   M[1] = -t88;

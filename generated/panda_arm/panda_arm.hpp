@@ -4,29 +4,29 @@
 // The generated code belongs to the owner of the robot description.
 //
 // Function                                   mul    add  sin/cos
-// idim_regressor_standard                    968    825       12
-// inverse_dynamics_standard                  523    425       12
+// idim_regressor_standard                    967    826       12
+// inverse_dynamics_standard                  522    425       12
 // joint_sincos                                 0      0       14
-// idim_regressor_standard_sincos             968    825        0
-// inverse_dynamics_standard_sincos           523    425        0
+// idim_regressor_standard_sincos             967    826        0
+// inverse_dynamics_standard_sincos           522    425        0
 // base_from_standard                          35    106        0
-// idim_regressor                             703    544       12
-// inverse_dynamics                           403    314       12
+// idim_regressor                             702    545       12
+// inverse_dynamics                           402    314       12
 // mass_matrix                                733    532       12
-// idim_regressor_sincos                      703    544        0
-// inverse_dynamics_sincos                    403    314        0
+// idim_regressor_sincos                      702    545        0
+// inverse_dynamics_sincos                    402    314        0
 // mass_matrix_sincos                         733    532        0
-// inverse_dynamics_state_jacobian           4055   3367       12
-// energy_regressor                           140     60       12
-// power_regressor                            349    186       12
-// energy_regressor_sincos                    140     60        0
-// power_regressor_sincos                     349    186        0
-// drive_torque                               572    446       12
-// drive_torque_jacobian                     2739   1434       12
-// drive_torque_state_jacobian               4815   3822       24
-// drive_regressor                            968    825       12
-// drive_torque_given_regressor               385    357        0
-// drive_torque_jacobian_given_regressor     1057    371        0
+// inverse_dynamics_state_jacobian           4055   3372       12
+// energy_regressor                           137     62       12
+// power_regressor                            357    195       12
+// energy_regressor_sincos                    137     62        0
+// power_regressor_sincos                     357    195        0
+// drive_torque                               571    446       12
+// drive_torque_jacobian                     1693   1524       12
+// drive_torque_state_jacobian               4667   3953       24
+// drive_regressor                            967    826       12
+// drive_torque_given_regressor               384    356        0
+// drive_torque_jacobian_given_regressor      726    698        0
 #ifndef MODELGEN_PANDA_ARM_HPP_
 #define MODELGEN_PANDA_ARM_HPP_
 
@@ -231,7 +231,7 @@ void drive_torque(const float* q, const float* dq, const float* ddq, const float
 // efficiency branch and the Coulomb friction sign count as constant: exact wherever no motor
 // velocity and no power flow tau'_G dq_M is zero. Calls idim_regressor_standard into a local
 // array of kDof * kStandardParams values (on the stack) and applies the chain rule to it.
-// J: 588 of its 756 entries are written; the others are zero for every input
+// J: 349 of its 756 entries are written; the others are zero for every input
 // and never written (the manifest lists them under "unwritten"): zero J once before the
 // first call.
 void drive_torque_jacobian(const double* q, const double* dq, const double* ddq,
@@ -247,6 +247,9 @@ void drive_torque_jacobian(const float* q, const float* dq, const float* ddq, co
 // Calls base_from_standard, inverse_dynamics and inverse_dynamics_state_jacobian into local
 // arrays (kStandardParams + kBaseParams + kDof + 3 kDof^2 values, on the stack) and applies the
 // chain rule to them.
+// J: 140 of its 147 entries are written; the others are zero for every input
+// and never written (the manifest lists them under "unwritten"): zero J once before the
+// first call.
 void drive_torque_state_jacobian(const double* q, const double* dq, const double* ddq,
                                  const double* theta, double* J);
 void drive_torque_state_jacobian(const float* q, const float* dq, const float* ddq,
@@ -262,7 +265,7 @@ void drive_torque_state_jacobian(const float* q, const float* dq, const float* d
 // passes it to drive_torque_given_regressor and drive_torque_jacobian_given_regressor, which
 // read only its entries that are not structurally zero. Calls idim_regressor_standard into a
 // local array of kDof * kStandardParams values (on the stack).
-// Y: 343 of its 756 entries are written; the others are zero for every input
+// Y: 342 of its 756 entries are written; the others are zero for every input
 // and never written (the manifest lists them under "unwritten"): zero Y once before the
 // first call.
 void drive_regressor(const double* q, const double* dq, const double* ddq, double* Y);
@@ -286,7 +289,7 @@ void drive_torque_given_regressor(const float* Y, const float* theta, float* tau
 // efficiency branch and the Coulomb friction sign count as constant, as in
 // drive_torque_jacobian. Reads only the entries of Y that drive_regressor does not leave
 // structurally zero; every Rz must be non-zero.
-// J: 350 of its 756 entries are written; the others are zero for every input
+// J: 349 of its 756 entries are written; the others are zero for every input
 // and never written (the manifest lists them under "unwritten"): zero J once before the
 // first call.
 void drive_torque_jacobian_given_regressor(const double* Y, const double* theta, double* tau_M,

@@ -4,7 +4,7 @@
 // The generated code belongs to the owner of the robot description.
 //
 // Function                              mul    add  sin/cos
-// drive_regressor                       968    825       12
+// drive_regressor                       967    826       12
 #include "panda_arm.hpp"
 
 namespace modelgen {
@@ -20,7 +20,7 @@ namespace panda_arm {
 // passes it to drive_torque_given_regressor and drive_torque_jacobian_given_regressor, which
 // read only its entries that are not structurally zero. Calls idim_regressor_standard into a
 // local array of kDof * kStandardParams values (on the stack).
-// Y: 343 of its 756 entries are written; the others are zero for every input
+// Y: 342 of its 756 entries are written; the others are zero for every input
 // and never written (the manifest lists them under "unwritten"): zero Y once before the
 // first call.
 void drive_regressor(const double* q, const double* dq, const double* ddq, double* Y) {
@@ -39,7 +39,6 @@ void drive_regressor(const double* q, const double* dq, const double* ddq, doubl
   Y[12] = W_std[15];  // XZ2
   Y[13] = W_std[16];  // YY2
   Y[14] = W_std[17];  // YZ2
-  Y[15] = W_std[18];  // ZZ2
   Y[20] = W_std[26];  // XX3
   Y[21] = W_std[27];  // XY3
   Y[22] = W_std[28];  // XZ3
@@ -388,7 +387,7 @@ void drive_regressor(const double* q, const double* dq, const double* ddq, doubl
 // passes it to drive_torque_given_regressor and drive_torque_jacobian_given_regressor, which
 // read only its entries that are not structurally zero. Calls idim_regressor_standard into a
 // local array of kDof * kStandardParams values (on the stack).
-// Y: 343 of its 756 entries are written; the others are zero for every input
+// Y: 342 of its 756 entries are written; the others are zero for every input
 // and never written (the manifest lists them under "unwritten"): zero Y once before the
 // first call.
 void drive_regressor(const float* q, const float* dq, const float* ddq, float* Y) {
@@ -407,7 +406,6 @@ void drive_regressor(const float* q, const float* dq, const float* ddq, float* Y
   Y[12] = W_std[15];  // XZ2
   Y[13] = W_std[16];  // YY2
   Y[14] = W_std[17];  // YZ2
-  Y[15] = W_std[18];  // ZZ2
   Y[20] = W_std[26];  // XX3
   Y[21] = W_std[27];  // XY3
   Y[22] = W_std[28];  // XZ3

@@ -4,7 +4,7 @@
 // The generated code belongs to the owner of the robot description.
 //
 // Function                              mul    add  sin/cos
-// drive_torque                          572    446       12
+// drive_torque                          571    446       12
 #include "panda_arm.hpp"
 
 #include <cmath>
@@ -53,12 +53,12 @@ void drive_torque(const double* q, const double* dq, const double* ddq, const do
   const double t9 = dq[1] * s3 - c3 * t2;
   const double t10 = dq[2] + t3;
   const double t11 = theta[24] * t10 + theta[23] * t7 + theta[21] * t9;
-  const double t12 = t0 + dq[1] * t3;
-  const double t13 = 0.316 * (ddq[1] - t3 * t2) - 9.81 * s2;
-  const double t14 = 0.316 * s3 * t12 + c3 * t13;
+  const double t12 = 0.316 * (ddq[1] - t3 * t2) - 9.81 * s2;
+  const double t13 = 0.316 * (t0 + dq[1] * t3);
+  const double t14 = c3 * t12 + s3 * t13;
   const double t15 = theta[22] * t10 + theta[21] * t7 + theta[20] * t9;
   const double t16 = c3 * ddq[1] + s3 * t0 - dq[2] * t9;
-  const double t17 = 0.316 * c3 * t12 - s3 * t13;
+  const double t17 = c3 * t13 - s3 * t12;
   const double t18 = 0.0825 * (t6 + t7 * t9) + t17;
   const double t19 = s4 * t10 + c4 * t9;
   const double t20 = c4 * t6 - s4 * t8 - dq[3] * t19;
@@ -175,26 +175,33 @@ void drive_torque(const double* q, const double* dq, const double* ddq, const do
   const double t131 = ddq[0] * theta[5] - c2 * (ddq[1] * theta[14] - 9.81 * s2 * theta[18] - theta[11] * t0 - theta[13] * t1 + dq[1] * t4 + t2 * t5 - t117) - s2 * (ddq[1] * theta[12] + 9.81 * c2 * theta[18] - theta[10] * t0 - theta[11] * t1 - dq[1] * t118 - t3 * t5 + c3 * t120 - s3 * t127 - 0.316 * (c3 * t129 - s3 * t130));
   const double t132 = dq[0] * t131;
   const double t133 = static_cast<double>((t132 > 0.0) - (t132 < 0.0));
-  tau_M[0] = ddq[0] * theta[80] + dq[0] * theta[81] + sg1 * theta[82] - 0.5 * t131 * (theta[83] * (t133 - 1.0) - (1.0 / theta[83]) * (1.0 + t133));
-  const double t134 = 9.81 * (c2 * theta[16] - s2 * theta[17]) - ddq[1] * theta[15] + theta[12] * t0 + theta[14] * t1 + t2 * t118 - t3 * t4 - s3 * t120 - c3 * t127 + 0.316 * (s3 * t129 + c3 * t130);
-  const double t135 = dq[1] * t134;
-  const double t136 = static_cast<double>((t135 > 0.0) - (t135 < 0.0));
-  tau_M[1] = ddq[1] * theta[84] + dq[1] * theta[85] + sg2 * theta[86] - 0.5 * t134 * (theta[87] * (1.0 + t136) - (1.0 / theta[87]) * (t136 - 1.0));
-  const double t137 = dq[2] * t117;
-  const double t138 = static_cast<double>((t137 > 0.0) - (t137 < 0.0));
-  tau_M[2] = ddq[2] * theta[88] + dq[2] * theta[89] + sg3 * theta[90] - 0.5 * t117 * (theta[91] * (t138 - 1.0) - (1.0 / theta[91]) * (1.0 + t138));
-  const double t139 = dq[3] * t123;
+  const double t134 = 0.5 * t133;
+  tau_M[0] = ddq[0] * theta[80] + dq[0] * theta[81] + sg1 * theta[82] - t131 * (theta[83] * (t134 - 0.5) - (1.0 / theta[83]) * (0.5 + t134));
+  const double t135 = 9.81 * (c2 * theta[16] - s2 * theta[17]) - ddq[1] * theta[15] + theta[12] * t0 + theta[14] * t1 + t2 * t118 - t3 * t4 - s3 * t120 - c3 * t127 + 0.316 * (s3 * t129 + c3 * t130);
+  const double t136 = dq[1] * t135;
+  const double t137 = static_cast<double>((t136 > 0.0) - (t136 < 0.0));
+  const double t138 = 0.5 * t137;
+  tau_M[1] = ddq[1] * theta[84] + dq[1] * theta[85] + sg2 * theta[86] - t135 * (theta[87] * (0.5 + t138) - (1.0 / theta[87]) * (t138 - 0.5));
+  const double t139 = dq[2] * t117;
   const double t140 = static_cast<double>((t139 > 0.0) - (t139 < 0.0));
-  tau_M[3] = ddq[3] * theta[92] + dq[3] * theta[93] + sg4 * theta[94] - 0.5 * t123 * (theta[95] * (t140 - 1.0) - (1.0 / theta[95]) * (1.0 + t140));
-  const double t141 = dq[4] * t109;
-  const double t142 = static_cast<double>((t141 > 0.0) - (t141 < 0.0));
-  tau_M[4] = ddq[4] * theta[96] + dq[4] * theta[97] + sg5 * theta[98] - 0.5 * t109 * (theta[99] * (t142 - 1.0) - (1.0 / theta[99]) * (1.0 + t142));
-  const double t143 = dq[5] * t113;
-  const double t144 = static_cast<double>((t143 > 0.0) - (t143 < 0.0));
-  tau_M[5] = ddq[5] * theta[100] + dq[5] * theta[101] + sg6 * theta[102] - 0.5 * t113 * (theta[103] * (t144 - 1.0) - (1.0 / theta[103]) * (1.0 + t144));
-  const double t145 = dq[6] * t107;
+  const double t141 = 0.5 * t140;
+  tau_M[2] = ddq[2] * theta[88] + dq[2] * theta[89] + sg3 * theta[90] - t117 * (theta[91] * (t141 - 0.5) - (1.0 / theta[91]) * (0.5 + t141));
+  const double t142 = dq[3] * t123;
+  const double t143 = static_cast<double>((t142 > 0.0) - (t142 < 0.0));
+  const double t144 = 0.5 * t143;
+  tau_M[3] = ddq[3] * theta[92] + dq[3] * theta[93] + sg4 * theta[94] - t123 * (theta[95] * (t144 - 0.5) - (1.0 / theta[95]) * (0.5 + t144));
+  const double t145 = dq[4] * t109;
   const double t146 = static_cast<double>((t145 > 0.0) - (t145 < 0.0));
-  tau_M[6] = ddq[6] * theta[104] + dq[6] * theta[105] + sg7 * theta[106] - 0.5 * t107 * (theta[107] * (t146 - 1.0) - (1.0 / theta[107]) * (1.0 + t146));
+  const double t147 = 0.5 * t146;
+  tau_M[4] = ddq[4] * theta[96] + dq[4] * theta[97] + sg5 * theta[98] - t109 * (theta[99] * (t147 - 0.5) - (1.0 / theta[99]) * (0.5 + t147));
+  const double t148 = dq[5] * t113;
+  const double t149 = static_cast<double>((t148 > 0.0) - (t148 < 0.0));
+  const double t150 = 0.5 * t149;
+  tau_M[5] = ddq[5] * theta[100] + dq[5] * theta[101] + sg6 * theta[102] - t113 * (theta[103] * (t150 - 0.5) - (1.0 / theta[103]) * (0.5 + t150));
+  const double t151 = dq[6] * t107;
+  const double t152 = static_cast<double>((t151 > 0.0) - (t151 < 0.0));
+  const double t153 = 0.5 * t152;
+  tau_M[6] = ddq[6] * theta[104] + dq[6] * theta[105] + sg7 * theta[106] - t107 * (theta[107] * (t153 - 0.5) - (1.0 / theta[107]) * (0.5 + t153));
 }
 
 // Motor torques tau_M (kDof) of the nonlinear drive model F of Swevers et al. 2002 (eq. 7-12)
@@ -238,12 +245,12 @@ void drive_torque(const float* q, const float* dq, const float* ddq, const float
   const float t9 = dq[1] * s3 - c3 * t2;
   const float t10 = dq[2] + t3;
   const float t11 = theta[24] * t10 + theta[23] * t7 + theta[21] * t9;
-  const float t12 = t0 + dq[1] * t3;
-  const float t13 = 0.316f * (ddq[1] - t3 * t2) - 9.81f * s2;
-  const float t14 = 0.316f * s3 * t12 + c3 * t13;
+  const float t12 = 0.316f * (ddq[1] - t3 * t2) - 9.81f * s2;
+  const float t13 = 0.316f * (t0 + dq[1] * t3);
+  const float t14 = c3 * t12 + s3 * t13;
   const float t15 = theta[22] * t10 + theta[21] * t7 + theta[20] * t9;
   const float t16 = c3 * ddq[1] + s3 * t0 - dq[2] * t9;
-  const float t17 = 0.316f * c3 * t12 - s3 * t13;
+  const float t17 = c3 * t13 - s3 * t12;
   const float t18 = 0.0825f * (t6 + t7 * t9) + t17;
   const float t19 = s4 * t10 + c4 * t9;
   const float t20 = c4 * t6 - s4 * t8 - dq[3] * t19;
@@ -360,26 +367,33 @@ void drive_torque(const float* q, const float* dq, const float* ddq, const float
   const float t131 = ddq[0] * theta[5] - c2 * (ddq[1] * theta[14] - 9.81f * s2 * theta[18] - theta[11] * t0 - theta[13] * t1 + dq[1] * t4 + t2 * t5 - t117) - s2 * (ddq[1] * theta[12] + 9.81f * c2 * theta[18] - theta[10] * t0 - theta[11] * t1 - dq[1] * t118 - t3 * t5 + c3 * t120 - s3 * t127 - 0.316f * (c3 * t129 - s3 * t130));
   const float t132 = dq[0] * t131;
   const float t133 = static_cast<float>((t132 > 0.0f) - (t132 < 0.0f));
-  tau_M[0] = ddq[0] * theta[80] + dq[0] * theta[81] + sg1 * theta[82] - 0.5f * t131 * (theta[83] * (t133 - 1.0f) - (1.0f / theta[83]) * (1.0f + t133));
-  const float t134 = 9.81f * (c2 * theta[16] - s2 * theta[17]) - ddq[1] * theta[15] + theta[12] * t0 + theta[14] * t1 + t2 * t118 - t3 * t4 - s3 * t120 - c3 * t127 + 0.316f * (s3 * t129 + c3 * t130);
-  const float t135 = dq[1] * t134;
-  const float t136 = static_cast<float>((t135 > 0.0f) - (t135 < 0.0f));
-  tau_M[1] = ddq[1] * theta[84] + dq[1] * theta[85] + sg2 * theta[86] - 0.5f * t134 * (theta[87] * (1.0f + t136) - (1.0f / theta[87]) * (t136 - 1.0f));
-  const float t137 = dq[2] * t117;
-  const float t138 = static_cast<float>((t137 > 0.0f) - (t137 < 0.0f));
-  tau_M[2] = ddq[2] * theta[88] + dq[2] * theta[89] + sg3 * theta[90] - 0.5f * t117 * (theta[91] * (t138 - 1.0f) - (1.0f / theta[91]) * (1.0f + t138));
-  const float t139 = dq[3] * t123;
+  const float t134 = 0.5f * t133;
+  tau_M[0] = ddq[0] * theta[80] + dq[0] * theta[81] + sg1 * theta[82] - t131 * (theta[83] * (t134 - 0.5f) - (1.0f / theta[83]) * (0.5f + t134));
+  const float t135 = 9.81f * (c2 * theta[16] - s2 * theta[17]) - ddq[1] * theta[15] + theta[12] * t0 + theta[14] * t1 + t2 * t118 - t3 * t4 - s3 * t120 - c3 * t127 + 0.316f * (s3 * t129 + c3 * t130);
+  const float t136 = dq[1] * t135;
+  const float t137 = static_cast<float>((t136 > 0.0f) - (t136 < 0.0f));
+  const float t138 = 0.5f * t137;
+  tau_M[1] = ddq[1] * theta[84] + dq[1] * theta[85] + sg2 * theta[86] - t135 * (theta[87] * (0.5f + t138) - (1.0f / theta[87]) * (t138 - 0.5f));
+  const float t139 = dq[2] * t117;
   const float t140 = static_cast<float>((t139 > 0.0f) - (t139 < 0.0f));
-  tau_M[3] = ddq[3] * theta[92] + dq[3] * theta[93] + sg4 * theta[94] - 0.5f * t123 * (theta[95] * (t140 - 1.0f) - (1.0f / theta[95]) * (1.0f + t140));
-  const float t141 = dq[4] * t109;
-  const float t142 = static_cast<float>((t141 > 0.0f) - (t141 < 0.0f));
-  tau_M[4] = ddq[4] * theta[96] + dq[4] * theta[97] + sg5 * theta[98] - 0.5f * t109 * (theta[99] * (t142 - 1.0f) - (1.0f / theta[99]) * (1.0f + t142));
-  const float t143 = dq[5] * t113;
-  const float t144 = static_cast<float>((t143 > 0.0f) - (t143 < 0.0f));
-  tau_M[5] = ddq[5] * theta[100] + dq[5] * theta[101] + sg6 * theta[102] - 0.5f * t113 * (theta[103] * (t144 - 1.0f) - (1.0f / theta[103]) * (1.0f + t144));
-  const float t145 = dq[6] * t107;
+  const float t141 = 0.5f * t140;
+  tau_M[2] = ddq[2] * theta[88] + dq[2] * theta[89] + sg3 * theta[90] - t117 * (theta[91] * (t141 - 0.5f) - (1.0f / theta[91]) * (0.5f + t141));
+  const float t142 = dq[3] * t123;
+  const float t143 = static_cast<float>((t142 > 0.0f) - (t142 < 0.0f));
+  const float t144 = 0.5f * t143;
+  tau_M[3] = ddq[3] * theta[92] + dq[3] * theta[93] + sg4 * theta[94] - t123 * (theta[95] * (t144 - 0.5f) - (1.0f / theta[95]) * (0.5f + t144));
+  const float t145 = dq[4] * t109;
   const float t146 = static_cast<float>((t145 > 0.0f) - (t145 < 0.0f));
-  tau_M[6] = ddq[6] * theta[104] + dq[6] * theta[105] + sg7 * theta[106] - 0.5f * t107 * (theta[107] * (t146 - 1.0f) - (1.0f / theta[107]) * (1.0f + t146));
+  const float t147 = 0.5f * t146;
+  tau_M[4] = ddq[4] * theta[96] + dq[4] * theta[97] + sg5 * theta[98] - t109 * (theta[99] * (t147 - 0.5f) - (1.0f / theta[99]) * (0.5f + t147));
+  const float t148 = dq[5] * t113;
+  const float t149 = static_cast<float>((t148 > 0.0f) - (t148 < 0.0f));
+  const float t150 = 0.5f * t149;
+  tau_M[5] = ddq[5] * theta[100] + dq[5] * theta[101] + sg6 * theta[102] - t113 * (theta[103] * (t150 - 0.5f) - (1.0f / theta[103]) * (0.5f + t150));
+  const float t151 = dq[6] * t107;
+  const float t152 = static_cast<float>((t151 > 0.0f) - (t151 < 0.0f));
+  const float t153 = 0.5f * t152;
+  tau_M[6] = ddq[6] * theta[104] + dq[6] * theta[105] + sg7 * theta[106] - t107 * (theta[107] * (t153 - 0.5f) - (1.0f / theta[107]) * (0.5f + t153));
 }
 
 }  // namespace panda_arm

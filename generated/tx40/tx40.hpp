@@ -4,29 +4,29 @@
 // The generated code belongs to the owner of the robot description.
 //
 // Function                                   mul    add  sin/cos
-// idim_regressor_standard                    508    467       10
+// idim_regressor_standard                    498    474       10
 // inverse_dynamics_standard                  434    358       10
 // joint_sincos                                 0      0       12
-// idim_regressor_standard_sincos             508    467        0
+// idim_regressor_standard_sincos             498    474        0
 // inverse_dynamics_standard_sincos           434    358        0
 // base_from_standard                          13     70        0
-// idim_regressor                             403    337       10
+// idim_regressor                             399    339       10
 // inverse_dynamics                           331    263       10
-// mass_matrix                                404    308       10
-// idim_regressor_sincos                      403    337        0
+// mass_matrix                                399    310       10
+// idim_regressor_sincos                      399    339        0
 // inverse_dynamics_sincos                    331    263        0
-// mass_matrix_sincos                         404    308        0
-// inverse_dynamics_state_jacobian           2170   1931       10
-// energy_regressor                           128     52       10
-// power_regressor                            302    156       10
-// energy_regressor_sincos                    128     52        0
-// power_regressor_sincos                     302    156        0
-// drive_torque                               473    365       10
-// drive_torque_jacobian                     1864   1003       10
-// drive_torque_state_jacobian               2766   2316       20
-// drive_regressor                            760    486       10
-// drive_torque_given_regressor               294    270        0
-// drive_torque_jacobian_given_regressor      798    282        0
+// mass_matrix_sincos                         399    310        0
+// inverse_dynamics_state_jacobian           2158   1934       10
+// energy_regressor                           121     52       10
+// power_regressor                            296    156       10
+// energy_regressor_sincos                    121     52        0
+// power_regressor_sincos                     296    156        0
+// drive_torque                               480    365       10
+// drive_torque_jacobian                     1312    791       10
+// drive_torque_state_jacobian               2750   2327       20
+// drive_regressor                            748    493       10
+// drive_torque_given_regressor               292    268        0
+// drive_torque_jacobian_given_regressor      548    524        0
 #ifndef MODELGEN_TX40_HPP_
 #define MODELGEN_TX40_HPP_
 
@@ -231,7 +231,7 @@ void drive_torque(const float* q, const float* dq, const float* ddq, const float
 // efficiency branch and the Coulomb friction sign count as constant: exact wherever no motor
 // velocity and no power flow tau'_G dq_M is zero. Calls idim_regressor_standard into a local
 // array of kDof * kStandardParams values (on the stack) and applies the chain rule to it.
-// J: 444 of its 564 entries are written; the others are zero for every input
+// J: 262 of its 564 entries are written; the others are zero for every input
 // and never written (the manifest lists them under "unwritten"): zero J once before the
 // first call.
 void drive_torque_jacobian(const double* q, const double* dq, const double* ddq,
@@ -247,6 +247,9 @@ void drive_torque_jacobian(const float* q, const float* dq, const float* ddq, co
 // Calls base_from_standard, inverse_dynamics and inverse_dynamics_state_jacobian into local
 // arrays (kStandardParams + kBaseParams + kDof + 3 kDof^2 values, on the stack) and applies the
 // chain rule to them.
+// J: 102 of its 108 entries are written; the others are zero for every input
+// and never written (the manifest lists them under "unwritten"): zero J once before the
+// first call.
 void drive_torque_state_jacobian(const double* q, const double* dq, const double* ddq,
                                  const double* theta, double* J);
 void drive_torque_state_jacobian(const float* q, const float* dq, const float* ddq,
@@ -262,7 +265,7 @@ void drive_torque_state_jacobian(const float* q, const float* dq, const float* d
 // passes it to drive_torque_given_regressor and drive_torque_jacobian_given_regressor, which
 // read only its entries that are not structurally zero. Calls idim_regressor_standard into a
 // local array of kDof * kStandardParams values (on the stack).
-// Y: 258 of its 564 entries are written; the others are zero for every input
+// Y: 256 of its 564 entries are written; the others are zero for every input
 // and never written (the manifest lists them under "unwritten"): zero Y once before the
 // first call.
 void drive_regressor(const double* q, const double* dq, const double* ddq, double* Y);
@@ -286,7 +289,7 @@ void drive_torque_given_regressor(const float* Y, const float* theta, float* tau
 // efficiency branch and the Coulomb friction sign count as constant, as in
 // drive_torque_jacobian. Reads only the entries of Y that drive_regressor does not leave
 // structurally zero; every Rz must be non-zero.
-// J: 264 of its 564 entries are written; the others are zero for every input
+// J: 262 of its 564 entries are written; the others are zero for every input
 // and never written (the manifest lists them under "unwritten"): zero J once before the
 // first call.
 void drive_torque_jacobian_given_regressor(const double* Y, const double* theta, double* tau_M,

@@ -4,7 +4,7 @@
 // The generated code belongs to the owner of the robot description.
 //
 // Function                              mul    add  sin/cos
-// drive_regressor                       760    486       10
+// drive_regressor                       748    493       10
 #include "tx40.hpp"
 
 namespace modelgen {
@@ -20,7 +20,7 @@ namespace tx40 {
 // passes it to drive_torque_given_regressor and drive_torque_jacobian_given_regressor, which
 // read only its entries that are not structurally zero. Calls idim_regressor_standard into a
 // local array of kDof * kStandardParams values (on the stack).
-// Y: 258 of its 564 entries are written; the others are zero for every input
+// Y: 256 of its 564 entries are written; the others are zero for every input
 // and never written (the manifest lists them under "unwritten"): zero Y once before the
 // first call.
 void drive_regressor(const double* q, const double* dq, const double* ddq, double* Y) {
@@ -37,13 +37,11 @@ void drive_regressor(const double* q, const double* dq, const double* ddq, doubl
   Y[12] = 0.03125 * W_std[16];  // XZ2
   Y[13] = 0.03125 * W_std[17];  // YY2
   Y[14] = 0.03125 * W_std[18];  // YZ2
-  Y[15] = 0.03125 * W_std[19];  // ZZ2
   Y[20] = 0.03125 * W_std[28];  // XX3
   Y[21] = 0.03125 * W_std[29];  // XY3
   Y[22] = 0.03125 * W_std[30];  // XZ3
   Y[23] = 0.03125 * W_std[31];  // YY3
   Y[24] = 0.03125 * W_std[32];  // YZ3
-  Y[25] = 0.03125 * W_std[33];  // ZZ3
   Y[26] = 0.03125 * W_std[34];  // MX3
   Y[27] = 0.03125 * W_std[35];  // MY3
   Y[28] = 0.03125 * W_std[36];  // MZ3
@@ -287,8 +285,8 @@ void drive_regressor(const double* q, const double* dq, const double* ddq, doubl
   Y[536] = 0.03125 * W_std[578];
   Y[537] = 0.03125 * W_std[579];
   Y[560] = 32.0 * (ddq[4] + ddq[5]);
-  const double t0 = dq[4] + dq[5];
-  Y[561] = 32.0 * t0;
+  const double t0 = 32.0 * (dq[4] + dq[5]);
+  Y[561] = t0;
   const double t1 = static_cast<double>((t0 > 0.0) - (t0 < 0.0));
   Y[562] = t1;
 }
@@ -303,7 +301,7 @@ void drive_regressor(const double* q, const double* dq, const double* ddq, doubl
 // passes it to drive_torque_given_regressor and drive_torque_jacobian_given_regressor, which
 // read only its entries that are not structurally zero. Calls idim_regressor_standard into a
 // local array of kDof * kStandardParams values (on the stack).
-// Y: 258 of its 564 entries are written; the others are zero for every input
+// Y: 256 of its 564 entries are written; the others are zero for every input
 // and never written (the manifest lists them under "unwritten"): zero Y once before the
 // first call.
 void drive_regressor(const float* q, const float* dq, const float* ddq, float* Y) {
@@ -320,13 +318,11 @@ void drive_regressor(const float* q, const float* dq, const float* ddq, float* Y
   Y[12] = 0.03125f * W_std[16];  // XZ2
   Y[13] = 0.03125f * W_std[17];  // YY2
   Y[14] = 0.03125f * W_std[18];  // YZ2
-  Y[15] = 0.03125f * W_std[19];  // ZZ2
   Y[20] = 0.03125f * W_std[28];  // XX3
   Y[21] = 0.03125f * W_std[29];  // XY3
   Y[22] = 0.03125f * W_std[30];  // XZ3
   Y[23] = 0.03125f * W_std[31];  // YY3
   Y[24] = 0.03125f * W_std[32];  // YZ3
-  Y[25] = 0.03125f * W_std[33];  // ZZ3
   Y[26] = 0.03125f * W_std[34];  // MX3
   Y[27] = 0.03125f * W_std[35];  // MY3
   Y[28] = 0.03125f * W_std[36];  // MZ3
@@ -570,8 +566,8 @@ void drive_regressor(const float* q, const float* dq, const float* ddq, float* Y
   Y[536] = 0.03125f * W_std[578];
   Y[537] = 0.03125f * W_std[579];
   Y[560] = 32.0f * (ddq[4] + ddq[5]);
-  const float t0 = dq[4] + dq[5];
-  Y[561] = 32.0f * t0;
+  const float t0 = 32.0f * (dq[4] + dq[5]);
+  Y[561] = t0;
   const float t1 = static_cast<float>((t0 > 0.0f) - (t0 < 0.0f));
   Y[562] = t1;
 }

@@ -4,7 +4,7 @@
 // The generated code belongs to the owner of the robot description.
 //
 // Function                              mul    add  sin/cos
-// drive_torque                          473    365       10
+// drive_torque                          480    365       10
 #include "tx40.hpp"
 
 #include <cmath>
@@ -139,27 +139,33 @@ void drive_torque(const double* q, const double* dq, const double* ddq, const do
   const double t99 = ddq[0] * theta[5] + c2 * (ddq[1] * theta[12] + 9.81 * s2 * theta[18] - theta[11] * t0 + theta[10] * t1 - dq[1] * t4 - t3 * t5 - c3 * t65 - s3 * t90 + 0.035 * t97) - s2 * (ddq[1] * theta[14] + 9.81 * c2 * theta[18] - theta[13] * t0 + theta[11] * t1 + dq[1] * t98 - t2 * t5 - s3 * t65 - 0.225 * (theta[29] * t9 - theta[26] * t11 - t10 * t94 - theta[27] * t13 - t12 * t91 + t89) + c3 * t90 - 0.035 * (c3 * t93 - s3 * t96));
   const double t100 = dq[0] * t99;
   const double t101 = static_cast<double>((t100 > 0.0) - (t100 < 0.0));
-  tau_M[0] = sg1 * theta[72] + 32.0 * (ddq[0] * theta[70] + dq[0] * theta[71]) - 0.015625 * t99 * (theta[73] * (t101 - 1.0) - (1.0 / theta[73]) * (1.0 + t101));
-  const double t102 = theta[25] * t6 + theta[24] * t11 - theta[22] * t13 + t12 * t15 - t10 * t66 - theta[26] * t40 - theta[27] * t19 + c4 * t69 + s4 * t70 - 0.225 * t95;
-  const double t103 = 9.81 * (c2 * theta[17] + s2 * theta[16]) - ddq[1] * theta[15] + theta[14] * t0 - theta[12] * t1 - t2 * t4 - t3 * t98 - t102 + 0.225 * t97;
-  const double t104 = dq[1] * t103;
-  const double t105 = static_cast<double>((t104 > 0.0) - (t104 < 0.0));
-  tau_M[1] = sg2 * theta[76] + 32.0 * (ddq[1] * theta[74] + dq[1] * theta[75]) - 0.015625 * t103 * (theta[77] * (1.0 + t105) - (1.0 / theta[77]) * (t105 - 1.0));
-  const double t106 = dq[2] * t102;
-  const double t107 = static_cast<double>((t106 > 0.0) - (t106 < 0.0));
-  tau_M[2] = sg3 * theta[80] + 45.0 * (ddq[2] * theta[78] + dq[2] * theta[79]) - 0.011111111111111112 * t102 * (theta[81] * (t107 - 1.0) - (1.0 / theta[81]) * (1.0 + t107));
-  const double t108 = dq[3] * t64;
+  const double t102 = 0.5 * t101;
+  tau_M[0] = sg1 * theta[72] + 32.0 * (ddq[0] * theta[70] + dq[0] * theta[71]) - 0.03125 * t99 * (theta[73] * (t102 - 0.5) - (1.0 / theta[73]) * (0.5 + t102));
+  const double t103 = theta[25] * t6 + theta[24] * t11 - theta[22] * t13 + t12 * t15 - t10 * t66 - theta[26] * t40 - theta[27] * t19 + c4 * t69 + s4 * t70 - 0.225 * t95;
+  const double t104 = 9.81 * (c2 * theta[17] + s2 * theta[16]) - ddq[1] * theta[15] + theta[14] * t0 - theta[12] * t1 - t2 * t4 - t3 * t98 - t103 + 0.225 * t97;
+  const double t105 = dq[1] * t104;
+  const double t106 = static_cast<double>((t105 > 0.0) - (t105 < 0.0));
+  const double t107 = 0.5 * t106;
+  tau_M[1] = sg2 * theta[76] + 32.0 * (ddq[1] * theta[74] + dq[1] * theta[75]) - 0.03125 * t104 * (theta[77] * (0.5 + t107) - (1.0 / theta[77]) * (t107 - 0.5));
+  const double t108 = dq[2] * t103;
   const double t109 = static_cast<double>((t108 > 0.0) - (t108 < 0.0));
-  tau_M[3] = 0.010416666666666666 * t64 * (theta[85] * (t109 - 1.0) - (1.0 / theta[85]) * (1.0 + t109)) - sg4 * theta[84] - 48.0 * (ddq[3] * theta[82] + dq[3] * theta[83]);
-  const double t110 = t55 - t68;
-  const double t111 = dq[4] * t110;
+  const double t110 = 0.5 * t109;
+  tau_M[2] = sg3 * theta[80] + 45.0 * (ddq[2] * theta[78] + dq[2] * theta[79]) - 0.022222222222222223 * t103 * (theta[81] * (t110 - 0.5) - (1.0 / theta[81]) * (0.5 + t110));
+  const double t111 = dq[3] * t64;
   const double t112 = static_cast<double>((t111 > 0.0) - (t111 < 0.0));
-  tau_M[4] = sg5 * theta[88] + 45.0 * (ddq[4] * theta[86] + dq[4] * theta[87]) - 0.011111111111111112 * t110 * (theta[89] * (1.0 + t112) - (1.0 / theta[89]) * (t112 - 1.0));
-  const double t113 = dq[4] + dq[5];
-  const double t114 = static_cast<double>((t113 > 0.0) - (t113 < 0.0));
-  const double t115 = t113 * t55;
+  const double t113 = 0.5 * t112;
+  tau_M[3] = 0.020833333333333332 * t64 * (theta[85] * (t113 - 0.5) - (1.0 / theta[85]) * (0.5 + t113)) - sg4 * theta[84] - 48.0 * (ddq[3] * theta[82] + dq[3] * theta[83]);
+  const double t114 = 0.022222222222222223 * (t55 - t68);
+  const double t115 = dq[4] * t114;
   const double t116 = static_cast<double>((t115 > 0.0) - (t115 < 0.0));
-  tau_M[5] = 32.0 * (theta[90] * (ddq[4] + ddq[5]) + theta[91] * t113) + theta[92] * t114 - 0.015625 * t55 * (theta[93] * (t116 - 1.0) - (1.0 / theta[93]) * (1.0 + t116));
+  const double t117 = 0.5 * t116;
+  tau_M[4] = sg5 * theta[88] + 45.0 * (ddq[4] * theta[86] + dq[4] * theta[87]) - t114 * (theta[89] * (0.5 + t117) - (1.0 / theta[89]) * (t117 - 0.5));
+  const double t118 = 32.0 * (dq[4] + dq[5]);
+  const double t119 = static_cast<double>((t118 > 0.0) - (t118 < 0.0));
+  const double t120 = t118 * t55;
+  const double t121 = static_cast<double>((t120 > 0.0) - (t120 < 0.0));
+  const double t122 = 0.5 * t121;
+  tau_M[5] = theta[90] * (32.0 * (ddq[4] + ddq[5])) + theta[91] * t118 + theta[92] * t119 - 0.03125 * t55 * (theta[93] * (t122 - 0.5) - (1.0 / theta[93]) * (0.5 + t122));
 }
 
 // Motor torques tau_M (kDof) of the nonlinear drive model F of Swevers et al. 2002 (eq. 7-12)
@@ -289,27 +295,33 @@ void drive_torque(const float* q, const float* dq, const float* ddq, const float
   const float t99 = ddq[0] * theta[5] + c2 * (ddq[1] * theta[12] + 9.81f * s2 * theta[18] - theta[11] * t0 + theta[10] * t1 - dq[1] * t4 - t3 * t5 - c3 * t65 - s3 * t90 + 0.035f * t97) - s2 * (ddq[1] * theta[14] + 9.81f * c2 * theta[18] - theta[13] * t0 + theta[11] * t1 + dq[1] * t98 - t2 * t5 - s3 * t65 - 0.225f * (theta[29] * t9 - theta[26] * t11 - t10 * t94 - theta[27] * t13 - t12 * t91 + t89) + c3 * t90 - 0.035f * (c3 * t93 - s3 * t96));
   const float t100 = dq[0] * t99;
   const float t101 = static_cast<float>((t100 > 0.0f) - (t100 < 0.0f));
-  tau_M[0] = sg1 * theta[72] + 32.0f * (ddq[0] * theta[70] + dq[0] * theta[71]) - 0.015625f * t99 * (theta[73] * (t101 - 1.0f) - (1.0f / theta[73]) * (1.0f + t101));
-  const float t102 = theta[25] * t6 + theta[24] * t11 - theta[22] * t13 + t12 * t15 - t10 * t66 - theta[26] * t40 - theta[27] * t19 + c4 * t69 + s4 * t70 - 0.225f * t95;
-  const float t103 = 9.81f * (c2 * theta[17] + s2 * theta[16]) - ddq[1] * theta[15] + theta[14] * t0 - theta[12] * t1 - t2 * t4 - t3 * t98 - t102 + 0.225f * t97;
-  const float t104 = dq[1] * t103;
-  const float t105 = static_cast<float>((t104 > 0.0f) - (t104 < 0.0f));
-  tau_M[1] = sg2 * theta[76] + 32.0f * (ddq[1] * theta[74] + dq[1] * theta[75]) - 0.015625f * t103 * (theta[77] * (1.0f + t105) - (1.0f / theta[77]) * (t105 - 1.0f));
-  const float t106 = dq[2] * t102;
-  const float t107 = static_cast<float>((t106 > 0.0f) - (t106 < 0.0f));
-  tau_M[2] = sg3 * theta[80] + 45.0f * (ddq[2] * theta[78] + dq[2] * theta[79]) - 0.011111111f * t102 * (theta[81] * (t107 - 1.0f) - (1.0f / theta[81]) * (1.0f + t107));
-  const float t108 = dq[3] * t64;
+  const float t102 = 0.5f * t101;
+  tau_M[0] = sg1 * theta[72] + 32.0f * (ddq[0] * theta[70] + dq[0] * theta[71]) - 0.03125f * t99 * (theta[73] * (t102 - 0.5f) - (1.0f / theta[73]) * (0.5f + t102));
+  const float t103 = theta[25] * t6 + theta[24] * t11 - theta[22] * t13 + t12 * t15 - t10 * t66 - theta[26] * t40 - theta[27] * t19 + c4 * t69 + s4 * t70 - 0.225f * t95;
+  const float t104 = 9.81f * (c2 * theta[17] + s2 * theta[16]) - ddq[1] * theta[15] + theta[14] * t0 - theta[12] * t1 - t2 * t4 - t3 * t98 - t103 + 0.225f * t97;
+  const float t105 = dq[1] * t104;
+  const float t106 = static_cast<float>((t105 > 0.0f) - (t105 < 0.0f));
+  const float t107 = 0.5f * t106;
+  tau_M[1] = sg2 * theta[76] + 32.0f * (ddq[1] * theta[74] + dq[1] * theta[75]) - 0.03125f * t104 * (theta[77] * (0.5f + t107) - (1.0f / theta[77]) * (t107 - 0.5f));
+  const float t108 = dq[2] * t103;
   const float t109 = static_cast<float>((t108 > 0.0f) - (t108 < 0.0f));
-  tau_M[3] = 0.010416667f * t64 * (theta[85] * (t109 - 1.0f) - (1.0f / theta[85]) * (1.0f + t109)) - sg4 * theta[84] - 48.0f * (ddq[3] * theta[82] + dq[3] * theta[83]);
-  const float t110 = t55 - t68;
-  const float t111 = dq[4] * t110;
+  const float t110 = 0.5f * t109;
+  tau_M[2] = sg3 * theta[80] + 45.0f * (ddq[2] * theta[78] + dq[2] * theta[79]) - 0.022222223f * t103 * (theta[81] * (t110 - 0.5f) - (1.0f / theta[81]) * (0.5f + t110));
+  const float t111 = dq[3] * t64;
   const float t112 = static_cast<float>((t111 > 0.0f) - (t111 < 0.0f));
-  tau_M[4] = sg5 * theta[88] + 45.0f * (ddq[4] * theta[86] + dq[4] * theta[87]) - 0.011111111f * t110 * (theta[89] * (1.0f + t112) - (1.0f / theta[89]) * (t112 - 1.0f));
-  const float t113 = dq[4] + dq[5];
-  const float t114 = static_cast<float>((t113 > 0.0f) - (t113 < 0.0f));
-  const float t115 = t113 * t55;
+  const float t113 = 0.5f * t112;
+  tau_M[3] = 0.020833334f * t64 * (theta[85] * (t113 - 0.5f) - (1.0f / theta[85]) * (0.5f + t113)) - sg4 * theta[84] - 48.0f * (ddq[3] * theta[82] + dq[3] * theta[83]);
+  const float t114 = 0.022222223f * (t55 - t68);
+  const float t115 = dq[4] * t114;
   const float t116 = static_cast<float>((t115 > 0.0f) - (t115 < 0.0f));
-  tau_M[5] = 32.0f * (theta[90] * (ddq[4] + ddq[5]) + theta[91] * t113) + theta[92] * t114 - 0.015625f * t55 * (theta[93] * (t116 - 1.0f) - (1.0f / theta[93]) * (1.0f + t116));
+  const float t117 = 0.5f * t116;
+  tau_M[4] = sg5 * theta[88] + 45.0f * (ddq[4] * theta[86] + dq[4] * theta[87]) - t114 * (theta[89] * (0.5f + t117) - (1.0f / theta[89]) * (t117 - 0.5f));
+  const float t118 = 32.0f * (dq[4] + dq[5]);
+  const float t119 = static_cast<float>((t118 > 0.0f) - (t118 < 0.0f));
+  const float t120 = t118 * t55;
+  const float t121 = static_cast<float>((t120 > 0.0f) - (t120 < 0.0f));
+  const float t122 = 0.5f * t121;
+  tau_M[5] = theta[90] * (32.0f * (ddq[4] + ddq[5])) + theta[91] * t118 + theta[92] * t119 - 0.03125f * t55 * (theta[93] * (t122 - 0.5f) - (1.0f / theta[93]) * (0.5f + t122));
 }
 
 }  // namespace tx40

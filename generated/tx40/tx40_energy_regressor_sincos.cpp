@@ -4,7 +4,7 @@
 // The generated code belongs to the owner of the robot description.
 //
 // Function                              mul    add  sin/cos
-// energy_regressor_sincos               128     52        0
+// energy_regressor_sincos               121     52        0
 #include "tx40.hpp"
 
 namespace modelgen {
@@ -48,13 +48,13 @@ void energy_regressor_sincos(const double* q, const double* sin_q, const double*
   h[16] = -t6 * t3;  // XZ3
   h[17] = -t6 * t5;  // YZ3
   h[18] = 0.5 * t6 * t6;  // ZZ3R
-  const double t7 = c2 * s3 + c3 * s2;
+  const double t7 = 9.81 * (c2 * s3 + c3 * s2);
   const double t8 = 0.225 * dq[1] - 0.035 * t0;
   const double t9 = 0.035 * t2 - s3 * t8;
-  h[19] = 0.225 * t1 * t5 - 9.81 * t7 + t6 * t9;  // MX3
-  const double t10 = c2 * c3 - s2 * s3;
+  h[19] = 0.225 * t1 * t5 - t7 + t6 * t9;  // MX3
+  const double t10 = 9.81 * (c2 * c3 - s2 * s3);
   const double t11 = 0.035 * t4 + c3 * t8;
-  h[20] = -9.81 * t10 - 0.225 * t1 * t3 - t6 * t11;  // MY3R
+  h[20] = -0.225 * t1 * t3 - t10 - t6 * t11;  // MY3R
   h[21] = 0.5 * dq[2] * dq[2];  // Ia3
   const double t12 = s4 * t6 - c4 * t3;
   h[25] = 0.5 * t12 * t12;  // XX4R
@@ -65,13 +65,13 @@ void energy_regressor_sincos(const double* q, const double* sin_q, const double*
   h[28] = t14 * t13;  // YZ4
   h[29] = 0.5 * t14 * t14;  // ZZ4R
   const double t15 = c4 * t7;
-  const double t16 = t1 + t3;
+  const double t16 = 0.225 * (t1 + t3);
   const double t17 = 0.225 * t6 + t11;
-  const double t18 = 0.225 * c4 * t16 - s4 * t17;
-  h[30] = t13 * t9 - 9.81 * t15 + t14 * t18;  // MX4
+  const double t18 = c4 * t16 - s4 * t17;
+  h[30] = t13 * t9 - t15 + t14 * t18;  // MX4
   const double t19 = s4 * t7;
-  const double t20 = 0.225 * s4 * t16 + c4 * t17;
-  h[31] = 9.81 * t19 - t9 * t12 - t14 * t20;  // MY4R
+  const double t20 = s4 * t16 + c4 * t17;
+  h[31] = t19 - t9 * t12 - t14 * t20;  // MY4R
   h[32] = 0.5 * dq[3] * dq[3];  // Ia4
   const double t21 = s5 * t14 - c5 * t12;
   h[36] = 0.5 * t21 * t21;  // XX5R
@@ -83,9 +83,9 @@ void energy_regressor_sincos(const double* q, const double* sin_q, const double*
   h[40] = 0.5 * t23 * t23;  // ZZ5R
   const double t24 = s5 * t10 + c5 * t15;
   const double t25 = c5 * t9 - s5 * t20;
-  h[41] = t22 * t18 - 9.81 * t24 + t23 * t25;  // MX5
+  h[41] = t22 * t18 - t24 + t23 * t25;  // MX5
   const double t26 = s5 * t9 + c5 * t20;
-  h[42] = -9.81 * (c5 * t10 - s5 * t15) - t18 * t21 - t23 * t26;  // MY5R
+  h[42] = s5 * t15 - c5 * t10 - t18 * t21 - t23 * t26;  // MY5R
   h[43] = 0.5 * dq[4] * dq[4];  // Ia5
   const double t27 = s6 * t23 - c6 * t21;
   h[47] = 0.5 * t27 * t27;  // XX6R
@@ -95,8 +95,8 @@ void energy_regressor_sincos(const double* q, const double* sin_q, const double*
   h[49] = t29 * t27;  // XZ6R
   h[50] = t29 * t28;  // YZ6R
   h[51] = 0.5 * t29 * t29;  // ZZ6R
-  h[52] = 9.81 * (s6 * t19 - c6 * t24) + t25 * t28 + t29 * (c6 * t18 - s6 * t26);  // MX6R
-  h[53] = 9.81 * (c6 * t19 + s6 * t24) - t25 * t27 - t29 * (s6 * t18 + c6 * t26);  // MY6R
+  h[52] = s6 * t19 - c6 * t24 + t25 * t28 + t29 * (c6 * t18 - s6 * t26);  // MX6R
+  h[53] = c6 * t19 + s6 * t24 - t25 * t27 - t29 * (s6 * t18 + c6 * t26);  // MY6R
   h[54] = 0.5 * dq[5] * dq[5];  // Ia6
   const double t30 = dq[4] + dq[5];
   h[58] = 0.5 * t30 * t30;  // Iam6
@@ -140,13 +140,13 @@ void energy_regressor_sincos(const float* q, const float* sin_q, const float* co
   h[16] = -t6 * t3;  // XZ3
   h[17] = -t6 * t5;  // YZ3
   h[18] = 0.5f * t6 * t6;  // ZZ3R
-  const float t7 = c2 * s3 + c3 * s2;
+  const float t7 = 9.81f * (c2 * s3 + c3 * s2);
   const float t8 = 0.225f * dq[1] - 0.035f * t0;
   const float t9 = 0.035f * t2 - s3 * t8;
-  h[19] = 0.225f * t1 * t5 - 9.81f * t7 + t6 * t9;  // MX3
-  const float t10 = c2 * c3 - s2 * s3;
+  h[19] = 0.225f * t1 * t5 - t7 + t6 * t9;  // MX3
+  const float t10 = 9.81f * (c2 * c3 - s2 * s3);
   const float t11 = 0.035f * t4 + c3 * t8;
-  h[20] = -9.81f * t10 - 0.225f * t1 * t3 - t6 * t11;  // MY3R
+  h[20] = -0.225f * t1 * t3 - t10 - t6 * t11;  // MY3R
   h[21] = 0.5f * dq[2] * dq[2];  // Ia3
   const float t12 = s4 * t6 - c4 * t3;
   h[25] = 0.5f * t12 * t12;  // XX4R
@@ -157,13 +157,13 @@ void energy_regressor_sincos(const float* q, const float* sin_q, const float* co
   h[28] = t14 * t13;  // YZ4
   h[29] = 0.5f * t14 * t14;  // ZZ4R
   const float t15 = c4 * t7;
-  const float t16 = t1 + t3;
+  const float t16 = 0.225f * (t1 + t3);
   const float t17 = 0.225f * t6 + t11;
-  const float t18 = 0.225f * c4 * t16 - s4 * t17;
-  h[30] = t13 * t9 - 9.81f * t15 + t14 * t18;  // MX4
+  const float t18 = c4 * t16 - s4 * t17;
+  h[30] = t13 * t9 - t15 + t14 * t18;  // MX4
   const float t19 = s4 * t7;
-  const float t20 = 0.225f * s4 * t16 + c4 * t17;
-  h[31] = 9.81f * t19 - t9 * t12 - t14 * t20;  // MY4R
+  const float t20 = s4 * t16 + c4 * t17;
+  h[31] = t19 - t9 * t12 - t14 * t20;  // MY4R
   h[32] = 0.5f * dq[3] * dq[3];  // Ia4
   const float t21 = s5 * t14 - c5 * t12;
   h[36] = 0.5f * t21 * t21;  // XX5R
@@ -175,9 +175,9 @@ void energy_regressor_sincos(const float* q, const float* sin_q, const float* co
   h[40] = 0.5f * t23 * t23;  // ZZ5R
   const float t24 = s5 * t10 + c5 * t15;
   const float t25 = c5 * t9 - s5 * t20;
-  h[41] = t22 * t18 - 9.81f * t24 + t23 * t25;  // MX5
+  h[41] = t22 * t18 - t24 + t23 * t25;  // MX5
   const float t26 = s5 * t9 + c5 * t20;
-  h[42] = -9.81f * (c5 * t10 - s5 * t15) - t18 * t21 - t23 * t26;  // MY5R
+  h[42] = s5 * t15 - c5 * t10 - t18 * t21 - t23 * t26;  // MY5R
   h[43] = 0.5f * dq[4] * dq[4];  // Ia5
   const float t27 = s6 * t23 - c6 * t21;
   h[47] = 0.5f * t27 * t27;  // XX6R
@@ -187,8 +187,8 @@ void energy_regressor_sincos(const float* q, const float* sin_q, const float* co
   h[49] = t29 * t27;  // XZ6R
   h[50] = t29 * t28;  // YZ6R
   h[51] = 0.5f * t29 * t29;  // ZZ6R
-  h[52] = 9.81f * (s6 * t19 - c6 * t24) + t25 * t28 + t29 * (c6 * t18 - s6 * t26);  // MX6R
-  h[53] = 9.81f * (c6 * t19 + s6 * t24) - t25 * t27 - t29 * (s6 * t18 + c6 * t26);  // MY6R
+  h[52] = s6 * t19 - c6 * t24 + t25 * t28 + t29 * (c6 * t18 - s6 * t26);  // MX6R
+  h[53] = c6 * t19 + s6 * t24 - t25 * t27 - t29 * (s6 * t18 + c6 * t26);  // MY6R
   h[54] = 0.5f * dq[5] * dq[5];  // Ia6
   const float t30 = dq[4] + dq[5];
   h[58] = 0.5f * t30 * t30;  // Iam6

@@ -4,7 +4,7 @@
 // The generated code belongs to the owner of the robot description.
 //
 // Function                              mul    add  sin/cos
-// power_regressor                       302    156       10
+// power_regressor                       296    156       10
 #include "tx40.hpp"
 
 #include <cmath>
@@ -67,16 +67,16 @@ void power_regressor(const double* q, const double* dq, const double* ddq, doubl
   dh[16] = -t14 * t5 - t15 * t8;  // XZ3
   dh[17] = t15 * t13 - t14 * t10;  // YZ3
   dh[18] = t14 * t15;  // ZZ3R
-  const double t16 = c2 * c3 * dq[1] + c2 * c3 * dq[2] - dq[1] * s2 * s3 - dq[2] * s2 * s3;
+  const double t16 = 9.81 * (c2 * c3 * dq[1] - dq[1] * s2 * s3 - dq[2] * s2 * s3 + c2 * c3 * dq[2]);
   const double t17 = 0.225 * dq[1] - 0.035 * t0;
   const double t18 = 0.035 * t4 - s3 * t17;
   const double t19 = 0.225 * ddq[1] - 0.035 * t1;
   const double t20 = 0.035 * (t6 - t7) + c3 * dq[2] * t17 + s3 * t19;
-  dh[19] = 0.225 * (t2 * t10 - t3 * t13) - 9.81 * t16 + t14 * t18 - t15 * t20;  // MX3
-  const double t21 = c2 * dq[1] * s3 + c2 * dq[2] * s3 + c3 * dq[1] * s2 + c3 * dq[2] * s2;
+  dh[19] = 0.225 * (t2 * t10 - t3 * t13) - t16 + t14 * t18 - t15 * t20;  // MX3
+  const double t21 = 9.81 * (c2 * dq[1] * s3 + c2 * dq[2] * s3 + c3 * dq[1] * s2 + c3 * dq[2] * s2);
   const double t22 = 0.035 * t9 + c3 * t17;
   const double t23 = 0.035 * (t11 + t12) - dq[2] * s3 * t17 + c3 * t19;
-  dh[20] = 9.81 * t21 - 0.225 * (t2 * t5 + t3 * t8) - t14 * t22 - t15 * t23;  // MY3R
+  dh[20] = t21 - 0.225 * (t2 * t5 + t3 * t8) - t14 * t22 - t15 * t23;  // MY3R
   dh[21] = ddq[2] * dq[2];  // Ia3
   dh[22] = dq[2] * dq[2];  // Fv3
   dh[23] = dq[2] * sg3;  // Fc3
@@ -92,19 +92,19 @@ void power_regressor(const double* q, const double* dq, const double* ddq, doubl
   dh[27] = t24 * t28 + t29 * t25;  // XZ4
   dh[28] = t29 * t26 + t27 * t28;  // YZ4
   dh[29] = t29 * t28;  // ZZ4R
-  const double t30 = c2 * s3 + c3 * s2;
-  const double t31 = dq[3] * s4 * t30 - c4 * t16;
-  const double t32 = t3 + t5;
+  const double t30 = 9.81 * (c2 * s3 + c3 * s2);
+  const double t31 = c4 * t16 - dq[3] * s4 * t30;
+  const double t32 = 0.225 * (t3 + t5);
   const double t33 = 0.225 * t15 + t22;
-  const double t34 = 0.225 * c4 * t32 - s4 * t33;
-  const double t35 = t2 + t8;
+  const double t34 = c4 * t32 - s4 * t33;
+  const double t35 = 0.225 * (t2 + t8);
   const double t36 = 0.225 * t14 + t23;
-  const double t37 = 0.225 * (dq[3] * s4 * t32 - c4 * t35) + c4 * dq[3] * t33 + s4 * t36;
-  dh[30] = 9.81 * t31 - t27 * t20 + t18 * t26 + t28 * t34 - t29 * t37;  // MX4
+  const double t37 = dq[3] * s4 * t32 + c4 * dq[3] * t33 - c4 * t35 + s4 * t36;
+  dh[30] = t18 * t26 - t31 - t27 * t20 + t28 * t34 - t29 * t37;  // MX4
   const double t38 = c4 * dq[3] * t30 + s4 * t16;
-  const double t39 = 0.225 * s4 * t32 + c4 * t33;
-  const double t40 = 0.225 * (c4 * dq[3] * t32 + s4 * t35) - dq[3] * s4 * t33 + c4 * t36;
-  dh[31] = 9.81 * t38 + t24 * t20 - t18 * t25 - t28 * t39 - t29 * t40;  // MY4R
+  const double t39 = s4 * t32 + c4 * t33;
+  const double t40 = c4 * dq[3] * t32 - dq[3] * s4 * t33 + s4 * t35 + c4 * t36;
+  dh[31] = t38 + t24 * t20 - t18 * t25 - t28 * t39 - t29 * t40;  // MY4R
   dh[32] = ddq[3] * dq[3];  // Ia4
   dh[33] = dq[3] * dq[3];  // Fv4
   dh[34] = dq[3] * sg4;  // Fc4
@@ -120,15 +120,15 @@ void power_regressor(const double* q, const double* dq, const double* ddq, doubl
   dh[38] = -t45 * t41 - t46 * t42;  // XZ5
   dh[39] = t46 * t44 - t45 * t43;  // YZ5
   dh[40] = t46 * t45;  // ZZ5R
-  const double t47 = c2 * c3 - s2 * s3;
+  const double t47 = 9.81 * (c2 * c3 - s2 * s3);
   const double t48 = c4 * t30;
-  const double t49 = s5 * t21 - c5 * dq[4] * t47 + dq[4] * s5 * t48 + c5 * t31;
+  const double t49 = c5 * dq[4] * t47 - s5 * t21 - dq[4] * s5 * t48 + c5 * t31;
   const double t50 = c5 * t18 - s5 * t39;
   const double t51 = dq[4] * s5 * t18 + c5 * t20 + c5 * dq[4] * t39 + s5 * t40;
-  dh[41] = 9.81 * t49 - t43 * t37 - t34 * t44 + t45 * t50 - t46 * t51;  // MX5
+  dh[41] = t45 * t50 - t49 - t43 * t37 - t34 * t44 - t46 * t51;  // MX5
   const double t52 = s5 * t18 + c5 * t39;
   const double t53 = c5 * dq[4] * t18 - s5 * t20 - dq[4] * s5 * t39 + c5 * t40;
-  dh[42] = 9.81 * (c5 * t21 + dq[4] * s5 * t47 + c5 * dq[4] * t48 - s5 * t31) + t41 * t37 - t45 * t52 - t34 * t42 - t46 * t53;  // MY5R
+  dh[42] = c5 * t21 + dq[4] * s5 * t47 + c5 * dq[4] * t48 + s5 * t31 + t41 * t37 - t45 * t52 - t34 * t42 - t46 * t53;  // MY5R
   dh[43] = ddq[4] * dq[4];  // Ia5
   dh[44] = dq[4] * dq[4];  // Fv5
   dh[45] = dq[4] * sg5;  // Fc5
@@ -146,8 +146,8 @@ void power_regressor(const double* q, const double* dq, const double* ddq, doubl
   dh[51] = t59 * t58;  // ZZ6R
   const double t60 = s4 * t30;
   const double t61 = s5 * t47 + c5 * t48;
-  dh[52] = 9.81 * (c6 * dq[5] * t60 + s6 * t38 + dq[5] * s6 * t61 + c6 * t49) - t56 * t51 + t58 * (c6 * t34 - s6 * t52) - t50 * t57 - t59 * (dq[5] * s6 * t34 + c6 * t37 + c6 * dq[5] * t52 + s6 * t53);  // MX6R
-  dh[53] = t54 * t51 - 9.81 * (dq[5] * s6 * t60 - c6 * t38 - c6 * dq[5] * t61 + s6 * t49) - t58 * (s6 * t34 + c6 * t52) - t50 * t55 - t59 * (c6 * dq[5] * t34 - s6 * t37 - dq[5] * s6 * t52 + c6 * t53);  // MY6R
+  dh[52] = c6 * dq[5] * t60 + s6 * t38 + dq[5] * s6 * t61 - c6 * t49 - t56 * t51 + t58 * (c6 * t34 - s6 * t52) - t50 * t57 - t59 * (dq[5] * s6 * t34 + c6 * t37 + c6 * dq[5] * t52 + s6 * t53);  // MX6R
+  dh[53] = c6 * t38 - dq[5] * s6 * t60 + c6 * dq[5] * t61 + s6 * t49 + t54 * t51 - t58 * (s6 * t34 + c6 * t52) - t50 * t55 - t59 * (c6 * dq[5] * t34 - s6 * t37 - dq[5] * s6 * t52 + c6 * t53);  // MY6R
   dh[54] = ddq[5] * dq[5];  // Ia6
   dh[55] = dq[5] * dq[5];  // Fv6
   dh[56] = dq[5] * sg6;  // Fc6
@@ -214,16 +214,16 @@ void power_regressor(const float* q, const float* dq, const float* ddq, float* d
   dh[16] = -t14 * t5 - t15 * t8;  // XZ3
   dh[17] = t15 * t13 - t14 * t10;  // YZ3
   dh[18] = t14 * t15;  // ZZ3R
-  const float t16 = c2 * c3 * dq[1] + c2 * c3 * dq[2] - dq[1] * s2 * s3 - dq[2] * s2 * s3;
+  const float t16 = 9.81f * (c2 * c3 * dq[1] - dq[1] * s2 * s3 - dq[2] * s2 * s3 + c2 * c3 * dq[2]);
   const float t17 = 0.225f * dq[1] - 0.035f * t0;
   const float t18 = 0.035f * t4 - s3 * t17;
   const float t19 = 0.225f * ddq[1] - 0.035f * t1;
   const float t20 = 0.035f * (t6 - t7) + c3 * dq[2] * t17 + s3 * t19;
-  dh[19] = 0.225f * (t2 * t10 - t3 * t13) - 9.81f * t16 + t14 * t18 - t15 * t20;  // MX3
-  const float t21 = c2 * dq[1] * s3 + c2 * dq[2] * s3 + c3 * dq[1] * s2 + c3 * dq[2] * s2;
+  dh[19] = 0.225f * (t2 * t10 - t3 * t13) - t16 + t14 * t18 - t15 * t20;  // MX3
+  const float t21 = 9.81f * (c2 * dq[1] * s3 + c2 * dq[2] * s3 + c3 * dq[1] * s2 + c3 * dq[2] * s2);
   const float t22 = 0.035f * t9 + c3 * t17;
   const float t23 = 0.035f * (t11 + t12) - dq[2] * s3 * t17 + c3 * t19;
-  dh[20] = 9.81f * t21 - 0.225f * (t2 * t5 + t3 * t8) - t14 * t22 - t15 * t23;  // MY3R
+  dh[20] = t21 - 0.225f * (t2 * t5 + t3 * t8) - t14 * t22 - t15 * t23;  // MY3R
   dh[21] = ddq[2] * dq[2];  // Ia3
   dh[22] = dq[2] * dq[2];  // Fv3
   dh[23] = dq[2] * sg3;  // Fc3
@@ -239,19 +239,19 @@ void power_regressor(const float* q, const float* dq, const float* ddq, float* d
   dh[27] = t24 * t28 + t29 * t25;  // XZ4
   dh[28] = t29 * t26 + t27 * t28;  // YZ4
   dh[29] = t29 * t28;  // ZZ4R
-  const float t30 = c2 * s3 + c3 * s2;
-  const float t31 = dq[3] * s4 * t30 - c4 * t16;
-  const float t32 = t3 + t5;
+  const float t30 = 9.81f * (c2 * s3 + c3 * s2);
+  const float t31 = c4 * t16 - dq[3] * s4 * t30;
+  const float t32 = 0.225f * (t3 + t5);
   const float t33 = 0.225f * t15 + t22;
-  const float t34 = 0.225f * c4 * t32 - s4 * t33;
-  const float t35 = t2 + t8;
+  const float t34 = c4 * t32 - s4 * t33;
+  const float t35 = 0.225f * (t2 + t8);
   const float t36 = 0.225f * t14 + t23;
-  const float t37 = 0.225f * (dq[3] * s4 * t32 - c4 * t35) + c4 * dq[3] * t33 + s4 * t36;
-  dh[30] = 9.81f * t31 - t27 * t20 + t18 * t26 + t28 * t34 - t29 * t37;  // MX4
+  const float t37 = dq[3] * s4 * t32 + c4 * dq[3] * t33 - c4 * t35 + s4 * t36;
+  dh[30] = t18 * t26 - t31 - t27 * t20 + t28 * t34 - t29 * t37;  // MX4
   const float t38 = c4 * dq[3] * t30 + s4 * t16;
-  const float t39 = 0.225f * s4 * t32 + c4 * t33;
-  const float t40 = 0.225f * (c4 * dq[3] * t32 + s4 * t35) - dq[3] * s4 * t33 + c4 * t36;
-  dh[31] = 9.81f * t38 + t24 * t20 - t18 * t25 - t28 * t39 - t29 * t40;  // MY4R
+  const float t39 = s4 * t32 + c4 * t33;
+  const float t40 = c4 * dq[3] * t32 - dq[3] * s4 * t33 + s4 * t35 + c4 * t36;
+  dh[31] = t38 + t24 * t20 - t18 * t25 - t28 * t39 - t29 * t40;  // MY4R
   dh[32] = ddq[3] * dq[3];  // Ia4
   dh[33] = dq[3] * dq[3];  // Fv4
   dh[34] = dq[3] * sg4;  // Fc4
@@ -267,15 +267,15 @@ void power_regressor(const float* q, const float* dq, const float* ddq, float* d
   dh[38] = -t45 * t41 - t46 * t42;  // XZ5
   dh[39] = t46 * t44 - t45 * t43;  // YZ5
   dh[40] = t46 * t45;  // ZZ5R
-  const float t47 = c2 * c3 - s2 * s3;
+  const float t47 = 9.81f * (c2 * c3 - s2 * s3);
   const float t48 = c4 * t30;
-  const float t49 = s5 * t21 - c5 * dq[4] * t47 + dq[4] * s5 * t48 + c5 * t31;
+  const float t49 = c5 * dq[4] * t47 - s5 * t21 - dq[4] * s5 * t48 + c5 * t31;
   const float t50 = c5 * t18 - s5 * t39;
   const float t51 = dq[4] * s5 * t18 + c5 * t20 + c5 * dq[4] * t39 + s5 * t40;
-  dh[41] = 9.81f * t49 - t43 * t37 - t34 * t44 + t45 * t50 - t46 * t51;  // MX5
+  dh[41] = t45 * t50 - t49 - t43 * t37 - t34 * t44 - t46 * t51;  // MX5
   const float t52 = s5 * t18 + c5 * t39;
   const float t53 = c5 * dq[4] * t18 - s5 * t20 - dq[4] * s5 * t39 + c5 * t40;
-  dh[42] = 9.81f * (c5 * t21 + dq[4] * s5 * t47 + c5 * dq[4] * t48 - s5 * t31) + t41 * t37 - t45 * t52 - t34 * t42 - t46 * t53;  // MY5R
+  dh[42] = c5 * t21 + dq[4] * s5 * t47 + c5 * dq[4] * t48 + s5 * t31 + t41 * t37 - t45 * t52 - t34 * t42 - t46 * t53;  // MY5R
   dh[43] = ddq[4] * dq[4];  // Ia5
   dh[44] = dq[4] * dq[4];  // Fv5
   dh[45] = dq[4] * sg5;  // Fc5
@@ -293,8 +293,8 @@ void power_regressor(const float* q, const float* dq, const float* ddq, float* d
   dh[51] = t59 * t58;  // ZZ6R
   const float t60 = s4 * t30;
   const float t61 = s5 * t47 + c5 * t48;
-  dh[52] = 9.81f * (c6 * dq[5] * t60 + s6 * t38 + dq[5] * s6 * t61 + c6 * t49) - t56 * t51 + t58 * (c6 * t34 - s6 * t52) - t50 * t57 - t59 * (dq[5] * s6 * t34 + c6 * t37 + c6 * dq[5] * t52 + s6 * t53);  // MX6R
-  dh[53] = t54 * t51 - 9.81f * (dq[5] * s6 * t60 - c6 * t38 - c6 * dq[5] * t61 + s6 * t49) - t58 * (s6 * t34 + c6 * t52) - t50 * t55 - t59 * (c6 * dq[5] * t34 - s6 * t37 - dq[5] * s6 * t52 + c6 * t53);  // MY6R
+  dh[52] = c6 * dq[5] * t60 + s6 * t38 + dq[5] * s6 * t61 - c6 * t49 - t56 * t51 + t58 * (c6 * t34 - s6 * t52) - t50 * t57 - t59 * (dq[5] * s6 * t34 + c6 * t37 + c6 * dq[5] * t52 + s6 * t53);  // MX6R
+  dh[53] = c6 * t38 - dq[5] * s6 * t60 + c6 * dq[5] * t61 + s6 * t49 + t54 * t51 - t58 * (s6 * t34 + c6 * t52) - t50 * t55 - t59 * (c6 * dq[5] * t34 - s6 * t37 - dq[5] * s6 * t52 + c6 * t53);  // MY6R
   dh[54] = ddq[5] * dq[5];  // Ia6
   dh[55] = dq[5] * dq[5];  // Fv6
   dh[56] = dq[5] * sg6;  // Fc6

@@ -4,29 +4,29 @@
 // The generated code belongs to the owner of the robot description.
 //
 // Function                                   mul    add  sin/cos
-// idim_regressor_standard                    484    410       10
+// idim_regressor_standard                    475    417       10
 // inverse_dynamics_standard                  422    341       10
 // joint_sincos                                 0      0       12
-// idim_regressor_standard_sincos             484    410        0
+// idim_regressor_standard_sincos             475    417        0
 // inverse_dynamics_standard_sincos           422    341        0
 // base_from_standard                          24     60        0
-// idim_regressor                             371    317       10
+// idim_regressor                             368    323       10
 // inverse_dynamics                           366    285       10
-// mass_matrix                                389    311       10
-// idim_regressor_sincos                      371    317        0
+// mass_matrix                                387    317       10
+// idim_regressor_sincos                      368    323        0
 // inverse_dynamics_sincos                    366    285        0
-// mass_matrix_sincos                         389    311        0
-// inverse_dynamics_state_jacobian           2008   1913       10
-// energy_regressor                           132     57       10
-// power_regressor                            310    169       10
-// energy_regressor_sincos                    132     57        0
-// power_regressor_sincos                     310    169        0
+// mass_matrix_sincos                         387    317        0
+// inverse_dynamics_state_jacobian           1998   1919       10
+// energy_regressor                           126     57       10
+// power_regressor                            313    173       10
+// energy_regressor_sincos                    126     57        0
+// power_regressor_sincos                     313    173        0
 // drive_torque                               458    353       10
-// drive_torque_jacobian                     1642    812       10
-// drive_torque_state_jacobian               2638   2288       20
-// drive_regressor                            484    410       10
-// drive_torque_given_regressor               243    219        0
-// drive_torque_jacobian_given_regressor      645    231        0
+// drive_torque_jacobian                      919    837       10
+// drive_torque_state_jacobian               2520   2384       20
+// drive_regressor                            475    417       10
+// drive_torque_given_regressor               240    216        0
+// drive_torque_jacobian_given_regressor      444    420        0
 #ifndef MODELGEN_UR5_HPP_
 #define MODELGEN_UR5_HPP_
 
@@ -231,7 +231,7 @@ void drive_torque(const float* q, const float* dq, const float* ddq, const float
 // efficiency branch and the Coulomb friction sign count as constant: exact wherever no motor
 // velocity and no power flow tau'_G dq_M is zero. Calls idim_regressor_standard into a local
 // array of kDof * kStandardParams values (on the stack) and applies the chain rule to it.
-// J: 384 of its 504 entries are written; the others are zero for every input
+// J: 210 of its 504 entries are written; the others are zero for every input
 // and never written (the manifest lists them under "unwritten"): zero J once before the
 // first call.
 void drive_torque_jacobian(const double* q, const double* dq, const double* ddq,
@@ -247,6 +247,9 @@ void drive_torque_jacobian(const float* q, const float* dq, const float* ddq, co
 // Calls base_from_standard, inverse_dynamics and inverse_dynamics_state_jacobian into local
 // arrays (kStandardParams + kBaseParams + kDof + 3 kDof^2 values, on the stack) and applies the
 // chain rule to them.
+// J: 102 of its 108 entries are written; the others are zero for every input
+// and never written (the manifest lists them under "unwritten"): zero J once before the
+// first call.
 void drive_torque_state_jacobian(const double* q, const double* dq, const double* ddq,
                                  const double* theta, double* J);
 void drive_torque_state_jacobian(const float* q, const float* dq, const float* ddq,
@@ -262,7 +265,7 @@ void drive_torque_state_jacobian(const float* q, const float* dq, const float* d
 // passes it to drive_torque_given_regressor and drive_torque_jacobian_given_regressor, which
 // read only its entries that are not structurally zero. Calls idim_regressor_standard into a
 // local array of kDof * kStandardParams values (on the stack).
-// Y: 207 of its 504 entries are written; the others are zero for every input
+// Y: 204 of its 504 entries are written; the others are zero for every input
 // and never written (the manifest lists them under "unwritten"): zero Y once before the
 // first call.
 void drive_regressor(const double* q, const double* dq, const double* ddq, double* Y);
@@ -286,7 +289,7 @@ void drive_torque_given_regressor(const float* Y, const float* theta, float* tau
 // efficiency branch and the Coulomb friction sign count as constant, as in
 // drive_torque_jacobian. Reads only the entries of Y that drive_regressor does not leave
 // structurally zero; every Rz must be non-zero.
-// J: 213 of its 504 entries are written; the others are zero for every input
+// J: 210 of its 504 entries are written; the others are zero for every input
 // and never written (the manifest lists them under "unwritten"): zero J once before the
 // first call.
 void drive_torque_jacobian_given_regressor(const double* Y, const double* theta, double* tau_M,

@@ -4,7 +4,7 @@
 // The generated code belongs to the owner of the robot description.
 //
 // Function                              mul    add  sin/cos
-// energy_regressor_sincos               132     57        0
+// energy_regressor_sincos               126     57        0
 #include "ur5.hpp"
 
 namespace modelgen {
@@ -50,13 +50,13 @@ void energy_regressor_sincos(const double* q, const double* sin_q, const double*
   h[16] = t8 * t5;  // XZ3
   h[17] = 0.5 * t6 * t6;  // YY3R
   h[18] = -t6 * t8;  // YZ3R
-  const double t9 = c2 * c3 - s2 * s3;
+  const double t9 = 9.81 * (c2 * c3 - s2 * s3);
   const double t10 = 0.425 * dq[1] + 0.016149999999999998 * t2;
   const double t11 = 0.016149999999999998 * t4 - s3 * t10;
-  h[19] = t6 * t11 - 9.81 * t9 - 0.425 * t0 * t8;  // MX3
-  const double t12 = c2 * s3 + c3 * s2;
+  h[19] = t6 * t11 - t9 - 0.425 * t0 * t8;  // MX3
+  const double t12 = 9.81 * (c2 * s3 + c3 * s2);
   const double t13 = 0.016149999999999998 * t7 + c3 * t10;
-  h[20] = 0.425 * t0 * t5 - 9.81 * t12 + t6 * t13;  // MZ3R
+  h[20] = 0.425 * t0 * t5 - t12 + t6 * t13;  // MZ3R
   h[21] = 0.5 * dq[2] * dq[2];  // Ia3
   const double t14 = c4 * t8 + s4 * t5;
   h[25] = 0.5 * t14 * t14;  // XX4R
@@ -70,10 +70,10 @@ void energy_regressor_sincos(const double* q, const double* sin_q, const double*
   const double t18 = 0.425 * t0 + 0.39225 * t5;
   const double t19 = 0.39225 * t6 + t13;
   const double t20 = s4 * t11 + c4 * t19;
-  h[30] = 9.81 * t17 + t18 * t16 - t15 * t20;  // MX4
-  const double t21 = s4 * t12 - c4 * t9;
+  h[30] = t17 + t18 * t16 - t15 * t20;  // MX4
+  const double t21 = c4 * t9 - s4 * t12;
   const double t22 = c4 * t11 - s4 * t19;
-  h[31] = 9.81 * t21 - t18 * t14 + t15 * t22;  // MZ4R
+  h[31] = t15 * t22 - t21 - t18 * t14;  // MZ4R
   h[32] = 0.5 * dq[3] * dq[3];  // Ia4
   const double t23 = s5 * t15 + c5 * t14;
   h[36] = 0.5 * t23 * t23;  // XX5R
@@ -87,9 +87,9 @@ void energy_regressor_sincos(const double* q, const double* sin_q, const double*
   const double t27 = 0.093 * t14 + t20;
   const double t28 = 0.093 * t16 - t22;
   const double t29 = c5 * t18 + s5 * t28;
-  h[41] = 9.81 * t26 - t24 * t27 + t25 * t29;  // MX5
+  h[41] = t26 - t24 * t27 + t25 * t29;  // MX5
   const double t30 = s5 * t18 - c5 * t28;
-  h[42] = t23 * t27 - 9.81 * s5 * t17 - t25 * t30;  // MY5R
+  h[42] = t23 * t27 - s5 * t17 - t25 * t30;  // MY5R
   h[43] = 0.5 * dq[4] * dq[4];  // Ia5
   const double t31 = s6 * t25 - c6 * t23;
   h[47] = 0.5 * t31 * t31;  // XX6R
@@ -101,8 +101,8 @@ void energy_regressor_sincos(const double* q, const double* sin_q, const double*
   h[51] = t32 * t33;  // YZ6
   const double t34 = 0.09465 * t23 - t29;
   const double t35 = 0.09465 * t24 + t30;
-  h[52] = -9.81 * (s6 * t21 - c6 * t26) - t33 * t34 - t32 * (c6 * t27 + s6 * t35);  // MX6
-  h[53] = 9.81 * (c6 * t21 + s6 * t26) - t31 * t34 - t32 * (s6 * t27 - c6 * t35);  // MZ6
+  h[52] = s6 * t21 + c6 * t26 - t33 * t34 - t32 * (c6 * t27 + s6 * t35);  // MX6
+  h[53] = s6 * t26 - c6 * t21 - t31 * t34 - t32 * (s6 * t27 - c6 * t35);  // MZ6
   h[54] = 0.5 * dq[5] * dq[5];  // Ia6
 }
 
@@ -146,13 +146,13 @@ void energy_regressor_sincos(const float* q, const float* sin_q, const float* co
   h[16] = t8 * t5;  // XZ3
   h[17] = 0.5f * t6 * t6;  // YY3R
   h[18] = -t6 * t8;  // YZ3R
-  const float t9 = c2 * c3 - s2 * s3;
+  const float t9 = 9.81f * (c2 * c3 - s2 * s3);
   const float t10 = 0.425f * dq[1] + 0.01615f * t2;
   const float t11 = 0.01615f * t4 - s3 * t10;
-  h[19] = t6 * t11 - 9.81f * t9 - 0.425f * t0 * t8;  // MX3
-  const float t12 = c2 * s3 + c3 * s2;
+  h[19] = t6 * t11 - t9 - 0.425f * t0 * t8;  // MX3
+  const float t12 = 9.81f * (c2 * s3 + c3 * s2);
   const float t13 = 0.01615f * t7 + c3 * t10;
-  h[20] = 0.425f * t0 * t5 - 9.81f * t12 + t6 * t13;  // MZ3R
+  h[20] = 0.425f * t0 * t5 - t12 + t6 * t13;  // MZ3R
   h[21] = 0.5f * dq[2] * dq[2];  // Ia3
   const float t14 = c4 * t8 + s4 * t5;
   h[25] = 0.5f * t14 * t14;  // XX4R
@@ -166,10 +166,10 @@ void energy_regressor_sincos(const float* q, const float* sin_q, const float* co
   const float t18 = 0.425f * t0 + 0.39225f * t5;
   const float t19 = 0.39225f * t6 + t13;
   const float t20 = s4 * t11 + c4 * t19;
-  h[30] = 9.81f * t17 + t18 * t16 - t15 * t20;  // MX4
-  const float t21 = s4 * t12 - c4 * t9;
+  h[30] = t17 + t18 * t16 - t15 * t20;  // MX4
+  const float t21 = c4 * t9 - s4 * t12;
   const float t22 = c4 * t11 - s4 * t19;
-  h[31] = 9.81f * t21 - t18 * t14 + t15 * t22;  // MZ4R
+  h[31] = t15 * t22 - t21 - t18 * t14;  // MZ4R
   h[32] = 0.5f * dq[3] * dq[3];  // Ia4
   const float t23 = s5 * t15 + c5 * t14;
   h[36] = 0.5f * t23 * t23;  // XX5R
@@ -183,9 +183,9 @@ void energy_regressor_sincos(const float* q, const float* sin_q, const float* co
   const float t27 = 0.093f * t14 + t20;
   const float t28 = 0.093f * t16 - t22;
   const float t29 = c5 * t18 + s5 * t28;
-  h[41] = 9.81f * t26 - t24 * t27 + t25 * t29;  // MX5
+  h[41] = t26 - t24 * t27 + t25 * t29;  // MX5
   const float t30 = s5 * t18 - c5 * t28;
-  h[42] = t23 * t27 - 9.81f * s5 * t17 - t25 * t30;  // MY5R
+  h[42] = t23 * t27 - s5 * t17 - t25 * t30;  // MY5R
   h[43] = 0.5f * dq[4] * dq[4];  // Ia5
   const float t31 = s6 * t25 - c6 * t23;
   h[47] = 0.5f * t31 * t31;  // XX6R
@@ -197,8 +197,8 @@ void energy_regressor_sincos(const float* q, const float* sin_q, const float* co
   h[51] = t32 * t33;  // YZ6
   const float t34 = 0.09465f * t23 - t29;
   const float t35 = 0.09465f * t24 + t30;
-  h[52] = -9.81f * (s6 * t21 - c6 * t26) - t33 * t34 - t32 * (c6 * t27 + s6 * t35);  // MX6
-  h[53] = 9.81f * (c6 * t21 + s6 * t26) - t31 * t34 - t32 * (s6 * t27 - c6 * t35);  // MZ6
+  h[52] = s6 * t21 + c6 * t26 - t33 * t34 - t32 * (c6 * t27 + s6 * t35);  // MX6
+  h[53] = s6 * t26 - c6 * t21 - t31 * t34 - t32 * (s6 * t27 - c6 * t35);  // MZ6
   h[54] = 0.5f * dq[5] * dq[5];  // Ia6
 }
 

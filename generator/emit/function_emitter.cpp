@@ -5,6 +5,7 @@
 #include "generator/emit/function_emitter.hpp"
 
 #include <algorithm>
+#include <optional>
 #include <stdexcept>
 
 #include "generator/dynamics/drive_model.hpp"
@@ -36,26 +37,77 @@ void check_output_count(const Built& built, const ModelSizes& sizes) {
   }
 }
 
-// The builders of the chosen entry points, in registry order, their outputs simplified
-// (exact zeros removed, sign-normal form: output_simplifier.hpp). Operand order depends on
-// structure only (ExprGraph), so a body is the same whichever builders ran before it.
+// The entries of `array` (an output of `built`) that are the constant 0.
+std::vector<int> zero_entries(const Built& built, const std::string& array,
+                              const ExprGraph& graph, const ModelSizes& sizes) {
+  std::vector<int> zeros;
+  std::size_t next = 0;
+  for (const ArraySpec& spec : built.entry->outputs) {
+    const int size = array_size(spec, sizes);
+    if (array == spec.name && !built.definition.outputs_written_by_call) {
+      for (int k = 0; k < size; ++k) {
+        if (graph.is_zero(built.definition.outputs[next + k].value)) zeros.push_back(k);
+      }
+    }
+    next += static_cast<std::size_t>(size);
+  }
+  return zeros;
+}
+
+// The builders of the chosen entry points and of the functions whose outputs they read
+// (FunctionDefinition::reads; built, not emitted), in registry order, their outputs simplified
+// (exact zeros removed, sign-normal form: output_simplifier.hpp) and the entries they read that
+// their writer never writes replaced by 0. Operand order depends on structure only
+// (ExprGraph), so a body is the same whichever builders ran before it.
 std::vector<Built> run_builders(const RobotModel& model, const BaseParameterSet& base,
                                 ExprGraph& graph, const std::vector<Scalar>& scalars,
                                 const std::vector<EntryPoint>& chosen, ModelSizes& sizes) {
   BuildContext context{model, base, graph, make_symbolic_inputs(graph, model.tree), scalars};
+  const std::vector<FunctionEntry>& registry = function_registry();
+  std::vector<bool> needed(registry.size(), false);
+  for (std::size_t i = 0; i < registry.size(); ++i) {
+    needed[i] = std::any_of(chosen.begin(), chosen.end(),
+                            [&](const EntryPoint& p) { return p.entry == &registry[i]; });
+  }
+  std::vector<std::optional<FunctionDefinition>> definitions(registry.size());
+  // Readers come after the functions they read in the registry: build from the end, adding
+  // each reader's writers to what is needed.
+  for (std::size_t i = registry.size(); i-- > 0;) {
+    if (!needed[i]) continue;
+    definitions[i] = registry[i].build(context);
+    for (const FunctionDefinition::ReadsOutput& read : definitions[i]->reads) {
+      const auto writer = std::find_if(registry.begin(), registry.end(), [&](const FunctionEntry& e) {
+        return read.function == e.name;
+      });
+      if (writer == registry.end() || writer - registry.begin() >= static_cast<std::ptrdiff_t>(i)) {
+        throw std::logic_error(std::string("emit_functions: ") + registry[i].name + " reads " +
+                               read.function + ", which is not before it in the registry");
+      }
+      needed[static_cast<std::size_t>(writer - registry.begin())] = true;
+    }
+  }
   std::vector<Built> built;
-  for (const FunctionEntry& entry : function_registry()) {
-    const bool wanted = std::any_of(chosen.begin(), chosen.end(),
-                                    [&](const EntryPoint& p) { return p.entry == &entry; });
-    if (wanted) built.push_back({&entry, entry.build(context)});
+  for (std::size_t i = 0; i < registry.size(); ++i) {
+    if (definitions[i]) built.push_back({&registry[i], std::move(*definitions[i])});
   }
   sizes = {model.tree.dof, context.num_params(), context.num_base(),
            static_cast<int>(make_drive_parameters(graph, model.tree).theta.size())};
   for (const Built& b : built) check_output_count(b, sizes);
-  // After every builder: the simplifier probes the nodes that exist when it is made.
   OutputSimplifier simplify(graph);
-  for (Built& b : built) {
-    for (FunctionOutput& output : b.definition.outputs) output.value = simplify(output.value);
+  for (std::size_t i = 0; i < built.size(); ++i) {
+    FunctionDefinition& definition = built[i].definition;
+    std::vector<ExprId> values;
+    for (const FunctionOutput& output : definition.outputs) values.push_back(simplify(output.value));
+    std::vector<ExprId> zero_leaves;
+    for (const FunctionDefinition::ReadsOutput& read : definition.reads) {
+      const auto writer = std::find_if(built.begin(), built.begin() + static_cast<std::ptrdiff_t>(i),
+                                       [&](const Built& b) { return read.function == b.entry->name; });
+      for (int k : zero_entries(*writer, read.output, graph, sizes)) {
+        zero_leaves.push_back(input_symbol(graph, read.array, k));
+      }
+    }
+    values = simplify.with_zero_leaves(values, zero_leaves);
+    for (std::size_t k = 0; k < values.size(); ++k) definition.outputs[k].value = values[k];
   }
   return built;
 }

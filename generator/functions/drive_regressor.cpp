@@ -17,6 +17,7 @@ FunctionDefinition build_drive_regressor(BuildContext& context) {
   FunctionDefinition definition{row_major_outputs(
       "Y", context.dof(), columns, [&](int i, int k) { return Y[i * columns + k]; },
       [&](int k) { return drive.names[k]; })};
+  definition.reads = {{"W_std", "idim_regressor_standard", "W"}};
   definition.prologue = [](Scalar scalar) {
     return std::vector<std::string>{local_array(scalar, "W_std", "kDof * kStandardParams"),
                                     call("idim_regressor_standard", "q, dq, ddq, W_std")};

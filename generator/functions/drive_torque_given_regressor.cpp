@@ -10,7 +10,10 @@ namespace modelgen::gen {
 FunctionDefinition build_drive_torque_given_regressor(BuildContext& context) {
   const DriveParameters drive = make_drive_parameters(context.graph, context.tree());
   const std::vector<ExprId> Y = drive_regressor_input(context, drive);
-  return {vector_outputs("tau_M", drive_torques_from_regressor(context.graph, drive, Y))};
+  FunctionDefinition definition{
+      vector_outputs("tau_M", drive_torques_from_regressor(context.graph, drive, Y))};
+  definition.reads = {{"Y", "drive_regressor", "Y"}};
+  return definition;
 }
 
 }  // namespace modelgen::gen

@@ -34,6 +34,7 @@ FunctionDefinition build_drive_torque_jacobian(BuildContext& context) {
            [&](int k) { return drive.names[k]; })) {
     definition.outputs.push_back(std::move(output));
   }
+  definition.reads = {{"W_std", "idim_regressor_standard", "W"}};
   definition.prologue = [](Scalar scalar) {
     return std::vector<std::string>{local_array(scalar, "W_std", "kDof * kStandardParams"),
                                     call("idim_regressor_standard", "q, dq, ddq, W_std")};

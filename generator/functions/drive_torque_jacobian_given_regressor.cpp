@@ -23,6 +23,7 @@ FunctionDefinition build_drive_torque_jacobian_given_regressor(BuildContext& con
            [&](int k) { return drive.names[k]; })) {
     definition.outputs.push_back(std::move(output));
   }
+  definition.reads = {{"Y", "drive_regressor", "Y"}};
   return definition;
 }
 

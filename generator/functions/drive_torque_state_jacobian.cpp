@@ -56,6 +56,7 @@ FunctionDefinition build_drive_torque_state_jacobian(BuildContext& context) {
   };
   FunctionDefinition definition{
       row_major_outputs("J", n, 3 * n, entry, [&](int k) { return state_name(k, n); })};
+  definition.reads = {{"dtau_G", "inverse_dynamics_state_jacobian", "J"}};
   definition.prologue = [drive](Scalar scalar) { return prologue(drive, scalar); };
   return definition;
 }

@@ -56,6 +56,15 @@ struct FunctionDefinition {
   /// The prologue's call writes the outputs (a function that wraps another entry point), so
   /// `outputs` stays empty.
   bool outputs_written_by_call = false;
+  /// Arrays this function reads (`array[k]` leaves: a local array a prologue call fills, or an
+  /// input the caller fills with another entry point) that hold another function's output:
+  /// the entries that function never writes are zero, and the emitter substitutes 0 for them.
+  struct ReadsOutput {
+    std::string array;     ///< as this function names it: "W_std", "Y"
+    std::string function;  ///< the registry name of the function that writes it
+    std::string output;    ///< that function's output array: "W"
+  };
+  std::vector<ReadsOutput> reads{};
 };
 
 using Builder = FunctionDefinition (*)(BuildContext& context);

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <stdexcept>
 #include <string>
+#include <unordered_map>
 
 namespace modelgen::gen {
 
@@ -31,7 +32,6 @@ double probe_input(const std::string& name, int probe) {
 
 OutputSimplifier::OutputSimplifier(ExprGraph& graph)
     : graph_(graph),
-      original_size_(graph.size()),
       forms_(graph),
       done_(graph.size(), kNotDone),
       value_(graph.size()),
@@ -39,11 +39,51 @@ OutputSimplifier::OutputSimplifier(ExprGraph& graph)
       value_done_(graph.size(), false),
       magnitude_done_(graph.size(), false) {}
 
-ExprId OutputSimplifier::operator()(ExprId id) {
-  if (id >= original_size_) {
-    throw std::logic_error("OutputSimplifier: node created after the simplifier");
+ExprId OutputSimplifier::operator()(ExprId id) { return rewrite(id); }
+
+ExprId OutputSimplifier::substitute_zero(ExprId id, const std::vector<bool>& is_zero_leaf,
+                                         std::unordered_map<ExprId, ExprId>& memo) {
+  if (const auto found = memo.find(id); found != memo.end()) return found->second;
+  const Node n = graph_.node(id);  // a copy: rebuilding grows the graph
+  ExprId result = id;
+  if (n.op == Op::kSymbol) {
+    if (id < is_zero_leaf.size() && is_zero_leaf[id]) result = graph_.zero();
+  } else if (n.op != Op::kConstant) {
+    std::vector<ExprId> args;
+    bool changed = false;
+    for (ExprId a : n.args) {
+      args.push_back(substitute_zero(a, is_zero_leaf, memo));
+      changed = changed || args.back() != a;
+    }
+    if (changed) {
+      switch (n.op) {
+        case Op::kAdd: result = graph_.add(std::move(args)); break;
+        case Op::kMul: result = graph_.mul(std::move(args)); break;
+        case Op::kShare: result = graph_.share(args[0]); break;
+        case Op::kSign: result = graph_.sign(args[0]); break;
+        case Op::kInv:
+          if (graph_.is_zero(args[0])) {
+            throw std::logic_error("OutputSimplifier: a divisor reads only zero entries");
+          }
+          result = graph_.inv(args[0]);
+          break;
+        default: break;
+      }
+    }
   }
-  return rewrite(id);
+  memo.emplace(id, result);
+  return result;
+}
+
+std::vector<ExprId> OutputSimplifier::with_zero_leaves(const std::vector<ExprId>& ids,
+                                                       const std::vector<ExprId>& leaves) {
+  if (leaves.empty()) return ids;
+  std::vector<bool> is_zero_leaf(graph_.size(), false);
+  for (ExprId leaf : leaves) is_zero_leaf[leaf] = true;
+  std::unordered_map<ExprId, ExprId> memo;
+  std::vector<ExprId> result;
+  for (ExprId id : ids) result.push_back(rewrite(substitute_zero(id, is_zero_leaf, memo)));
+  return result;
 }
 
 OutputSimplifier::Probe OutputSimplifier::leaf_value(const Symbol& symbol) const {
@@ -148,6 +188,7 @@ bool OutputSimplifier::evaluates_to_zero(ExprId id, double tolerance) {
 }
 
 ExprId OutputSimplifier::rewrite(ExprId id) {
+  if (id >= done_.size()) done_.resize(graph_.size(), kNotDone);  // a node made since
   if (done_[id] != kNotDone) return done_[id];
   const Node n = graph_.node(id);  // a copy: rebuilding grows the graph
   ExprId result = id;
@@ -186,6 +227,21 @@ ExprId OutputSimplifier::rewrite(ExprId id) {
   return result;
 }
 
+bool OutputSimplifier::reads_a_sign(ExprId id) {
+  if (id >= reads_sign_.size()) reads_sign_.resize(graph_.size(), -1);
+  if (reads_sign_[id] >= 0) return reads_sign_[id] == 1;
+  const Node n = graph_.node(id);
+  bool reads = n.op == Op::kSign;
+  if (n.op == Op::kSymbol) {
+    const SymbolKind kind = graph_.symbols()[n.symbol].kind;
+    reads = kind == SymbolKind::kSign || kind == SymbolKind::kPositive ||
+            kind == SymbolKind::kNegative;
+  }
+  for (std::size_t k = 0; k < n.args.size() && !reads; ++k) reads = reads_a_sign(n.args[k]);
+  reads_sign_[id] = reads ? 1 : 0;
+  return reads;
+}
+
 bool OutputSimplifier::is_zero_sum(ExprId sum) {
   if (!evaluates_to_zero(sum, 1e-9)) return false;
   const std::optional<bool> zero = forms_.is_zero(sum);
@@ -196,7 +252,9 @@ bool OutputSimplifier::is_zero_sum(ExprId sum) {
   // Too deep to expand (the state Jacobians): round-off alone at every probe is taken as zero;
   // a term it could hide is below 1e-13 of the sum's terms, under the 1e-12 the generated code
   // is held to against the numeric reference.
-  if (!zero && evaluates_to_zero(sum, 1e-13)) {
+  // Not for a sum that reads a sign: the probes never put a velocity at 0, where such a sum
+  // (sign(x)^2 - 1) can be non-zero.
+  if (!zero && !reads_a_sign(sum) && evaluates_to_zero(sum, 1e-13)) {
     ++numeric_zeros_;
     return true;
   }
@@ -239,29 +297,26 @@ ExprId OutputSimplifier::normal_form(ExprId id) {
     return has_coefficient ? graph_.mul(n.args[0], product) : product;
   }
   if (n.op == Op::kAdd) {
-    // The coefficient of the term whose base (the term without its constant coefficient)
-    // comes first canonically: the same base in s and -s, so both choose one representative.
-    // When every term has a coefficient of that magnitude, s = c (a + b - c ...) shares
-    // (a + b - c ...) and costs one multiplication instead of one per term.
+    // The sign of the term whose base (the term without its constant coefficient) comes first
+    // canonically: the same base in s and -s, so both choose one representative. Only the
+    // sign: a magnitude taken out would be one more multiplication wherever the sum is a
+    // factor (c * share(u) flattens into every product), and the statement writer already
+    // prints terms with one literal factor once (0.035 * (a - b)).
     ExprId first_base = 0;
     double first = 0;
-    bool equal_magnitudes = true;
     for (ExprId term : n.args) {
       if (graph_.is_constant(term)) continue;
       const Node& t = graph_.node(term);
       const bool scaled = t.op == Op::kMul && graph_.is_constant(t.args[0]) && t.args.size() == 2;
       const ExprId base = scaled ? t.args[1] : term;
       const double coefficient = scaled ? graph_.constant_value(t.args[0]) : 1.0;
-      if (first != 0 && std::abs(coefficient) != std::abs(first)) equal_magnitudes = false;
       if (first == 0 || graph_.canonical_before(base, first_base)) {
         first_base = base;
         first = coefficient;
       }
     }
-    const double factor = equal_magnitudes ? first : (first < 0 ? -1.0 : 1.0);
-    if (factor == 1.0) return graph_.share(id);
-    const ExprId unit = graph_.share(graph_.mul(graph_.constant(1.0 / factor), id));
-    return graph_.mul(graph_.constant(factor), unit);
+    if (first > 0) return graph_.share(id);
+    return graph_.neg(graph_.share(graph_.neg(id)));
   }
   return id;
 }

@@ -67,8 +67,9 @@ void build_equations(const IdentificationModel& model, const std::vector<Traject
                      LeastSquaresAccumulator& equations, Progress& progress, bool caller) {
   const int n = model.dof(), nb = model.num_base_params();
   const Eigen::Index width = power ? nb : static_cast<Eigen::Index>(n) * nb;
-  // Zeroed once here and written by one function only (regressor or power_regressor): a
-  // generated regressor may store only its structurally nonzero entries.
+  // Zeroed once here and written by one function only (regressor or power_regressor), so that
+  // a regressor storing only its structurally nonzero entries needs no zeroing per sample
+  // (GeneratedModel still zeroes its output per call: IdentificationModel's contract is dense).
   std::vector<double> block(static_cast<std::size_t>(kChunkSamples * width), 0.0);
   std::vector<double> power_in(static_cast<std::size_t>(kChunkSamples));
   State state(n);

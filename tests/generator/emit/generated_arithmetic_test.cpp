@@ -38,7 +38,7 @@ struct Probe {
 
 // The inputs of the generated functions at the probe states: q, dq, ddq in a robot's range,
 // parameters positive (efficiencies divide), sin_q and cos_q consistent with q, and any other
-// array (the local regressor of the drive Jacobians) random.
+// array (a local regressor of the drive Jacobians, the drive regressor Y) of either sign.
 class Inputs {
  public:
   double at(const std::string& array, int index, int state) {
@@ -50,6 +50,10 @@ class Inputs {
       std::uniform_real_distribution<double> unit(0.0, 1.0);
       const double u = unit(random_);
       double v = 0.5 + 1.5 * u;  // parameters
+      // Another function's output (a local regressor, the drive regressor Y): either sign.
+      if (array != "p" && array != "beta" && array != "theta" && array != "p_standard") {
+        v *= unit(random_) < 0.5 ? -1.0 : 1.0;
+      }
       if (array == "q") v = -3.0 + 6.0 * u;
       if (array == "dq") v = (unit(random_) < 0.5 ? -1.0 : 1.0) * (0.2 + 2.8 * u);
       if (array == "ddq") v = -10.0 + 20.0 * u;

@@ -575,7 +575,7 @@ TYPED_TEST(DriveTorque, FloatGivenRegressorAgreesWithDouble) {
     const Eigen::VectorXd theta = this->random_theta(random);
     const Eigen::VectorXd x = this->smooth_state(random, theta, 1e-3);
     const Eigen::VectorXf xf = x.cast<float>(), thetaf = theta.cast<float>();
-    RowMajorF Y = RowMajorF::Zero(n, m), J(n, m);
+    RowMajorF Y = RowMajorF::Zero(n, m), J = RowMajorF::Zero(n, m);  // zeros are not written
     Eigen::VectorXf tau(n);
     TypeParam::drive_regressor_float(xf.data(), xf.data() + n, xf.data() + 2 * n, Y.data());
     TypeParam::drive_torque_jacobian_given_regressor_float(Y.data(), thetaf.data(), tau.data(),

@@ -16,7 +16,7 @@ namespace modelgen {
 /// Equations y = W beta fed in blocks of rows, in groups, without ever storing W: each group's
 /// rows are reduced as they arrive to the triangular factor R_g of [W_g y_g] (Householder QR of
 /// the previous factor stacked on the new rows, over only the columns the group has seen
-/// nonzero). Memory per group O(c_g (c_g + 1024)), c_g <= b its seen columns, whatever the
+/// nonzero). Memory per group O(c_g (c_g + 256)), c_g <= b its seen columns, whatever the
 /// number of rows. Since [W_g y_g] = Q_g R_g with orthonormal Q_g, every statistic of
 /// fit_ols/fit_wls (eq. 15-20) follows from the factors, and so do ||y_g - W_g beta|| for any
 /// beta. Not thread-safe, const members included (they finish pending reductions): give each

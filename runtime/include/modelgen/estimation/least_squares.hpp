@@ -35,7 +35,7 @@ struct LeastSquaresResult {
 /// b parameters), `y` has r entries; `names` (b entries) name the columns in messages.
 /// Solved by Householder QR over blocks of rows (no copy of W, never forming W^T W), rank and
 /// statistics from a column-pivoted QR of the small triangular factor; two threads for large W.
-/// Extra memory O(b (b + 1024)) whatever r.
+/// Extra memory O(b (b + 256)) whatever r.
 /// Throws EstimationError on mismatched sizes, non-finite entries (naming row and column),
 /// r <= b, or rank deficiency; the message names the parameters the data do not excite or
 /// cannot tell apart.
@@ -48,7 +48,7 @@ LeastSquaresResult fit_ols(const Eigen::MatrixXd& W, const Eigen::VectorXd& y,
 /// the weighted system. `group` has r entries, values 0..G-1, every group needing more
 /// equations than parameters (than the parameters it sees: columns that are zero in all of a
 /// group's rows are left out of its own solution). One pass over W computes both the groups'
-/// errors and the weighted solution; extra memory O(G b (b + 1024)) at most, and no more than
+/// errors and the weighted solution; extra memory O(G b (b + 256)) at most, and no more than
 /// about twice W's. Throws EstimationError as fit_ols does.
 LeastSquaresResult fit_wls(const Eigen::MatrixXd& W, const Eigen::VectorXd& y,
                            const std::vector<int>& group, const std::vector<std::string>& names);
