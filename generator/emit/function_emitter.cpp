@@ -37,7 +37,8 @@ void check_output_count(const Built& built, const ModelSizes& sizes) {
   }
 }
 
-// The entries of `array` (an output of `built`) that are the constant 0.
+// The entries of `array` (an output of `built`) that are the constant 0. The builders write
+// each array's entries in index order (row_major_outputs, vector_outputs).
 std::vector<int> zero_entries(const Built& built, const std::string& array,
                               const ExprGraph& graph, const ModelSizes& sizes) {
   std::vector<int> zeros;
@@ -112,18 +113,13 @@ std::vector<Built> run_builders(const RobotModel& model, const BaseParameterSet&
   return built;
 }
 
-// The outputs that are the constant 0, which the statement writer leaves out, per array. The
-// builders write each array's entries in index order (row_major_outputs, vector_outputs).
+// The outputs that are the constant 0, which the statement writer leaves out, per array.
 std::vector<UnwrittenEntries> unwritten_entries(const Built& built, const ExprGraph& graph,
                                                 const ModelSizes& sizes) {
   std::vector<UnwrittenEntries> result;
-  std::size_t next = 0;
   for (const ArraySpec& array : built.entry->outputs) {
-    UnwrittenEntries entries{array.name, array_size(array, sizes), {}};
-    if (built.definition.outputs_written_by_call) continue;
-    for (int k = 0; k < entries.total; ++k, ++next) {
-      if (graph.is_zero(built.definition.outputs[next].value)) entries.indices.push_back(k);
-    }
+    UnwrittenEntries entries{array.name, array_size(array, sizes),
+                             zero_entries(built, array.name, graph, sizes)};
     if (!entries.indices.empty()) result.push_back(std::move(entries));
   }
   return result;

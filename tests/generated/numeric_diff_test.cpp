@@ -70,8 +70,9 @@ TEST_F(GeneratedModel, EqualsNumericReferenceOnRandomStates) {
   std::cout << "[ GENERATED] " << MODELGEN_ROBOT_DESCRIPTION << ": worst relative difference "
             << "regressor " << worst_W << ", inverse dynamics " << worst_tau << " over " << kStates
             << " states\n";
-  EXPECT_LT(worst_W, 1e-10);
-  EXPECT_LT(worst_tau, 1e-10);
+  // Issue 16: every generated function within 1e-12 of the reference (measured up to 5e-15).
+  EXPECT_LT(worst_W, 1e-12);
+  EXPECT_LT(worst_tau, 1e-12);
 }
 
 TEST_F(GeneratedModel, BaseParameterFunctionsEqualTheStandardModel) {
@@ -98,7 +99,7 @@ TEST_F(GeneratedModel, BaseParameterFunctionsEqualTheStandardModel) {
   }
   std::cout << "[ GENERATED] " << MODELGEN_ROBOT_DESCRIPTION << ": " << nb << " base parameters, "
             << "worst relative difference of the base inverse dynamics " << worst << "\n";
-  EXPECT_LT(worst, 1e-10);
+  EXPECT_LT(worst, 1e-12);
 }
 
 TEST_F(GeneratedModel, PowerModelSharesTheBaseParameters) {
