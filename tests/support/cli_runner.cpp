@@ -9,6 +9,8 @@
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
+#include <system_error>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -27,11 +29,38 @@ std::string safe_name(std::string text) {
   return text;
 }
 
-/// "<suite>_<test>" of the running test, or "no_test" outside one.
+/// "<suite>_<test>" of the running test, "<suite>" in a suite's set-up, or "no_test" outside
+/// both.
 std::string current_test_name() {
-  const testing::TestInfo* info = testing::UnitTest::GetInstance()->current_test_info();
-  if (info == nullptr) return "no_test";
-  return safe_name(std::string(info->test_suite_name()) + "_" + info->name());
+  const testing::UnitTest& unit = *testing::UnitTest::GetInstance();
+  if (const testing::TestInfo* info = unit.current_test_info()) {
+    return safe_name(std::string(info->test_suite_name()) + "_" + info->name());
+  }
+  if (const testing::TestSuite* suite = unit.current_test_suite()) {
+    return safe_name(suite->name());
+  }
+  return "no_test";
+}
+
+/// Removes the folders test_folder handed out when the test process ends: their names carry the
+/// process id, so nothing else would ever reuse or remove them.
+class FolderJanitor {
+ public:
+  void keep_until_exit(const fs::path& dir) { folders_.push_back(dir); }
+  ~FolderJanitor() {
+    for (const fs::path& dir : folders_) {
+      std::error_code ignored;
+      fs::remove_all(dir, ignored);
+    }
+  }
+
+ private:
+  std::vector<fs::path> folders_;
+};
+
+FolderJanitor& janitor() {
+  static FolderJanitor instance;
+  return instance;
 }
 
 }  // namespace
@@ -95,10 +124,14 @@ void write_text(const fs::path& path, const std::string& text) {
 }
 
 fs::path test_folder(std::string_view prefix) {
-  const fs::path dir =
-      fs::path(testing::TempDir()) / (std::string(prefix) + "_" + current_test_name());
+  // The process id keeps apart ctest's parallel processes, which each run one test of a suite
+  // and may share a suite-level folder name.
+  const fs::path dir = fs::path(testing::TempDir()) / (std::string(prefix) + "_" +
+                                                       current_test_name() + "_" +
+                                                       std::to_string(::getpid()));
   fs::remove_all(dir);
   fs::create_directories(dir);
+  janitor().keep_until_exit(dir);
   return dir;
 }
 

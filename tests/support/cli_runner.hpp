@@ -49,9 +49,9 @@ std::string read_text(const std::filesystem::path& path);
 /// Writes `text` to `path`, replacing it.
 void write_text(const std::filesystem::path& path, const std::string& text);
 
-/// A folder of its own for the running test, emptied first:
-/// TempDir()/<prefix>_<suite>_<test> (characters other than letters, digits, '_' and '-'
-/// become '_').
+/// A folder of its own for the running test (or, in SetUpTestSuite, for the suite), emptied
+/// first and removed when the process exits: TempDir()/<prefix>_<suite>_<test>_<pid>
+/// (characters other than letters, digits, '_' and '-' become '_').
 std::filesystem::path test_folder(std::string_view prefix = "cli");
 
 }  // namespace modelgen::test
