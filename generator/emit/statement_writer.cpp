@@ -32,7 +32,7 @@ class StatementWriter {
         scalar_(scalar),
         trig_(trig),
         uses_(graph.size(), 0),
-        name_(graph.size()),
+        temporary_(graph.size(), 0),
         prepared_(graph.size(), false),
         symbol_used_(graph.symbols().size(), false) {}
 
@@ -79,9 +79,12 @@ class StatementWriter {
     return id;
   }
 
+  bool named(ExprId id) const { return temporary_[id] != 0; }
+  std::string name(ExprId id) const { return "t" + std::to_string(temporary_[id] - 1); }
+
   // A shared intermediate used once is printed as its expression.
   ExprId resolve(ExprId id) const {
-    while (g_.node(id).op == Op::kShare && name_[id].empty()) id = g_.node(id).args[0];
+    while (g_.node(id).op == Op::kShare && !named(id)) id = g_.node(id).args[0];
     return id;
   }
 
@@ -125,24 +128,24 @@ class StatementWriter {
     }
     for (ExprId arg : n.args) prepare(arg, body);
     if (n.op == Op::kSign) {
-      name_[id] = "t" + std::to_string(temporaries_++);
+      temporary_[id] = ++temporaries_;
       body.push_back(render_statement("statements/sign_of",
                                       {{"scalar", scalar_name(scalar_)},
-                                       {"name", name_[id]},
+                                       {"name", name(id)},
                                        {"value", expression(n.args[0], Context::kFactor)},
                                        {"zero", format_literal(0.0, scalar_)}}));
       return;
     }
-    if (n.op == Op::kShare && !name_[n.args[0]].empty()) {
-      name_[id] = name_[n.args[0]];  // already a temporary: no copy
+    if (n.op == Op::kShare && named(n.args[0])) {
+      temporary_[id] = temporary_[n.args[0]];  // already a temporary: no copy
       return;
     }
     if (uses_[id] >= 2) {
       const std::string value = expression(id, Context::kTop);
-      name_[id] = "t" + std::to_string(temporaries_++);
+      temporary_[id] = ++temporaries_;
       body.push_back(render_statement(
           "statements/temporary",
-          {{"scalar", scalar_name(scalar_)}, {"name", name_[id]}, {"value", value}}));
+          {{"scalar", scalar_name(scalar_)}, {"name", name(id)}, {"value", value}}));
     }
   }
 
@@ -213,14 +216,14 @@ class StatementWriter {
   void collect_terms(ExprId id, bool negate, std::vector<Term>& terms) {
     id = resolve(id);
     const Node& n = g_.node(id);
-    if (name_[id].empty() && n.op == Op::kAdd) {
+    if (!named(id) && n.op == Op::kAdd) {
       for (ExprId term : n.args) collect_terms(term, negate, terms);
       return;
     }
-    const bool inline_node = name_[id].empty();
+    const bool inline_node = !named(id);
     if (inline_node && n.op == Op::kMul && n.args.size() == 2 && coefficient(n) == -1.0) {
       const ExprId inner = resolve(n.args[1]);
-      if (name_[inner].empty() && g_.node(inner).op == Op::kAdd) {
+      if (!named(inner) && g_.node(inner).op == Op::kAdd) {
         collect_terms(inner, !negate, terms);
         return;
       }
@@ -321,9 +324,9 @@ class StatementWriter {
   }
 
   std::string expression(ExprId id, Context context) {
-    if (!name_[id].empty()) return name_[id];
+    if (named(id)) return name(id);
     id = resolve(id);
-    if (!name_[id].empty()) return name_[id];
+    if (named(id)) return name(id);
     const Node& n = g_.node(id);
     switch (n.op) {
       case Op::kConstant: {
@@ -335,7 +338,7 @@ class StatementWriter {
         const double c = coefficient(n);
         if (negated(id) != id) {
           const ExprId inner = resolve(negated(id));
-          if (name_[inner].empty() && g_.node(inner).op == Op::kAdd) {
+          if (!named(inner) && g_.node(inner).op == Op::kAdd) {
             // -(a - b) prints as b - a: the negation costs nothing.
             const std::string out = sum(id);
             return context == Context::kFactor ? "(" + out + ")" : out;
@@ -360,7 +363,7 @@ class StatementWriter {
         const ExprId divisor = resolve(n.args[0]);
         std::string text = expression(divisor, Context::kFactor);
         const Op op = g_.node(divisor).op;
-        if (name_[divisor].empty() && (op == Op::kMul || op == Op::kInv)) text = "(" + text + ")";
+        if (!named(divisor) && (op == Op::kMul || op == Op::kInv)) text = "(" + text + ")";
         const std::string quotient = format_literal(1.0, scalar_) + " / " + text;
         return context == Context::kFactor ? "(" + quotient + ")" : quotient;
       }
@@ -374,7 +377,9 @@ class StatementWriter {
   Scalar scalar_;
   TrigSource trig_;
   std::vector<int> uses_;
-  std::vector<std::string> name_;
+  // Per node: 0, or k + 1 when it is the temporary t<k> (a number, not a string per node of
+  // the graph: the writer runs once per function and scalar type).
+  std::vector<int> temporary_;
   std::vector<bool> prepared_;
   std::vector<bool> symbol_used_;
   int temporaries_ = 0;

@@ -11,24 +11,30 @@
 
 namespace modelgen::gen {
 
-bool ExprGraph::Key::operator==(const Key& other) const {
-  return op == other.op && std::bit_cast<std::uint64_t>(value) ==
-                               std::bit_cast<std::uint64_t>(other.value) &&
-         symbol == other.symbol && args == other.args;
+bool ExprGraph::same_structure(const Node& a, const Node& b) {
+  return a.op == b.op &&
+         std::bit_cast<std::uint64_t>(a.value) == std::bit_cast<std::uint64_t>(b.value) &&
+         a.symbol == b.symbol && a.args == b.args;
 }
 
-std::size_t ExprGraph::KeyHash::operator()(const Key& key) const {
-  std::uint64_t h = 1469598103934665603ull ^ static_cast<std::uint64_t>(key.op);
+std::uint64_t ExprGraph::structure_hash(const Node& node) {
+  std::uint64_t h = 1469598103934665603ull ^ static_cast<std::uint64_t>(node.op);
   auto mix = [&h](std::uint64_t v) {
     h ^= v + 0x9e3779b97f4a7c15ull + (h << 6) + (h >> 2);
   };
-  mix(std::bit_cast<std::uint64_t>(key.value));
-  mix(key.symbol);
-  for (ExprId a : key.args) mix(a);
-  return static_cast<std::size_t>(h);
+  mix(std::bit_cast<std::uint64_t>(node.value));
+  mix(node.symbol);
+  for (ExprId a : node.args) mix(a);
+  // Finalizer (splitmix64): the table takes the low bits.
+  h ^= h >> 30;
+  h *= 0xbf58476d1ce4e5b9ull;
+  h ^= h >> 27;
+  h *= 0x94d049bb133111ebull;
+  return h ^ (h >> 31);
 }
 
 ExprGraph::ExprGraph() {
+  grow_index();
   zero_ = constant(0.0);
   one_ = constant(1.0);
 }
@@ -65,15 +71,34 @@ void ExprGraph::sort_canonical(std::vector<ExprId>& ids) const {
 }
 
 ExprId ExprGraph::intern(Node node) {
-  Key key{node.op, node.value, node.symbol, node.args};
-  auto found = index_.find(key);
-  if (found != index_.end()) return found->second;
+  const std::uint64_t hash = structure_hash(node);
+  std::size_t mask = slots_.size() - 1;
+  std::size_t slot = hash & mask;
+  for (; slots_[slot] != kNoNode; slot = (slot + 1) & mask) {
+    const ExprId existing = slots_[slot];
+    if (hashes_[existing] == hash && same_structure(nodes_[existing], node)) return existing;
+  }
   node.height = 0;
   for (ExprId a : node.args) node.height = std::max(node.height, nodes_[a].height + 1);
   const ExprId id = static_cast<ExprId>(nodes_.size());
   nodes_.push_back(std::move(node));
-  index_.emplace(std::move(key), id);
+  hashes_.push_back(hash);
+  if (2 * nodes_.size() > slots_.size()) {
+    grow_index();  // re-inserts id too
+  } else {
+    slots_[slot] = id;
+  }
   return id;
+}
+
+void ExprGraph::grow_index() {
+  slots_.assign(std::max<std::size_t>(1024, 2 * slots_.size()), kNoNode);
+  const std::size_t mask = slots_.size() - 1;
+  for (ExprId id = 0; id < nodes_.size(); ++id) {
+    std::size_t slot = hashes_[id] & mask;
+    while (slots_[slot] != kNoNode) slot = (slot + 1) & mask;
+    slots_[slot] = id;
+  }
 }
 
 ExprId ExprGraph::constant(double value) {

@@ -110,25 +110,24 @@ class ExprGraph {
   std::vector<double> evaluate(const std::function<double(const Symbol&)>& leaf) const;
 
  private:
-  struct Key {
-    Op op;
-    double value;
-    std::uint32_t symbol;
-    std::vector<ExprId> args;
-    bool operator==(const Key& other) const;
-  };
-  struct KeyHash {
-    std::size_t operator()(const Key& key) const;
-  };
-
+  static std::uint64_t structure_hash(const Node& node);
+  static bool same_structure(const Node& a, const Node& b);
+  // Hash-consing: the existing node of this structure, or the node added.
   ExprId intern(Node node);
+  // Doubles the open-addressing table and re-inserts every node.
+  void grow_index();
   void sort_canonical(std::vector<ExprId>& ids) const;
   // Splits a term into its constant coefficient and the rest (1 for a constant).
   std::pair<double, ExprId> split_coefficient(ExprId id);
 
   std::vector<Node> nodes_;
   std::vector<Symbol> symbols_;
-  std::unordered_map<Key, ExprId, KeyHash> index_;
+  // The hash-consing index: open addressing with linear probing over node ids (kNoNode marks
+  // an empty slot), a power-of-two size at most half full. A lookup compares nodes in place, so
+  // it allocates nothing; hashes_[id] caches each node's structure_hash.
+  static constexpr ExprId kNoNode = ~ExprId{0};
+  std::vector<ExprId> slots_;
+  std::vector<std::uint64_t> hashes_;
   std::unordered_map<std::string, ExprId> symbol_index_;
   ExprId zero_ = 0;
   ExprId one_ = 0;

@@ -225,19 +225,14 @@ ReferenceDynamics::ReferenceDynamics(RigidBodyTree tree) : tree_(std::move(tree)
   validate(tree_);
 }
 
-Eigen::VectorXd ReferenceDynamics::inverse_dynamics(const Eigen::VectorXd& q,
-                                                    const Eigen::VectorXd& dq,
-                                                    const Eigen::VectorXd& ddq,
-                                                    const Eigen::VectorXd& p) const {
-  check_size(q, dof(), "q");
-  check_size(dq, dof(), "dq");
-  check_size(ddq, dof(), "ddq");
-  check_size(p, num_params(), "p");
-  const Unpacked par = unpack(tree_, p);
-  // Gravity enters as an upward acceleration of the base (Khalil & Dombre, dv0 = -g).
-  const Motion m = forward_recursion(tree_, q, dq, ddq, -to_vector(tree_.gravity));
+namespace {
 
-  const std::size_t n = tree_.bodies.size();
+// The backward recursion of Newton-Euler on a computed motion: the joint torques of the
+// parameters `par`.
+Eigen::VectorXd torques_on_motion(const RigidBodyTree& tree, const Motion& m,
+                                  const Eigen::VectorXd& dq, const Eigen::VectorXd& ddq,
+                                  const Unpacked& par) {
+  const std::size_t n = tree.bodies.size();
   std::vector<Vector3d> f(n, Vector3d::Zero()), moment(n, Vector3d::Zero());
   for (std::size_t j = 0; j < n; ++j) {
     const BodyInertia& b = par.inertia[j];
@@ -247,9 +242,9 @@ Eigen::VectorXd ReferenceDynamics::inverse_dynamics(const Eigen::VectorXd& q,
     f[j] = b.M * m.dv[j] + dw.cross(b.MS) + w.cross(w.cross(b.MS));
     moment[j] = b.J * dw + w.cross(b.J * w) + b.MS.cross(m.dv[j]);
   }
-  Eigen::VectorXd tau = Eigen::VectorXd::Zero(dof());
+  Eigen::VectorXd tau = Eigen::VectorXd::Zero(tree.dof);
   for (std::size_t j = n; j-- > 0;) {
-    const Body& body = tree_.bodies[j];
+    const Body& body = tree.bodies[j];
     if (body.type != JointType::kFixed) {
       const Vector3d u = to_vector(body.axis);
       const int i = body.dof_index;
@@ -270,7 +265,7 @@ Eigen::VectorXd ReferenceDynamics::inverse_dynamics(const Eigen::VectorXd& q,
   // Coupled motors: their inertia and friction act on the motor velocity u' = c . dq and
   // reach every joint they drive through c (Gautier & Briot eq. 26).
   for (const MotorTerms& terms : par.motors) {
-    const Eigen::Map<const Eigen::VectorXd> c(terms.motor->coupling.data(), dof());
+    const Eigen::Map<const Eigen::VectorXd> c(terms.motor->coupling.data(), tree.dof);
     const double torque =
         terms.Iam * c.dot(ddq) + terms.Fvm * c.dot(dq) + terms.Fcm * sign(c.dot(dq));
     tau += torque * c;
@@ -278,14 +273,35 @@ Eigen::VectorXd ReferenceDynamics::inverse_dynamics(const Eigen::VectorXd& q,
   return tau;
 }
 
+}  // namespace
+
+Eigen::VectorXd ReferenceDynamics::inverse_dynamics(const Eigen::VectorXd& q,
+                                                    const Eigen::VectorXd& dq,
+                                                    const Eigen::VectorXd& ddq,
+                                                    const Eigen::VectorXd& p) const {
+  check_size(q, dof(), "q");
+  check_size(dq, dof(), "dq");
+  check_size(ddq, dof(), "ddq");
+  check_size(p, num_params(), "p");
+  // Gravity enters as an upward acceleration of the base (Khalil & Dombre, dv0 = -g).
+  const Motion m = forward_recursion(tree_, q, dq, ddq, -to_vector(tree_.gravity));
+  return torques_on_motion(tree_, m, dq, ddq, unpack(tree_, p));
+}
+
 Eigen::MatrixXd ReferenceDynamics::standard_regressor(const Eigen::VectorXd& q,
                                                       const Eigen::VectorXd& dq,
                                                       const Eigen::VectorXd& ddq) const {
+  check_size(q, dof(), "q");
+  check_size(dq, dof(), "dq");
+  check_size(ddq, dof(), "ddq");
+  // Column k: the torques of the unit parameter k, on one forward recursion (tau is linear in
+  // p, Gautier & Briot eq. 2).
+  const Motion m = forward_recursion(tree_, q, dq, ddq, -to_vector(tree_.gravity));
   Eigen::MatrixXd W(dof(), num_params());
   Eigen::VectorXd unit = Eigen::VectorXd::Zero(num_params());
   for (int k = 0; k < num_params(); ++k) {
     unit[k] = 1.0;
-    W.col(k) = inverse_dynamics(q, dq, ddq, unit);
+    W.col(k) = torques_on_motion(tree_, m, dq, ddq, unpack(tree_, unit));
     unit[k] = 0.0;
   }
   return W;
