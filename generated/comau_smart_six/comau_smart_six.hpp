@@ -4,29 +4,29 @@
 // The generated code belongs to the owner of the robot description.
 //
 // Function                                   mul    add  sin/cos
-// idim_regressor_standard                    498    478       10
+// idim_regressor_standard                    498    441       10
 // inverse_dynamics_standard                  472    368       10
 // joint_sincos                                 0      0       12
-// idim_regressor_standard_sincos             498    478        0
+// idim_regressor_standard_sincos             498    441        0
 // inverse_dynamics_standard_sincos           472    368        0
 // base_from_standard                          14     74        0
 // idim_regressor                             408    346       10
 // inverse_dynamics                           367    270       10
-// mass_matrix                                380    305       10
+// mass_matrix                                380    291       10
 // idim_regressor_sincos                      408    346        0
 // inverse_dynamics_sincos                    367    270        0
-// mass_matrix_sincos                         380    305        0
+// mass_matrix_sincos                         380    291        0
 // inverse_dynamics_state_jacobian           2173   1959       10
-// energy_regressor                           125     53       10
+// energy_regressor                           125     52       10
 // power_regressor                            327    163       10
-// energy_regressor_sincos                    125     53        0
+// energy_regressor_sincos                    125     52        0
 // power_regressor_sincos                     327    163        0
 // drive_torque                               484    374       10
-// drive_torque_jacobian                     1052   1008       10
-// drive_torque_state_jacobian               2686   2423       20
-// drive_regressor                            498    478       10
+// drive_torque_jacobian                     1052    730       10
+// drive_torque_state_jacobian               2686   2333       20
+// drive_regressor                            498    441       10
 // drive_torque_given_regressor               295    271        0
-// drive_torque_jacobian_given_regressor      554    530        0
+// drive_torque_jacobian_given_regressor      554    289        0
 #ifndef MODELGEN_COMAU_SMART_SIX_HPP_
 #define MODELGEN_COMAU_SMART_SIX_HPP_
 

@@ -4,7 +4,7 @@
 // The generated code belongs to the owner of the robot description.
 //
 // Function                              mul    add  sin/cos
-// energy_regressor_sincos               125     53        0
+// energy_regressor_sincos               125     52        0
 #include "comau_smart_six.hpp"
 
 namespace modelgen {
@@ -40,16 +40,16 @@ void energy_regressor_sincos(const double* q, const double* sin_q, const double*
   h[11] = 0.15 * dq[0] * t0 - 9.81 * s2;  // MY2
   const double t2 = c3 * t1 - s3 * t0;
   h[16] = 0.5 * t2 * t2;  // XX3R
-  const double t3 = c3 * t0 + s3 * t1;
-  h[17] = -t3 * t2;  // XY3R
+  const double t3 = -c3 * t0 - s3 * t1;
+  h[17] = t3 * t2;  // XY3R
   const double t4 = dq[1] - dq[2];
   h[18] = t4 * t2;  // XZ3
-  h[19] = -t4 * t3;  // YZ3
+  h[19] = t4 * t3;  // YZ3
   h[20] = 0.5 * t4 * t4;  // ZZ3R
   const double t5 = 9.81 * (c2 * s3 - c3 * s2);
   const double t6 = dq[1] * s3;
   const double t7 = 0.15 * dq[0] + 0.59 * t1;
-  h[21] = -0.59 * t6 * t4 - t5 - t7 * t3;  // MX3R
+  h[21] = t7 * t3 - t5 - 0.59 * t6 * t4;  // MX3R
   const double t8 = 9.81 * (c2 * c3 + s2 * s3);
   const double t9 = c3 * dq[1];
   h[22] = -0.59 * t9 * t4 - t8 - t7 * t2;  // MY3R
@@ -58,14 +58,14 @@ void energy_regressor_sincos(const double* q, const double* sin_q, const double*
   h[28] = 0.5 * t10 * t10;  // XX4R
   const double t11 = c4 * t4 + s4 * t2;
   h[29] = t11 * t10;  // XY4
-  const double t12 = dq[3] + t3;
+  const double t12 = dq[3] - t3;
   h[30] = t12 * t10;  // XZ4
   h[31] = t12 * t11;  // YZ4
   h[32] = 0.5 * t12 * t12;  // ZZ4R
   const double t13 = c4 * t5;
   const double t14 = 0.59 * t6 - 0.13 * t4;
   const double t15 = 0.59 * t9 + 0.64707 * t4;
-  const double t16 = t7 - 0.13 * t3 + 0.64707 * t2;
+  const double t16 = t7 + 0.13 * t3 + 0.64707 * t2;
   const double t17 = s4 * t15 - c4 * t16;
   h[33] = t12 * t17 - t13 - t14 * t11;  // MX4
   const double t18 = s4 * t5;
@@ -76,19 +76,19 @@ void energy_regressor_sincos(const double* q, const double* sin_q, const double*
   h[40] = 0.5 * t20 * t20;  // XX5R
   const double t21 = c5 * t12 + s5 * t10;
   h[41] = t21 * t20;  // XY5
-  const double t22 = dq[4] + t11;
-  h[42] = -t22 * t20;  // XZ5
-  h[43] = -t22 * t21;  // YZ5
+  const double t22 = -dq[4] - t11;
+  h[42] = t22 * t20;  // XZ5
+  h[43] = t22 * t21;  // YZ5
   h[44] = 0.5 * t22 * t22;  // ZZ5R
   const double t23 = s5 * t8 - c5 * t13;
   const double t24 = c5 * t14 - s5 * t19;
-  h[45] = t23 + t17 * t21 - t22 * t24;  // MX5
+  h[45] = t23 + t17 * t21 + t22 * t24;  // MX5
   const double t25 = s5 * t14 + c5 * t19;
-  h[46] = c5 * t8 + s5 * t13 - t17 * t20 + t22 * t25;  // MY5R
+  h[46] = c5 * t8 + s5 * t13 - t17 * t20 - t22 * t25;  // MY5R
   h[47] = 0.5 * dq[4] * dq[4];  // Ia5
-  const double t26 = s6 * t22 - c6 * t20;
+  const double t26 = -s6 * t22 - c6 * t20;
   h[52] = 0.5 * t26 * t26;  // XX6R
-  const double t27 = c6 * t22 + s6 * t20;
+  const double t27 = s6 * t20 - c6 * t22;
   h[53] = t27 * t26;  // XY6R
   const double t28 = dq[5] + t21;
   h[54] = t28 * t26;  // XZ6R
@@ -129,16 +129,16 @@ void energy_regressor_sincos(const float* q, const float* sin_q, const float* co
   h[11] = 0.15f * dq[0] * t0 - 9.81f * s2;  // MY2
   const float t2 = c3 * t1 - s3 * t0;
   h[16] = 0.5f * t2 * t2;  // XX3R
-  const float t3 = c3 * t0 + s3 * t1;
-  h[17] = -t3 * t2;  // XY3R
+  const float t3 = -c3 * t0 - s3 * t1;
+  h[17] = t3 * t2;  // XY3R
   const float t4 = dq[1] - dq[2];
   h[18] = t4 * t2;  // XZ3
-  h[19] = -t4 * t3;  // YZ3
+  h[19] = t4 * t3;  // YZ3
   h[20] = 0.5f * t4 * t4;  // ZZ3R
   const float t5 = 9.81f * (c2 * s3 - c3 * s2);
   const float t6 = dq[1] * s3;
   const float t7 = 0.15f * dq[0] + 0.59f * t1;
-  h[21] = -0.59f * t6 * t4 - t5 - t7 * t3;  // MX3R
+  h[21] = t7 * t3 - t5 - 0.59f * t6 * t4;  // MX3R
   const float t8 = 9.81f * (c2 * c3 + s2 * s3);
   const float t9 = c3 * dq[1];
   h[22] = -0.59f * t9 * t4 - t8 - t7 * t2;  // MY3R
@@ -147,14 +147,14 @@ void energy_regressor_sincos(const float* q, const float* sin_q, const float* co
   h[28] = 0.5f * t10 * t10;  // XX4R
   const float t11 = c4 * t4 + s4 * t2;
   h[29] = t11 * t10;  // XY4
-  const float t12 = dq[3] + t3;
+  const float t12 = dq[3] - t3;
   h[30] = t12 * t10;  // XZ4
   h[31] = t12 * t11;  // YZ4
   h[32] = 0.5f * t12 * t12;  // ZZ4R
   const float t13 = c4 * t5;
   const float t14 = 0.59f * t6 - 0.13f * t4;
   const float t15 = 0.59f * t9 + 0.64707f * t4;
-  const float t16 = t7 - 0.13f * t3 + 0.64707f * t2;
+  const float t16 = t7 + 0.13f * t3 + 0.64707f * t2;
   const float t17 = s4 * t15 - c4 * t16;
   h[33] = t12 * t17 - t13 - t14 * t11;  // MX4
   const float t18 = s4 * t5;
@@ -165,19 +165,19 @@ void energy_regressor_sincos(const float* q, const float* sin_q, const float* co
   h[40] = 0.5f * t20 * t20;  // XX5R
   const float t21 = c5 * t12 + s5 * t10;
   h[41] = t21 * t20;  // XY5
-  const float t22 = dq[4] + t11;
-  h[42] = -t22 * t20;  // XZ5
-  h[43] = -t22 * t21;  // YZ5
+  const float t22 = -dq[4] - t11;
+  h[42] = t22 * t20;  // XZ5
+  h[43] = t22 * t21;  // YZ5
   h[44] = 0.5f * t22 * t22;  // ZZ5R
   const float t23 = s5 * t8 - c5 * t13;
   const float t24 = c5 * t14 - s5 * t19;
-  h[45] = t23 + t17 * t21 - t22 * t24;  // MX5
+  h[45] = t23 + t17 * t21 + t22 * t24;  // MX5
   const float t25 = s5 * t14 + c5 * t19;
-  h[46] = c5 * t8 + s5 * t13 - t17 * t20 + t22 * t25;  // MY5R
+  h[46] = c5 * t8 + s5 * t13 - t17 * t20 - t22 * t25;  // MY5R
   h[47] = 0.5f * dq[4] * dq[4];  // Ia5
-  const float t26 = s6 * t22 - c6 * t20;
+  const float t26 = -s6 * t22 - c6 * t20;
   h[52] = 0.5f * t26 * t26;  // XX6R
-  const float t27 = c6 * t22 + s6 * t20;
+  const float t27 = s6 * t20 - c6 * t22;
   h[53] = t27 * t26;  // XY6R
   const float t28 = dq[5] + t21;
   h[54] = t28 * t26;  // XZ6R

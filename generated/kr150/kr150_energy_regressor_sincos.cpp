@@ -4,7 +4,7 @@
 // The generated code belongs to the owner of the robot description.
 //
 // Function                              mul    add  sin/cos
-// energy_regressor_sincos               132     56        0
+// energy_regressor_sincos               132     54        0
 #include "kr150.hpp"
 
 namespace modelgen {
@@ -40,16 +40,16 @@ void energy_regressor_sincos(const double* q, const double* sin_q, const double*
   h[9] = -9.81 * c2 - 0.35 * dq[0] * t0;  // MY2
   const double t2 = c3 * t1 - s3 * t0;
   h[12] = 0.5 * t2 * t2;  // XX3R
-  const double t3 = c3 * t0 + s3 * t1;
-  h[13] = -t3 * t2;  // XY3R
+  const double t3 = -c3 * t0 - s3 * t1;
+  h[13] = t3 * t2;  // XY3R
   const double t4 = dq[1] + dq[2];
   h[14] = t4 * t2;  // XZ3
-  h[15] = -t4 * t3;  // YZ3
+  h[15] = t4 * t3;  // YZ3
   h[16] = 0.5 * t4 * t4;  // ZZ3R
   const double t5 = dq[1] * s3;
   const double t6 = 9.81 * (c2 * c3 - s2 * s3);
   const double t7 = 0.35 * dq[0] + 1.25 * t1;
-  h[17] = -1.25 * t4 * t5 - t6 - t7 * t3;  // MX3R
+  h[17] = t7 * t3 - 1.25 * t4 * t5 - t6;  // MX3R
   const double t8 = c3 * dq[1];
   const double t9 = 9.81 * (c2 * s3 + c3 * s2);
   h[18] = t9 - 1.25 * t4 * t8 - t7 * t2;  // MY3R
@@ -58,23 +58,23 @@ void energy_regressor_sincos(const double* q, const double* sin_q, const double*
   h[22] = 0.5 * t10 * t10;  // XX4R
   const double t11 = c4 * t4 + s4 * t2;
   h[23] = t11 * t10;  // XY4
-  const double t12 = dq[3] - t3;
-  h[24] = -t12 * t10;  // XZ4
-  h[25] = -t12 * t11;  // YZ4
+  const double t12 = -dq[3] - t3;
+  h[24] = t12 * t10;  // XZ4
+  h[25] = t12 * t11;  // YZ4
   h[26] = 0.5 * t12 * t12;  // ZZ4R
   const double t13 = c4 * t6;
   const double t14 = 0.055 * t4 - 1.25 * t5;
   const double t15 = 1.1 * t4 + 1.25 * t8;
-  const double t16 = t7 - 0.055 * t3 + 1.1 * t2;
+  const double t16 = t7 + 0.055 * t3 + 1.1 * t2;
   const double t17 = s4 * t15 - c4 * t16;
-  h[27] = t14 * t11 - t13 - t12 * t17;  // MX4
+  h[27] = t14 * t11 - t13 + t12 * t17;  // MX4
   const double t18 = s4 * t6;
   const double t19 = c4 * t15 + s4 * t16;
-  h[28] = t18 - t14 * t10 - t12 * t19;  // MY4R
+  h[28] = t18 - t14 * t10 + t12 * t19;  // MY4R
   h[29] = 0.5 * dq[3] * dq[3];  // Ia4
-  const double t20 = s5 * t12 - c5 * t10;
+  const double t20 = -s5 * t12 - c5 * t10;
   h[32] = 0.5 * t20 * t20;  // XX5R
-  const double t21 = c5 * t12 + s5 * t10;
+  const double t21 = s5 * t10 - c5 * t12;
   h[33] = t21 * t20;  // XY5
   const double t22 = dq[4] + t11;
   h[34] = t22 * t20;  // XZ5
@@ -92,12 +92,12 @@ void energy_regressor_sincos(const double* q, const double* sin_q, const double*
   h[45] = 0.5 * t27 * t27;  // XX6R
   const double t28 = c6 * t22 + s6 * t20;
   h[46] = t28 * t27;  // XY6R
-  const double t29 = dq[5] + t21;
-  h[47] = -t29 * t27;  // XZ6R
-  h[48] = -t29 * t28;  // YZ6R
+  const double t29 = -dq[5] - t21;
+  h[47] = t29 * t27;  // XZ6R
+  h[48] = t29 * t28;  // YZ6R
   h[49] = 0.5 * t29 * t29;  // ZZ6R
-  h[50] = s6 * t18 + c6 * t23 + t24 * t28 - t29 * (c6 * t17 + s6 * t25);  // MX6R
-  h[51] = c6 * t18 - s6 * t23 - t24 * t27 + t29 * (s6 * t17 - c6 * t25);  // MY6R
+  h[50] = s6 * t18 + c6 * t23 + t24 * t28 + t29 * (c6 * t17 + s6 * t25);  // MX6R
+  h[51] = c6 * t18 - s6 * t23 - t24 * t27 - t29 * (s6 * t17 - c6 * t25);  // MY6R
   h[52] = 0.5 * dq[5] * dq[5];  // Ia6
   const double t30 = 0.0139302 * dq[3] - dq[5] - 0.014 * dq[4];
   h[55] = 0.5 * t30 * t30;  // Iam6
@@ -133,16 +133,16 @@ void energy_regressor_sincos(const float* q, const float* sin_q, const float* co
   h[9] = -9.81f * c2 - 0.35f * dq[0] * t0;  // MY2
   const float t2 = c3 * t1 - s3 * t0;
   h[12] = 0.5f * t2 * t2;  // XX3R
-  const float t3 = c3 * t0 + s3 * t1;
-  h[13] = -t3 * t2;  // XY3R
+  const float t3 = -c3 * t0 - s3 * t1;
+  h[13] = t3 * t2;  // XY3R
   const float t4 = dq[1] + dq[2];
   h[14] = t4 * t2;  // XZ3
-  h[15] = -t4 * t3;  // YZ3
+  h[15] = t4 * t3;  // YZ3
   h[16] = 0.5f * t4 * t4;  // ZZ3R
   const float t5 = dq[1] * s3;
   const float t6 = 9.81f * (c2 * c3 - s2 * s3);
   const float t7 = 0.35f * dq[0] + 1.25f * t1;
-  h[17] = -1.25f * t4 * t5 - t6 - t7 * t3;  // MX3R
+  h[17] = t7 * t3 - 1.25f * t4 * t5 - t6;  // MX3R
   const float t8 = c3 * dq[1];
   const float t9 = 9.81f * (c2 * s3 + c3 * s2);
   h[18] = t9 - 1.25f * t4 * t8 - t7 * t2;  // MY3R
@@ -151,23 +151,23 @@ void energy_regressor_sincos(const float* q, const float* sin_q, const float* co
   h[22] = 0.5f * t10 * t10;  // XX4R
   const float t11 = c4 * t4 + s4 * t2;
   h[23] = t11 * t10;  // XY4
-  const float t12 = dq[3] - t3;
-  h[24] = -t12 * t10;  // XZ4
-  h[25] = -t12 * t11;  // YZ4
+  const float t12 = -dq[3] - t3;
+  h[24] = t12 * t10;  // XZ4
+  h[25] = t12 * t11;  // YZ4
   h[26] = 0.5f * t12 * t12;  // ZZ4R
   const float t13 = c4 * t6;
   const float t14 = 0.055f * t4 - 1.25f * t5;
   const float t15 = 1.1f * t4 + 1.25f * t8;
-  const float t16 = t7 - 0.055f * t3 + 1.1f * t2;
+  const float t16 = t7 + 0.055f * t3 + 1.1f * t2;
   const float t17 = s4 * t15 - c4 * t16;
-  h[27] = t14 * t11 - t13 - t12 * t17;  // MX4
+  h[27] = t14 * t11 - t13 + t12 * t17;  // MX4
   const float t18 = s4 * t6;
   const float t19 = c4 * t15 + s4 * t16;
-  h[28] = t18 - t14 * t10 - t12 * t19;  // MY4R
+  h[28] = t18 - t14 * t10 + t12 * t19;  // MY4R
   h[29] = 0.5f * dq[3] * dq[3];  // Ia4
-  const float t20 = s5 * t12 - c5 * t10;
+  const float t20 = -s5 * t12 - c5 * t10;
   h[32] = 0.5f * t20 * t20;  // XX5R
-  const float t21 = c5 * t12 + s5 * t10;
+  const float t21 = s5 * t10 - c5 * t12;
   h[33] = t21 * t20;  // XY5
   const float t22 = dq[4] + t11;
   h[34] = t22 * t20;  // XZ5
@@ -185,12 +185,12 @@ void energy_regressor_sincos(const float* q, const float* sin_q, const float* co
   h[45] = 0.5f * t27 * t27;  // XX6R
   const float t28 = c6 * t22 + s6 * t20;
   h[46] = t28 * t27;  // XY6R
-  const float t29 = dq[5] + t21;
-  h[47] = -t29 * t27;  // XZ6R
-  h[48] = -t29 * t28;  // YZ6R
+  const float t29 = -dq[5] - t21;
+  h[47] = t29 * t27;  // XZ6R
+  h[48] = t29 * t28;  // YZ6R
   h[49] = 0.5f * t29 * t29;  // ZZ6R
-  h[50] = s6 * t18 + c6 * t23 + t24 * t28 - t29 * (c6 * t17 + s6 * t25);  // MX6R
-  h[51] = c6 * t18 - s6 * t23 - t24 * t27 + t29 * (s6 * t17 - c6 * t25);  // MY6R
+  h[50] = s6 * t18 + c6 * t23 + t24 * t28 + t29 * (c6 * t17 + s6 * t25);  // MX6R
+  h[51] = c6 * t18 - s6 * t23 - t24 * t27 - t29 * (s6 * t17 - c6 * t25);  // MY6R
   h[52] = 0.5f * dq[5] * dq[5];  // Ia6
   const float t30 = 0.0139302f * dq[3] - dq[5] - 0.014f * dq[4];
   h[55] = 0.5f * t30 * t30;  // Iam6

@@ -4,7 +4,7 @@
 // The generated code belongs to the owner of the robot description.
 //
 // Function                              mul    add  sin/cos
-// mass_matrix                           387    314       10
+// mass_matrix                           387    299       10
 #include "kr150.hpp"
 
 #include <cmath>
@@ -104,8 +104,8 @@ void mass_matrix(const double* q, const double* beta, double* M) {
   const double t71 = 0.055 * beta[27] + t54 + t55 + t56 - t57 + beta[37] * t66 - beta[38] * t64 - c6 * t67 - s6 * t68;
   const double t72 = 0.055 * beta[28] - t59 - t60 + c5 * t69 - s5 * t65;
   const double t73 = beta[14] + s4 * t71 + c4 * t72;
-  const double t74 = s2 * (c3 * t70 + s3 * t73) + c2 * (s3 * t70 - c3 * t73);
-  M[2] = -t74;
+  const double t74 = -s2 * (c3 * t70 + s3 * t73) - c2 * (s3 * t70 - c3 * t73);
+  M[2] = t74;
   const double t75 = beta[38] * s5;
   const double t76 = beta[50] * c5;
   const double t77 = beta[51] * c5;
@@ -140,8 +140,8 @@ void mass_matrix(const double* q, const double* beta, double* M) {
   const double t105 = beta[36] + c6 * t100 + s6 * t101;
   const double t106 = s5 * t99 - c5 * t102;
   const double t107 = s4 * t105 - 1.1 * t97 - c4 * t106;
-  const double t108 = 0.35 * t97 + s2 * (c3 * t104 + s3 * t107) + c2 * (1.25 * t97 + s3 * t104 - c3 * t107);
-  M[4] = -t108;
+  const double t108 = -0.35 * t97 - s2 * (c3 * t104 + s3 * t107) - c2 * (1.25 * t97 + s3 * t104 - c3 * t107);
+  M[4] = t108;
   const double t109 = beta[50] * s6 + beta[51] * c6;
   const double t110 = c5 * t109;
   const double t111 = c4 * t94 - s4 * t110;
@@ -167,9 +167,9 @@ void mass_matrix(const double* q, const double* beta, double* M) {
   const double t128 = t127 + t124;
   M[8] = t128;
   const double t129 = s4 * t78 + c4 * t81;
-  const double t130 = 1.1 * t129 + c4 * t91 + s4 * t90;
-  const double t131 = 1.25 * c3 * t129 + t130;
-  M[9] = -t131;
+  const double t130 = -1.1 * t129 - c4 * t91 - s4 * t90;
+  const double t131 = t130 - 1.25 * c3 * t129;
+  M[9] = t131;
   const double t132 = t75 - c5 * t95;
   const double t133 = c4 * t96;
   const double t134 = c4 * t105 - 0.055 * t132 - 1.1 * t133 + s4 * t106;
@@ -177,34 +177,34 @@ void mass_matrix(const double* q, const double* beta, double* M) {
   M[10] = t135;
   const double t136 = s5 * t109;
   const double t137 = s4 * t94 + c4 * t110;
-  const double t138 = c4 * t98 + 0.055 * t136 + 1.1 * t137 - s4 * t113;
-  const double t139 = t138 - 1.25 * (s3 * t136 - c3 * t137);
-  M[11] = -t139;
-  M[12] = -t74;
+  const double t138 = s4 * t113 - c4 * t98 - 0.055 * t136 - 1.1 * t137;
+  const double t139 = t138 + 1.25 * (s3 * t136 - c3 * t137);
+  M[11] = t139;
+  M[12] = t74;
   M[13] = t128;
   M[14] = beta[19] + t127;
-  M[15] = -t130;
+  M[15] = t130;
   M[16] = t134;
-  M[17] = -t138;
+  M[17] = t138;
   M[18] = t93;
-  M[19] = -t131;
-  M[20] = -t130;
+  M[19] = t131;
+  M[20] = t130;
   M[21] = beta[29] + 8.648999999999998e-05 * beta[42] + 0.00019405047204 * beta[55] + t88;
-  const double t140 = 0.00019502280000000002 * beta[55] + 0.0093 * beta[42] - t103;
-  M[22] = -t140;
-  const double t141 = 0.0139302 * beta[55] - t115;
-  M[23] = -t141;
-  M[24] = -t108;
+  const double t140 = t103 - 0.00019502280000000002 * beta[55] - 0.0093 * beta[42];
+  M[22] = t140;
+  const double t141 = t115 - 0.0139302 * beta[55];
+  M[23] = t141;
+  M[24] = t108;
   M[25] = t135;
   M[26] = t134;
-  M[27] = -t140;
+  M[27] = t140;
   M[28] = beta[39] + beta[42] + 0.00019600000000000002 * beta[55] + t105;
   const double t142 = 0.014 * beta[55] - t98;
   M[29] = t142;
   M[30] = t117;
-  M[31] = -t139;
-  M[32] = -t138;
-  M[33] = -t141;
+  M[31] = t139;
+  M[32] = t138;
+  M[33] = t141;
   M[34] = t142;
   M[35] = beta[49] + beta[52] + beta[55];
 }
@@ -301,8 +301,8 @@ void mass_matrix(const float* q, const float* beta, float* M) {
   const float t71 = 0.055f * beta[27] + t54 + t55 + t56 - t57 + beta[37] * t66 - beta[38] * t64 - c6 * t67 - s6 * t68;
   const float t72 = 0.055f * beta[28] - t59 - t60 + c5 * t69 - s5 * t65;
   const float t73 = beta[14] + s4 * t71 + c4 * t72;
-  const float t74 = s2 * (c3 * t70 + s3 * t73) + c2 * (s3 * t70 - c3 * t73);
-  M[2] = -t74;
+  const float t74 = -s2 * (c3 * t70 + s3 * t73) - c2 * (s3 * t70 - c3 * t73);
+  M[2] = t74;
   const float t75 = beta[38] * s5;
   const float t76 = beta[50] * c5;
   const float t77 = beta[51] * c5;
@@ -337,8 +337,8 @@ void mass_matrix(const float* q, const float* beta, float* M) {
   const float t105 = beta[36] + c6 * t100 + s6 * t101;
   const float t106 = s5 * t99 - c5 * t102;
   const float t107 = s4 * t105 - 1.1f * t97 - c4 * t106;
-  const float t108 = 0.35f * t97 + s2 * (c3 * t104 + s3 * t107) + c2 * (1.25f * t97 + s3 * t104 - c3 * t107);
-  M[4] = -t108;
+  const float t108 = -0.35f * t97 - s2 * (c3 * t104 + s3 * t107) - c2 * (1.25f * t97 + s3 * t104 - c3 * t107);
+  M[4] = t108;
   const float t109 = beta[50] * s6 + beta[51] * c6;
   const float t110 = c5 * t109;
   const float t111 = c4 * t94 - s4 * t110;
@@ -364,9 +364,9 @@ void mass_matrix(const float* q, const float* beta, float* M) {
   const float t128 = t127 + t124;
   M[8] = t128;
   const float t129 = s4 * t78 + c4 * t81;
-  const float t130 = 1.1f * t129 + c4 * t91 + s4 * t90;
-  const float t131 = 1.25f * c3 * t129 + t130;
-  M[9] = -t131;
+  const float t130 = -1.1f * t129 - c4 * t91 - s4 * t90;
+  const float t131 = t130 - 1.25f * c3 * t129;
+  M[9] = t131;
   const float t132 = t75 - c5 * t95;
   const float t133 = c4 * t96;
   const float t134 = c4 * t105 - 0.055f * t132 - 1.1f * t133 + s4 * t106;
@@ -374,34 +374,34 @@ void mass_matrix(const float* q, const float* beta, float* M) {
   M[10] = t135;
   const float t136 = s5 * t109;
   const float t137 = s4 * t94 + c4 * t110;
-  const float t138 = c4 * t98 + 0.055f * t136 + 1.1f * t137 - s4 * t113;
-  const float t139 = t138 - 1.25f * (s3 * t136 - c3 * t137);
-  M[11] = -t139;
-  M[12] = -t74;
+  const float t138 = s4 * t113 - c4 * t98 - 0.055f * t136 - 1.1f * t137;
+  const float t139 = t138 + 1.25f * (s3 * t136 - c3 * t137);
+  M[11] = t139;
+  M[12] = t74;
   M[13] = t128;
   M[14] = beta[19] + t127;
-  M[15] = -t130;
+  M[15] = t130;
   M[16] = t134;
-  M[17] = -t138;
+  M[17] = t138;
   M[18] = t93;
-  M[19] = -t131;
-  M[20] = -t130;
+  M[19] = t131;
+  M[20] = t130;
   M[21] = beta[29] + 8.649e-05f * beta[42] + 0.00019405047f * beta[55] + t88;
-  const float t140 = 0.0001950228f * beta[55] + 0.0093f * beta[42] - t103;
-  M[22] = -t140;
-  const float t141 = 0.0139302f * beta[55] - t115;
-  M[23] = -t141;
-  M[24] = -t108;
+  const float t140 = t103 - 0.0001950228f * beta[55] - 0.0093f * beta[42];
+  M[22] = t140;
+  const float t141 = t115 - 0.0139302f * beta[55];
+  M[23] = t141;
+  M[24] = t108;
   M[25] = t135;
   M[26] = t134;
-  M[27] = -t140;
+  M[27] = t140;
   M[28] = beta[39] + beta[42] + 0.000196f * beta[55] + t105;
   const float t142 = 0.014f * beta[55] - t98;
   M[29] = t142;
   M[30] = t117;
-  M[31] = -t139;
-  M[32] = -t138;
-  M[33] = -t141;
+  M[31] = t139;
+  M[32] = t138;
+  M[33] = t141;
   M[34] = t142;
   M[35] = beta[49] + beta[52] + beta[55];
 }

@@ -12,21 +12,21 @@
 // base_from_standard                          19     59        0
 // idim_regressor                             694    537       12
 // inverse_dynamics                           406    319       12
-// mass_matrix                                732    516       12
+// mass_matrix                                732    508       12
 // idim_regressor_sincos                      694    537        0
 // inverse_dynamics_sincos                    406    319        0
-// mass_matrix_sincos                         732    516        0
+// mass_matrix_sincos                         732    508        0
 // inverse_dynamics_state_jacobian           4043   3346       12
 // energy_regressor                           144     58       12
 // power_regressor                            352    188       12
 // energy_regressor_sincos                    144     58        0
 // power_regressor_sincos                     352    188        0
 // drive_torque                               510    393       12
-// drive_torque_jacobian                     1456   1237       12
-// drive_torque_state_jacobian               4643   3885       24
+// drive_torque_jacobian                     1456    985       12
+// drive_torque_state_jacobian               4643   3759       24
 // drive_regressor                            868    677       12
 // drive_torque_given_regressor               315    287        0
-// drive_torque_jacobian_given_regressor      588    560        0
+// drive_torque_jacobian_given_regressor      588    308        0
 #include "kuka_iiwa14_drake.hpp"
 
 namespace modelgen {

@@ -4,7 +4,7 @@
 // The generated code belongs to the owner of the robot description.
 //
 // Function                              mul    add  sin/cos
-// mass_matrix                           732    516       12
+// mass_matrix                           732    508       12
 #include "kuka_iiwa14_drake.hpp"
 
 #include <cmath>
@@ -241,8 +241,8 @@ void mass_matrix(const double* q, const double* beta, double* M) {
   const double t203 = c4 * t194 - s4 * t202;
   const double t204 = c5 * t197;
   const double t205 = s4 * (t172 - c6 * t196) + c4 * t204;
-  const double t206 = 0.1845 * t204 + s5 * t199 + c5 * t201;
-  const double t207 = 0.2155 * t205 + t206;
+  const double t206 = -0.1845 * t204 - s5 * t199 - c5 * t201;
+  const double t207 = 0.2155 * t205 - t206;
   const double t208 = 0.2155 * t198 + s4 * t194 + c4 * t202;
   const double t209 = c2 * t203 + s2 * (0.2045 * (c3 * t198 + s3 * t205) + s3 * t207 + c3 * t208);
   M[5] = t209;
@@ -267,14 +267,14 @@ void mass_matrix(const double* q, const double* beta, double* M) {
   M[8] = beta[8] + 0.2045 * (s3 * t86 + c3 * t84) + c3 * t85 + s3 * t87;
   const double t226 = c3 * t121 + s3 * t123 - 0.2045 * (s3 * t124 + c3 * t125);
   M[9] = t226;
-  const double t227 = 0.2045 * c3 * t153 + s3 * t154 + c3 * t156;
-  M[10] = -t227;
+  const double t227 = -0.2045 * c3 * t153 - s3 * t154 - c3 * t156;
+  M[10] = t227;
   const double t228 = 0.2045 * (s3 * t177 + c3 * t181) + c3 * t183 + s3 * t184;
   M[11] = t228;
-  const double t229 = 0.2045 * (s3 * t198 - c3 * t205) - c3 * t207 + s3 * t208;
-  M[12] = -t229;
-  const double t230 = 0.2045 * (s3 * t214 + c3 * t221) + c3 * t223 + s3 * t224;
-  M[13] = -t230;
+  const double t229 = c3 * t207 - 0.2045 * (s3 * t198 - c3 * t205) - s3 * t208;
+  M[12] = t229;
+  const double t230 = -0.2045 * (s3 * t214 + c3 * t221) - c3 * t223 - s3 * t224;
+  M[13] = t230;
   M[14] = t126;
   M[15] = t226;
   M[16] = beta[21] + t118;
@@ -283,11 +283,11 @@ void mass_matrix(const double* q, const double* beta, double* M) {
   M[19] = t203;
   M[20] = t219;
   M[21] = t157;
-  M[22] = -t227;
+  M[22] = t227;
   M[23] = t151;
   M[24] = beta[32] + t155;
   M[25] = t182;
-  M[26] = -t206;
+  M[26] = t206;
   M[27] = t222;
   M[28] = t185;
   M[29] = t228;
@@ -297,14 +297,14 @@ void mass_matrix(const double* q, const double* beta, double* M) {
   M[33] = t194;
   M[34] = t211;
   M[35] = t209;
-  M[36] = -t229;
+  M[36] = t229;
   M[37] = t203;
-  M[38] = -t206;
+  M[38] = t206;
   M[39] = t194;
   M[40] = beta[54] + t200;
   M[41] = t215;
   M[42] = t225;
-  M[43] = -t230;
+  M[43] = t230;
   M[44] = t219;
   M[45] = t222;
   M[46] = t211;
@@ -541,8 +541,8 @@ void mass_matrix(const float* q, const float* beta, float* M) {
   const float t203 = c4 * t194 - s4 * t202;
   const float t204 = c5 * t197;
   const float t205 = s4 * (t172 - c6 * t196) + c4 * t204;
-  const float t206 = 0.1845f * t204 + s5 * t199 + c5 * t201;
-  const float t207 = 0.2155f * t205 + t206;
+  const float t206 = -0.1845f * t204 - s5 * t199 - c5 * t201;
+  const float t207 = 0.2155f * t205 - t206;
   const float t208 = 0.2155f * t198 + s4 * t194 + c4 * t202;
   const float t209 = c2 * t203 + s2 * (0.2045f * (c3 * t198 + s3 * t205) + s3 * t207 + c3 * t208);
   M[5] = t209;
@@ -567,14 +567,14 @@ void mass_matrix(const float* q, const float* beta, float* M) {
   M[8] = beta[8] + 0.2045f * (s3 * t86 + c3 * t84) + c3 * t85 + s3 * t87;
   const float t226 = c3 * t121 + s3 * t123 - 0.2045f * (s3 * t124 + c3 * t125);
   M[9] = t226;
-  const float t227 = 0.2045f * c3 * t153 + s3 * t154 + c3 * t156;
-  M[10] = -t227;
+  const float t227 = -0.2045f * c3 * t153 - s3 * t154 - c3 * t156;
+  M[10] = t227;
   const float t228 = 0.2045f * (s3 * t177 + c3 * t181) + c3 * t183 + s3 * t184;
   M[11] = t228;
-  const float t229 = 0.2045f * (s3 * t198 - c3 * t205) - c3 * t207 + s3 * t208;
-  M[12] = -t229;
-  const float t230 = 0.2045f * (s3 * t214 + c3 * t221) + c3 * t223 + s3 * t224;
-  M[13] = -t230;
+  const float t229 = c3 * t207 - 0.2045f * (s3 * t198 - c3 * t205) - s3 * t208;
+  M[12] = t229;
+  const float t230 = -0.2045f * (s3 * t214 + c3 * t221) - c3 * t223 - s3 * t224;
+  M[13] = t230;
   M[14] = t126;
   M[15] = t226;
   M[16] = beta[21] + t118;
@@ -583,11 +583,11 @@ void mass_matrix(const float* q, const float* beta, float* M) {
   M[19] = t203;
   M[20] = t219;
   M[21] = t157;
-  M[22] = -t227;
+  M[22] = t227;
   M[23] = t151;
   M[24] = beta[32] + t155;
   M[25] = t182;
-  M[26] = -t206;
+  M[26] = t206;
   M[27] = t222;
   M[28] = t185;
   M[29] = t228;
@@ -597,14 +597,14 @@ void mass_matrix(const float* q, const float* beta, float* M) {
   M[33] = t194;
   M[34] = t211;
   M[35] = t209;
-  M[36] = -t229;
+  M[36] = t229;
   M[37] = t203;
-  M[38] = -t206;
+  M[38] = t206;
   M[39] = t194;
   M[40] = beta[54] + t200;
   M[41] = t215;
   M[42] = t225;
-  M[43] = -t230;
+  M[43] = t230;
   M[44] = t219;
   M[45] = t222;
   M[46] = t211;

@@ -4,29 +4,29 @@
 // The generated code belongs to the owner of the robot description.
 //
 // Function                                   mul    add  sin/cos
-// idim_regressor_standard                    509    452       10
+// idim_regressor_standard                    509    428       10
 // inverse_dynamics_standard                  407    326       10
 // joint_sincos                                 0      0       12
-// idim_regressor_standard_sincos             509    452        0
+// idim_regressor_standard_sincos             509    428        0
 // inverse_dynamics_standard_sincos           407    326        0
 // base_from_standard                          23     72        0
-// idim_regressor                             407    359       10
+// idim_regressor                             407    339       10
 // inverse_dynamics                           353    273       10
-// mass_matrix                                398    322       10
-// idim_regressor_sincos                      407    359        0
+// mass_matrix                                398    314       10
+// idim_regressor_sincos                      407    339        0
 // inverse_dynamics_sincos                    353    273        0
-// mass_matrix_sincos                         398    322        0
+// mass_matrix_sincos                         398    314        0
 // inverse_dynamics_state_jacobian           2303   2095       10
-// energy_regressor                           128     59       10
+// energy_regressor                           128     57       10
 // power_regressor                            310    164       10
-// energy_regressor_sincos                    128     59        0
+// energy_regressor_sincos                    128     57        0
 // power_regressor_sincos                     310    164        0
 // drive_torque                               443    338       10
-// drive_torque_jacobian                      955    874       10
-// drive_torque_state_jacobian               2811   2560       20
-// drive_regressor                            509    452       10
+// drive_torque_jacobian                      955    663       10
+// drive_torque_state_jacobian               2811   2470       20
+// drive_regressor                            509    428       10
 // drive_torque_given_regressor               241    217        0
-// drive_torque_jacobian_given_regressor      446    422        0
+// drive_torque_jacobian_given_regressor      446    235        0
 #ifndef MODELGEN_KUKA_KR150_2_HPP_
 #define MODELGEN_KUKA_KR150_2_HPP_
 

@@ -4,7 +4,7 @@
 // The generated code belongs to the owner of the robot description.
 //
 // Function                              mul    add  sin/cos
-// mass_matrix                           398    322       10
+// mass_matrix                           398    314       10
 #include "kuka_kr150_2.hpp"
 
 #include <cmath>
@@ -117,8 +117,8 @@ void mass_matrix(const double* q, const double* beta, double* M) {
   const double t85 = 1.1 * t84;
   const double t86 = t83 - beta[30] * t49 + t85 + c5 * t58 - s5 * t70;
   const double t87 = beta[18] - s4 * t82 + c4 * t86;
-  const double t88 = c2 * (beta[8] - s3 * t71 + c3 * t87) - s2 * (beta[5] + c3 * t71 + s3 * t87);
-  M[1] = -t88;
+  const double t88 = s2 * (beta[5] + c3 * t71 + s3 * t87) - c2 * (beta[8] - s3 * t71 + c3 * t87);
+  M[1] = t88;
   const double t89 = 0.055 * c5 - 1.1 * c4 * s5;
   const double t90 = t53 + beta[53] * t89 - t55 - t56;
   const double t91 = t45 - beta[52] * t89 - t48;
@@ -169,8 +169,8 @@ void mass_matrix(const double* q, const double* beta, double* M) {
   const double t134 = beta[51] * c6;
   const double t135 = beta[50] * c6 + beta[51] * s6;
   const double t136 = beta[40] + c6 * t134 - s6 * t135;
-  const double t137 = c5 * t133 + s5 * t136;
-  const double t138 = t137 - 0.055 * t128;
+  const double t137 = -c5 * t133 - s5 * t136;
+  const double t138 = -0.055 * t128 - t137;
   const double t139 = s5 * t133 - c5 * t136;
   const double t140 = beta[39] + s6 * t134 + c6 * t135;
   const double t141 = t140 + 1.1 * t127;
@@ -183,13 +183,13 @@ void mass_matrix(const double* q, const double* beta, double* M) {
   const double t147 = beta[48] * s6 - beta[49] * c6 - 0.23 * t125;
   const double t148 = t117 - s5 * t147;
   const double t149 = 0.055 * t146 + t148;
-  const double t150 = t129 + t130 - 0.23 * t144;
-  const double t151 = 1.1 * t145 - t150;
+  const double t150 = 0.23 * t144 - t129 - t130;
+  const double t151 = 1.1 * t145 + t150;
   const double t152 = beta[47] * s5 - 1.1 * t125 + c5 * t147;
   const double t153 = s4 * t151 - c4 * t152;
   const double t154 = 0.35 * t146 + c2 * (1.25 * t146 - s3 * t149 + c3 * t153) - s2 * (c3 * t149 + s3 * t153);
   M[5] = t154;
-  M[6] = -t88;
+  M[6] = t88;
   const double t155 = beta[30] * s4 - beta[31] * c4 + s5 * t79 - c5 * t80;
   const double t156 = 1.25 * (c3 * (beta[19] + s4 * t84 + c4 * t81) + s3 * (beta[20] - t155));
   const double t157 = 0.055 * t155;
@@ -197,8 +197,8 @@ void mass_matrix(const double* q, const double* beta, double* M) {
   const double t158 = beta[17] + t157 - c4 * t98 + s4 * t99;
   const double t159 = t158 + t156;
   M[8] = t159;
-  const double t160 = c4 * t116 + s4 * t120;
-  const double t161 = 1.25 * c3 * (c4 * t108 + s4 * t112) - t160;
+  const double t160 = -c4 * t116 - s4 * t120;
+  const double t161 = 1.25 * c3 * (c4 * t108 + s4 * t112) + t160;
   M[9] = t161;
   const double t162 = t109 - c5 * t126;
   const double t163 = 0.055 * t162 - s4 * t139 + c4 * t141;
@@ -206,31 +206,31 @@ void mass_matrix(const double* q, const double* beta, double* M) {
   M[10] = t164;
   const double t165 = s5 * t144;
   const double t166 = 0.055 * t165 + c4 * t151 + s4 * t152;
-  const double t167 = 1.25 * (s3 * t165 + c3 * (s4 * t125 - c4 * t145)) - t166;
-  M[11] = -t167;
+  const double t167 = t166 - 1.25 * (s3 * t165 + c3 * (s4 * t125 - c4 * t145));
+  M[11] = t167;
   M[12] = t101;
   M[13] = t159;
   M[14] = beta[21] + t158;
-  M[15] = -t160;
+  M[15] = t160;
   M[16] = t163;
   M[17] = t166;
   M[18] = t124;
   M[19] = t161;
-  M[20] = -t160;
+  M[20] = t160;
   M[21] = beta[32] + t122;
-  M[22] = -t137;
+  M[22] = t137;
   M[23] = t148;
   M[24] = t143;
   M[25] = t164;
   M[26] = t163;
-  M[27] = -t137;
+  M[27] = t137;
   M[28] = beta[43] + t140;
-  M[29] = -t150;
+  M[29] = t150;
   M[30] = t154;
-  M[31] = -t167;
+  M[31] = t167;
   M[32] = t166;
   M[33] = t148;
-  M[34] = -t150;
+  M[34] = t150;
   M[35] = beta[47] + beta[54];
 }
 
@@ -339,8 +339,8 @@ void mass_matrix(const float* q, const float* beta, float* M) {
   const float t85 = 1.1f * t84;
   const float t86 = t83 - beta[30] * t49 + t85 + c5 * t58 - s5 * t70;
   const float t87 = beta[18] - s4 * t82 + c4 * t86;
-  const float t88 = c2 * (beta[8] - s3 * t71 + c3 * t87) - s2 * (beta[5] + c3 * t71 + s3 * t87);
-  M[1] = -t88;
+  const float t88 = s2 * (beta[5] + c3 * t71 + s3 * t87) - c2 * (beta[8] - s3 * t71 + c3 * t87);
+  M[1] = t88;
   const float t89 = 0.055f * c5 - 1.1f * c4 * s5;
   const float t90 = t53 + beta[53] * t89 - t55 - t56;
   const float t91 = t45 - beta[52] * t89 - t48;
@@ -391,8 +391,8 @@ void mass_matrix(const float* q, const float* beta, float* M) {
   const float t134 = beta[51] * c6;
   const float t135 = beta[50] * c6 + beta[51] * s6;
   const float t136 = beta[40] + c6 * t134 - s6 * t135;
-  const float t137 = c5 * t133 + s5 * t136;
-  const float t138 = t137 - 0.055f * t128;
+  const float t137 = -c5 * t133 - s5 * t136;
+  const float t138 = -0.055f * t128 - t137;
   const float t139 = s5 * t133 - c5 * t136;
   const float t140 = beta[39] + s6 * t134 + c6 * t135;
   const float t141 = t140 + 1.1f * t127;
@@ -405,13 +405,13 @@ void mass_matrix(const float* q, const float* beta, float* M) {
   const float t147 = beta[48] * s6 - beta[49] * c6 - 0.23f * t125;
   const float t148 = t117 - s5 * t147;
   const float t149 = 0.055f * t146 + t148;
-  const float t150 = t129 + t130 - 0.23f * t144;
-  const float t151 = 1.1f * t145 - t150;
+  const float t150 = 0.23f * t144 - t129 - t130;
+  const float t151 = 1.1f * t145 + t150;
   const float t152 = beta[47] * s5 - 1.1f * t125 + c5 * t147;
   const float t153 = s4 * t151 - c4 * t152;
   const float t154 = 0.35f * t146 + c2 * (1.25f * t146 - s3 * t149 + c3 * t153) - s2 * (c3 * t149 + s3 * t153);
   M[5] = t154;
-  M[6] = -t88;
+  M[6] = t88;
   const float t155 = beta[30] * s4 - beta[31] * c4 + s5 * t79 - c5 * t80;
   const float t156 = 1.25f * (c3 * (beta[19] + s4 * t84 + c4 * t81) + s3 * (beta[20] - t155));
   const float t157 = 0.055f * t155;
@@ -419,8 +419,8 @@ void mass_matrix(const float* q, const float* beta, float* M) {
   const float t158 = beta[17] + t157 - c4 * t98 + s4 * t99;
   const float t159 = t158 + t156;
   M[8] = t159;
-  const float t160 = c4 * t116 + s4 * t120;
-  const float t161 = 1.25f * c3 * (c4 * t108 + s4 * t112) - t160;
+  const float t160 = -c4 * t116 - s4 * t120;
+  const float t161 = 1.25f * c3 * (c4 * t108 + s4 * t112) + t160;
   M[9] = t161;
   const float t162 = t109 - c5 * t126;
   const float t163 = 0.055f * t162 - s4 * t139 + c4 * t141;
@@ -428,31 +428,31 @@ void mass_matrix(const float* q, const float* beta, float* M) {
   M[10] = t164;
   const float t165 = s5 * t144;
   const float t166 = 0.055f * t165 + c4 * t151 + s4 * t152;
-  const float t167 = 1.25f * (s3 * t165 + c3 * (s4 * t125 - c4 * t145)) - t166;
-  M[11] = -t167;
+  const float t167 = t166 - 1.25f * (s3 * t165 + c3 * (s4 * t125 - c4 * t145));
+  M[11] = t167;
   M[12] = t101;
   M[13] = t159;
   M[14] = beta[21] + t158;
-  M[15] = -t160;
+  M[15] = t160;
   M[16] = t163;
   M[17] = t166;
   M[18] = t124;
   M[19] = t161;
-  M[20] = -t160;
+  M[20] = t160;
   M[21] = beta[32] + t122;
-  M[22] = -t137;
+  M[22] = t137;
   M[23] = t148;
   M[24] = t143;
   M[25] = t164;
   M[26] = t163;
-  M[27] = -t137;
+  M[27] = t137;
   M[28] = beta[43] + t140;
-  M[29] = -t150;
+  M[29] = t150;
   M[30] = t154;
-  M[31] = -t167;
+  M[31] = t167;
   M[32] = t166;
   M[33] = t148;
-  M[34] = -t150;
+  M[34] = t150;
   M[35] = beta[47] + beta[54];
 }
 

@@ -4,29 +4,29 @@
 // The generated code belongs to the owner of the robot description.
 //
 // Function                                   mul    add  sin/cos
-// idim_regressor_standard                    967    826       12
+// idim_regressor_standard                    967    786       12
 // inverse_dynamics_standard                  522    425       12
 // joint_sincos                                 0      0       14
-// idim_regressor_standard_sincos             967    826        0
+// idim_regressor_standard_sincos             967    786        0
 // inverse_dynamics_standard_sincos           522    425        0
 // base_from_standard                          35    106        0
 // idim_regressor                             702    545       12
 // inverse_dynamics                           402    314       12
-// mass_matrix                                733    532       12
+// mass_matrix                                733    519       12
 // idim_regressor_sincos                      702    545        0
 // inverse_dynamics_sincos                    402    314        0
-// mass_matrix_sincos                         733    532        0
+// mass_matrix_sincos                         733    519        0
 // inverse_dynamics_state_jacobian           4055   3372       12
 // energy_regressor                           137     62       12
 // power_regressor                            357    195       12
 // energy_regressor_sincos                    137     62        0
 // power_regressor_sincos                     357    195        0
 // drive_torque                               571    446       12
-// drive_torque_jacobian                     1693   1524       12
-// drive_torque_state_jacobian               4667   3953       24
-// drive_regressor                            967    826       12
+// drive_torque_jacobian                     1693   1163       12
+// drive_torque_state_jacobian               4667   3827       24
+// drive_regressor                            967    786       12
 // drive_torque_given_regressor               384    356        0
-// drive_torque_jacobian_given_regressor      726    698        0
+// drive_torque_jacobian_given_regressor      726    377        0
 #ifndef MODELGEN_PANDA_ARM_HPP_
 #define MODELGEN_PANDA_ARM_HPP_
 

@@ -4,7 +4,7 @@
 // The generated code belongs to the owner of the robot description.
 //
 // Function                              mul    add  sin/cos
-// drive_torque_state_jacobian          2750   2327       20
+// drive_torque_state_jacobian          2750   2324       20
 #include "tx40.hpp"
 
 namespace modelgen {
@@ -187,24 +187,24 @@ void drive_torque_state_jacobian(const double* q, const double* dq, const double
   const double t16 = dq[4] * (0.022222222222222223 * (tau_G[4] - tau_G[5]));
   const double t17 = static_cast<double>((t16 > 0.0) - (t16 < 0.0));
   const double t18 = 0.5 * t17;
-  const double t19 = theta[89] * (t18 - 0.5) - (1.0 / theta[89]) * (0.5 + t18);
-  J[73] = -(0.022222222222222223 * (dtau_G[73] - dtau_G[91])) * t19;
-  J[74] = -(0.022222222222222223 * (dtau_G[74] - dtau_G[92])) * t19;
-  J[75] = -(0.022222222222222223 * (dtau_G[75] - dtau_G[93])) * t19;
-  J[76] = -(0.022222222222222223 * (dtau_G[76] - dtau_G[94])) * t19;
-  J[77] = -(0.022222222222222223 * (dtau_G[77] - dtau_G[95])) * t19;
-  J[78] = -(0.022222222222222223 * (dtau_G[78] - dtau_G[96])) * t19;
-  J[79] = -(0.022222222222222223 * (dtau_G[79] - dtau_G[97])) * t19;
-  J[80] = -(0.022222222222222223 * (dtau_G[80] - dtau_G[98])) * t19;
-  J[81] = -(0.022222222222222223 * (dtau_G[81] - dtau_G[99])) * t19;
-  J[82] = 45.0 * theta[87] + (0.022222222222222223 * (dtau_G[100] - dtau_G[82])) * t19;
-  J[83] = (0.022222222222222223 * (dtau_G[101] - dtau_G[83])) * t19;
-  J[84] = (0.022222222222222223 * (dtau_G[102] - dtau_G[84])) * t19;
-  J[85] = (0.022222222222222223 * (dtau_G[103] - dtau_G[85])) * t19;
-  J[86] = (0.022222222222222223 * (dtau_G[104] - dtau_G[86])) * t19;
-  J[87] = (0.022222222222222223 * (dtau_G[105] - dtau_G[87])) * t19;
-  J[88] = 45.0 * theta[86] + (0.022222222222222223 * (dtau_G[106] - dtau_G[88])) * t19;
-  J[89] = (0.022222222222222223 * (dtau_G[107] - dtau_G[89])) * t19;
+  const double t19 = (1.0 / theta[89]) * (0.5 + t18) - theta[89] * (t18 - 0.5);
+  J[73] = (0.022222222222222223 * (dtau_G[73] - dtau_G[91])) * t19;
+  J[74] = (0.022222222222222223 * (dtau_G[74] - dtau_G[92])) * t19;
+  J[75] = (0.022222222222222223 * (dtau_G[75] - dtau_G[93])) * t19;
+  J[76] = (0.022222222222222223 * (dtau_G[76] - dtau_G[94])) * t19;
+  J[77] = (0.022222222222222223 * (dtau_G[77] - dtau_G[95])) * t19;
+  J[78] = (0.022222222222222223 * (dtau_G[78] - dtau_G[96])) * t19;
+  J[79] = (0.022222222222222223 * (dtau_G[79] - dtau_G[97])) * t19;
+  J[80] = (0.022222222222222223 * (dtau_G[80] - dtau_G[98])) * t19;
+  J[81] = (0.022222222222222223 * (dtau_G[81] - dtau_G[99])) * t19;
+  J[82] = 45.0 * theta[87] - (0.022222222222222223 * (dtau_G[100] - dtau_G[82])) * t19;
+  J[83] = -(0.022222222222222223 * (dtau_G[101] - dtau_G[83])) * t19;
+  J[84] = -(0.022222222222222223 * (dtau_G[102] - dtau_G[84])) * t19;
+  J[85] = -(0.022222222222222223 * (dtau_G[103] - dtau_G[85])) * t19;
+  J[86] = -(0.022222222222222223 * (dtau_G[104] - dtau_G[86])) * t19;
+  J[87] = -(0.022222222222222223 * (dtau_G[105] - dtau_G[87])) * t19;
+  J[88] = 45.0 * theta[86] - (0.022222222222222223 * (dtau_G[106] - dtau_G[88])) * t19;
+  J[89] = -(0.022222222222222223 * (dtau_G[107] - dtau_G[89])) * t19;
   const double t20 = tau_G[5] * (32.0 * (dq[4] + dq[5]));
   const double t21 = static_cast<double>((t20 > 0.0) - (t20 < 0.0));
   const double t22 = 0.5 * t21;
@@ -407,24 +407,24 @@ void drive_torque_state_jacobian(const float* q, const float* dq, const float* d
   const float t16 = dq[4] * (0.022222223f * (tau_G[4] - tau_G[5]));
   const float t17 = static_cast<float>((t16 > 0.0f) - (t16 < 0.0f));
   const float t18 = 0.5f * t17;
-  const float t19 = theta[89] * (t18 - 0.5f) - (1.0f / theta[89]) * (0.5f + t18);
-  J[73] = -(0.022222223f * (dtau_G[73] - dtau_G[91])) * t19;
-  J[74] = -(0.022222223f * (dtau_G[74] - dtau_G[92])) * t19;
-  J[75] = -(0.022222223f * (dtau_G[75] - dtau_G[93])) * t19;
-  J[76] = -(0.022222223f * (dtau_G[76] - dtau_G[94])) * t19;
-  J[77] = -(0.022222223f * (dtau_G[77] - dtau_G[95])) * t19;
-  J[78] = -(0.022222223f * (dtau_G[78] - dtau_G[96])) * t19;
-  J[79] = -(0.022222223f * (dtau_G[79] - dtau_G[97])) * t19;
-  J[80] = -(0.022222223f * (dtau_G[80] - dtau_G[98])) * t19;
-  J[81] = -(0.022222223f * (dtau_G[81] - dtau_G[99])) * t19;
-  J[82] = 45.0f * theta[87] + (0.022222223f * (dtau_G[100] - dtau_G[82])) * t19;
-  J[83] = (0.022222223f * (dtau_G[101] - dtau_G[83])) * t19;
-  J[84] = (0.022222223f * (dtau_G[102] - dtau_G[84])) * t19;
-  J[85] = (0.022222223f * (dtau_G[103] - dtau_G[85])) * t19;
-  J[86] = (0.022222223f * (dtau_G[104] - dtau_G[86])) * t19;
-  J[87] = (0.022222223f * (dtau_G[105] - dtau_G[87])) * t19;
-  J[88] = 45.0f * theta[86] + (0.022222223f * (dtau_G[106] - dtau_G[88])) * t19;
-  J[89] = (0.022222223f * (dtau_G[107] - dtau_G[89])) * t19;
+  const float t19 = (1.0f / theta[89]) * (0.5f + t18) - theta[89] * (t18 - 0.5f);
+  J[73] = (0.022222223f * (dtau_G[73] - dtau_G[91])) * t19;
+  J[74] = (0.022222223f * (dtau_G[74] - dtau_G[92])) * t19;
+  J[75] = (0.022222223f * (dtau_G[75] - dtau_G[93])) * t19;
+  J[76] = (0.022222223f * (dtau_G[76] - dtau_G[94])) * t19;
+  J[77] = (0.022222223f * (dtau_G[77] - dtau_G[95])) * t19;
+  J[78] = (0.022222223f * (dtau_G[78] - dtau_G[96])) * t19;
+  J[79] = (0.022222223f * (dtau_G[79] - dtau_G[97])) * t19;
+  J[80] = (0.022222223f * (dtau_G[80] - dtau_G[98])) * t19;
+  J[81] = (0.022222223f * (dtau_G[81] - dtau_G[99])) * t19;
+  J[82] = 45.0f * theta[87] - (0.022222223f * (dtau_G[100] - dtau_G[82])) * t19;
+  J[83] = -(0.022222223f * (dtau_G[101] - dtau_G[83])) * t19;
+  J[84] = -(0.022222223f * (dtau_G[102] - dtau_G[84])) * t19;
+  J[85] = -(0.022222223f * (dtau_G[103] - dtau_G[85])) * t19;
+  J[86] = -(0.022222223f * (dtau_G[104] - dtau_G[86])) * t19;
+  J[87] = -(0.022222223f * (dtau_G[105] - dtau_G[87])) * t19;
+  J[88] = 45.0f * theta[86] - (0.022222223f * (dtau_G[106] - dtau_G[88])) * t19;
+  J[89] = -(0.022222223f * (dtau_G[107] - dtau_G[89])) * t19;
   const float t20 = tau_G[5] * (32.0f * (dq[4] + dq[5]));
   const float t21 = static_cast<float>((t20 > 0.0f) - (t20 < 0.0f));
   const float t22 = 0.5f * t21;

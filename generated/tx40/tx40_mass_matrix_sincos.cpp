@@ -4,7 +4,7 @@
 // The generated code belongs to the owner of the robot description.
 //
 // Function                              mul    add  sin/cos
-// mass_matrix_sincos                    399    310        0
+// mass_matrix_sincos                    399    300        0
 #include "tx40.hpp"
 
 namespace modelgen {
@@ -107,8 +107,8 @@ void mass_matrix_sincos(const double* q, const double* sin_q, const double* cos_
   const double t78 = t76 + t77 + 0.225 * beta[31] * s3 + c5 * t62 - s5 * t69;
   const double t79 = beta[16] - s4 * t75 + c4 * t78;
   const double t80 = c3 * t44 + s3 * t42;
-  const double t81 = s2 * (beta[7] - 0.035 * t45 - s3 * t70 + c3 * t79) - c2 * (beta[6] + 0.035 * t80 - c3 * t70 - s3 * t79);
-  M[1] = -t81;
+  const double t81 = c2 * (beta[6] + 0.035 * t80 - c3 * t70 - s3 * t79) - s2 * (beta[7] - 0.035 * t45 - s3 * t70 + c3 * t79);
+  M[1] = t81;
   const double t82 = c4 * c5;
   const double t83 = t63 + 0.225 * beta[41] * s4 + t64 - t65 - t66 - t67 - beta[53] * (0.225 * (s4 * s6 - c6 * t82)) + beta[52] * (0.225 * (c6 * s4 + s6 * t82));
   const double t84 = c4 * s5;
@@ -119,8 +119,8 @@ void mass_matrix_sincos(const double* q, const double* sin_q, const double* cos_
   const double t89 = t71 + t72 + t73 - t74 - 0.225 * (beta[41] * t84 + beta[42] * t82) + c6 * t85 + s6 * t86;
   const double t90 = t76 + t77 + c5 * t87 - s5 * t83;
   const double t91 = beta[16] - s4 * t89 + c4 * t90;
-  const double t92 = c2 * (c3 * t88 + s3 * t91 - 0.035 * t80) - s2 * (s3 * t88 - c3 * t91 + 0.035 * t45);
-  M[2] = -t92;
+  const double t92 = s2 * (s3 * t88 - c3 * t91 + 0.035 * t45) - c2 * (c3 * t88 + s3 * t91 - 0.035 * t80);
+  M[2] = t92;
   const double t93 = beta[51] * c5;
   const double t94 = s5 * s6;
   const double t95 = c6 * s5;
@@ -147,7 +147,7 @@ void mass_matrix_sincos(const double* q, const double* sin_q, const double* cos_
   const double t115 = beta[48] * s6;
   const double t116 = beta[47] * s6 + beta[48] * c6;
   const double t117 = beta[38] - s6 * t115 + c6 * t116;
-  const double t118 = c5 * t114 + s5 * t117;
+  const double t118 = -c5 * t114 - s5 * t117;
   const double t119 = beta[52] * c6 - beta[53] * s6;
   const double t120 = beta[41] + t119;
   const double t121 = t101 - c5 * t120;
@@ -158,8 +158,8 @@ void mass_matrix_sincos(const double* q, const double* sin_q, const double* cos_
   const double t126 = s4 * t122;
   const double t127 = s5 * t114 - c5 * t117;
   const double t128 = s4 * t125 - 0.225 * t126 + c4 * t127;
-  const double t129 = c2 * (c3 * t118 + 0.035 * t124 - s3 * t128) + s2 * (0.225 * t126 - s3 * t118 + 0.035 * (c3 * t121 + s3 * t123) - c3 * t128);
-  M[4] = -t129;
+  const double t129 = -c2 * (0.035 * t124 - c3 * t118 - s3 * t128) - s2 * (0.225 * t126 + s3 * t118 + 0.035 * (c3 * t121 + s3 * t123) - c3 * t128);
+  M[4] = t129;
   const double t130 = beta[49] * c6 - beta[50] * s6;
   const double t131 = t93 - s5 * t130;
   const double t132 = beta[52] * s6 + beta[53] * c6;
@@ -172,38 +172,38 @@ void mass_matrix_sincos(const double* q, const double* sin_q, const double* cos_
   const double t139 = s4 * t113 - c4 * t137 + t138;
   const double t140 = c2 * (c3 * t131 - 0.035 * t136 + s3 * t139) + s2 * (t138 - s3 * t131 - 0.035 * (c3 * t133 + s3 * t135) + c3 * t139);
   M[5] = t140;
-  M[6] = -t81;
+  M[6] = t81;
   const double t141 = -0.225 * t80;
   const double t142 = -0.225 * t43;
   M[7] = beta[8] + t141 + beta[18] - 0.225 * (beta[19] * s3 + beta[20] * c3) + c4 * t75 + t142 + s4 * t78;
   const double t143 = beta[18] + c4 * t89 + s4 * t90 + t142;
   const double t144 = t143 + t141;
   M[8] = t144;
-  const double t145 = 0.225 * t106 - c4 * t108 - s4 * t110;
-  const double t146 = 0.225 * t107 + t145;
-  M[9] = -t146;
+  const double t145 = c4 * t108 - 0.225 * t106 + s4 * t110;
+  const double t146 = t145 - 0.225 * t107;
+  M[9] = t146;
   const double t147 = c4 * t125 - 0.225 * t123 - s4 * t127;
   const double t148 = t147 + 0.225 * t124;
   M[10] = t148;
   const double t149 = c4 * t113 - 0.225 * t135 + s4 * t137;
   const double t150 = t149 + 0.225 * t136;
   M[11] = t150;
-  M[12] = -t92;
+  M[12] = t92;
   M[13] = t144;
   M[14] = beta[21] + t143;
-  M[15] = -t145;
+  M[15] = t145;
   M[16] = t147;
   M[17] = t149;
   M[18] = t112;
-  M[19] = -t146;
-  M[20] = -t145;
+  M[19] = t146;
+  M[20] = t145;
   M[21] = beta[32] + t100;
-  M[22] = -t118;
+  M[22] = t118;
   M[23] = t131;
-  M[24] = -t129;
+  M[24] = t129;
   M[25] = t148;
   M[26] = t147;
-  M[27] = -t118;
+  M[27] = t118;
   M[28] = beta[43] + beta[58] + t125;
   const double t151 = beta[58] + t113;
   M[29] = t151;
@@ -312,8 +312,8 @@ void mass_matrix_sincos(const float* q, const float* sin_q, const float* cos_q, 
   const float t78 = t76 + t77 + 0.225f * beta[31] * s3 + c5 * t62 - s5 * t69;
   const float t79 = beta[16] - s4 * t75 + c4 * t78;
   const float t80 = c3 * t44 + s3 * t42;
-  const float t81 = s2 * (beta[7] - 0.035f * t45 - s3 * t70 + c3 * t79) - c2 * (beta[6] + 0.035f * t80 - c3 * t70 - s3 * t79);
-  M[1] = -t81;
+  const float t81 = c2 * (beta[6] + 0.035f * t80 - c3 * t70 - s3 * t79) - s2 * (beta[7] - 0.035f * t45 - s3 * t70 + c3 * t79);
+  M[1] = t81;
   const float t82 = c4 * c5;
   const float t83 = t63 + 0.225f * beta[41] * s4 + t64 - t65 - t66 - t67 - beta[53] * (0.225f * (s4 * s6 - c6 * t82)) + beta[52] * (0.225f * (c6 * s4 + s6 * t82));
   const float t84 = c4 * s5;
@@ -324,8 +324,8 @@ void mass_matrix_sincos(const float* q, const float* sin_q, const float* cos_q, 
   const float t89 = t71 + t72 + t73 - t74 - 0.225f * (beta[41] * t84 + beta[42] * t82) + c6 * t85 + s6 * t86;
   const float t90 = t76 + t77 + c5 * t87 - s5 * t83;
   const float t91 = beta[16] - s4 * t89 + c4 * t90;
-  const float t92 = c2 * (c3 * t88 + s3 * t91 - 0.035f * t80) - s2 * (s3 * t88 - c3 * t91 + 0.035f * t45);
-  M[2] = -t92;
+  const float t92 = s2 * (s3 * t88 - c3 * t91 + 0.035f * t45) - c2 * (c3 * t88 + s3 * t91 - 0.035f * t80);
+  M[2] = t92;
   const float t93 = beta[51] * c5;
   const float t94 = s5 * s6;
   const float t95 = c6 * s5;
@@ -352,7 +352,7 @@ void mass_matrix_sincos(const float* q, const float* sin_q, const float* cos_q, 
   const float t115 = beta[48] * s6;
   const float t116 = beta[47] * s6 + beta[48] * c6;
   const float t117 = beta[38] - s6 * t115 + c6 * t116;
-  const float t118 = c5 * t114 + s5 * t117;
+  const float t118 = -c5 * t114 - s5 * t117;
   const float t119 = beta[52] * c6 - beta[53] * s6;
   const float t120 = beta[41] + t119;
   const float t121 = t101 - c5 * t120;
@@ -363,8 +363,8 @@ void mass_matrix_sincos(const float* q, const float* sin_q, const float* cos_q, 
   const float t126 = s4 * t122;
   const float t127 = s5 * t114 - c5 * t117;
   const float t128 = s4 * t125 - 0.225f * t126 + c4 * t127;
-  const float t129 = c2 * (c3 * t118 + 0.035f * t124 - s3 * t128) + s2 * (0.225f * t126 - s3 * t118 + 0.035f * (c3 * t121 + s3 * t123) - c3 * t128);
-  M[4] = -t129;
+  const float t129 = -c2 * (0.035f * t124 - c3 * t118 - s3 * t128) - s2 * (0.225f * t126 + s3 * t118 + 0.035f * (c3 * t121 + s3 * t123) - c3 * t128);
+  M[4] = t129;
   const float t130 = beta[49] * c6 - beta[50] * s6;
   const float t131 = t93 - s5 * t130;
   const float t132 = beta[52] * s6 + beta[53] * c6;
@@ -377,38 +377,38 @@ void mass_matrix_sincos(const float* q, const float* sin_q, const float* cos_q, 
   const float t139 = s4 * t113 - c4 * t137 + t138;
   const float t140 = c2 * (c3 * t131 - 0.035f * t136 + s3 * t139) + s2 * (t138 - s3 * t131 - 0.035f * (c3 * t133 + s3 * t135) + c3 * t139);
   M[5] = t140;
-  M[6] = -t81;
+  M[6] = t81;
   const float t141 = -0.225f * t80;
   const float t142 = -0.225f * t43;
   M[7] = beta[8] + t141 + beta[18] - 0.225f * (beta[19] * s3 + beta[20] * c3) + c4 * t75 + t142 + s4 * t78;
   const float t143 = beta[18] + c4 * t89 + s4 * t90 + t142;
   const float t144 = t143 + t141;
   M[8] = t144;
-  const float t145 = 0.225f * t106 - c4 * t108 - s4 * t110;
-  const float t146 = 0.225f * t107 + t145;
-  M[9] = -t146;
+  const float t145 = c4 * t108 - 0.225f * t106 + s4 * t110;
+  const float t146 = t145 - 0.225f * t107;
+  M[9] = t146;
   const float t147 = c4 * t125 - 0.225f * t123 - s4 * t127;
   const float t148 = t147 + 0.225f * t124;
   M[10] = t148;
   const float t149 = c4 * t113 - 0.225f * t135 + s4 * t137;
   const float t150 = t149 + 0.225f * t136;
   M[11] = t150;
-  M[12] = -t92;
+  M[12] = t92;
   M[13] = t144;
   M[14] = beta[21] + t143;
-  M[15] = -t145;
+  M[15] = t145;
   M[16] = t147;
   M[17] = t149;
   M[18] = t112;
-  M[19] = -t146;
-  M[20] = -t145;
+  M[19] = t146;
+  M[20] = t145;
   M[21] = beta[32] + t100;
-  M[22] = -t118;
+  M[22] = t118;
   M[23] = t131;
-  M[24] = -t129;
+  M[24] = t129;
   M[25] = t148;
   M[26] = t147;
-  M[27] = -t118;
+  M[27] = t118;
   M[28] = beta[43] + beta[58] + t125;
   const float t151 = beta[58] + t113;
   M[29] = t151;

@@ -4,7 +4,7 @@
 // The generated code belongs to the owner of the robot description.
 //
 // Function                              mul    add  sin/cos
-// energy_regressor                      126     57       10
+// energy_regressor                      126     54       10
 #include "ur5.hpp"
 
 #include <cmath>
@@ -45,24 +45,24 @@ void energy_regressor(const double* q, const double* dq, double* h) {
   const double t4 = c3 * t0;
   const double t5 = t4 - s3 * t2;
   h[14] = 0.5 * t5 * t5;  // XX3R
-  const double t6 = dq[1] + dq[2];
-  h[15] = -t6 * t5;  // XY3
+  const double t6 = -dq[1] - dq[2];
+  h[15] = t6 * t5;  // XY3
   const double t7 = s3 * t0;
   const double t8 = c3 * t2 + t7;
   h[16] = t8 * t5;  // XZ3
   h[17] = 0.5 * t6 * t6;  // YY3R
-  h[18] = -t6 * t8;  // YZ3R
+  h[18] = t6 * t8;  // YZ3R
   const double t9 = 9.81 * (c2 * c3 - s2 * s3);
   const double t10 = 0.425 * dq[1] + 0.016149999999999998 * t2;
   const double t11 = 0.016149999999999998 * t4 - s3 * t10;
-  h[19] = t6 * t11 - t9 - 0.425 * t0 * t8;  // MX3
+  h[19] = -0.425 * t0 * t8 - t9 - t6 * t11;  // MX3
   const double t12 = 9.81 * (c2 * s3 + c3 * s2);
   const double t13 = 0.016149999999999998 * t7 + c3 * t10;
-  h[20] = 0.425 * t0 * t5 - t12 + t6 * t13;  // MZ3R
+  h[20] = 0.425 * t0 * t5 - t12 - t6 * t13;  // MZ3R
   h[21] = 0.5 * dq[2] * dq[2];  // Ia3
   const double t14 = c4 * t8 + s4 * t5;
   h[25] = 0.5 * t14 * t14;  // XX4R
-  const double t15 = dq[3] + t6;
+  const double t15 = dq[3] - t6;
   h[26] = t15 * t14;  // XY4
   const double t16 = s4 * t8 - c4 * t5;
   h[27] = t14 * t16;  // XZ4
@@ -70,7 +70,7 @@ void energy_regressor(const double* q, const double* dq, double* h) {
   h[29] = t15 * t16;  // YZ4R
   const double t17 = c4 * t12 + s4 * t9;
   const double t18 = 0.425 * t0 + 0.39225 * t5;
-  const double t19 = 0.39225 * t6 + t13;
+  const double t19 = t13 - 0.39225 * t6;
   const double t20 = s4 * t11 + c4 * t19;
   h[30] = t17 + t18 * t16 - t15 * t20;  // MX4
   const double t21 = c4 * t9 - s4 * t12;
@@ -93,18 +93,18 @@ void energy_regressor(const double* q, const double* dq, double* h) {
   const double t30 = s5 * t18 - c5 * t28;
   h[42] = t23 * t27 - s5 * t17 - t25 * t30;  // MY5R
   h[43] = 0.5 * dq[4] * dq[4];  // Ia5
-  const double t31 = s6 * t25 - c6 * t23;
+  const double t31 = c6 * t23 - s6 * t25;
   h[47] = 0.5 * t31 * t31;  // XX6R
   const double t32 = dq[5] + t24;
-  h[48] = -t32 * t31;  // XY6
+  h[48] = t32 * t31;  // XY6
   const double t33 = c6 * t25 + s6 * t23;
-  h[49] = -t33 * t31;  // XZ6
+  h[49] = t33 * t31;  // XZ6
   h[50] = 0.5 * t32 * t32;  // YY6
   h[51] = t32 * t33;  // YZ6
   const double t34 = 0.09465 * t23 - t29;
   const double t35 = 0.09465 * t24 + t30;
   h[52] = s6 * t21 + c6 * t26 - t33 * t34 - t32 * (c6 * t27 + s6 * t35);  // MX6
-  h[53] = s6 * t26 - c6 * t21 - t31 * t34 - t32 * (s6 * t27 - c6 * t35);  // MZ6
+  h[53] = s6 * t26 - c6 * t21 + t31 * t34 - t32 * (s6 * t27 - c6 * t35);  // MZ6
   h[54] = 0.5 * dq[5] * dq[5];  // Ia6
 }
 
@@ -141,24 +141,24 @@ void energy_regressor(const float* q, const float* dq, float* h) {
   const float t4 = c3 * t0;
   const float t5 = t4 - s3 * t2;
   h[14] = 0.5f * t5 * t5;  // XX3R
-  const float t6 = dq[1] + dq[2];
-  h[15] = -t6 * t5;  // XY3
+  const float t6 = -dq[1] - dq[2];
+  h[15] = t6 * t5;  // XY3
   const float t7 = s3 * t0;
   const float t8 = c3 * t2 + t7;
   h[16] = t8 * t5;  // XZ3
   h[17] = 0.5f * t6 * t6;  // YY3R
-  h[18] = -t6 * t8;  // YZ3R
+  h[18] = t6 * t8;  // YZ3R
   const float t9 = 9.81f * (c2 * c3 - s2 * s3);
   const float t10 = 0.425f * dq[1] + 0.01615f * t2;
   const float t11 = 0.01615f * t4 - s3 * t10;
-  h[19] = t6 * t11 - t9 - 0.425f * t0 * t8;  // MX3
+  h[19] = -0.425f * t0 * t8 - t9 - t6 * t11;  // MX3
   const float t12 = 9.81f * (c2 * s3 + c3 * s2);
   const float t13 = 0.01615f * t7 + c3 * t10;
-  h[20] = 0.425f * t0 * t5 - t12 + t6 * t13;  // MZ3R
+  h[20] = 0.425f * t0 * t5 - t12 - t6 * t13;  // MZ3R
   h[21] = 0.5f * dq[2] * dq[2];  // Ia3
   const float t14 = c4 * t8 + s4 * t5;
   h[25] = 0.5f * t14 * t14;  // XX4R
-  const float t15 = dq[3] + t6;
+  const float t15 = dq[3] - t6;
   h[26] = t15 * t14;  // XY4
   const float t16 = s4 * t8 - c4 * t5;
   h[27] = t14 * t16;  // XZ4
@@ -166,7 +166,7 @@ void energy_regressor(const float* q, const float* dq, float* h) {
   h[29] = t15 * t16;  // YZ4R
   const float t17 = c4 * t12 + s4 * t9;
   const float t18 = 0.425f * t0 + 0.39225f * t5;
-  const float t19 = 0.39225f * t6 + t13;
+  const float t19 = t13 - 0.39225f * t6;
   const float t20 = s4 * t11 + c4 * t19;
   h[30] = t17 + t18 * t16 - t15 * t20;  // MX4
   const float t21 = c4 * t9 - s4 * t12;
@@ -189,18 +189,18 @@ void energy_regressor(const float* q, const float* dq, float* h) {
   const float t30 = s5 * t18 - c5 * t28;
   h[42] = t23 * t27 - s5 * t17 - t25 * t30;  // MY5R
   h[43] = 0.5f * dq[4] * dq[4];  // Ia5
-  const float t31 = s6 * t25 - c6 * t23;
+  const float t31 = c6 * t23 - s6 * t25;
   h[47] = 0.5f * t31 * t31;  // XX6R
   const float t32 = dq[5] + t24;
-  h[48] = -t32 * t31;  // XY6
+  h[48] = t32 * t31;  // XY6
   const float t33 = c6 * t25 + s6 * t23;
-  h[49] = -t33 * t31;  // XZ6
+  h[49] = t33 * t31;  // XZ6
   h[50] = 0.5f * t32 * t32;  // YY6
   h[51] = t32 * t33;  // YZ6
   const float t34 = 0.09465f * t23 - t29;
   const float t35 = 0.09465f * t24 + t30;
   h[52] = s6 * t21 + c6 * t26 - t33 * t34 - t32 * (c6 * t27 + s6 * t35);  // MX6
-  h[53] = s6 * t26 - c6 * t21 - t31 * t34 - t32 * (s6 * t27 - c6 * t35);  // MZ6
+  h[53] = s6 * t26 - c6 * t21 + t31 * t34 - t32 * (s6 * t27 - c6 * t35);  // MZ6
   h[54] = 0.5f * dq[5] * dq[5];  // Ia6
 }
 

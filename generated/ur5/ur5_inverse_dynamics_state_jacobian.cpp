@@ -4,7 +4,7 @@
 // The generated code belongs to the owner of the robot description.
 //
 // Function                              mul    add  sin/cos
-// inverse_dynamics_state_jacobian      1998   1919       10
+// inverse_dynamics_state_jacobian      1998   1917       10
 #include "ur5.hpp"
 
 #include <cmath>
@@ -796,10 +796,10 @@ void inverse_dynamics_state_jacobian(const double* q, const double* dq, const do
   const double t751 = dq[5] * s6 - t401;
   const double t752 = t748 - t749 + beta[53] * t750 - beta[52] * t751;
   const double t753 = beta[49] * s6;
-  const double t754 = beta[48] * s6 - beta[51] * c6;
-  const double t755 = t425 + t753 * t38 - t754 * t35 + beta[47] * t750 + beta[49] * t751 + c6 * t135;
+  const double t754 = beta[51] * c6 - beta[48] * s6;
+  const double t755 = t425 + t753 * t38 + t754 * t35 + beta[47] * t750 + beta[49] * t751 + c6 * t135;
   const double t756 = beta[47] * s6 - beta[49] * c6;
-  const double t757 = t430 - t756 * t38 - t754 * t41 + beta[49] * t750 + s6 * t135;
+  const double t757 = t430 - t756 * t38 + t754 * t41 + beta[49] * t750 + s6 * t135;
   const double t758 = t88 + t89 - t423 - beta[40] * t32 + t90 + 0.09465 * t752 + c6 * t755 + s6 * t757;
   const double t759 = beta[52] * c6 + beta[53] * s6;
   const double t760 = t400 + t759 * t35 + c6 * t54;
@@ -948,7 +948,7 @@ void inverse_dynamics_state_jacobian(const double* q, const double* dq, const do
   const double t897 = t691 - c5 * t891;
   const double t898 = beta[40] - c6 * t753 + s6 * t756;
   const double t899 = t898 + 0.093 * t892;
-  const double t900 = beta[39] - t754;
+  const double t900 = beta[39] + t754;
   const double t901 = beta[38] - s6 * t753 - 0.09465 * t759 - c6 * t756;
   const double t902 = s5 * t900 - c5 * t901;
   const double t903 = 0.39225 * t897 + c4 * t899 + s4 * t902;
@@ -960,7 +960,7 @@ void inverse_dynamics_state_jacobian(const double* q, const double* dq, const do
   const double t908 = s4 * t759 + c4 * t907;
   const double t909 = c4 * t759 - s4 * t907;
   const double t910 = c3 * t908 + s3 * t909;
-  const double t911 = t754 - 0.093 * t907;
+  const double t911 = -0.093 * t907 - t754;
   const double t912 = beta[48] * c6 + beta[51] * s6;
   const double t913 = beta[50] - 0.09465 * t905;
   const double t914 = 0.093 * t759 - c5 * t912 + s5 * t913;
@@ -1085,7 +1085,7 @@ void inverse_dynamics_state_jacobian(const double* q, const double* dq, const do
   J[86] = t870;
   J[87] = t885;
   J[88] = beta[43] + t898;
-  J[89] = -t754;
+  J[89] = t754;
   J[91] = t201;
   J[92] = t376;
   J[93] = t395;
@@ -1101,7 +1101,7 @@ void inverse_dynamics_state_jacobian(const double* q, const double* dq, const do
   J[103] = t859;
   J[104] = t874;
   J[105] = t882;
-  J[106] = -t754;
+  J[106] = t754;
   J[107] = beta[50] + beta[54];
 }
 
@@ -1889,10 +1889,10 @@ void inverse_dynamics_state_jacobian(const float* q, const float* dq, const floa
   const float t751 = dq[5] * s6 - t401;
   const float t752 = t748 - t749 + beta[53] * t750 - beta[52] * t751;
   const float t753 = beta[49] * s6;
-  const float t754 = beta[48] * s6 - beta[51] * c6;
-  const float t755 = t425 + t753 * t38 - t754 * t35 + beta[47] * t750 + beta[49] * t751 + c6 * t135;
+  const float t754 = beta[51] * c6 - beta[48] * s6;
+  const float t755 = t425 + t753 * t38 + t754 * t35 + beta[47] * t750 + beta[49] * t751 + c6 * t135;
   const float t756 = beta[47] * s6 - beta[49] * c6;
-  const float t757 = t430 - t756 * t38 - t754 * t41 + beta[49] * t750 + s6 * t135;
+  const float t757 = t430 - t756 * t38 + t754 * t41 + beta[49] * t750 + s6 * t135;
   const float t758 = t88 + t89 - t423 - beta[40] * t32 + t90 + 0.09465f * t752 + c6 * t755 + s6 * t757;
   const float t759 = beta[52] * c6 + beta[53] * s6;
   const float t760 = t400 + t759 * t35 + c6 * t54;
@@ -2041,7 +2041,7 @@ void inverse_dynamics_state_jacobian(const float* q, const float* dq, const floa
   const float t897 = t691 - c5 * t891;
   const float t898 = beta[40] - c6 * t753 + s6 * t756;
   const float t899 = t898 + 0.093f * t892;
-  const float t900 = beta[39] - t754;
+  const float t900 = beta[39] + t754;
   const float t901 = beta[38] - s6 * t753 - 0.09465f * t759 - c6 * t756;
   const float t902 = s5 * t900 - c5 * t901;
   const float t903 = 0.39225f * t897 + c4 * t899 + s4 * t902;
@@ -2053,7 +2053,7 @@ void inverse_dynamics_state_jacobian(const float* q, const float* dq, const floa
   const float t908 = s4 * t759 + c4 * t907;
   const float t909 = c4 * t759 - s4 * t907;
   const float t910 = c3 * t908 + s3 * t909;
-  const float t911 = t754 - 0.093f * t907;
+  const float t911 = -0.093f * t907 - t754;
   const float t912 = beta[48] * c6 + beta[51] * s6;
   const float t913 = beta[50] - 0.09465f * t905;
   const float t914 = 0.093f * t759 - c5 * t912 + s5 * t913;
@@ -2178,7 +2178,7 @@ void inverse_dynamics_state_jacobian(const float* q, const float* dq, const floa
   J[86] = t870;
   J[87] = t885;
   J[88] = beta[43] + t898;
-  J[89] = -t754;
+  J[89] = t754;
   J[91] = t201;
   J[92] = t376;
   J[93] = t395;
@@ -2194,7 +2194,7 @@ void inverse_dynamics_state_jacobian(const float* q, const float* dq, const floa
   J[103] = t859;
   J[104] = t874;
   J[105] = t882;
-  J[106] = -t754;
+  J[106] = t754;
   J[107] = beta[50] + beta[54];
 }
 

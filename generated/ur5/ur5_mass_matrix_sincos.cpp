@@ -4,7 +4,7 @@
 // The generated code belongs to the owner of the robot description.
 //
 // Function                              mul    add  sin/cos
-// mass_matrix_sincos                    387    317        0
+// mass_matrix_sincos                    387    307        0
 #include "ur5.hpp"
 
 namespace modelgen {
@@ -145,8 +145,8 @@ void mass_matrix_sincos(const double* q, const double* sin_q, const double* cos_
   const double t114 = c4 * t112 - s4 * t111;
   const double t115 = s3 * t51 + c3 * t53;
   const double t116 = c3 * t51 - s3 * t53;
-  const double t117 = 0.13585 * (c2 * t115 + s2 * t116) - c2 * (s3 * t113 - c3 * t114 + 0.1197 * t115) - s2 * (c3 * t113 + s3 * t114 + 0.1197 * t116);
-  M[3] = -t117;
+  const double t117 = c2 * (s3 * t113 - c3 * t114 + 0.1197 * t115) - 0.13585 * (c2 * t115 + s2 * t116) + s2 * (c3 * t113 + s3 * t114 + 0.1197 * t116);
+  M[3] = t117;
   const double t118 = beta[52] * c6 + beta[53] * s6;
   const double t119 = beta[41] + t118;
   const double t120 = beta[42] * c5 + s5 * t119;
@@ -159,8 +159,8 @@ void mass_matrix_sincos(const double* q, const double* sin_q, const double* cos_
   const double t127 = beta[47] * s6 - beta[49] * c6;
   const double t128 = beta[40] - c6 * t126 + s6 * t127;
   const double t129 = t128 + 0.093 * t120;
-  const double t130 = beta[48] * s6 - beta[51] * c6;
-  const double t131 = beta[39] - t130;
+  const double t130 = beta[51] * c6 - beta[48] * s6;
+  const double t131 = beta[39] + t130;
   const double t132 = beta[38] - s6 * t126 - 0.09465 * t118 - c6 * t127;
   const double t133 = s5 * t131 - c5 * t132;
   const double t134 = 0.39225 * t125 + c4 * t129 + s4 * t133;
@@ -173,15 +173,15 @@ void mass_matrix_sincos(const double* q, const double* sin_q, const double* cos_
   const double t140 = s4 * t118 + c4 * t139;
   const double t141 = c4 * t118 - s4 * t139;
   const double t142 = c3 * t140 + s3 * t141;
-  const double t143 = t130 - 0.093 * t139;
+  const double t143 = -0.093 * t139 - t130;
   const double t144 = beta[48] * c6 + beta[51] * s6;
   const double t145 = beta[50] - 0.09465 * t137;
   const double t146 = 0.093 * t118 - c5 * t144 + s5 * t145;
   const double t147 = 0.39225 * t138 - c4 * t143 + s4 * t146;
   const double t148 = s4 * t143 + c4 * t146;
   const double t149 = s3 * t140 - c3 * t141;
-  const double t150 = c2 * (0.425 * t138 - 0.1197 * t142 + c3 * t147 + s3 * t148) + 0.13585 * (c2 * t142 - s2 * t149) + s2 * (0.1197 * t149 + c3 * t148 - s3 * t147);
-  M[5] = -t150;
+  const double t150 = -0.13585 * (c2 * t142 - s2 * t149) - c2 * (0.425 * t138 - 0.1197 * t142 + c3 * t147 + s3 * t148) - s2 * (0.1197 * t149 + c3 * t148 - s3 * t147);
+  M[5] = t150;
   M[6] = t93;
   const double t151 = 0.425 * t56;
   const double t152 = -0.39225 * t51;
@@ -198,16 +198,16 @@ void mass_matrix_sincos(const double* q, const double* sin_q, const double* cos_
   const double t160 = t159 + 0.425 * t123;
   M[10] = t160;
   const double t161 = s5 * t144 + c5 * t145;
-  const double t162 = 0.39225 * t141 - t161;
-  const double t163 = t162 - 0.425 * t149;
-  M[11] = -t163;
+  const double t162 = t161 - 0.39225 * t141;
+  const double t163 = t162 + 0.425 * t149;
+  M[11] = t163;
   M[12] = t106;
   M[13] = t154;
   M[14] = beta[21] + t153;
   M[15] = t156;
   M[16] = t159;
-  M[17] = -t162;
-  M[18] = -t117;
+  M[17] = t162;
+  M[18] = t117;
   M[19] = t157;
   M[20] = t156;
   M[21] = beta[32] + t155;
@@ -218,12 +218,12 @@ void mass_matrix_sincos(const double* q, const double* sin_q, const double* cos_
   M[26] = t159;
   M[27] = t158;
   M[28] = beta[43] + t128;
-  M[29] = -t130;
-  M[30] = -t150;
-  M[31] = -t163;
-  M[32] = -t162;
+  M[29] = t130;
+  M[30] = t150;
+  M[31] = t163;
+  M[32] = t162;
   M[33] = t161;
-  M[34] = -t130;
+  M[34] = t130;
   M[35] = beta[50] + beta[54];
 }
 
@@ -362,8 +362,8 @@ void mass_matrix_sincos(const float* q, const float* sin_q, const float* cos_q, 
   const float t114 = c4 * t112 - s4 * t111;
   const float t115 = s3 * t51 + c3 * t53;
   const float t116 = c3 * t51 - s3 * t53;
-  const float t117 = 0.13585f * (c2 * t115 + s2 * t116) - c2 * (s3 * t113 - c3 * t114 + 0.1197f * t115) - s2 * (c3 * t113 + s3 * t114 + 0.1197f * t116);
-  M[3] = -t117;
+  const float t117 = c2 * (s3 * t113 - c3 * t114 + 0.1197f * t115) - 0.13585f * (c2 * t115 + s2 * t116) + s2 * (c3 * t113 + s3 * t114 + 0.1197f * t116);
+  M[3] = t117;
   const float t118 = beta[52] * c6 + beta[53] * s6;
   const float t119 = beta[41] + t118;
   const float t120 = beta[42] * c5 + s5 * t119;
@@ -376,8 +376,8 @@ void mass_matrix_sincos(const float* q, const float* sin_q, const float* cos_q, 
   const float t127 = beta[47] * s6 - beta[49] * c6;
   const float t128 = beta[40] - c6 * t126 + s6 * t127;
   const float t129 = t128 + 0.093f * t120;
-  const float t130 = beta[48] * s6 - beta[51] * c6;
-  const float t131 = beta[39] - t130;
+  const float t130 = beta[51] * c6 - beta[48] * s6;
+  const float t131 = beta[39] + t130;
   const float t132 = beta[38] - s6 * t126 - 0.09465f * t118 - c6 * t127;
   const float t133 = s5 * t131 - c5 * t132;
   const float t134 = 0.39225f * t125 + c4 * t129 + s4 * t133;
@@ -390,15 +390,15 @@ void mass_matrix_sincos(const float* q, const float* sin_q, const float* cos_q, 
   const float t140 = s4 * t118 + c4 * t139;
   const float t141 = c4 * t118 - s4 * t139;
   const float t142 = c3 * t140 + s3 * t141;
-  const float t143 = t130 - 0.093f * t139;
+  const float t143 = -0.093f * t139 - t130;
   const float t144 = beta[48] * c6 + beta[51] * s6;
   const float t145 = beta[50] - 0.09465f * t137;
   const float t146 = 0.093f * t118 - c5 * t144 + s5 * t145;
   const float t147 = 0.39225f * t138 - c4 * t143 + s4 * t146;
   const float t148 = s4 * t143 + c4 * t146;
   const float t149 = s3 * t140 - c3 * t141;
-  const float t150 = c2 * (0.425f * t138 - 0.1197f * t142 + c3 * t147 + s3 * t148) + 0.13585f * (c2 * t142 - s2 * t149) + s2 * (0.1197f * t149 + c3 * t148 - s3 * t147);
-  M[5] = -t150;
+  const float t150 = -0.13585f * (c2 * t142 - s2 * t149) - c2 * (0.425f * t138 - 0.1197f * t142 + c3 * t147 + s3 * t148) - s2 * (0.1197f * t149 + c3 * t148 - s3 * t147);
+  M[5] = t150;
   M[6] = t93;
   const float t151 = 0.425f * t56;
   const float t152 = -0.39225f * t51;
@@ -415,16 +415,16 @@ void mass_matrix_sincos(const float* q, const float* sin_q, const float* cos_q, 
   const float t160 = t159 + 0.425f * t123;
   M[10] = t160;
   const float t161 = s5 * t144 + c5 * t145;
-  const float t162 = 0.39225f * t141 - t161;
-  const float t163 = t162 - 0.425f * t149;
-  M[11] = -t163;
+  const float t162 = t161 - 0.39225f * t141;
+  const float t163 = t162 + 0.425f * t149;
+  M[11] = t163;
   M[12] = t106;
   M[13] = t154;
   M[14] = beta[21] + t153;
   M[15] = t156;
   M[16] = t159;
-  M[17] = -t162;
-  M[18] = -t117;
+  M[17] = t162;
+  M[18] = t117;
   M[19] = t157;
   M[20] = t156;
   M[21] = beta[32] + t155;
@@ -435,12 +435,12 @@ void mass_matrix_sincos(const float* q, const float* sin_q, const float* cos_q, 
   M[26] = t159;
   M[27] = t158;
   M[28] = beta[43] + t128;
-  M[29] = -t130;
-  M[30] = -t150;
-  M[31] = -t163;
-  M[32] = -t162;
+  M[29] = t130;
+  M[30] = t150;
+  M[31] = t163;
+  M[32] = t162;
   M[33] = t161;
-  M[34] = -t130;
+  M[34] = t130;
   M[35] = beta[50] + beta[54];
 }
 

@@ -2,7 +2,9 @@
 // parent (or output) uses it; single-use nodes are printed inline in their parent. Temporaries
 // are numbered in emission order, which is a depth-first walk of the outputs in output order
 // and of each node's arguments in their canonical order (ExprGraph::canonical_before): a
-// function of the input only.
+// function of the input only. A temporary that is a sum may hold its negation, at no cost,
+// when more outputs print it negated than not (the drive Jacobian's -Y[k] * t6 entries become
+// Y[k] * t6): every reference to it then carries the sign.
 
 #include "generator/emit/statement_writer.hpp"
 
@@ -33,11 +35,19 @@ class StatementWriter {
         trig_(trig),
         uses_(graph.size(), 0),
         temporary_(graph.size(), 0),
+        flipped_(graph.size(), 0),
+        negative_votes_(graph.size(), 0),
         prepared_(graph.size(), false),
         symbol_used_(graph.symbols().size(), false) {}
 
   FunctionBody write(const std::vector<FunctionOutput>& outputs) {
     count_uses(outputs);
+    for (const FunctionOutput& out : outputs) {
+      if (!g_.is_zero(out.value)) vote(out.value, false);
+    }
+    for (ExprId id : reachable_) {
+      if (becomes_temporary(id)) vote_body(id, false);
+    }
     std::vector<std::string> body;
     for (const FunctionOutput& out : outputs) {
       if (g_.is_zero(out.value)) continue;  // zero for every input: the caller zeroes it once
@@ -88,6 +98,36 @@ class StatementWriter {
     return id;
   }
 
+  // Whether prepare() will make `id` a temporary (uses_ counted).
+  bool becomes_temporary(ExprId id) const {
+    return g_.node(id).op == Op::kSign ||
+           (uses_[id] >= 2 && is_operation(id) && negated(id) == id);
+  }
+
+  // The vote of one printed value (an output or a temporary's definition) for the sign of the
+  // temporaries it multiplies with a coefficient of +-1 (a coefficient of another size prints
+  // its sign for free, and so does a sum): `negative` when it prints them negated.
+  // negative_votes_[t] is the number of negated prints of t minus the others.
+  void vote(ExprId id, bool negative) {
+    if (becomes_temporary(id)) {
+      negative_votes_[id] += negative ? 1 : -1;
+      return;
+    }
+    vote_body(id, negative);
+  }
+  void vote_body(ExprId id, bool negative) {
+    const Node& n = g_.node(id);
+    if (n.op == Op::kShare) {
+      vote(n.args[0], negative);
+    } else if (n.op == Op::kMul) {
+      const double c = coefficient(n);
+      if (std::abs(c) != 1.0) return;
+      for (ExprId arg : n.args) {
+        if (!g_.is_constant(arg)) vote(arg, negative != (c < 0));
+      }
+    }
+  }
+
   void count_uses(const std::vector<FunctionOutput>& outputs) {
     std::vector<bool> visited(g_.size(), false);
     std::vector<ExprId> stack;
@@ -104,6 +144,7 @@ class StatementWriter {
       stack.pop_back();
       if (visited[id]) continue;
       visited[id] = true;
+      reachable_.push_back(id);
       for (ExprId arg : g_.node(id).args) {
         use(arg);
         // A sign reads its argument twice ((x > 0) - (x < 0)): make it a temporary.
@@ -138,11 +179,24 @@ class StatementWriter {
     }
     if (n.op == Op::kShare && named(n.args[0])) {
       temporary_[id] = temporary_[n.args[0]];  // already a temporary: no copy
+      flipped_[id] = flipped_[n.args[0]];
       return;
     }
     if (uses_[id] >= 2) {
-      const std::string value = expression(id, Context::kTop);
+      // A sum prints negated for free (its terms' signs flip), but for a leading negation
+      // when all its terms are positive: flip on a net vote of two.
+      const bool flip = negative_votes_[id] >= 2 && g_.node(resolve(id)).op == Op::kAdd;
+      std::string value;
+      if (flip) {
+        std::vector<Term> terms;
+        collect_terms(id, true, terms);
+        group_coefficients(terms);
+        value = join(std::move(terms));
+      } else {
+        value = expression(id, Context::kTop);
+      }
       temporary_[id] = ++temporaries_;
+      flipped_[id] = flip ? 1 : 0;
       body.push_back(render_statement(
           "statements/temporary",
           {{"scalar", scalar_name(scalar_)}, {"name", name(id)}, {"value", value}}));
@@ -180,21 +234,41 @@ class StatementWriter {
     }
   }
 
-  std::string product(const Node& n, double coefficient) {
+  // The factors of a product after its coefficient, joined by " * ". A flipped temporary
+  // among them (or among the factors of an inline product among them) prints as its name and
+  // toggles `negative`: the caller prints the sign.
+  std::string factors(const Node& n, bool& negative) {
     std::string out;
-    std::size_t first = g_.is_constant(n.args[0]) ? 1 : 0;
-    if (coefficient != 1.0) {
-      out = format_literal(coefficient, scalar_);
-      ++counts_.mul;
-    }
+    const std::size_t first = g_.is_constant(n.args[0]) ? 1 : 0;
     for (std::size_t i = first; i < n.args.size(); ++i) {
-      if (!out.empty()) {
+      if (i > first) {
         out += " * ";
-        if (i > first) ++counts_.mul;
+        ++counts_.mul;
       }
-      out += expression(n.args[i], Context::kFactor);
+      const ExprId factor = resolve(n.args[i]);
+      const Node& f = g_.node(factor);
+      if (named(factor)) {
+        if (flipped_[factor]) negative = !negative;
+        out += name(factor);
+      } else if (f.op == Op::kMul && !g_.is_constant(f.args[0])) {
+        out += factors(f, negative);
+      } else {
+        out += expression(factor, Context::kFactor);
+      }
     }
     return out;
+  }
+
+  // A product with coefficient c (its own, or -c when its factors say so) and factors `body`.
+  std::string product_text(double c, const std::string& body, Context context) {
+    if (c == 1.0) return body;
+    if (c == -1.0) {
+      ++counts_.add;  // negation
+      return context == Context::kFactor ? "(-" + body + ")" : "-" + body;
+    }
+    ++counts_.mul;
+    const std::string text = format_literal(c, scalar_) + " * " + body;
+    return c < 0 && context == Context::kFactor ? "(" + text + ")" : text;
   }
 
   // The constant coefficient of a product (1 when it has none).
@@ -234,12 +308,16 @@ class StatementWriter {
       term.negative = (n.value < 0) != negate;
       term.rest = format_literal(std::abs(n.value), scalar_);
       term.literal_sign = true;
-    } else if (inline_node && n.op == Op::kMul && g_.is_constant(n.args[0])) {
+    } else if (inline_node && n.op == Op::kMul) {
       const double c = coefficient(n);
-      term.negative = (c < 0) != negate;
+      bool flip = false;
+      term.rest = factors(n, flip);
+      term.negative = ((c < 0) != negate) != flip;
       term.coefficient = std::abs(c);
-      term.rest = product(n, 1.0);
       term.literal_sign = std::abs(c) != 1.0;
+    } else if (!inline_node) {
+      term.negative = negate != (flipped_[id] != 0);
+      term.rest = name(id);
     } else {
       term.rest = expression(id, Context::kTop);
     }
@@ -323,10 +401,16 @@ class StatementWriter {
     return join(std::move(terms));
   }
 
+  // A temporary where its value is read: a flipped one is negated.
+  std::string reference(ExprId id, Context context) {
+    if (!flipped_[id]) return name(id);
+    ++counts_.add;  // negation
+    return context == Context::kFactor ? "(-" + name(id) + ")" : "-" + name(id);
+  }
+
   std::string expression(ExprId id, Context context) {
-    if (named(id)) return name(id);
     id = resolve(id);
-    if (named(id)) return name(id);
+    if (named(id)) return reference(id, context);
     const Node& n = g_.node(id);
     switch (n.op) {
       case Op::kConstant: {
@@ -344,13 +428,10 @@ class StatementWriter {
             return context == Context::kFactor ? "(" + out + ")" : out;
           }
         }
-        if (c == -1.0) {
-          ++counts_.add;  // negation
-          const std::string magnitude = product(n, 1.0);
-          return context == Context::kFactor ? "(-" + magnitude + ")" : "-" + magnitude;
-        }
-        const std::string text = product(n, c);  // a negative coefficient is a literal's sign
-        return c < 0 && context == Context::kFactor ? "(" + text + ")" : text;
+        bool flip = false;
+        const std::string body = factors(n, flip);
+        // A negative coefficient other than -1 is a literal's sign.
+        return product_text(flip ? -c : c, body, context);
       }
       case Op::kAdd: {
         const std::string out = sum(id);
@@ -380,6 +461,9 @@ class StatementWriter {
   // Per node: 0, or k + 1 when it is the temporary t<k> (a number, not a string per node of
   // the graph: the writer runs once per function and scalar type).
   std::vector<int> temporary_;
+  std::vector<ExprId> reachable_;     // the nodes the outputs use
+  std::vector<char> flipped_;         // per node: the temporary holds the negated value
+  std::vector<int> negative_votes_;   // per node: outputs printing it negated minus the others
   std::vector<bool> prepared_;
   std::vector<bool> symbol_used_;
   int temporaries_ = 0;
