@@ -2,9 +2,11 @@
 // parent (or output) uses it; single-use nodes are printed inline in their parent. Temporaries
 // are numbered in emission order, which is a depth-first walk of the outputs in output order
 // and of each node's arguments in their canonical order (ExprGraph::canonical_before): a
-// function of the input only. A temporary that is a sum may hold its negation, at no cost,
-// when more outputs print it negated than not (the drive Jacobian's -Y[k] * t6 entries become
-// Y[k] * t6): every reference to it then carries the sign.
+// function of the input only. A temporary that is a sum holds its negation when the values
+// printed from it (outputs and other temporaries) read it negated, through a coefficient of -1,
+// at least twice more often than not (the drive Jacobian's -Y[k] * t6 entries become
+// Y[k] * t6): every reference to it then carries the sign, and the sum costs at most one
+// leading negation more.
 
 #include "generator/emit/statement_writer.hpp"
 
@@ -36,6 +38,7 @@ class StatementWriter {
         uses_(graph.size(), 0),
         temporary_(graph.size(), 0),
         flipped_(graph.size(), 0),
+        keep_sign_(graph.size(), 0),
         negative_votes_(graph.size(), 0),
         prepared_(graph.size(), false),
         symbol_used_(graph.symbols().size(), false) {}
@@ -79,7 +82,8 @@ class StatementWriter {
   }
 
   // x for a negation -x (a product of -1 and one factor), else `id` itself. A negation is
-  // never a temporary: its uses count as uses of x, and each prints as a subtraction.
+  // never a temporary: its uses count as uses of x, and each prints as a subtraction (or, for
+  // a flipped temporary x, as x's name).
   ExprId negated(ExprId id) const {
     const Node& n = g_.node(id);
     if (n.op == Op::kMul && n.args.size() == 2 && g_.is_constant(n.args[0]) &&
@@ -98,16 +102,19 @@ class StatementWriter {
     return id;
   }
 
-  // Whether prepare() will make `id` a temporary (uses_ counted).
+  // Whether prepare() will make `id` a temporary of its own (uses_ counted): not a share of
+  // a temporary, which only names its argument.
   bool becomes_temporary(ExprId id) const {
-    return g_.node(id).op == Op::kSign ||
-           (uses_[id] >= 2 && is_operation(id) && negated(id) == id);
+    const Node& n = g_.node(id);
+    if (n.op == Op::kSign) return true;
+    if (uses_[id] < 2 || !is_operation(id) || negated(id) != id) return false;
+    return n.op != Op::kShare || !becomes_temporary(n.args[0]);
   }
 
   // The vote of one printed value (an output or a temporary's definition) for the sign of the
   // temporaries it multiplies with a coefficient of +-1 (a coefficient of another size prints
   // its sign for free, and so does a sum): `negative` when it prints them negated.
-  // negative_votes_[t] is the number of negated prints of t minus the others.
+  // negative_votes_[t] counts the negated reads of t minus the others.
   void vote(ExprId id, bool negative) {
     if (becomes_temporary(id)) {
       negative_votes_[id] += negative ? 1 : -1;
@@ -149,6 +156,10 @@ class StatementWriter {
         use(arg);
         // A sign reads its argument twice ((x > 0) - (x < 0)): make it a temporary.
         if (g_.node(id).op == Op::kSign) ++uses_[negated(arg)];
+        // A sign or a reciprocal of a flipped temporary would pay for its negation.
+        if (g_.node(id).op == Op::kSign || g_.node(id).op == Op::kInv) {
+          keep_sign_[negated(arg)] = 1;
+        }
       }
     }
   }
@@ -185,7 +196,8 @@ class StatementWriter {
     if (uses_[id] >= 2) {
       // A sum prints negated for free (its terms' signs flip), but for a leading negation
       // when all its terms are positive: flip on a net vote of two.
-      const bool flip = negative_votes_[id] >= 2 && g_.node(resolve(id)).op == Op::kAdd;
+      const bool flip = negative_votes_[id] >= 2 && !keep_sign_[id] &&
+                        g_.node(resolve(id)).op == Op::kAdd;
       std::string value;
       if (flip) {
         std::vector<Term> terms;
@@ -463,7 +475,8 @@ class StatementWriter {
   std::vector<int> temporary_;
   std::vector<ExprId> reachable_;     // the nodes the outputs use
   std::vector<char> flipped_;         // per node: the temporary holds the negated value
-  std::vector<int> negative_votes_;   // per node: outputs printing it negated minus the others
+  std::vector<char> keep_sign_;       // per node: read by a sign or a reciprocal, never flipped
+  std::vector<int> negative_votes_;   // per node: negated reads minus the others (vote())
   std::vector<bool> prepared_;
   std::vector<bool> symbol_used_;
   int temporaries_ = 0;

@@ -114,7 +114,7 @@ class ExprGraph {
   static bool same_structure(const Node& a, const Node& b);
   // Hash-consing: the existing node of this structure, or the node added.
   ExprId intern(Node node);
-  // Doubles the open-addressing table and re-inserts every node.
+  // Grows the open-addressing table (1024 slots, then doubling) and re-inserts every node.
   void grow_index();
   void sort_canonical(std::vector<ExprId>& ids) const;
   // Splits a term into its constant coefficient and the rest (1 for a constant).

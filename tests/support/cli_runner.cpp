@@ -43,11 +43,13 @@ std::string current_test_name() {
 }
 
 /// Removes the folders test_folder handed out when the test process ends: their names carry the
-/// process id, so nothing else would ever reuse or remove them.
+/// process id, so nothing else would ever reuse or remove them. Only in that process: a forked
+/// child (a death test) that exits must not remove its parent's folders.
 class FolderJanitor {
  public:
-  void keep_until_exit(const fs::path& dir) { folders_.push_back(dir); }
+  void remove_at_exit(const fs::path& dir) { folders_.push_back(dir); }
   ~FolderJanitor() {
+    if (::getpid() != owner_) return;
     for (const fs::path& dir : folders_) {
       std::error_code ignored;
       fs::remove_all(dir, ignored);
@@ -56,6 +58,7 @@ class FolderJanitor {
 
  private:
   std::vector<fs::path> folders_;
+  const pid_t owner_ = ::getpid();
 };
 
 FolderJanitor& janitor() {
@@ -131,7 +134,7 @@ fs::path test_folder(std::string_view prefix) {
                                                        std::to_string(::getpid()));
   fs::remove_all(dir);
   fs::create_directories(dir);
-  janitor().keep_until_exit(dir);
+  janitor().remove_at_exit(dir);
   return dir;
 }
 

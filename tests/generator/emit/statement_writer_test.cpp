@@ -158,6 +158,42 @@ TEST_F(StatementWriterTest, SharedIntermediateUsedTwiceIsComputedOnce) {
   EXPECT_EQ(body.counts.trig, 2);
 }
 
+TEST_F(StatementWriterTest, ASumReadNegatedMostlyIsStoredNegated) {
+  // Three outputs read the shared sum through a coefficient of -1: storing -(p[0] + s1) costs
+  // one leading negation and saves three.
+  const ExprId sum = g.share(g.add(p0, s1));
+  const FunctionBody body = write_statements(g,
+                                             {{"W[0]", g.neg(g.mul(q0, sum)), ""},
+                                              {"W[1]", g.neg(g.mul(p2, sum)), ""},
+                                              {"W[2]", g.neg(g.mul(c1, sum)), ""}},
+                                             Scalar::kDouble);
+  EXPECT_EQ(body.lines, (Lines{
+                            "const double s1 = std::sin(q[0]);",
+                            "const double c1 = std::cos(q[0]);",
+                            "const double t0 = -p[0] - s1;",
+                            "W[0] = q[0] * t0;",
+                            "W[1] = p[2] * t0;",
+                            "W[2] = c1 * t0;",
+                        }));
+  EXPECT_EQ(body.counts.mul, 3);
+  EXPECT_EQ(body.counts.add, 2);
+}
+
+TEST_F(StatementWriterTest, ASumWhoseSignIsTakenIsNotStoredNegated) {
+  // sign(-t) would print its negation twice.
+  const ExprId sum = g.share(g.add(p0, s1));
+  const FunctionBody body = write_statements(g,
+                                             {{"W[0]", g.neg(g.mul(q0, sum)), ""},
+                                              {"W[1]", g.neg(g.mul(p2, sum)), ""},
+                                              {"W[2]", g.neg(g.mul(c1, sum)), ""},
+                                              {"W[3]", g.sign(sum), ""}},
+                                             Scalar::kDouble);
+  EXPECT_NE(std::find(body.lines.begin(), body.lines.end(), "const double t0 = p[0] + s1;"),
+            body.lines.end());
+  EXPECT_NE(std::find(body.lines.begin(), body.lines.end(), "W[0] = -q[0] * t0;"),
+            body.lines.end());
+}
+
 TEST_F(StatementWriterTest, TemporariesAreNumberedInEmissionOrder) {
   const ExprId first_built = g.add(p0, p1);
   const ExprId second_built = g.add(p1, p2);
