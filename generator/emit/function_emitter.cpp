@@ -127,7 +127,8 @@ std::vector<UnwrittenEntries> unwritten_entries(const Built& built, const ExprGr
 
 // The entry point of `built` (plain or _sincos) with its statements for every scalar type.
 EmittedFunction emit(const Built& built, bool sincos, const ExprGraph& graph,
-                     const std::vector<Scalar>& scalars, const ModelSizes& sizes) {
+                     const std::vector<Scalar>& scalars, const ModelSizes& sizes,
+                     WriterWorkspace& workspace) {
   EmittedFunction function;
   function.name = EntryPoint{built.entry, sincos}.name();
   function.entry = built.entry;
@@ -146,7 +147,8 @@ EmittedFunction emit(const Built& built, bool sincos, const ExprGraph& graph,
   function.unwritten = unwritten_entries(built, graph, sizes);
   for (Scalar scalar : scalars) {
     FunctionBody body = write_statements(graph, definition.outputs, scalar,
-                                         sincos ? TrigSource::kGiven : TrigSource::kCompute);
+                                         sincos ? TrigSource::kGiven : TrigSource::kCompute,
+                                         workspace);
     if (definition.prologue) {
       std::vector<std::string> lines = definition.prologue(scalar);
       lines.insert(lines.end(), body.lines.begin(), body.lines.end());
@@ -186,10 +188,11 @@ std::vector<EmittedFunction> emit_functions(const RobotModel& model, const BaseP
   ModelSizes sizes;
   const std::vector<Built> built = run_builders(model, base, graph, scalars, chosen, sizes);
   std::vector<EmittedFunction> functions;
+  WriterWorkspace workspace;
   for (const EntryPoint& point : chosen) {
     const auto b = std::find_if(built.begin(), built.end(),
                                 [&](const Built& item) { return item.entry == point.entry; });
-    functions.push_back(emit(*b, point.sincos, graph, scalars, sizes));
+    functions.push_back(emit(*b, point.sincos, graph, scalars, sizes, workspace));
   }
   add_callee_counts(functions);
   return functions;

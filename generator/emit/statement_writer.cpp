@@ -31,17 +31,30 @@ namespace {
 
 class StatementWriter {
  public:
-  StatementWriter(const ExprGraph& graph, Scalar scalar, TrigSource trig)
+  StatementWriter(const ExprGraph& graph, Scalar scalar, TrigSource trig, WriterWorkspace& workspace)
       : g_(graph),
         scalar_(scalar),
         trig_(trig),
-        uses_(graph.size(), 0),
-        temporary_(graph.size(), 0),
-        flipped_(graph.size(), 0),
-        keep_sign_(graph.size(), 0),
-        negative_votes_(graph.size(), 0),
-        prepared_(graph.size(), false),
+        workspace_(fitted(workspace, graph.size())),
+        uses_(workspace.uses),
+        temporary_(workspace.temporary),
+        flipped_(workspace.flipped),
+        keep_sign_(workspace.keep_sign),
+        negative_votes_(workspace.negative_votes),
+        prepared_(workspace.prepared),
         symbol_used_(graph.symbols().size(), false) {}
+  StatementWriter(const StatementWriter&) = delete;
+  StatementWriter& operator=(const StatementWriter&) = delete;
+  // The touched entries back to zero: the nodes reached from the outputs, and the negations
+  // prepare() passed through, which count their uses on what they negate.
+  ~StatementWriter() {
+    for (const std::vector<ExprId>* ids : {&reachable_, &prepared_list_}) {
+      for (ExprId id : *ids) {
+        uses_[id] = temporary_[id] = negative_votes_[id] = 0;
+        flipped_[id] = keep_sign_[id] = prepared_[id] = workspace_.visited[id] = 0;
+      }
+    }
+  }
 
   FunctionBody write(const std::vector<FunctionOutput>& outputs) {
     count_uses(outputs);
@@ -136,7 +149,7 @@ class StatementWriter {
   }
 
   void count_uses(const std::vector<FunctionOutput>& outputs) {
-    std::vector<bool> visited(g_.size(), false);
+    std::vector<char>& visited = workspace_.visited;
     std::vector<ExprId> stack;
     auto use = [&](ExprId id) {
       id = negated(id);
@@ -167,7 +180,8 @@ class StatementWriter {
   // Emits the temporaries `id` depends on (and `id` itself if it is one), children first.
   void prepare(ExprId id, std::vector<std::string>& body) {
     if (prepared_[id]) return;
-    prepared_[id] = true;
+    prepared_[id] = 1;
+    prepared_list_.push_back(id);
     const Node& n = g_.node(id);
     if (n.op == Op::kSymbol) {
       symbol_used_[n.symbol] = true;
@@ -466,18 +480,24 @@ class StatementWriter {
     return "";
   }
 
+  static WriterWorkspace& fitted(WriterWorkspace& workspace, std::size_t nodes) {
+    workspace.fit(nodes);
+    return workspace;
+  }
+
   const ExprGraph& g_;
   Scalar scalar_;
   TrigSource trig_;
-  std::vector<int> uses_;
-  // Per node: 0, or k + 1 when it is the temporary t<k> (a number, not a string per node of
-  // the graph: the writer runs once per function and scalar type).
-  std::vector<int> temporary_;
-  std::vector<ExprId> reachable_;     // the nodes the outputs use
-  std::vector<char> flipped_;         // per node: the temporary holds the negated value
-  std::vector<char> keep_sign_;       // per node: read by a sign or a reciprocal, never flipped
-  std::vector<int> negative_votes_;   // per node: negated reads minus the others (vote())
-  std::vector<bool> prepared_;
+  WriterWorkspace& workspace_;
+  // Per node, the workspace's arrays (statement_writer.hpp says what each holds).
+  std::vector<int>& uses_;
+  std::vector<int>& temporary_;
+  std::vector<char>& flipped_;
+  std::vector<char>& keep_sign_;
+  std::vector<int>& negative_votes_;
+  std::vector<char>& prepared_;
+  std::vector<ExprId> reachable_;      // the nodes the outputs use
+  std::vector<ExprId> prepared_list_;  // the nodes prepare() marked
   std::vector<bool> symbol_used_;
   int temporaries_ = 0;
   OpCounts counts_;
@@ -485,9 +505,29 @@ class StatementWriter {
 
 }  // namespace
 
+void WriterWorkspace::fit(std::size_t nodes) {
+  if (uses.size() >= nodes) return;
+  for (std::vector<int>* v : {&uses, &temporary, &negative_votes}) v->resize(nodes, 0);
+  for (std::vector<char>* v : {&flipped, &keep_sign, &prepared, &visited}) v->resize(nodes, 0);
+}
+
+bool WriterWorkspace::clear() const {
+  const auto zero = [](const auto& v) {
+    return std::all_of(v.begin(), v.end(), [](auto x) { return x == 0; });
+  };
+  return zero(uses) && zero(temporary) && zero(negative_votes) && zero(flipped) &&
+         zero(keep_sign) && zero(prepared) && zero(visited);
+}
+
+FunctionBody write_statements(const ExprGraph& graph, const std::vector<FunctionOutput>& outputs,
+                              Scalar scalar, TrigSource trig, WriterWorkspace& workspace) {
+  return StatementWriter(graph, scalar, trig, workspace).write(outputs);
+}
+
 FunctionBody write_statements(const ExprGraph& graph, const std::vector<FunctionOutput>& outputs,
                               Scalar scalar, TrigSource trig) {
-  return StatementWriter(graph, scalar, trig).write(outputs);
+  WriterWorkspace workspace;
+  return write_statements(graph, outputs, scalar, trig, workspace);
 }
 
 }  // namespace modelgen::gen

@@ -40,6 +40,29 @@ enum class TrigSource { kCompute, kGiven };
 std::string render_statement(std::string_view template_name,
                              const std::vector<std::pair<const char*, std::string>>& values);
 
+/// The per-node scratch arrays of write_statements, kept between the bodies written on one
+/// graph: a body reaches a small part of the graph, and allocating and clearing arrays the size
+/// of the whole graph for each of the hundred or so bodies of a model was most of the writer's
+/// time. Every entry is zero between calls; a call clears only the entries it touched.
+struct WriterWorkspace {
+  std::vector<int> uses;
+  // 0, or k + 1 when the node is the temporary t<k> (a number, not a string per node).
+  std::vector<int> temporary;
+  std::vector<int> negative_votes;  // negated reads minus the others (the writer's vote())
+  std::vector<char> flipped;        // the temporary holds the negated value
+  std::vector<char> keep_sign;      // read by a sign or a reciprocal, never flipped
+  std::vector<char> prepared;
+  std::vector<char> visited;
+
+  /// Grows every array to `nodes` entries (new ones zero).
+  void fit(std::size_t nodes);
+  /// Whether every entry is zero (for tests of the clearing).
+  bool clear() const;
+};
+
+FunctionBody write_statements(const ExprGraph& graph, const std::vector<FunctionOutput>& outputs,
+                              Scalar scalar, TrigSource trig, WriterWorkspace& workspace);
+/// The same with a workspace of its own.
 FunctionBody write_statements(const ExprGraph& graph, const std::vector<FunctionOutput>& outputs,
                               Scalar scalar, TrigSource trig = TrigSource::kCompute);
 

@@ -4,9 +4,9 @@
 #include "generator/symbolic/expr.hpp"
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cmath>
-#include <map>
 #include <stdexcept>
 
 namespace modelgen::gen {
@@ -14,7 +14,7 @@ namespace modelgen::gen {
 bool ExprGraph::same_structure(const Node& a, const Node& b) {
   return a.op == b.op &&
          std::bit_cast<std::uint64_t>(a.value) == std::bit_cast<std::uint64_t>(b.value) &&
-         a.symbol == b.symbol && a.args == b.args;
+         a.symbol == b.symbol && std::ranges::equal(a.args, b.args);
 }
 
 std::uint64_t ExprGraph::structure_hash(const Node& node) {
@@ -34,12 +34,45 @@ std::uint64_t ExprGraph::structure_hash(const Node& node) {
 }
 
 ExprGraph::ExprGraph() {
+  // Room for a six-axis model's graph (some 34 000 nodes for the TX-40) without reallocation:
+  // each doubling copies the nodes and touches fresh pages, and the pages reserved but never
+  // used cost nothing.
+  nodes_.reserve(std::size_t{1} << 16);
+  hashes_.reserve(std::size_t{1} << 16);
   grow_index();
   zero_ = constant(0.0);
   one_ = constant(1.0);
 }
 
 namespace {
+
+// A list that lives on the stack up to N elements and moves to the heap beyond: the sums and
+// products built here almost always have a few terms, and a heap buffer per call was a large
+// part of generation time.
+template <class T, std::size_t N>
+class StackList {
+ public:
+  void push_back(const T& value) {
+    if (size_ == N) heap_.assign(local_.begin(), local_.end());
+    if (size_ >= N) {
+      heap_.push_back(value);
+    } else {
+      local_[size_] = value;
+    }
+    ++size_;
+  }
+  T* begin() { return size_ > N ? heap_.data() : local_.data(); }
+  T* end() { return begin() + size_; }
+  std::size_t size() const { return size_; }
+  bool empty() const { return size_ == 0; }
+  T& operator[](std::size_t k) { return begin()[k]; }
+  std::span<T> span() { return {begin(), size_}; }
+
+ private:
+  std::array<T, N> local_;
+  std::vector<T> heap_;
+  std::size_t size_ = 0;
+};
 
 int kind_rank(Op op) {
   if (op == Op::kConstant) return 0;
@@ -65,7 +98,7 @@ bool ExprGraph::canonical_before(ExprId a, ExprId b) const {
   return x.args.size() < y.args.size();
 }
 
-void ExprGraph::sort_canonical(std::vector<ExprId>& ids) const {
+void ExprGraph::sort_canonical(std::span<ExprId> ids) const {
   std::sort(ids.begin(), ids.end(),
             [this](ExprId a, ExprId b) { return canonical_before(a, b); });
 }
@@ -80,8 +113,9 @@ ExprId ExprGraph::intern(Node node) {
   }
   node.height = 0;
   for (ExprId a : node.args) node.height = std::max(node.height, nodes_[a].height + 1);
+  node.args = store_args(node.args);
   const ExprId id = static_cast<ExprId>(nodes_.size());
-  nodes_.push_back(std::move(node));
+  nodes_.push_back(node);
   hashes_.push_back(hash);
   if (2 * nodes_.size() > slots_.size()) {
     grow_index();  // re-inserts id too
@@ -89,6 +123,19 @@ ExprId ExprGraph::intern(Node node) {
     slots_[slot] = id;
   }
   return id;
+}
+
+std::span<const ExprId> ExprGraph::store_args(std::span<const ExprId> args) {
+  if (args.empty()) return {};
+  if (arg_block_used_ + args.size() > arg_block_size_) {
+    arg_block_size_ = std::max<std::size_t>(std::size_t{1} << 16, args.size());
+    arg_blocks_.push_back(std::make_unique<ExprId[]>(arg_block_size_));
+    arg_block_used_ = 0;
+  }
+  ExprId* out = arg_blocks_.back().get() + arg_block_used_;
+  std::copy(args.begin(), args.end(), out);
+  arg_block_used_ += args.size();
+  return {out, args.size()};
 }
 
 void ExprGraph::grow_index() {
@@ -128,57 +175,74 @@ std::pair<double, ExprId> ExprGraph::split_coefficient(ExprId id) {
   if (n.args.size() == 2) return {coefficient, n.args[1]};
   Node rest;
   rest.op = Op::kMul;
-  rest.args.assign(n.args.begin() + 1, n.args.end());  // still in canonical order
+  rest.args = n.args.subspan(1);  // still in canonical order
   return {coefficient, intern(std::move(rest))};
 }
 
-ExprId ExprGraph::add(ExprId a, ExprId b) { return add(std::vector<ExprId>{a, b}); }
+ExprId ExprGraph::add(ExprId a, ExprId b) {
+  const ExprId terms[] = {a, b};
+  return add_terms(terms);
+}
+
+ExprId ExprGraph::add(std::vector<ExprId> terms) { return add_terms(terms); }
 
 ExprId ExprGraph::sub(ExprId a, ExprId b) { return add(a, neg(b)); }
 
 ExprId ExprGraph::neg(ExprId a) { return mul(constant(-1.0), a); }
 
-ExprId ExprGraph::add(std::vector<ExprId> terms) {
-  // Flatten nested sums, then collect like terms: coefficient per term without its constant.
-  std::vector<ExprId> flat;
+ExprId ExprGraph::add_terms(std::span<const ExprId> terms) {
+  // Flatten nested sums, then collect like terms: coefficient per term without its constant,
+  // the terms ordered by id to meet their like terms (the args are put in canonical order below).
+  StackList<std::pair<ExprId, double>, 32> collected;
+  double constant_sum = 0;
+  auto collect = [&](ExprId t) {
+    if (nodes_[t].op == Op::kConstant) {
+      constant_sum += nodes_[t].value;
+    } else {
+      const auto [c, base] = split_coefficient(t);
+      collected.push_back({base, c});
+    }
+  };
   for (ExprId t : terms) {
     const Node& n = nodes_[t];
     if (n.op == Op::kAdd) {
-      flat.insert(flat.end(), n.args.begin(), n.args.end());
+      for (ExprId a : n.args) collect(a);  // arena ids: valid while split_coefficient interns
     } else {
-      flat.push_back(t);
+      collect(t);
     }
   }
-  double constant_sum = 0;
-  std::map<ExprId, double> coefficients;  // the args are put in canonical order below
-  for (ExprId t : flat) {
-    if (nodes_[t].op == Op::kConstant) {
-      constant_sum += nodes_[t].value;
-      continue;
-    }
-    const auto [c, base] = split_coefficient(t);
-    coefficients[base] += c;
-  }
-  std::vector<ExprId> args;
-  for (const auto& [base, c] : coefficients) {
+  std::stable_sort(collected.begin(), collected.end(),
+            [](const auto& x, const auto& y) { return x.first < y.first; });
+  StackList<ExprId, 32> args;
+  for (std::size_t k = 0; k < collected.size();) {
+    const ExprId base = collected[k].first;
+    double c = 0;
+    for (; k < collected.size() && collected[k].first == base; ++k) c += collected[k].second;
     if (c == 0.0) continue;
     args.push_back(c == 1.0 ? base : mul(constant(c), base));
   }
   if (constant_sum != 0.0) args.push_back(constant(constant_sum));
   if (args.empty()) return zero_;
   if (args.size() == 1) return args[0];
-  sort_canonical(args);
+  sort_canonical(args.span());
   Node node;
   node.op = Op::kAdd;
-  node.args = std::move(args);
-  return intern(std::move(node));
+  node.args = args.span();
+  return intern(node);
 }
 
-ExprId ExprGraph::mul(ExprId a, ExprId b) { return mul(std::vector<ExprId>{a, b}); }
+ExprId ExprGraph::mul(ExprId a, ExprId b) {
+  const ExprId factors[] = {a, b};
+  return mul_factors(factors);
+}
 
-ExprId ExprGraph::mul(std::vector<ExprId> factors) {
+ExprId ExprGraph::mul(std::vector<ExprId> factors) { return mul_factors(factors); }
+
+ExprId ExprGraph::mul_factors(std::span<const ExprId> factors) {
   double coefficient = 1.0;
-  std::vector<ExprId> rest;
+  // The coefficient's slot first, filled below if it is not 1.
+  StackList<ExprId, 32> args;
+  args.push_back(zero_);
   for (ExprId f : factors) {
     const Node& n = nodes_[f];
     if (n.op == Op::kConstant) {
@@ -188,30 +252,36 @@ ExprId ExprGraph::mul(std::vector<ExprId> factors) {
         if (nodes_[g].op == Op::kConstant) {
           coefficient *= nodes_[g].value;
         } else {
-          rest.push_back(g);
+          args.push_back(g);
         }
       }
     } else {
-      rest.push_back(f);
+      args.push_back(f);
     }
   }
+  const std::span<ExprId> rest = args.span().subspan(1);
   if (coefficient == 0.0) return zero_;
   if (rest.empty()) return constant(coefficient);
   if (coefficient != 1.0 && rest.size() == 1 && nodes_[rest[0]].op == Op::kAdd) {
     // Distribute a constant over a sum so that like terms can meet: 2 (a + b) -> 2a + 2b.
-    // A copy: mul() adds nodes, which may move nodes_ and the argument list with it.
-    const std::vector<ExprId> sum_terms = nodes_[rest[0]].args;
+    // The sum's arguments live in the arena, which mul() never moves.
+    const std::span<const ExprId> sum_terms = nodes_[rest[0]].args;
     std::vector<ExprId> terms;
+    terms.reserve(sum_terms.size());
     for (ExprId t : sum_terms) terms.push_back(mul(constant(coefficient), t));
-    return add(std::move(terms));
+    return add_terms(terms);
   }
   sort_canonical(rest);
   if (coefficient == 1.0 && rest.size() == 1) return rest[0];
   Node node;
   node.op = Op::kMul;
-  if (coefficient != 1.0) node.args.push_back(constant(coefficient));
-  node.args.insert(node.args.end(), rest.begin(), rest.end());
-  return intern(std::move(node));
+  if (coefficient != 1.0) {
+    args[0] = constant(coefficient);
+    node.args = args.span();
+  } else {
+    node.args = rest;
+  }
+  return intern(node);
 }
 
 ExprId ExprGraph::share(ExprId e) {
@@ -221,10 +291,11 @@ ExprId ExprGraph::share(ExprId e) {
       (nodes_[n.args[1]].op == Op::kSymbol || nodes_[n.args[1]].op == Op::kShare)) {
     return e;  // a constant multiple of an atom costs one multiplication where it is used
   }
+  const ExprId arg[] = {e};
   Node node;
   node.op = Op::kShare;
-  node.args = {e};
-  return intern(std::move(node));
+  node.args = arg;
+  return intern(node);
 }
 
 ExprId ExprGraph::sign(ExprId e) {
@@ -236,10 +307,11 @@ ExprId ExprGraph::sign(ExprId e) {
     // The coefficient of a product is non-zero (mul folds zero away): only its sign matters.
     return c > 0 ? sign(rest) : neg(sign(rest));
   }
+  const ExprId arg[] = {e};
   Node node;
   node.op = Op::kSign;
-  node.args = {e};
-  return intern(std::move(node));
+  node.args = arg;
+  return intern(node);
 }
 
 ExprId ExprGraph::inv(ExprId e) {
@@ -252,10 +324,11 @@ ExprId ExprGraph::inv(ExprId e) {
   if (const auto [c, rest] = split_coefficient(e); c != 1.0) {
     return mul(constant(1.0 / c), inv(rest));
   }
+  const ExprId arg[] = {e};
   Node node;
   node.op = Op::kInv;
-  node.args = {e};
-  return intern(std::move(node));
+  node.args = arg;
+  return intern(node);
 }
 
 ExprId ExprGraph::div(ExprId a, ExprId b) { return mul(a, inv(b)); }

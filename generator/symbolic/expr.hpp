@@ -11,6 +11,8 @@
 
 #include <cstdint>
 #include <functional>
+#include <memory>
+#include <span>
 #include <string>
 #include <unordered_map>
 #include <vector>
@@ -50,12 +52,14 @@ struct Symbol {
 };
 
 struct Node {
-  Op op = Op::kConstant;
+  /// kAdd, kMul and the one-argument operations. The ids live in the graph's argument arena,
+  /// which never moves them: the span stays valid as long as the graph, however it grows.
+  std::span<const ExprId> args;
   double value = 0;          ///< kConstant
   std::uint32_t symbol = 0;  ///< kSymbol: index into ExprGraph::symbols()
-  std::vector<ExprId> args;  ///< kAdd, kMul
   /// Set by the graph: 0 for leaves, else one more than the highest argument.
   std::uint32_t height = 0;
+  Op op = Op::kConstant;
 };
 
 class ExprGraph {
@@ -112,16 +116,25 @@ class ExprGraph {
  private:
   static std::uint64_t structure_hash(const Node& node);
   static bool same_structure(const Node& a, const Node& b);
-  // Hash-consing: the existing node of this structure, or the node added.
+  // Hash-consing: the existing node of this structure, or the node added (its arguments, which
+  // may point into a caller's buffer, copied into the arena).
   ExprId intern(Node node);
+  // `args` copied into the arena: blocks that are never reallocated, so a node costs no
+  // allocation of its own and spans into the arena stay valid.
+  std::span<const ExprId> store_args(std::span<const ExprId> args);
+  ExprId add_terms(std::span<const ExprId> terms);
+  ExprId mul_factors(std::span<const ExprId> factors);
   // Grows the open-addressing table (1024 slots, then doubling) and re-inserts every node.
   void grow_index();
-  void sort_canonical(std::vector<ExprId>& ids) const;
+  void sort_canonical(std::span<ExprId> ids) const;
   // Splits a term into its constant coefficient and the rest (1 for a constant).
   std::pair<double, ExprId> split_coefficient(ExprId id);
 
   std::vector<Node> nodes_;
   std::vector<Symbol> symbols_;
+  std::vector<std::unique_ptr<ExprId[]>> arg_blocks_;
+  std::size_t arg_block_size_ = 0;  // ids in the last block
+  std::size_t arg_block_used_ = 0;  // of which taken
   // The hash-consing index: open addressing with linear probing over node ids (kNoNode marks
   // an empty slot), a power-of-two size at most half full. A lookup compares nodes in place, so
   // it allocates nothing; hashes_[id] caches each node's structure_hash.

@@ -34,10 +34,8 @@ OutputSimplifier::OutputSimplifier(ExprGraph& graph)
     : graph_(graph),
       forms_(graph),
       done_(graph.size(), kNotDone),
-      value_(graph.size()),
-      magnitude_(graph.size()),
-      value_done_(graph.size(), false),
-      magnitude_done_(graph.size(), false) {}
+      value_slot_(graph.size(), 0),
+      magnitude_slot_(graph.size(), 0) {}
 
 ExprId OutputSimplifier::operator()(ExprId id) { return rewrite(id); }
 
@@ -103,11 +101,8 @@ OutputSimplifier::Probe OutputSimplifier::leaf_value(const Symbol& symbol) const
 }
 
 const OutputSimplifier::Probe& OutputSimplifier::value(ExprId id) {
-  if (id >= value_.size()) {  // a node the rewrite made
-    value_.resize(graph_.size());
-    value_done_.resize(graph_.size(), false);
-  }
-  if (value_done_[id]) return value_[id];
+  if (id >= value_slot_.size()) value_slot_.resize(graph_.size(), 0);  // a node the rewrite made
+  if (value_slot_[id] != 0) return values_[value_slot_[id] - 1];
   const Node n = graph_.node(id);  // a copy: nothing here grows the graph, but stay safe
   Probe out{};
   switch (n.op) {
@@ -139,17 +134,14 @@ const OutputSimplifier::Probe& OutputSimplifier::value(ExprId id) {
       break;
     }
   }
-  value_[id] = out;
-  value_done_[id] = true;
-  return value_[id];
+  values_.push_back(out);
+  value_slot_[id] = static_cast<std::uint32_t>(values_.size());
+  return values_.back();
 }
 
 const OutputSimplifier::Probe& OutputSimplifier::magnitude(ExprId id) {
-  if (id >= magnitude_.size()) {
-    magnitude_.resize(graph_.size());
-    magnitude_done_.resize(graph_.size(), false);
-  }
-  if (magnitude_done_[id]) return magnitude_[id];
+  if (id >= magnitude_slot_.size()) magnitude_slot_.resize(graph_.size(), 0);
+  if (magnitude_slot_[id] != 0) return magnitudes_[magnitude_slot_[id] - 1];
   const Node n = graph_.node(id);
   Probe out{};
   switch (n.op) {
@@ -173,9 +165,9 @@ const OutputSimplifier::Probe& OutputSimplifier::magnitude(ExprId id) {
       for (int k = 0; k < kProbes; ++k) out[k] = std::abs(v[k]);
     }
   }
-  magnitude_[id] = out;
-  magnitude_done_[id] = true;
-  return magnitude_[id];
+  magnitudes_.push_back(out);
+  magnitude_slot_[id] = static_cast<std::uint32_t>(magnitudes_.size());
+  return magnitudes_.back();
 }
 
 bool OutputSimplifier::evaluates_to_zero(ExprId id, double tolerance) {

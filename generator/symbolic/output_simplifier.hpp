@@ -6,6 +6,7 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <unordered_map>
 #include <vector>
 
@@ -56,7 +57,7 @@ class OutputSimplifier {
   ExprId normal_form(ExprId id);
   // Value of an original node at the probe states, and the size of its terms (the same
   // expression with every sum of absolute values): a cancellation leaves the first far below
-  // the second.
+  // the second. The reference is valid until the next call.
   const Probe& value(ExprId id);
   const Probe& magnitude(ExprId id);
   Probe leaf_value(const Symbol& symbol) const;
@@ -71,8 +72,10 @@ class OutputSimplifier {
   ExprGraph& graph_;
   TrigPolynomials forms_;
   std::vector<ExprId> done_;
-  std::vector<Probe> value_, magnitude_;
-  std::vector<bool> value_done_, magnitude_done_;
+  // The probes of the nodes probed so far (a small part of the graph), and per node 0 or
+  // 1 + the index of its probe.
+  std::vector<Probe> values_, magnitudes_;
+  std::vector<std::uint32_t> value_slot_, magnitude_slot_;
   std::vector<signed char> reads_sign_;  // per node: -1 not known yet, 0 or 1
   int exact_zeros_ = 0;
   int numeric_zeros_ = 0;
