@@ -19,7 +19,7 @@ std::string pad_right(const std::string& text, std::size_t width) {
   return text.size() >= width ? text : text + std::string(width - text.size(), ' ');
 }
 
-void write_op_table(const std::vector<EmittedFunction>& functions, CodeWriter& out) {
+void write_op_table(std::span<const EmittedFunction> functions, CodeWriter& out) {
   // The name column fits the longest function name.
   std::size_t name_width = 34;
   for (const EmittedFunction& f : functions) name_width = std::max(name_width, f.name.size() + 2);
@@ -42,7 +42,7 @@ void write_op_table(const std::vector<EmittedFunction>& functions, CodeWriter& o
 }  // namespace
 
 std::string render_banner(const std::string& file, const RenderInput& in,
-                          const std::vector<EmittedFunction>& functions) {
+                          std::span<const EmittedFunction> functions) {
   return without_final_newline(
       Printer(embedded_template("banner"))
           .set("file", file)

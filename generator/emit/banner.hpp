@@ -2,6 +2,7 @@
 // and the operation counts of every generated function.
 #pragma once
 
+#include <span>
 #include <string>
 
 #include "generator/emit/render_input.hpp"
@@ -11,7 +12,7 @@ namespace modelgen::gen {
 /// The banner of the generated file `file` (templates/banner.tmpl), without a final newline,
 /// with the operation counts of `functions`.
 std::string render_banner(const std::string& file, const RenderInput& in,
-                          const std::vector<EmittedFunction>& functions);
+                          std::span<const EmittedFunction> functions);
 
 /// The banner with the operation counts of every generated function.
 inline std::string render_banner(const std::string& file, const RenderInput& in) {

@@ -115,7 +115,7 @@ std::string render_source(const RenderInput& in) {
 std::string render_function_source(const RenderInput& in, const EmittedFunction& function) {
   const std::string file = in.function_source_name(function.name);
   return Printer(embedded_template("function.cpp"))
-      .set("banner", render_banner(file, in, {function}))
+      .set("banner", render_banner(file, in, std::span<const EmittedFunction>(&function, 1)))
       .set("header", in.header_name())
       .set("robot", in.model.name)
       .set_block("includes",
