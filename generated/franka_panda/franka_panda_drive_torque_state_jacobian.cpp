@@ -124,178 +124,54 @@ void drive_torque_state_jacobian(const double* q, const double* dq, const double
   const double t1 = static_cast<double>((t0 > 0.0) - (t0 < 0.0));
   const double t2 = 0.5 * t1;
   const double t3 = (1.0 / theta[93]) * (0.5 + t2) - theta[93] * (t2 - 0.5);
-  J[1] = dtau_G[1] * t3;  // q[1]
-  J[2] = dtau_G[2] * t3;  // q[2]
-  J[3] = dtau_G[3] * t3;  // q[3]
-  J[4] = dtau_G[4] * t3;  // q[4]
-  J[5] = dtau_G[5] * t3;  // q[5]
-  J[6] = dtau_G[6] * t3;  // q[6]
-  J[7] = dtau_G[7] * t3;  // q[7]
-  J[8] = dtau_G[8] * t3;  // q[8]
+  for (int k = 0; k < 8; ++k) J[1 + k] = dtau_G[1 + k] * t3;
   J[9] = theta[91] + dtau_G[9] * t3;  // dq[0]
-  J[10] = dtau_G[10] * t3;  // dq[1]
-  J[11] = dtau_G[11] * t3;  // dq[2]
-  J[12] = dtau_G[12] * t3;  // dq[3]
-  J[13] = dtau_G[13] * t3;  // dq[4]
-  J[14] = dtau_G[14] * t3;  // dq[5]
-  J[15] = dtau_G[15] * t3;  // dq[6]
-  J[16] = dtau_G[16] * t3;  // dq[7]
-  J[17] = dtau_G[17] * t3;  // dq[8]
+  for (int k = 0; k < 8; ++k) J[10 + k] = dtau_G[10 + k] * t3;
   J[18] = theta[90] + dtau_G[18] * t3;  // ddq[0]
-  J[19] = dtau_G[19] * t3;  // ddq[1]
-  J[20] = dtau_G[20] * t3;  // ddq[2]
-  J[21] = dtau_G[21] * t3;  // ddq[3]
-  J[22] = dtau_G[22] * t3;  // ddq[4]
-  J[23] = dtau_G[23] * t3;  // ddq[5]
-  J[24] = dtau_G[24] * t3;  // ddq[6]
-  J[25] = dtau_G[25] * t3;  // ddq[7]
-  J[26] = dtau_G[26] * t3;  // ddq[8]
+  for (int k = 0; k < 8; ++k) J[19 + k] = dtau_G[19 + k] * t3;
   const double t4 = dq[1] * tau_G[1];
   const double t5 = static_cast<double>((t4 > 0.0) - (t4 < 0.0));
   const double t6 = 0.5 * t5;
   const double t7 = (1.0 / theta[97]) * (0.5 + t6) - theta[97] * (t6 - 0.5);
-  J[28] = dtau_G[28] * t7;
-  J[29] = dtau_G[29] * t7;
-  J[30] = dtau_G[30] * t7;
-  J[31] = dtau_G[31] * t7;
-  J[32] = dtau_G[32] * t7;
-  J[33] = dtau_G[33] * t7;
-  J[34] = dtau_G[34] * t7;
-  J[35] = dtau_G[35] * t7;
-  J[36] = dtau_G[36] * t7;
+  for (int k = 0; k < 9; ++k) J[28 + k] = dtau_G[28 + k] * t7;
   J[37] = theta[95] + dtau_G[37] * t7;
-  J[38] = dtau_G[38] * t7;
-  J[39] = dtau_G[39] * t7;
-  J[40] = dtau_G[40] * t7;
-  J[41] = dtau_G[41] * t7;
-  J[42] = dtau_G[42] * t7;
-  J[43] = dtau_G[43] * t7;
-  J[44] = dtau_G[44] * t7;
-  J[45] = dtau_G[45] * t7;
+  for (int k = 0; k < 8; ++k) J[38 + k] = dtau_G[38 + k] * t7;
   J[46] = theta[94] + dtau_G[46] * t7;
-  J[47] = dtau_G[47] * t7;
-  J[48] = dtau_G[48] * t7;
-  J[49] = dtau_G[49] * t7;
-  J[50] = dtau_G[50] * t7;
-  J[51] = dtau_G[51] * t7;
-  J[52] = dtau_G[52] * t7;
-  J[53] = dtau_G[53] * t7;
+  for (int k = 0; k < 7; ++k) J[47 + k] = dtau_G[47 + k] * t7;
   const double t8 = dq[2] * tau_G[2];
   const double t9 = static_cast<double>((t8 > 0.0) - (t8 < 0.0));
   const double t10 = 0.5 * t9;
   const double t11 = (1.0 / theta[101]) * (0.5 + t10) - theta[101] * (t10 - 0.5);
-  J[55] = dtau_G[55] * t11;
-  J[56] = dtau_G[56] * t11;
-  J[57] = dtau_G[57] * t11;
-  J[58] = dtau_G[58] * t11;
-  J[59] = dtau_G[59] * t11;
-  J[60] = dtau_G[60] * t11;
-  J[61] = dtau_G[61] * t11;
-  J[62] = dtau_G[62] * t11;
-  J[63] = dtau_G[63] * t11;
-  J[64] = dtau_G[64] * t11;
+  for (int k = 0; k < 10; ++k) J[55 + k] = dtau_G[55 + k] * t11;
   J[65] = theta[99] + dtau_G[65] * t11;
-  J[66] = dtau_G[66] * t11;
-  J[67] = dtau_G[67] * t11;
-  J[68] = dtau_G[68] * t11;
-  J[69] = dtau_G[69] * t11;
-  J[70] = dtau_G[70] * t11;
-  J[71] = dtau_G[71] * t11;
-  J[72] = dtau_G[72] * t11;
-  J[73] = dtau_G[73] * t11;
+  for (int k = 0; k < 8; ++k) J[66 + k] = dtau_G[66 + k] * t11;
   J[74] = theta[98] + dtau_G[74] * t11;
-  J[75] = dtau_G[75] * t11;
-  J[76] = dtau_G[76] * t11;
-  J[77] = dtau_G[77] * t11;
-  J[78] = dtau_G[78] * t11;
-  J[79] = dtau_G[79] * t11;
-  J[80] = dtau_G[80] * t11;
+  for (int k = 0; k < 6; ++k) J[75 + k] = dtau_G[75 + k] * t11;
   const double t12 = dq[3] * tau_G[3];
   const double t13 = static_cast<double>((t12 > 0.0) - (t12 < 0.0));
   const double t14 = 0.5 * t13;
   const double t15 = (1.0 / theta[105]) * (0.5 + t14) - theta[105] * (t14 - 0.5);
-  J[82] = dtau_G[82] * t15;
-  J[83] = dtau_G[83] * t15;
-  J[84] = dtau_G[84] * t15;
-  J[85] = dtau_G[85] * t15;
-  J[86] = dtau_G[86] * t15;
-  J[87] = dtau_G[87] * t15;
-  J[88] = dtau_G[88] * t15;
-  J[89] = dtau_G[89] * t15;
-  J[90] = dtau_G[90] * t15;
-  J[91] = dtau_G[91] * t15;
-  J[92] = dtau_G[92] * t15;
+  for (int k = 0; k < 11; ++k) J[82 + k] = dtau_G[82 + k] * t15;
   J[93] = theta[103] + dtau_G[93] * t15;
-  J[94] = dtau_G[94] * t15;
-  J[95] = dtau_G[95] * t15;
-  J[96] = dtau_G[96] * t15;
-  J[97] = dtau_G[97] * t15;
-  J[98] = dtau_G[98] * t15;
-  J[99] = dtau_G[99] * t15;
-  J[100] = dtau_G[100] * t15;
-  J[101] = dtau_G[101] * t15;
+  for (int k = 0; k < 8; ++k) J[94 + k] = dtau_G[94 + k] * t15;
   J[102] = theta[102] + dtau_G[102] * t15;
-  J[103] = dtau_G[103] * t15;
-  J[104] = dtau_G[104] * t15;
-  J[105] = dtau_G[105] * t15;
-  J[106] = dtau_G[106] * t15;
-  J[107] = dtau_G[107] * t15;
+  for (int k = 0; k < 5; ++k) J[103 + k] = dtau_G[103 + k] * t15;
   const double t16 = dq[4] * tau_G[4];
   const double t17 = static_cast<double>((t16 > 0.0) - (t16 < 0.0));
   const double t18 = 0.5 * t17;
   const double t19 = (1.0 / theta[109]) * (0.5 + t18) - theta[109] * (t18 - 0.5);
-  J[109] = dtau_G[109] * t19;
-  J[110] = dtau_G[110] * t19;
-  J[111] = dtau_G[111] * t19;
-  J[112] = dtau_G[112] * t19;
-  J[113] = dtau_G[113] * t19;
-  J[114] = dtau_G[114] * t19;
-  J[115] = dtau_G[115] * t19;
-  J[116] = dtau_G[116] * t19;
-  J[117] = dtau_G[117] * t19;
-  J[118] = dtau_G[118] * t19;
-  J[119] = dtau_G[119] * t19;
-  J[120] = dtau_G[120] * t19;
+  for (int k = 0; k < 12; ++k) J[109 + k] = dtau_G[109 + k] * t19;
   J[121] = theta[107] + dtau_G[121] * t19;
-  J[122] = dtau_G[122] * t19;
-  J[123] = dtau_G[123] * t19;
-  J[124] = dtau_G[124] * t19;
-  J[125] = dtau_G[125] * t19;
-  J[126] = dtau_G[126] * t19;
-  J[127] = dtau_G[127] * t19;
-  J[128] = dtau_G[128] * t19;
-  J[129] = dtau_G[129] * t19;
+  for (int k = 0; k < 8; ++k) J[122 + k] = dtau_G[122 + k] * t19;
   J[130] = theta[106] + dtau_G[130] * t19;
-  J[131] = dtau_G[131] * t19;
-  J[132] = dtau_G[132] * t19;
-  J[133] = dtau_G[133] * t19;
-  J[134] = dtau_G[134] * t19;
+  for (int k = 0; k < 4; ++k) J[131 + k] = dtau_G[131 + k] * t19;
   const double t20 = dq[5] * tau_G[5];
   const double t21 = static_cast<double>((t20 > 0.0) - (t20 < 0.0));
   const double t22 = 0.5 * t21;
   const double t23 = (1.0 / theta[113]) * (0.5 + t22) - theta[113] * (t22 - 0.5);
-  J[136] = dtau_G[136] * t23;
-  J[137] = dtau_G[137] * t23;
-  J[138] = dtau_G[138] * t23;
-  J[139] = dtau_G[139] * t23;
-  J[140] = dtau_G[140] * t23;
-  J[141] = dtau_G[141] * t23;
-  J[142] = dtau_G[142] * t23;
-  J[143] = dtau_G[143] * t23;
-  J[144] = dtau_G[144] * t23;
-  J[145] = dtau_G[145] * t23;
-  J[146] = dtau_G[146] * t23;
-  J[147] = dtau_G[147] * t23;
-  J[148] = dtau_G[148] * t23;
+  for (int k = 0; k < 13; ++k) J[136 + k] = dtau_G[136 + k] * t23;
   J[149] = theta[111] + dtau_G[149] * t23;
-  J[150] = dtau_G[150] * t23;
-  J[151] = dtau_G[151] * t23;
-  J[152] = dtau_G[152] * t23;
-  J[153] = dtau_G[153] * t23;
-  J[154] = dtau_G[154] * t23;
-  J[155] = dtau_G[155] * t23;
-  J[156] = dtau_G[156] * t23;
-  J[157] = dtau_G[157] * t23;
+  for (int k = 0; k < 8; ++k) J[150 + k] = dtau_G[150 + k] * t23;
   J[158] = theta[110] + dtau_G[158] * t23;
   J[159] = dtau_G[159] * t23;
   J[160] = dtau_G[160] * t23;
@@ -304,29 +180,9 @@ void drive_torque_state_jacobian(const double* q, const double* dq, const double
   const double t25 = static_cast<double>((t24 > 0.0) - (t24 < 0.0));
   const double t26 = 0.5 * t25;
   const double t27 = (1.0 / theta[117]) * (0.5 + t26) - theta[117] * (t26 - 0.5);
-  J[163] = dtau_G[163] * t27;
-  J[164] = dtau_G[164] * t27;
-  J[165] = dtau_G[165] * t27;
-  J[166] = dtau_G[166] * t27;
-  J[167] = dtau_G[167] * t27;
-  J[168] = dtau_G[168] * t27;
-  J[169] = dtau_G[169] * t27;
-  J[170] = dtau_G[170] * t27;
-  J[171] = dtau_G[171] * t27;
-  J[172] = dtau_G[172] * t27;
-  J[173] = dtau_G[173] * t27;
-  J[174] = dtau_G[174] * t27;
-  J[175] = dtau_G[175] * t27;
-  J[176] = dtau_G[176] * t27;
+  for (int k = 0; k < 14; ++k) J[163 + k] = dtau_G[163 + k] * t27;
   J[177] = theta[115] + dtau_G[177] * t27;
-  J[178] = dtau_G[178] * t27;
-  J[179] = dtau_G[179] * t27;
-  J[180] = dtau_G[180] * t27;
-  J[181] = dtau_G[181] * t27;
-  J[182] = dtau_G[182] * t27;
-  J[183] = dtau_G[183] * t27;
-  J[184] = dtau_G[184] * t27;
-  J[185] = dtau_G[185] * t27;
+  for (int k = 0; k < 8; ++k) J[178 + k] = dtau_G[178 + k] * t27;
   J[186] = theta[114] + dtau_G[186] * t27;
   J[187] = dtau_G[187] * t27;
   J[188] = dtau_G[188] * t27;
@@ -334,55 +190,19 @@ void drive_torque_state_jacobian(const double* q, const double* dq, const double
   const double t29 = static_cast<double>((t28 > 0.0) - (t28 < 0.0));
   const double t30 = 0.5 * t29;
   const double t31 = (1.0 / theta[121]) * (0.5 + t30) - theta[121] * (t30 - 0.5);
-  J[190] = dtau_G[190] * t31;
-  J[191] = dtau_G[191] * t31;
-  J[192] = dtau_G[192] * t31;
-  J[193] = dtau_G[193] * t31;
-  J[194] = dtau_G[194] * t31;
-  J[195] = dtau_G[195] * t31;
-  J[196] = dtau_G[196] * t31;
-  J[198] = dtau_G[198] * t31;
-  J[199] = dtau_G[199] * t31;
-  J[200] = dtau_G[200] * t31;
-  J[201] = dtau_G[201] * t31;
-  J[202] = dtau_G[202] * t31;
-  J[203] = dtau_G[203] * t31;
-  J[204] = dtau_G[204] * t31;
+  for (int k = 0; k < 7; ++k) J[190 + k] = dtau_G[190 + k] * t31;
+  for (int k = 0; k < 7; ++k) J[198 + k] = dtau_G[198 + k] * t31;
   J[205] = theta[119] + dtau_G[205] * t31;
-  J[207] = dtau_G[207] * t31;
-  J[208] = dtau_G[208] * t31;
-  J[209] = dtau_G[209] * t31;
-  J[210] = dtau_G[210] * t31;
-  J[211] = dtau_G[211] * t31;
-  J[212] = dtau_G[212] * t31;
-  J[213] = dtau_G[213] * t31;
+  for (int k = 0; k < 7; ++k) J[207 + k] = dtau_G[207 + k] * t31;
   J[214] = theta[118] + dtau_G[214] * t31;
   const double t32 = dq[8] * tau_G[8];
   const double t33 = static_cast<double>((t32 > 0.0) - (t32 < 0.0));
   const double t34 = 0.5 * t33;
   const double t35 = (1.0 / theta[125]) * (0.5 + t34) - theta[125] * (t34 - 0.5);
-  J[217] = dtau_G[217] * t35;
-  J[218] = dtau_G[218] * t35;
-  J[219] = dtau_G[219] * t35;
-  J[220] = dtau_G[220] * t35;
-  J[221] = dtau_G[221] * t35;
-  J[222] = dtau_G[222] * t35;
-  J[224] = dtau_G[224] * t35;
-  J[225] = dtau_G[225] * t35;
-  J[226] = dtau_G[226] * t35;
-  J[227] = dtau_G[227] * t35;
-  J[228] = dtau_G[228] * t35;
-  J[229] = dtau_G[229] * t35;
-  J[230] = dtau_G[230] * t35;
-  J[231] = dtau_G[231] * t35;
+  for (int k = 0; k < 6; ++k) J[217 + k] = dtau_G[217 + k] * t35;
+  for (int k = 0; k < 8; ++k) J[224 + k] = dtau_G[224 + k] * t35;
   J[233] = theta[123] + dtau_G[233] * t35;
-  J[234] = dtau_G[234] * t35;
-  J[235] = dtau_G[235] * t35;
-  J[236] = dtau_G[236] * t35;
-  J[237] = dtau_G[237] * t35;
-  J[238] = dtau_G[238] * t35;
-  J[239] = dtau_G[239] * t35;
-  J[240] = dtau_G[240] * t35;
+  for (int k = 0; k < 7; ++k) J[234 + k] = dtau_G[234 + k] * t35;
   J[242] = theta[122] + dtau_G[242] * t35;
 }
 
@@ -500,178 +320,54 @@ void drive_torque_state_jacobian(const float* q, const float* dq, const float* d
   const float t1 = static_cast<float>((t0 > 0.0f) - (t0 < 0.0f));
   const float t2 = 0.5f * t1;
   const float t3 = (1.0f / theta[93]) * (0.5f + t2) - theta[93] * (t2 - 0.5f);
-  J[1] = dtau_G[1] * t3;  // q[1]
-  J[2] = dtau_G[2] * t3;  // q[2]
-  J[3] = dtau_G[3] * t3;  // q[3]
-  J[4] = dtau_G[4] * t3;  // q[4]
-  J[5] = dtau_G[5] * t3;  // q[5]
-  J[6] = dtau_G[6] * t3;  // q[6]
-  J[7] = dtau_G[7] * t3;  // q[7]
-  J[8] = dtau_G[8] * t3;  // q[8]
+  for (int k = 0; k < 8; ++k) J[1 + k] = dtau_G[1 + k] * t3;
   J[9] = theta[91] + dtau_G[9] * t3;  // dq[0]
-  J[10] = dtau_G[10] * t3;  // dq[1]
-  J[11] = dtau_G[11] * t3;  // dq[2]
-  J[12] = dtau_G[12] * t3;  // dq[3]
-  J[13] = dtau_G[13] * t3;  // dq[4]
-  J[14] = dtau_G[14] * t3;  // dq[5]
-  J[15] = dtau_G[15] * t3;  // dq[6]
-  J[16] = dtau_G[16] * t3;  // dq[7]
-  J[17] = dtau_G[17] * t3;  // dq[8]
+  for (int k = 0; k < 8; ++k) J[10 + k] = dtau_G[10 + k] * t3;
   J[18] = theta[90] + dtau_G[18] * t3;  // ddq[0]
-  J[19] = dtau_G[19] * t3;  // ddq[1]
-  J[20] = dtau_G[20] * t3;  // ddq[2]
-  J[21] = dtau_G[21] * t3;  // ddq[3]
-  J[22] = dtau_G[22] * t3;  // ddq[4]
-  J[23] = dtau_G[23] * t3;  // ddq[5]
-  J[24] = dtau_G[24] * t3;  // ddq[6]
-  J[25] = dtau_G[25] * t3;  // ddq[7]
-  J[26] = dtau_G[26] * t3;  // ddq[8]
+  for (int k = 0; k < 8; ++k) J[19 + k] = dtau_G[19 + k] * t3;
   const float t4 = dq[1] * tau_G[1];
   const float t5 = static_cast<float>((t4 > 0.0f) - (t4 < 0.0f));
   const float t6 = 0.5f * t5;
   const float t7 = (1.0f / theta[97]) * (0.5f + t6) - theta[97] * (t6 - 0.5f);
-  J[28] = dtau_G[28] * t7;
-  J[29] = dtau_G[29] * t7;
-  J[30] = dtau_G[30] * t7;
-  J[31] = dtau_G[31] * t7;
-  J[32] = dtau_G[32] * t7;
-  J[33] = dtau_G[33] * t7;
-  J[34] = dtau_G[34] * t7;
-  J[35] = dtau_G[35] * t7;
-  J[36] = dtau_G[36] * t7;
+  for (int k = 0; k < 9; ++k) J[28 + k] = dtau_G[28 + k] * t7;
   J[37] = theta[95] + dtau_G[37] * t7;
-  J[38] = dtau_G[38] * t7;
-  J[39] = dtau_G[39] * t7;
-  J[40] = dtau_G[40] * t7;
-  J[41] = dtau_G[41] * t7;
-  J[42] = dtau_G[42] * t7;
-  J[43] = dtau_G[43] * t7;
-  J[44] = dtau_G[44] * t7;
-  J[45] = dtau_G[45] * t7;
+  for (int k = 0; k < 8; ++k) J[38 + k] = dtau_G[38 + k] * t7;
   J[46] = theta[94] + dtau_G[46] * t7;
-  J[47] = dtau_G[47] * t7;
-  J[48] = dtau_G[48] * t7;
-  J[49] = dtau_G[49] * t7;
-  J[50] = dtau_G[50] * t7;
-  J[51] = dtau_G[51] * t7;
-  J[52] = dtau_G[52] * t7;
-  J[53] = dtau_G[53] * t7;
+  for (int k = 0; k < 7; ++k) J[47 + k] = dtau_G[47 + k] * t7;
   const float t8 = dq[2] * tau_G[2];
   const float t9 = static_cast<float>((t8 > 0.0f) - (t8 < 0.0f));
   const float t10 = 0.5f * t9;
   const float t11 = (1.0f / theta[101]) * (0.5f + t10) - theta[101] * (t10 - 0.5f);
-  J[55] = dtau_G[55] * t11;
-  J[56] = dtau_G[56] * t11;
-  J[57] = dtau_G[57] * t11;
-  J[58] = dtau_G[58] * t11;
-  J[59] = dtau_G[59] * t11;
-  J[60] = dtau_G[60] * t11;
-  J[61] = dtau_G[61] * t11;
-  J[62] = dtau_G[62] * t11;
-  J[63] = dtau_G[63] * t11;
-  J[64] = dtau_G[64] * t11;
+  for (int k = 0; k < 10; ++k) J[55 + k] = dtau_G[55 + k] * t11;
   J[65] = theta[99] + dtau_G[65] * t11;
-  J[66] = dtau_G[66] * t11;
-  J[67] = dtau_G[67] * t11;
-  J[68] = dtau_G[68] * t11;
-  J[69] = dtau_G[69] * t11;
-  J[70] = dtau_G[70] * t11;
-  J[71] = dtau_G[71] * t11;
-  J[72] = dtau_G[72] * t11;
-  J[73] = dtau_G[73] * t11;
+  for (int k = 0; k < 8; ++k) J[66 + k] = dtau_G[66 + k] * t11;
   J[74] = theta[98] + dtau_G[74] * t11;
-  J[75] = dtau_G[75] * t11;
-  J[76] = dtau_G[76] * t11;
-  J[77] = dtau_G[77] * t11;
-  J[78] = dtau_G[78] * t11;
-  J[79] = dtau_G[79] * t11;
-  J[80] = dtau_G[80] * t11;
+  for (int k = 0; k < 6; ++k) J[75 + k] = dtau_G[75 + k] * t11;
   const float t12 = dq[3] * tau_G[3];
   const float t13 = static_cast<float>((t12 > 0.0f) - (t12 < 0.0f));
   const float t14 = 0.5f * t13;
   const float t15 = (1.0f / theta[105]) * (0.5f + t14) - theta[105] * (t14 - 0.5f);
-  J[82] = dtau_G[82] * t15;
-  J[83] = dtau_G[83] * t15;
-  J[84] = dtau_G[84] * t15;
-  J[85] = dtau_G[85] * t15;
-  J[86] = dtau_G[86] * t15;
-  J[87] = dtau_G[87] * t15;
-  J[88] = dtau_G[88] * t15;
-  J[89] = dtau_G[89] * t15;
-  J[90] = dtau_G[90] * t15;
-  J[91] = dtau_G[91] * t15;
-  J[92] = dtau_G[92] * t15;
+  for (int k = 0; k < 11; ++k) J[82 + k] = dtau_G[82 + k] * t15;
   J[93] = theta[103] + dtau_G[93] * t15;
-  J[94] = dtau_G[94] * t15;
-  J[95] = dtau_G[95] * t15;
-  J[96] = dtau_G[96] * t15;
-  J[97] = dtau_G[97] * t15;
-  J[98] = dtau_G[98] * t15;
-  J[99] = dtau_G[99] * t15;
-  J[100] = dtau_G[100] * t15;
-  J[101] = dtau_G[101] * t15;
+  for (int k = 0; k < 8; ++k) J[94 + k] = dtau_G[94 + k] * t15;
   J[102] = theta[102] + dtau_G[102] * t15;
-  J[103] = dtau_G[103] * t15;
-  J[104] = dtau_G[104] * t15;
-  J[105] = dtau_G[105] * t15;
-  J[106] = dtau_G[106] * t15;
-  J[107] = dtau_G[107] * t15;
+  for (int k = 0; k < 5; ++k) J[103 + k] = dtau_G[103 + k] * t15;
   const float t16 = dq[4] * tau_G[4];
   const float t17 = static_cast<float>((t16 > 0.0f) - (t16 < 0.0f));
   const float t18 = 0.5f * t17;
   const float t19 = (1.0f / theta[109]) * (0.5f + t18) - theta[109] * (t18 - 0.5f);
-  J[109] = dtau_G[109] * t19;
-  J[110] = dtau_G[110] * t19;
-  J[111] = dtau_G[111] * t19;
-  J[112] = dtau_G[112] * t19;
-  J[113] = dtau_G[113] * t19;
-  J[114] = dtau_G[114] * t19;
-  J[115] = dtau_G[115] * t19;
-  J[116] = dtau_G[116] * t19;
-  J[117] = dtau_G[117] * t19;
-  J[118] = dtau_G[118] * t19;
-  J[119] = dtau_G[119] * t19;
-  J[120] = dtau_G[120] * t19;
+  for (int k = 0; k < 12; ++k) J[109 + k] = dtau_G[109 + k] * t19;
   J[121] = theta[107] + dtau_G[121] * t19;
-  J[122] = dtau_G[122] * t19;
-  J[123] = dtau_G[123] * t19;
-  J[124] = dtau_G[124] * t19;
-  J[125] = dtau_G[125] * t19;
-  J[126] = dtau_G[126] * t19;
-  J[127] = dtau_G[127] * t19;
-  J[128] = dtau_G[128] * t19;
-  J[129] = dtau_G[129] * t19;
+  for (int k = 0; k < 8; ++k) J[122 + k] = dtau_G[122 + k] * t19;
   J[130] = theta[106] + dtau_G[130] * t19;
-  J[131] = dtau_G[131] * t19;
-  J[132] = dtau_G[132] * t19;
-  J[133] = dtau_G[133] * t19;
-  J[134] = dtau_G[134] * t19;
+  for (int k = 0; k < 4; ++k) J[131 + k] = dtau_G[131 + k] * t19;
   const float t20 = dq[5] * tau_G[5];
   const float t21 = static_cast<float>((t20 > 0.0f) - (t20 < 0.0f));
   const float t22 = 0.5f * t21;
   const float t23 = (1.0f / theta[113]) * (0.5f + t22) - theta[113] * (t22 - 0.5f);
-  J[136] = dtau_G[136] * t23;
-  J[137] = dtau_G[137] * t23;
-  J[138] = dtau_G[138] * t23;
-  J[139] = dtau_G[139] * t23;
-  J[140] = dtau_G[140] * t23;
-  J[141] = dtau_G[141] * t23;
-  J[142] = dtau_G[142] * t23;
-  J[143] = dtau_G[143] * t23;
-  J[144] = dtau_G[144] * t23;
-  J[145] = dtau_G[145] * t23;
-  J[146] = dtau_G[146] * t23;
-  J[147] = dtau_G[147] * t23;
-  J[148] = dtau_G[148] * t23;
+  for (int k = 0; k < 13; ++k) J[136 + k] = dtau_G[136 + k] * t23;
   J[149] = theta[111] + dtau_G[149] * t23;
-  J[150] = dtau_G[150] * t23;
-  J[151] = dtau_G[151] * t23;
-  J[152] = dtau_G[152] * t23;
-  J[153] = dtau_G[153] * t23;
-  J[154] = dtau_G[154] * t23;
-  J[155] = dtau_G[155] * t23;
-  J[156] = dtau_G[156] * t23;
-  J[157] = dtau_G[157] * t23;
+  for (int k = 0; k < 8; ++k) J[150 + k] = dtau_G[150 + k] * t23;
   J[158] = theta[110] + dtau_G[158] * t23;
   J[159] = dtau_G[159] * t23;
   J[160] = dtau_G[160] * t23;
@@ -680,29 +376,9 @@ void drive_torque_state_jacobian(const float* q, const float* dq, const float* d
   const float t25 = static_cast<float>((t24 > 0.0f) - (t24 < 0.0f));
   const float t26 = 0.5f * t25;
   const float t27 = (1.0f / theta[117]) * (0.5f + t26) - theta[117] * (t26 - 0.5f);
-  J[163] = dtau_G[163] * t27;
-  J[164] = dtau_G[164] * t27;
-  J[165] = dtau_G[165] * t27;
-  J[166] = dtau_G[166] * t27;
-  J[167] = dtau_G[167] * t27;
-  J[168] = dtau_G[168] * t27;
-  J[169] = dtau_G[169] * t27;
-  J[170] = dtau_G[170] * t27;
-  J[171] = dtau_G[171] * t27;
-  J[172] = dtau_G[172] * t27;
-  J[173] = dtau_G[173] * t27;
-  J[174] = dtau_G[174] * t27;
-  J[175] = dtau_G[175] * t27;
-  J[176] = dtau_G[176] * t27;
+  for (int k = 0; k < 14; ++k) J[163 + k] = dtau_G[163 + k] * t27;
   J[177] = theta[115] + dtau_G[177] * t27;
-  J[178] = dtau_G[178] * t27;
-  J[179] = dtau_G[179] * t27;
-  J[180] = dtau_G[180] * t27;
-  J[181] = dtau_G[181] * t27;
-  J[182] = dtau_G[182] * t27;
-  J[183] = dtau_G[183] * t27;
-  J[184] = dtau_G[184] * t27;
-  J[185] = dtau_G[185] * t27;
+  for (int k = 0; k < 8; ++k) J[178 + k] = dtau_G[178 + k] * t27;
   J[186] = theta[114] + dtau_G[186] * t27;
   J[187] = dtau_G[187] * t27;
   J[188] = dtau_G[188] * t27;
@@ -710,55 +386,19 @@ void drive_torque_state_jacobian(const float* q, const float* dq, const float* d
   const float t29 = static_cast<float>((t28 > 0.0f) - (t28 < 0.0f));
   const float t30 = 0.5f * t29;
   const float t31 = (1.0f / theta[121]) * (0.5f + t30) - theta[121] * (t30 - 0.5f);
-  J[190] = dtau_G[190] * t31;
-  J[191] = dtau_G[191] * t31;
-  J[192] = dtau_G[192] * t31;
-  J[193] = dtau_G[193] * t31;
-  J[194] = dtau_G[194] * t31;
-  J[195] = dtau_G[195] * t31;
-  J[196] = dtau_G[196] * t31;
-  J[198] = dtau_G[198] * t31;
-  J[199] = dtau_G[199] * t31;
-  J[200] = dtau_G[200] * t31;
-  J[201] = dtau_G[201] * t31;
-  J[202] = dtau_G[202] * t31;
-  J[203] = dtau_G[203] * t31;
-  J[204] = dtau_G[204] * t31;
+  for (int k = 0; k < 7; ++k) J[190 + k] = dtau_G[190 + k] * t31;
+  for (int k = 0; k < 7; ++k) J[198 + k] = dtau_G[198 + k] * t31;
   J[205] = theta[119] + dtau_G[205] * t31;
-  J[207] = dtau_G[207] * t31;
-  J[208] = dtau_G[208] * t31;
-  J[209] = dtau_G[209] * t31;
-  J[210] = dtau_G[210] * t31;
-  J[211] = dtau_G[211] * t31;
-  J[212] = dtau_G[212] * t31;
-  J[213] = dtau_G[213] * t31;
+  for (int k = 0; k < 7; ++k) J[207 + k] = dtau_G[207 + k] * t31;
   J[214] = theta[118] + dtau_G[214] * t31;
   const float t32 = dq[8] * tau_G[8];
   const float t33 = static_cast<float>((t32 > 0.0f) - (t32 < 0.0f));
   const float t34 = 0.5f * t33;
   const float t35 = (1.0f / theta[125]) * (0.5f + t34) - theta[125] * (t34 - 0.5f);
-  J[217] = dtau_G[217] * t35;
-  J[218] = dtau_G[218] * t35;
-  J[219] = dtau_G[219] * t35;
-  J[220] = dtau_G[220] * t35;
-  J[221] = dtau_G[221] * t35;
-  J[222] = dtau_G[222] * t35;
-  J[224] = dtau_G[224] * t35;
-  J[225] = dtau_G[225] * t35;
-  J[226] = dtau_G[226] * t35;
-  J[227] = dtau_G[227] * t35;
-  J[228] = dtau_G[228] * t35;
-  J[229] = dtau_G[229] * t35;
-  J[230] = dtau_G[230] * t35;
-  J[231] = dtau_G[231] * t35;
+  for (int k = 0; k < 6; ++k) J[217 + k] = dtau_G[217 + k] * t35;
+  for (int k = 0; k < 8; ++k) J[224 + k] = dtau_G[224 + k] * t35;
   J[233] = theta[123] + dtau_G[233] * t35;
-  J[234] = dtau_G[234] * t35;
-  J[235] = dtau_G[235] * t35;
-  J[236] = dtau_G[236] * t35;
-  J[237] = dtau_G[237] * t35;
-  J[238] = dtau_G[238] * t35;
-  J[239] = dtau_G[239] * t35;
-  J[240] = dtau_G[240] * t35;
+  for (int k = 0; k < 7; ++k) J[234 + k] = dtau_G[234 + k] * t35;
   J[242] = theta[122] + dtau_G[242] * t35;
 }
 

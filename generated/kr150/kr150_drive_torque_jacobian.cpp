@@ -27,7 +27,7 @@ void drive_torque_jacobian(const double* q, const double* dq, const double* ddq,
   const double sg2 = static_cast<double>((dq[1] > 0.0) - (dq[1] < 0.0));
   const double sg3 = static_cast<double>((dq[2] > 0.0) - (dq[2] < 0.0));
   const double sg4 = static_cast<double>((dq[3] > 0.0) - (dq[3] < 0.0));
-  const double t0 = W_std[13] * theta[10] + W_std[14] * theta[11] + W_std[15] * theta[12] + W_std[16] * theta[13] + W_std[17] * theta[14] + W_std[19] * theta[16] + W_std[20] * theta[17] + W_std[22] * theta[19] + W_std[26] * theta[20] + W_std[27] * theta[21] + W_std[28] * theta[22] + W_std[29] * theta[23] + W_std[30] * theta[24] + W_std[32] * theta[26] + W_std[33] * theta[27] + W_std[34] * theta[28] + W_std[35] * theta[29] + W_std[39] * theta[30] + W_std[40] * theta[31] + W_std[41] * theta[32] + W_std[42] * theta[33] + W_std[43] * theta[34] + W_std[44] * theta[35] + W_std[45] * theta[36] + W_std[46] * theta[37] + W_std[47] * theta[38] + W_std[48] * theta[39] + W_std[52] * theta[40] + W_std[53] * theta[41] + W_std[54] * theta[42] + W_std[55] * theta[43] + W_std[56] * theta[44] + W_std[57] * theta[45] + W_std[58] * theta[46] + W_std[59] * theta[47] + W_std[5] * theta[5] + W_std[60] * theta[48] + W_std[61] * theta[49] + W_std[68] * theta[50] + W_std[69] * theta[51] + W_std[70] * theta[52] + W_std[71] * theta[53] + W_std[72] * theta[54] + W_std[73] * theta[55] + W_std[74] * theta[56] + W_std[75] * theta[57] + W_std[76] * theta[58] + W_std[77] * theta[59] + W_std[84] * theta[60] + W_std[85] * theta[61] + W_std[86] * theta[62] + W_std[87] * theta[63] + W_std[88] * theta[64] + W_std[89] * theta[65] + W_std[90] * theta[66] + W_std[91] * theta[67] + W_std[92] * theta[68] + W_std[93] * theta[69];
+  const double t0 = (W_std[13] * theta[10] + W_std[14] * theta[11] + W_std[15] * theta[12] + W_std[16] * theta[13] + W_std[17] * theta[14] + W_std[19] * theta[16] + W_std[20] * theta[17] + W_std[22] * theta[19] + W_std[26] * theta[20] + W_std[27] * theta[21] + W_std[28] * theta[22] + W_std[29] * theta[23] + W_std[30] * theta[24] + W_std[32] * theta[26] + W_std[33] * theta[27]) + (W_std[34] * theta[28] + W_std[35] * theta[29] + W_std[39] * theta[30] + W_std[40] * theta[31] + W_std[41] * theta[32] + W_std[42] * theta[33] + W_std[43] * theta[34] + W_std[44] * theta[35] + W_std[45] * theta[36] + W_std[46] * theta[37] + W_std[47] * theta[38] + W_std[48] * theta[39] + W_std[52] * theta[40] + W_std[53] * theta[41] + W_std[54] * theta[42]) + (W_std[55] * theta[43] + W_std[56] * theta[44] + W_std[57] * theta[45] + W_std[58] * theta[46] + W_std[59] * theta[47] + W_std[5] * theta[5] + W_std[60] * theta[48] + W_std[61] * theta[49] + W_std[68] * theta[50] + W_std[69] * theta[51] + W_std[70] * theta[52] + W_std[71] * theta[53] + W_std[72] * theta[54] + W_std[73] * theta[55] + W_std[74] * theta[56]) + (W_std[75] * theta[57] + W_std[76] * theta[58] + W_std[77] * theta[59] + W_std[84] * theta[60] + W_std[85] * theta[61] + W_std[86] * theta[62] + W_std[87] * theta[63] + W_std[88] * theta[64] + W_std[89] * theta[65] + W_std[90] * theta[66] + W_std[91] * theta[67] + W_std[92] * theta[68] + W_std[93] * theta[69]);
   const double t1 = dq[0] * t0;
   const double t2 = static_cast<double>((t1 > 0.0) - (t1 < 0.0));
   const double t3 = 0.5 * t2;
@@ -35,7 +35,7 @@ void drive_torque_jacobian(const double* q, const double* dq, const double* ddq,
   const double t5 = 0.5 + t3;
   const double t6 = t4 * t5 - theta[73] * (t3 - 0.5);
   tau_M[0] = ddq[0] * theta[70] + dq[0] * theta[71] + sg1 * theta[72] + t0 * t6;
-  const double t7 = W_std[107] * theta[10] + W_std[108] * theta[11] + W_std[109] * theta[12] + W_std[110] * theta[13] + W_std[111] * theta[14] + W_std[112] * theta[15] + W_std[113] * theta[16] + W_std[114] * theta[17] + W_std[120] * theta[20] + W_std[121] * theta[21] + W_std[122] * theta[22] + W_std[123] * theta[23] + W_std[124] * theta[24] + W_std[125] * theta[25] + W_std[126] * theta[26] + W_std[127] * theta[27] + W_std[128] * theta[28] + W_std[129] * theta[29] + W_std[133] * theta[30] + W_std[134] * theta[31] + W_std[135] * theta[32] + W_std[136] * theta[33] + W_std[137] * theta[34] + W_std[138] * theta[35] + W_std[139] * theta[36] + W_std[140] * theta[37] + W_std[141] * theta[38] + W_std[142] * theta[39] + W_std[146] * theta[40] + W_std[147] * theta[41] + W_std[148] * theta[42] + W_std[149] * theta[43] + W_std[150] * theta[44] + W_std[151] * theta[45] + W_std[152] * theta[46] + W_std[153] * theta[47] + W_std[154] * theta[48] + W_std[155] * theta[49] + W_std[162] * theta[50] + W_std[163] * theta[51] + W_std[164] * theta[52] + W_std[165] * theta[53] + W_std[166] * theta[54] + W_std[167] * theta[55] + W_std[168] * theta[56] + W_std[169] * theta[57] + W_std[170] * theta[58] + W_std[171] * theta[59] + W_std[178] * theta[60] + W_std[179] * theta[61] + W_std[180] * theta[62] + W_std[181] * theta[63] + W_std[182] * theta[64] + W_std[183] * theta[65] + W_std[184] * theta[66] + W_std[185] * theta[67] + W_std[186] * theta[68] + W_std[187] * theta[69];
+  const double t7 = (W_std[107] * theta[10] + W_std[108] * theta[11] + W_std[109] * theta[12] + W_std[110] * theta[13] + W_std[111] * theta[14] + W_std[112] * theta[15] + W_std[113] * theta[16] + W_std[114] * theta[17] + W_std[120] * theta[20] + W_std[121] * theta[21] + W_std[122] * theta[22] + W_std[123] * theta[23] + W_std[124] * theta[24] + W_std[125] * theta[25] + W_std[126] * theta[26]) + (W_std[127] * theta[27] + W_std[128] * theta[28] + W_std[129] * theta[29] + W_std[133] * theta[30] + W_std[134] * theta[31] + W_std[135] * theta[32] + W_std[136] * theta[33] + W_std[137] * theta[34] + W_std[138] * theta[35] + W_std[139] * theta[36] + W_std[140] * theta[37] + W_std[141] * theta[38] + W_std[142] * theta[39] + W_std[146] * theta[40] + W_std[147] * theta[41]) + (W_std[148] * theta[42] + W_std[149] * theta[43] + W_std[150] * theta[44] + W_std[151] * theta[45] + W_std[152] * theta[46] + W_std[153] * theta[47] + W_std[154] * theta[48] + W_std[155] * theta[49] + W_std[162] * theta[50] + W_std[163] * theta[51] + W_std[164] * theta[52] + W_std[165] * theta[53] + W_std[166] * theta[54] + W_std[167] * theta[55] + W_std[168] * theta[56]) + (W_std[169] * theta[57] + W_std[170] * theta[58] + W_std[171] * theta[59] + W_std[178] * theta[60] + W_std[179] * theta[61] + W_std[180] * theta[62] + W_std[181] * theta[63] + W_std[182] * theta[64] + W_std[183] * theta[65] + W_std[184] * theta[66] + W_std[185] * theta[67] + W_std[186] * theta[68] + W_std[187] * theta[69]);
   const double t8 = dq[1] * t7;
   const double t9 = static_cast<double>((t8 > 0.0) - (t8 < 0.0));
   const double t10 = 0.5 * t9;
@@ -43,7 +43,7 @@ void drive_torque_jacobian(const double* q, const double* dq, const double* ddq,
   const double t12 = 0.5 + t10;
   const double t13 = t11 * t12 - theta[77] * (t10 - 0.5);
   tau_M[1] = ddq[1] * theta[74] + dq[1] * theta[75] + sg2 * theta[76] + t7 * t13;
-  const double t14 = W_std[214] * theta[20] + W_std[215] * theta[21] + W_std[216] * theta[22] + W_std[217] * theta[23] + W_std[218] * theta[24] + W_std[219] * theta[25] + W_std[220] * theta[26] + W_std[221] * theta[27] + W_std[227] * theta[30] + W_std[228] * theta[31] + W_std[229] * theta[32] + W_std[230] * theta[33] + W_std[231] * theta[34] + W_std[232] * theta[35] + W_std[233] * theta[36] + W_std[234] * theta[37] + W_std[235] * theta[38] + W_std[236] * theta[39] + W_std[240] * theta[40] + W_std[241] * theta[41] + W_std[242] * theta[42] + W_std[243] * theta[43] + W_std[244] * theta[44] + W_std[245] * theta[45] + W_std[246] * theta[46] + W_std[247] * theta[47] + W_std[248] * theta[48] + W_std[249] * theta[49] + W_std[256] * theta[50] + W_std[257] * theta[51] + W_std[258] * theta[52] + W_std[259] * theta[53] + W_std[260] * theta[54] + W_std[261] * theta[55] + W_std[262] * theta[56] + W_std[263] * theta[57] + W_std[264] * theta[58] + W_std[265] * theta[59] + W_std[272] * theta[60] + W_std[273] * theta[61] + W_std[274] * theta[62] + W_std[275] * theta[63] + W_std[276] * theta[64] + W_std[277] * theta[65] + W_std[278] * theta[66] + W_std[279] * theta[67] + W_std[280] * theta[68] + W_std[281] * theta[69];
+  const double t14 = (W_std[214] * theta[20] + W_std[215] * theta[21] + W_std[216] * theta[22] + W_std[217] * theta[23] + W_std[218] * theta[24] + W_std[219] * theta[25] + W_std[220] * theta[26] + W_std[221] * theta[27] + W_std[227] * theta[30] + W_std[228] * theta[31] + W_std[229] * theta[32] + W_std[230] * theta[33]) + (W_std[231] * theta[34] + W_std[232] * theta[35] + W_std[233] * theta[36] + W_std[234] * theta[37] + W_std[235] * theta[38] + W_std[236] * theta[39] + W_std[240] * theta[40] + W_std[241] * theta[41] + W_std[242] * theta[42] + W_std[243] * theta[43] + W_std[244] * theta[44] + W_std[245] * theta[45]) + (W_std[246] * theta[46] + W_std[247] * theta[47] + W_std[248] * theta[48] + W_std[249] * theta[49] + W_std[256] * theta[50] + W_std[257] * theta[51] + W_std[258] * theta[52] + W_std[259] * theta[53] + W_std[260] * theta[54] + W_std[261] * theta[55] + W_std[262] * theta[56] + W_std[263] * theta[57]) + (W_std[264] * theta[58] + W_std[265] * theta[59] + W_std[272] * theta[60] + W_std[273] * theta[61] + W_std[274] * theta[62] + W_std[275] * theta[63] + W_std[276] * theta[64] + W_std[277] * theta[65] + W_std[278] * theta[66] + W_std[279] * theta[67] + W_std[280] * theta[68] + W_std[281] * theta[69]);
   const double t15 = dq[2] * t14;
   const double t16 = static_cast<double>((t15 > 0.0) - (t15 < 0.0));
   const double t17 = 0.5 * t16;
@@ -53,7 +53,7 @@ void drive_torque_jacobian(const double* q, const double* dq, const double* ddq,
   tau_M[2] = ddq[2] * theta[78] + dq[2] * theta[79] + sg3 * theta[80] + t14 * t20;
   const double t21 = W_std[428] * theta[40] + W_std[429] * theta[41] + W_std[430] * theta[42] + W_std[431] * theta[43] + W_std[432] * theta[44] + W_std[433] * theta[45] + W_std[434] * theta[46] + W_std[435] * theta[47] + W_std[444] * theta[50] + W_std[445] * theta[51] + W_std[446] * theta[52] + W_std[447] * theta[53] + W_std[448] * theta[54] + W_std[449] * theta[55] + W_std[450] * theta[56] + W_std[451] * theta[57] + W_std[452] * theta[58] + W_std[460] * theta[60] + W_std[461] * theta[61] + W_std[462] * theta[62] + W_std[463] * theta[63] + W_std[464] * theta[64] + W_std[465] * theta[65] + W_std[466] * theta[66] + W_std[467] * theta[67] + W_std[468] * theta[68] + W_std[469] * theta[69];
   const double t22 = W_std[538] * theta[50] + W_std[539] * theta[51] + W_std[540] * theta[52] + W_std[541] * theta[53] + W_std[542] * theta[54] + W_std[543] * theta[55] + W_std[544] * theta[56] + W_std[545] * theta[57] + W_std[554] * theta[60] + W_std[555] * theta[61] + W_std[556] * theta[62] + W_std[557] * theta[63] + W_std[558] * theta[64] + W_std[559] * theta[65] + W_std[560] * theta[66] + W_std[561] * theta[67];
-  const double t23 = W_std[321] * theta[30] + W_std[322] * theta[31] + W_std[323] * theta[32] + W_std[324] * theta[33] + W_std[325] * theta[34] + W_std[326] * theta[35] + W_std[327] * theta[36] + W_std[328] * theta[37] + W_std[334] * theta[40] + W_std[335] * theta[41] + W_std[336] * theta[42] + W_std[337] * theta[43] + W_std[338] * theta[44] + W_std[339] * theta[45] + W_std[340] * theta[46] + W_std[341] * theta[47] + W_std[342] * theta[48] + W_std[350] * theta[50] + W_std[351] * theta[51] + W_std[352] * theta[52] + W_std[353] * theta[53] + W_std[354] * theta[54] + W_std[355] * theta[55] + W_std[356] * theta[56] + W_std[357] * theta[57] + W_std[358] * theta[58] + W_std[366] * theta[60] + W_std[367] * theta[61] + W_std[368] * theta[62] + W_std[369] * theta[63] + W_std[370] * theta[64] + W_std[371] * theta[65] + W_std[372] * theta[66] + W_std[373] * theta[67] + W_std[374] * theta[68] + W_std[375] * theta[69] + 0.0093 * t21 + 0.0138 * t22;
+  const double t23 = (W_std[321] * theta[30] + W_std[322] * theta[31] + W_std[323] * theta[32] + W_std[324] * theta[33] + W_std[325] * theta[34] + W_std[326] * theta[35] + W_std[327] * theta[36] + W_std[328] * theta[37] + W_std[334] * theta[40] + W_std[335] * theta[41]) + (W_std[336] * theta[42] + W_std[337] * theta[43] + W_std[338] * theta[44] + W_std[339] * theta[45] + W_std[340] * theta[46] + W_std[341] * theta[47] + W_std[342] * theta[48] + W_std[350] * theta[50] + W_std[351] * theta[51] + W_std[352] * theta[52]) + (W_std[353] * theta[53] + W_std[354] * theta[54] + W_std[355] * theta[55] + W_std[356] * theta[56] + W_std[357] * theta[57] + W_std[358] * theta[58] + W_std[366] * theta[60] + W_std[367] * theta[61] + W_std[368] * theta[62] + W_std[369] * theta[63]) + (W_std[370] * theta[64] + W_std[371] * theta[65] + W_std[372] * theta[66] + W_std[373] * theta[67] + W_std[374] * theta[68] + W_std[375] * theta[69] + 0.0093 * t21 + 0.0138 * t22);
   const double t24 = dq[3] * t23;
   const double t25 = static_cast<double>((t24 > 0.0) - (t24 < 0.0));
   const double t26 = 0.5 * t25;
@@ -83,189 +83,40 @@ void drive_torque_jacobian(const double* q, const double* dq, const double* ddq,
   const double t48 = theta[93] * (0.5 + t45) - t46 * t47;
   tau_M[5] = t22 * t48 - theta[90] * t40 - theta[91] * t41 - theta[92] * t42;
   J[5] = W_std[5] * t6;  // ZZ1
-  J[10] = W_std[13] * t6;  // XX2
-  J[11] = W_std[14] * t6;  // XY2
-  J[12] = W_std[15] * t6;  // XZ2
-  J[13] = W_std[16] * t6;  // YY2
-  J[14] = W_std[17] * t6;  // YZ2
+  for (int k = 0; k < 5; ++k) J[10 + k] = W_std[13 + k] * t6;
   J[16] = W_std[19] * t6;  // MX2
   J[17] = W_std[20] * t6;  // MY2
   J[19] = W_std[22] * t6;  // M2
-  J[20] = W_std[26] * t6;  // XX3
-  J[21] = W_std[27] * t6;  // XY3
-  J[22] = W_std[28] * t6;  // XZ3
-  J[23] = W_std[29] * t6;  // YY3
-  J[24] = W_std[30] * t6;  // YZ3
-  J[26] = W_std[32] * t6;  // MX3
-  J[27] = W_std[33] * t6;  // MY3
-  J[28] = W_std[34] * t6;  // MZ3
-  J[29] = W_std[35] * t6;  // M3
-  J[30] = W_std[39] * t6;  // XX4
-  J[31] = W_std[40] * t6;  // XY4
-  J[32] = W_std[41] * t6;  // XZ4
-  J[33] = W_std[42] * t6;  // YY4
-  J[34] = W_std[43] * t6;  // YZ4
-  J[35] = W_std[44] * t6;  // ZZ4
-  J[36] = W_std[45] * t6;  // MX4
-  J[37] = W_std[46] * t6;  // MY4
-  J[38] = W_std[47] * t6;  // MZ4
-  J[39] = W_std[48] * t6;  // M4
-  J[40] = W_std[52] * t6;  // XX5
-  J[41] = W_std[53] * t6;  // XY5
-  J[42] = W_std[54] * t6;  // XZ5
-  J[43] = W_std[55] * t6;  // YY5
-  J[44] = W_std[56] * t6;  // YZ5
-  J[45] = W_std[57] * t6;  // ZZ5
-  J[46] = W_std[58] * t6;  // MX5
-  J[47] = W_std[59] * t6;  // MY5
-  J[48] = W_std[60] * t6;  // MZ5
-  J[49] = W_std[61] * t6;  // M5
-  J[50] = W_std[68] * t6;  // XX6
-  J[51] = W_std[69] * t6;  // XY6
-  J[52] = W_std[70] * t6;  // XZ6
-  J[53] = W_std[71] * t6;  // YY6
-  J[54] = W_std[72] * t6;  // YZ6
-  J[55] = W_std[73] * t6;  // ZZ6
-  J[56] = W_std[74] * t6;  // MX6
-  J[57] = W_std[75] * t6;  // MY6
-  J[58] = W_std[76] * t6;  // MZ6
-  J[59] = W_std[77] * t6;  // M6
-  J[60] = W_std[84] * t6;  // XX7
-  J[61] = W_std[85] * t6;  // XY7
-  J[62] = W_std[86] * t6;  // XZ7
-  J[63] = W_std[87] * t6;  // YY7
-  J[64] = W_std[88] * t6;  // YZ7
-  J[65] = W_std[89] * t6;  // ZZ7
-  J[66] = W_std[90] * t6;  // MX7
-  J[67] = W_std[91] * t6;  // MY7
-  J[68] = W_std[92] * t6;  // MZ7
-  J[69] = W_std[93] * t6;  // M7
+  for (int k = 0; k < 5; ++k) J[20 + k] = W_std[26 + k] * t6;
+  for (int k = 0; k < 4; ++k) J[26 + k] = W_std[32 + k] * t6;
+  for (int k = 0; k < 10; ++k) J[30 + k] = W_std[39 + k] * t6;
+  for (int k = 0; k < 10; ++k) J[40 + k] = W_std[52 + k] * t6;
+  for (int k = 0; k < 10; ++k) J[50 + k] = W_std[68 + k] * t6;
+  for (int k = 0; k < 10; ++k) J[60 + k] = W_std[84 + k] * t6;
   J[70] = ddq[0];  // JM1
   J[71] = dq[0];  // Rv1
   J[72] = sg1;  // Rc1
   J[73] = -t0 * (t3 - 0.5 + t4 * t4 * t5);  // Rz1
-  J[104] = W_std[107] * t13;
-  J[105] = W_std[108] * t13;
-  J[106] = W_std[109] * t13;
-  J[107] = W_std[110] * t13;
-  J[108] = W_std[111] * t13;
-  J[109] = W_std[112] * t13;
-  J[110] = W_std[113] * t13;
-  J[111] = W_std[114] * t13;
-  J[114] = W_std[120] * t13;
-  J[115] = W_std[121] * t13;
-  J[116] = W_std[122] * t13;
-  J[117] = W_std[123] * t13;
-  J[118] = W_std[124] * t13;
-  J[119] = W_std[125] * t13;
-  J[120] = W_std[126] * t13;
-  J[121] = W_std[127] * t13;
-  J[122] = W_std[128] * t13;
-  J[123] = W_std[129] * t13;
-  J[124] = W_std[133] * t13;
-  J[125] = W_std[134] * t13;
-  J[126] = W_std[135] * t13;
-  J[127] = W_std[136] * t13;
-  J[128] = W_std[137] * t13;
-  J[129] = W_std[138] * t13;
-  J[130] = W_std[139] * t13;
-  J[131] = W_std[140] * t13;
-  J[132] = W_std[141] * t13;
-  J[133] = W_std[142] * t13;
-  J[134] = W_std[146] * t13;
-  J[135] = W_std[147] * t13;
-  J[136] = W_std[148] * t13;
-  J[137] = W_std[149] * t13;
-  J[138] = W_std[150] * t13;
-  J[139] = W_std[151] * t13;
-  J[140] = W_std[152] * t13;
-  J[141] = W_std[153] * t13;
-  J[142] = W_std[154] * t13;
-  J[143] = W_std[155] * t13;
-  J[144] = W_std[162] * t13;
-  J[145] = W_std[163] * t13;
-  J[146] = W_std[164] * t13;
-  J[147] = W_std[165] * t13;
-  J[148] = W_std[166] * t13;
-  J[149] = W_std[167] * t13;
-  J[150] = W_std[168] * t13;
-  J[151] = W_std[169] * t13;
-  J[152] = W_std[170] * t13;
-  J[153] = W_std[171] * t13;
-  J[154] = W_std[178] * t13;
-  J[155] = W_std[179] * t13;
-  J[156] = W_std[180] * t13;
-  J[157] = W_std[181] * t13;
-  J[158] = W_std[182] * t13;
-  J[159] = W_std[183] * t13;
-  J[160] = W_std[184] * t13;
-  J[161] = W_std[185] * t13;
-  J[162] = W_std[186] * t13;
-  J[163] = W_std[187] * t13;
+  for (int k = 0; k < 8; ++k) J[104 + k] = W_std[107 + k] * t13;
+  for (int k = 0; k < 10; ++k) J[114 + k] = W_std[120 + k] * t13;
+  for (int k = 0; k < 10; ++k) J[124 + k] = W_std[133 + k] * t13;
+  for (int k = 0; k < 10; ++k) J[134 + k] = W_std[146 + k] * t13;
+  for (int k = 0; k < 10; ++k) J[144 + k] = W_std[162 + k] * t13;
+  for (int k = 0; k < 10; ++k) J[154 + k] = W_std[178 + k] * t13;
   J[168] = ddq[1];
   J[169] = dq[1];
   J[170] = sg2;
   J[171] = -t7 * (t10 - 0.5 + t11 * t11 * t12);
-  J[208] = W_std[214] * t20;
-  J[209] = W_std[215] * t20;
-  J[210] = W_std[216] * t20;
-  J[211] = W_std[217] * t20;
-  J[212] = W_std[218] * t20;
-  J[213] = W_std[219] * t20;
-  J[214] = W_std[220] * t20;
-  J[215] = W_std[221] * t20;
-  J[218] = W_std[227] * t20;
-  J[219] = W_std[228] * t20;
-  J[220] = W_std[229] * t20;
-  J[221] = W_std[230] * t20;
-  J[222] = W_std[231] * t20;
-  J[223] = W_std[232] * t20;
-  J[224] = W_std[233] * t20;
-  J[225] = W_std[234] * t20;
-  J[226] = W_std[235] * t20;
-  J[227] = W_std[236] * t20;
-  J[228] = W_std[240] * t20;
-  J[229] = W_std[241] * t20;
-  J[230] = W_std[242] * t20;
-  J[231] = W_std[243] * t20;
-  J[232] = W_std[244] * t20;
-  J[233] = W_std[245] * t20;
-  J[234] = W_std[246] * t20;
-  J[235] = W_std[247] * t20;
-  J[236] = W_std[248] * t20;
-  J[237] = W_std[249] * t20;
-  J[238] = W_std[256] * t20;
-  J[239] = W_std[257] * t20;
-  J[240] = W_std[258] * t20;
-  J[241] = W_std[259] * t20;
-  J[242] = W_std[260] * t20;
-  J[243] = W_std[261] * t20;
-  J[244] = W_std[262] * t20;
-  J[245] = W_std[263] * t20;
-  J[246] = W_std[264] * t20;
-  J[247] = W_std[265] * t20;
-  J[248] = W_std[272] * t20;
-  J[249] = W_std[273] * t20;
-  J[250] = W_std[274] * t20;
-  J[251] = W_std[275] * t20;
-  J[252] = W_std[276] * t20;
-  J[253] = W_std[277] * t20;
-  J[254] = W_std[278] * t20;
-  J[255] = W_std[279] * t20;
-  J[256] = W_std[280] * t20;
-  J[257] = W_std[281] * t20;
+  for (int k = 0; k < 8; ++k) J[208 + k] = W_std[214 + k] * t20;
+  for (int k = 0; k < 10; ++k) J[218 + k] = W_std[227 + k] * t20;
+  for (int k = 0; k < 10; ++k) J[228 + k] = W_std[240 + k] * t20;
+  for (int k = 0; k < 10; ++k) J[238 + k] = W_std[256 + k] * t20;
+  for (int k = 0; k < 10; ++k) J[248 + k] = W_std[272 + k] * t20;
   J[266] = ddq[2];
   J[267] = dq[2];
   J[268] = sg3;
   J[269] = -t14 * (t17 - 0.5 + t18 * t18 * t19);
-  J[312] = W_std[321] * t29;
-  J[313] = W_std[322] * t29;
-  J[314] = W_std[323] * t29;
-  J[315] = W_std[324] * t29;
-  J[316] = W_std[325] * t29;
-  J[317] = W_std[326] * t29;
-  J[318] = W_std[327] * t29;
-  J[319] = W_std[328] * t29;
+  for (int k = 0; k < 8; ++k) J[312 + k] = W_std[321 + k] * t29;
   J[322] = (W_std[334] + 0.0093 * W_std[428]) * t29;
   J[323] = (W_std[335] + 0.0093 * W_std[429]) * t29;
   J[324] = (W_std[336] + 0.0093 * W_std[430]) * t29;
@@ -298,14 +149,7 @@ void drive_torque_jacobian(const double* q, const double* dq, const double* ddq,
   J[365] = dq[3];
   J[366] = sg4;
   J[367] = -t23 * (t26 - 0.5 + t27 * t27 * t28);
-  J[416] = W_std[428] * t39;
-  J[417] = W_std[429] * t39;
-  J[418] = W_std[430] * t39;
-  J[419] = W_std[431] * t39;
-  J[420] = W_std[432] * t39;
-  J[421] = W_std[433] * t39;
-  J[422] = W_std[434] * t39;
-  J[423] = W_std[435] * t39;
+  for (int k = 0; k < 8; ++k) J[416 + k] = W_std[428 + k] * t39;
   J[426] = (W_std[444] - 0.014 * W_std[538]) * t39;
   J[427] = (W_std[445] - 0.014 * W_std[539]) * t39;
   J[428] = (W_std[446] - 0.014 * W_std[540]) * t39;
@@ -329,22 +173,8 @@ void drive_torque_jacobian(const double* q, const double* dq, const double* ddq,
   J[463] = -t31;
   J[464] = -t32;
   J[465] = t33 * (0.5 + t36 + t37 * t37 * t38);
-  J[520] = W_std[538] * t48;
-  J[521] = W_std[539] * t48;
-  J[522] = W_std[540] * t48;
-  J[523] = W_std[541] * t48;
-  J[524] = W_std[542] * t48;
-  J[525] = W_std[543] * t48;
-  J[526] = W_std[544] * t48;
-  J[527] = W_std[545] * t48;
-  J[530] = W_std[554] * t48;
-  J[531] = W_std[555] * t48;
-  J[532] = W_std[556] * t48;
-  J[533] = W_std[557] * t48;
-  J[534] = W_std[558] * t48;
-  J[535] = W_std[559] * t48;
-  J[536] = W_std[560] * t48;
-  J[537] = W_std[561] * t48;
+  for (int k = 0; k < 8; ++k) J[520 + k] = W_std[538 + k] * t48;
+  for (int k = 0; k < 8; ++k) J[530 + k] = W_std[554 + k] * t48;
   J[560] = -t40;
   J[561] = -t41;
   J[562] = -t42;
@@ -368,7 +198,7 @@ void drive_torque_jacobian(const float* q, const float* dq, const float* ddq, co
   const float sg2 = static_cast<float>((dq[1] > 0.0f) - (dq[1] < 0.0f));
   const float sg3 = static_cast<float>((dq[2] > 0.0f) - (dq[2] < 0.0f));
   const float sg4 = static_cast<float>((dq[3] > 0.0f) - (dq[3] < 0.0f));
-  const float t0 = W_std[13] * theta[10] + W_std[14] * theta[11] + W_std[15] * theta[12] + W_std[16] * theta[13] + W_std[17] * theta[14] + W_std[19] * theta[16] + W_std[20] * theta[17] + W_std[22] * theta[19] + W_std[26] * theta[20] + W_std[27] * theta[21] + W_std[28] * theta[22] + W_std[29] * theta[23] + W_std[30] * theta[24] + W_std[32] * theta[26] + W_std[33] * theta[27] + W_std[34] * theta[28] + W_std[35] * theta[29] + W_std[39] * theta[30] + W_std[40] * theta[31] + W_std[41] * theta[32] + W_std[42] * theta[33] + W_std[43] * theta[34] + W_std[44] * theta[35] + W_std[45] * theta[36] + W_std[46] * theta[37] + W_std[47] * theta[38] + W_std[48] * theta[39] + W_std[52] * theta[40] + W_std[53] * theta[41] + W_std[54] * theta[42] + W_std[55] * theta[43] + W_std[56] * theta[44] + W_std[57] * theta[45] + W_std[58] * theta[46] + W_std[59] * theta[47] + W_std[5] * theta[5] + W_std[60] * theta[48] + W_std[61] * theta[49] + W_std[68] * theta[50] + W_std[69] * theta[51] + W_std[70] * theta[52] + W_std[71] * theta[53] + W_std[72] * theta[54] + W_std[73] * theta[55] + W_std[74] * theta[56] + W_std[75] * theta[57] + W_std[76] * theta[58] + W_std[77] * theta[59] + W_std[84] * theta[60] + W_std[85] * theta[61] + W_std[86] * theta[62] + W_std[87] * theta[63] + W_std[88] * theta[64] + W_std[89] * theta[65] + W_std[90] * theta[66] + W_std[91] * theta[67] + W_std[92] * theta[68] + W_std[93] * theta[69];
+  const float t0 = (W_std[13] * theta[10] + W_std[14] * theta[11] + W_std[15] * theta[12] + W_std[16] * theta[13] + W_std[17] * theta[14] + W_std[19] * theta[16] + W_std[20] * theta[17] + W_std[22] * theta[19] + W_std[26] * theta[20] + W_std[27] * theta[21] + W_std[28] * theta[22] + W_std[29] * theta[23] + W_std[30] * theta[24] + W_std[32] * theta[26] + W_std[33] * theta[27]) + (W_std[34] * theta[28] + W_std[35] * theta[29] + W_std[39] * theta[30] + W_std[40] * theta[31] + W_std[41] * theta[32] + W_std[42] * theta[33] + W_std[43] * theta[34] + W_std[44] * theta[35] + W_std[45] * theta[36] + W_std[46] * theta[37] + W_std[47] * theta[38] + W_std[48] * theta[39] + W_std[52] * theta[40] + W_std[53] * theta[41] + W_std[54] * theta[42]) + (W_std[55] * theta[43] + W_std[56] * theta[44] + W_std[57] * theta[45] + W_std[58] * theta[46] + W_std[59] * theta[47] + W_std[5] * theta[5] + W_std[60] * theta[48] + W_std[61] * theta[49] + W_std[68] * theta[50] + W_std[69] * theta[51] + W_std[70] * theta[52] + W_std[71] * theta[53] + W_std[72] * theta[54] + W_std[73] * theta[55] + W_std[74] * theta[56]) + (W_std[75] * theta[57] + W_std[76] * theta[58] + W_std[77] * theta[59] + W_std[84] * theta[60] + W_std[85] * theta[61] + W_std[86] * theta[62] + W_std[87] * theta[63] + W_std[88] * theta[64] + W_std[89] * theta[65] + W_std[90] * theta[66] + W_std[91] * theta[67] + W_std[92] * theta[68] + W_std[93] * theta[69]);
   const float t1 = dq[0] * t0;
   const float t2 = static_cast<float>((t1 > 0.0f) - (t1 < 0.0f));
   const float t3 = 0.5f * t2;
@@ -376,7 +206,7 @@ void drive_torque_jacobian(const float* q, const float* dq, const float* ddq, co
   const float t5 = 0.5f + t3;
   const float t6 = t4 * t5 - theta[73] * (t3 - 0.5f);
   tau_M[0] = ddq[0] * theta[70] + dq[0] * theta[71] + sg1 * theta[72] + t0 * t6;
-  const float t7 = W_std[107] * theta[10] + W_std[108] * theta[11] + W_std[109] * theta[12] + W_std[110] * theta[13] + W_std[111] * theta[14] + W_std[112] * theta[15] + W_std[113] * theta[16] + W_std[114] * theta[17] + W_std[120] * theta[20] + W_std[121] * theta[21] + W_std[122] * theta[22] + W_std[123] * theta[23] + W_std[124] * theta[24] + W_std[125] * theta[25] + W_std[126] * theta[26] + W_std[127] * theta[27] + W_std[128] * theta[28] + W_std[129] * theta[29] + W_std[133] * theta[30] + W_std[134] * theta[31] + W_std[135] * theta[32] + W_std[136] * theta[33] + W_std[137] * theta[34] + W_std[138] * theta[35] + W_std[139] * theta[36] + W_std[140] * theta[37] + W_std[141] * theta[38] + W_std[142] * theta[39] + W_std[146] * theta[40] + W_std[147] * theta[41] + W_std[148] * theta[42] + W_std[149] * theta[43] + W_std[150] * theta[44] + W_std[151] * theta[45] + W_std[152] * theta[46] + W_std[153] * theta[47] + W_std[154] * theta[48] + W_std[155] * theta[49] + W_std[162] * theta[50] + W_std[163] * theta[51] + W_std[164] * theta[52] + W_std[165] * theta[53] + W_std[166] * theta[54] + W_std[167] * theta[55] + W_std[168] * theta[56] + W_std[169] * theta[57] + W_std[170] * theta[58] + W_std[171] * theta[59] + W_std[178] * theta[60] + W_std[179] * theta[61] + W_std[180] * theta[62] + W_std[181] * theta[63] + W_std[182] * theta[64] + W_std[183] * theta[65] + W_std[184] * theta[66] + W_std[185] * theta[67] + W_std[186] * theta[68] + W_std[187] * theta[69];
+  const float t7 = (W_std[107] * theta[10] + W_std[108] * theta[11] + W_std[109] * theta[12] + W_std[110] * theta[13] + W_std[111] * theta[14] + W_std[112] * theta[15] + W_std[113] * theta[16] + W_std[114] * theta[17] + W_std[120] * theta[20] + W_std[121] * theta[21] + W_std[122] * theta[22] + W_std[123] * theta[23] + W_std[124] * theta[24] + W_std[125] * theta[25] + W_std[126] * theta[26]) + (W_std[127] * theta[27] + W_std[128] * theta[28] + W_std[129] * theta[29] + W_std[133] * theta[30] + W_std[134] * theta[31] + W_std[135] * theta[32] + W_std[136] * theta[33] + W_std[137] * theta[34] + W_std[138] * theta[35] + W_std[139] * theta[36] + W_std[140] * theta[37] + W_std[141] * theta[38] + W_std[142] * theta[39] + W_std[146] * theta[40] + W_std[147] * theta[41]) + (W_std[148] * theta[42] + W_std[149] * theta[43] + W_std[150] * theta[44] + W_std[151] * theta[45] + W_std[152] * theta[46] + W_std[153] * theta[47] + W_std[154] * theta[48] + W_std[155] * theta[49] + W_std[162] * theta[50] + W_std[163] * theta[51] + W_std[164] * theta[52] + W_std[165] * theta[53] + W_std[166] * theta[54] + W_std[167] * theta[55] + W_std[168] * theta[56]) + (W_std[169] * theta[57] + W_std[170] * theta[58] + W_std[171] * theta[59] + W_std[178] * theta[60] + W_std[179] * theta[61] + W_std[180] * theta[62] + W_std[181] * theta[63] + W_std[182] * theta[64] + W_std[183] * theta[65] + W_std[184] * theta[66] + W_std[185] * theta[67] + W_std[186] * theta[68] + W_std[187] * theta[69]);
   const float t8 = dq[1] * t7;
   const float t9 = static_cast<float>((t8 > 0.0f) - (t8 < 0.0f));
   const float t10 = 0.5f * t9;
@@ -384,7 +214,7 @@ void drive_torque_jacobian(const float* q, const float* dq, const float* ddq, co
   const float t12 = 0.5f + t10;
   const float t13 = t11 * t12 - theta[77] * (t10 - 0.5f);
   tau_M[1] = ddq[1] * theta[74] + dq[1] * theta[75] + sg2 * theta[76] + t7 * t13;
-  const float t14 = W_std[214] * theta[20] + W_std[215] * theta[21] + W_std[216] * theta[22] + W_std[217] * theta[23] + W_std[218] * theta[24] + W_std[219] * theta[25] + W_std[220] * theta[26] + W_std[221] * theta[27] + W_std[227] * theta[30] + W_std[228] * theta[31] + W_std[229] * theta[32] + W_std[230] * theta[33] + W_std[231] * theta[34] + W_std[232] * theta[35] + W_std[233] * theta[36] + W_std[234] * theta[37] + W_std[235] * theta[38] + W_std[236] * theta[39] + W_std[240] * theta[40] + W_std[241] * theta[41] + W_std[242] * theta[42] + W_std[243] * theta[43] + W_std[244] * theta[44] + W_std[245] * theta[45] + W_std[246] * theta[46] + W_std[247] * theta[47] + W_std[248] * theta[48] + W_std[249] * theta[49] + W_std[256] * theta[50] + W_std[257] * theta[51] + W_std[258] * theta[52] + W_std[259] * theta[53] + W_std[260] * theta[54] + W_std[261] * theta[55] + W_std[262] * theta[56] + W_std[263] * theta[57] + W_std[264] * theta[58] + W_std[265] * theta[59] + W_std[272] * theta[60] + W_std[273] * theta[61] + W_std[274] * theta[62] + W_std[275] * theta[63] + W_std[276] * theta[64] + W_std[277] * theta[65] + W_std[278] * theta[66] + W_std[279] * theta[67] + W_std[280] * theta[68] + W_std[281] * theta[69];
+  const float t14 = (W_std[214] * theta[20] + W_std[215] * theta[21] + W_std[216] * theta[22] + W_std[217] * theta[23] + W_std[218] * theta[24] + W_std[219] * theta[25] + W_std[220] * theta[26] + W_std[221] * theta[27] + W_std[227] * theta[30] + W_std[228] * theta[31] + W_std[229] * theta[32] + W_std[230] * theta[33]) + (W_std[231] * theta[34] + W_std[232] * theta[35] + W_std[233] * theta[36] + W_std[234] * theta[37] + W_std[235] * theta[38] + W_std[236] * theta[39] + W_std[240] * theta[40] + W_std[241] * theta[41] + W_std[242] * theta[42] + W_std[243] * theta[43] + W_std[244] * theta[44] + W_std[245] * theta[45]) + (W_std[246] * theta[46] + W_std[247] * theta[47] + W_std[248] * theta[48] + W_std[249] * theta[49] + W_std[256] * theta[50] + W_std[257] * theta[51] + W_std[258] * theta[52] + W_std[259] * theta[53] + W_std[260] * theta[54] + W_std[261] * theta[55] + W_std[262] * theta[56] + W_std[263] * theta[57]) + (W_std[264] * theta[58] + W_std[265] * theta[59] + W_std[272] * theta[60] + W_std[273] * theta[61] + W_std[274] * theta[62] + W_std[275] * theta[63] + W_std[276] * theta[64] + W_std[277] * theta[65] + W_std[278] * theta[66] + W_std[279] * theta[67] + W_std[280] * theta[68] + W_std[281] * theta[69]);
   const float t15 = dq[2] * t14;
   const float t16 = static_cast<float>((t15 > 0.0f) - (t15 < 0.0f));
   const float t17 = 0.5f * t16;
@@ -394,7 +224,7 @@ void drive_torque_jacobian(const float* q, const float* dq, const float* ddq, co
   tau_M[2] = ddq[2] * theta[78] + dq[2] * theta[79] + sg3 * theta[80] + t14 * t20;
   const float t21 = W_std[428] * theta[40] + W_std[429] * theta[41] + W_std[430] * theta[42] + W_std[431] * theta[43] + W_std[432] * theta[44] + W_std[433] * theta[45] + W_std[434] * theta[46] + W_std[435] * theta[47] + W_std[444] * theta[50] + W_std[445] * theta[51] + W_std[446] * theta[52] + W_std[447] * theta[53] + W_std[448] * theta[54] + W_std[449] * theta[55] + W_std[450] * theta[56] + W_std[451] * theta[57] + W_std[452] * theta[58] + W_std[460] * theta[60] + W_std[461] * theta[61] + W_std[462] * theta[62] + W_std[463] * theta[63] + W_std[464] * theta[64] + W_std[465] * theta[65] + W_std[466] * theta[66] + W_std[467] * theta[67] + W_std[468] * theta[68] + W_std[469] * theta[69];
   const float t22 = W_std[538] * theta[50] + W_std[539] * theta[51] + W_std[540] * theta[52] + W_std[541] * theta[53] + W_std[542] * theta[54] + W_std[543] * theta[55] + W_std[544] * theta[56] + W_std[545] * theta[57] + W_std[554] * theta[60] + W_std[555] * theta[61] + W_std[556] * theta[62] + W_std[557] * theta[63] + W_std[558] * theta[64] + W_std[559] * theta[65] + W_std[560] * theta[66] + W_std[561] * theta[67];
-  const float t23 = W_std[321] * theta[30] + W_std[322] * theta[31] + W_std[323] * theta[32] + W_std[324] * theta[33] + W_std[325] * theta[34] + W_std[326] * theta[35] + W_std[327] * theta[36] + W_std[328] * theta[37] + W_std[334] * theta[40] + W_std[335] * theta[41] + W_std[336] * theta[42] + W_std[337] * theta[43] + W_std[338] * theta[44] + W_std[339] * theta[45] + W_std[340] * theta[46] + W_std[341] * theta[47] + W_std[342] * theta[48] + W_std[350] * theta[50] + W_std[351] * theta[51] + W_std[352] * theta[52] + W_std[353] * theta[53] + W_std[354] * theta[54] + W_std[355] * theta[55] + W_std[356] * theta[56] + W_std[357] * theta[57] + W_std[358] * theta[58] + W_std[366] * theta[60] + W_std[367] * theta[61] + W_std[368] * theta[62] + W_std[369] * theta[63] + W_std[370] * theta[64] + W_std[371] * theta[65] + W_std[372] * theta[66] + W_std[373] * theta[67] + W_std[374] * theta[68] + W_std[375] * theta[69] + 0.0093f * t21 + 0.0138f * t22;
+  const float t23 = (W_std[321] * theta[30] + W_std[322] * theta[31] + W_std[323] * theta[32] + W_std[324] * theta[33] + W_std[325] * theta[34] + W_std[326] * theta[35] + W_std[327] * theta[36] + W_std[328] * theta[37] + W_std[334] * theta[40] + W_std[335] * theta[41]) + (W_std[336] * theta[42] + W_std[337] * theta[43] + W_std[338] * theta[44] + W_std[339] * theta[45] + W_std[340] * theta[46] + W_std[341] * theta[47] + W_std[342] * theta[48] + W_std[350] * theta[50] + W_std[351] * theta[51] + W_std[352] * theta[52]) + (W_std[353] * theta[53] + W_std[354] * theta[54] + W_std[355] * theta[55] + W_std[356] * theta[56] + W_std[357] * theta[57] + W_std[358] * theta[58] + W_std[366] * theta[60] + W_std[367] * theta[61] + W_std[368] * theta[62] + W_std[369] * theta[63]) + (W_std[370] * theta[64] + W_std[371] * theta[65] + W_std[372] * theta[66] + W_std[373] * theta[67] + W_std[374] * theta[68] + W_std[375] * theta[69] + 0.0093f * t21 + 0.0138f * t22);
   const float t24 = dq[3] * t23;
   const float t25 = static_cast<float>((t24 > 0.0f) - (t24 < 0.0f));
   const float t26 = 0.5f * t25;
@@ -424,189 +254,40 @@ void drive_torque_jacobian(const float* q, const float* dq, const float* ddq, co
   const float t48 = theta[93] * (0.5f + t45) - t46 * t47;
   tau_M[5] = t22 * t48 - theta[90] * t40 - theta[91] * t41 - theta[92] * t42;
   J[5] = W_std[5] * t6;  // ZZ1
-  J[10] = W_std[13] * t6;  // XX2
-  J[11] = W_std[14] * t6;  // XY2
-  J[12] = W_std[15] * t6;  // XZ2
-  J[13] = W_std[16] * t6;  // YY2
-  J[14] = W_std[17] * t6;  // YZ2
+  for (int k = 0; k < 5; ++k) J[10 + k] = W_std[13 + k] * t6;
   J[16] = W_std[19] * t6;  // MX2
   J[17] = W_std[20] * t6;  // MY2
   J[19] = W_std[22] * t6;  // M2
-  J[20] = W_std[26] * t6;  // XX3
-  J[21] = W_std[27] * t6;  // XY3
-  J[22] = W_std[28] * t6;  // XZ3
-  J[23] = W_std[29] * t6;  // YY3
-  J[24] = W_std[30] * t6;  // YZ3
-  J[26] = W_std[32] * t6;  // MX3
-  J[27] = W_std[33] * t6;  // MY3
-  J[28] = W_std[34] * t6;  // MZ3
-  J[29] = W_std[35] * t6;  // M3
-  J[30] = W_std[39] * t6;  // XX4
-  J[31] = W_std[40] * t6;  // XY4
-  J[32] = W_std[41] * t6;  // XZ4
-  J[33] = W_std[42] * t6;  // YY4
-  J[34] = W_std[43] * t6;  // YZ4
-  J[35] = W_std[44] * t6;  // ZZ4
-  J[36] = W_std[45] * t6;  // MX4
-  J[37] = W_std[46] * t6;  // MY4
-  J[38] = W_std[47] * t6;  // MZ4
-  J[39] = W_std[48] * t6;  // M4
-  J[40] = W_std[52] * t6;  // XX5
-  J[41] = W_std[53] * t6;  // XY5
-  J[42] = W_std[54] * t6;  // XZ5
-  J[43] = W_std[55] * t6;  // YY5
-  J[44] = W_std[56] * t6;  // YZ5
-  J[45] = W_std[57] * t6;  // ZZ5
-  J[46] = W_std[58] * t6;  // MX5
-  J[47] = W_std[59] * t6;  // MY5
-  J[48] = W_std[60] * t6;  // MZ5
-  J[49] = W_std[61] * t6;  // M5
-  J[50] = W_std[68] * t6;  // XX6
-  J[51] = W_std[69] * t6;  // XY6
-  J[52] = W_std[70] * t6;  // XZ6
-  J[53] = W_std[71] * t6;  // YY6
-  J[54] = W_std[72] * t6;  // YZ6
-  J[55] = W_std[73] * t6;  // ZZ6
-  J[56] = W_std[74] * t6;  // MX6
-  J[57] = W_std[75] * t6;  // MY6
-  J[58] = W_std[76] * t6;  // MZ6
-  J[59] = W_std[77] * t6;  // M6
-  J[60] = W_std[84] * t6;  // XX7
-  J[61] = W_std[85] * t6;  // XY7
-  J[62] = W_std[86] * t6;  // XZ7
-  J[63] = W_std[87] * t6;  // YY7
-  J[64] = W_std[88] * t6;  // YZ7
-  J[65] = W_std[89] * t6;  // ZZ7
-  J[66] = W_std[90] * t6;  // MX7
-  J[67] = W_std[91] * t6;  // MY7
-  J[68] = W_std[92] * t6;  // MZ7
-  J[69] = W_std[93] * t6;  // M7
+  for (int k = 0; k < 5; ++k) J[20 + k] = W_std[26 + k] * t6;
+  for (int k = 0; k < 4; ++k) J[26 + k] = W_std[32 + k] * t6;
+  for (int k = 0; k < 10; ++k) J[30 + k] = W_std[39 + k] * t6;
+  for (int k = 0; k < 10; ++k) J[40 + k] = W_std[52 + k] * t6;
+  for (int k = 0; k < 10; ++k) J[50 + k] = W_std[68 + k] * t6;
+  for (int k = 0; k < 10; ++k) J[60 + k] = W_std[84 + k] * t6;
   J[70] = ddq[0];  // JM1
   J[71] = dq[0];  // Rv1
   J[72] = sg1;  // Rc1
   J[73] = -t0 * (t3 - 0.5f + t4 * t4 * t5);  // Rz1
-  J[104] = W_std[107] * t13;
-  J[105] = W_std[108] * t13;
-  J[106] = W_std[109] * t13;
-  J[107] = W_std[110] * t13;
-  J[108] = W_std[111] * t13;
-  J[109] = W_std[112] * t13;
-  J[110] = W_std[113] * t13;
-  J[111] = W_std[114] * t13;
-  J[114] = W_std[120] * t13;
-  J[115] = W_std[121] * t13;
-  J[116] = W_std[122] * t13;
-  J[117] = W_std[123] * t13;
-  J[118] = W_std[124] * t13;
-  J[119] = W_std[125] * t13;
-  J[120] = W_std[126] * t13;
-  J[121] = W_std[127] * t13;
-  J[122] = W_std[128] * t13;
-  J[123] = W_std[129] * t13;
-  J[124] = W_std[133] * t13;
-  J[125] = W_std[134] * t13;
-  J[126] = W_std[135] * t13;
-  J[127] = W_std[136] * t13;
-  J[128] = W_std[137] * t13;
-  J[129] = W_std[138] * t13;
-  J[130] = W_std[139] * t13;
-  J[131] = W_std[140] * t13;
-  J[132] = W_std[141] * t13;
-  J[133] = W_std[142] * t13;
-  J[134] = W_std[146] * t13;
-  J[135] = W_std[147] * t13;
-  J[136] = W_std[148] * t13;
-  J[137] = W_std[149] * t13;
-  J[138] = W_std[150] * t13;
-  J[139] = W_std[151] * t13;
-  J[140] = W_std[152] * t13;
-  J[141] = W_std[153] * t13;
-  J[142] = W_std[154] * t13;
-  J[143] = W_std[155] * t13;
-  J[144] = W_std[162] * t13;
-  J[145] = W_std[163] * t13;
-  J[146] = W_std[164] * t13;
-  J[147] = W_std[165] * t13;
-  J[148] = W_std[166] * t13;
-  J[149] = W_std[167] * t13;
-  J[150] = W_std[168] * t13;
-  J[151] = W_std[169] * t13;
-  J[152] = W_std[170] * t13;
-  J[153] = W_std[171] * t13;
-  J[154] = W_std[178] * t13;
-  J[155] = W_std[179] * t13;
-  J[156] = W_std[180] * t13;
-  J[157] = W_std[181] * t13;
-  J[158] = W_std[182] * t13;
-  J[159] = W_std[183] * t13;
-  J[160] = W_std[184] * t13;
-  J[161] = W_std[185] * t13;
-  J[162] = W_std[186] * t13;
-  J[163] = W_std[187] * t13;
+  for (int k = 0; k < 8; ++k) J[104 + k] = W_std[107 + k] * t13;
+  for (int k = 0; k < 10; ++k) J[114 + k] = W_std[120 + k] * t13;
+  for (int k = 0; k < 10; ++k) J[124 + k] = W_std[133 + k] * t13;
+  for (int k = 0; k < 10; ++k) J[134 + k] = W_std[146 + k] * t13;
+  for (int k = 0; k < 10; ++k) J[144 + k] = W_std[162 + k] * t13;
+  for (int k = 0; k < 10; ++k) J[154 + k] = W_std[178 + k] * t13;
   J[168] = ddq[1];
   J[169] = dq[1];
   J[170] = sg2;
   J[171] = -t7 * (t10 - 0.5f + t11 * t11 * t12);
-  J[208] = W_std[214] * t20;
-  J[209] = W_std[215] * t20;
-  J[210] = W_std[216] * t20;
-  J[211] = W_std[217] * t20;
-  J[212] = W_std[218] * t20;
-  J[213] = W_std[219] * t20;
-  J[214] = W_std[220] * t20;
-  J[215] = W_std[221] * t20;
-  J[218] = W_std[227] * t20;
-  J[219] = W_std[228] * t20;
-  J[220] = W_std[229] * t20;
-  J[221] = W_std[230] * t20;
-  J[222] = W_std[231] * t20;
-  J[223] = W_std[232] * t20;
-  J[224] = W_std[233] * t20;
-  J[225] = W_std[234] * t20;
-  J[226] = W_std[235] * t20;
-  J[227] = W_std[236] * t20;
-  J[228] = W_std[240] * t20;
-  J[229] = W_std[241] * t20;
-  J[230] = W_std[242] * t20;
-  J[231] = W_std[243] * t20;
-  J[232] = W_std[244] * t20;
-  J[233] = W_std[245] * t20;
-  J[234] = W_std[246] * t20;
-  J[235] = W_std[247] * t20;
-  J[236] = W_std[248] * t20;
-  J[237] = W_std[249] * t20;
-  J[238] = W_std[256] * t20;
-  J[239] = W_std[257] * t20;
-  J[240] = W_std[258] * t20;
-  J[241] = W_std[259] * t20;
-  J[242] = W_std[260] * t20;
-  J[243] = W_std[261] * t20;
-  J[244] = W_std[262] * t20;
-  J[245] = W_std[263] * t20;
-  J[246] = W_std[264] * t20;
-  J[247] = W_std[265] * t20;
-  J[248] = W_std[272] * t20;
-  J[249] = W_std[273] * t20;
-  J[250] = W_std[274] * t20;
-  J[251] = W_std[275] * t20;
-  J[252] = W_std[276] * t20;
-  J[253] = W_std[277] * t20;
-  J[254] = W_std[278] * t20;
-  J[255] = W_std[279] * t20;
-  J[256] = W_std[280] * t20;
-  J[257] = W_std[281] * t20;
+  for (int k = 0; k < 8; ++k) J[208 + k] = W_std[214 + k] * t20;
+  for (int k = 0; k < 10; ++k) J[218 + k] = W_std[227 + k] * t20;
+  for (int k = 0; k < 10; ++k) J[228 + k] = W_std[240 + k] * t20;
+  for (int k = 0; k < 10; ++k) J[238 + k] = W_std[256 + k] * t20;
+  for (int k = 0; k < 10; ++k) J[248 + k] = W_std[272 + k] * t20;
   J[266] = ddq[2];
   J[267] = dq[2];
   J[268] = sg3;
   J[269] = -t14 * (t17 - 0.5f + t18 * t18 * t19);
-  J[312] = W_std[321] * t29;
-  J[313] = W_std[322] * t29;
-  J[314] = W_std[323] * t29;
-  J[315] = W_std[324] * t29;
-  J[316] = W_std[325] * t29;
-  J[317] = W_std[326] * t29;
-  J[318] = W_std[327] * t29;
-  J[319] = W_std[328] * t29;
+  for (int k = 0; k < 8; ++k) J[312 + k] = W_std[321 + k] * t29;
   J[322] = (W_std[334] + 0.0093f * W_std[428]) * t29;
   J[323] = (W_std[335] + 0.0093f * W_std[429]) * t29;
   J[324] = (W_std[336] + 0.0093f * W_std[430]) * t29;
@@ -639,14 +320,7 @@ void drive_torque_jacobian(const float* q, const float* dq, const float* ddq, co
   J[365] = dq[3];
   J[366] = sg4;
   J[367] = -t23 * (t26 - 0.5f + t27 * t27 * t28);
-  J[416] = W_std[428] * t39;
-  J[417] = W_std[429] * t39;
-  J[418] = W_std[430] * t39;
-  J[419] = W_std[431] * t39;
-  J[420] = W_std[432] * t39;
-  J[421] = W_std[433] * t39;
-  J[422] = W_std[434] * t39;
-  J[423] = W_std[435] * t39;
+  for (int k = 0; k < 8; ++k) J[416 + k] = W_std[428 + k] * t39;
   J[426] = (W_std[444] - 0.014f * W_std[538]) * t39;
   J[427] = (W_std[445] - 0.014f * W_std[539]) * t39;
   J[428] = (W_std[446] - 0.014f * W_std[540]) * t39;
@@ -670,22 +344,8 @@ void drive_torque_jacobian(const float* q, const float* dq, const float* ddq, co
   J[463] = -t31;
   J[464] = -t32;
   J[465] = t33 * (0.5f + t36 + t37 * t37 * t38);
-  J[520] = W_std[538] * t48;
-  J[521] = W_std[539] * t48;
-  J[522] = W_std[540] * t48;
-  J[523] = W_std[541] * t48;
-  J[524] = W_std[542] * t48;
-  J[525] = W_std[543] * t48;
-  J[526] = W_std[544] * t48;
-  J[527] = W_std[545] * t48;
-  J[530] = W_std[554] * t48;
-  J[531] = W_std[555] * t48;
-  J[532] = W_std[556] * t48;
-  J[533] = W_std[557] * t48;
-  J[534] = W_std[558] * t48;
-  J[535] = W_std[559] * t48;
-  J[536] = W_std[560] * t48;
-  J[537] = W_std[561] * t48;
+  for (int k = 0; k < 8; ++k) J[520 + k] = W_std[538 + k] * t48;
+  for (int k = 0; k < 8; ++k) J[530 + k] = W_std[554 + k] * t48;
   J[560] = -t40;
   J[561] = -t41;
   J[562] = -t42;

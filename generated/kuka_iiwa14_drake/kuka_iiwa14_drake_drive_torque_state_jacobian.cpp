@@ -104,94 +104,36 @@ void drive_torque_state_jacobian(const double* q, const double* dq, const double
   const double t1 = static_cast<double>((t0 > 0.0) - (t0 < 0.0));
   const double t2 = 0.5 * t1;
   const double t3 = (1.0 / theta[73]) * (0.5 + t2) - theta[73] * (t2 - 0.5);
-  J[1] = dtau_G[1] * t3;  // q[1]
-  J[2] = dtau_G[2] * t3;  // q[2]
-  J[3] = dtau_G[3] * t3;  // q[3]
-  J[4] = dtau_G[4] * t3;  // q[4]
-  J[5] = dtau_G[5] * t3;  // q[5]
-  J[6] = dtau_G[6] * t3;  // q[6]
+  for (int k = 0; k < 6; ++k) J[1 + k] = dtau_G[1 + k] * t3;
   J[7] = theta[71] + dtau_G[7] * t3;  // dq[0]
-  J[8] = dtau_G[8] * t3;  // dq[1]
-  J[9] = dtau_G[9] * t3;  // dq[2]
-  J[10] = dtau_G[10] * t3;  // dq[3]
-  J[11] = dtau_G[11] * t3;  // dq[4]
-  J[12] = dtau_G[12] * t3;  // dq[5]
-  J[13] = dtau_G[13] * t3;  // dq[6]
+  for (int k = 0; k < 6; ++k) J[8 + k] = dtau_G[8 + k] * t3;
   J[14] = theta[70] + dtau_G[14] * t3;  // ddq[0]
-  J[15] = dtau_G[15] * t3;  // ddq[1]
-  J[16] = dtau_G[16] * t3;  // ddq[2]
-  J[17] = dtau_G[17] * t3;  // ddq[3]
-  J[18] = dtau_G[18] * t3;  // ddq[4]
-  J[19] = dtau_G[19] * t3;  // ddq[5]
-  J[20] = dtau_G[20] * t3;  // ddq[6]
+  for (int k = 0; k < 6; ++k) J[15 + k] = dtau_G[15 + k] * t3;
   const double t4 = dq[1] * tau_G[1];
   const double t5 = static_cast<double>((t4 > 0.0) - (t4 < 0.0));
   const double t6 = 0.5 * t5;
   const double t7 = (1.0 / theta[77]) * (0.5 + t6) - theta[77] * (t6 - 0.5);
-  J[22] = dtau_G[22] * t7;
-  J[23] = dtau_G[23] * t7;
-  J[24] = dtau_G[24] * t7;
-  J[25] = dtau_G[25] * t7;
-  J[26] = dtau_G[26] * t7;
-  J[27] = dtau_G[27] * t7;
-  J[28] = dtau_G[28] * t7;
+  for (int k = 0; k < 7; ++k) J[22 + k] = dtau_G[22 + k] * t7;
   J[29] = theta[75] + dtau_G[29] * t7;
-  J[30] = dtau_G[30] * t7;
-  J[31] = dtau_G[31] * t7;
-  J[32] = dtau_G[32] * t7;
-  J[33] = dtau_G[33] * t7;
-  J[34] = dtau_G[34] * t7;
-  J[35] = dtau_G[35] * t7;
+  for (int k = 0; k < 6; ++k) J[30 + k] = dtau_G[30 + k] * t7;
   J[36] = theta[74] + dtau_G[36] * t7;
-  J[37] = dtau_G[37] * t7;
-  J[38] = dtau_G[38] * t7;
-  J[39] = dtau_G[39] * t7;
-  J[40] = dtau_G[40] * t7;
-  J[41] = dtau_G[41] * t7;
+  for (int k = 0; k < 5; ++k) J[37 + k] = dtau_G[37 + k] * t7;
   const double t8 = dq[2] * tau_G[2];
   const double t9 = static_cast<double>((t8 > 0.0) - (t8 < 0.0));
   const double t10 = 0.5 * t9;
   const double t11 = (1.0 / theta[81]) * (0.5 + t10) - theta[81] * (t10 - 0.5);
-  J[43] = dtau_G[43] * t11;
-  J[44] = dtau_G[44] * t11;
-  J[45] = dtau_G[45] * t11;
-  J[46] = dtau_G[46] * t11;
-  J[47] = dtau_G[47] * t11;
-  J[48] = dtau_G[48] * t11;
-  J[49] = dtau_G[49] * t11;
-  J[50] = dtau_G[50] * t11;
+  for (int k = 0; k < 8; ++k) J[43 + k] = dtau_G[43 + k] * t11;
   J[51] = theta[79] + dtau_G[51] * t11;
-  J[52] = dtau_G[52] * t11;
-  J[53] = dtau_G[53] * t11;
-  J[54] = dtau_G[54] * t11;
-  J[55] = dtau_G[55] * t11;
-  J[56] = dtau_G[56] * t11;
-  J[57] = dtau_G[57] * t11;
+  for (int k = 0; k < 6; ++k) J[52 + k] = dtau_G[52 + k] * t11;
   J[58] = theta[78] + dtau_G[58] * t11;
-  J[59] = dtau_G[59] * t11;
-  J[60] = dtau_G[60] * t11;
-  J[61] = dtau_G[61] * t11;
-  J[62] = dtau_G[62] * t11;
+  for (int k = 0; k < 4; ++k) J[59 + k] = dtau_G[59 + k] * t11;
   const double t12 = dq[3] * tau_G[3];
   const double t13 = static_cast<double>((t12 > 0.0) - (t12 < 0.0));
   const double t14 = 0.5 * t13;
   const double t15 = (1.0 / theta[85]) * (0.5 + t14) - theta[85] * (t14 - 0.5);
-  J[64] = dtau_G[64] * t15;
-  J[65] = dtau_G[65] * t15;
-  J[66] = dtau_G[66] * t15;
-  J[67] = dtau_G[67] * t15;
-  J[68] = dtau_G[68] * t15;
-  J[69] = dtau_G[69] * t15;
-  J[70] = dtau_G[70] * t15;
-  J[71] = dtau_G[71] * t15;
-  J[72] = dtau_G[72] * t15;
+  for (int k = 0; k < 9; ++k) J[64 + k] = dtau_G[64 + k] * t15;
   J[73] = theta[83] + dtau_G[73] * t15;
-  J[74] = dtau_G[74] * t15;
-  J[75] = dtau_G[75] * t15;
-  J[76] = dtau_G[76] * t15;
-  J[77] = dtau_G[77] * t15;
-  J[78] = dtau_G[78] * t15;
-  J[79] = dtau_G[79] * t15;
+  for (int k = 0; k < 6; ++k) J[74 + k] = dtau_G[74 + k] * t15;
   J[80] = theta[82] + dtau_G[80] * t15;
   J[81] = dtau_G[81] * t15;
   J[82] = dtau_G[82] * t15;
@@ -200,23 +142,9 @@ void drive_torque_state_jacobian(const double* q, const double* dq, const double
   const double t17 = static_cast<double>((t16 > 0.0) - (t16 < 0.0));
   const double t18 = 0.5 * t17;
   const double t19 = (1.0 / theta[89]) * (0.5 + t18) - theta[89] * (t18 - 0.5);
-  J[85] = dtau_G[85] * t19;
-  J[86] = dtau_G[86] * t19;
-  J[87] = dtau_G[87] * t19;
-  J[88] = dtau_G[88] * t19;
-  J[89] = dtau_G[89] * t19;
-  J[90] = dtau_G[90] * t19;
-  J[91] = dtau_G[91] * t19;
-  J[92] = dtau_G[92] * t19;
-  J[93] = dtau_G[93] * t19;
-  J[94] = dtau_G[94] * t19;
+  for (int k = 0; k < 10; ++k) J[85 + k] = dtau_G[85 + k] * t19;
   J[95] = theta[87] + dtau_G[95] * t19;
-  J[96] = dtau_G[96] * t19;
-  J[97] = dtau_G[97] * t19;
-  J[98] = dtau_G[98] * t19;
-  J[99] = dtau_G[99] * t19;
-  J[100] = dtau_G[100] * t19;
-  J[101] = dtau_G[101] * t19;
+  for (int k = 0; k < 6; ++k) J[96 + k] = dtau_G[96 + k] * t19;
   J[102] = theta[86] + dtau_G[102] * t19;
   J[103] = dtau_G[103] * t19;
   J[104] = dtau_G[104] * t19;
@@ -224,49 +152,18 @@ void drive_torque_state_jacobian(const double* q, const double* dq, const double
   const double t21 = static_cast<double>((t20 > 0.0) - (t20 < 0.0));
   const double t22 = 0.5 * t21;
   const double t23 = (1.0 / theta[93]) * (0.5 + t22) - theta[93] * (t22 - 0.5);
-  J[106] = dtau_G[106] * t23;
-  J[107] = dtau_G[107] * t23;
-  J[108] = dtau_G[108] * t23;
-  J[109] = dtau_G[109] * t23;
-  J[110] = dtau_G[110] * t23;
-  J[111] = dtau_G[111] * t23;
-  J[112] = dtau_G[112] * t23;
-  J[113] = dtau_G[113] * t23;
-  J[114] = dtau_G[114] * t23;
-  J[115] = dtau_G[115] * t23;
-  J[116] = dtau_G[116] * t23;
+  for (int k = 0; k < 11; ++k) J[106 + k] = dtau_G[106 + k] * t23;
   J[117] = theta[91] + dtau_G[117] * t23;
-  J[118] = dtau_G[118] * t23;
-  J[119] = dtau_G[119] * t23;
-  J[120] = dtau_G[120] * t23;
-  J[121] = dtau_G[121] * t23;
-  J[122] = dtau_G[122] * t23;
-  J[123] = dtau_G[123] * t23;
+  for (int k = 0; k < 6; ++k) J[118 + k] = dtau_G[118 + k] * t23;
   J[124] = theta[90] + dtau_G[124] * t23;
   J[125] = dtau_G[125] * t23;
   const double t24 = dq[6] * tau_G[6];
   const double t25 = static_cast<double>((t24 > 0.0) - (t24 < 0.0));
   const double t26 = 0.5 * t25;
   const double t27 = (1.0 / theta[97]) * (0.5 + t26) - theta[97] * (t26 - 0.5);
-  J[127] = dtau_G[127] * t27;
-  J[128] = dtau_G[128] * t27;
-  J[129] = dtau_G[129] * t27;
-  J[130] = dtau_G[130] * t27;
-  J[131] = dtau_G[131] * t27;
-  J[132] = dtau_G[132] * t27;
-  J[133] = dtau_G[133] * t27;
-  J[134] = dtau_G[134] * t27;
-  J[135] = dtau_G[135] * t27;
-  J[136] = dtau_G[136] * t27;
-  J[137] = dtau_G[137] * t27;
-  J[138] = dtau_G[138] * t27;
+  for (int k = 0; k < 12; ++k) J[127 + k] = dtau_G[127 + k] * t27;
   J[139] = theta[95] + dtau_G[139] * t27;
-  J[140] = dtau_G[140] * t27;
-  J[141] = dtau_G[141] * t27;
-  J[142] = dtau_G[142] * t27;
-  J[143] = dtau_G[143] * t27;
-  J[144] = dtau_G[144] * t27;
-  J[145] = dtau_G[145] * t27;
+  for (int k = 0; k < 6; ++k) J[140 + k] = dtau_G[140 + k] * t27;
   J[146] = theta[94] + dtau_G[146] * t27;
 }
 
@@ -364,94 +261,36 @@ void drive_torque_state_jacobian(const float* q, const float* dq, const float* d
   const float t1 = static_cast<float>((t0 > 0.0f) - (t0 < 0.0f));
   const float t2 = 0.5f * t1;
   const float t3 = (1.0f / theta[73]) * (0.5f + t2) - theta[73] * (t2 - 0.5f);
-  J[1] = dtau_G[1] * t3;  // q[1]
-  J[2] = dtau_G[2] * t3;  // q[2]
-  J[3] = dtau_G[3] * t3;  // q[3]
-  J[4] = dtau_G[4] * t3;  // q[4]
-  J[5] = dtau_G[5] * t3;  // q[5]
-  J[6] = dtau_G[6] * t3;  // q[6]
+  for (int k = 0; k < 6; ++k) J[1 + k] = dtau_G[1 + k] * t3;
   J[7] = theta[71] + dtau_G[7] * t3;  // dq[0]
-  J[8] = dtau_G[8] * t3;  // dq[1]
-  J[9] = dtau_G[9] * t3;  // dq[2]
-  J[10] = dtau_G[10] * t3;  // dq[3]
-  J[11] = dtau_G[11] * t3;  // dq[4]
-  J[12] = dtau_G[12] * t3;  // dq[5]
-  J[13] = dtau_G[13] * t3;  // dq[6]
+  for (int k = 0; k < 6; ++k) J[8 + k] = dtau_G[8 + k] * t3;
   J[14] = theta[70] + dtau_G[14] * t3;  // ddq[0]
-  J[15] = dtau_G[15] * t3;  // ddq[1]
-  J[16] = dtau_G[16] * t3;  // ddq[2]
-  J[17] = dtau_G[17] * t3;  // ddq[3]
-  J[18] = dtau_G[18] * t3;  // ddq[4]
-  J[19] = dtau_G[19] * t3;  // ddq[5]
-  J[20] = dtau_G[20] * t3;  // ddq[6]
+  for (int k = 0; k < 6; ++k) J[15 + k] = dtau_G[15 + k] * t3;
   const float t4 = dq[1] * tau_G[1];
   const float t5 = static_cast<float>((t4 > 0.0f) - (t4 < 0.0f));
   const float t6 = 0.5f * t5;
   const float t7 = (1.0f / theta[77]) * (0.5f + t6) - theta[77] * (t6 - 0.5f);
-  J[22] = dtau_G[22] * t7;
-  J[23] = dtau_G[23] * t7;
-  J[24] = dtau_G[24] * t7;
-  J[25] = dtau_G[25] * t7;
-  J[26] = dtau_G[26] * t7;
-  J[27] = dtau_G[27] * t7;
-  J[28] = dtau_G[28] * t7;
+  for (int k = 0; k < 7; ++k) J[22 + k] = dtau_G[22 + k] * t7;
   J[29] = theta[75] + dtau_G[29] * t7;
-  J[30] = dtau_G[30] * t7;
-  J[31] = dtau_G[31] * t7;
-  J[32] = dtau_G[32] * t7;
-  J[33] = dtau_G[33] * t7;
-  J[34] = dtau_G[34] * t7;
-  J[35] = dtau_G[35] * t7;
+  for (int k = 0; k < 6; ++k) J[30 + k] = dtau_G[30 + k] * t7;
   J[36] = theta[74] + dtau_G[36] * t7;
-  J[37] = dtau_G[37] * t7;
-  J[38] = dtau_G[38] * t7;
-  J[39] = dtau_G[39] * t7;
-  J[40] = dtau_G[40] * t7;
-  J[41] = dtau_G[41] * t7;
+  for (int k = 0; k < 5; ++k) J[37 + k] = dtau_G[37 + k] * t7;
   const float t8 = dq[2] * tau_G[2];
   const float t9 = static_cast<float>((t8 > 0.0f) - (t8 < 0.0f));
   const float t10 = 0.5f * t9;
   const float t11 = (1.0f / theta[81]) * (0.5f + t10) - theta[81] * (t10 - 0.5f);
-  J[43] = dtau_G[43] * t11;
-  J[44] = dtau_G[44] * t11;
-  J[45] = dtau_G[45] * t11;
-  J[46] = dtau_G[46] * t11;
-  J[47] = dtau_G[47] * t11;
-  J[48] = dtau_G[48] * t11;
-  J[49] = dtau_G[49] * t11;
-  J[50] = dtau_G[50] * t11;
+  for (int k = 0; k < 8; ++k) J[43 + k] = dtau_G[43 + k] * t11;
   J[51] = theta[79] + dtau_G[51] * t11;
-  J[52] = dtau_G[52] * t11;
-  J[53] = dtau_G[53] * t11;
-  J[54] = dtau_G[54] * t11;
-  J[55] = dtau_G[55] * t11;
-  J[56] = dtau_G[56] * t11;
-  J[57] = dtau_G[57] * t11;
+  for (int k = 0; k < 6; ++k) J[52 + k] = dtau_G[52 + k] * t11;
   J[58] = theta[78] + dtau_G[58] * t11;
-  J[59] = dtau_G[59] * t11;
-  J[60] = dtau_G[60] * t11;
-  J[61] = dtau_G[61] * t11;
-  J[62] = dtau_G[62] * t11;
+  for (int k = 0; k < 4; ++k) J[59 + k] = dtau_G[59 + k] * t11;
   const float t12 = dq[3] * tau_G[3];
   const float t13 = static_cast<float>((t12 > 0.0f) - (t12 < 0.0f));
   const float t14 = 0.5f * t13;
   const float t15 = (1.0f / theta[85]) * (0.5f + t14) - theta[85] * (t14 - 0.5f);
-  J[64] = dtau_G[64] * t15;
-  J[65] = dtau_G[65] * t15;
-  J[66] = dtau_G[66] * t15;
-  J[67] = dtau_G[67] * t15;
-  J[68] = dtau_G[68] * t15;
-  J[69] = dtau_G[69] * t15;
-  J[70] = dtau_G[70] * t15;
-  J[71] = dtau_G[71] * t15;
-  J[72] = dtau_G[72] * t15;
+  for (int k = 0; k < 9; ++k) J[64 + k] = dtau_G[64 + k] * t15;
   J[73] = theta[83] + dtau_G[73] * t15;
-  J[74] = dtau_G[74] * t15;
-  J[75] = dtau_G[75] * t15;
-  J[76] = dtau_G[76] * t15;
-  J[77] = dtau_G[77] * t15;
-  J[78] = dtau_G[78] * t15;
-  J[79] = dtau_G[79] * t15;
+  for (int k = 0; k < 6; ++k) J[74 + k] = dtau_G[74 + k] * t15;
   J[80] = theta[82] + dtau_G[80] * t15;
   J[81] = dtau_G[81] * t15;
   J[82] = dtau_G[82] * t15;
@@ -460,23 +299,9 @@ void drive_torque_state_jacobian(const float* q, const float* dq, const float* d
   const float t17 = static_cast<float>((t16 > 0.0f) - (t16 < 0.0f));
   const float t18 = 0.5f * t17;
   const float t19 = (1.0f / theta[89]) * (0.5f + t18) - theta[89] * (t18 - 0.5f);
-  J[85] = dtau_G[85] * t19;
-  J[86] = dtau_G[86] * t19;
-  J[87] = dtau_G[87] * t19;
-  J[88] = dtau_G[88] * t19;
-  J[89] = dtau_G[89] * t19;
-  J[90] = dtau_G[90] * t19;
-  J[91] = dtau_G[91] * t19;
-  J[92] = dtau_G[92] * t19;
-  J[93] = dtau_G[93] * t19;
-  J[94] = dtau_G[94] * t19;
+  for (int k = 0; k < 10; ++k) J[85 + k] = dtau_G[85 + k] * t19;
   J[95] = theta[87] + dtau_G[95] * t19;
-  J[96] = dtau_G[96] * t19;
-  J[97] = dtau_G[97] * t19;
-  J[98] = dtau_G[98] * t19;
-  J[99] = dtau_G[99] * t19;
-  J[100] = dtau_G[100] * t19;
-  J[101] = dtau_G[101] * t19;
+  for (int k = 0; k < 6; ++k) J[96 + k] = dtau_G[96 + k] * t19;
   J[102] = theta[86] + dtau_G[102] * t19;
   J[103] = dtau_G[103] * t19;
   J[104] = dtau_G[104] * t19;
@@ -484,49 +309,18 @@ void drive_torque_state_jacobian(const float* q, const float* dq, const float* d
   const float t21 = static_cast<float>((t20 > 0.0f) - (t20 < 0.0f));
   const float t22 = 0.5f * t21;
   const float t23 = (1.0f / theta[93]) * (0.5f + t22) - theta[93] * (t22 - 0.5f);
-  J[106] = dtau_G[106] * t23;
-  J[107] = dtau_G[107] * t23;
-  J[108] = dtau_G[108] * t23;
-  J[109] = dtau_G[109] * t23;
-  J[110] = dtau_G[110] * t23;
-  J[111] = dtau_G[111] * t23;
-  J[112] = dtau_G[112] * t23;
-  J[113] = dtau_G[113] * t23;
-  J[114] = dtau_G[114] * t23;
-  J[115] = dtau_G[115] * t23;
-  J[116] = dtau_G[116] * t23;
+  for (int k = 0; k < 11; ++k) J[106 + k] = dtau_G[106 + k] * t23;
   J[117] = theta[91] + dtau_G[117] * t23;
-  J[118] = dtau_G[118] * t23;
-  J[119] = dtau_G[119] * t23;
-  J[120] = dtau_G[120] * t23;
-  J[121] = dtau_G[121] * t23;
-  J[122] = dtau_G[122] * t23;
-  J[123] = dtau_G[123] * t23;
+  for (int k = 0; k < 6; ++k) J[118 + k] = dtau_G[118 + k] * t23;
   J[124] = theta[90] + dtau_G[124] * t23;
   J[125] = dtau_G[125] * t23;
   const float t24 = dq[6] * tau_G[6];
   const float t25 = static_cast<float>((t24 > 0.0f) - (t24 < 0.0f));
   const float t26 = 0.5f * t25;
   const float t27 = (1.0f / theta[97]) * (0.5f + t26) - theta[97] * (t26 - 0.5f);
-  J[127] = dtau_G[127] * t27;
-  J[128] = dtau_G[128] * t27;
-  J[129] = dtau_G[129] * t27;
-  J[130] = dtau_G[130] * t27;
-  J[131] = dtau_G[131] * t27;
-  J[132] = dtau_G[132] * t27;
-  J[133] = dtau_G[133] * t27;
-  J[134] = dtau_G[134] * t27;
-  J[135] = dtau_G[135] * t27;
-  J[136] = dtau_G[136] * t27;
-  J[137] = dtau_G[137] * t27;
-  J[138] = dtau_G[138] * t27;
+  for (int k = 0; k < 12; ++k) J[127 + k] = dtau_G[127 + k] * t27;
   J[139] = theta[95] + dtau_G[139] * t27;
-  J[140] = dtau_G[140] * t27;
-  J[141] = dtau_G[141] * t27;
-  J[142] = dtau_G[142] * t27;
-  J[143] = dtau_G[143] * t27;
-  J[144] = dtau_G[144] * t27;
-  J[145] = dtau_G[145] * t27;
+  for (int k = 0; k < 6; ++k) J[140 + k] = dtau_G[140 + k] * t27;
   J[146] = theta[94] + dtau_G[146] * t27;
 }
 

@@ -94,61 +94,27 @@ void drive_torque_state_jacobian(const double* q, const double* dq, const double
   const double t1 = static_cast<double>((t0 > 0.0) - (t0 < 0.0));
   const double t2 = 0.5 * t1;
   const double t3 = (1.0 / theta[63]) * (0.5 + t2) - theta[63] * (t2 - 0.5);
-  J[1] = dtau_G[1] * t3;  // q[1]
-  J[2] = dtau_G[2] * t3;  // q[2]
-  J[3] = dtau_G[3] * t3;  // q[3]
-  J[4] = dtau_G[4] * t3;  // q[4]
-  J[5] = dtau_G[5] * t3;  // q[5]
+  for (int k = 0; k < 5; ++k) J[1 + k] = dtau_G[1 + k] * t3;
   J[6] = theta[61] + dtau_G[6] * t3;  // dq[0]
-  J[7] = dtau_G[7] * t3;  // dq[1]
-  J[8] = dtau_G[8] * t3;  // dq[2]
-  J[9] = dtau_G[9] * t3;  // dq[3]
-  J[10] = dtau_G[10] * t3;  // dq[4]
-  J[11] = dtau_G[11] * t3;  // dq[5]
+  for (int k = 0; k < 5; ++k) J[7 + k] = dtau_G[7 + k] * t3;
   J[12] = theta[60] + dtau_G[12] * t3;  // ddq[0]
-  J[13] = dtau_G[13] * t3;  // ddq[1]
-  J[14] = dtau_G[14] * t3;  // ddq[2]
-  J[15] = dtau_G[15] * t3;  // ddq[3]
-  J[16] = dtau_G[16] * t3;  // ddq[4]
-  J[17] = dtau_G[17] * t3;  // ddq[5]
+  for (int k = 0; k < 5; ++k) J[13 + k] = dtau_G[13 + k] * t3;
   const double t4 = dq[1] * tau_G[1];
   const double t5 = static_cast<double>((t4 > 0.0) - (t4 < 0.0));
   const double t6 = 0.5 * t5;
   const double t7 = (1.0 / theta[67]) * (0.5 + t6) - theta[67] * (t6 - 0.5);
-  J[19] = dtau_G[19] * t7;
-  J[20] = dtau_G[20] * t7;
-  J[21] = dtau_G[21] * t7;
-  J[22] = dtau_G[22] * t7;
-  J[23] = dtau_G[23] * t7;
-  J[24] = dtau_G[24] * t7;
+  for (int k = 0; k < 6; ++k) J[19 + k] = dtau_G[19 + k] * t7;
   J[25] = theta[65] + dtau_G[25] * t7;
-  J[26] = dtau_G[26] * t7;
-  J[27] = dtau_G[27] * t7;
-  J[28] = dtau_G[28] * t7;
-  J[29] = dtau_G[29] * t7;
-  J[30] = dtau_G[30] * t7;
+  for (int k = 0; k < 5; ++k) J[26 + k] = dtau_G[26 + k] * t7;
   J[31] = theta[64] + dtau_G[31] * t7;
-  J[32] = dtau_G[32] * t7;
-  J[33] = dtau_G[33] * t7;
-  J[34] = dtau_G[34] * t7;
-  J[35] = dtau_G[35] * t7;
+  for (int k = 0; k < 4; ++k) J[32 + k] = dtau_G[32 + k] * t7;
   const double t8 = dq[2] * tau_G[2];
   const double t9 = static_cast<double>((t8 > 0.0) - (t8 < 0.0));
   const double t10 = 0.5 * t9;
   const double t11 = (1.0 / theta[71]) * (0.5 + t10) - theta[71] * (t10 - 0.5);
-  J[37] = dtau_G[37] * t11;
-  J[38] = dtau_G[38] * t11;
-  J[39] = dtau_G[39] * t11;
-  J[40] = dtau_G[40] * t11;
-  J[41] = dtau_G[41] * t11;
-  J[42] = dtau_G[42] * t11;
-  J[43] = dtau_G[43] * t11;
+  for (int k = 0; k < 7; ++k) J[37 + k] = dtau_G[37 + k] * t11;
   J[44] = theta[69] + dtau_G[44] * t11;
-  J[45] = dtau_G[45] * t11;
-  J[46] = dtau_G[46] * t11;
-  J[47] = dtau_G[47] * t11;
-  J[48] = dtau_G[48] * t11;
-  J[49] = dtau_G[49] * t11;
+  for (int k = 0; k < 5; ++k) J[45 + k] = dtau_G[45 + k] * t11;
   J[50] = theta[68] + dtau_G[50] * t11;
   J[51] = dtau_G[51] * t11;
   J[52] = dtau_G[52] * t11;
@@ -157,20 +123,9 @@ void drive_torque_state_jacobian(const double* q, const double* dq, const double
   const double t13 = static_cast<double>((t12 > 0.0) - (t12 < 0.0));
   const double t14 = 0.5 * t13;
   const double t15 = (1.0 / theta[75]) * (0.5 + t14) - theta[75] * (t14 - 0.5);
-  J[55] = dtau_G[55] * t15;
-  J[56] = dtau_G[56] * t15;
-  J[57] = dtau_G[57] * t15;
-  J[58] = dtau_G[58] * t15;
-  J[59] = dtau_G[59] * t15;
-  J[60] = dtau_G[60] * t15;
-  J[61] = dtau_G[61] * t15;
-  J[62] = dtau_G[62] * t15;
+  for (int k = 0; k < 8; ++k) J[55 + k] = dtau_G[55 + k] * t15;
   J[63] = theta[73] + dtau_G[63] * t15;
-  J[64] = dtau_G[64] * t15;
-  J[65] = dtau_G[65] * t15;
-  J[66] = dtau_G[66] * t15;
-  J[67] = dtau_G[67] * t15;
-  J[68] = dtau_G[68] * t15;
+  for (int k = 0; k < 5; ++k) J[64 + k] = dtau_G[64 + k] * t15;
   J[69] = theta[72] + dtau_G[69] * t15;
   J[70] = dtau_G[70] * t15;
   J[71] = dtau_G[71] * t15;
@@ -178,43 +133,18 @@ void drive_torque_state_jacobian(const double* q, const double* dq, const double
   const double t17 = static_cast<double>((t16 > 0.0) - (t16 < 0.0));
   const double t18 = 0.5 * t17;
   const double t19 = (1.0 / theta[79]) * (0.5 + t18) - theta[79] * (t18 - 0.5);
-  J[73] = dtau_G[73] * t19;
-  J[74] = dtau_G[74] * t19;
-  J[75] = dtau_G[75] * t19;
-  J[76] = dtau_G[76] * t19;
-  J[77] = dtau_G[77] * t19;
-  J[78] = dtau_G[78] * t19;
-  J[79] = dtau_G[79] * t19;
-  J[80] = dtau_G[80] * t19;
-  J[81] = dtau_G[81] * t19;
+  for (int k = 0; k < 9; ++k) J[73 + k] = dtau_G[73 + k] * t19;
   J[82] = theta[77] + dtau_G[82] * t19;
-  J[83] = dtau_G[83] * t19;
-  J[84] = dtau_G[84] * t19;
-  J[85] = dtau_G[85] * t19;
-  J[86] = dtau_G[86] * t19;
-  J[87] = dtau_G[87] * t19;
+  for (int k = 0; k < 5; ++k) J[83 + k] = dtau_G[83 + k] * t19;
   J[88] = theta[76] + dtau_G[88] * t19;
   J[89] = dtau_G[89] * t19;
   const double t20 = dq[5] * tau_G[5];
   const double t21 = static_cast<double>((t20 > 0.0) - (t20 < 0.0));
   const double t22 = 0.5 * t21;
   const double t23 = (1.0 / theta[83]) * (0.5 + t22) - theta[83] * (t22 - 0.5);
-  J[91] = dtau_G[91] * t23;
-  J[92] = dtau_G[92] * t23;
-  J[93] = dtau_G[93] * t23;
-  J[94] = dtau_G[94] * t23;
-  J[95] = dtau_G[95] * t23;
-  J[96] = dtau_G[96] * t23;
-  J[97] = dtau_G[97] * t23;
-  J[98] = dtau_G[98] * t23;
-  J[99] = dtau_G[99] * t23;
-  J[100] = dtau_G[100] * t23;
+  for (int k = 0; k < 10; ++k) J[91 + k] = dtau_G[91 + k] * t23;
   J[101] = theta[81] + dtau_G[101] * t23;
-  J[102] = dtau_G[102] * t23;
-  J[103] = dtau_G[103] * t23;
-  J[104] = dtau_G[104] * t23;
-  J[105] = dtau_G[105] * t23;
-  J[106] = dtau_G[106] * t23;
+  for (int k = 0; k < 5; ++k) J[102 + k] = dtau_G[102 + k] * t23;
   J[107] = theta[80] + dtau_G[107] * t23;
 }
 
@@ -302,61 +232,27 @@ void drive_torque_state_jacobian(const float* q, const float* dq, const float* d
   const float t1 = static_cast<float>((t0 > 0.0f) - (t0 < 0.0f));
   const float t2 = 0.5f * t1;
   const float t3 = (1.0f / theta[63]) * (0.5f + t2) - theta[63] * (t2 - 0.5f);
-  J[1] = dtau_G[1] * t3;  // q[1]
-  J[2] = dtau_G[2] * t3;  // q[2]
-  J[3] = dtau_G[3] * t3;  // q[3]
-  J[4] = dtau_G[4] * t3;  // q[4]
-  J[5] = dtau_G[5] * t3;  // q[5]
+  for (int k = 0; k < 5; ++k) J[1 + k] = dtau_G[1 + k] * t3;
   J[6] = theta[61] + dtau_G[6] * t3;  // dq[0]
-  J[7] = dtau_G[7] * t3;  // dq[1]
-  J[8] = dtau_G[8] * t3;  // dq[2]
-  J[9] = dtau_G[9] * t3;  // dq[3]
-  J[10] = dtau_G[10] * t3;  // dq[4]
-  J[11] = dtau_G[11] * t3;  // dq[5]
+  for (int k = 0; k < 5; ++k) J[7 + k] = dtau_G[7 + k] * t3;
   J[12] = theta[60] + dtau_G[12] * t3;  // ddq[0]
-  J[13] = dtau_G[13] * t3;  // ddq[1]
-  J[14] = dtau_G[14] * t3;  // ddq[2]
-  J[15] = dtau_G[15] * t3;  // ddq[3]
-  J[16] = dtau_G[16] * t3;  // ddq[4]
-  J[17] = dtau_G[17] * t3;  // ddq[5]
+  for (int k = 0; k < 5; ++k) J[13 + k] = dtau_G[13 + k] * t3;
   const float t4 = dq[1] * tau_G[1];
   const float t5 = static_cast<float>((t4 > 0.0f) - (t4 < 0.0f));
   const float t6 = 0.5f * t5;
   const float t7 = (1.0f / theta[67]) * (0.5f + t6) - theta[67] * (t6 - 0.5f);
-  J[19] = dtau_G[19] * t7;
-  J[20] = dtau_G[20] * t7;
-  J[21] = dtau_G[21] * t7;
-  J[22] = dtau_G[22] * t7;
-  J[23] = dtau_G[23] * t7;
-  J[24] = dtau_G[24] * t7;
+  for (int k = 0; k < 6; ++k) J[19 + k] = dtau_G[19 + k] * t7;
   J[25] = theta[65] + dtau_G[25] * t7;
-  J[26] = dtau_G[26] * t7;
-  J[27] = dtau_G[27] * t7;
-  J[28] = dtau_G[28] * t7;
-  J[29] = dtau_G[29] * t7;
-  J[30] = dtau_G[30] * t7;
+  for (int k = 0; k < 5; ++k) J[26 + k] = dtau_G[26 + k] * t7;
   J[31] = theta[64] + dtau_G[31] * t7;
-  J[32] = dtau_G[32] * t7;
-  J[33] = dtau_G[33] * t7;
-  J[34] = dtau_G[34] * t7;
-  J[35] = dtau_G[35] * t7;
+  for (int k = 0; k < 4; ++k) J[32 + k] = dtau_G[32 + k] * t7;
   const float t8 = dq[2] * tau_G[2];
   const float t9 = static_cast<float>((t8 > 0.0f) - (t8 < 0.0f));
   const float t10 = 0.5f * t9;
   const float t11 = (1.0f / theta[71]) * (0.5f + t10) - theta[71] * (t10 - 0.5f);
-  J[37] = dtau_G[37] * t11;
-  J[38] = dtau_G[38] * t11;
-  J[39] = dtau_G[39] * t11;
-  J[40] = dtau_G[40] * t11;
-  J[41] = dtau_G[41] * t11;
-  J[42] = dtau_G[42] * t11;
-  J[43] = dtau_G[43] * t11;
+  for (int k = 0; k < 7; ++k) J[37 + k] = dtau_G[37 + k] * t11;
   J[44] = theta[69] + dtau_G[44] * t11;
-  J[45] = dtau_G[45] * t11;
-  J[46] = dtau_G[46] * t11;
-  J[47] = dtau_G[47] * t11;
-  J[48] = dtau_G[48] * t11;
-  J[49] = dtau_G[49] * t11;
+  for (int k = 0; k < 5; ++k) J[45 + k] = dtau_G[45 + k] * t11;
   J[50] = theta[68] + dtau_G[50] * t11;
   J[51] = dtau_G[51] * t11;
   J[52] = dtau_G[52] * t11;
@@ -365,20 +261,9 @@ void drive_torque_state_jacobian(const float* q, const float* dq, const float* d
   const float t13 = static_cast<float>((t12 > 0.0f) - (t12 < 0.0f));
   const float t14 = 0.5f * t13;
   const float t15 = (1.0f / theta[75]) * (0.5f + t14) - theta[75] * (t14 - 0.5f);
-  J[55] = dtau_G[55] * t15;
-  J[56] = dtau_G[56] * t15;
-  J[57] = dtau_G[57] * t15;
-  J[58] = dtau_G[58] * t15;
-  J[59] = dtau_G[59] * t15;
-  J[60] = dtau_G[60] * t15;
-  J[61] = dtau_G[61] * t15;
-  J[62] = dtau_G[62] * t15;
+  for (int k = 0; k < 8; ++k) J[55 + k] = dtau_G[55 + k] * t15;
   J[63] = theta[73] + dtau_G[63] * t15;
-  J[64] = dtau_G[64] * t15;
-  J[65] = dtau_G[65] * t15;
-  J[66] = dtau_G[66] * t15;
-  J[67] = dtau_G[67] * t15;
-  J[68] = dtau_G[68] * t15;
+  for (int k = 0; k < 5; ++k) J[64 + k] = dtau_G[64 + k] * t15;
   J[69] = theta[72] + dtau_G[69] * t15;
   J[70] = dtau_G[70] * t15;
   J[71] = dtau_G[71] * t15;
@@ -386,43 +271,18 @@ void drive_torque_state_jacobian(const float* q, const float* dq, const float* d
   const float t17 = static_cast<float>((t16 > 0.0f) - (t16 < 0.0f));
   const float t18 = 0.5f * t17;
   const float t19 = (1.0f / theta[79]) * (0.5f + t18) - theta[79] * (t18 - 0.5f);
-  J[73] = dtau_G[73] * t19;
-  J[74] = dtau_G[74] * t19;
-  J[75] = dtau_G[75] * t19;
-  J[76] = dtau_G[76] * t19;
-  J[77] = dtau_G[77] * t19;
-  J[78] = dtau_G[78] * t19;
-  J[79] = dtau_G[79] * t19;
-  J[80] = dtau_G[80] * t19;
-  J[81] = dtau_G[81] * t19;
+  for (int k = 0; k < 9; ++k) J[73 + k] = dtau_G[73 + k] * t19;
   J[82] = theta[77] + dtau_G[82] * t19;
-  J[83] = dtau_G[83] * t19;
-  J[84] = dtau_G[84] * t19;
-  J[85] = dtau_G[85] * t19;
-  J[86] = dtau_G[86] * t19;
-  J[87] = dtau_G[87] * t19;
+  for (int k = 0; k < 5; ++k) J[83 + k] = dtau_G[83 + k] * t19;
   J[88] = theta[76] + dtau_G[88] * t19;
   J[89] = dtau_G[89] * t19;
   const float t20 = dq[5] * tau_G[5];
   const float t21 = static_cast<float>((t20 > 0.0f) - (t20 < 0.0f));
   const float t22 = 0.5f * t21;
   const float t23 = (1.0f / theta[83]) * (0.5f + t22) - theta[83] * (t22 - 0.5f);
-  J[91] = dtau_G[91] * t23;
-  J[92] = dtau_G[92] * t23;
-  J[93] = dtau_G[93] * t23;
-  J[94] = dtau_G[94] * t23;
-  J[95] = dtau_G[95] * t23;
-  J[96] = dtau_G[96] * t23;
-  J[97] = dtau_G[97] * t23;
-  J[98] = dtau_G[98] * t23;
-  J[99] = dtau_G[99] * t23;
-  J[100] = dtau_G[100] * t23;
+  for (int k = 0; k < 10; ++k) J[91 + k] = dtau_G[91 + k] * t23;
   J[101] = theta[81] + dtau_G[101] * t23;
-  J[102] = dtau_G[102] * t23;
-  J[103] = dtau_G[103] * t23;
-  J[104] = dtau_G[104] * t23;
-  J[105] = dtau_G[105] * t23;
-  J[106] = dtau_G[106] * t23;
+  for (int k = 0; k < 5; ++k) J[102 + k] = dtau_G[102 + k] * t23;
   J[107] = theta[80] + dtau_G[107] * t23;
 }
 

@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <optional>
 
 #include "generator/emit/printer.hpp"
 
@@ -65,9 +66,15 @@ class StatementWriter {
       if (becomes_temporary(id)) vote_body(id, false);
     }
     std::vector<std::string> body;
-    for (const FunctionOutput& out : outputs) {
+    for (std::size_t o = 0; o < outputs.size(); ++o) {
+      const FunctionOutput& out = outputs[o];
       if (g_.is_zero(out.value)) continue;  // zero for every input: the caller zeroes it once
       prepare(out.value, body);
+      if (const std::size_t run = scaled_copy_run(outputs, o); run >= kMinLoop) {
+        body.push_back(scaled_copy_loop(outputs, o, run));
+        o += run - 1;
+        continue;
+      }
       const std::string value = expression(out.value, Context::kTop);
       if (out.comment.empty()) {
         body.push_back(
@@ -87,6 +94,96 @@ class StatementWriter {
 
  private:
   enum class Context { kTop, kFactor };
+
+  // Runs of at least this many outputs A[a + j] = B[b + j] * f print as one loop.
+  static constexpr std::size_t kMinLoop = 4;
+  // Sums of at least this many terms print as kSumGroups parenthesized partial sums (below).
+  static constexpr std::size_t kLongSum = 32;
+  static constexpr std::size_t kSumGroups = 4;
+
+  // "J[12]" as ("J", 12); nullopt for a target or a symbol name of another form.
+  static std::optional<std::pair<std::string, long>> array_entry(const std::string& text) {
+    const std::size_t open = text.find('[');
+    if (open == std::string::npos || open == 0 || text.back() != ']') return std::nullopt;
+    long index = 0;
+    for (std::size_t i = open + 1; i + 1 < text.size(); ++i) {
+      if (text[i] < '0' || text[i] > '9') return std::nullopt;
+      index = 10 * index + (text[i] - '0');
+    }
+    if (open + 2 > text.size() - 1) return std::nullopt;
+    return std::make_pair(text.substr(0, open), index);
+  }
+
+  // An output that is an input array's entry times one value, B[b] * f: f a symbol or a named
+  // temporary, and the product positive as printed (a sign-normal -(B[b] * -t) with t stored
+  // negated is B[b] * t), so that one text computes every entry of a run.
+  struct ScaledCopy {
+    std::string target, source;
+    long target_index = 0, source_index = 0;
+    ExprId factor = 0;
+  };
+  std::optional<ScaledCopy> scaled_copy(const FunctionOutput& out) const {
+    ExprId id = resolve(out.value);
+    if (named(id) || g_.node(id).op != Op::kMul) return std::nullopt;
+    const double c = coefficient(g_.node(id));
+    if (c != 1.0) {
+      if (c != -1.0 || g_.node(id).args.size() != 2) return std::nullopt;
+      id = resolve(g_.node(id).args[1]);
+      if (named(id)) return std::nullopt;
+    }
+    const Node& n = g_.node(id);
+    if (n.op != Op::kMul || n.args.size() != 2 || g_.is_constant(n.args[0])) return std::nullopt;
+    for (int s = 0; s < 2; ++s) {
+      const Node& entry = g_.node(n.args[s]);
+      if (entry.op != Op::kSymbol || g_.symbols()[entry.symbol].kind != SymbolKind::kInput) continue;
+      const ExprId factor = resolve(n.args[1 - s]);
+      const bool symbol = g_.node(factor).op == Op::kSymbol;
+      if (!symbol && !named(factor)) continue;
+      const bool negative = (c < 0) != (!symbol && flipped_[factor] != 0);
+      const auto target = array_entry(out.target);
+      const auto source = array_entry(g_.symbols()[entry.symbol].name);
+      if (negative || !target || !source) continue;
+      return ScaledCopy{target->first, source->first, target->second, source->second, factor};
+    }
+    return std::nullopt;
+  }
+
+  // The number of outputs from `first` on that continue one scaled copy: consecutive targets
+  // reading consecutive entries of one array times one factor (1 when `first` starts none).
+  std::size_t scaled_copy_run(const std::vector<FunctionOutput>& outputs, std::size_t first) {
+    const std::optional<ScaledCopy> head = scaled_copy(outputs[first]);
+    if (!head) return 1;
+    std::size_t run = 1;
+    for (std::size_t o = first + 1; o < outputs.size(); ++o, ++run) {
+      const std::optional<ScaledCopy> next = scaled_copy(outputs[o]);
+      const long step = static_cast<long>(run);
+      if (!next || next->target != head->target || next->source != head->source ||
+          next->factor != head->factor || next->target_index != head->target_index + step ||
+          next->source_index != head->source_index + step) {
+        break;
+      }
+    }
+    return run;
+  }
+
+  // One loop for a run of scaled copies, counted as the multiplications it performs. The
+  // compiler vectorizes it, where the same copies as statements stay scalar.
+  std::string scaled_copy_loop(const std::vector<FunctionOutput>& outputs, std::size_t first,
+                               std::size_t run) {
+    const ScaledCopy head = *scaled_copy(outputs[first]);
+    counts_.mul += static_cast<long>(run);
+    const ExprId factor = head.factor;
+    const std::string factor_text =
+        named(factor) ? name(factor) : g_.symbols()[g_.node(factor).symbol].name;
+    if (g_.node(factor).op == Op::kSymbol) symbol_used_[g_.node(factor).symbol] = true;
+    return render_statement("statements/output_loop",
+                            {{"count", std::to_string(run)},
+                             {"target", head.target},
+                             {"target_first", std::to_string(head.target_index)},
+                             {"source", head.source},
+                             {"source_first", std::to_string(head.source_index)},
+                             {"factor", factor_text}});
+  }
 
   bool is_operation(ExprId id) const {
     const Op op = g_.node(id).op;
@@ -406,6 +503,7 @@ class StatementWriter {
     }
     if (lead == terms.end()) lead = terms.begin();
     std::rotate(terms.begin(), lead, lead + 1);
+    if (terms.size() >= kLongSum) return grouped(std::move(terms));
     std::string out;
     for (std::size_t i = 0; i < terms.size(); ++i) {
       const Term& t = terms[i];
@@ -418,6 +516,28 @@ class StatementWriter {
       }
     }
     return out;
+  }
+
+  // A long sum as consecutive groups of terms, each summed in parentheses: the groups are
+  // independent chains of additions that run in parallel, where one long chain waits for each
+  // addition in turn. Same additions; a group of only negative terms is subtracted whole.
+  std::string grouped(std::vector<Term> terms) {
+    std::vector<Term> groups;
+    const std::size_t size = (terms.size() + kSumGroups - 1) / kSumGroups;
+    for (std::size_t first = 0; first < terms.size(); first += size) {
+      std::vector<Term> members(terms.begin() + static_cast<std::ptrdiff_t>(first),
+                                terms.begin() + static_cast<std::ptrdiff_t>(
+                                                    std::min(first + size, terms.size())));
+      Term group;
+      group.negative = std::all_of(members.begin(), members.end(),
+                                   [](const Term& t) { return t.negative; });
+      if (group.negative) {
+        for (Term& t : members) t.negative = false;
+      }
+      group.rest = "(" + join(std::move(members)) + ")";
+      groups.push_back(std::move(group));
+    }
+    return join(std::move(groups));
   }
 
   std::string sum(ExprId id) {

@@ -39,6 +39,68 @@ class StatementWriterTest : public testing::Test {
   const ExprId p2 = g.symbol(Symbol{"p[2]", SymbolKind::kInput, ""});
 };
 
+TEST_F(StatementWriterTest, ConsecutiveScaledCopiesPrintAsOneLoop) {
+  // J[2 + k] = Y[1 + k] * t for k < 5 is one loop the compiler vectorizes; a run broken by an
+  // index, and a run shorter than four, stay statements. Counted as the products computed.
+  std::vector<ExprId> Y;
+  for (int k = 0; k < 16; ++k) {
+    Y.push_back(g.symbol(Symbol{"Y[" + std::to_string(k) + "]", SymbolKind::kInput, ""}));
+  }
+  const ExprId t = g.share(g.add(s1, p0));
+  std::vector<FunctionOutput> outputs;
+  for (int k = 0; k < 5; ++k) outputs.push_back({"J[" + std::to_string(2 + k) + "]", g.mul(Y[1 + k], t), ""});
+  outputs.push_back({"J[7]", g.mul(Y[9], t), "M1"});
+  for (int k = 0; k < 3; ++k) outputs.push_back({"J[" + std::to_string(8 + k) + "]", g.mul(Y[11 + k], t), ""});
+  const FunctionBody body = write_statements(g, outputs, Scalar::kDouble);
+  EXPECT_EQ(body.lines, (Lines{
+                            "const double s1 = std::sin(q[0]);",
+                            "const double t0 = p[0] + s1;",
+                            "for (int k = 0; k < 5; ++k) J[2 + k] = Y[1 + k] * t0;",
+                            "J[7] = Y[9] * t0;  // M1",
+                            "J[8] = Y[11] * t0;",
+                            "J[9] = Y[12] * t0;",
+                            "J[10] = Y[13] * t0;",
+                        }));
+  EXPECT_EQ(body.counts.mul, 9);
+  EXPECT_EQ(body.counts.add, 1);
+}
+
+TEST_F(StatementWriterTest, ACopyThatWouldNeedANegationIsNotALoop) {
+  // -(Y[k] * t) for t not stored negated: a loop of the printed form would be wrong.
+  std::vector<FunctionOutput> outputs;
+  const ExprId t = g.share(g.add(s1, p0));
+  for (int k = 0; k < 5; ++k) {
+    const ExprId y = g.symbol(Symbol{"Y[" + std::to_string(k) + "]", SymbolKind::kInput, ""});
+    outputs.push_back({"J[" + std::to_string(k) + "]", g.neg(g.mul(y, t)), ""});
+  }
+  const FunctionBody body = write_statements(g, outputs, Scalar::kDouble);
+  for (const std::string& line : body.lines) EXPECT_EQ(line.find("for ("), std::string::npos) << line;
+}
+
+TEST_F(StatementWriterTest, LongSumsPrintAsFourParenthesizedGroups) {
+  // 40 terms: four independent chains of additions; a group of only negative terms is
+  // subtracted whole, so the additions stay 39. 31 terms stay one chain.
+  auto sum_of = [&](int positive, int negative) {
+    std::vector<ExprId> terms;
+    for (int k = 0; k < positive + negative; ++k) {
+      const ExprId y = g.symbol(Symbol{"Y[" + std::to_string(100 + k) + "]", SymbolKind::kInput, ""});
+      terms.push_back(k < positive ? y : g.neg(y));
+    }
+    return write_statements(g, {{"W[0]", g.add(terms), ""}}, Scalar::kDouble);
+  };
+  const FunctionBody grouped = sum_of(30, 10);
+  ASSERT_EQ(grouped.lines.size(), 1u);
+  const std::string& line = grouped.lines[0];
+  EXPECT_EQ(std::count(line.begin(), line.end(), '('), 4) << line;
+  EXPECT_EQ(line.rfind("W[0] = (Y[100] + ", 0), 0u) << line;
+  EXPECT_NE(line.find(") - (Y[130] + "), std::string::npos) << line;
+  EXPECT_EQ(grouped.counts.add, 39);
+  for (int k = 100; k < 140; ++k) EXPECT_NE(line.find("Y[" + std::to_string(k) + "]"), std::string::npos);
+  const FunctionBody chain = sum_of(31, 0);
+  EXPECT_EQ(chain.lines[0].find('('), std::string::npos) << chain.lines[0];
+  EXPECT_EQ(chain.counts.add, 30);
+}
+
 TEST_F(StatementWriterTest, SharedSubexpressionBecomesATemporary) {
   const ExprId e = g.add(s1, p0);
   const FunctionBody body = write_statements(
