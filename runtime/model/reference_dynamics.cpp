@@ -78,7 +78,8 @@ struct Unpacked {
   std::vector<MotorTerms> motors;  // per tree.coupled_motors entry
 };
 
-Unpacked unpack(const RigidBodyTree& tree, const Eigen::VectorXd& p) {
+// Every term at zero.
+Unpacked zero_parameters(const RigidBodyTree& tree) {
   Unpacked u;
   u.inertia.resize(tree.bodies.size());
   u.drive.resize(tree.dof);
@@ -86,83 +87,92 @@ Unpacked unpack(const RigidBodyTree& tree, const Eigen::VectorXd& p) {
   for (std::size_t m = 0; m < tree.coupled_motors.size(); ++m) {
     u.motors[m].motor = &tree.coupled_motors[m];
   }
+  return u;
+}
+
+// Adds v to the term standard parameter k stands for.
+void add_parameter(const RigidBodyTree& tree, std::size_t k, double v, Unpacked& u) {
   auto motor_terms = [&](const StandardParam& param) -> MotorTerms& {
     const CoupledMotor* motor = coupled_motor_of(tree, param);
     return u.motors[static_cast<std::size_t>(motor - tree.coupled_motors.data())];
   };
+  const StandardParam& param = tree.params[k];
+  BodyInertia& b = u.inertia[param.body];
+  const int dof = tree.bodies[param.body].dof_index;
+  switch (param.kind) {
+    case ParamKind::kXX:
+      b.J(0, 0) += v;
+      break;
+    case ParamKind::kYY:
+      b.J(1, 1) += v;
+      break;
+    case ParamKind::kZZ:
+      b.J(2, 2) += v;
+      break;
+    case ParamKind::kXY:
+      b.J(0, 1) += v;
+      b.J(1, 0) += v;
+      break;
+    case ParamKind::kXZ:
+      b.J(0, 2) += v;
+      b.J(2, 0) += v;
+      break;
+    case ParamKind::kYZ:
+      b.J(1, 2) += v;
+      b.J(2, 1) += v;
+      break;
+    case ParamKind::kMX:
+      b.MS.x() += v;
+      break;
+    case ParamKind::kMY:
+      b.MS.y() += v;
+      break;
+    case ParamKind::kMZ:
+      b.MS.z() += v;
+      break;
+    case ParamKind::kM:
+      b.M += v;
+      break;
+    case ParamKind::kIa:
+      u.drive[dof].Ia += v;
+      break;
+    case ParamKind::kFv:
+      u.drive[dof].Fv += v;
+      break;
+    case ParamKind::kFc:
+      u.drive[dof].Fc += v;
+      break;
+    case ParamKind::kOff:
+      u.drive[dof].Off += v;
+      break;
+    case ParamKind::kFvPos:
+      u.drive[dof].Fvp += v;
+      break;
+    case ParamKind::kFvNeg:
+      u.drive[dof].Fvn += v;
+      break;
+    case ParamKind::kFcPos:
+      u.drive[dof].Fcp += v;
+      break;
+    case ParamKind::kFcNeg:
+      u.drive[dof].Fcn += v;
+      break;
+    case ParamKind::kIam:
+      motor_terms(param).Iam += v;
+      break;
+    case ParamKind::kFvm:
+      motor_terms(param).Fvm += v;
+      break;
+    case ParamKind::kFcm:
+      motor_terms(param).Fcm += v;
+      break;
+  }
+}
+
+Unpacked unpack(const RigidBodyTree& tree, const Eigen::VectorXd& p) {
+  Unpacked u = zero_parameters(tree);
   for (std::size_t k = 0; k < tree.params.size(); ++k) {
-    const StandardParam& param = tree.params[k];
-    BodyInertia& b = u.inertia[param.body];
-    const int dof = tree.bodies[param.body].dof_index;
-    const double v = p[static_cast<Eigen::Index>(k)];
-    switch (param.kind) {
-      case ParamKind::kXX:
-        b.J(0, 0) += v;
-        break;
-      case ParamKind::kYY:
-        b.J(1, 1) += v;
-        break;
-      case ParamKind::kZZ:
-        b.J(2, 2) += v;
-        break;
-      case ParamKind::kXY:
-        b.J(0, 1) += v;
-        b.J(1, 0) += v;
-        break;
-      case ParamKind::kXZ:
-        b.J(0, 2) += v;
-        b.J(2, 0) += v;
-        break;
-      case ParamKind::kYZ:
-        b.J(1, 2) += v;
-        b.J(2, 1) += v;
-        break;
-      case ParamKind::kMX:
-        b.MS.x() += v;
-        break;
-      case ParamKind::kMY:
-        b.MS.y() += v;
-        break;
-      case ParamKind::kMZ:
-        b.MS.z() += v;
-        break;
-      case ParamKind::kM:
-        b.M += v;
-        break;
-      case ParamKind::kIa:
-        u.drive[dof].Ia += v;
-        break;
-      case ParamKind::kFv:
-        u.drive[dof].Fv += v;
-        break;
-      case ParamKind::kFc:
-        u.drive[dof].Fc += v;
-        break;
-      case ParamKind::kOff:
-        u.drive[dof].Off += v;
-        break;
-      case ParamKind::kFvPos:
-        u.drive[dof].Fvp += v;
-        break;
-      case ParamKind::kFvNeg:
-        u.drive[dof].Fvn += v;
-        break;
-      case ParamKind::kFcPos:
-        u.drive[dof].Fcp += v;
-        break;
-      case ParamKind::kFcNeg:
-        u.drive[dof].Fcn += v;
-        break;
-      case ParamKind::kIam:
-        motor_terms(param).Iam += v;
-        break;
-      case ParamKind::kFvm:
-        motor_terms(param).Fvm += v;
-        break;
-      case ParamKind::kFcm:
-        motor_terms(param).Fcm += v;
-        break;
-    }
+    add_parameter(tree, k, p[static_cast<Eigen::Index>(k)], u);
   }
   return u;
 }
@@ -298,11 +308,11 @@ Eigen::MatrixXd ReferenceDynamics::standard_regressor(const Eigen::VectorXd& q,
   // p, Gautier & Briot eq. 2).
   const Motion m = forward_recursion(tree_, q, dq, ddq, -to_vector(tree_.gravity));
   Eigen::MatrixXd W(dof(), num_params());
-  Eigen::VectorXd unit = Eigen::VectorXd::Zero(num_params());
+  const Unpacked zero = zero_parameters(tree_);
   for (int k = 0; k < num_params(); ++k) {
-    unit[k] = 1.0;
-    W.col(k) = torques_on_motion(tree_, m, dq, ddq, unpack(tree_, unit));
-    unit[k] = 0.0;
+    Unpacked unit = zero;
+    add_parameter(tree_, static_cast<std::size_t>(k), 1.0, unit);
+    W.col(k) = torques_on_motion(tree_, m, dq, ddq, unit);
   }
   return W;
 }
