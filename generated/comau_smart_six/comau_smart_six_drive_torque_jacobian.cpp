@@ -78,16 +78,16 @@ void drive_torque_jacobian(const double* q, const double* dq, const double* ddq,
   const double t41 = t39 * t40 - theta[93] * (t38 - 0.5);
   tau_M[5] = ddq[5] * theta[90] + dq[5] * theta[91] + sg6 * theta[92] + t35 * t41;
   J[5] = W_std[5] * t6;  // ZZ1
-  for (int k = 0; k < 5; ++k) J[10 + k] = W_std[15 + k] * t6;
+  for (int k = 0; k < 5; ++k) J[10 + k] = W_std[15 + k] * t6;  // XX2 XY2 XZ2 YY2 YZ2
   J[16] = W_std[21] * t6;  // MX2
   J[17] = W_std[22] * t6;  // MY2
   J[19] = W_std[24] * t6;  // M2
-  for (int k = 0; k < 5; ++k) J[20 + k] = W_std[30 + k] * t6;
-  for (int k = 0; k < 4; ++k) J[26 + k] = W_std[36 + k] * t6;
-  for (int k = 0; k < 10; ++k) J[30 + k] = W_std[45 + k] * t6;
-  for (int k = 0; k < 10; ++k) J[40 + k] = W_std[60 + k] * t6;
-  for (int k = 0; k < 10; ++k) J[50 + k] = W_std[75 + k] * t6;
-  for (int k = 0; k < 10; ++k) J[60 + k] = W_std[90 + k] * t6;
+  for (int k = 0; k < 5; ++k) J[20 + k] = W_std[30 + k] * t6;  // XX3 XY3 XZ3 YY3 YZ3
+  for (int k = 0; k < 4; ++k) J[26 + k] = W_std[36 + k] * t6;  // MX3 MY3 MZ3 M3
+  for (int k = 0; k < 10; ++k) J[30 + k] = W_std[45 + k] * t6;  // XX4 XY4 XZ4 YY4 YZ4 ZZ4 MX4 MY4 MZ4 M4
+  for (int k = 0; k < 10; ++k) J[40 + k] = W_std[60 + k] * t6;  // XX5 XY5 XZ5 YY5 YZ5 ZZ5 MX5 MY5 MZ5 M5
+  for (int k = 0; k < 10; ++k) J[50 + k] = W_std[75 + k] * t6;  // XX6 XY6 XZ6 YY6 YZ6 ZZ6 MX6 MY6 MZ6 M6
+  for (int k = 0; k < 10; ++k) J[60 + k] = W_std[90 + k] * t6;  // XX7 XY7 XZ7 YY7 YZ7 ZZ7 MX7 MY7 MZ7 M7
   J[70] = ddq[0];  // JM1
   J[71] = dq[0];  // Rv1
   J[72] = sg1;  // Rc1
@@ -202,16 +202,16 @@ void drive_torque_jacobian(const float* q, const float* dq, const float* ddq, co
   const float t41 = t39 * t40 - theta[93] * (t38 - 0.5f);
   tau_M[5] = ddq[5] * theta[90] + dq[5] * theta[91] + sg6 * theta[92] + t35 * t41;
   J[5] = W_std[5] * t6;  // ZZ1
-  for (int k = 0; k < 5; ++k) J[10 + k] = W_std[15 + k] * t6;
+  for (int k = 0; k < 5; ++k) J[10 + k] = W_std[15 + k] * t6;  // XX2 XY2 XZ2 YY2 YZ2
   J[16] = W_std[21] * t6;  // MX2
   J[17] = W_std[22] * t6;  // MY2
   J[19] = W_std[24] * t6;  // M2
-  for (int k = 0; k < 5; ++k) J[20 + k] = W_std[30 + k] * t6;
-  for (int k = 0; k < 4; ++k) J[26 + k] = W_std[36 + k] * t6;
-  for (int k = 0; k < 10; ++k) J[30 + k] = W_std[45 + k] * t6;
-  for (int k = 0; k < 10; ++k) J[40 + k] = W_std[60 + k] * t6;
-  for (int k = 0; k < 10; ++k) J[50 + k] = W_std[75 + k] * t6;
-  for (int k = 0; k < 10; ++k) J[60 + k] = W_std[90 + k] * t6;
+  for (int k = 0; k < 5; ++k) J[20 + k] = W_std[30 + k] * t6;  // XX3 XY3 XZ3 YY3 YZ3
+  for (int k = 0; k < 4; ++k) J[26 + k] = W_std[36 + k] * t6;  // MX3 MY3 MZ3 M3
+  for (int k = 0; k < 10; ++k) J[30 + k] = W_std[45 + k] * t6;  // XX4 XY4 XZ4 YY4 YZ4 ZZ4 MX4 MY4 MZ4 M4
+  for (int k = 0; k < 10; ++k) J[40 + k] = W_std[60 + k] * t6;  // XX5 XY5 XZ5 YY5 YZ5 ZZ5 MX5 MY5 MZ5 M5
+  for (int k = 0; k < 10; ++k) J[50 + k] = W_std[75 + k] * t6;  // XX6 XY6 XZ6 YY6 YZ6 ZZ6 MX6 MY6 MZ6 M6
+  for (int k = 0; k < 10; ++k) J[60 + k] = W_std[90 + k] * t6;  // XX7 XY7 XZ7 YY7 YZ7 ZZ7 MX7 MY7 MZ7 M7
   J[70] = ddq[0];  // JM1
   J[71] = dq[0];  // Rv1
   J[72] = sg1;  // Rc1

@@ -105,14 +105,14 @@ void drive_torque_jacobian(const double* q, const double* dq, const double* ddq,
   const double t62 = t60 * t61 - theta[125] * (t59 - 0.5);
   tau_M[8] = ddq[8] * theta[122] + dq[8] * theta[123] + sg9 * theta[124] + t56 * t62;
   J[5] = W_std[5] * t6;  // ZZ1
-  for (int k = 0; k < 5; ++k) J[10 + k] = W_std[14 + k] * t6;
-  for (int k = 0; k < 10; ++k) J[20 + k] = W_std[28 + k] * t6;
-  for (int k = 0; k < 10; ++k) J[30 + k] = W_std[42 + k] * t6;
-  for (int k = 0; k < 10; ++k) J[40 + k] = W_std[56 + k] * t6;
-  for (int k = 0; k < 10; ++k) J[50 + k] = W_std[70 + k] * t6;
-  for (int k = 0; k < 10; ++k) J[60 + k] = W_std[84 + k] * t6;
-  for (int k = 0; k < 10; ++k) J[70 + k] = W_std[98 + k] * t6;
-  for (int k = 0; k < 10; ++k) J[80 + k] = W_std[112 + k] * t6;
+  for (int k = 0; k < 5; ++k) J[10 + k] = W_std[14 + k] * t6;  // XX2 XY2 XZ2 YY2 YZ2
+  for (int k = 0; k < 10; ++k) J[20 + k] = W_std[28 + k] * t6;  // XX3 XY3 XZ3 YY3 YZ3 ZZ3 MX3 MY3 MZ3 M3
+  for (int k = 0; k < 10; ++k) J[30 + k] = W_std[42 + k] * t6;  // XX4 XY4 XZ4 YY4 YZ4 ZZ4 MX4 MY4 MZ4 M4
+  for (int k = 0; k < 10; ++k) J[40 + k] = W_std[56 + k] * t6;  // XX5 XY5 XZ5 YY5 YZ5 ZZ5 MX5 MY5 MZ5 M5
+  for (int k = 0; k < 10; ++k) J[50 + k] = W_std[70 + k] * t6;  // XX6 XY6 XZ6 YY6 YZ6 ZZ6 MX6 MY6 MZ6 M6
+  for (int k = 0; k < 10; ++k) J[60 + k] = W_std[84 + k] * t6;  // XX7 XY7 XZ7 YY7 YZ7 ZZ7 MX7 MY7 MZ7 M7
+  for (int k = 0; k < 10; ++k) J[70 + k] = W_std[98 + k] * t6;  // XX8 XY8 XZ8 YY8 YZ8 ZZ8 MX8 MY8 MZ8 M8
+  for (int k = 0; k < 10; ++k) J[80 + k] = W_std[112 + k] * t6;  // XX9 XY9 XZ9 YY9 YZ9 ZZ9 MX9 MY9 MZ9 M9
   J[90] = ddq[0];  // JM1
   J[91] = dq[0];  // Rv1
   J[92] = sg1;  // Rc1
@@ -281,14 +281,14 @@ void drive_torque_jacobian(const float* q, const float* dq, const float* ddq, co
   const float t62 = t60 * t61 - theta[125] * (t59 - 0.5f);
   tau_M[8] = ddq[8] * theta[122] + dq[8] * theta[123] + sg9 * theta[124] + t56 * t62;
   J[5] = W_std[5] * t6;  // ZZ1
-  for (int k = 0; k < 5; ++k) J[10 + k] = W_std[14 + k] * t6;
-  for (int k = 0; k < 10; ++k) J[20 + k] = W_std[28 + k] * t6;
-  for (int k = 0; k < 10; ++k) J[30 + k] = W_std[42 + k] * t6;
-  for (int k = 0; k < 10; ++k) J[40 + k] = W_std[56 + k] * t6;
-  for (int k = 0; k < 10; ++k) J[50 + k] = W_std[70 + k] * t6;
-  for (int k = 0; k < 10; ++k) J[60 + k] = W_std[84 + k] * t6;
-  for (int k = 0; k < 10; ++k) J[70 + k] = W_std[98 + k] * t6;
-  for (int k = 0; k < 10; ++k) J[80 + k] = W_std[112 + k] * t6;
+  for (int k = 0; k < 5; ++k) J[10 + k] = W_std[14 + k] * t6;  // XX2 XY2 XZ2 YY2 YZ2
+  for (int k = 0; k < 10; ++k) J[20 + k] = W_std[28 + k] * t6;  // XX3 XY3 XZ3 YY3 YZ3 ZZ3 MX3 MY3 MZ3 M3
+  for (int k = 0; k < 10; ++k) J[30 + k] = W_std[42 + k] * t6;  // XX4 XY4 XZ4 YY4 YZ4 ZZ4 MX4 MY4 MZ4 M4
+  for (int k = 0; k < 10; ++k) J[40 + k] = W_std[56 + k] * t6;  // XX5 XY5 XZ5 YY5 YZ5 ZZ5 MX5 MY5 MZ5 M5
+  for (int k = 0; k < 10; ++k) J[50 + k] = W_std[70 + k] * t6;  // XX6 XY6 XZ6 YY6 YZ6 ZZ6 MX6 MY6 MZ6 M6
+  for (int k = 0; k < 10; ++k) J[60 + k] = W_std[84 + k] * t6;  // XX7 XY7 XZ7 YY7 YZ7 ZZ7 MX7 MY7 MZ7 M7
+  for (int k = 0; k < 10; ++k) J[70 + k] = W_std[98 + k] * t6;  // XX8 XY8 XZ8 YY8 YZ8 ZZ8 MX8 MY8 MZ8 M8
+  for (int k = 0; k < 10; ++k) J[80 + k] = W_std[112 + k] * t6;  // XX9 XY9 XZ9 YY9 YZ9 ZZ9 MX9 MY9 MZ9 M9
   J[90] = ddq[0];  // JM1
   J[91] = dq[0];  // Rv1
   J[92] = sg1;  // Rc1

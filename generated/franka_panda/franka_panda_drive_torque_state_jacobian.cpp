@@ -124,11 +124,11 @@ void drive_torque_state_jacobian(const double* q, const double* dq, const double
   const double t1 = static_cast<double>((t0 > 0.0) - (t0 < 0.0));
   const double t2 = 0.5 * t1;
   const double t3 = (1.0 / theta[93]) * (0.5 + t2) - theta[93] * (t2 - 0.5);
-  for (int k = 0; k < 8; ++k) J[1 + k] = dtau_G[1 + k] * t3;
+  for (int k = 0; k < 8; ++k) J[1 + k] = dtau_G[1 + k] * t3;  // q[1] q[2] q[3] q[4] q[5] q[6] q[7] q[8]
   J[9] = theta[91] + dtau_G[9] * t3;  // dq[0]
-  for (int k = 0; k < 8; ++k) J[10 + k] = dtau_G[10 + k] * t3;
+  for (int k = 0; k < 8; ++k) J[10 + k] = dtau_G[10 + k] * t3;  // dq[1] dq[2] dq[3] dq[4] dq[5] dq[6] dq[7] dq[8]
   J[18] = theta[90] + dtau_G[18] * t3;  // ddq[0]
-  for (int k = 0; k < 8; ++k) J[19 + k] = dtau_G[19 + k] * t3;
+  for (int k = 0; k < 8; ++k) J[19 + k] = dtau_G[19 + k] * t3;  // ddq[1] ddq[2] ddq[3] ddq[4] ddq[5] ddq[6] ddq[7] ddq[8]
   const double t4 = dq[1] * tau_G[1];
   const double t5 = static_cast<double>((t4 > 0.0) - (t4 < 0.0));
   const double t6 = 0.5 * t5;
@@ -320,11 +320,11 @@ void drive_torque_state_jacobian(const float* q, const float* dq, const float* d
   const float t1 = static_cast<float>((t0 > 0.0f) - (t0 < 0.0f));
   const float t2 = 0.5f * t1;
   const float t3 = (1.0f / theta[93]) * (0.5f + t2) - theta[93] * (t2 - 0.5f);
-  for (int k = 0; k < 8; ++k) J[1 + k] = dtau_G[1 + k] * t3;
+  for (int k = 0; k < 8; ++k) J[1 + k] = dtau_G[1 + k] * t3;  // q[1] q[2] q[3] q[4] q[5] q[6] q[7] q[8]
   J[9] = theta[91] + dtau_G[9] * t3;  // dq[0]
-  for (int k = 0; k < 8; ++k) J[10 + k] = dtau_G[10 + k] * t3;
+  for (int k = 0; k < 8; ++k) J[10 + k] = dtau_G[10 + k] * t3;  // dq[1] dq[2] dq[3] dq[4] dq[5] dq[6] dq[7] dq[8]
   J[18] = theta[90] + dtau_G[18] * t3;  // ddq[0]
-  for (int k = 0; k < 8; ++k) J[19 + k] = dtau_G[19 + k] * t3;
+  for (int k = 0; k < 8; ++k) J[19 + k] = dtau_G[19 + k] * t3;  // ddq[1] ddq[2] ddq[3] ddq[4] ddq[5] ddq[6] ddq[7] ddq[8]
   const float t4 = dq[1] * tau_G[1];
   const float t5 = static_cast<float>((t4 > 0.0f) - (t4 < 0.0f));
   const float t6 = 0.5f * t5;

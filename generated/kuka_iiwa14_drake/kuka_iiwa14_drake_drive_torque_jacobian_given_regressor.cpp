@@ -81,8 +81,8 @@ void drive_torque_jacobian_given_regressor(const double* Y, const double* theta,
   const double t48 = t46 * t47 - theta[97] * (t45 - 0.5);
   tau_M[6] = Y[682] * theta[94] + Y[683] * theta[95] + Y[684] * theta[96] + t42 * t48;
   J[5] = Y[5] * t6;  // ZZ1
-  for (int k = 0; k < 5; ++k) J[10 + k] = Y[10 + k] * t6;
-  for (int k = 0; k < 50; ++k) J[20 + k] = Y[20 + k] * t6;
+  for (int k = 0; k < 5; ++k) J[10 + k] = Y[10 + k] * t6;  // XX2 XY2 XZ2 YY2 YZ2
+  for (int k = 0; k < 50; ++k) J[20 + k] = Y[20 + k] * t6;  // XX3 XY3 XZ3 YY3 YZ3 ZZ3 MX3 MY3 MZ3 M3 XX4 XY4 XZ4 YY4 YZ4 ZZ4 MX4 MY4 MZ4 M4 XX5 XY5 XZ5 YY5 YZ5 ZZ5 MX5 MY5 MZ5 M5 XX6 XY6 XZ6 YY6 YZ6 ZZ6 MX6 MY6 MZ6 M6 XX7 XY7 XZ7 YY7 YZ7 ZZ7 MX7 MY7 MZ7 M7
   J[70] = Y[70];  // JM1
   J[71] = Y[71];  // Rv1
   J[72] = Y[72];  // Rc1
@@ -197,8 +197,8 @@ void drive_torque_jacobian_given_regressor(const float* Y, const float* theta, f
   const float t48 = t46 * t47 - theta[97] * (t45 - 0.5f);
   tau_M[6] = Y[682] * theta[94] + Y[683] * theta[95] + Y[684] * theta[96] + t42 * t48;
   J[5] = Y[5] * t6;  // ZZ1
-  for (int k = 0; k < 5; ++k) J[10 + k] = Y[10 + k] * t6;
-  for (int k = 0; k < 50; ++k) J[20 + k] = Y[20 + k] * t6;
+  for (int k = 0; k < 5; ++k) J[10 + k] = Y[10 + k] * t6;  // XX2 XY2 XZ2 YY2 YZ2
+  for (int k = 0; k < 50; ++k) J[20 + k] = Y[20 + k] * t6;  // XX3 XY3 XZ3 YY3 YZ3 ZZ3 MX3 MY3 MZ3 M3 XX4 XY4 XZ4 YY4 YZ4 ZZ4 MX4 MY4 MZ4 M4 XX5 XY5 XZ5 YY5 YZ5 ZZ5 MX5 MY5 MZ5 M5 XX6 XY6 XZ6 YY6 YZ6 ZZ6 MX6 MY6 MZ6 M6 XX7 XY7 XZ7 YY7 YZ7 ZZ7 MX7 MY7 MZ7 M7
   J[70] = Y[70];  // JM1
   J[71] = Y[71];  // Rv1
   J[72] = Y[72];  // Rc1

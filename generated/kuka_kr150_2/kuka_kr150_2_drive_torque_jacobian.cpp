@@ -89,10 +89,10 @@ void drive_torque_jacobian(const double* q, const double* dq, const double* ddq,
   J[20] = W_std[28] * t6;  // XX3
   J[21] = W_std[29] * t6;  // XY3
   J[22] = W_std[30] * t6;  // XZ3
-  for (int k = 0; k < 6; ++k) J[24 + k] = W_std[32 + k] * t6;
-  for (int k = 0; k < 10; ++k) J[30 + k] = W_std[42 + k] * t6;
-  for (int k = 0; k < 10; ++k) J[40 + k] = W_std[56 + k] * t6;
-  for (int k = 0; k < 10; ++k) J[50 + k] = W_std[70 + k] * t6;
+  for (int k = 0; k < 6; ++k) J[24 + k] = W_std[32 + k] * t6;  // YZ3 ZZ3 MX3 MY3 MZ3 M3
+  for (int k = 0; k < 10; ++k) J[30 + k] = W_std[42 + k] * t6;  // XX4 XY4 XZ4 YY4 YZ4 ZZ4 MX4 MY4 MZ4 M4
+  for (int k = 0; k < 10; ++k) J[40 + k] = W_std[56 + k] * t6;  // XX5 XY5 XZ5 YY5 YZ5 ZZ5 MX5 MY5 MZ5 M5
+  for (int k = 0; k < 10; ++k) J[50 + k] = W_std[70 + k] * t6;  // XX6 XY6 XZ6 YY6 YZ6 ZZ6 MX6 MY6 MZ6 M6
   J[60] = ddq[0];  // JM1
   J[61] = dq[0];  // Rv1
   J[62] = sg1;  // Rc1
@@ -220,10 +220,10 @@ void drive_torque_jacobian(const float* q, const float* dq, const float* ddq, co
   J[20] = W_std[28] * t6;  // XX3
   J[21] = W_std[29] * t6;  // XY3
   J[22] = W_std[30] * t6;  // XZ3
-  for (int k = 0; k < 6; ++k) J[24 + k] = W_std[32 + k] * t6;
-  for (int k = 0; k < 10; ++k) J[30 + k] = W_std[42 + k] * t6;
-  for (int k = 0; k < 10; ++k) J[40 + k] = W_std[56 + k] * t6;
-  for (int k = 0; k < 10; ++k) J[50 + k] = W_std[70 + k] * t6;
+  for (int k = 0; k < 6; ++k) J[24 + k] = W_std[32 + k] * t6;  // YZ3 ZZ3 MX3 MY3 MZ3 M3
+  for (int k = 0; k < 10; ++k) J[30 + k] = W_std[42 + k] * t6;  // XX4 XY4 XZ4 YY4 YZ4 ZZ4 MX4 MY4 MZ4 M4
+  for (int k = 0; k < 10; ++k) J[40 + k] = W_std[56 + k] * t6;  // XX5 XY5 XZ5 YY5 YZ5 ZZ5 MX5 MY5 MZ5 M5
+  for (int k = 0; k < 10; ++k) J[50 + k] = W_std[70 + k] * t6;  // XX6 XY6 XZ6 YY6 YZ6 ZZ6 MX6 MY6 MZ6 M6
   J[60] = ddq[0];  // JM1
   J[61] = dq[0];  // Rv1
   J[62] = sg1;  // Rc1

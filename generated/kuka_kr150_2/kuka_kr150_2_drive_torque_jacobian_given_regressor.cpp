@@ -79,8 +79,8 @@ void drive_torque_jacobian_given_regressor(const double* Y, const double* theta,
   J[14] = Y[14] * t6;  // YZ2
   J[15] = Y[15] * t6;  // ZZ2
   J[16] = Y[16] * t6;  // MX2
-  for (int k = 0; k < 5; ++k) J[18 + k] = Y[18 + k] * t6;
-  for (int k = 0; k < 36; ++k) J[24 + k] = Y[24 + k] * t6;
+  for (int k = 0; k < 5; ++k) J[18 + k] = Y[18 + k] * t6;  // MZ2 M2 XX3 XY3 XZ3
+  for (int k = 0; k < 36; ++k) J[24 + k] = Y[24 + k] * t6;  // YZ3 ZZ3 MX3 MY3 MZ3 M3 XX4 XY4 XZ4 YY4 YZ4 ZZ4 MX4 MY4 MZ4 M4 XX5 XY5 XZ5 YY5 YZ5 ZZ5 MX5 MY5 MZ5 M5 XX6 XY6 XZ6 YY6 YZ6 ZZ6 MX6 MY6 MZ6 M6
   J[60] = Y[60];  // JM1
   J[61] = Y[61];  // Rv1
   J[62] = Y[62];  // Rc1
@@ -193,8 +193,8 @@ void drive_torque_jacobian_given_regressor(const float* Y, const float* theta, f
   J[14] = Y[14] * t6;  // YZ2
   J[15] = Y[15] * t6;  // ZZ2
   J[16] = Y[16] * t6;  // MX2
-  for (int k = 0; k < 5; ++k) J[18 + k] = Y[18 + k] * t6;
-  for (int k = 0; k < 36; ++k) J[24 + k] = Y[24 + k] * t6;
+  for (int k = 0; k < 5; ++k) J[18 + k] = Y[18 + k] * t6;  // MZ2 M2 XX3 XY3 XZ3
+  for (int k = 0; k < 36; ++k) J[24 + k] = Y[24 + k] * t6;  // YZ3 ZZ3 MX3 MY3 MZ3 M3 XX4 XY4 XZ4 YY4 YZ4 ZZ4 MX4 MY4 MZ4 M4 XX5 XY5 XZ5 YY5 YZ5 ZZ5 MX5 MY5 MZ5 M5 XX6 XY6 XZ6 YY6 YZ6 ZZ6 MX6 MY6 MZ6 M6
   J[60] = Y[60];  // JM1
   J[61] = Y[61];  // Rv1
   J[62] = Y[62];  // Rc1

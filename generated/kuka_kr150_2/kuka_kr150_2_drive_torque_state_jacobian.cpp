@@ -94,11 +94,11 @@ void drive_torque_state_jacobian(const double* q, const double* dq, const double
   const double t1 = static_cast<double>((t0 > 0.0) - (t0 < 0.0));
   const double t2 = 0.5 * t1;
   const double t3 = (1.0 / theta[63]) * (0.5 + t2) - theta[63] * (t2 - 0.5);
-  for (int k = 0; k < 5; ++k) J[1 + k] = dtau_G[1 + k] * t3;
+  for (int k = 0; k < 5; ++k) J[1 + k] = dtau_G[1 + k] * t3;  // q[1] q[2] q[3] q[4] q[5]
   J[6] = theta[61] + dtau_G[6] * t3;  // dq[0]
-  for (int k = 0; k < 5; ++k) J[7 + k] = dtau_G[7 + k] * t3;
+  for (int k = 0; k < 5; ++k) J[7 + k] = dtau_G[7 + k] * t3;  // dq[1] dq[2] dq[3] dq[4] dq[5]
   J[12] = theta[60] + dtau_G[12] * t3;  // ddq[0]
-  for (int k = 0; k < 5; ++k) J[13 + k] = dtau_G[13 + k] * t3;
+  for (int k = 0; k < 5; ++k) J[13 + k] = dtau_G[13 + k] * t3;  // ddq[1] ddq[2] ddq[3] ddq[4] ddq[5]
   const double t4 = dq[1] * tau_G[1];
   const double t5 = static_cast<double>((t4 > 0.0) - (t4 < 0.0));
   const double t6 = 0.5 * t5;
@@ -232,11 +232,11 @@ void drive_torque_state_jacobian(const float* q, const float* dq, const float* d
   const float t1 = static_cast<float>((t0 > 0.0f) - (t0 < 0.0f));
   const float t2 = 0.5f * t1;
   const float t3 = (1.0f / theta[63]) * (0.5f + t2) - theta[63] * (t2 - 0.5f);
-  for (int k = 0; k < 5; ++k) J[1 + k] = dtau_G[1 + k] * t3;
+  for (int k = 0; k < 5; ++k) J[1 + k] = dtau_G[1 + k] * t3;  // q[1] q[2] q[3] q[4] q[5]
   J[6] = theta[61] + dtau_G[6] * t3;  // dq[0]
-  for (int k = 0; k < 5; ++k) J[7 + k] = dtau_G[7 + k] * t3;
+  for (int k = 0; k < 5; ++k) J[7 + k] = dtau_G[7 + k] * t3;  // dq[1] dq[2] dq[3] dq[4] dq[5]
   J[12] = theta[60] + dtau_G[12] * t3;  // ddq[0]
-  for (int k = 0; k < 5; ++k) J[13 + k] = dtau_G[13 + k] * t3;
+  for (int k = 0; k < 5; ++k) J[13 + k] = dtau_G[13 + k] * t3;  // ddq[1] ddq[2] ddq[3] ddq[4] ddq[5]
   const float t4 = dq[1] * tau_G[1];
   const float t5 = static_cast<float>((t4 > 0.0f) - (t4 < 0.0f));
   const float t6 = 0.5f * t5;

@@ -87,13 +87,13 @@ void drive_torque_jacobian(const double* q, const double* dq, const double* ddq,
   const double t48 = t46 * t47 - theta[107] * (t45 - 0.5);
   tau_M[6] = ddq[6] * theta[104] + dq[6] * theta[105] + sg7 * theta[106] + t42 * t48;
   J[5] = W_std[5] * t6;  // ZZ1
-  for (int k = 0; k < 5; ++k) J[10 + k] = W_std[13 + k] * t6;
-  for (int k = 0; k < 10; ++k) J[20 + k] = W_std[26 + k] * t6;
-  for (int k = 0; k < 10; ++k) J[30 + k] = W_std[39 + k] * t6;
-  for (int k = 0; k < 10; ++k) J[40 + k] = W_std[52 + k] * t6;
-  for (int k = 0; k < 10; ++k) J[50 + k] = W_std[65 + k] * t6;
-  for (int k = 0; k < 10; ++k) J[60 + k] = W_std[78 + k] * t6;
-  for (int k = 0; k < 10; ++k) J[70 + k] = W_std[91 + k] * t6;
+  for (int k = 0; k < 5; ++k) J[10 + k] = W_std[13 + k] * t6;  // XX2 XY2 XZ2 YY2 YZ2
+  for (int k = 0; k < 10; ++k) J[20 + k] = W_std[26 + k] * t6;  // XX3 XY3 XZ3 YY3 YZ3 ZZ3 MX3 MY3 MZ3 M3
+  for (int k = 0; k < 10; ++k) J[30 + k] = W_std[39 + k] * t6;  // XX4 XY4 XZ4 YY4 YZ4 ZZ4 MX4 MY4 MZ4 M4
+  for (int k = 0; k < 10; ++k) J[40 + k] = W_std[52 + k] * t6;  // XX5 XY5 XZ5 YY5 YZ5 ZZ5 MX5 MY5 MZ5 M5
+  for (int k = 0; k < 10; ++k) J[50 + k] = W_std[65 + k] * t6;  // XX6 XY6 XZ6 YY6 YZ6 ZZ6 MX6 MY6 MZ6 M6
+  for (int k = 0; k < 10; ++k) J[60 + k] = W_std[78 + k] * t6;  // XX7 XY7 XZ7 YY7 YZ7 ZZ7 MX7 MY7 MZ7 M7
+  for (int k = 0; k < 10; ++k) J[70 + k] = W_std[91 + k] * t6;  // XX8 XY8 XZ8 YY8 YZ8 ZZ8 MX8 MY8 MZ8 M8
   J[80] = ddq[0];  // JM1
   J[81] = dq[0];  // Rv1
   J[82] = sg1;  // Rc1
@@ -228,13 +228,13 @@ void drive_torque_jacobian(const float* q, const float* dq, const float* ddq, co
   const float t48 = t46 * t47 - theta[107] * (t45 - 0.5f);
   tau_M[6] = ddq[6] * theta[104] + dq[6] * theta[105] + sg7 * theta[106] + t42 * t48;
   J[5] = W_std[5] * t6;  // ZZ1
-  for (int k = 0; k < 5; ++k) J[10 + k] = W_std[13 + k] * t6;
-  for (int k = 0; k < 10; ++k) J[20 + k] = W_std[26 + k] * t6;
-  for (int k = 0; k < 10; ++k) J[30 + k] = W_std[39 + k] * t6;
-  for (int k = 0; k < 10; ++k) J[40 + k] = W_std[52 + k] * t6;
-  for (int k = 0; k < 10; ++k) J[50 + k] = W_std[65 + k] * t6;
-  for (int k = 0; k < 10; ++k) J[60 + k] = W_std[78 + k] * t6;
-  for (int k = 0; k < 10; ++k) J[70 + k] = W_std[91 + k] * t6;
+  for (int k = 0; k < 5; ++k) J[10 + k] = W_std[13 + k] * t6;  // XX2 XY2 XZ2 YY2 YZ2
+  for (int k = 0; k < 10; ++k) J[20 + k] = W_std[26 + k] * t6;  // XX3 XY3 XZ3 YY3 YZ3 ZZ3 MX3 MY3 MZ3 M3
+  for (int k = 0; k < 10; ++k) J[30 + k] = W_std[39 + k] * t6;  // XX4 XY4 XZ4 YY4 YZ4 ZZ4 MX4 MY4 MZ4 M4
+  for (int k = 0; k < 10; ++k) J[40 + k] = W_std[52 + k] * t6;  // XX5 XY5 XZ5 YY5 YZ5 ZZ5 MX5 MY5 MZ5 M5
+  for (int k = 0; k < 10; ++k) J[50 + k] = W_std[65 + k] * t6;  // XX6 XY6 XZ6 YY6 YZ6 ZZ6 MX6 MY6 MZ6 M6
+  for (int k = 0; k < 10; ++k) J[60 + k] = W_std[78 + k] * t6;  // XX7 XY7 XZ7 YY7 YZ7 ZZ7 MX7 MY7 MZ7 M7
+  for (int k = 0; k < 10; ++k) J[70 + k] = W_std[91 + k] * t6;  // XX8 XY8 XZ8 YY8 YZ8 ZZ8 MX8 MY8 MZ8 M8
   J[80] = ddq[0];  // JM1
   J[81] = dq[0];  // Rv1
   J[82] = sg1;  // Rc1

@@ -114,11 +114,11 @@ void drive_torque_state_jacobian(const double* q, const double* dq, const double
   const double t1 = static_cast<double>((t0 > 0.0) - (t0 < 0.0));
   const double t2 = 0.5 * t1;
   const double t3 = (1.0 / theta[83]) * (0.5 + t2) - theta[83] * (t2 - 0.5);
-  for (int k = 0; k < 6; ++k) J[1 + k] = dtau_G[1 + k] * t3;
+  for (int k = 0; k < 6; ++k) J[1 + k] = dtau_G[1 + k] * t3;  // q[1] q[2] q[3] q[4] q[5] q[6]
   J[7] = theta[81] + dtau_G[7] * t3;  // dq[0]
-  for (int k = 0; k < 6; ++k) J[8 + k] = dtau_G[8 + k] * t3;
+  for (int k = 0; k < 6; ++k) J[8 + k] = dtau_G[8 + k] * t3;  // dq[1] dq[2] dq[3] dq[4] dq[5] dq[6]
   J[14] = theta[80] + dtau_G[14] * t3;  // ddq[0]
-  for (int k = 0; k < 6; ++k) J[15 + k] = dtau_G[15 + k] * t3;
+  for (int k = 0; k < 6; ++k) J[15 + k] = dtau_G[15 + k] * t3;  // ddq[1] ddq[2] ddq[3] ddq[4] ddq[5] ddq[6]
   const double t4 = dq[1] * tau_G[1];
   const double t5 = static_cast<double>((t4 > 0.0) - (t4 < 0.0));
   const double t6 = 0.5 * t5;
@@ -281,11 +281,11 @@ void drive_torque_state_jacobian(const float* q, const float* dq, const float* d
   const float t1 = static_cast<float>((t0 > 0.0f) - (t0 < 0.0f));
   const float t2 = 0.5f * t1;
   const float t3 = (1.0f / theta[83]) * (0.5f + t2) - theta[83] * (t2 - 0.5f);
-  for (int k = 0; k < 6; ++k) J[1 + k] = dtau_G[1 + k] * t3;
+  for (int k = 0; k < 6; ++k) J[1 + k] = dtau_G[1 + k] * t3;  // q[1] q[2] q[3] q[4] q[5] q[6]
   J[7] = theta[81] + dtau_G[7] * t3;  // dq[0]
-  for (int k = 0; k < 6; ++k) J[8 + k] = dtau_G[8 + k] * t3;
+  for (int k = 0; k < 6; ++k) J[8 + k] = dtau_G[8 + k] * t3;  // dq[1] dq[2] dq[3] dq[4] dq[5] dq[6]
   J[14] = theta[80] + dtau_G[14] * t3;  // ddq[0]
-  for (int k = 0; k < 6; ++k) J[15 + k] = dtau_G[15 + k] * t3;
+  for (int k = 0; k < 6; ++k) J[15 + k] = dtau_G[15 + k] * t3;  // ddq[1] ddq[2] ddq[3] ddq[4] ddq[5] ddq[6]
   const float t4 = dq[1] * tau_G[1];
   const float t5 = static_cast<float>((t4 > 0.0f) - (t4 < 0.0f));
   const float t6 = 0.5f * t5;

@@ -76,9 +76,9 @@ void drive_torque_jacobian_given_regressor(const double* Y, const double* theta,
   J[10] = Y[10] * t6;  // XX2
   J[11] = Y[11] * t6;  // XY2
   J[12] = Y[12] * t6;  // XZ2
-  for (int k = 0; k < 9; ++k) J[14 + k] = Y[14 + k] * t6;
-  for (int k = 0; k < 9; ++k) J[24 + k] = Y[24 + k] * t6;
-  for (int k = 0; k < 26; ++k) J[34 + k] = Y[34 + k] * t6;
+  for (int k = 0; k < 9; ++k) J[14 + k] = Y[14 + k] * t6;  // YZ2 ZZ2 MX2 MY2 MZ2 M2 XX3 XY3 XZ3
+  for (int k = 0; k < 9; ++k) J[24 + k] = Y[24 + k] * t6;  // YZ3 ZZ3 MX3 MY3 MZ3 M3 XX4 XY4 XZ4
+  for (int k = 0; k < 26; ++k) J[34 + k] = Y[34 + k] * t6;  // YZ4 ZZ4 MX4 MY4 MZ4 M4 XX5 XY5 XZ5 YY5 YZ5 ZZ5 MX5 MY5 MZ5 M5 XX6 XY6 XZ6 YY6 YZ6 ZZ6 MX6 MY6 MZ6 M6
   J[60] = Y[60];  // JM1
   J[61] = Y[61];  // Rv1
   J[62] = Y[62];  // Rc1
@@ -185,9 +185,9 @@ void drive_torque_jacobian_given_regressor(const float* Y, const float* theta, f
   J[10] = Y[10] * t6;  // XX2
   J[11] = Y[11] * t6;  // XY2
   J[12] = Y[12] * t6;  // XZ2
-  for (int k = 0; k < 9; ++k) J[14 + k] = Y[14 + k] * t6;
-  for (int k = 0; k < 9; ++k) J[24 + k] = Y[24 + k] * t6;
-  for (int k = 0; k < 26; ++k) J[34 + k] = Y[34 + k] * t6;
+  for (int k = 0; k < 9; ++k) J[14 + k] = Y[14 + k] * t6;  // YZ2 ZZ2 MX2 MY2 MZ2 M2 XX3 XY3 XZ3
+  for (int k = 0; k < 9; ++k) J[24 + k] = Y[24 + k] * t6;  // YZ3 ZZ3 MX3 MY3 MZ3 M3 XX4 XY4 XZ4
+  for (int k = 0; k < 26; ++k) J[34 + k] = Y[34 + k] * t6;  // YZ4 ZZ4 MX4 MY4 MZ4 M4 XX5 XY5 XZ5 YY5 YZ5 ZZ5 MX5 MY5 MZ5 M5 XX6 XY6 XZ6 YY6 YZ6 ZZ6 MX6 MY6 MZ6 M6
   J[60] = Y[60];  // JM1
   J[61] = Y[61];  // Rv1
   J[62] = Y[62];  // Rc1

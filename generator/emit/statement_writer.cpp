@@ -36,14 +36,16 @@ class StatementWriter {
       : g_(graph),
         scalar_(scalar),
         trig_(trig),
-        workspace_(fitted(workspace, graph.size())),
         uses_(workspace.uses),
         temporary_(workspace.temporary),
         flipped_(workspace.flipped),
         keep_sign_(workspace.keep_sign),
         negative_votes_(workspace.negative_votes),
         prepared_(workspace.prepared),
-        symbol_used_(graph.symbols().size(), false) {}
+        visited_(workspace.visited),
+        symbol_used_(graph.symbols().size(), false) {
+    workspace.fit(graph.size());  // resizes the vectors the members refer to
+  }
   StatementWriter(const StatementWriter&) = delete;
   StatementWriter& operator=(const StatementWriter&) = delete;
   // The touched entries back to zero: the nodes reached from the outputs, and the negations
@@ -52,7 +54,7 @@ class StatementWriter {
     for (const std::vector<ExprId>* ids : {&reachable_, &prepared_list_}) {
       for (ExprId id : *ids) {
         uses_[id] = temporary_[id] = negative_votes_[id] = 0;
-        flipped_[id] = keep_sign_[id] = prepared_[id] = workspace_.visited[id] = 0;
+        flipped_[id] = keep_sign_[id] = prepared_[id] = visited_[id] = 0;
       }
     }
   }
@@ -70,10 +72,12 @@ class StatementWriter {
       const FunctionOutput& out = outputs[o];
       if (g_.is_zero(out.value)) continue;  // zero for every input: the caller zeroes it once
       prepare(out.value, body);
-      if (const std::size_t run = scaled_copy_run(outputs, o); run >= kMinLoop) {
-        body.push_back(scaled_copy_loop(outputs, o, run));
-        o += run - 1;
-        continue;
+      if (const std::optional<ScaledCopy> head = scaled_copy(out)) {
+        if (const std::size_t run = scaled_copy_run(outputs, o, *head); run >= kMinLoop) {
+          body.push_back(scaled_copy_loop(outputs, o, run, *head));
+          o += run - 1;
+          continue;
+        }
       }
       const std::string value = expression(out.value, Context::kTop);
       if (out.comment.empty()) {
@@ -104,13 +108,14 @@ class StatementWriter {
   // "J[12]" as ("J", 12); nullopt for a target or a symbol name of another form.
   static std::optional<std::pair<std::string, long>> array_entry(const std::string& text) {
     const std::size_t open = text.find('[');
-    if (open == std::string::npos || open == 0 || text.back() != ']') return std::nullopt;
+    if (open == std::string::npos || open == 0 || open + 2 >= text.size() || text.back() != ']') {
+      return std::nullopt;
+    }
     long index = 0;
     for (std::size_t i = open + 1; i + 1 < text.size(); ++i) {
       if (text[i] < '0' || text[i] > '9') return std::nullopt;
       index = 10 * index + (text[i] - '0');
     }
-    if (open + 2 > text.size() - 1) return std::nullopt;
     return std::make_pair(text.substr(0, open), index);
   }
 
@@ -122,14 +127,26 @@ class StatementWriter {
     long target_index = 0, source_index = 0;
     ExprId factor = 0;
   };
+  // Whether `id`, or a shared intermediate it stands for, is (or will be) a temporary: read by
+  // other values too.
+  bool read_elsewhere(ExprId id) const {
+    for (;;) {
+      if (named(id) || becomes_temporary(id)) return true;
+      if (g_.node(id).op != Op::kShare) return false;
+      id = g_.node(id).args[0];
+    }
+  }
   std::optional<ScaledCopy> scaled_copy(const FunctionOutput& out) const {
+    // A product the function reads elsewhere too is a temporary of its own, not a loop entry
+    // (only the run's first output has been through prepare(): ask for later ones as well).
+    if (read_elsewhere(out.value)) return std::nullopt;
     ExprId id = resolve(out.value);
-    if (named(id) || g_.node(id).op != Op::kMul) return std::nullopt;
+    if (g_.node(id).op != Op::kMul) return std::nullopt;
     const double c = coefficient(g_.node(id));
     if (c != 1.0) {
       if (c != -1.0 || g_.node(id).args.size() != 2) return std::nullopt;
+      if (read_elsewhere(g_.node(id).args[1])) return std::nullopt;
       id = resolve(g_.node(id).args[1]);
-      if (named(id)) return std::nullopt;
     }
     const Node& n = g_.node(id);
     if (n.op != Op::kMul || n.args.size() != 2 || g_.is_constant(n.args[0])) return std::nullopt;
@@ -148,41 +165,48 @@ class StatementWriter {
     return std::nullopt;
   }
 
-  // The number of outputs from `first` on that continue one scaled copy: consecutive targets
-  // reading consecutive entries of one array times one factor (1 when `first` starts none).
-  std::size_t scaled_copy_run(const std::vector<FunctionOutput>& outputs, std::size_t first) {
-    const std::optional<ScaledCopy> head = scaled_copy(outputs[first]);
-    if (!head) return 1;
+  // The number of outputs from `first` (the scaled copy `head`) on that continue it: consecutive
+  // targets reading consecutive entries of one array times one factor.
+  std::size_t scaled_copy_run(const std::vector<FunctionOutput>& outputs, std::size_t first,
+                              const ScaledCopy& head) {
     std::size_t run = 1;
     for (std::size_t o = first + 1; o < outputs.size(); ++o, ++run) {
       const std::optional<ScaledCopy> next = scaled_copy(outputs[o]);
       const long step = static_cast<long>(run);
-      if (!next || next->target != head->target || next->source != head->source ||
-          next->factor != head->factor || next->target_index != head->target_index + step ||
-          next->source_index != head->source_index + step) {
+      if (!next || next->target != head.target || next->source != head.source ||
+          next->factor != head.factor || next->target_index != head.target_index + step ||
+          next->source_index != head.source_index + step) {
         break;
       }
     }
     return run;
   }
 
-  // One loop for a run of scaled copies, counted as the multiplications it performs. The
-  // compiler vectorizes it, where the same copies as statements stay scalar.
+  // One loop for a run of scaled copies, counted as the multiplications it performs, with the
+  // outputs' comments (the parameter names of a regressor's columns) after it. The compiler
+  // vectorizes it, where the same copies as statements stay scalar.
   std::string scaled_copy_loop(const std::vector<FunctionOutput>& outputs, std::size_t first,
-                               std::size_t run) {
-    const ScaledCopy head = *scaled_copy(outputs[first]);
+                               std::size_t run, const ScaledCopy& head) {
     counts_.mul += static_cast<long>(run);
+    std::string comments;
+    for (std::size_t o = first; o < first + run; ++o) {
+      if (outputs[o].comment.empty()) continue;
+      comments += (comments.empty() ? "" : " ") + outputs[o].comment;
+    }
     const ExprId factor = head.factor;
     const std::string factor_text =
         named(factor) ? name(factor) : g_.symbols()[g_.node(factor).symbol].name;
     if (g_.node(factor).op == Op::kSymbol) symbol_used_[g_.node(factor).symbol] = true;
-    return render_statement("statements/output_loop",
-                            {{"count", std::to_string(run)},
-                             {"target", head.target},
-                             {"target_first", std::to_string(head.target_index)},
-                             {"source", head.source},
-                             {"source_first", std::to_string(head.source_index)},
-                             {"factor", factor_text}});
+    std::vector<std::pair<const char*, std::string>> values = {
+        {"count", std::to_string(run)},
+        {"target", head.target},
+        {"target_first", std::to_string(head.target_index)},
+        {"source", head.source},
+        {"source_first", std::to_string(head.source_index)},
+        {"factor", factor_text}};
+    if (comments.empty()) return render_statement("statements/output_loop", values);
+    values.push_back({"comment", comments});
+    return render_statement("statements/output_loop_named", values);
   }
 
   bool is_operation(ExprId id) const {
@@ -246,7 +270,7 @@ class StatementWriter {
   }
 
   void count_uses(const std::vector<FunctionOutput>& outputs) {
-    std::vector<char>& visited = workspace_.visited;
+    std::vector<char>& visited = visited_;
     std::vector<ExprId> stack;
     auto use = [&](ExprId id) {
       id = negated(id);
@@ -520,7 +544,8 @@ class StatementWriter {
 
   // A long sum as consecutive groups of terms, each summed in parentheses: the groups are
   // independent chains of additions that run in parallel, where one long chain waits for each
-  // addition in turn. Same additions; a group of only negative terms is subtracted whole.
+  // addition in turn. Same additions; a group of only negative terms is subtracted whole. (A
+  // sum of only negative terms pays one negation, even where a literal could have led it.)
   std::string grouped(std::vector<Term> terms) {
     std::vector<Term> groups;
     const std::size_t size = (terms.size() + kSumGroups - 1) / kSumGroups;
@@ -600,15 +625,9 @@ class StatementWriter {
     return "";
   }
 
-  static WriterWorkspace& fitted(WriterWorkspace& workspace, std::size_t nodes) {
-    workspace.fit(nodes);
-    return workspace;
-  }
-
   const ExprGraph& g_;
   Scalar scalar_;
   TrigSource trig_;
-  WriterWorkspace& workspace_;
   // Per node, the workspace's arrays (statement_writer.hpp says what each holds).
   std::vector<int>& uses_;
   std::vector<int>& temporary_;
@@ -616,6 +635,7 @@ class StatementWriter {
   std::vector<char>& keep_sign_;
   std::vector<int>& negative_votes_;
   std::vector<char>& prepared_;
+  std::vector<char>& visited_;
   std::vector<ExprId> reachable_;      // the nodes the outputs use
   std::vector<ExprId> prepared_list_;  // the nodes prepare() marked
   std::vector<bool> symbol_used_;
@@ -631,7 +651,7 @@ void WriterWorkspace::fit(std::size_t nodes) {
   for (std::vector<char>* v : {&flipped, &keep_sign, &prepared, &visited}) v->resize(nodes, 0);
 }
 
-bool WriterWorkspace::clear() const {
+bool WriterWorkspace::all_zero() const {
   const auto zero = [](const auto& v) {
     return std::all_of(v.begin(), v.end(), [](auto x) { return x == 0; });
   };

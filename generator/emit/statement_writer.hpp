@@ -56,8 +56,8 @@ struct WriterWorkspace {
 
   /// Grows every array to `nodes` entries (new ones zero).
   void fit(std::size_t nodes);
-  /// Whether every entry is zero (for tests of the clearing).
-  bool clear() const;
+  /// Whether every entry is zero, as between calls (what the tests of the clearing check).
+  bool all_zero() const;
 };
 
 FunctionBody write_statements(const ExprGraph& graph, const std::vector<FunctionOutput>& outputs,

@@ -308,11 +308,12 @@ Eigen::MatrixXd ReferenceDynamics::standard_regressor(const Eigen::VectorXd& q,
   // p, Gautier & Briot eq. 2).
   const Motion m = forward_recursion(tree_, q, dq, ddq, -to_vector(tree_.gravity));
   Eigen::MatrixXd W(dof(), num_params());
-  const Unpacked zero = zero_parameters(tree_);
+  // One set of terms, parameter k set to 1 and back to 0 (exactly) around its column.
+  Unpacked unit = zero_parameters(tree_);
   for (int k = 0; k < num_params(); ++k) {
-    Unpacked unit = zero;
     add_parameter(tree_, static_cast<std::size_t>(k), 1.0, unit);
     W.col(k) = torques_on_motion(tree_, m, dq, ddq, unit);
+    add_parameter(tree_, static_cast<std::size_t>(k), -1.0, unit);
   }
   return W;
 }

@@ -65,16 +65,68 @@ TEST_F(StatementWriterTest, ConsecutiveScaledCopiesPrintAsOneLoop) {
   EXPECT_EQ(body.counts.add, 1);
 }
 
-TEST_F(StatementWriterTest, ACopyThatWouldNeedANegationIsNotALoop) {
-  // -(Y[k] * t) for t not stored negated: a loop of the printed form would be wrong.
-  std::vector<FunctionOutput> outputs;
-  const ExprId t = g.share(g.add(s1, p0));
-  for (int k = 0; k < 5; ++k) {
-    const ExprId y = g.symbol(Symbol{"Y[" + std::to_string(k) + "]", SymbolKind::kInput, ""});
-    outputs.push_back({"J[" + std::to_string(k) + "]", g.neg(g.mul(y, t)), ""});
+// Y[0], Y[1], ... as input symbols.
+std::vector<ExprId> input_array(ExprGraph& g, const std::string& name, int size) {
+  std::vector<ExprId> entries;
+  for (int k = 0; k < size; ++k) {
+    entries.push_back(g.symbol(Symbol{name + "[" + std::to_string(k) + "]", SymbolKind::kInput, ""}));
   }
-  const FunctionBody body = write_statements(g, outputs, Scalar::kDouble);
-  for (const std::string& line : body.lines) EXPECT_EQ(line.find("for ("), std::string::npos) << line;
+  return entries;
+}
+
+bool has_loop(const FunctionBody& body) {
+  return std::any_of(body.lines.begin(), body.lines.end(),
+                     [](const std::string& line) { return line.rfind("for (", 0) == 0; });
+}
+
+TEST_F(StatementWriterTest, ScaledCopyLoopsKeepTheSignsAndTheComments) {
+  const std::vector<ExprId> Y = input_array(g, "Y", 10);
+  const ExprId t = g.share(g.add(s1, p0));
+  // Six outputs -(Y[k] t): t is read negated by all, so it is stored negated (t0 = -t) and
+  // each output prints as Y[k] * t0, one loop carrying the outputs' comments.
+  std::vector<FunctionOutput> negated;
+  for (int k = 0; k < 6; ++k) {
+    negated.push_back({"J[" + std::to_string(k) + "]", g.neg(g.share(g.mul(Y[k], t))),
+                       k == 1 ? "XX1" : (k == 4 ? "MX1" : "")});
+  }
+  const FunctionBody flipped = write_statements(g, negated, Scalar::kDouble);
+  EXPECT_EQ(flipped.lines, (Lines{
+                               "const double s1 = std::sin(q[0]);",
+                               "const double t0 = -p[0] - s1;",
+                               "for (int k = 0; k < 6; ++k) J[0 + k] = Y[0 + k] * t0;  // XX1 MX1",
+                           }));
+  EXPECT_EQ(flipped.counts.mul, 6);
+  EXPECT_EQ(flipped.counts.add, 2);  // the negation and the subtraction of t0
+  // Outputs +Y[k] t with t stored negated must print the negation: statements, not a loop.
+  std::vector<FunctionOutput> mixed = negated;
+  for (int k = 0; k < 4; ++k) {
+    mixed.push_back({"J[" + std::to_string(10 + k) + "]", g.share(g.mul(Y[6 + k], t)), ""});
+  }
+  const FunctionBody both = write_statements(g, mixed, Scalar::kDouble);
+  EXPECT_EQ(both.lines[1], "const double t0 = -p[0] - s1;");
+  EXPECT_EQ(both.lines[3], "J[10] = -Y[6] * t0;");
+  EXPECT_EQ(both.lines.size(), 7u);
+  // A derived leaf as the factor: the loop declares it.
+  std::vector<FunctionOutput> by_sine;
+  for (int k = 0; k < 4; ++k) by_sine.push_back({"J[" + std::to_string(k) + "]", g.mul(Y[k], s1), ""});
+  EXPECT_EQ(write_statements(g, by_sine, Scalar::kDouble).lines,
+            (Lines{"const double s1 = std::sin(q[0]);",
+                   "for (int k = 0; k < 4; ++k) J[0 + k] = Y[0 + k] * s1;"}));
+}
+
+TEST_F(StatementWriterTest, AFlatNegatedProductOrASharedOneIsNotALoopEntry) {
+  const std::vector<ExprId> Y = input_array(g, "Y", 6);
+  const ExprId t = g.share(g.add(s1, p0));
+  // -(Y[k] t) built flat is the product -1 * Y[k] * t: three factors, not a scaled copy.
+  std::vector<FunctionOutput> flat;
+  for (int k = 0; k < 5; ++k) flat.push_back({"J[" + std::to_string(k) + "]", g.neg(g.mul(Y[k], t)), ""});
+  EXPECT_FALSE(has_loop(write_statements(g, flat, Scalar::kDouble)));
+  // Y[2] t read by another output too is a temporary of its own: the run stops before it.
+  std::vector<FunctionOutput> shared;
+  for (int k = 0; k < 6; ++k) shared.push_back({"J[" + std::to_string(k) + "]", g.mul(Y[k], t), ""});
+  shared.push_back({"W[0]", g.add(g.mul(Y[2], t), p1), ""});
+  const FunctionBody body = write_statements(g, shared, Scalar::kDouble);
+  EXPECT_FALSE(has_loop(body)) << body.lines[2];
 }
 
 TEST_F(StatementWriterTest, LongSumsPrintAsFourParenthesizedGroups) {
@@ -735,7 +787,7 @@ TEST(StatementWriterRandom, AReusedWorkspaceGivesTheFreshTextAndEndsClear) {
         const FunctionBody reused =
             write_statements(r.g, outputs, scalar, TrigSource::kCompute, workspace);
         EXPECT_EQ(reused.lines, write_statements(r.g, outputs, scalar).lines) << seed;
-        ASSERT_TRUE(workspace.clear()) << "seed " << seed << ", outputs from " << k;
+        ASSERT_TRUE(workspace.all_zero()) << "seed " << seed << ", outputs from " << k;
         ++bodies;
       }
     }
