@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <random>
 #include <set>
+#include <span>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -150,6 +151,24 @@ TEST_F(ExprTest, SignsAndCoefficientsCombine) {
   const ExprId x = g.mul(g.add(a, b), c);
   EXPECT_EQ(g.sub(x, x), g.zero());
   EXPECT_EQ(g.add(g.mul(g.constant(3), x), g.mul(g.constant(-3), x)), g.zero());
+}
+
+TEST_F(ExprTest, ArgumentsStayValidAsTheGraphGrowsPastItsReserve) {
+  // Node::args points into the argument arena: growing the graph past the node vector's
+  // reserve (65 536) and past an arena block must move no argument list, and hash-consing must
+  // still find the early nodes.
+  const ExprId sum = g.add({a, b, c});
+  const ExprId product = g.mul(g.constant(3.0), g.mul(a, d));
+  const std::span<const ExprId> sum_args = g.node(sum).args;
+  const std::vector<ExprId> sum_before(sum_args.begin(), sum_args.end());
+  const std::vector<ExprId> product_before(g.node(product).args.begin(), g.node(product).args.end());
+  ExprId chain = a;
+  for (int k = 0; k < 40000; ++k) chain = g.share(g.add({chain, g.mul(g.constant(1.0 + k), b), c}));
+  ASSERT_GT(g.size(), std::size_t{1} << 17);
+  EXPECT_TRUE(std::ranges::equal(sum_args, sum_before));  // the span taken before growing
+  EXPECT_TRUE(std::ranges::equal(g.node(product).args, product_before));
+  EXPECT_EQ(g.add({c, a, b}), sum);
+  EXPECT_EQ(g.mul(d, g.mul(a, g.constant(3.0))), product);
 }
 
 TEST_F(ExprTest, ReciprocalsFold) {
