@@ -4,27 +4,27 @@
 // The generated code belongs to the owner of the robot description.
 //
 // Function                                   mul    add  sin/cos
-// idim_regressor_standard                    498    441       10
-// inverse_dynamics_standard                  472    368       10
+// idim_regressor_standard                    489    434       10
+// inverse_dynamics_standard                  382    368       10
 // joint_sincos                                 0      0       12
-// idim_regressor_standard_sincos             498    441        0
-// inverse_dynamics_standard_sincos           472    368        0
+// idim_regressor_standard_sincos             489    434        0
+// inverse_dynamics_standard_sincos           382    368        0
 // base_from_standard                          14     74        0
-// idim_regressor                             408    346       10
-// inverse_dynamics                           367    270       10
+// idim_regressor                             399    339       10
+// inverse_dynamics                           305    274       10
 // mass_matrix                                380    291       10
-// idim_regressor_sincos                      408    346        0
-// inverse_dynamics_sincos                    367    270        0
+// idim_regressor_sincos                      399    339        0
+// inverse_dynamics_sincos                    305    274        0
 // mass_matrix_sincos                         380    291        0
-// inverse_dynamics_state_jacobian           2173   1959       10
+// inverse_dynamics_state_jacobian           2082   1769       10
 // energy_regressor                           125     52       10
 // power_regressor                            327    163       10
 // energy_regressor_sincos                    125     52        0
 // power_regressor_sincos                     327    163        0
-// drive_torque                               484    374       10
-// drive_torque_jacobian                     1052    730       10
-// drive_torque_state_jacobian               2686   2333       20
-// drive_regressor                            498    441       10
+// drive_torque                               394    374       10
+// drive_torque_jacobian                     1043    723       10
+// drive_torque_state_jacobian               2533   2147       20
+// drive_regressor                            489    434       10
 // drive_torque_given_regressor               295    271        0
 // drive_torque_jacobian_given_regressor      554    289        0
 #include "comau_smart_six.hpp"

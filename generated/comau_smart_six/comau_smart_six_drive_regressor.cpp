@@ -4,7 +4,7 @@
 // The generated code belongs to the owner of the robot description.
 //
 // Function                              mul    add  sin/cos
-// drive_regressor                       498    441       10
+// drive_regressor                       489    434       10
 #include "comau_smart_six.hpp"
 
 namespace modelgen {

@@ -4,7 +4,7 @@
 // The generated code belongs to the owner of the robot description.
 //
 // Function                              mul    add  sin/cos
-// drive_torque_jacobian                1052    730       10
+// drive_torque_jacobian                1043    723       10
 #include "comau_smart_six.hpp"
 
 namespace modelgen {

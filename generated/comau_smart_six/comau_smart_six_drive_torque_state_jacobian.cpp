@@ -4,7 +4,7 @@
 // The generated code belongs to the owner of the robot description.
 //
 // Function                              mul    add  sin/cos
-// drive_torque_state_jacobian          2686   2333       20
+// drive_torque_state_jacobian          2533   2147       20
 #include "comau_smart_six.hpp"
 
 namespace modelgen {

@@ -4,27 +4,27 @@
 // The generated code belongs to the owner of the robot description.
 //
 // Function                                   mul    add  sin/cos
-// idim_regressor_standard                   1361   1100       12
-// inverse_dynamics_standard                  670    551       12
+// idim_regressor_standard                   1343   1077       12
+// inverse_dynamics_standard                  545    543       12
 // joint_sincos                                 0      0       18
-// idim_regressor_standard_sincos            1361   1100        0
-// inverse_dynamics_standard_sincos           670    551        0
+// idim_regressor_standard_sincos            1343   1077        0
+// inverse_dynamics_standard_sincos           545    543        0
 // base_from_standard                          33    103        0
-// idim_regressor                            1119    875       12
-// inverse_dynamics                           560    449       12
+// idim_regressor                            1101    853       12
+// inverse_dynamics                           465    441       12
 // mass_matrix                               1323   1002       12
-// idim_regressor_sincos                     1119    875        0
-// inverse_dynamics_sincos                    560    449        0
+// idim_regressor_sincos                     1101    853        0
+// inverse_dynamics_sincos                    465    441        0
 // mass_matrix_sincos                        1323   1002        0
-// inverse_dynamics_state_jacobian           6958   6011       12
+// inverse_dynamics_state_jacobian           6251   5127       12
 // energy_regressor                           215    116       12
 // power_regressor                            485    294       12
 // energy_regressor_sincos                    215    116        0
 // power_regressor_sincos                     485    294        0
-// drive_torque                               724    569       12
-// drive_torque_jacobian                     2271   1573       12
-// drive_torque_state_jacobian               7824   6608       24
-// drive_regressor                           1361   1100       12
+// drive_torque                               599    561       12
+// drive_torque_jacobian                     2253   1550       12
+// drive_torque_state_jacobian               7022   5716       24
+// drive_regressor                           1343   1077       12
 // drive_torque_given_regressor               482    446        0
 // drive_torque_jacobian_given_regressor      910    473        0
 #ifndef MODELGEN_PANDA_HPP_

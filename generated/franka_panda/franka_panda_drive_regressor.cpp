@@ -4,7 +4,7 @@
 // The generated code belongs to the owner of the robot description.
 //
 // Function                              mul    add  sin/cos
-// drive_regressor                      1361   1100       12
+// drive_regressor                      1343   1077       12
 #include "franka_panda.hpp"
 
 namespace modelgen {

@@ -4,7 +4,7 @@
 // The generated code belongs to the owner of the robot description.
 //
 // Function                              mul    add  sin/cos
-// drive_torque_jacobian                2271   1573       12
+// drive_torque_jacobian                2253   1550       12
 #include "franka_panda.hpp"
 
 namespace modelgen {

@@ -4,7 +4,7 @@
 // The generated code belongs to the owner of the robot description.
 //
 // Function                              mul    add  sin/cos
-// drive_torque_state_jacobian          7824   6608       24
+// drive_torque_state_jacobian          7022   5716       24
 #include "franka_panda.hpp"
 
 namespace modelgen {

@@ -4,27 +4,27 @@
 // The generated code belongs to the owner of the robot description.
 //
 // Function                                   mul    add  sin/cos
-// idim_regressor_standard                    573    493       10
-// inverse_dynamics_standard                  472    385       10
+// idim_regressor_standard                    564    482       10
+// inverse_dynamics_standard                  378    382       10
 // joint_sincos                                 0      0       12
-// idim_regressor_standard_sincos             573    493        0
-// inverse_dynamics_standard_sincos           472    385        0
+// idim_regressor_standard_sincos             564    482        0
+// inverse_dynamics_standard_sincos           378    382        0
 // base_from_standard                          19     81        0
-// idim_regressor                             411    335       10
-// inverse_dynamics                           358    279       10
+// idim_regressor                             402    327       10
+// inverse_dynamics                           296    283       10
 // mass_matrix                                387    299       10
-// idim_regressor_sincos                      411    335        0
-// inverse_dynamics_sincos                    358    279        0
+// idim_regressor_sincos                      402    327        0
+// inverse_dynamics_sincos                    296    283        0
 // mass_matrix_sincos                         387    299        0
-// inverse_dynamics_state_jacobian           2172   1973       10
+// inverse_dynamics_state_jacobian           2078   1782       10
 // energy_regressor                           132     54       10
 // power_regressor                            315    163       10
 // energy_regressor_sincos                    132     54        0
 // power_regressor_sincos                     315    163        0
-// drive_torque                               502    391       10
-// drive_torque_jacobian                     1199    856       10
-// drive_torque_state_jacobian               2744   2431       20
-// drive_regressor                            638    562       10
+// drive_torque                               408    388       10
+// drive_torque_jacobian                     1190    845       10
+// drive_torque_state_jacobian               2588   2244       20
+// drive_regressor                            629    551       10
 // drive_torque_given_regressor               297    273        0
 // drive_torque_jacobian_given_regressor      558    291        0
 #include "kr150.hpp"

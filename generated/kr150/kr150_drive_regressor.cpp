@@ -4,7 +4,7 @@
 // The generated code belongs to the owner of the robot description.
 //
 // Function                              mul    add  sin/cos
-// drive_regressor                       638    562       10
+// drive_regressor                       629    551       10
 #include "kr150.hpp"
 
 namespace modelgen {

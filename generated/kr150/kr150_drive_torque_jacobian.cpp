@@ -4,7 +4,7 @@
 // The generated code belongs to the owner of the robot description.
 //
 // Function                              mul    add  sin/cos
-// drive_torque_jacobian                1199    856       10
+// drive_torque_jacobian                1190    845       10
 #include "kr150.hpp"
 
 namespace modelgen {

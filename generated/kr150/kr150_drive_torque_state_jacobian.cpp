@@ -4,7 +4,7 @@
 // The generated code belongs to the owner of the robot description.
 //
 // Function                              mul    add  sin/cos
-// drive_torque_state_jacobian          2744   2431       20
+// drive_torque_state_jacobian          2588   2244       20
 #include "kr150.hpp"
 
 namespace modelgen {

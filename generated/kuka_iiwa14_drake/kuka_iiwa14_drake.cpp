@@ -4,27 +4,27 @@
 // The generated code belongs to the owner of the robot description.
 //
 // Function                                   mul    add  sin/cos
-// idim_regressor_standard                    868    677       12
-// inverse_dynamics_standard                  468    379       12
+// idim_regressor_standard                    866    664       12
+// inverse_dynamics_standard                  383    387       12
 // joint_sincos                                 0      0       14
-// idim_regressor_standard_sincos             868    677        0
-// inverse_dynamics_standard_sincos           468    379        0
+// idim_regressor_standard_sincos             866    664        0
+// inverse_dynamics_standard_sincos           383    387        0
 // base_from_standard                          19     59        0
-// idim_regressor                             694    537       12
-// inverse_dynamics                           406    319       12
+// idim_regressor                             692    525       12
+// inverse_dynamics                           333    324       12
 // mass_matrix                                732    508       12
-// idim_regressor_sincos                      694    537        0
-// inverse_dynamics_sincos                    406    319        0
+// idim_regressor_sincos                      692    525        0
+// inverse_dynamics_sincos                    333    324        0
 // mass_matrix_sincos                         732    508        0
-// inverse_dynamics_state_jacobian           4043   3346       12
+// inverse_dynamics_state_jacobian           3682   2954       12
 // energy_regressor                           144     58       12
 // power_regressor                            352    188       12
 // energy_regressor_sincos                    144     58        0
 // power_regressor_sincos                     352    188        0
-// drive_torque                               510    393       12
-// drive_torque_jacobian                     1456    985       12
-// drive_torque_state_jacobian               4643   3759       24
-// drive_regressor                            868    677       12
+// drive_torque                               425    401       12
+// drive_torque_jacobian                     1454    972       12
+// drive_torque_state_jacobian               4209   3372       24
+// drive_regressor                            866    664       12
 // drive_torque_given_regressor               315    287        0
 // drive_torque_jacobian_given_regressor      588    308        0
 #include "kuka_iiwa14_drake.hpp"

@@ -4,7 +4,7 @@
 // The generated code belongs to the owner of the robot description.
 //
 // Function                              mul    add  sin/cos
-// drive_regressor                       868    677       12
+// drive_regressor                       866    664       12
 #include "kuka_iiwa14_drake.hpp"
 
 namespace modelgen {

@@ -4,7 +4,7 @@
 // The generated code belongs to the owner of the robot description.
 //
 // Function                              mul    add  sin/cos
-// drive_torque_jacobian                1456    985       12
+// drive_torque_jacobian                1454    972       12
 #include "kuka_iiwa14_drake.hpp"
 
 namespace modelgen {

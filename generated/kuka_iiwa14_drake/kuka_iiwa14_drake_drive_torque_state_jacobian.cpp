@@ -4,7 +4,7 @@
 // The generated code belongs to the owner of the robot description.
 //
 // Function                              mul    add  sin/cos
-// drive_torque_state_jacobian          4643   3759       24
+// drive_torque_state_jacobian          4209   3372       24
 #include "kuka_iiwa14_drake.hpp"
 
 namespace modelgen {

@@ -4,27 +4,27 @@
 // The generated code belongs to the owner of the robot description.
 //
 // Function                                   mul    add  sin/cos
-// idim_regressor_standard                    509    428       10
-// inverse_dynamics_standard                  407    326       10
+// idim_regressor_standard                    504    417       10
+// inverse_dynamics_standard                  330    331       10
 // joint_sincos                                 0      0       12
-// idim_regressor_standard_sincos             509    428        0
-// inverse_dynamics_standard_sincos           407    326        0
+// idim_regressor_standard_sincos             504    417        0
+// inverse_dynamics_standard_sincos           330    331        0
 // base_from_standard                          23     72        0
-// idim_regressor                             407    339       10
-// inverse_dynamics                           353    273       10
+// idim_regressor                             402    329       10
+// inverse_dynamics                           286    274       10
 // mass_matrix                                398    314       10
-// idim_regressor_sincos                      407    339        0
-// inverse_dynamics_sincos                    353    273        0
+// idim_regressor_sincos                      402    329        0
+// inverse_dynamics_sincos                    286    274        0
 // mass_matrix_sincos                         398    314        0
-// inverse_dynamics_state_jacobian           2303   2095       10
+// inverse_dynamics_state_jacobian           2147   1844       10
 // energy_regressor                           128     57       10
 // power_regressor                            310    164       10
 // energy_regressor_sincos                    128     57        0
 // power_regressor_sincos                     310    164        0
-// drive_torque                               443    338       10
-// drive_torque_jacobian                      955    663       10
-// drive_torque_state_jacobian               2811   2470       20
-// drive_regressor                            509    428       10
+// drive_torque                               366    343       10
+// drive_torque_jacobian                      950    652       10
+// drive_torque_state_jacobian               2588   2220       20
+// drive_regressor                            504    417       10
 // drive_torque_given_regressor               241    217        0
 // drive_torque_jacobian_given_regressor      446    235        0
 #ifndef MODELGEN_KUKA_KR150_2_HPP_

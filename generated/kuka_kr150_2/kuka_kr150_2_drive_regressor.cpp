@@ -4,7 +4,7 @@
 // The generated code belongs to the owner of the robot description.
 //
 // Function                              mul    add  sin/cos
-// drive_regressor                       509    428       10
+// drive_regressor                       504    417       10
 #include "kuka_kr150_2.hpp"
 
 namespace modelgen {

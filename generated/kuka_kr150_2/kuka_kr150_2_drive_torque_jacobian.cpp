@@ -4,7 +4,7 @@
 // The generated code belongs to the owner of the robot description.
 //
 // Function                              mul    add  sin/cos
-// drive_torque_jacobian                 955    663       10
+// drive_torque_jacobian                 950    652       10
 #include "kuka_kr150_2.hpp"
 
 namespace modelgen {

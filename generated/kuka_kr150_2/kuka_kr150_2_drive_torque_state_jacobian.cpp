@@ -4,7 +4,7 @@
 // The generated code belongs to the owner of the robot description.
 //
 // Function                              mul    add  sin/cos
-// drive_torque_state_jacobian          2811   2470       20
+// drive_torque_state_jacobian          2588   2220       20
 #include "kuka_kr150_2.hpp"
 
 namespace modelgen {

@@ -4,27 +4,27 @@
 // The generated code belongs to the owner of the robot description.
 //
 // Function                                   mul    add  sin/cos
-// idim_regressor_standard                    967    786       12
-// inverse_dynamics_standard                  522    425       12
+// idim_regressor_standard                    959    770       12
+// inverse_dynamics_standard                  416    421       12
 // joint_sincos                                 0      0       14
-// idim_regressor_standard_sincos             967    786        0
-// inverse_dynamics_standard_sincos           522    425        0
+// idim_regressor_standard_sincos             959    770        0
+// inverse_dynamics_standard_sincos           416    421        0
 // base_from_standard                          35    106        0
-// idim_regressor                             702    545       12
-// inverse_dynamics                           402    314       12
+// idim_regressor                             694    532       12
+// inverse_dynamics                           330    318       12
 // mass_matrix                                733    519       12
-// idim_regressor_sincos                      702    545        0
-// inverse_dynamics_sincos                    402    314        0
+// idim_regressor_sincos                      694    532        0
+// inverse_dynamics_sincos                    330    318        0
 // mass_matrix_sincos                         733    519        0
-// inverse_dynamics_state_jacobian           4055   3372       12
+// inverse_dynamics_state_jacobian           3714   2985       12
 // energy_regressor                           137     62       12
 // power_regressor                            357    195       12
 // energy_regressor_sincos                    137     62        0
 // power_regressor_sincos                     357    195        0
-// drive_torque                               571    446       12
-// drive_torque_jacobian                     1693   1163       12
-// drive_torque_state_jacobian               4667   3827       24
-// drive_regressor                            967    786       12
+// drive_torque                               465    442       12
+// drive_torque_jacobian                     1685   1147       12
+// drive_torque_state_jacobian               4254   3444       24
+// drive_regressor                            959    770       12
 // drive_torque_given_regressor               384    356        0
 // drive_torque_jacobian_given_regressor      726    377        0
 #include "panda_arm.hpp"

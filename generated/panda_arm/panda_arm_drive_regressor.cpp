@@ -4,7 +4,7 @@
 // The generated code belongs to the owner of the robot description.
 //
 // Function                              mul    add  sin/cos
-// drive_regressor                       967    786       12
+// drive_regressor                       959    770       12
 #include "panda_arm.hpp"
 
 namespace modelgen {

@@ -4,7 +4,7 @@
 // The generated code belongs to the owner of the robot description.
 //
 // Function                              mul    add  sin/cos
-// drive_torque_jacobian                1693   1163       12
+// drive_torque_jacobian                1685   1147       12
 #include "panda_arm.hpp"
 
 namespace modelgen {

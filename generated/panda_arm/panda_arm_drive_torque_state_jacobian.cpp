@@ -4,7 +4,7 @@
 // The generated code belongs to the owner of the robot description.
 //
 // Function                              mul    add  sin/cos
-// drive_torque_state_jacobian          4667   3827       24
+// drive_torque_state_jacobian          4254   3444       24
 #include "panda_arm.hpp"
 
 namespace modelgen {

@@ -4,27 +4,27 @@
 // The generated code belongs to the owner of the robot description.
 //
 // Function                                   mul    add  sin/cos
-// idim_regressor_standard                    498    412       10
-// inverse_dynamics_standard                  434    358       10
+// idim_regressor_standard                    492    402       10
+// inverse_dynamics_standard                  350    361       10
 // joint_sincos                                 0      0       12
-// idim_regressor_standard_sincos             498    412        0
-// inverse_dynamics_standard_sincos           434    358        0
+// idim_regressor_standard_sincos             492    402        0
+// inverse_dynamics_standard_sincos           350    361        0
 // base_from_standard                          13     70        0
-// idim_regressor                             399    322       10
-// inverse_dynamics                           331    263       10
+// idim_regressor                             392    314       10
+// inverse_dynamics                           274    270       10
 // mass_matrix                                399    300       10
-// idim_regressor_sincos                      399    322        0
-// inverse_dynamics_sincos                    331    263        0
+// idim_regressor_sincos                      392    314        0
+// inverse_dynamics_sincos                    274    270        0
 // mass_matrix_sincos                         399    300        0
-// inverse_dynamics_state_jacobian           2158   1934       10
+// inverse_dynamics_state_jacobian           2064   1743       10
 // energy_regressor                           121     52       10
 // power_regressor                            296    156       10
 // energy_regressor_sincos                    121     52        0
 // power_regressor_sincos                     296    156        0
-// drive_torque                               480    365       10
-// drive_torque_jacobian                     1312    713       10
-// drive_torque_state_jacobian               2750   2324       20
-// drive_regressor                            748    431       10
+// drive_torque                               396    368       10
+// drive_torque_jacobian                     1306    703       10
+// drive_torque_state_jacobian               2599   2140       20
+// drive_regressor                            742    421       10
 // drive_torque_given_regressor               292    268        0
 // drive_torque_jacobian_given_regressor      548    286        0
 #include "tx40.hpp"

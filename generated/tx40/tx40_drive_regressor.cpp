@@ -4,7 +4,7 @@
 // The generated code belongs to the owner of the robot description.
 //
 // Function                              mul    add  sin/cos
-// drive_regressor                       748    431       10
+// drive_regressor                       742    421       10
 #include "tx40.hpp"
 
 namespace modelgen {

@@ -4,7 +4,7 @@
 // The generated code belongs to the owner of the robot description.
 //
 // Function                              mul    add  sin/cos
-// drive_torque_jacobian                1312    713       10
+// drive_torque_jacobian                1306    703       10
 #include "tx40.hpp"
 
 namespace modelgen {

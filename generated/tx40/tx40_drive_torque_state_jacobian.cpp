@@ -4,7 +4,7 @@
 // The generated code belongs to the owner of the robot description.
 //
 // Function                              mul    add  sin/cos
-// drive_torque_state_jacobian          2750   2324       20
+// drive_torque_state_jacobian          2599   2140       20
 #include "tx40.hpp"
 
 namespace modelgen {

@@ -4,27 +4,27 @@
 // The generated code belongs to the owner of the robot description.
 //
 // Function                                   mul    add  sin/cos
-// idim_regressor_standard                    475    396       10
-// inverse_dynamics_standard                  422    341       10
+// idim_regressor_standard                    467    383       10
+// inverse_dynamics_standard                  340    343       10
 // joint_sincos                                 0      0       12
-// idim_regressor_standard_sincos             475    396        0
-// inverse_dynamics_standard_sincos           422    341        0
+// idim_regressor_standard_sincos             467    383        0
+// inverse_dynamics_standard_sincos           340    343        0
 // base_from_standard                          24     60        0
-// idim_regressor                             368    306       10
-// inverse_dynamics                           366    285       10
+// idim_regressor                             360    295       10
+// inverse_dynamics                           295    286       10
 // mass_matrix                                387    307       10
-// idim_regressor_sincos                      368    306        0
-// inverse_dynamics_sincos                    366    285        0
+// idim_regressor_sincos                      360    295        0
+// inverse_dynamics_sincos                    295    286        0
 // mass_matrix_sincos                         387    307        0
-// inverse_dynamics_state_jacobian           1998   1917       10
+// inverse_dynamics_state_jacobian           1928   1707       10
 // energy_regressor                           126     54       10
 // power_regressor                            313    173       10
 // energy_regressor_sincos                    126     54        0
 // power_regressor_sincos                     313    173        0
-// drive_torque                               458    353       10
-// drive_torque_jacobian                      919    630       10
-// drive_torque_state_jacobian               2520   2292       20
-// drive_regressor                            475    396       10
+// drive_torque                               376    355       10
+// drive_torque_jacobian                      911    617       10
+// drive_torque_state_jacobian               2379   2083       20
+// drive_regressor                            467    383       10
 // drive_torque_given_regressor               240    216        0
 // drive_torque_jacobian_given_regressor      444    234        0
 #ifndef MODELGEN_UR5_HPP_

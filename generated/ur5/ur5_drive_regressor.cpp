@@ -4,7 +4,7 @@
 // The generated code belongs to the owner of the robot description.
 //
 // Function                              mul    add  sin/cos
-// drive_regressor                       475    396       10
+// drive_regressor                       467    383       10
 #include "ur5.hpp"
 
 namespace modelgen {

@@ -4,7 +4,7 @@
 // The generated code belongs to the owner of the robot description.
 //
 // Function                              mul    add  sin/cos
-// drive_torque_jacobian                 919    630       10
+// drive_torque_jacobian                 911    617       10
 #include "ur5.hpp"
 
 namespace modelgen {

@@ -4,7 +4,7 @@
 // The generated code belongs to the owner of the robot description.
 //
 // Function                              mul    add  sin/cos
-// drive_torque_state_jacobian          2520   2292       20
+// drive_torque_state_jacobian          2379   2083       20
 #include "ur5.hpp"
 
 namespace modelgen {

@@ -27,6 +27,39 @@ M3 axis_rotation(ExprGraph& g, const std::array<double, 3>& u, ExprId s, ExprId 
   return R;
 }
 
+// w0 w0, w1 w1, w2 w2, w0 w1, w0 w2, w1 w2, each shared: U, and the moments through it, read
+// them several times, and an unshared product would flatten into the products that use it.
+std::array<ExprId, 6> angular_velocity_products(ExprGraph& g, const V3& w) {
+  return {g.share(g.mul(w[0], w[0])), g.share(g.mul(w[1], w[1])), g.share(g.mul(w[2], w[2])),
+          g.share(g.mul(w[0], w[1])), g.share(g.mul(w[0], w[2])), g.share(g.mul(w[1], w[2]))};
+}
+
+// U = [dw]x + w w^T - |w|^2 I, entries shared (a constant times an unshared entry would
+// distribute over its two terms).
+M3 u_matrix(ExprGraph& g, const V3& dw, const std::array<ExprId, 6>& ww) {
+  const ExprId p00 = ww[0], p11 = ww[1], p22 = ww[2], p01 = ww[3], p02 = ww[4], p12 = ww[5];
+  return {g.share(g.neg(g.add(p11, p22))), g.share(g.sub(p01, dw[2])), g.share(g.add(p02, dw[1])),
+          g.share(g.add(p01, dw[2])), g.share(g.neg(g.add(p00, p22))), g.share(g.sub(p12, dw[0])),
+          g.share(g.sub(p02, dw[1])), g.share(g.add(p12, dw[0])), g.share(g.neg(g.add(p00, p11)))};
+}
+
+// J dw + w x (J w) for J the unit tensor of each inertia entry (XX, XY, XZ, YY, YZ, ZZ), from
+// dw, U and the products of w: the moment a unit entry makes, with the differences of squares
+// shared.
+std::array<V3, 6> inertia_moment_columns(ExprGraph& g, const SymbolicMotion& m, std::size_t j) {
+  const V3& dw = m.dw[j];
+  const M3& U = m.U[j];
+  const std::array<ExprId, 6>& ww = m.ww[j];
+  const ExprId p00 = ww[0], p11 = ww[1], p22 = ww[2], p01 = ww[3], p02 = ww[4], p12 = ww[5];
+  auto difference = [&](ExprId a, ExprId b) { return g.share(g.sub(a, b)); };
+  return {V3{dw[0], p02, g.neg(p01)},                                  // XX
+          V3{g.neg(U[6]), U[7], difference(p00, p11)},                 // XY
+          V3{U[3], difference(p22, p00), g.neg(U[5])},                 // XZ
+          V3{g.neg(p12), dw[1], p01},                                  // YY
+          V3{difference(p11, p22), g.neg(U[1]), U[2]},                 // YZ
+          V3{p12, g.neg(p02), dw[2]}};                                 // ZZ
+}
+
 }  // namespace
 
 SymbolicMotion derive_motion(ExprGraph& g, const RigidBodyTree& tree, const SymbolicInputs& in) {
@@ -39,6 +72,8 @@ SymbolicMotion derive_motion(ExprGraph& g, const RigidBodyTree& tree, const Symb
   m.dw.resize(n);
   m.dv.resize(n);
   m.v.resize(n);
+  m.ww.resize(n);
+  m.U.resize(n);
   // Gravity as an upward acceleration of the base (dv0 = -g).
   const V3 base_dv = va.vector({-tree.gravity[0], -tree.gravity[1], -tree.gravity[2]});
   for (std::size_t j = 0; j < n; ++j) {
@@ -61,19 +96,24 @@ SymbolicMotion derive_motion(ExprGraph& g, const RigidBodyTree& tree, const Symb
         m.p[j] = tf;
         break;
     }
-    V3 wa = va.zero(), dwa = va.zero(), dva = base_dv, va_ = va.zero();
+    V3 wa = va.zero(), dva = base_dv, va_ = va.zero(), dwa = va.zero();
+    M3 Ua;
+    Ua.fill(g.zero());
     if (body.parent >= 0) {
       wa = m.w[body.parent];
       dwa = m.dw[body.parent];
       dva = m.dv[body.parent];
       va_ = m.v[body.parent];
+      Ua = m.U[body.parent];
     }
     const V3& p = m.p[j];
-    const V3 w_in = va.mul_transposed(m.R[j], wa);
+    // Shared: the joint's own terms multiply it, and a product would flatten into theirs.
+    const V3 w_in = va.share(va.mul_transposed(m.R[j], wa));
     m.w[j] = w_in;
     m.dw[j] = va.mul_transposed(m.R[j], dwa);
     m.v[j] = va.mul_transposed(m.R[j], va.add(va_, va.cross(wa, p)));
-    m.dv[j] = va.mul_transposed(m.R[j], va.add(dva, va.add(va.cross(dwa, p), va.cross(wa, va.cross(wa, p)))));
+    // dv_j = R_j^T (dv_a + U_a p_j) (Khalil & Kleinfinger): U_a is the antecedent's own.
+    m.dv[j] = va.mul_transposed(m.R[j], va.add(dva, va.mul(Ua, p)));
     if (body.type == JointType::kRevolute) {
       const V3 dq_u = va.scale(in.dq[i], u);
       m.w[j] = va.add(m.w[j], dq_u);
@@ -88,6 +128,8 @@ SymbolicMotion derive_motion(ExprGraph& g, const RigidBodyTree& tree, const Symb
     m.dw[j] = va.share(m.dw[j]);
     m.dv[j] = va.share(m.dv[j]);
     m.v[j] = va.share(m.v[j]);
+    m.ww[j] = angular_velocity_products(g, m.w[j]);
+    m.U[j] = u_matrix(g, m.dw[j], m.ww[j]);
   }
   return m;
 }
@@ -221,31 +263,26 @@ std::vector<ExprId> derive_standard_regressor(ExprGraph& g, const RigidBodyTree&
     }
     // Wrench on the body about its origin per unit of this parameter (the Newton-Euler
     // equations F = M dv + dw x MS + w x (w x MS), N = J dw + w x (J w) + MS x dv).
-    const V3& w = m.w[param.body];
-    const V3& dw = m.dw[param.body];
-    const V3& dv = m.dv[param.body];
+    // J dw + w x (J w) of a unit inertia entry, and U e of a unit first moment (U's column).
+    const std::size_t body = static_cast<std::size_t>(param.body);
+    const V3& dv = m.dv[body];
+    const M3& U = m.U[body];
     V3 f = va.zero(), nm = va.zero();
-    auto inertia = [&](int a, int b) {  // J = e_a e_b^T + e_b e_a^T (or e_a e_a^T)
-      std::array<ExprId, 6> J;
-      J.fill(g.zero());
-      const int index[3][3] = {{0, 1, 2}, {1, 3, 4}, {2, 4, 5}};
-      J[index[a][b]] = g.one();
-      nm = va.add(va.symmetric_mul(J, dw), va.cross(w, va.symmetric_mul(J, w)));
-    };
-    auto first_moment = [&](const V3& e) {
-      f = va.add(va.cross(dw, e), va.cross(w, va.cross(w, e)));
+    auto inertia = [&](int entry) { nm = inertia_moment_columns(g, m, body)[entry]; };
+    auto first_moment = [&](int axis, const V3& e) {
+      f = {U[axis], U[3 + axis], U[6 + axis]};
       nm = va.cross(e, dv);
     };
     switch (param.kind) {
-      case ParamKind::kXX: inertia(0, 0); break;
-      case ParamKind::kXY: inertia(0, 1); break;
-      case ParamKind::kXZ: inertia(0, 2); break;
-      case ParamKind::kYY: inertia(1, 1); break;
-      case ParamKind::kYZ: inertia(1, 2); break;
-      case ParamKind::kZZ: inertia(2, 2); break;
-      case ParamKind::kMX: first_moment(ex); break;
-      case ParamKind::kMY: first_moment(ey); break;
-      case ParamKind::kMZ: first_moment(ez); break;
+      case ParamKind::kXX: inertia(0); break;
+      case ParamKind::kXY: inertia(1); break;
+      case ParamKind::kXZ: inertia(2); break;
+      case ParamKind::kYY: inertia(3); break;
+      case ParamKind::kYZ: inertia(4); break;
+      case ParamKind::kZZ: inertia(5); break;
+      case ParamKind::kMX: first_moment(0, ex); break;
+      case ParamKind::kMY: first_moment(1, ey); break;
+      case ParamKind::kMZ: first_moment(2, ez); break;
       case ParamKind::kM: f = dv; break;
       default: break;
     }
@@ -303,12 +340,21 @@ std::vector<ExprId> derive_inverse_dynamics(ExprGraph& g, const RigidBodyTree& t
   }
   std::vector<V3> f(n), nm(n);
   for (std::size_t j = 0; j < n; ++j) {
-    const V3& w = m.w[j];
-    const V3& dw = m.dw[j];
-    f[j] = va.add(va.scale(M[j], m.dv[j]),
-                  va.add(va.cross(dw, MS[j]), va.cross(w, va.share(va.cross(w, MS[j])))));
-    nm[j] = va.add(va.symmetric_mul(J[j], dw),
-                   va.add(va.cross(w, va.share(va.symmetric_mul(J[j], w))), va.cross(MS[j], m.dv[j])));
+    // F = M dv + U MS, N = J dw + w x (J w) + MS x dv (Khalil & Kleinfinger's customized
+    // model): J's moment term entry by entry from dw, U and the products of w, with the
+    // diagonal entries' gyroscopic parts paired, (ZZ - YY) w1 w2 and so on, one product each.
+    f[j] = va.add(va.scale(M[j], m.dv[j]), va.mul(m.U[j], MS[j]));
+    const std::array<V3, 6> K = inertia_moment_columns(g, m, j);
+    const std::array<ExprId, 6>& ww = m.ww[j];
+    const ExprId xx = J[j][0], xy = J[j][1], xz = J[j][2], yy = J[j][3], yz = J[j][4], zz = J[j][5];
+    V3 inertia_moment;
+    for (int c = 0; c < 3; ++c) {
+      inertia_moment[c] = g.add({g.mul(xy, K[1][c]), g.mul(xz, K[2][c]), g.mul(yz, K[4][c])});
+    }
+    inertia_moment[0] = g.add({inertia_moment[0], g.mul(xx, m.dw[j][0]), g.mul(g.sub(zz, yy), ww[5])});
+    inertia_moment[1] = g.add({inertia_moment[1], g.mul(yy, m.dw[j][1]), g.mul(g.sub(xx, zz), ww[4])});
+    inertia_moment[2] = g.add({inertia_moment[2], g.mul(zz, m.dw[j][2]), g.mul(g.sub(yy, xx), ww[3])});
+    nm[j] = va.add(inertia_moment, va.cross(MS[j], m.dv[j]));
   }
   std::vector<ExprId> tau(tree.dof, g.zero());
   for (std::size_t j = n; j-- > 0;) {

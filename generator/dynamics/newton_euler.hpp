@@ -4,6 +4,7 @@
 // standard regressor falls out column by column (Gautier & Briot eq. 2-4).
 #pragma once
 
+#include <array>
 #include <vector>
 
 #include "generator/dynamics/symbolic_vectors.hpp"
@@ -31,6 +32,12 @@ struct SymbolicMotion {
   std::vector<M3> R;  ///< antecedent <- body rotation
   std::vector<V3> p;  ///< body origin in the antecedent frame
   std::vector<V3> w, dw, v, dv;  ///< angular velocity and acceleration, origin velocity and acceleration
+  /// The products of w's components, each shared: w0 w0, w1 w1, w2 w2, w0 w1, w0 w2, w1 w2.
+  std::vector<std::array<ExprId, 6>> ww;
+  /// U = [dw]x + [w]x [w]x (row-major, entries shared), so that dw x r + w x (w x r) = U r:
+  /// Khalil & Kleinfinger's U_j, built once per body from ww and read by the body's forces,
+  /// its moments and its children's accelerations.
+  std::vector<M3> U;
 };
 
 SymbolicMotion derive_motion(ExprGraph& graph, const RigidBodyTree& tree, const SymbolicInputs& in);
