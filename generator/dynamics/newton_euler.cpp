@@ -96,7 +96,7 @@ SymbolicMotion derive_motion(ExprGraph& g, const RigidBodyTree& tree, const Symb
         m.p[j] = tf;
         break;
     }
-    V3 wa = va.zero(), dva = base_dv, va_ = va.zero(), dwa = va.zero();
+    V3 wa = va.zero(), dwa = va.zero(), dva = base_dv, va_ = va.zero();
     M3 Ua;
     Ua.fill(g.zero());
     if (body.parent >= 0) {

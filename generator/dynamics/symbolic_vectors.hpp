@@ -62,12 +62,6 @@ class VectorAlgebra {
     }
     return out;
   }
-  // Symmetric 3x3 (tensor entries xx, xy, xz, yy, yz, zz) times v.
-  V3 symmetric_mul(const std::array<ExprId, 6>& J, const V3& v) {
-    return {g_.add({g_.mul(J[0], v[0]), g_.mul(J[1], v[1]), g_.mul(J[2], v[2])}),
-            g_.add({g_.mul(J[1], v[0]), g_.mul(J[3], v[1]), g_.mul(J[4], v[2])}),
-            g_.add({g_.mul(J[2], v[0]), g_.mul(J[4], v[1]), g_.mul(J[5], v[2])})};
-  }
 
  private:
   ExprGraph& g_;
