@@ -1,6 +1,8 @@
-// Symbolic Newton-Euler: the numeric recursion of runtime/model/reference_dynamics.cpp written
-// over the expression DAG, so constant geometry (exact zeros and ones of quarter-turn MDH
-// angles) folds away while the equations are built.
+// Symbolic Newton-Euler over the expression DAG, so constant geometry (exact zeros and ones of
+// quarter-turn MDH angles) folds away while the equations are built. The recursion of
+// runtime/model/reference_dynamics.cpp in Khalil & Kleinfinger's customized form: the forces,
+// the inertia moments and the children's accelerations go through U = [dw]x + [w]x[w]x and the
+// products of w, where the reference keeps the cross products it is tested against.
 
 #include "generator/dynamics/newton_euler.hpp"
 
@@ -261,17 +263,17 @@ std::vector<ExprId> derive_standard_regressor(ExprGraph& g, const RigidBodyTree&
       W[owner.dof_index * num_params + k] = drive_column(g, param.kind, owner.dof_index, in);
       continue;
     }
-    // Wrench on the body about its origin per unit of this parameter (the Newton-Euler
-    // equations F = M dv + dw x MS + w x (w x MS), N = J dw + w x (J w) + MS x dv).
-    // J dw + w x (J w) of a unit inertia entry, and U e of a unit first moment (U's column).
+    // Wrench on the body about its origin per unit of this parameter (F = M dv + U MS,
+    // N = J dw + w x (J w) + MS x dv): a unit inertia entry's moment, a unit first moment's
+    // force U e (U's column) and moment e x dv, a unit mass's force dv.
     const std::size_t body = static_cast<std::size_t>(param.body);
     const V3& dv = m.dv[body];
     const M3& U = m.U[body];
     V3 f = va.zero(), nm = va.zero();
     auto inertia = [&](int entry) { nm = inertia_moment_columns(g, m, body)[entry]; };
-    auto first_moment = [&](int axis, const V3& e) {
+    auto first_moment = [&](int axis) {
       f = {U[axis], U[3 + axis], U[6 + axis]};
-      nm = va.cross(e, dv);
+      nm = va.cross(axis == 0 ? ex : (axis == 1 ? ey : ez), dv);
     };
     switch (param.kind) {
       case ParamKind::kXX: inertia(0); break;
@@ -280,9 +282,9 @@ std::vector<ExprId> derive_standard_regressor(ExprGraph& g, const RigidBodyTree&
       case ParamKind::kYY: inertia(3); break;
       case ParamKind::kYZ: inertia(4); break;
       case ParamKind::kZZ: inertia(5); break;
-      case ParamKind::kMX: first_moment(0, ex); break;
-      case ParamKind::kMY: first_moment(1, ey); break;
-      case ParamKind::kMZ: first_moment(2, ez); break;
+      case ParamKind::kMX: first_moment(0); break;
+      case ParamKind::kMY: first_moment(1); break;
+      case ParamKind::kMZ: first_moment(2); break;
       case ParamKind::kM: f = dv; break;
       default: break;
     }

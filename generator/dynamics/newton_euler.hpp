@@ -35,8 +35,9 @@ struct SymbolicMotion {
   /// The products of w's components, each shared: w0 w0, w1 w1, w2 w2, w0 w1, w0 w2, w1 w2.
   std::vector<std::array<ExprId, 6>> ww;
   /// U = [dw]x + [w]x [w]x (row-major, entries shared), so that dw x r + w x (w x r) = U r:
-  /// Khalil & Kleinfinger's U_j, built once per body from ww and read by the body's forces,
-  /// its moments and its children's accelerations.
+  /// Khalil & Kleinfinger's U_j, built once per body from dw and ww and read by the body's
+  /// forces and inertia moments (inverse dynamics and standard regressor alike) and by its
+  /// children's accelerations.
   std::vector<M3> U;
 };
 
