@@ -10,287 +10,285 @@
 namespace modelgen {
 namespace panda {
 
-// drive_torque_jacobian from the sample's drive regressor Y (kDof x kDriveParams, row-major,
-// as drive_regressor writes it for that sample's q, dq, ddq) instead of q, dq, ddq: tau_M
+// drive_torque_jacobian from the sample's packed drive regressor Y (kDriveRegressorEntries
+// values, as drive_regressor writes it for that sample's q, dq, ddq) instead of q, dq, ddq: tau_M
 // (kDof) and J = d tau_M / d theta (kDof x kDriveParams, row-major, J[i * kDriveParams + k])
 // for the parameters theta, with no Newton-Euler pass, for the iterations of a
 // maximum-likelihood fit (Swevers et al. 2002 eq. 18). The inertial columns of row i are c_i Y
 // (c_i the efficiency factor of eq. 8), those of JM, Rv, Rc of motor i are copied from Y. The
 // efficiency branch and the Coulomb friction sign count as constant, as in
-// drive_torque_jacobian. Reads only the entries of Y that drive_regressor does not leave
-// structurally zero; every Rz must be non-zero.
+// drive_torque_jacobian. Every Rz must be non-zero.
 // J: 437 of its 1134 entries are written; the others are zero for every input
 // and never written (the manifest lists them under "unwritten"): zero J once before the
 // first call.
 void drive_torque_jacobian_given_regressor(const double* Y, const double* theta, double* tau_M,
                                            double* J) {
-  const double t0 = (Y[10] * theta[10] + Y[11] * theta[11] + Y[12] * theta[12] + Y[13] * theta[13] + Y[14] * theta[14] + Y[20] * theta[20] + Y[21] * theta[21] + Y[22] * theta[22] + Y[23] * theta[23] + Y[24] * theta[24] + Y[25] * theta[25] + Y[26] * theta[26] + Y[27] * theta[27] + Y[28] * theta[28] + Y[29] * theta[29] + Y[30] * theta[30] + Y[31] * theta[31] + Y[32] * theta[32] + Y[33] * theta[33]) + (Y[34] * theta[34] + Y[35] * theta[35] + Y[36] * theta[36] + Y[37] * theta[37] + Y[38] * theta[38] + Y[39] * theta[39] + Y[40] * theta[40] + Y[41] * theta[41] + Y[42] * theta[42] + Y[43] * theta[43] + Y[44] * theta[44] + Y[45] * theta[45] + Y[46] * theta[46] + Y[47] * theta[47] + Y[48] * theta[48] + Y[49] * theta[49] + Y[50] * theta[50] + Y[51] * theta[51] + Y[52] * theta[52]) + (Y[53] * theta[53] + Y[54] * theta[54] + Y[55] * theta[55] + Y[56] * theta[56] + Y[57] * theta[57] + Y[58] * theta[58] + Y[59] * theta[59] + Y[5] * theta[5] + Y[60] * theta[60] + Y[61] * theta[61] + Y[62] * theta[62] + Y[63] * theta[63] + Y[64] * theta[64] + Y[65] * theta[65] + Y[66] * theta[66] + Y[67] * theta[67] + Y[68] * theta[68] + Y[69] * theta[69] + Y[70] * theta[70]) + (Y[71] * theta[71] + Y[72] * theta[72] + Y[73] * theta[73] + Y[74] * theta[74] + Y[75] * theta[75] + Y[76] * theta[76] + Y[77] * theta[77] + Y[78] * theta[78] + Y[79] * theta[79] + Y[80] * theta[80] + Y[81] * theta[81] + Y[82] * theta[82] + Y[83] * theta[83] + Y[84] * theta[84] + Y[85] * theta[85] + Y[86] * theta[86] + Y[87] * theta[87] + Y[88] * theta[88] + Y[89] * theta[89]);
-  const double t1 = Y[91] * t0;
+  const double t0 = (Y[0] * theta[5] + Y[10] * theta[23] + Y[11] * theta[24] + Y[12] * theta[25] + Y[13] * theta[26] + Y[14] * theta[27] + Y[15] * theta[28] + Y[16] * theta[29] + Y[17] * theta[30] + Y[18] * theta[31] + Y[19] * theta[32] + Y[1] * theta[10] + Y[20] * theta[33] + Y[21] * theta[34] + Y[22] * theta[35] + Y[23] * theta[36] + Y[24] * theta[37] + Y[25] * theta[38] + Y[26] * theta[39]) + (Y[27] * theta[40] + Y[28] * theta[41] + Y[29] * theta[42] + Y[2] * theta[11] + Y[30] * theta[43] + Y[31] * theta[44] + Y[32] * theta[45] + Y[33] * theta[46] + Y[34] * theta[47] + Y[35] * theta[48] + Y[36] * theta[49] + Y[37] * theta[50] + Y[38] * theta[51] + Y[39] * theta[52] + Y[3] * theta[12] + Y[40] * theta[53] + Y[41] * theta[54] + Y[42] * theta[55] + Y[43] * theta[56]) + (Y[44] * theta[57] + Y[45] * theta[58] + Y[46] * theta[59] + Y[47] * theta[60] + Y[48] * theta[61] + Y[49] * theta[62] + Y[4] * theta[13] + Y[50] * theta[63] + Y[51] * theta[64] + Y[52] * theta[65] + Y[53] * theta[66] + Y[54] * theta[67] + Y[55] * theta[68] + Y[56] * theta[69] + Y[57] * theta[70] + Y[58] * theta[71] + Y[59] * theta[72] + Y[5] * theta[14] + Y[60] * theta[73]) + (Y[61] * theta[74] + Y[62] * theta[75] + Y[63] * theta[76] + Y[64] * theta[77] + Y[65] * theta[78] + Y[66] * theta[79] + Y[67] * theta[80] + Y[68] * theta[81] + Y[69] * theta[82] + Y[70] * theta[83] + Y[71] * theta[84] + Y[72] * theta[85] + Y[73] * theta[86] + Y[74] * theta[87] + Y[75] * theta[88] + Y[76] * theta[89] + Y[7] * theta[20] + Y[8] * theta[21] + Y[9] * theta[22]);
+  const double t1 = Y[78] * t0;
   const double t2 = static_cast<double>((t1 > 0.0) - (t1 < 0.0));
   const double t3 = 0.5 * t2;
   const double t4 = 1.0 / theta[93];
   const double t5 = 0.5 + t3;
   const double t6 = t4 * t5 - theta[93] * (t3 - 0.5);
-  tau_M[0] = Y[90] * theta[90] + Y[91] * theta[91] + Y[92] * theta[92] + t0 * t6;
-  const double t7 = (Y[136] * theta[10] + Y[137] * theta[11] + Y[138] * theta[12] + Y[139] * theta[13] + Y[140] * theta[14] + Y[141] * theta[15] + Y[142] * theta[16] + Y[143] * theta[17] + Y[146] * theta[20] + Y[147] * theta[21] + Y[148] * theta[22] + Y[149] * theta[23] + Y[150] * theta[24] + Y[151] * theta[25] + Y[152] * theta[26] + Y[153] * theta[27] + Y[154] * theta[28] + Y[155] * theta[29] + Y[156] * theta[30] + Y[157] * theta[31]) + (Y[158] * theta[32] + Y[159] * theta[33] + Y[160] * theta[34] + Y[161] * theta[35] + Y[162] * theta[36] + Y[163] * theta[37] + Y[164] * theta[38] + Y[165] * theta[39] + Y[166] * theta[40] + Y[167] * theta[41] + Y[168] * theta[42] + Y[169] * theta[43] + Y[170] * theta[44] + Y[171] * theta[45] + Y[172] * theta[46] + Y[173] * theta[47] + Y[174] * theta[48] + Y[175] * theta[49] + Y[176] * theta[50] + Y[177] * theta[51]) + (Y[178] * theta[52] + Y[179] * theta[53] + Y[180] * theta[54] + Y[181] * theta[55] + Y[182] * theta[56] + Y[183] * theta[57] + Y[184] * theta[58] + Y[185] * theta[59] + Y[186] * theta[60] + Y[187] * theta[61] + Y[188] * theta[62] + Y[189] * theta[63] + Y[190] * theta[64] + Y[191] * theta[65] + Y[192] * theta[66] + Y[193] * theta[67] + Y[194] * theta[68] + Y[195] * theta[69] + Y[196] * theta[70] + Y[197] * theta[71]) + (Y[198] * theta[72] + Y[199] * theta[73] + Y[200] * theta[74] + Y[201] * theta[75] + Y[202] * theta[76] + Y[203] * theta[77] + Y[204] * theta[78] + Y[205] * theta[79] + Y[206] * theta[80] + Y[207] * theta[81] + Y[208] * theta[82] + Y[209] * theta[83] + Y[210] * theta[84] + Y[211] * theta[85] + Y[212] * theta[86] + Y[213] * theta[87] + Y[214] * theta[88] + Y[215] * theta[89]);
-  const double t8 = Y[221] * t7;
+  tau_M[0] = Y[77] * theta[90] + Y[78] * theta[91] + Y[79] * theta[92] + t0 * t6;
+  const double t7 = (Y[100] * theta[32] + Y[101] * theta[33] + Y[102] * theta[34] + Y[103] * theta[35] + Y[104] * theta[36] + Y[105] * theta[37] + Y[106] * theta[38] + Y[107] * theta[39] + Y[108] * theta[40] + Y[109] * theta[41] + Y[110] * theta[42] + Y[111] * theta[43] + Y[112] * theta[44] + Y[113] * theta[45] + Y[114] * theta[46] + Y[115] * theta[47] + Y[116] * theta[48] + Y[117] * theta[49] + Y[118] * theta[50] + Y[119] * theta[51]) + (Y[120] * theta[52] + Y[121] * theta[53] + Y[122] * theta[54] + Y[123] * theta[55] + Y[124] * theta[56] + Y[125] * theta[57] + Y[126] * theta[58] + Y[127] * theta[59] + Y[128] * theta[60] + Y[129] * theta[61] + Y[130] * theta[62] + Y[131] * theta[63] + Y[132] * theta[64] + Y[133] * theta[65] + Y[134] * theta[66] + Y[135] * theta[67] + Y[136] * theta[68] + Y[137] * theta[69] + Y[138] * theta[70] + Y[139] * theta[71]) + (Y[140] * theta[72] + Y[141] * theta[73] + Y[142] * theta[74] + Y[143] * theta[75] + Y[144] * theta[76] + Y[145] * theta[77] + Y[146] * theta[78] + Y[147] * theta[79] + Y[148] * theta[80] + Y[149] * theta[81] + Y[150] * theta[82] + Y[151] * theta[83] + Y[152] * theta[84] + Y[153] * theta[85] + Y[154] * theta[86] + Y[155] * theta[87] + Y[156] * theta[88] + Y[157] * theta[89] + Y[80] * theta[10] + Y[81] * theta[11]) + (Y[82] * theta[12] + Y[83] * theta[13] + Y[84] * theta[14] + Y[85] * theta[15] + Y[86] * theta[16] + Y[87] * theta[17] + Y[88] * theta[20] + Y[89] * theta[21] + Y[90] * theta[22] + Y[91] * theta[23] + Y[92] * theta[24] + Y[93] * theta[25] + Y[94] * theta[26] + Y[95] * theta[27] + Y[96] * theta[28] + Y[97] * theta[29] + Y[98] * theta[30] + Y[99] * theta[31]);
+  const double t8 = Y[159] * t7;
   const double t9 = static_cast<double>((t8 > 0.0) - (t8 < 0.0));
   const double t10 = 0.5 * t9;
   const double t11 = 1.0 / theta[97];
   const double t12 = 0.5 + t10;
   const double t13 = t11 * t12 - theta[97] * (t10 - 0.5);
-  tau_M[1] = Y[220] * theta[94] + Y[221] * theta[95] + Y[222] * theta[96] + t7 * t13;
-  const double t14 = (Y[272] * theta[20] + Y[273] * theta[21] + Y[274] * theta[22] + Y[275] * theta[23] + Y[276] * theta[24] + Y[277] * theta[25] + Y[278] * theta[26] + Y[279] * theta[27] + Y[282] * theta[30] + Y[283] * theta[31] + Y[284] * theta[32] + Y[285] * theta[33] + Y[286] * theta[34] + Y[287] * theta[35] + Y[288] * theta[36] + Y[289] * theta[37] + Y[290] * theta[38]) + (Y[291] * theta[39] + Y[292] * theta[40] + Y[293] * theta[41] + Y[294] * theta[42] + Y[295] * theta[43] + Y[296] * theta[44] + Y[297] * theta[45] + Y[298] * theta[46] + Y[299] * theta[47] + Y[300] * theta[48] + Y[301] * theta[49] + Y[302] * theta[50] + Y[303] * theta[51] + Y[304] * theta[52] + Y[305] * theta[53] + Y[306] * theta[54] + Y[307] * theta[55]) + (Y[308] * theta[56] + Y[309] * theta[57] + Y[310] * theta[58] + Y[311] * theta[59] + Y[312] * theta[60] + Y[313] * theta[61] + Y[314] * theta[62] + Y[315] * theta[63] + Y[316] * theta[64] + Y[317] * theta[65] + Y[318] * theta[66] + Y[319] * theta[67] + Y[320] * theta[68] + Y[321] * theta[69] + Y[322] * theta[70] + Y[323] * theta[71] + Y[324] * theta[72]) + (Y[325] * theta[73] + Y[326] * theta[74] + Y[327] * theta[75] + Y[328] * theta[76] + Y[329] * theta[77] + Y[330] * theta[78] + Y[331] * theta[79] + Y[332] * theta[80] + Y[333] * theta[81] + Y[334] * theta[82] + Y[335] * theta[83] + Y[336] * theta[84] + Y[337] * theta[85] + Y[338] * theta[86] + Y[339] * theta[87] + Y[340] * theta[88] + Y[341] * theta[89]);
-  const double t15 = Y[351] * t14;
+  tau_M[1] = Y[158] * theta[94] + Y[159] * theta[95] + Y[160] * theta[96] + t7 * t13;
+  const double t14 = (Y[161] * theta[20] + Y[162] * theta[21] + Y[163] * theta[22] + Y[164] * theta[23] + Y[165] * theta[24] + Y[166] * theta[25] + Y[167] * theta[26] + Y[168] * theta[27] + Y[169] * theta[30] + Y[170] * theta[31] + Y[171] * theta[32] + Y[172] * theta[33] + Y[173] * theta[34] + Y[174] * theta[35] + Y[175] * theta[36] + Y[176] * theta[37] + Y[177] * theta[38]) + (Y[178] * theta[39] + Y[179] * theta[40] + Y[180] * theta[41] + Y[181] * theta[42] + Y[182] * theta[43] + Y[183] * theta[44] + Y[184] * theta[45] + Y[185] * theta[46] + Y[186] * theta[47] + Y[187] * theta[48] + Y[188] * theta[49] + Y[189] * theta[50] + Y[190] * theta[51] + Y[191] * theta[52] + Y[192] * theta[53] + Y[193] * theta[54] + Y[194] * theta[55]) + (Y[195] * theta[56] + Y[196] * theta[57] + Y[197] * theta[58] + Y[198] * theta[59] + Y[199] * theta[60] + Y[200] * theta[61] + Y[201] * theta[62] + Y[202] * theta[63] + Y[203] * theta[64] + Y[204] * theta[65] + Y[205] * theta[66] + Y[206] * theta[67] + Y[207] * theta[68] + Y[208] * theta[69] + Y[209] * theta[70] + Y[210] * theta[71] + Y[211] * theta[72]) + (Y[212] * theta[73] + Y[213] * theta[74] + Y[214] * theta[75] + Y[215] * theta[76] + Y[216] * theta[77] + Y[217] * theta[78] + Y[218] * theta[79] + Y[219] * theta[80] + Y[220] * theta[81] + Y[221] * theta[82] + Y[222] * theta[83] + Y[223] * theta[84] + Y[224] * theta[85] + Y[225] * theta[86] + Y[226] * theta[87] + Y[227] * theta[88] + Y[228] * theta[89]);
+  const double t15 = Y[230] * t14;
   const double t16 = static_cast<double>((t15 > 0.0) - (t15 < 0.0));
   const double t17 = 0.5 * t16;
   const double t18 = 1.0 / theta[101];
   const double t19 = 0.5 + t17;
   const double t20 = t18 * t19 - theta[101] * (t17 - 0.5);
-  tau_M[2] = Y[350] * theta[98] + Y[351] * theta[99] + Y[352] * theta[100] + t14 * t20;
-  const double t21 = (Y[408] * theta[30] + Y[409] * theta[31] + Y[410] * theta[32] + Y[411] * theta[33] + Y[412] * theta[34] + Y[413] * theta[35] + Y[414] * theta[36] + Y[415] * theta[37] + Y[418] * theta[40] + Y[419] * theta[41] + Y[420] * theta[42] + Y[421] * theta[43] + Y[422] * theta[44] + Y[423] * theta[45] + Y[424] * theta[46]) + (Y[425] * theta[47] + Y[426] * theta[48] + Y[427] * theta[49] + Y[428] * theta[50] + Y[429] * theta[51] + Y[430] * theta[52] + Y[431] * theta[53] + Y[432] * theta[54] + Y[433] * theta[55] + Y[434] * theta[56] + Y[435] * theta[57] + Y[436] * theta[58] + Y[437] * theta[59] + Y[438] * theta[60] + Y[439] * theta[61]) + (Y[440] * theta[62] + Y[441] * theta[63] + Y[442] * theta[64] + Y[443] * theta[65] + Y[444] * theta[66] + Y[445] * theta[67] + Y[446] * theta[68] + Y[447] * theta[69] + Y[448] * theta[70] + Y[449] * theta[71] + Y[450] * theta[72] + Y[451] * theta[73] + Y[452] * theta[74] + Y[453] * theta[75] + Y[454] * theta[76]) + (Y[455] * theta[77] + Y[456] * theta[78] + Y[457] * theta[79] + Y[458] * theta[80] + Y[459] * theta[81] + Y[460] * theta[82] + Y[461] * theta[83] + Y[462] * theta[84] + Y[463] * theta[85] + Y[464] * theta[86] + Y[465] * theta[87] + Y[466] * theta[88] + Y[467] * theta[89]);
-  const double t22 = Y[481] * t21;
+  tau_M[2] = Y[229] * theta[98] + Y[230] * theta[99] + Y[231] * theta[100] + t14 * t20;
+  const double t21 = (Y[232] * theta[30] + Y[233] * theta[31] + Y[234] * theta[32] + Y[235] * theta[33] + Y[236] * theta[34] + Y[237] * theta[35] + Y[238] * theta[36] + Y[239] * theta[37] + Y[240] * theta[40] + Y[241] * theta[41] + Y[242] * theta[42] + Y[243] * theta[43] + Y[244] * theta[44] + Y[245] * theta[45] + Y[246] * theta[46]) + (Y[247] * theta[47] + Y[248] * theta[48] + Y[249] * theta[49] + Y[250] * theta[50] + Y[251] * theta[51] + Y[252] * theta[52] + Y[253] * theta[53] + Y[254] * theta[54] + Y[255] * theta[55] + Y[256] * theta[56] + Y[257] * theta[57] + Y[258] * theta[58] + Y[259] * theta[59] + Y[260] * theta[60] + Y[261] * theta[61]) + (Y[262] * theta[62] + Y[263] * theta[63] + Y[264] * theta[64] + Y[265] * theta[65] + Y[266] * theta[66] + Y[267] * theta[67] + Y[268] * theta[68] + Y[269] * theta[69] + Y[270] * theta[70] + Y[271] * theta[71] + Y[272] * theta[72] + Y[273] * theta[73] + Y[274] * theta[74] + Y[275] * theta[75] + Y[276] * theta[76]) + (Y[277] * theta[77] + Y[278] * theta[78] + Y[279] * theta[79] + Y[280] * theta[80] + Y[281] * theta[81] + Y[282] * theta[82] + Y[283] * theta[83] + Y[284] * theta[84] + Y[285] * theta[85] + Y[286] * theta[86] + Y[287] * theta[87] + Y[288] * theta[88] + Y[289] * theta[89]);
+  const double t22 = Y[291] * t21;
   const double t23 = static_cast<double>((t22 > 0.0) - (t22 < 0.0));
   const double t24 = 0.5 * t23;
   const double t25 = 1.0 / theta[105];
   const double t26 = 0.5 + t24;
   const double t27 = t25 * t26 - theta[105] * (t24 - 0.5);
-  tau_M[3] = Y[480] * theta[102] + Y[481] * theta[103] + Y[482] * theta[104] + t21 * t27;
-  const double t28 = (Y[544] * theta[40] + Y[545] * theta[41] + Y[546] * theta[42] + Y[547] * theta[43] + Y[548] * theta[44] + Y[549] * theta[45] + Y[550] * theta[46] + Y[551] * theta[47] + Y[554] * theta[50] + Y[555] * theta[51] + Y[556] * theta[52] + Y[557] * theta[53]) + (Y[558] * theta[54] + Y[559] * theta[55] + Y[560] * theta[56] + Y[561] * theta[57] + Y[562] * theta[58] + Y[564] * theta[60] + Y[565] * theta[61] + Y[566] * theta[62] + Y[567] * theta[63] + Y[568] * theta[64] + Y[569] * theta[65] + Y[570] * theta[66]) + (Y[571] * theta[67] + Y[572] * theta[68] + Y[573] * theta[69] + Y[574] * theta[70] + Y[575] * theta[71] + Y[576] * theta[72] + Y[577] * theta[73] + Y[578] * theta[74] + Y[579] * theta[75] + Y[580] * theta[76] + Y[581] * theta[77] + Y[582] * theta[78]) + (Y[583] * theta[79] + Y[584] * theta[80] + Y[585] * theta[81] + Y[586] * theta[82] + Y[587] * theta[83] + Y[588] * theta[84] + Y[589] * theta[85] + Y[590] * theta[86] + Y[591] * theta[87] + Y[592] * theta[88] + Y[593] * theta[89]);
-  const double t29 = Y[611] * t28;
+  tau_M[3] = Y[290] * theta[102] + Y[291] * theta[103] + Y[292] * theta[104] + t21 * t27;
+  const double t28 = (Y[293] * theta[40] + Y[294] * theta[41] + Y[295] * theta[42] + Y[296] * theta[43] + Y[297] * theta[44] + Y[298] * theta[45] + Y[299] * theta[46] + Y[300] * theta[47] + Y[301] * theta[50] + Y[302] * theta[51] + Y[303] * theta[52] + Y[304] * theta[53]) + (Y[305] * theta[54] + Y[306] * theta[55] + Y[307] * theta[56] + Y[308] * theta[57] + Y[309] * theta[58] + Y[310] * theta[60] + Y[311] * theta[61] + Y[312] * theta[62] + Y[313] * theta[63] + Y[314] * theta[64] + Y[315] * theta[65] + Y[316] * theta[66]) + (Y[317] * theta[67] + Y[318] * theta[68] + Y[319] * theta[69] + Y[320] * theta[70] + Y[321] * theta[71] + Y[322] * theta[72] + Y[323] * theta[73] + Y[324] * theta[74] + Y[325] * theta[75] + Y[326] * theta[76] + Y[327] * theta[77] + Y[328] * theta[78]) + (Y[329] * theta[79] + Y[330] * theta[80] + Y[331] * theta[81] + Y[332] * theta[82] + Y[333] * theta[83] + Y[334] * theta[84] + Y[335] * theta[85] + Y[336] * theta[86] + Y[337] * theta[87] + Y[338] * theta[88] + Y[339] * theta[89]);
+  const double t29 = Y[341] * t28;
   const double t30 = static_cast<double>((t29 > 0.0) - (t29 < 0.0));
   const double t31 = 0.5 * t30;
   const double t32 = 1.0 / theta[109];
   const double t33 = 0.5 + t31;
   const double t34 = t32 * t33 - theta[109] * (t31 - 0.5);
-  tau_M[4] = Y[610] * theta[106] + Y[611] * theta[107] + Y[612] * theta[108] + t28 * t34;
-  const double t35 = (Y[680] * theta[50] + Y[681] * theta[51] + Y[682] * theta[52] + Y[683] * theta[53] + Y[684] * theta[54] + Y[685] * theta[55] + Y[686] * theta[56] + Y[687] * theta[57] + Y[690] * theta[60] + Y[691] * theta[61]) + (Y[692] * theta[62] + Y[693] * theta[63] + Y[694] * theta[64] + Y[695] * theta[65] + Y[696] * theta[66] + Y[697] * theta[67] + Y[698] * theta[68] + Y[699] * theta[69] + Y[700] * theta[70] + Y[701] * theta[71]) + (Y[702] * theta[72] + Y[703] * theta[73] + Y[704] * theta[74] + Y[705] * theta[75] + Y[706] * theta[76] + Y[707] * theta[77] + Y[708] * theta[78] + Y[709] * theta[79] + Y[710] * theta[80] + Y[711] * theta[81]) + (Y[712] * theta[82] + Y[713] * theta[83] + Y[714] * theta[84] + Y[715] * theta[85] + Y[716] * theta[86] + Y[717] * theta[87] + Y[718] * theta[88] + Y[719] * theta[89]);
-  const double t36 = Y[741] * t35;
+  tau_M[4] = Y[340] * theta[106] + Y[341] * theta[107] + Y[342] * theta[108] + t28 * t34;
+  const double t35 = (Y[343] * theta[50] + Y[344] * theta[51] + Y[345] * theta[52] + Y[346] * theta[53] + Y[347] * theta[54] + Y[348] * theta[55] + Y[349] * theta[56] + Y[350] * theta[57] + Y[351] * theta[60] + Y[352] * theta[61]) + (Y[353] * theta[62] + Y[354] * theta[63] + Y[355] * theta[64] + Y[356] * theta[65] + Y[357] * theta[66] + Y[358] * theta[67] + Y[359] * theta[68] + Y[360] * theta[69] + Y[361] * theta[70] + Y[362] * theta[71]) + (Y[363] * theta[72] + Y[364] * theta[73] + Y[365] * theta[74] + Y[366] * theta[75] + Y[367] * theta[76] + Y[368] * theta[77] + Y[369] * theta[78] + Y[370] * theta[79] + Y[371] * theta[80] + Y[372] * theta[81]) + (Y[373] * theta[82] + Y[374] * theta[83] + Y[375] * theta[84] + Y[376] * theta[85] + Y[377] * theta[86] + Y[378] * theta[87] + Y[379] * theta[88] + Y[380] * theta[89]);
+  const double t36 = Y[382] * t35;
   const double t37 = static_cast<double>((t36 > 0.0) - (t36 < 0.0));
   const double t38 = 0.5 * t37;
   const double t39 = 1.0 / theta[113];
   const double t40 = 0.5 + t38;
   const double t41 = t39 * t40 - theta[113] * (t38 - 0.5);
-  tau_M[5] = Y[740] * theta[110] + Y[741] * theta[111] + Y[742] * theta[112] + t35 * t41;
-  const double t42 = Y[816] * theta[60] + Y[817] * theta[61] + Y[818] * theta[62] + Y[819] * theta[63] + Y[820] * theta[64] + Y[821] * theta[65] + Y[822] * theta[66] + Y[823] * theta[67] + Y[826] * theta[70] + Y[827] * theta[71] + Y[828] * theta[72] + Y[829] * theta[73] + Y[830] * theta[74] + Y[831] * theta[75] + Y[832] * theta[76] + Y[833] * theta[77] + Y[834] * theta[78] + Y[835] * theta[79] + Y[836] * theta[80] + Y[837] * theta[81] + Y[838] * theta[82] + Y[839] * theta[83] + Y[840] * theta[84] + Y[841] * theta[85] + Y[842] * theta[86] + Y[843] * theta[87] + Y[844] * theta[88] + Y[845] * theta[89];
-  const double t43 = Y[871] * t42;
+  tau_M[5] = Y[381] * theta[110] + Y[382] * theta[111] + Y[383] * theta[112] + t35 * t41;
+  const double t42 = Y[384] * theta[60] + Y[385] * theta[61] + Y[386] * theta[62] + Y[387] * theta[63] + Y[388] * theta[64] + Y[389] * theta[65] + Y[390] * theta[66] + Y[391] * theta[67] + Y[392] * theta[70] + Y[393] * theta[71] + Y[394] * theta[72] + Y[395] * theta[73] + Y[396] * theta[74] + Y[397] * theta[75] + Y[398] * theta[76] + Y[399] * theta[77] + Y[400] * theta[78] + Y[401] * theta[79] + Y[402] * theta[80] + Y[403] * theta[81] + Y[404] * theta[82] + Y[405] * theta[83] + Y[406] * theta[84] + Y[407] * theta[85] + Y[408] * theta[86] + Y[409] * theta[87] + Y[410] * theta[88] + Y[411] * theta[89];
+  const double t43 = Y[413] * t42;
   const double t44 = static_cast<double>((t43 > 0.0) - (t43 < 0.0));
   const double t45 = 0.5 * t44;
   const double t46 = 1.0 / theta[117];
   const double t47 = 0.5 + t45;
   const double t48 = t46 * t47 - theta[117] * (t45 - 0.5);
-  tau_M[6] = Y[870] * theta[114] + Y[871] * theta[115] + Y[872] * theta[116] + t42 * t48;
-  const double t49 = Y[958] * theta[76] + Y[959] * theta[77] + Y[960] * theta[78] + Y[961] * theta[79];
-  const double t50 = Y[1001] * t49;
+  tau_M[6] = Y[412] * theta[114] + Y[413] * theta[115] + Y[414] * theta[116] + t42 * t48;
+  const double t49 = Y[415] * theta[76] + Y[416] * theta[77] + Y[417] * theta[78] + Y[418] * theta[79];
+  const double t50 = Y[420] * t49;
   const double t51 = static_cast<double>((t50 > 0.0) - (t50 < 0.0));
   const double t52 = 0.5 * t51;
   const double t53 = 1.0 / theta[121];
   const double t54 = 0.5 + t52;
   const double t55 = t53 * t54 - theta[121] * (t52 - 0.5);
-  tau_M[7] = Y[1000] * theta[118] + Y[1001] * theta[119] + Y[1002] * theta[120] + t49 * t55;
-  const double t56 = Y[1094] * theta[86] + Y[1095] * theta[87] + Y[1096] * theta[88] + Y[1097] * theta[89];
-  const double t57 = Y[1131] * t56;
+  tau_M[7] = Y[419] * theta[118] + Y[420] * theta[119] + Y[421] * theta[120] + t49 * t55;
+  const double t56 = Y[422] * theta[86] + Y[423] * theta[87] + Y[424] * theta[88] + Y[425] * theta[89];
+  const double t57 = Y[427] * t56;
   const double t58 = static_cast<double>((t57 > 0.0) - (t57 < 0.0));
   const double t59 = 0.5 * t58;
   const double t60 = 1.0 / theta[125];
   const double t61 = 0.5 + t59;
   const double t62 = t60 * t61 - theta[125] * (t59 - 0.5);
-  tau_M[8] = Y[1130] * theta[122] + Y[1131] * theta[123] + Y[1132] * theta[124] + t56 * t62;
-  J[5] = Y[5] * t6;  // ZZ1
-  for (int k = 0; k < 5; ++k) J[10 + k] = Y[10 + k] * t6;  // XX2 XY2 XZ2 YY2 YZ2
-  for (int k = 0; k < 70; ++k) J[20 + k] = Y[20 + k] * t6;  // XX3 XY3 XZ3 YY3 YZ3 ZZ3 MX3 MY3 MZ3 M3 XX4 XY4 XZ4 YY4 YZ4 ZZ4 MX4 MY4 MZ4 M4 XX5 XY5 XZ5 YY5 YZ5 ZZ5 MX5 MY5 MZ5 M5 XX6 XY6 XZ6 YY6 YZ6 ZZ6 MX6 MY6 MZ6 M6 XX7 XY7 XZ7 YY7 YZ7 ZZ7 MX7 MY7 MZ7 M7 XX8 XY8 XZ8 YY8 YZ8 ZZ8 MX8 MY8 MZ8 M8 XX9 XY9 XZ9 YY9 YZ9 ZZ9 MX9 MY9 MZ9 M9
-  J[90] = Y[90];  // JM1
-  J[91] = Y[91];  // Rv1
-  J[92] = Y[92];  // Rc1
+  tau_M[8] = Y[426] * theta[122] + Y[427] * theta[123] + Y[428] * theta[124] + t56 * t62;
+  J[5] = Y[0] * t6;  // ZZ1
+  for (int k = 0; k < 5; ++k) J[10 + k] = Y[1 + k] * t6;  // XX2 XY2 XZ2 YY2 YZ2
+  for (int k = 0; k < 70; ++k) J[20 + k] = Y[7 + k] * t6;  // XX3 XY3 XZ3 YY3 YZ3 ZZ3 MX3 MY3 MZ3 M3 XX4 XY4 XZ4 YY4 YZ4 ZZ4 MX4 MY4 MZ4 M4 XX5 XY5 XZ5 YY5 YZ5 ZZ5 MX5 MY5 MZ5 M5 XX6 XY6 XZ6 YY6 YZ6 ZZ6 MX6 MY6 MZ6 M6 XX7 XY7 XZ7 YY7 YZ7 ZZ7 MX7 MY7 MZ7 M7 XX8 XY8 XZ8 YY8 YZ8 ZZ8 MX8 MY8 MZ8 M8 XX9 XY9 XZ9 YY9 YZ9 ZZ9 MX9 MY9 MZ9 M9
+  J[90] = Y[77];  // JM1
+  J[91] = Y[78];  // Rv1
+  J[92] = Y[79];  // Rc1
   J[93] = -t0 * (t3 - 0.5 + t4 * t4 * t5);  // Rz1
-  for (int k = 0; k < 8; ++k) J[136 + k] = Y[136 + k] * t13;
-  for (int k = 0; k < 70; ++k) J[146 + k] = Y[146 + k] * t13;
-  J[220] = Y[220];
-  J[221] = Y[221];
-  J[222] = Y[222];
+  for (int k = 0; k < 8; ++k) J[136 + k] = Y[80 + k] * t13;
+  for (int k = 0; k < 70; ++k) J[146 + k] = Y[88 + k] * t13;
+  J[220] = Y[158];
+  J[221] = Y[159];
+  J[222] = Y[160];
   J[223] = -t7 * (t10 - 0.5 + t11 * t11 * t12);
-  for (int k = 0; k < 8; ++k) J[272 + k] = Y[272 + k] * t20;
-  for (int k = 0; k < 60; ++k) J[282 + k] = Y[282 + k] * t20;
-  J[350] = Y[350];
-  J[351] = Y[351];
-  J[352] = Y[352];
+  for (int k = 0; k < 8; ++k) J[272 + k] = Y[161 + k] * t20;
+  for (int k = 0; k < 60; ++k) J[282 + k] = Y[169 + k] * t20;
+  J[350] = Y[229];
+  J[351] = Y[230];
+  J[352] = Y[231];
   J[353] = -t14 * (t17 - 0.5 + t18 * t18 * t19);
-  for (int k = 0; k < 8; ++k) J[408 + k] = Y[408 + k] * t27;
-  for (int k = 0; k < 50; ++k) J[418 + k] = Y[418 + k] * t27;
-  J[480] = Y[480];
-  J[481] = Y[481];
-  J[482] = Y[482];
+  for (int k = 0; k < 8; ++k) J[408 + k] = Y[232 + k] * t27;
+  for (int k = 0; k < 50; ++k) J[418 + k] = Y[240 + k] * t27;
+  J[480] = Y[290];
+  J[481] = Y[291];
+  J[482] = Y[292];
   J[483] = -t21 * (t24 - 0.5 + t25 * t25 * t26);
-  for (int k = 0; k < 8; ++k) J[544 + k] = Y[544 + k] * t34;
-  for (int k = 0; k < 9; ++k) J[554 + k] = Y[554 + k] * t34;
-  for (int k = 0; k < 30; ++k) J[564 + k] = Y[564 + k] * t34;
-  J[610] = Y[610];
-  J[611] = Y[611];
-  J[612] = Y[612];
+  for (int k = 0; k < 8; ++k) J[544 + k] = Y[293 + k] * t34;
+  for (int k = 0; k < 9; ++k) J[554 + k] = Y[301 + k] * t34;
+  for (int k = 0; k < 30; ++k) J[564 + k] = Y[310 + k] * t34;
+  J[610] = Y[340];
+  J[611] = Y[341];
+  J[612] = Y[342];
   J[613] = -t28 * (t31 - 0.5 + t32 * t32 * t33);
-  for (int k = 0; k < 8; ++k) J[680 + k] = Y[680 + k] * t41;
-  for (int k = 0; k < 30; ++k) J[690 + k] = Y[690 + k] * t41;
-  J[740] = Y[740];
-  J[741] = Y[741];
-  J[742] = Y[742];
+  for (int k = 0; k < 8; ++k) J[680 + k] = Y[343 + k] * t41;
+  for (int k = 0; k < 30; ++k) J[690 + k] = Y[351 + k] * t41;
+  J[740] = Y[381];
+  J[741] = Y[382];
+  J[742] = Y[383];
   J[743] = -t35 * (t38 - 0.5 + t39 * t39 * t40);
-  for (int k = 0; k < 8; ++k) J[816 + k] = Y[816 + k] * t48;
-  for (int k = 0; k < 20; ++k) J[826 + k] = Y[826 + k] * t48;
-  J[870] = Y[870];
-  J[871] = Y[871];
-  J[872] = Y[872];
+  for (int k = 0; k < 8; ++k) J[816 + k] = Y[384 + k] * t48;
+  for (int k = 0; k < 20; ++k) J[826 + k] = Y[392 + k] * t48;
+  J[870] = Y[412];
+  J[871] = Y[413];
+  J[872] = Y[414];
   J[873] = -t42 * (t45 - 0.5 + t46 * t46 * t47);
-  for (int k = 0; k < 4; ++k) J[958 + k] = Y[958 + k] * t55;
-  J[1000] = Y[1000];
-  J[1001] = Y[1001];
-  J[1002] = Y[1002];
+  for (int k = 0; k < 4; ++k) J[958 + k] = Y[415 + k] * t55;
+  J[1000] = Y[419];
+  J[1001] = Y[420];
+  J[1002] = Y[421];
   J[1003] = -t49 * (t52 - 0.5 + t53 * t53 * t54);
-  for (int k = 0; k < 4; ++k) J[1094 + k] = Y[1094 + k] * t62;
-  J[1130] = Y[1130];
-  J[1131] = Y[1131];
-  J[1132] = Y[1132];
+  for (int k = 0; k < 4; ++k) J[1094 + k] = Y[422 + k] * t62;
+  J[1130] = Y[426];
+  J[1131] = Y[427];
+  J[1132] = Y[428];
   J[1133] = -t56 * (t59 - 0.5 + t60 * t60 * t61);
 }
 
-// drive_torque_jacobian from the sample's drive regressor Y (kDof x kDriveParams, row-major,
-// as drive_regressor writes it for that sample's q, dq, ddq) instead of q, dq, ddq: tau_M
+// drive_torque_jacobian from the sample's packed drive regressor Y (kDriveRegressorEntries
+// values, as drive_regressor writes it for that sample's q, dq, ddq) instead of q, dq, ddq: tau_M
 // (kDof) and J = d tau_M / d theta (kDof x kDriveParams, row-major, J[i * kDriveParams + k])
 // for the parameters theta, with no Newton-Euler pass, for the iterations of a
 // maximum-likelihood fit (Swevers et al. 2002 eq. 18). The inertial columns of row i are c_i Y
 // (c_i the efficiency factor of eq. 8), those of JM, Rv, Rc of motor i are copied from Y. The
 // efficiency branch and the Coulomb friction sign count as constant, as in
-// drive_torque_jacobian. Reads only the entries of Y that drive_regressor does not leave
-// structurally zero; every Rz must be non-zero.
+// drive_torque_jacobian. Every Rz must be non-zero.
 // J: 437 of its 1134 entries are written; the others are zero for every input
 // and never written (the manifest lists them under "unwritten"): zero J once before the
 // first call.
 void drive_torque_jacobian_given_regressor(const float* Y, const float* theta, float* tau_M,
                                            float* J) {
-  const float t0 = (Y[10] * theta[10] + Y[11] * theta[11] + Y[12] * theta[12] + Y[13] * theta[13] + Y[14] * theta[14] + Y[20] * theta[20] + Y[21] * theta[21] + Y[22] * theta[22] + Y[23] * theta[23] + Y[24] * theta[24] + Y[25] * theta[25] + Y[26] * theta[26] + Y[27] * theta[27] + Y[28] * theta[28] + Y[29] * theta[29] + Y[30] * theta[30] + Y[31] * theta[31] + Y[32] * theta[32] + Y[33] * theta[33]) + (Y[34] * theta[34] + Y[35] * theta[35] + Y[36] * theta[36] + Y[37] * theta[37] + Y[38] * theta[38] + Y[39] * theta[39] + Y[40] * theta[40] + Y[41] * theta[41] + Y[42] * theta[42] + Y[43] * theta[43] + Y[44] * theta[44] + Y[45] * theta[45] + Y[46] * theta[46] + Y[47] * theta[47] + Y[48] * theta[48] + Y[49] * theta[49] + Y[50] * theta[50] + Y[51] * theta[51] + Y[52] * theta[52]) + (Y[53] * theta[53] + Y[54] * theta[54] + Y[55] * theta[55] + Y[56] * theta[56] + Y[57] * theta[57] + Y[58] * theta[58] + Y[59] * theta[59] + Y[5] * theta[5] + Y[60] * theta[60] + Y[61] * theta[61] + Y[62] * theta[62] + Y[63] * theta[63] + Y[64] * theta[64] + Y[65] * theta[65] + Y[66] * theta[66] + Y[67] * theta[67] + Y[68] * theta[68] + Y[69] * theta[69] + Y[70] * theta[70]) + (Y[71] * theta[71] + Y[72] * theta[72] + Y[73] * theta[73] + Y[74] * theta[74] + Y[75] * theta[75] + Y[76] * theta[76] + Y[77] * theta[77] + Y[78] * theta[78] + Y[79] * theta[79] + Y[80] * theta[80] + Y[81] * theta[81] + Y[82] * theta[82] + Y[83] * theta[83] + Y[84] * theta[84] + Y[85] * theta[85] + Y[86] * theta[86] + Y[87] * theta[87] + Y[88] * theta[88] + Y[89] * theta[89]);
-  const float t1 = Y[91] * t0;
+  const float t0 = (Y[0] * theta[5] + Y[10] * theta[23] + Y[11] * theta[24] + Y[12] * theta[25] + Y[13] * theta[26] + Y[14] * theta[27] + Y[15] * theta[28] + Y[16] * theta[29] + Y[17] * theta[30] + Y[18] * theta[31] + Y[19] * theta[32] + Y[1] * theta[10] + Y[20] * theta[33] + Y[21] * theta[34] + Y[22] * theta[35] + Y[23] * theta[36] + Y[24] * theta[37] + Y[25] * theta[38] + Y[26] * theta[39]) + (Y[27] * theta[40] + Y[28] * theta[41] + Y[29] * theta[42] + Y[2] * theta[11] + Y[30] * theta[43] + Y[31] * theta[44] + Y[32] * theta[45] + Y[33] * theta[46] + Y[34] * theta[47] + Y[35] * theta[48] + Y[36] * theta[49] + Y[37] * theta[50] + Y[38] * theta[51] + Y[39] * theta[52] + Y[3] * theta[12] + Y[40] * theta[53] + Y[41] * theta[54] + Y[42] * theta[55] + Y[43] * theta[56]) + (Y[44] * theta[57] + Y[45] * theta[58] + Y[46] * theta[59] + Y[47] * theta[60] + Y[48] * theta[61] + Y[49] * theta[62] + Y[4] * theta[13] + Y[50] * theta[63] + Y[51] * theta[64] + Y[52] * theta[65] + Y[53] * theta[66] + Y[54] * theta[67] + Y[55] * theta[68] + Y[56] * theta[69] + Y[57] * theta[70] + Y[58] * theta[71] + Y[59] * theta[72] + Y[5] * theta[14] + Y[60] * theta[73]) + (Y[61] * theta[74] + Y[62] * theta[75] + Y[63] * theta[76] + Y[64] * theta[77] + Y[65] * theta[78] + Y[66] * theta[79] + Y[67] * theta[80] + Y[68] * theta[81] + Y[69] * theta[82] + Y[70] * theta[83] + Y[71] * theta[84] + Y[72] * theta[85] + Y[73] * theta[86] + Y[74] * theta[87] + Y[75] * theta[88] + Y[76] * theta[89] + Y[7] * theta[20] + Y[8] * theta[21] + Y[9] * theta[22]);
+  const float t1 = Y[78] * t0;
   const float t2 = static_cast<float>((t1 > 0.0f) - (t1 < 0.0f));
   const float t3 = 0.5f * t2;
   const float t4 = 1.0f / theta[93];
   const float t5 = 0.5f + t3;
   const float t6 = t4 * t5 - theta[93] * (t3 - 0.5f);
-  tau_M[0] = Y[90] * theta[90] + Y[91] * theta[91] + Y[92] * theta[92] + t0 * t6;
-  const float t7 = (Y[136] * theta[10] + Y[137] * theta[11] + Y[138] * theta[12] + Y[139] * theta[13] + Y[140] * theta[14] + Y[141] * theta[15] + Y[142] * theta[16] + Y[143] * theta[17] + Y[146] * theta[20] + Y[147] * theta[21] + Y[148] * theta[22] + Y[149] * theta[23] + Y[150] * theta[24] + Y[151] * theta[25] + Y[152] * theta[26] + Y[153] * theta[27] + Y[154] * theta[28] + Y[155] * theta[29] + Y[156] * theta[30] + Y[157] * theta[31]) + (Y[158] * theta[32] + Y[159] * theta[33] + Y[160] * theta[34] + Y[161] * theta[35] + Y[162] * theta[36] + Y[163] * theta[37] + Y[164] * theta[38] + Y[165] * theta[39] + Y[166] * theta[40] + Y[167] * theta[41] + Y[168] * theta[42] + Y[169] * theta[43] + Y[170] * theta[44] + Y[171] * theta[45] + Y[172] * theta[46] + Y[173] * theta[47] + Y[174] * theta[48] + Y[175] * theta[49] + Y[176] * theta[50] + Y[177] * theta[51]) + (Y[178] * theta[52] + Y[179] * theta[53] + Y[180] * theta[54] + Y[181] * theta[55] + Y[182] * theta[56] + Y[183] * theta[57] + Y[184] * theta[58] + Y[185] * theta[59] + Y[186] * theta[60] + Y[187] * theta[61] + Y[188] * theta[62] + Y[189] * theta[63] + Y[190] * theta[64] + Y[191] * theta[65] + Y[192] * theta[66] + Y[193] * theta[67] + Y[194] * theta[68] + Y[195] * theta[69] + Y[196] * theta[70] + Y[197] * theta[71]) + (Y[198] * theta[72] + Y[199] * theta[73] + Y[200] * theta[74] + Y[201] * theta[75] + Y[202] * theta[76] + Y[203] * theta[77] + Y[204] * theta[78] + Y[205] * theta[79] + Y[206] * theta[80] + Y[207] * theta[81] + Y[208] * theta[82] + Y[209] * theta[83] + Y[210] * theta[84] + Y[211] * theta[85] + Y[212] * theta[86] + Y[213] * theta[87] + Y[214] * theta[88] + Y[215] * theta[89]);
-  const float t8 = Y[221] * t7;
+  tau_M[0] = Y[77] * theta[90] + Y[78] * theta[91] + Y[79] * theta[92] + t0 * t6;
+  const float t7 = (Y[100] * theta[32] + Y[101] * theta[33] + Y[102] * theta[34] + Y[103] * theta[35] + Y[104] * theta[36] + Y[105] * theta[37] + Y[106] * theta[38] + Y[107] * theta[39] + Y[108] * theta[40] + Y[109] * theta[41] + Y[110] * theta[42] + Y[111] * theta[43] + Y[112] * theta[44] + Y[113] * theta[45] + Y[114] * theta[46] + Y[115] * theta[47] + Y[116] * theta[48] + Y[117] * theta[49] + Y[118] * theta[50] + Y[119] * theta[51]) + (Y[120] * theta[52] + Y[121] * theta[53] + Y[122] * theta[54] + Y[123] * theta[55] + Y[124] * theta[56] + Y[125] * theta[57] + Y[126] * theta[58] + Y[127] * theta[59] + Y[128] * theta[60] + Y[129] * theta[61] + Y[130] * theta[62] + Y[131] * theta[63] + Y[132] * theta[64] + Y[133] * theta[65] + Y[134] * theta[66] + Y[135] * theta[67] + Y[136] * theta[68] + Y[137] * theta[69] + Y[138] * theta[70] + Y[139] * theta[71]) + (Y[140] * theta[72] + Y[141] * theta[73] + Y[142] * theta[74] + Y[143] * theta[75] + Y[144] * theta[76] + Y[145] * theta[77] + Y[146] * theta[78] + Y[147] * theta[79] + Y[148] * theta[80] + Y[149] * theta[81] + Y[150] * theta[82] + Y[151] * theta[83] + Y[152] * theta[84] + Y[153] * theta[85] + Y[154] * theta[86] + Y[155] * theta[87] + Y[156] * theta[88] + Y[157] * theta[89] + Y[80] * theta[10] + Y[81] * theta[11]) + (Y[82] * theta[12] + Y[83] * theta[13] + Y[84] * theta[14] + Y[85] * theta[15] + Y[86] * theta[16] + Y[87] * theta[17] + Y[88] * theta[20] + Y[89] * theta[21] + Y[90] * theta[22] + Y[91] * theta[23] + Y[92] * theta[24] + Y[93] * theta[25] + Y[94] * theta[26] + Y[95] * theta[27] + Y[96] * theta[28] + Y[97] * theta[29] + Y[98] * theta[30] + Y[99] * theta[31]);
+  const float t8 = Y[159] * t7;
   const float t9 = static_cast<float>((t8 > 0.0f) - (t8 < 0.0f));
   const float t10 = 0.5f * t9;
   const float t11 = 1.0f / theta[97];
   const float t12 = 0.5f + t10;
   const float t13 = t11 * t12 - theta[97] * (t10 - 0.5f);
-  tau_M[1] = Y[220] * theta[94] + Y[221] * theta[95] + Y[222] * theta[96] + t7 * t13;
-  const float t14 = (Y[272] * theta[20] + Y[273] * theta[21] + Y[274] * theta[22] + Y[275] * theta[23] + Y[276] * theta[24] + Y[277] * theta[25] + Y[278] * theta[26] + Y[279] * theta[27] + Y[282] * theta[30] + Y[283] * theta[31] + Y[284] * theta[32] + Y[285] * theta[33] + Y[286] * theta[34] + Y[287] * theta[35] + Y[288] * theta[36] + Y[289] * theta[37] + Y[290] * theta[38]) + (Y[291] * theta[39] + Y[292] * theta[40] + Y[293] * theta[41] + Y[294] * theta[42] + Y[295] * theta[43] + Y[296] * theta[44] + Y[297] * theta[45] + Y[298] * theta[46] + Y[299] * theta[47] + Y[300] * theta[48] + Y[301] * theta[49] + Y[302] * theta[50] + Y[303] * theta[51] + Y[304] * theta[52] + Y[305] * theta[53] + Y[306] * theta[54] + Y[307] * theta[55]) + (Y[308] * theta[56] + Y[309] * theta[57] + Y[310] * theta[58] + Y[311] * theta[59] + Y[312] * theta[60] + Y[313] * theta[61] + Y[314] * theta[62] + Y[315] * theta[63] + Y[316] * theta[64] + Y[317] * theta[65] + Y[318] * theta[66] + Y[319] * theta[67] + Y[320] * theta[68] + Y[321] * theta[69] + Y[322] * theta[70] + Y[323] * theta[71] + Y[324] * theta[72]) + (Y[325] * theta[73] + Y[326] * theta[74] + Y[327] * theta[75] + Y[328] * theta[76] + Y[329] * theta[77] + Y[330] * theta[78] + Y[331] * theta[79] + Y[332] * theta[80] + Y[333] * theta[81] + Y[334] * theta[82] + Y[335] * theta[83] + Y[336] * theta[84] + Y[337] * theta[85] + Y[338] * theta[86] + Y[339] * theta[87] + Y[340] * theta[88] + Y[341] * theta[89]);
-  const float t15 = Y[351] * t14;
+  tau_M[1] = Y[158] * theta[94] + Y[159] * theta[95] + Y[160] * theta[96] + t7 * t13;
+  const float t14 = (Y[161] * theta[20] + Y[162] * theta[21] + Y[163] * theta[22] + Y[164] * theta[23] + Y[165] * theta[24] + Y[166] * theta[25] + Y[167] * theta[26] + Y[168] * theta[27] + Y[169] * theta[30] + Y[170] * theta[31] + Y[171] * theta[32] + Y[172] * theta[33] + Y[173] * theta[34] + Y[174] * theta[35] + Y[175] * theta[36] + Y[176] * theta[37] + Y[177] * theta[38]) + (Y[178] * theta[39] + Y[179] * theta[40] + Y[180] * theta[41] + Y[181] * theta[42] + Y[182] * theta[43] + Y[183] * theta[44] + Y[184] * theta[45] + Y[185] * theta[46] + Y[186] * theta[47] + Y[187] * theta[48] + Y[188] * theta[49] + Y[189] * theta[50] + Y[190] * theta[51] + Y[191] * theta[52] + Y[192] * theta[53] + Y[193] * theta[54] + Y[194] * theta[55]) + (Y[195] * theta[56] + Y[196] * theta[57] + Y[197] * theta[58] + Y[198] * theta[59] + Y[199] * theta[60] + Y[200] * theta[61] + Y[201] * theta[62] + Y[202] * theta[63] + Y[203] * theta[64] + Y[204] * theta[65] + Y[205] * theta[66] + Y[206] * theta[67] + Y[207] * theta[68] + Y[208] * theta[69] + Y[209] * theta[70] + Y[210] * theta[71] + Y[211] * theta[72]) + (Y[212] * theta[73] + Y[213] * theta[74] + Y[214] * theta[75] + Y[215] * theta[76] + Y[216] * theta[77] + Y[217] * theta[78] + Y[218] * theta[79] + Y[219] * theta[80] + Y[220] * theta[81] + Y[221] * theta[82] + Y[222] * theta[83] + Y[223] * theta[84] + Y[224] * theta[85] + Y[225] * theta[86] + Y[226] * theta[87] + Y[227] * theta[88] + Y[228] * theta[89]);
+  const float t15 = Y[230] * t14;
   const float t16 = static_cast<float>((t15 > 0.0f) - (t15 < 0.0f));
   const float t17 = 0.5f * t16;
   const float t18 = 1.0f / theta[101];
   const float t19 = 0.5f + t17;
   const float t20 = t18 * t19 - theta[101] * (t17 - 0.5f);
-  tau_M[2] = Y[350] * theta[98] + Y[351] * theta[99] + Y[352] * theta[100] + t14 * t20;
-  const float t21 = (Y[408] * theta[30] + Y[409] * theta[31] + Y[410] * theta[32] + Y[411] * theta[33] + Y[412] * theta[34] + Y[413] * theta[35] + Y[414] * theta[36] + Y[415] * theta[37] + Y[418] * theta[40] + Y[419] * theta[41] + Y[420] * theta[42] + Y[421] * theta[43] + Y[422] * theta[44] + Y[423] * theta[45] + Y[424] * theta[46]) + (Y[425] * theta[47] + Y[426] * theta[48] + Y[427] * theta[49] + Y[428] * theta[50] + Y[429] * theta[51] + Y[430] * theta[52] + Y[431] * theta[53] + Y[432] * theta[54] + Y[433] * theta[55] + Y[434] * theta[56] + Y[435] * theta[57] + Y[436] * theta[58] + Y[437] * theta[59] + Y[438] * theta[60] + Y[439] * theta[61]) + (Y[440] * theta[62] + Y[441] * theta[63] + Y[442] * theta[64] + Y[443] * theta[65] + Y[444] * theta[66] + Y[445] * theta[67] + Y[446] * theta[68] + Y[447] * theta[69] + Y[448] * theta[70] + Y[449] * theta[71] + Y[450] * theta[72] + Y[451] * theta[73] + Y[452] * theta[74] + Y[453] * theta[75] + Y[454] * theta[76]) + (Y[455] * theta[77] + Y[456] * theta[78] + Y[457] * theta[79] + Y[458] * theta[80] + Y[459] * theta[81] + Y[460] * theta[82] + Y[461] * theta[83] + Y[462] * theta[84] + Y[463] * theta[85] + Y[464] * theta[86] + Y[465] * theta[87] + Y[466] * theta[88] + Y[467] * theta[89]);
-  const float t22 = Y[481] * t21;
+  tau_M[2] = Y[229] * theta[98] + Y[230] * theta[99] + Y[231] * theta[100] + t14 * t20;
+  const float t21 = (Y[232] * theta[30] + Y[233] * theta[31] + Y[234] * theta[32] + Y[235] * theta[33] + Y[236] * theta[34] + Y[237] * theta[35] + Y[238] * theta[36] + Y[239] * theta[37] + Y[240] * theta[40] + Y[241] * theta[41] + Y[242] * theta[42] + Y[243] * theta[43] + Y[244] * theta[44] + Y[245] * theta[45] + Y[246] * theta[46]) + (Y[247] * theta[47] + Y[248] * theta[48] + Y[249] * theta[49] + Y[250] * theta[50] + Y[251] * theta[51] + Y[252] * theta[52] + Y[253] * theta[53] + Y[254] * theta[54] + Y[255] * theta[55] + Y[256] * theta[56] + Y[257] * theta[57] + Y[258] * theta[58] + Y[259] * theta[59] + Y[260] * theta[60] + Y[261] * theta[61]) + (Y[262] * theta[62] + Y[263] * theta[63] + Y[264] * theta[64] + Y[265] * theta[65] + Y[266] * theta[66] + Y[267] * theta[67] + Y[268] * theta[68] + Y[269] * theta[69] + Y[270] * theta[70] + Y[271] * theta[71] + Y[272] * theta[72] + Y[273] * theta[73] + Y[274] * theta[74] + Y[275] * theta[75] + Y[276] * theta[76]) + (Y[277] * theta[77] + Y[278] * theta[78] + Y[279] * theta[79] + Y[280] * theta[80] + Y[281] * theta[81] + Y[282] * theta[82] + Y[283] * theta[83] + Y[284] * theta[84] + Y[285] * theta[85] + Y[286] * theta[86] + Y[287] * theta[87] + Y[288] * theta[88] + Y[289] * theta[89]);
+  const float t22 = Y[291] * t21;
   const float t23 = static_cast<float>((t22 > 0.0f) - (t22 < 0.0f));
   const float t24 = 0.5f * t23;
   const float t25 = 1.0f / theta[105];
   const float t26 = 0.5f + t24;
   const float t27 = t25 * t26 - theta[105] * (t24 - 0.5f);
-  tau_M[3] = Y[480] * theta[102] + Y[481] * theta[103] + Y[482] * theta[104] + t21 * t27;
-  const float t28 = (Y[544] * theta[40] + Y[545] * theta[41] + Y[546] * theta[42] + Y[547] * theta[43] + Y[548] * theta[44] + Y[549] * theta[45] + Y[550] * theta[46] + Y[551] * theta[47] + Y[554] * theta[50] + Y[555] * theta[51] + Y[556] * theta[52] + Y[557] * theta[53]) + (Y[558] * theta[54] + Y[559] * theta[55] + Y[560] * theta[56] + Y[561] * theta[57] + Y[562] * theta[58] + Y[564] * theta[60] + Y[565] * theta[61] + Y[566] * theta[62] + Y[567] * theta[63] + Y[568] * theta[64] + Y[569] * theta[65] + Y[570] * theta[66]) + (Y[571] * theta[67] + Y[572] * theta[68] + Y[573] * theta[69] + Y[574] * theta[70] + Y[575] * theta[71] + Y[576] * theta[72] + Y[577] * theta[73] + Y[578] * theta[74] + Y[579] * theta[75] + Y[580] * theta[76] + Y[581] * theta[77] + Y[582] * theta[78]) + (Y[583] * theta[79] + Y[584] * theta[80] + Y[585] * theta[81] + Y[586] * theta[82] + Y[587] * theta[83] + Y[588] * theta[84] + Y[589] * theta[85] + Y[590] * theta[86] + Y[591] * theta[87] + Y[592] * theta[88] + Y[593] * theta[89]);
-  const float t29 = Y[611] * t28;
+  tau_M[3] = Y[290] * theta[102] + Y[291] * theta[103] + Y[292] * theta[104] + t21 * t27;
+  const float t28 = (Y[293] * theta[40] + Y[294] * theta[41] + Y[295] * theta[42] + Y[296] * theta[43] + Y[297] * theta[44] + Y[298] * theta[45] + Y[299] * theta[46] + Y[300] * theta[47] + Y[301] * theta[50] + Y[302] * theta[51] + Y[303] * theta[52] + Y[304] * theta[53]) + (Y[305] * theta[54] + Y[306] * theta[55] + Y[307] * theta[56] + Y[308] * theta[57] + Y[309] * theta[58] + Y[310] * theta[60] + Y[311] * theta[61] + Y[312] * theta[62] + Y[313] * theta[63] + Y[314] * theta[64] + Y[315] * theta[65] + Y[316] * theta[66]) + (Y[317] * theta[67] + Y[318] * theta[68] + Y[319] * theta[69] + Y[320] * theta[70] + Y[321] * theta[71] + Y[322] * theta[72] + Y[323] * theta[73] + Y[324] * theta[74] + Y[325] * theta[75] + Y[326] * theta[76] + Y[327] * theta[77] + Y[328] * theta[78]) + (Y[329] * theta[79] + Y[330] * theta[80] + Y[331] * theta[81] + Y[332] * theta[82] + Y[333] * theta[83] + Y[334] * theta[84] + Y[335] * theta[85] + Y[336] * theta[86] + Y[337] * theta[87] + Y[338] * theta[88] + Y[339] * theta[89]);
+  const float t29 = Y[341] * t28;
   const float t30 = static_cast<float>((t29 > 0.0f) - (t29 < 0.0f));
   const float t31 = 0.5f * t30;
   const float t32 = 1.0f / theta[109];
   const float t33 = 0.5f + t31;
   const float t34 = t32 * t33 - theta[109] * (t31 - 0.5f);
-  tau_M[4] = Y[610] * theta[106] + Y[611] * theta[107] + Y[612] * theta[108] + t28 * t34;
-  const float t35 = (Y[680] * theta[50] + Y[681] * theta[51] + Y[682] * theta[52] + Y[683] * theta[53] + Y[684] * theta[54] + Y[685] * theta[55] + Y[686] * theta[56] + Y[687] * theta[57] + Y[690] * theta[60] + Y[691] * theta[61]) + (Y[692] * theta[62] + Y[693] * theta[63] + Y[694] * theta[64] + Y[695] * theta[65] + Y[696] * theta[66] + Y[697] * theta[67] + Y[698] * theta[68] + Y[699] * theta[69] + Y[700] * theta[70] + Y[701] * theta[71]) + (Y[702] * theta[72] + Y[703] * theta[73] + Y[704] * theta[74] + Y[705] * theta[75] + Y[706] * theta[76] + Y[707] * theta[77] + Y[708] * theta[78] + Y[709] * theta[79] + Y[710] * theta[80] + Y[711] * theta[81]) + (Y[712] * theta[82] + Y[713] * theta[83] + Y[714] * theta[84] + Y[715] * theta[85] + Y[716] * theta[86] + Y[717] * theta[87] + Y[718] * theta[88] + Y[719] * theta[89]);
-  const float t36 = Y[741] * t35;
+  tau_M[4] = Y[340] * theta[106] + Y[341] * theta[107] + Y[342] * theta[108] + t28 * t34;
+  const float t35 = (Y[343] * theta[50] + Y[344] * theta[51] + Y[345] * theta[52] + Y[346] * theta[53] + Y[347] * theta[54] + Y[348] * theta[55] + Y[349] * theta[56] + Y[350] * theta[57] + Y[351] * theta[60] + Y[352] * theta[61]) + (Y[353] * theta[62] + Y[354] * theta[63] + Y[355] * theta[64] + Y[356] * theta[65] + Y[357] * theta[66] + Y[358] * theta[67] + Y[359] * theta[68] + Y[360] * theta[69] + Y[361] * theta[70] + Y[362] * theta[71]) + (Y[363] * theta[72] + Y[364] * theta[73] + Y[365] * theta[74] + Y[366] * theta[75] + Y[367] * theta[76] + Y[368] * theta[77] + Y[369] * theta[78] + Y[370] * theta[79] + Y[371] * theta[80] + Y[372] * theta[81]) + (Y[373] * theta[82] + Y[374] * theta[83] + Y[375] * theta[84] + Y[376] * theta[85] + Y[377] * theta[86] + Y[378] * theta[87] + Y[379] * theta[88] + Y[380] * theta[89]);
+  const float t36 = Y[382] * t35;
   const float t37 = static_cast<float>((t36 > 0.0f) - (t36 < 0.0f));
   const float t38 = 0.5f * t37;
   const float t39 = 1.0f / theta[113];
   const float t40 = 0.5f + t38;
   const float t41 = t39 * t40 - theta[113] * (t38 - 0.5f);
-  tau_M[5] = Y[740] * theta[110] + Y[741] * theta[111] + Y[742] * theta[112] + t35 * t41;
-  const float t42 = Y[816] * theta[60] + Y[817] * theta[61] + Y[818] * theta[62] + Y[819] * theta[63] + Y[820] * theta[64] + Y[821] * theta[65] + Y[822] * theta[66] + Y[823] * theta[67] + Y[826] * theta[70] + Y[827] * theta[71] + Y[828] * theta[72] + Y[829] * theta[73] + Y[830] * theta[74] + Y[831] * theta[75] + Y[832] * theta[76] + Y[833] * theta[77] + Y[834] * theta[78] + Y[835] * theta[79] + Y[836] * theta[80] + Y[837] * theta[81] + Y[838] * theta[82] + Y[839] * theta[83] + Y[840] * theta[84] + Y[841] * theta[85] + Y[842] * theta[86] + Y[843] * theta[87] + Y[844] * theta[88] + Y[845] * theta[89];
-  const float t43 = Y[871] * t42;
+  tau_M[5] = Y[381] * theta[110] + Y[382] * theta[111] + Y[383] * theta[112] + t35 * t41;
+  const float t42 = Y[384] * theta[60] + Y[385] * theta[61] + Y[386] * theta[62] + Y[387] * theta[63] + Y[388] * theta[64] + Y[389] * theta[65] + Y[390] * theta[66] + Y[391] * theta[67] + Y[392] * theta[70] + Y[393] * theta[71] + Y[394] * theta[72] + Y[395] * theta[73] + Y[396] * theta[74] + Y[397] * theta[75] + Y[398] * theta[76] + Y[399] * theta[77] + Y[400] * theta[78] + Y[401] * theta[79] + Y[402] * theta[80] + Y[403] * theta[81] + Y[404] * theta[82] + Y[405] * theta[83] + Y[406] * theta[84] + Y[407] * theta[85] + Y[408] * theta[86] + Y[409] * theta[87] + Y[410] * theta[88] + Y[411] * theta[89];
+  const float t43 = Y[413] * t42;
   const float t44 = static_cast<float>((t43 > 0.0f) - (t43 < 0.0f));
   const float t45 = 0.5f * t44;
   const float t46 = 1.0f / theta[117];
   const float t47 = 0.5f + t45;
   const float t48 = t46 * t47 - theta[117] * (t45 - 0.5f);
-  tau_M[6] = Y[870] * theta[114] + Y[871] * theta[115] + Y[872] * theta[116] + t42 * t48;
-  const float t49 = Y[958] * theta[76] + Y[959] * theta[77] + Y[960] * theta[78] + Y[961] * theta[79];
-  const float t50 = Y[1001] * t49;
+  tau_M[6] = Y[412] * theta[114] + Y[413] * theta[115] + Y[414] * theta[116] + t42 * t48;
+  const float t49 = Y[415] * theta[76] + Y[416] * theta[77] + Y[417] * theta[78] + Y[418] * theta[79];
+  const float t50 = Y[420] * t49;
   const float t51 = static_cast<float>((t50 > 0.0f) - (t50 < 0.0f));
   const float t52 = 0.5f * t51;
   const float t53 = 1.0f / theta[121];
   const float t54 = 0.5f + t52;
   const float t55 = t53 * t54 - theta[121] * (t52 - 0.5f);
-  tau_M[7] = Y[1000] * theta[118] + Y[1001] * theta[119] + Y[1002] * theta[120] + t49 * t55;
-  const float t56 = Y[1094] * theta[86] + Y[1095] * theta[87] + Y[1096] * theta[88] + Y[1097] * theta[89];
-  const float t57 = Y[1131] * t56;
+  tau_M[7] = Y[419] * theta[118] + Y[420] * theta[119] + Y[421] * theta[120] + t49 * t55;
+  const float t56 = Y[422] * theta[86] + Y[423] * theta[87] + Y[424] * theta[88] + Y[425] * theta[89];
+  const float t57 = Y[427] * t56;
   const float t58 = static_cast<float>((t57 > 0.0f) - (t57 < 0.0f));
   const float t59 = 0.5f * t58;
   const float t60 = 1.0f / theta[125];
   const float t61 = 0.5f + t59;
   const float t62 = t60 * t61 - theta[125] * (t59 - 0.5f);
-  tau_M[8] = Y[1130] * theta[122] + Y[1131] * theta[123] + Y[1132] * theta[124] + t56 * t62;
-  J[5] = Y[5] * t6;  // ZZ1
-  for (int k = 0; k < 5; ++k) J[10 + k] = Y[10 + k] * t6;  // XX2 XY2 XZ2 YY2 YZ2
-  for (int k = 0; k < 70; ++k) J[20 + k] = Y[20 + k] * t6;  // XX3 XY3 XZ3 YY3 YZ3 ZZ3 MX3 MY3 MZ3 M3 XX4 XY4 XZ4 YY4 YZ4 ZZ4 MX4 MY4 MZ4 M4 XX5 XY5 XZ5 YY5 YZ5 ZZ5 MX5 MY5 MZ5 M5 XX6 XY6 XZ6 YY6 YZ6 ZZ6 MX6 MY6 MZ6 M6 XX7 XY7 XZ7 YY7 YZ7 ZZ7 MX7 MY7 MZ7 M7 XX8 XY8 XZ8 YY8 YZ8 ZZ8 MX8 MY8 MZ8 M8 XX9 XY9 XZ9 YY9 YZ9 ZZ9 MX9 MY9 MZ9 M9
-  J[90] = Y[90];  // JM1
-  J[91] = Y[91];  // Rv1
-  J[92] = Y[92];  // Rc1
+  tau_M[8] = Y[426] * theta[122] + Y[427] * theta[123] + Y[428] * theta[124] + t56 * t62;
+  J[5] = Y[0] * t6;  // ZZ1
+  for (int k = 0; k < 5; ++k) J[10 + k] = Y[1 + k] * t6;  // XX2 XY2 XZ2 YY2 YZ2
+  for (int k = 0; k < 70; ++k) J[20 + k] = Y[7 + k] * t6;  // XX3 XY3 XZ3 YY3 YZ3 ZZ3 MX3 MY3 MZ3 M3 XX4 XY4 XZ4 YY4 YZ4 ZZ4 MX4 MY4 MZ4 M4 XX5 XY5 XZ5 YY5 YZ5 ZZ5 MX5 MY5 MZ5 M5 XX6 XY6 XZ6 YY6 YZ6 ZZ6 MX6 MY6 MZ6 M6 XX7 XY7 XZ7 YY7 YZ7 ZZ7 MX7 MY7 MZ7 M7 XX8 XY8 XZ8 YY8 YZ8 ZZ8 MX8 MY8 MZ8 M8 XX9 XY9 XZ9 YY9 YZ9 ZZ9 MX9 MY9 MZ9 M9
+  J[90] = Y[77];  // JM1
+  J[91] = Y[78];  // Rv1
+  J[92] = Y[79];  // Rc1
   J[93] = -t0 * (t3 - 0.5f + t4 * t4 * t5);  // Rz1
-  for (int k = 0; k < 8; ++k) J[136 + k] = Y[136 + k] * t13;
-  for (int k = 0; k < 70; ++k) J[146 + k] = Y[146 + k] * t13;
-  J[220] = Y[220];
-  J[221] = Y[221];
-  J[222] = Y[222];
+  for (int k = 0; k < 8; ++k) J[136 + k] = Y[80 + k] * t13;
+  for (int k = 0; k < 70; ++k) J[146 + k] = Y[88 + k] * t13;
+  J[220] = Y[158];
+  J[221] = Y[159];
+  J[222] = Y[160];
   J[223] = -t7 * (t10 - 0.5f + t11 * t11 * t12);
-  for (int k = 0; k < 8; ++k) J[272 + k] = Y[272 + k] * t20;
-  for (int k = 0; k < 60; ++k) J[282 + k] = Y[282 + k] * t20;
-  J[350] = Y[350];
-  J[351] = Y[351];
-  J[352] = Y[352];
+  for (int k = 0; k < 8; ++k) J[272 + k] = Y[161 + k] * t20;
+  for (int k = 0; k < 60; ++k) J[282 + k] = Y[169 + k] * t20;
+  J[350] = Y[229];
+  J[351] = Y[230];
+  J[352] = Y[231];
   J[353] = -t14 * (t17 - 0.5f + t18 * t18 * t19);
-  for (int k = 0; k < 8; ++k) J[408 + k] = Y[408 + k] * t27;
-  for (int k = 0; k < 50; ++k) J[418 + k] = Y[418 + k] * t27;
-  J[480] = Y[480];
-  J[481] = Y[481];
-  J[482] = Y[482];
+  for (int k = 0; k < 8; ++k) J[408 + k] = Y[232 + k] * t27;
+  for (int k = 0; k < 50; ++k) J[418 + k] = Y[240 + k] * t27;
+  J[480] = Y[290];
+  J[481] = Y[291];
+  J[482] = Y[292];
   J[483] = -t21 * (t24 - 0.5f + t25 * t25 * t26);
-  for (int k = 0; k < 8; ++k) J[544 + k] = Y[544 + k] * t34;
-  for (int k = 0; k < 9; ++k) J[554 + k] = Y[554 + k] * t34;
-  for (int k = 0; k < 30; ++k) J[564 + k] = Y[564 + k] * t34;
-  J[610] = Y[610];
-  J[611] = Y[611];
-  J[612] = Y[612];
+  for (int k = 0; k < 8; ++k) J[544 + k] = Y[293 + k] * t34;
+  for (int k = 0; k < 9; ++k) J[554 + k] = Y[301 + k] * t34;
+  for (int k = 0; k < 30; ++k) J[564 + k] = Y[310 + k] * t34;
+  J[610] = Y[340];
+  J[611] = Y[341];
+  J[612] = Y[342];
   J[613] = -t28 * (t31 - 0.5f + t32 * t32 * t33);
-  for (int k = 0; k < 8; ++k) J[680 + k] = Y[680 + k] * t41;
-  for (int k = 0; k < 30; ++k) J[690 + k] = Y[690 + k] * t41;
-  J[740] = Y[740];
-  J[741] = Y[741];
-  J[742] = Y[742];
+  for (int k = 0; k < 8; ++k) J[680 + k] = Y[343 + k] * t41;
+  for (int k = 0; k < 30; ++k) J[690 + k] = Y[351 + k] * t41;
+  J[740] = Y[381];
+  J[741] = Y[382];
+  J[742] = Y[383];
   J[743] = -t35 * (t38 - 0.5f + t39 * t39 * t40);
-  for (int k = 0; k < 8; ++k) J[816 + k] = Y[816 + k] * t48;
-  for (int k = 0; k < 20; ++k) J[826 + k] = Y[826 + k] * t48;
-  J[870] = Y[870];
-  J[871] = Y[871];
-  J[872] = Y[872];
+  for (int k = 0; k < 8; ++k) J[816 + k] = Y[384 + k] * t48;
+  for (int k = 0; k < 20; ++k) J[826 + k] = Y[392 + k] * t48;
+  J[870] = Y[412];
+  J[871] = Y[413];
+  J[872] = Y[414];
   J[873] = -t42 * (t45 - 0.5f + t46 * t46 * t47);
-  for (int k = 0; k < 4; ++k) J[958 + k] = Y[958 + k] * t55;
-  J[1000] = Y[1000];
-  J[1001] = Y[1001];
-  J[1002] = Y[1002];
+  for (int k = 0; k < 4; ++k) J[958 + k] = Y[415 + k] * t55;
+  J[1000] = Y[419];
+  J[1001] = Y[420];
+  J[1002] = Y[421];
   J[1003] = -t49 * (t52 - 0.5f + t53 * t53 * t54);
-  for (int k = 0; k < 4; ++k) J[1094 + k] = Y[1094 + k] * t62;
-  J[1130] = Y[1130];
-  J[1131] = Y[1131];
-  J[1132] = Y[1132];
+  for (int k = 0; k < 4; ++k) J[1094 + k] = Y[422 + k] * t62;
+  J[1130] = Y[426];
+  J[1131] = Y[427];
+  J[1132] = Y[428];
   J[1133] = -t56 * (t59 - 0.5f + t60 * t60 * t61);
 }
 

@@ -10,217 +10,215 @@
 namespace modelgen {
 namespace kr150 {
 
-// drive_torque_jacobian from the sample's drive regressor Y (kDof x kDriveParams, row-major,
-// as drive_regressor writes it for that sample's q, dq, ddq) instead of q, dq, ddq: tau_M
+// drive_torque_jacobian from the sample's packed drive regressor Y (kDriveRegressorEntries
+// values, as drive_regressor writes it for that sample's q, dq, ddq) instead of q, dq, ddq: tau_M
 // (kDof) and J = d tau_M / d theta (kDof x kDriveParams, row-major, J[i * kDriveParams + k])
 // for the parameters theta, with no Newton-Euler pass, for the iterations of a
 // maximum-likelihood fit (Swevers et al. 2002 eq. 18). The inertial columns of row i are c_i Y
 // (c_i the efficiency factor of eq. 8), those of JM, Rv, Rc of motor i are copied from Y. The
 // efficiency branch and the Coulomb friction sign count as constant, as in
-// drive_torque_jacobian. Reads only the entries of Y that drive_regressor does not leave
-// structurally zero; every Rz must be non-zero.
+// drive_torque_jacobian. Every Rz must be non-zero.
 // J: 267 of its 564 entries are written; the others are zero for every input
 // and never written (the manifest lists them under "unwritten"): zero J once before the
 // first call.
 void drive_torque_jacobian_given_regressor(const double* Y, const double* theta, double* tau_M,
                                            double* J) {
-  const double t0 = (Y[10] * theta[10] + Y[11] * theta[11] + Y[12] * theta[12] + Y[13] * theta[13] + Y[14] * theta[14] + Y[16] * theta[16] + Y[17] * theta[17] + Y[19] * theta[19] + Y[20] * theta[20] + Y[21] * theta[21] + Y[22] * theta[22] + Y[23] * theta[23] + Y[24] * theta[24] + Y[26] * theta[26] + Y[27] * theta[27]) + (Y[28] * theta[28] + Y[29] * theta[29] + Y[30] * theta[30] + Y[31] * theta[31] + Y[32] * theta[32] + Y[33] * theta[33] + Y[34] * theta[34] + Y[35] * theta[35] + Y[36] * theta[36] + Y[37] * theta[37] + Y[38] * theta[38] + Y[39] * theta[39] + Y[40] * theta[40] + Y[41] * theta[41] + Y[42] * theta[42]) + (Y[43] * theta[43] + Y[44] * theta[44] + Y[45] * theta[45] + Y[46] * theta[46] + Y[47] * theta[47] + Y[48] * theta[48] + Y[49] * theta[49] + Y[50] * theta[50] + Y[51] * theta[51] + Y[52] * theta[52] + Y[53] * theta[53] + Y[54] * theta[54] + Y[55] * theta[55] + Y[56] * theta[56] + Y[57] * theta[57]) + (Y[58] * theta[58] + Y[59] * theta[59] + Y[5] * theta[5] + Y[60] * theta[60] + Y[61] * theta[61] + Y[62] * theta[62] + Y[63] * theta[63] + Y[64] * theta[64] + Y[65] * theta[65] + Y[66] * theta[66] + Y[67] * theta[67] + Y[68] * theta[68] + Y[69] * theta[69]);
-  const double t1 = Y[71] * t0;
+  const double t0 = (Y[0] * theta[5] + Y[10] * theta[19] + Y[11] * theta[20] + Y[12] * theta[21] + Y[13] * theta[22] + Y[14] * theta[23] + Y[15] * theta[24] + Y[17] * theta[26] + Y[18] * theta[27] + Y[19] * theta[28] + Y[1] * theta[10] + Y[20] * theta[29] + Y[21] * theta[30] + Y[22] * theta[31] + Y[23] * theta[32]) + (Y[24] * theta[33] + Y[25] * theta[34] + Y[26] * theta[35] + Y[27] * theta[36] + Y[28] * theta[37] + Y[29] * theta[38] + Y[2] * theta[11] + Y[30] * theta[39] + Y[31] * theta[40] + Y[32] * theta[41] + Y[33] * theta[42] + Y[34] * theta[43] + Y[35] * theta[44] + Y[36] * theta[45] + Y[37] * theta[46]) + (Y[38] * theta[47] + Y[39] * theta[48] + Y[3] * theta[12] + Y[40] * theta[49] + Y[41] * theta[50] + Y[42] * theta[51] + Y[43] * theta[52] + Y[44] * theta[53] + Y[45] * theta[54] + Y[46] * theta[55] + Y[47] * theta[56] + Y[48] * theta[57] + Y[49] * theta[58] + Y[4] * theta[13] + Y[50] * theta[59]) + (Y[51] * theta[60] + Y[52] * theta[61] + Y[53] * theta[62] + Y[54] * theta[63] + Y[55] * theta[64] + Y[56] * theta[65] + Y[57] * theta[66] + Y[58] * theta[67] + Y[59] * theta[68] + Y[5] * theta[14] + Y[60] * theta[69] + Y[7] * theta[16] + Y[8] * theta[17]);
+  const double t1 = Y[62] * t0;
   const double t2 = static_cast<double>((t1 > 0.0) - (t1 < 0.0));
   const double t3 = 0.5 * t2;
   const double t4 = 1.0 / theta[73];
   const double t5 = 0.5 + t3;
   const double t6 = t4 * t5 - theta[73] * (t3 - 0.5);
-  tau_M[0] = Y[70] * theta[70] + Y[71] * theta[71] + Y[72] * theta[72] + t0 * t6;
-  const double t7 = (Y[104] * theta[10] + Y[105] * theta[11] + Y[106] * theta[12] + Y[107] * theta[13] + Y[108] * theta[14] + Y[109] * theta[15] + Y[110] * theta[16] + Y[111] * theta[17] + Y[114] * theta[20] + Y[115] * theta[21] + Y[116] * theta[22] + Y[117] * theta[23] + Y[118] * theta[24] + Y[119] * theta[25] + Y[120] * theta[26]) + (Y[121] * theta[27] + Y[122] * theta[28] + Y[123] * theta[29] + Y[124] * theta[30] + Y[125] * theta[31] + Y[126] * theta[32] + Y[127] * theta[33] + Y[128] * theta[34] + Y[129] * theta[35] + Y[130] * theta[36] + Y[131] * theta[37] + Y[132] * theta[38] + Y[133] * theta[39] + Y[134] * theta[40] + Y[135] * theta[41]) + (Y[136] * theta[42] + Y[137] * theta[43] + Y[138] * theta[44] + Y[139] * theta[45] + Y[140] * theta[46] + Y[141] * theta[47] + Y[142] * theta[48] + Y[143] * theta[49] + Y[144] * theta[50] + Y[145] * theta[51] + Y[146] * theta[52] + Y[147] * theta[53] + Y[148] * theta[54] + Y[149] * theta[55] + Y[150] * theta[56]) + (Y[151] * theta[57] + Y[152] * theta[58] + Y[153] * theta[59] + Y[154] * theta[60] + Y[155] * theta[61] + Y[156] * theta[62] + Y[157] * theta[63] + Y[158] * theta[64] + Y[159] * theta[65] + Y[160] * theta[66] + Y[161] * theta[67] + Y[162] * theta[68] + Y[163] * theta[69]);
-  const double t8 = Y[169] * t7;
+  tau_M[0] = Y[61] * theta[70] + Y[62] * theta[71] + Y[63] * theta[72] + t0 * t6;
+  const double t7 = (Y[100] * theta[48] + Y[101] * theta[49] + Y[102] * theta[50] + Y[103] * theta[51] + Y[104] * theta[52] + Y[105] * theta[53] + Y[106] * theta[54] + Y[107] * theta[55] + Y[108] * theta[56] + Y[109] * theta[57] + Y[110] * theta[58] + Y[111] * theta[59] + Y[112] * theta[60] + Y[113] * theta[61] + Y[114] * theta[62]) + (Y[115] * theta[63] + Y[116] * theta[64] + Y[117] * theta[65] + Y[118] * theta[66] + Y[119] * theta[67] + Y[120] * theta[68] + Y[121] * theta[69] + Y[64] * theta[10] + Y[65] * theta[11] + Y[66] * theta[12] + Y[67] * theta[13] + Y[68] * theta[14] + Y[69] * theta[15] + Y[70] * theta[16] + Y[71] * theta[17]) + (Y[72] * theta[20] + Y[73] * theta[21] + Y[74] * theta[22] + Y[75] * theta[23] + Y[76] * theta[24] + Y[77] * theta[25] + Y[78] * theta[26] + Y[79] * theta[27] + Y[80] * theta[28] + Y[81] * theta[29] + Y[82] * theta[30] + Y[83] * theta[31] + Y[84] * theta[32] + Y[85] * theta[33] + Y[86] * theta[34]) + (Y[87] * theta[35] + Y[88] * theta[36] + Y[89] * theta[37] + Y[90] * theta[38] + Y[91] * theta[39] + Y[92] * theta[40] + Y[93] * theta[41] + Y[94] * theta[42] + Y[95] * theta[43] + Y[96] * theta[44] + Y[97] * theta[45] + Y[98] * theta[46] + Y[99] * theta[47]);
+  const double t8 = Y[123] * t7;
   const double t9 = static_cast<double>((t8 > 0.0) - (t8 < 0.0));
   const double t10 = 0.5 * t9;
   const double t11 = 1.0 / theta[77];
   const double t12 = 0.5 + t10;
   const double t13 = t11 * t12 - theta[77] * (t10 - 0.5);
-  tau_M[1] = Y[168] * theta[74] + Y[169] * theta[75] + Y[170] * theta[76] + t7 * t13;
-  const double t14 = (Y[208] * theta[20] + Y[209] * theta[21] + Y[210] * theta[22] + Y[211] * theta[23] + Y[212] * theta[24] + Y[213] * theta[25] + Y[214] * theta[26] + Y[215] * theta[27] + Y[218] * theta[30] + Y[219] * theta[31] + Y[220] * theta[32] + Y[221] * theta[33]) + (Y[222] * theta[34] + Y[223] * theta[35] + Y[224] * theta[36] + Y[225] * theta[37] + Y[226] * theta[38] + Y[227] * theta[39] + Y[228] * theta[40] + Y[229] * theta[41] + Y[230] * theta[42] + Y[231] * theta[43] + Y[232] * theta[44] + Y[233] * theta[45]) + (Y[234] * theta[46] + Y[235] * theta[47] + Y[236] * theta[48] + Y[237] * theta[49] + Y[238] * theta[50] + Y[239] * theta[51] + Y[240] * theta[52] + Y[241] * theta[53] + Y[242] * theta[54] + Y[243] * theta[55] + Y[244] * theta[56] + Y[245] * theta[57]) + (Y[246] * theta[58] + Y[247] * theta[59] + Y[248] * theta[60] + Y[249] * theta[61] + Y[250] * theta[62] + Y[251] * theta[63] + Y[252] * theta[64] + Y[253] * theta[65] + Y[254] * theta[66] + Y[255] * theta[67] + Y[256] * theta[68] + Y[257] * theta[69]);
-  const double t15 = Y[267] * t14;
+  tau_M[1] = Y[122] * theta[74] + Y[123] * theta[75] + Y[124] * theta[76] + t7 * t13;
+  const double t14 = (Y[125] * theta[20] + Y[126] * theta[21] + Y[127] * theta[22] + Y[128] * theta[23] + Y[129] * theta[24] + Y[130] * theta[25] + Y[131] * theta[26] + Y[132] * theta[27] + Y[133] * theta[30] + Y[134] * theta[31] + Y[135] * theta[32] + Y[136] * theta[33]) + (Y[137] * theta[34] + Y[138] * theta[35] + Y[139] * theta[36] + Y[140] * theta[37] + Y[141] * theta[38] + Y[142] * theta[39] + Y[143] * theta[40] + Y[144] * theta[41] + Y[145] * theta[42] + Y[146] * theta[43] + Y[147] * theta[44] + Y[148] * theta[45]) + (Y[149] * theta[46] + Y[150] * theta[47] + Y[151] * theta[48] + Y[152] * theta[49] + Y[153] * theta[50] + Y[154] * theta[51] + Y[155] * theta[52] + Y[156] * theta[53] + Y[157] * theta[54] + Y[158] * theta[55] + Y[159] * theta[56] + Y[160] * theta[57]) + (Y[161] * theta[58] + Y[162] * theta[59] + Y[163] * theta[60] + Y[164] * theta[61] + Y[165] * theta[62] + Y[166] * theta[63] + Y[167] * theta[64] + Y[168] * theta[65] + Y[169] * theta[66] + Y[170] * theta[67] + Y[171] * theta[68] + Y[172] * theta[69]);
+  const double t15 = Y[174] * t14;
   const double t16 = static_cast<double>((t15 > 0.0) - (t15 < 0.0));
   const double t17 = 0.5 * t16;
   const double t18 = 1.0 / theta[81];
   const double t19 = 0.5 + t17;
   const double t20 = t18 * t19 - theta[81] * (t17 - 0.5);
-  tau_M[2] = Y[266] * theta[78] + Y[267] * theta[79] + Y[268] * theta[80] + t14 * t20;
-  const double t21 = (Y[312] * theta[30] + Y[313] * theta[31] + Y[314] * theta[32] + Y[315] * theta[33] + Y[316] * theta[34] + Y[317] * theta[35] + Y[318] * theta[36] + Y[319] * theta[37] + Y[322] * theta[40]) + (Y[323] * theta[41] + Y[324] * theta[42] + Y[325] * theta[43] + Y[326] * theta[44] + Y[327] * theta[45] + Y[328] * theta[46] + Y[329] * theta[47] + Y[330] * theta[48] + Y[332] * theta[50]) + (Y[333] * theta[51] + Y[334] * theta[52] + Y[335] * theta[53] + Y[336] * theta[54] + Y[337] * theta[55] + Y[338] * theta[56] + Y[339] * theta[57] + Y[340] * theta[58] + Y[342] * theta[60]) + (Y[343] * theta[61] + Y[344] * theta[62] + Y[345] * theta[63] + Y[346] * theta[64] + Y[347] * theta[65] + Y[348] * theta[66] + Y[349] * theta[67] + Y[350] * theta[68] + Y[351] * theta[69]);
-  const double t22 = Y[365] * t21;
+  tau_M[2] = Y[173] * theta[78] + Y[174] * theta[79] + Y[175] * theta[80] + t14 * t20;
+  const double t21 = (Y[176] * theta[30] + Y[177] * theta[31] + Y[178] * theta[32] + Y[179] * theta[33] + Y[180] * theta[34] + Y[181] * theta[35] + Y[182] * theta[36] + Y[183] * theta[37] + Y[184] * theta[40]) + (Y[185] * theta[41] + Y[186] * theta[42] + Y[187] * theta[43] + Y[188] * theta[44] + Y[189] * theta[45] + Y[190] * theta[46] + Y[191] * theta[47] + Y[192] * theta[48] + Y[193] * theta[50]) + (Y[194] * theta[51] + Y[195] * theta[52] + Y[196] * theta[53] + Y[197] * theta[54] + Y[198] * theta[55] + Y[199] * theta[56] + Y[200] * theta[57] + Y[201] * theta[58] + Y[202] * theta[60]) + (Y[203] * theta[61] + Y[204] * theta[62] + Y[205] * theta[63] + Y[206] * theta[64] + Y[207] * theta[65] + Y[208] * theta[66] + Y[209] * theta[67] + Y[210] * theta[68] + Y[211] * theta[69]);
+  const double t22 = Y[213] * t21;
   const double t23 = static_cast<double>((t22 > 0.0) - (t22 < 0.0));
   const double t24 = 0.5 * t23;
   const double t25 = 1.0 / theta[85];
   const double t26 = 0.5 + t24;
   const double t27 = t25 * t26 - theta[85] * (t24 - 0.5);
-  tau_M[3] = Y[364] * theta[82] + Y[365] * theta[83] + Y[366] * theta[84] + t21 * t27;
-  const double t28 = Y[416] * theta[40] + Y[417] * theta[41] + Y[418] * theta[42] + Y[419] * theta[43] + Y[420] * theta[44] + Y[421] * theta[45] + Y[422] * theta[46] + Y[423] * theta[47] + Y[426] * theta[50] + Y[427] * theta[51] + Y[428] * theta[52] + Y[429] * theta[53] + Y[430] * theta[54] + Y[431] * theta[55] + Y[432] * theta[56] + Y[433] * theta[57] + Y[434] * theta[58] + Y[436] * theta[60] + Y[437] * theta[61] + Y[438] * theta[62] + Y[439] * theta[63] + Y[440] * theta[64] + Y[441] * theta[65] + Y[442] * theta[66] + Y[443] * theta[67] + Y[444] * theta[68] + Y[445] * theta[69];
-  const double t29 = Y[463] * t28;
+  tau_M[3] = Y[212] * theta[82] + Y[213] * theta[83] + Y[214] * theta[84] + t21 * t27;
+  const double t28 = Y[215] * theta[40] + Y[216] * theta[41] + Y[217] * theta[42] + Y[218] * theta[43] + Y[219] * theta[44] + Y[220] * theta[45] + Y[221] * theta[46] + Y[222] * theta[47] + Y[223] * theta[50] + Y[224] * theta[51] + Y[225] * theta[52] + Y[226] * theta[53] + Y[227] * theta[54] + Y[228] * theta[55] + Y[229] * theta[56] + Y[230] * theta[57] + Y[231] * theta[58] + Y[232] * theta[60] + Y[233] * theta[61] + Y[234] * theta[62] + Y[235] * theta[63] + Y[236] * theta[64] + Y[237] * theta[65] + Y[238] * theta[66] + Y[239] * theta[67] + Y[240] * theta[68] + Y[241] * theta[69];
+  const double t29 = Y[243] * t28;
   const double t30 = static_cast<double>((t29 > 0.0) - (t29 < 0.0));
   const double t31 = 0.5 * t30;
   const double t32 = 1.0 / theta[89];
   const double t33 = 0.5 + t31;
   const double t34 = t32 * t33 - theta[89] * (t31 - 0.5);
-  tau_M[4] = Y[462] * theta[86] + Y[463] * theta[87] + Y[464] * theta[88] + t28 * t34;
-  const double t35 = Y[520] * theta[50] + Y[521] * theta[51] + Y[522] * theta[52] + Y[523] * theta[53] + Y[524] * theta[54] + Y[525] * theta[55] + Y[526] * theta[56] + Y[527] * theta[57] + Y[530] * theta[60] + Y[531] * theta[61] + Y[532] * theta[62] + Y[533] * theta[63] + Y[534] * theta[64] + Y[535] * theta[65] + Y[536] * theta[66] + Y[537] * theta[67];
-  const double t36 = Y[561] * t35;
+  tau_M[4] = Y[242] * theta[86] + Y[243] * theta[87] + Y[244] * theta[88] + t28 * t34;
+  const double t35 = Y[245] * theta[50] + Y[246] * theta[51] + Y[247] * theta[52] + Y[248] * theta[53] + Y[249] * theta[54] + Y[250] * theta[55] + Y[251] * theta[56] + Y[252] * theta[57] + Y[253] * theta[60] + Y[254] * theta[61] + Y[255] * theta[62] + Y[256] * theta[63] + Y[257] * theta[64] + Y[258] * theta[65] + Y[259] * theta[66] + Y[260] * theta[67];
+  const double t36 = Y[262] * t35;
   const double t37 = static_cast<double>((t36 > 0.0) - (t36 < 0.0));
   const double t38 = 0.5 * t37;
   const double t39 = 1.0 / theta[93];
   const double t40 = 0.5 + t38;
   const double t41 = t39 * t40 - theta[93] * (t38 - 0.5);
-  tau_M[5] = Y[560] * theta[90] + Y[561] * theta[91] + Y[562] * theta[92] + t35 * t41;
-  J[5] = Y[5] * t6;  // ZZ1
-  for (int k = 0; k < 5; ++k) J[10 + k] = Y[10 + k] * t6;  // XX2 XY2 XZ2 YY2 YZ2
-  J[16] = Y[16] * t6;  // MX2
-  J[17] = Y[17] * t6;  // MY2
-  for (int k = 0; k < 6; ++k) J[19 + k] = Y[19 + k] * t6;  // M2 XX3 XY3 XZ3 YY3 YZ3
-  for (int k = 0; k < 44; ++k) J[26 + k] = Y[26 + k] * t6;  // MX3 MY3 MZ3 M3 XX4 XY4 XZ4 YY4 YZ4 ZZ4 MX4 MY4 MZ4 M4 XX5 XY5 XZ5 YY5 YZ5 ZZ5 MX5 MY5 MZ5 M5 XX6 XY6 XZ6 YY6 YZ6 ZZ6 MX6 MY6 MZ6 M6 XX7 XY7 XZ7 YY7 YZ7 ZZ7 MX7 MY7 MZ7 M7
-  J[70] = Y[70];  // JM1
-  J[71] = Y[71];  // Rv1
-  J[72] = Y[72];  // Rc1
+  tau_M[5] = Y[261] * theta[90] + Y[262] * theta[91] + Y[263] * theta[92] + t35 * t41;
+  J[5] = Y[0] * t6;  // ZZ1
+  for (int k = 0; k < 5; ++k) J[10 + k] = Y[1 + k] * t6;  // XX2 XY2 XZ2 YY2 YZ2
+  J[16] = Y[7] * t6;  // MX2
+  J[17] = Y[8] * t6;  // MY2
+  for (int k = 0; k < 6; ++k) J[19 + k] = Y[10 + k] * t6;  // M2 XX3 XY3 XZ3 YY3 YZ3
+  for (int k = 0; k < 44; ++k) J[26 + k] = Y[17 + k] * t6;  // MX3 MY3 MZ3 M3 XX4 XY4 XZ4 YY4 YZ4 ZZ4 MX4 MY4 MZ4 M4 XX5 XY5 XZ5 YY5 YZ5 ZZ5 MX5 MY5 MZ5 M5 XX6 XY6 XZ6 YY6 YZ6 ZZ6 MX6 MY6 MZ6 M6 XX7 XY7 XZ7 YY7 YZ7 ZZ7 MX7 MY7 MZ7 M7
+  J[70] = Y[61];  // JM1
+  J[71] = Y[62];  // Rv1
+  J[72] = Y[63];  // Rc1
   J[73] = -t0 * (t3 - 0.5 + t4 * t4 * t5);  // Rz1
-  for (int k = 0; k < 8; ++k) J[104 + k] = Y[104 + k] * t13;
-  for (int k = 0; k < 50; ++k) J[114 + k] = Y[114 + k] * t13;
-  J[168] = Y[168];
-  J[169] = Y[169];
-  J[170] = Y[170];
+  for (int k = 0; k < 8; ++k) J[104 + k] = Y[64 + k] * t13;
+  for (int k = 0; k < 50; ++k) J[114 + k] = Y[72 + k] * t13;
+  J[168] = Y[122];
+  J[169] = Y[123];
+  J[170] = Y[124];
   J[171] = -t7 * (t10 - 0.5 + t11 * t11 * t12);
-  for (int k = 0; k < 8; ++k) J[208 + k] = Y[208 + k] * t20;
-  for (int k = 0; k < 40; ++k) J[218 + k] = Y[218 + k] * t20;
-  J[266] = Y[266];
-  J[267] = Y[267];
-  J[268] = Y[268];
+  for (int k = 0; k < 8; ++k) J[208 + k] = Y[125 + k] * t20;
+  for (int k = 0; k < 40; ++k) J[218 + k] = Y[133 + k] * t20;
+  J[266] = Y[173];
+  J[267] = Y[174];
+  J[268] = Y[175];
   J[269] = -t14 * (t17 - 0.5 + t18 * t18 * t19);
-  for (int k = 0; k < 8; ++k) J[312 + k] = Y[312 + k] * t27;
-  for (int k = 0; k < 9; ++k) J[322 + k] = Y[322 + k] * t27;
-  for (int k = 0; k < 9; ++k) J[332 + k] = Y[332 + k] * t27;
-  for (int k = 0; k < 10; ++k) J[342 + k] = Y[342 + k] * t27;
-  J[364] = Y[364];
-  J[365] = Y[365];
-  J[366] = Y[366];
+  for (int k = 0; k < 8; ++k) J[312 + k] = Y[176 + k] * t27;
+  for (int k = 0; k < 9; ++k) J[322 + k] = Y[184 + k] * t27;
+  for (int k = 0; k < 9; ++k) J[332 + k] = Y[193 + k] * t27;
+  for (int k = 0; k < 10; ++k) J[342 + k] = Y[202 + k] * t27;
+  J[364] = Y[212];
+  J[365] = Y[213];
+  J[366] = Y[214];
   J[367] = -t21 * (t24 - 0.5 + t25 * t25 * t26);
-  for (int k = 0; k < 8; ++k) J[416 + k] = Y[416 + k] * t34;
-  for (int k = 0; k < 9; ++k) J[426 + k] = Y[426 + k] * t34;
-  for (int k = 0; k < 10; ++k) J[436 + k] = Y[436 + k] * t34;
-  J[462] = Y[462];
-  J[463] = Y[463];
-  J[464] = Y[464];
+  for (int k = 0; k < 8; ++k) J[416 + k] = Y[215 + k] * t34;
+  for (int k = 0; k < 9; ++k) J[426 + k] = Y[223 + k] * t34;
+  for (int k = 0; k < 10; ++k) J[436 + k] = Y[232 + k] * t34;
+  J[462] = Y[242];
+  J[463] = Y[243];
+  J[464] = Y[244];
   J[465] = -t28 * (t31 - 0.5 + t32 * t32 * t33);
-  for (int k = 0; k < 8; ++k) J[520 + k] = Y[520 + k] * t41;
-  for (int k = 0; k < 8; ++k) J[530 + k] = Y[530 + k] * t41;
-  J[560] = Y[560];
-  J[561] = Y[561];
-  J[562] = Y[562];
+  for (int k = 0; k < 8; ++k) J[520 + k] = Y[245 + k] * t41;
+  for (int k = 0; k < 8; ++k) J[530 + k] = Y[253 + k] * t41;
+  J[560] = Y[261];
+  J[561] = Y[262];
+  J[562] = Y[263];
   J[563] = -t35 * (t38 - 0.5 + t39 * t39 * t40);
 }
 
-// drive_torque_jacobian from the sample's drive regressor Y (kDof x kDriveParams, row-major,
-// as drive_regressor writes it for that sample's q, dq, ddq) instead of q, dq, ddq: tau_M
+// drive_torque_jacobian from the sample's packed drive regressor Y (kDriveRegressorEntries
+// values, as drive_regressor writes it for that sample's q, dq, ddq) instead of q, dq, ddq: tau_M
 // (kDof) and J = d tau_M / d theta (kDof x kDriveParams, row-major, J[i * kDriveParams + k])
 // for the parameters theta, with no Newton-Euler pass, for the iterations of a
 // maximum-likelihood fit (Swevers et al. 2002 eq. 18). The inertial columns of row i are c_i Y
 // (c_i the efficiency factor of eq. 8), those of JM, Rv, Rc of motor i are copied from Y. The
 // efficiency branch and the Coulomb friction sign count as constant, as in
-// drive_torque_jacobian. Reads only the entries of Y that drive_regressor does not leave
-// structurally zero; every Rz must be non-zero.
+// drive_torque_jacobian. Every Rz must be non-zero.
 // J: 267 of its 564 entries are written; the others are zero for every input
 // and never written (the manifest lists them under "unwritten"): zero J once before the
 // first call.
 void drive_torque_jacobian_given_regressor(const float* Y, const float* theta, float* tau_M,
                                            float* J) {
-  const float t0 = (Y[10] * theta[10] + Y[11] * theta[11] + Y[12] * theta[12] + Y[13] * theta[13] + Y[14] * theta[14] + Y[16] * theta[16] + Y[17] * theta[17] + Y[19] * theta[19] + Y[20] * theta[20] + Y[21] * theta[21] + Y[22] * theta[22] + Y[23] * theta[23] + Y[24] * theta[24] + Y[26] * theta[26] + Y[27] * theta[27]) + (Y[28] * theta[28] + Y[29] * theta[29] + Y[30] * theta[30] + Y[31] * theta[31] + Y[32] * theta[32] + Y[33] * theta[33] + Y[34] * theta[34] + Y[35] * theta[35] + Y[36] * theta[36] + Y[37] * theta[37] + Y[38] * theta[38] + Y[39] * theta[39] + Y[40] * theta[40] + Y[41] * theta[41] + Y[42] * theta[42]) + (Y[43] * theta[43] + Y[44] * theta[44] + Y[45] * theta[45] + Y[46] * theta[46] + Y[47] * theta[47] + Y[48] * theta[48] + Y[49] * theta[49] + Y[50] * theta[50] + Y[51] * theta[51] + Y[52] * theta[52] + Y[53] * theta[53] + Y[54] * theta[54] + Y[55] * theta[55] + Y[56] * theta[56] + Y[57] * theta[57]) + (Y[58] * theta[58] + Y[59] * theta[59] + Y[5] * theta[5] + Y[60] * theta[60] + Y[61] * theta[61] + Y[62] * theta[62] + Y[63] * theta[63] + Y[64] * theta[64] + Y[65] * theta[65] + Y[66] * theta[66] + Y[67] * theta[67] + Y[68] * theta[68] + Y[69] * theta[69]);
-  const float t1 = Y[71] * t0;
+  const float t0 = (Y[0] * theta[5] + Y[10] * theta[19] + Y[11] * theta[20] + Y[12] * theta[21] + Y[13] * theta[22] + Y[14] * theta[23] + Y[15] * theta[24] + Y[17] * theta[26] + Y[18] * theta[27] + Y[19] * theta[28] + Y[1] * theta[10] + Y[20] * theta[29] + Y[21] * theta[30] + Y[22] * theta[31] + Y[23] * theta[32]) + (Y[24] * theta[33] + Y[25] * theta[34] + Y[26] * theta[35] + Y[27] * theta[36] + Y[28] * theta[37] + Y[29] * theta[38] + Y[2] * theta[11] + Y[30] * theta[39] + Y[31] * theta[40] + Y[32] * theta[41] + Y[33] * theta[42] + Y[34] * theta[43] + Y[35] * theta[44] + Y[36] * theta[45] + Y[37] * theta[46]) + (Y[38] * theta[47] + Y[39] * theta[48] + Y[3] * theta[12] + Y[40] * theta[49] + Y[41] * theta[50] + Y[42] * theta[51] + Y[43] * theta[52] + Y[44] * theta[53] + Y[45] * theta[54] + Y[46] * theta[55] + Y[47] * theta[56] + Y[48] * theta[57] + Y[49] * theta[58] + Y[4] * theta[13] + Y[50] * theta[59]) + (Y[51] * theta[60] + Y[52] * theta[61] + Y[53] * theta[62] + Y[54] * theta[63] + Y[55] * theta[64] + Y[56] * theta[65] + Y[57] * theta[66] + Y[58] * theta[67] + Y[59] * theta[68] + Y[5] * theta[14] + Y[60] * theta[69] + Y[7] * theta[16] + Y[8] * theta[17]);
+  const float t1 = Y[62] * t0;
   const float t2 = static_cast<float>((t1 > 0.0f) - (t1 < 0.0f));
   const float t3 = 0.5f * t2;
   const float t4 = 1.0f / theta[73];
   const float t5 = 0.5f + t3;
   const float t6 = t4 * t5 - theta[73] * (t3 - 0.5f);
-  tau_M[0] = Y[70] * theta[70] + Y[71] * theta[71] + Y[72] * theta[72] + t0 * t6;
-  const float t7 = (Y[104] * theta[10] + Y[105] * theta[11] + Y[106] * theta[12] + Y[107] * theta[13] + Y[108] * theta[14] + Y[109] * theta[15] + Y[110] * theta[16] + Y[111] * theta[17] + Y[114] * theta[20] + Y[115] * theta[21] + Y[116] * theta[22] + Y[117] * theta[23] + Y[118] * theta[24] + Y[119] * theta[25] + Y[120] * theta[26]) + (Y[121] * theta[27] + Y[122] * theta[28] + Y[123] * theta[29] + Y[124] * theta[30] + Y[125] * theta[31] + Y[126] * theta[32] + Y[127] * theta[33] + Y[128] * theta[34] + Y[129] * theta[35] + Y[130] * theta[36] + Y[131] * theta[37] + Y[132] * theta[38] + Y[133] * theta[39] + Y[134] * theta[40] + Y[135] * theta[41]) + (Y[136] * theta[42] + Y[137] * theta[43] + Y[138] * theta[44] + Y[139] * theta[45] + Y[140] * theta[46] + Y[141] * theta[47] + Y[142] * theta[48] + Y[143] * theta[49] + Y[144] * theta[50] + Y[145] * theta[51] + Y[146] * theta[52] + Y[147] * theta[53] + Y[148] * theta[54] + Y[149] * theta[55] + Y[150] * theta[56]) + (Y[151] * theta[57] + Y[152] * theta[58] + Y[153] * theta[59] + Y[154] * theta[60] + Y[155] * theta[61] + Y[156] * theta[62] + Y[157] * theta[63] + Y[158] * theta[64] + Y[159] * theta[65] + Y[160] * theta[66] + Y[161] * theta[67] + Y[162] * theta[68] + Y[163] * theta[69]);
-  const float t8 = Y[169] * t7;
+  tau_M[0] = Y[61] * theta[70] + Y[62] * theta[71] + Y[63] * theta[72] + t0 * t6;
+  const float t7 = (Y[100] * theta[48] + Y[101] * theta[49] + Y[102] * theta[50] + Y[103] * theta[51] + Y[104] * theta[52] + Y[105] * theta[53] + Y[106] * theta[54] + Y[107] * theta[55] + Y[108] * theta[56] + Y[109] * theta[57] + Y[110] * theta[58] + Y[111] * theta[59] + Y[112] * theta[60] + Y[113] * theta[61] + Y[114] * theta[62]) + (Y[115] * theta[63] + Y[116] * theta[64] + Y[117] * theta[65] + Y[118] * theta[66] + Y[119] * theta[67] + Y[120] * theta[68] + Y[121] * theta[69] + Y[64] * theta[10] + Y[65] * theta[11] + Y[66] * theta[12] + Y[67] * theta[13] + Y[68] * theta[14] + Y[69] * theta[15] + Y[70] * theta[16] + Y[71] * theta[17]) + (Y[72] * theta[20] + Y[73] * theta[21] + Y[74] * theta[22] + Y[75] * theta[23] + Y[76] * theta[24] + Y[77] * theta[25] + Y[78] * theta[26] + Y[79] * theta[27] + Y[80] * theta[28] + Y[81] * theta[29] + Y[82] * theta[30] + Y[83] * theta[31] + Y[84] * theta[32] + Y[85] * theta[33] + Y[86] * theta[34]) + (Y[87] * theta[35] + Y[88] * theta[36] + Y[89] * theta[37] + Y[90] * theta[38] + Y[91] * theta[39] + Y[92] * theta[40] + Y[93] * theta[41] + Y[94] * theta[42] + Y[95] * theta[43] + Y[96] * theta[44] + Y[97] * theta[45] + Y[98] * theta[46] + Y[99] * theta[47]);
+  const float t8 = Y[123] * t7;
   const float t9 = static_cast<float>((t8 > 0.0f) - (t8 < 0.0f));
   const float t10 = 0.5f * t9;
   const float t11 = 1.0f / theta[77];
   const float t12 = 0.5f + t10;
   const float t13 = t11 * t12 - theta[77] * (t10 - 0.5f);
-  tau_M[1] = Y[168] * theta[74] + Y[169] * theta[75] + Y[170] * theta[76] + t7 * t13;
-  const float t14 = (Y[208] * theta[20] + Y[209] * theta[21] + Y[210] * theta[22] + Y[211] * theta[23] + Y[212] * theta[24] + Y[213] * theta[25] + Y[214] * theta[26] + Y[215] * theta[27] + Y[218] * theta[30] + Y[219] * theta[31] + Y[220] * theta[32] + Y[221] * theta[33]) + (Y[222] * theta[34] + Y[223] * theta[35] + Y[224] * theta[36] + Y[225] * theta[37] + Y[226] * theta[38] + Y[227] * theta[39] + Y[228] * theta[40] + Y[229] * theta[41] + Y[230] * theta[42] + Y[231] * theta[43] + Y[232] * theta[44] + Y[233] * theta[45]) + (Y[234] * theta[46] + Y[235] * theta[47] + Y[236] * theta[48] + Y[237] * theta[49] + Y[238] * theta[50] + Y[239] * theta[51] + Y[240] * theta[52] + Y[241] * theta[53] + Y[242] * theta[54] + Y[243] * theta[55] + Y[244] * theta[56] + Y[245] * theta[57]) + (Y[246] * theta[58] + Y[247] * theta[59] + Y[248] * theta[60] + Y[249] * theta[61] + Y[250] * theta[62] + Y[251] * theta[63] + Y[252] * theta[64] + Y[253] * theta[65] + Y[254] * theta[66] + Y[255] * theta[67] + Y[256] * theta[68] + Y[257] * theta[69]);
-  const float t15 = Y[267] * t14;
+  tau_M[1] = Y[122] * theta[74] + Y[123] * theta[75] + Y[124] * theta[76] + t7 * t13;
+  const float t14 = (Y[125] * theta[20] + Y[126] * theta[21] + Y[127] * theta[22] + Y[128] * theta[23] + Y[129] * theta[24] + Y[130] * theta[25] + Y[131] * theta[26] + Y[132] * theta[27] + Y[133] * theta[30] + Y[134] * theta[31] + Y[135] * theta[32] + Y[136] * theta[33]) + (Y[137] * theta[34] + Y[138] * theta[35] + Y[139] * theta[36] + Y[140] * theta[37] + Y[141] * theta[38] + Y[142] * theta[39] + Y[143] * theta[40] + Y[144] * theta[41] + Y[145] * theta[42] + Y[146] * theta[43] + Y[147] * theta[44] + Y[148] * theta[45]) + (Y[149] * theta[46] + Y[150] * theta[47] + Y[151] * theta[48] + Y[152] * theta[49] + Y[153] * theta[50] + Y[154] * theta[51] + Y[155] * theta[52] + Y[156] * theta[53] + Y[157] * theta[54] + Y[158] * theta[55] + Y[159] * theta[56] + Y[160] * theta[57]) + (Y[161] * theta[58] + Y[162] * theta[59] + Y[163] * theta[60] + Y[164] * theta[61] + Y[165] * theta[62] + Y[166] * theta[63] + Y[167] * theta[64] + Y[168] * theta[65] + Y[169] * theta[66] + Y[170] * theta[67] + Y[171] * theta[68] + Y[172] * theta[69]);
+  const float t15 = Y[174] * t14;
   const float t16 = static_cast<float>((t15 > 0.0f) - (t15 < 0.0f));
   const float t17 = 0.5f * t16;
   const float t18 = 1.0f / theta[81];
   const float t19 = 0.5f + t17;
   const float t20 = t18 * t19 - theta[81] * (t17 - 0.5f);
-  tau_M[2] = Y[266] * theta[78] + Y[267] * theta[79] + Y[268] * theta[80] + t14 * t20;
-  const float t21 = (Y[312] * theta[30] + Y[313] * theta[31] + Y[314] * theta[32] + Y[315] * theta[33] + Y[316] * theta[34] + Y[317] * theta[35] + Y[318] * theta[36] + Y[319] * theta[37] + Y[322] * theta[40]) + (Y[323] * theta[41] + Y[324] * theta[42] + Y[325] * theta[43] + Y[326] * theta[44] + Y[327] * theta[45] + Y[328] * theta[46] + Y[329] * theta[47] + Y[330] * theta[48] + Y[332] * theta[50]) + (Y[333] * theta[51] + Y[334] * theta[52] + Y[335] * theta[53] + Y[336] * theta[54] + Y[337] * theta[55] + Y[338] * theta[56] + Y[339] * theta[57] + Y[340] * theta[58] + Y[342] * theta[60]) + (Y[343] * theta[61] + Y[344] * theta[62] + Y[345] * theta[63] + Y[346] * theta[64] + Y[347] * theta[65] + Y[348] * theta[66] + Y[349] * theta[67] + Y[350] * theta[68] + Y[351] * theta[69]);
-  const float t22 = Y[365] * t21;
+  tau_M[2] = Y[173] * theta[78] + Y[174] * theta[79] + Y[175] * theta[80] + t14 * t20;
+  const float t21 = (Y[176] * theta[30] + Y[177] * theta[31] + Y[178] * theta[32] + Y[179] * theta[33] + Y[180] * theta[34] + Y[181] * theta[35] + Y[182] * theta[36] + Y[183] * theta[37] + Y[184] * theta[40]) + (Y[185] * theta[41] + Y[186] * theta[42] + Y[187] * theta[43] + Y[188] * theta[44] + Y[189] * theta[45] + Y[190] * theta[46] + Y[191] * theta[47] + Y[192] * theta[48] + Y[193] * theta[50]) + (Y[194] * theta[51] + Y[195] * theta[52] + Y[196] * theta[53] + Y[197] * theta[54] + Y[198] * theta[55] + Y[199] * theta[56] + Y[200] * theta[57] + Y[201] * theta[58] + Y[202] * theta[60]) + (Y[203] * theta[61] + Y[204] * theta[62] + Y[205] * theta[63] + Y[206] * theta[64] + Y[207] * theta[65] + Y[208] * theta[66] + Y[209] * theta[67] + Y[210] * theta[68] + Y[211] * theta[69]);
+  const float t22 = Y[213] * t21;
   const float t23 = static_cast<float>((t22 > 0.0f) - (t22 < 0.0f));
   const float t24 = 0.5f * t23;
   const float t25 = 1.0f / theta[85];
   const float t26 = 0.5f + t24;
   const float t27 = t25 * t26 - theta[85] * (t24 - 0.5f);
-  tau_M[3] = Y[364] * theta[82] + Y[365] * theta[83] + Y[366] * theta[84] + t21 * t27;
-  const float t28 = Y[416] * theta[40] + Y[417] * theta[41] + Y[418] * theta[42] + Y[419] * theta[43] + Y[420] * theta[44] + Y[421] * theta[45] + Y[422] * theta[46] + Y[423] * theta[47] + Y[426] * theta[50] + Y[427] * theta[51] + Y[428] * theta[52] + Y[429] * theta[53] + Y[430] * theta[54] + Y[431] * theta[55] + Y[432] * theta[56] + Y[433] * theta[57] + Y[434] * theta[58] + Y[436] * theta[60] + Y[437] * theta[61] + Y[438] * theta[62] + Y[439] * theta[63] + Y[440] * theta[64] + Y[441] * theta[65] + Y[442] * theta[66] + Y[443] * theta[67] + Y[444] * theta[68] + Y[445] * theta[69];
-  const float t29 = Y[463] * t28;
+  tau_M[3] = Y[212] * theta[82] + Y[213] * theta[83] + Y[214] * theta[84] + t21 * t27;
+  const float t28 = Y[215] * theta[40] + Y[216] * theta[41] + Y[217] * theta[42] + Y[218] * theta[43] + Y[219] * theta[44] + Y[220] * theta[45] + Y[221] * theta[46] + Y[222] * theta[47] + Y[223] * theta[50] + Y[224] * theta[51] + Y[225] * theta[52] + Y[226] * theta[53] + Y[227] * theta[54] + Y[228] * theta[55] + Y[229] * theta[56] + Y[230] * theta[57] + Y[231] * theta[58] + Y[232] * theta[60] + Y[233] * theta[61] + Y[234] * theta[62] + Y[235] * theta[63] + Y[236] * theta[64] + Y[237] * theta[65] + Y[238] * theta[66] + Y[239] * theta[67] + Y[240] * theta[68] + Y[241] * theta[69];
+  const float t29 = Y[243] * t28;
   const float t30 = static_cast<float>((t29 > 0.0f) - (t29 < 0.0f));
   const float t31 = 0.5f * t30;
   const float t32 = 1.0f / theta[89];
   const float t33 = 0.5f + t31;
   const float t34 = t32 * t33 - theta[89] * (t31 - 0.5f);
-  tau_M[4] = Y[462] * theta[86] + Y[463] * theta[87] + Y[464] * theta[88] + t28 * t34;
-  const float t35 = Y[520] * theta[50] + Y[521] * theta[51] + Y[522] * theta[52] + Y[523] * theta[53] + Y[524] * theta[54] + Y[525] * theta[55] + Y[526] * theta[56] + Y[527] * theta[57] + Y[530] * theta[60] + Y[531] * theta[61] + Y[532] * theta[62] + Y[533] * theta[63] + Y[534] * theta[64] + Y[535] * theta[65] + Y[536] * theta[66] + Y[537] * theta[67];
-  const float t36 = Y[561] * t35;
+  tau_M[4] = Y[242] * theta[86] + Y[243] * theta[87] + Y[244] * theta[88] + t28 * t34;
+  const float t35 = Y[245] * theta[50] + Y[246] * theta[51] + Y[247] * theta[52] + Y[248] * theta[53] + Y[249] * theta[54] + Y[250] * theta[55] + Y[251] * theta[56] + Y[252] * theta[57] + Y[253] * theta[60] + Y[254] * theta[61] + Y[255] * theta[62] + Y[256] * theta[63] + Y[257] * theta[64] + Y[258] * theta[65] + Y[259] * theta[66] + Y[260] * theta[67];
+  const float t36 = Y[262] * t35;
   const float t37 = static_cast<float>((t36 > 0.0f) - (t36 < 0.0f));
   const float t38 = 0.5f * t37;
   const float t39 = 1.0f / theta[93];
   const float t40 = 0.5f + t38;
   const float t41 = t39 * t40 - theta[93] * (t38 - 0.5f);
-  tau_M[5] = Y[560] * theta[90] + Y[561] * theta[91] + Y[562] * theta[92] + t35 * t41;
-  J[5] = Y[5] * t6;  // ZZ1
-  for (int k = 0; k < 5; ++k) J[10 + k] = Y[10 + k] * t6;  // XX2 XY2 XZ2 YY2 YZ2
-  J[16] = Y[16] * t6;  // MX2
-  J[17] = Y[17] * t6;  // MY2
-  for (int k = 0; k < 6; ++k) J[19 + k] = Y[19 + k] * t6;  // M2 XX3 XY3 XZ3 YY3 YZ3
-  for (int k = 0; k < 44; ++k) J[26 + k] = Y[26 + k] * t6;  // MX3 MY3 MZ3 M3 XX4 XY4 XZ4 YY4 YZ4 ZZ4 MX4 MY4 MZ4 M4 XX5 XY5 XZ5 YY5 YZ5 ZZ5 MX5 MY5 MZ5 M5 XX6 XY6 XZ6 YY6 YZ6 ZZ6 MX6 MY6 MZ6 M6 XX7 XY7 XZ7 YY7 YZ7 ZZ7 MX7 MY7 MZ7 M7
-  J[70] = Y[70];  // JM1
-  J[71] = Y[71];  // Rv1
-  J[72] = Y[72];  // Rc1
+  tau_M[5] = Y[261] * theta[90] + Y[262] * theta[91] + Y[263] * theta[92] + t35 * t41;
+  J[5] = Y[0] * t6;  // ZZ1
+  for (int k = 0; k < 5; ++k) J[10 + k] = Y[1 + k] * t6;  // XX2 XY2 XZ2 YY2 YZ2
+  J[16] = Y[7] * t6;  // MX2
+  J[17] = Y[8] * t6;  // MY2
+  for (int k = 0; k < 6; ++k) J[19 + k] = Y[10 + k] * t6;  // M2 XX3 XY3 XZ3 YY3 YZ3
+  for (int k = 0; k < 44; ++k) J[26 + k] = Y[17 + k] * t6;  // MX3 MY3 MZ3 M3 XX4 XY4 XZ4 YY4 YZ4 ZZ4 MX4 MY4 MZ4 M4 XX5 XY5 XZ5 YY5 YZ5 ZZ5 MX5 MY5 MZ5 M5 XX6 XY6 XZ6 YY6 YZ6 ZZ6 MX6 MY6 MZ6 M6 XX7 XY7 XZ7 YY7 YZ7 ZZ7 MX7 MY7 MZ7 M7
+  J[70] = Y[61];  // JM1
+  J[71] = Y[62];  // Rv1
+  J[72] = Y[63];  // Rc1
   J[73] = -t0 * (t3 - 0.5f + t4 * t4 * t5);  // Rz1
-  for (int k = 0; k < 8; ++k) J[104 + k] = Y[104 + k] * t13;
-  for (int k = 0; k < 50; ++k) J[114 + k] = Y[114 + k] * t13;
-  J[168] = Y[168];
-  J[169] = Y[169];
-  J[170] = Y[170];
+  for (int k = 0; k < 8; ++k) J[104 + k] = Y[64 + k] * t13;
+  for (int k = 0; k < 50; ++k) J[114 + k] = Y[72 + k] * t13;
+  J[168] = Y[122];
+  J[169] = Y[123];
+  J[170] = Y[124];
   J[171] = -t7 * (t10 - 0.5f + t11 * t11 * t12);
-  for (int k = 0; k < 8; ++k) J[208 + k] = Y[208 + k] * t20;
-  for (int k = 0; k < 40; ++k) J[218 + k] = Y[218 + k] * t20;
-  J[266] = Y[266];
-  J[267] = Y[267];
-  J[268] = Y[268];
+  for (int k = 0; k < 8; ++k) J[208 + k] = Y[125 + k] * t20;
+  for (int k = 0; k < 40; ++k) J[218 + k] = Y[133 + k] * t20;
+  J[266] = Y[173];
+  J[267] = Y[174];
+  J[268] = Y[175];
   J[269] = -t14 * (t17 - 0.5f + t18 * t18 * t19);
-  for (int k = 0; k < 8; ++k) J[312 + k] = Y[312 + k] * t27;
-  for (int k = 0; k < 9; ++k) J[322 + k] = Y[322 + k] * t27;
-  for (int k = 0; k < 9; ++k) J[332 + k] = Y[332 + k] * t27;
-  for (int k = 0; k < 10; ++k) J[342 + k] = Y[342 + k] * t27;
-  J[364] = Y[364];
-  J[365] = Y[365];
-  J[366] = Y[366];
+  for (int k = 0; k < 8; ++k) J[312 + k] = Y[176 + k] * t27;
+  for (int k = 0; k < 9; ++k) J[322 + k] = Y[184 + k] * t27;
+  for (int k = 0; k < 9; ++k) J[332 + k] = Y[193 + k] * t27;
+  for (int k = 0; k < 10; ++k) J[342 + k] = Y[202 + k] * t27;
+  J[364] = Y[212];
+  J[365] = Y[213];
+  J[366] = Y[214];
   J[367] = -t21 * (t24 - 0.5f + t25 * t25 * t26);
-  for (int k = 0; k < 8; ++k) J[416 + k] = Y[416 + k] * t34;
-  for (int k = 0; k < 9; ++k) J[426 + k] = Y[426 + k] * t34;
-  for (int k = 0; k < 10; ++k) J[436 + k] = Y[436 + k] * t34;
-  J[462] = Y[462];
-  J[463] = Y[463];
-  J[464] = Y[464];
+  for (int k = 0; k < 8; ++k) J[416 + k] = Y[215 + k] * t34;
+  for (int k = 0; k < 9; ++k) J[426 + k] = Y[223 + k] * t34;
+  for (int k = 0; k < 10; ++k) J[436 + k] = Y[232 + k] * t34;
+  J[462] = Y[242];
+  J[463] = Y[243];
+  J[464] = Y[244];
   J[465] = -t28 * (t31 - 0.5f + t32 * t32 * t33);
-  for (int k = 0; k < 8; ++k) J[520 + k] = Y[520 + k] * t41;
-  for (int k = 0; k < 8; ++k) J[530 + k] = Y[530 + k] * t41;
-  J[560] = Y[560];
-  J[561] = Y[561];
-  J[562] = Y[562];
+  for (int k = 0; k < 8; ++k) J[520 + k] = Y[245 + k] * t41;
+  for (int k = 0; k < 8; ++k) J[530 + k] = Y[253 + k] * t41;
+  J[560] = Y[261];
+  J[561] = Y[262];
+  J[562] = Y[263];
   J[563] = -t35 * (t38 - 0.5f + t39 * t39 * t40);
 }
 

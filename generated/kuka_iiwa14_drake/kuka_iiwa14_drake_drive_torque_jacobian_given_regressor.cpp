@@ -10,235 +10,233 @@
 namespace modelgen {
 namespace iiwa14 {
 
-// drive_torque_jacobian from the sample's drive regressor Y (kDof x kDriveParams, row-major,
-// as drive_regressor writes it for that sample's q, dq, ddq) instead of q, dq, ddq: tau_M
+// drive_torque_jacobian from the sample's packed drive regressor Y (kDriveRegressorEntries
+// values, as drive_regressor writes it for that sample's q, dq, ddq) instead of q, dq, ddq: tau_M
 // (kDof) and J = d tau_M / d theta (kDof x kDriveParams, row-major, J[i * kDriveParams + k])
 // for the parameters theta, with no Newton-Euler pass, for the iterations of a
 // maximum-likelihood fit (Swevers et al. 2002 eq. 18). The inertial columns of row i are c_i Y
 // (c_i the efficiency factor of eq. 8), those of JM, Rv, Rc of motor i are copied from Y. The
 // efficiency branch and the Coulomb friction sign count as constant, as in
-// drive_torque_jacobian. Reads only the entries of Y that drive_regressor does not leave
-// structurally zero; every Rz must be non-zero.
+// drive_torque_jacobian. Every Rz must be non-zero.
 // J: 280 of its 686 entries are written; the others are zero for every input
 // and never written (the manifest lists them under "unwritten"): zero J once before the
 // first call.
 void drive_torque_jacobian_given_regressor(const double* Y, const double* theta, double* tau_M,
                                            double* J) {
-  const double t0 = (Y[10] * theta[10] + Y[11] * theta[11] + Y[12] * theta[12] + Y[13] * theta[13] + Y[14] * theta[14] + Y[20] * theta[20] + Y[21] * theta[21] + Y[22] * theta[22] + Y[23] * theta[23] + Y[24] * theta[24] + Y[25] * theta[25] + Y[26] * theta[26] + Y[27] * theta[27] + Y[28] * theta[28]) + (Y[29] * theta[29] + Y[30] * theta[30] + Y[31] * theta[31] + Y[32] * theta[32] + Y[33] * theta[33] + Y[34] * theta[34] + Y[35] * theta[35] + Y[36] * theta[36] + Y[37] * theta[37] + Y[38] * theta[38] + Y[39] * theta[39] + Y[40] * theta[40] + Y[41] * theta[41] + Y[42] * theta[42]) + (Y[43] * theta[43] + Y[44] * theta[44] + Y[45] * theta[45] + Y[46] * theta[46] + Y[47] * theta[47] + Y[48] * theta[48] + Y[49] * theta[49] + Y[50] * theta[50] + Y[51] * theta[51] + Y[52] * theta[52] + Y[53] * theta[53] + Y[54] * theta[54] + Y[55] * theta[55] + Y[56] * theta[56]) + (Y[57] * theta[57] + Y[58] * theta[58] + Y[59] * theta[59] + Y[5] * theta[5] + Y[60] * theta[60] + Y[61] * theta[61] + Y[62] * theta[62] + Y[63] * theta[63] + Y[64] * theta[64] + Y[65] * theta[65] + Y[66] * theta[66] + Y[67] * theta[67] + Y[68] * theta[68] + Y[69] * theta[69]);
-  const double t1 = Y[71] * t0;
+  const double t0 = (Y[0] * theta[5] + Y[10] * theta[23] + Y[11] * theta[24] + Y[12] * theta[25] + Y[13] * theta[26] + Y[14] * theta[27] + Y[15] * theta[28] + Y[16] * theta[29] + Y[17] * theta[30] + Y[18] * theta[31] + Y[19] * theta[32] + Y[1] * theta[10] + Y[20] * theta[33] + Y[21] * theta[34]) + (Y[22] * theta[35] + Y[23] * theta[36] + Y[24] * theta[37] + Y[25] * theta[38] + Y[26] * theta[39] + Y[27] * theta[40] + Y[28] * theta[41] + Y[29] * theta[42] + Y[2] * theta[11] + Y[30] * theta[43] + Y[31] * theta[44] + Y[32] * theta[45] + Y[33] * theta[46] + Y[34] * theta[47]) + (Y[35] * theta[48] + Y[36] * theta[49] + Y[37] * theta[50] + Y[38] * theta[51] + Y[39] * theta[52] + Y[3] * theta[12] + Y[40] * theta[53] + Y[41] * theta[54] + Y[42] * theta[55] + Y[43] * theta[56] + Y[44] * theta[57] + Y[45] * theta[58] + Y[46] * theta[59] + Y[47] * theta[60]) + (Y[48] * theta[61] + Y[49] * theta[62] + Y[4] * theta[13] + Y[50] * theta[63] + Y[51] * theta[64] + Y[52] * theta[65] + Y[53] * theta[66] + Y[54] * theta[67] + Y[55] * theta[68] + Y[56] * theta[69] + Y[5] * theta[14] + Y[7] * theta[20] + Y[8] * theta[21] + Y[9] * theta[22]);
+  const double t1 = Y[58] * t0;
   const double t2 = static_cast<double>((t1 > 0.0) - (t1 < 0.0));
   const double t3 = 0.5 * t2;
   const double t4 = 1.0 / theta[73];
   const double t5 = 0.5 + t3;
   const double t6 = t4 * t5 - theta[73] * (t3 - 0.5);
-  tau_M[0] = Y[70] * theta[70] + Y[71] * theta[71] + Y[72] * theta[72] + t0 * t6;
-  const double t7 = (Y[108] * theta[10] + Y[109] * theta[11] + Y[110] * theta[12] + Y[111] * theta[13] + Y[112] * theta[14] + Y[113] * theta[15] + Y[114] * theta[16] + Y[115] * theta[17] + Y[118] * theta[20] + Y[119] * theta[21] + Y[120] * theta[22] + Y[121] * theta[23] + Y[122] * theta[24] + Y[123] * theta[25] + Y[124] * theta[26]) + (Y[125] * theta[27] + Y[126] * theta[28] + Y[127] * theta[29] + Y[128] * theta[30] + Y[129] * theta[31] + Y[130] * theta[32] + Y[131] * theta[33] + Y[132] * theta[34] + Y[133] * theta[35] + Y[134] * theta[36] + Y[135] * theta[37] + Y[136] * theta[38] + Y[137] * theta[39] + Y[138] * theta[40] + Y[139] * theta[41]) + (Y[140] * theta[42] + Y[141] * theta[43] + Y[142] * theta[44] + Y[143] * theta[45] + Y[144] * theta[46] + Y[145] * theta[47] + Y[146] * theta[48] + Y[147] * theta[49] + Y[148] * theta[50] + Y[149] * theta[51] + Y[150] * theta[52] + Y[151] * theta[53] + Y[152] * theta[54] + Y[153] * theta[55] + Y[154] * theta[56]) + (Y[155] * theta[57] + Y[156] * theta[58] + Y[157] * theta[59] + Y[158] * theta[60] + Y[159] * theta[61] + Y[160] * theta[62] + Y[161] * theta[63] + Y[162] * theta[64] + Y[163] * theta[65] + Y[164] * theta[66] + Y[165] * theta[67] + Y[166] * theta[68] + Y[167] * theta[69]);
-  const double t8 = Y[173] * t7;
+  tau_M[0] = Y[57] * theta[70] + Y[58] * theta[71] + Y[59] * theta[72] + t0 * t6;
+  const double t7 = (Y[100] * theta[52] + Y[101] * theta[53] + Y[102] * theta[54] + Y[103] * theta[55] + Y[104] * theta[56] + Y[105] * theta[57] + Y[106] * theta[58] + Y[107] * theta[59] + Y[108] * theta[60] + Y[109] * theta[61] + Y[110] * theta[62] + Y[111] * theta[63] + Y[112] * theta[64] + Y[113] * theta[65] + Y[114] * theta[66]) + (Y[115] * theta[67] + Y[116] * theta[68] + Y[117] * theta[69] + Y[60] * theta[10] + Y[61] * theta[11] + Y[62] * theta[12] + Y[63] * theta[13] + Y[64] * theta[14] + Y[65] * theta[15] + Y[66] * theta[16] + Y[67] * theta[17] + Y[68] * theta[20] + Y[69] * theta[21] + Y[70] * theta[22] + Y[71] * theta[23]) + (Y[72] * theta[24] + Y[73] * theta[25] + Y[74] * theta[26] + Y[75] * theta[27] + Y[76] * theta[28] + Y[77] * theta[29] + Y[78] * theta[30] + Y[79] * theta[31] + Y[80] * theta[32] + Y[81] * theta[33] + Y[82] * theta[34] + Y[83] * theta[35] + Y[84] * theta[36] + Y[85] * theta[37] + Y[86] * theta[38]) + (Y[87] * theta[39] + Y[88] * theta[40] + Y[89] * theta[41] + Y[90] * theta[42] + Y[91] * theta[43] + Y[92] * theta[44] + Y[93] * theta[45] + Y[94] * theta[46] + Y[95] * theta[47] + Y[96] * theta[48] + Y[97] * theta[49] + Y[98] * theta[50] + Y[99] * theta[51]);
+  const double t8 = Y[119] * t7;
   const double t9 = static_cast<double>((t8 > 0.0) - (t8 < 0.0));
   const double t10 = 0.5 * t9;
   const double t11 = 1.0 / theta[77];
   const double t12 = 0.5 + t10;
   const double t13 = t11 * t12 - theta[77] * (t10 - 0.5);
-  tau_M[1] = Y[172] * theta[74] + Y[173] * theta[75] + Y[174] * theta[76] + t7 * t13;
-  const double t14 = (Y[216] * theta[20] + Y[217] * theta[21] + Y[218] * theta[22] + Y[219] * theta[23] + Y[220] * theta[24] + Y[221] * theta[25] + Y[222] * theta[26] + Y[223] * theta[27] + Y[226] * theta[30] + Y[227] * theta[31] + Y[228] * theta[32] + Y[229] * theta[33]) + (Y[230] * theta[34] + Y[231] * theta[35] + Y[232] * theta[36] + Y[233] * theta[37] + Y[234] * theta[38] + Y[236] * theta[40] + Y[237] * theta[41] + Y[238] * theta[42] + Y[239] * theta[43] + Y[240] * theta[44] + Y[241] * theta[45] + Y[242] * theta[46]) + (Y[243] * theta[47] + Y[244] * theta[48] + Y[245] * theta[49] + Y[246] * theta[50] + Y[247] * theta[51] + Y[248] * theta[52] + Y[249] * theta[53] + Y[250] * theta[54] + Y[251] * theta[55] + Y[252] * theta[56] + Y[253] * theta[57] + Y[254] * theta[58]) + (Y[255] * theta[59] + Y[256] * theta[60] + Y[257] * theta[61] + Y[258] * theta[62] + Y[259] * theta[63] + Y[260] * theta[64] + Y[261] * theta[65] + Y[262] * theta[66] + Y[263] * theta[67] + Y[264] * theta[68] + Y[265] * theta[69]);
-  const double t15 = Y[275] * t14;
+  tau_M[1] = Y[118] * theta[74] + Y[119] * theta[75] + Y[120] * theta[76] + t7 * t13;
+  const double t14 = (Y[121] * theta[20] + Y[122] * theta[21] + Y[123] * theta[22] + Y[124] * theta[23] + Y[125] * theta[24] + Y[126] * theta[25] + Y[127] * theta[26] + Y[128] * theta[27] + Y[129] * theta[30] + Y[130] * theta[31] + Y[131] * theta[32] + Y[132] * theta[33]) + (Y[133] * theta[34] + Y[134] * theta[35] + Y[135] * theta[36] + Y[136] * theta[37] + Y[137] * theta[38] + Y[138] * theta[40] + Y[139] * theta[41] + Y[140] * theta[42] + Y[141] * theta[43] + Y[142] * theta[44] + Y[143] * theta[45] + Y[144] * theta[46]) + (Y[145] * theta[47] + Y[146] * theta[48] + Y[147] * theta[49] + Y[148] * theta[50] + Y[149] * theta[51] + Y[150] * theta[52] + Y[151] * theta[53] + Y[152] * theta[54] + Y[153] * theta[55] + Y[154] * theta[56] + Y[155] * theta[57] + Y[156] * theta[58]) + (Y[157] * theta[59] + Y[158] * theta[60] + Y[159] * theta[61] + Y[160] * theta[62] + Y[161] * theta[63] + Y[162] * theta[64] + Y[163] * theta[65] + Y[164] * theta[66] + Y[165] * theta[67] + Y[166] * theta[68] + Y[167] * theta[69]);
+  const double t15 = Y[169] * t14;
   const double t16 = static_cast<double>((t15 > 0.0) - (t15 < 0.0));
   const double t17 = 0.5 * t16;
   const double t18 = 1.0 / theta[81];
   const double t19 = 0.5 + t17;
   const double t20 = t18 * t19 - theta[81] * (t17 - 0.5);
-  tau_M[2] = Y[274] * theta[78] + Y[275] * theta[79] + Y[276] * theta[80] + t14 * t20;
-  const double t21 = (Y[324] * theta[30] + Y[325] * theta[31] + Y[326] * theta[32] + Y[327] * theta[33] + Y[328] * theta[34] + Y[329] * theta[35] + Y[330] * theta[36] + Y[331] * theta[37] + Y[334] * theta[40] + Y[335] * theta[41]) + (Y[336] * theta[42] + Y[337] * theta[43] + Y[338] * theta[44] + Y[339] * theta[45] + Y[340] * theta[46] + Y[341] * theta[47] + Y[342] * theta[48] + Y[343] * theta[49] + Y[344] * theta[50] + Y[345] * theta[51]) + (Y[346] * theta[52] + Y[347] * theta[53] + Y[348] * theta[54] + Y[349] * theta[55] + Y[350] * theta[56] + Y[351] * theta[57] + Y[352] * theta[58] + Y[353] * theta[59] + Y[354] * theta[60] + Y[355] * theta[61]) + (Y[356] * theta[62] + Y[357] * theta[63] + Y[358] * theta[64] + Y[359] * theta[65] + Y[360] * theta[66] + Y[361] * theta[67] + Y[362] * theta[68] + Y[363] * theta[69]);
-  const double t22 = Y[377] * t21;
+  tau_M[2] = Y[168] * theta[78] + Y[169] * theta[79] + Y[170] * theta[80] + t14 * t20;
+  const double t21 = (Y[171] * theta[30] + Y[172] * theta[31] + Y[173] * theta[32] + Y[174] * theta[33] + Y[175] * theta[34] + Y[176] * theta[35] + Y[177] * theta[36] + Y[178] * theta[37] + Y[179] * theta[40] + Y[180] * theta[41]) + (Y[181] * theta[42] + Y[182] * theta[43] + Y[183] * theta[44] + Y[184] * theta[45] + Y[185] * theta[46] + Y[186] * theta[47] + Y[187] * theta[48] + Y[188] * theta[49] + Y[189] * theta[50] + Y[190] * theta[51]) + (Y[191] * theta[52] + Y[192] * theta[53] + Y[193] * theta[54] + Y[194] * theta[55] + Y[195] * theta[56] + Y[196] * theta[57] + Y[197] * theta[58] + Y[198] * theta[59] + Y[199] * theta[60] + Y[200] * theta[61]) + (Y[201] * theta[62] + Y[202] * theta[63] + Y[203] * theta[64] + Y[204] * theta[65] + Y[205] * theta[66] + Y[206] * theta[67] + Y[207] * theta[68] + Y[208] * theta[69]);
+  const double t22 = Y[210] * t21;
   const double t23 = static_cast<double>((t22 > 0.0) - (t22 < 0.0));
   const double t24 = 0.5 * t23;
   const double t25 = 1.0 / theta[85];
   const double t26 = 0.5 + t24;
   const double t27 = t25 * t26 - theta[85] * (t24 - 0.5);
-  tau_M[3] = Y[376] * theta[82] + Y[377] * theta[83] + Y[378] * theta[84] + t21 * t27;
-  const double t28 = Y[432] * theta[40] + Y[433] * theta[41] + Y[434] * theta[42] + Y[435] * theta[43] + Y[436] * theta[44] + Y[437] * theta[45] + Y[438] * theta[46] + Y[439] * theta[47] + Y[442] * theta[50] + Y[443] * theta[51] + Y[444] * theta[52] + Y[445] * theta[53] + Y[446] * theta[54] + Y[447] * theta[55] + Y[448] * theta[56] + Y[449] * theta[57] + Y[450] * theta[58] + Y[452] * theta[60] + Y[453] * theta[61] + Y[454] * theta[62] + Y[455] * theta[63] + Y[456] * theta[64] + Y[457] * theta[65] + Y[458] * theta[66] + Y[459] * theta[67] + Y[460] * theta[68] + Y[461] * theta[69];
-  const double t29 = Y[479] * t28;
+  tau_M[3] = Y[209] * theta[82] + Y[210] * theta[83] + Y[211] * theta[84] + t21 * t27;
+  const double t28 = Y[212] * theta[40] + Y[213] * theta[41] + Y[214] * theta[42] + Y[215] * theta[43] + Y[216] * theta[44] + Y[217] * theta[45] + Y[218] * theta[46] + Y[219] * theta[47] + Y[220] * theta[50] + Y[221] * theta[51] + Y[222] * theta[52] + Y[223] * theta[53] + Y[224] * theta[54] + Y[225] * theta[55] + Y[226] * theta[56] + Y[227] * theta[57] + Y[228] * theta[58] + Y[229] * theta[60] + Y[230] * theta[61] + Y[231] * theta[62] + Y[232] * theta[63] + Y[233] * theta[64] + Y[234] * theta[65] + Y[235] * theta[66] + Y[236] * theta[67] + Y[237] * theta[68] + Y[238] * theta[69];
+  const double t29 = Y[240] * t28;
   const double t30 = static_cast<double>((t29 > 0.0) - (t29 < 0.0));
   const double t31 = 0.5 * t30;
   const double t32 = 1.0 / theta[89];
   const double t33 = 0.5 + t31;
   const double t34 = t32 * t33 - theta[89] * (t31 - 0.5);
-  tau_M[4] = Y[478] * theta[86] + Y[479] * theta[87] + Y[480] * theta[88] + t28 * t34;
-  const double t35 = Y[540] * theta[50] + Y[541] * theta[51] + Y[542] * theta[52] + Y[543] * theta[53] + Y[544] * theta[54] + Y[545] * theta[55] + Y[546] * theta[56] + Y[547] * theta[57] + Y[550] * theta[60] + Y[551] * theta[61] + Y[552] * theta[62] + Y[553] * theta[63] + Y[554] * theta[64] + Y[555] * theta[65] + Y[556] * theta[66] + Y[557] * theta[67] + Y[558] * theta[68] + Y[559] * theta[69];
-  const double t36 = Y[581] * t35;
+  tau_M[4] = Y[239] * theta[86] + Y[240] * theta[87] + Y[241] * theta[88] + t28 * t34;
+  const double t35 = Y[242] * theta[50] + Y[243] * theta[51] + Y[244] * theta[52] + Y[245] * theta[53] + Y[246] * theta[54] + Y[247] * theta[55] + Y[248] * theta[56] + Y[249] * theta[57] + Y[250] * theta[60] + Y[251] * theta[61] + Y[252] * theta[62] + Y[253] * theta[63] + Y[254] * theta[64] + Y[255] * theta[65] + Y[256] * theta[66] + Y[257] * theta[67] + Y[258] * theta[68] + Y[259] * theta[69];
+  const double t36 = Y[261] * t35;
   const double t37 = static_cast<double>((t36 > 0.0) - (t36 < 0.0));
   const double t38 = 0.5 * t37;
   const double t39 = 1.0 / theta[93];
   const double t40 = 0.5 + t38;
   const double t41 = t39 * t40 - theta[93] * (t38 - 0.5);
-  tau_M[5] = Y[580] * theta[90] + Y[581] * theta[91] + Y[582] * theta[92] + t35 * t41;
-  const double t42 = Y[648] * theta[60] + Y[649] * theta[61] + Y[650] * theta[62] + Y[651] * theta[63] + Y[652] * theta[64] + Y[653] * theta[65] + Y[654] * theta[66] + Y[655] * theta[67];
-  const double t43 = Y[683] * t42;
+  tau_M[5] = Y[260] * theta[90] + Y[261] * theta[91] + Y[262] * theta[92] + t35 * t41;
+  const double t42 = Y[263] * theta[60] + Y[264] * theta[61] + Y[265] * theta[62] + Y[266] * theta[63] + Y[267] * theta[64] + Y[268] * theta[65] + Y[269] * theta[66] + Y[270] * theta[67];
+  const double t43 = Y[272] * t42;
   const double t44 = static_cast<double>((t43 > 0.0) - (t43 < 0.0));
   const double t45 = 0.5 * t44;
   const double t46 = 1.0 / theta[97];
   const double t47 = 0.5 + t45;
   const double t48 = t46 * t47 - theta[97] * (t45 - 0.5);
-  tau_M[6] = Y[682] * theta[94] + Y[683] * theta[95] + Y[684] * theta[96] + t42 * t48;
-  J[5] = Y[5] * t6;  // ZZ1
-  for (int k = 0; k < 5; ++k) J[10 + k] = Y[10 + k] * t6;  // XX2 XY2 XZ2 YY2 YZ2
-  for (int k = 0; k < 50; ++k) J[20 + k] = Y[20 + k] * t6;  // XX3 XY3 XZ3 YY3 YZ3 ZZ3 MX3 MY3 MZ3 M3 XX4 XY4 XZ4 YY4 YZ4 ZZ4 MX4 MY4 MZ4 M4 XX5 XY5 XZ5 YY5 YZ5 ZZ5 MX5 MY5 MZ5 M5 XX6 XY6 XZ6 YY6 YZ6 ZZ6 MX6 MY6 MZ6 M6 XX7 XY7 XZ7 YY7 YZ7 ZZ7 MX7 MY7 MZ7 M7
-  J[70] = Y[70];  // JM1
-  J[71] = Y[71];  // Rv1
-  J[72] = Y[72];  // Rc1
+  tau_M[6] = Y[271] * theta[94] + Y[272] * theta[95] + Y[273] * theta[96] + t42 * t48;
+  J[5] = Y[0] * t6;  // ZZ1
+  for (int k = 0; k < 5; ++k) J[10 + k] = Y[1 + k] * t6;  // XX2 XY2 XZ2 YY2 YZ2
+  for (int k = 0; k < 50; ++k) J[20 + k] = Y[7 + k] * t6;  // XX3 XY3 XZ3 YY3 YZ3 ZZ3 MX3 MY3 MZ3 M3 XX4 XY4 XZ4 YY4 YZ4 ZZ4 MX4 MY4 MZ4 M4 XX5 XY5 XZ5 YY5 YZ5 ZZ5 MX5 MY5 MZ5 M5 XX6 XY6 XZ6 YY6 YZ6 ZZ6 MX6 MY6 MZ6 M6 XX7 XY7 XZ7 YY7 YZ7 ZZ7 MX7 MY7 MZ7 M7
+  J[70] = Y[57];  // JM1
+  J[71] = Y[58];  // Rv1
+  J[72] = Y[59];  // Rc1
   J[73] = -t0 * (t3 - 0.5 + t4 * t4 * t5);  // Rz1
-  for (int k = 0; k < 8; ++k) J[108 + k] = Y[108 + k] * t13;
-  for (int k = 0; k < 50; ++k) J[118 + k] = Y[118 + k] * t13;
-  J[172] = Y[172];
-  J[173] = Y[173];
-  J[174] = Y[174];
+  for (int k = 0; k < 8; ++k) J[108 + k] = Y[60 + k] * t13;
+  for (int k = 0; k < 50; ++k) J[118 + k] = Y[68 + k] * t13;
+  J[172] = Y[118];
+  J[173] = Y[119];
+  J[174] = Y[120];
   J[175] = -t7 * (t10 - 0.5 + t11 * t11 * t12);
-  for (int k = 0; k < 8; ++k) J[216 + k] = Y[216 + k] * t20;
-  for (int k = 0; k < 9; ++k) J[226 + k] = Y[226 + k] * t20;
-  for (int k = 0; k < 30; ++k) J[236 + k] = Y[236 + k] * t20;
-  J[274] = Y[274];
-  J[275] = Y[275];
-  J[276] = Y[276];
+  for (int k = 0; k < 8; ++k) J[216 + k] = Y[121 + k] * t20;
+  for (int k = 0; k < 9; ++k) J[226 + k] = Y[129 + k] * t20;
+  for (int k = 0; k < 30; ++k) J[236 + k] = Y[138 + k] * t20;
+  J[274] = Y[168];
+  J[275] = Y[169];
+  J[276] = Y[170];
   J[277] = -t14 * (t17 - 0.5 + t18 * t18 * t19);
-  for (int k = 0; k < 8; ++k) J[324 + k] = Y[324 + k] * t27;
-  for (int k = 0; k < 30; ++k) J[334 + k] = Y[334 + k] * t27;
-  J[376] = Y[376];
-  J[377] = Y[377];
-  J[378] = Y[378];
+  for (int k = 0; k < 8; ++k) J[324 + k] = Y[171 + k] * t27;
+  for (int k = 0; k < 30; ++k) J[334 + k] = Y[179 + k] * t27;
+  J[376] = Y[209];
+  J[377] = Y[210];
+  J[378] = Y[211];
   J[379] = -t21 * (t24 - 0.5 + t25 * t25 * t26);
-  for (int k = 0; k < 8; ++k) J[432 + k] = Y[432 + k] * t34;
-  for (int k = 0; k < 9; ++k) J[442 + k] = Y[442 + k] * t34;
-  for (int k = 0; k < 10; ++k) J[452 + k] = Y[452 + k] * t34;
-  J[478] = Y[478];
-  J[479] = Y[479];
-  J[480] = Y[480];
+  for (int k = 0; k < 8; ++k) J[432 + k] = Y[212 + k] * t34;
+  for (int k = 0; k < 9; ++k) J[442 + k] = Y[220 + k] * t34;
+  for (int k = 0; k < 10; ++k) J[452 + k] = Y[229 + k] * t34;
+  J[478] = Y[239];
+  J[479] = Y[240];
+  J[480] = Y[241];
   J[481] = -t28 * (t31 - 0.5 + t32 * t32 * t33);
-  for (int k = 0; k < 8; ++k) J[540 + k] = Y[540 + k] * t41;
-  for (int k = 0; k < 10; ++k) J[550 + k] = Y[550 + k] * t41;
-  J[580] = Y[580];
-  J[581] = Y[581];
-  J[582] = Y[582];
+  for (int k = 0; k < 8; ++k) J[540 + k] = Y[242 + k] * t41;
+  for (int k = 0; k < 10; ++k) J[550 + k] = Y[250 + k] * t41;
+  J[580] = Y[260];
+  J[581] = Y[261];
+  J[582] = Y[262];
   J[583] = -t35 * (t38 - 0.5 + t39 * t39 * t40);
-  for (int k = 0; k < 8; ++k) J[648 + k] = Y[648 + k] * t48;
-  J[682] = Y[682];
-  J[683] = Y[683];
-  J[684] = Y[684];
+  for (int k = 0; k < 8; ++k) J[648 + k] = Y[263 + k] * t48;
+  J[682] = Y[271];
+  J[683] = Y[272];
+  J[684] = Y[273];
   J[685] = -t42 * (t45 - 0.5 + t46 * t46 * t47);
 }
 
-// drive_torque_jacobian from the sample's drive regressor Y (kDof x kDriveParams, row-major,
-// as drive_regressor writes it for that sample's q, dq, ddq) instead of q, dq, ddq: tau_M
+// drive_torque_jacobian from the sample's packed drive regressor Y (kDriveRegressorEntries
+// values, as drive_regressor writes it for that sample's q, dq, ddq) instead of q, dq, ddq: tau_M
 // (kDof) and J = d tau_M / d theta (kDof x kDriveParams, row-major, J[i * kDriveParams + k])
 // for the parameters theta, with no Newton-Euler pass, for the iterations of a
 // maximum-likelihood fit (Swevers et al. 2002 eq. 18). The inertial columns of row i are c_i Y
 // (c_i the efficiency factor of eq. 8), those of JM, Rv, Rc of motor i are copied from Y. The
 // efficiency branch and the Coulomb friction sign count as constant, as in
-// drive_torque_jacobian. Reads only the entries of Y that drive_regressor does not leave
-// structurally zero; every Rz must be non-zero.
+// drive_torque_jacobian. Every Rz must be non-zero.
 // J: 280 of its 686 entries are written; the others are zero for every input
 // and never written (the manifest lists them under "unwritten"): zero J once before the
 // first call.
 void drive_torque_jacobian_given_regressor(const float* Y, const float* theta, float* tau_M,
                                            float* J) {
-  const float t0 = (Y[10] * theta[10] + Y[11] * theta[11] + Y[12] * theta[12] + Y[13] * theta[13] + Y[14] * theta[14] + Y[20] * theta[20] + Y[21] * theta[21] + Y[22] * theta[22] + Y[23] * theta[23] + Y[24] * theta[24] + Y[25] * theta[25] + Y[26] * theta[26] + Y[27] * theta[27] + Y[28] * theta[28]) + (Y[29] * theta[29] + Y[30] * theta[30] + Y[31] * theta[31] + Y[32] * theta[32] + Y[33] * theta[33] + Y[34] * theta[34] + Y[35] * theta[35] + Y[36] * theta[36] + Y[37] * theta[37] + Y[38] * theta[38] + Y[39] * theta[39] + Y[40] * theta[40] + Y[41] * theta[41] + Y[42] * theta[42]) + (Y[43] * theta[43] + Y[44] * theta[44] + Y[45] * theta[45] + Y[46] * theta[46] + Y[47] * theta[47] + Y[48] * theta[48] + Y[49] * theta[49] + Y[50] * theta[50] + Y[51] * theta[51] + Y[52] * theta[52] + Y[53] * theta[53] + Y[54] * theta[54] + Y[55] * theta[55] + Y[56] * theta[56]) + (Y[57] * theta[57] + Y[58] * theta[58] + Y[59] * theta[59] + Y[5] * theta[5] + Y[60] * theta[60] + Y[61] * theta[61] + Y[62] * theta[62] + Y[63] * theta[63] + Y[64] * theta[64] + Y[65] * theta[65] + Y[66] * theta[66] + Y[67] * theta[67] + Y[68] * theta[68] + Y[69] * theta[69]);
-  const float t1 = Y[71] * t0;
+  const float t0 = (Y[0] * theta[5] + Y[10] * theta[23] + Y[11] * theta[24] + Y[12] * theta[25] + Y[13] * theta[26] + Y[14] * theta[27] + Y[15] * theta[28] + Y[16] * theta[29] + Y[17] * theta[30] + Y[18] * theta[31] + Y[19] * theta[32] + Y[1] * theta[10] + Y[20] * theta[33] + Y[21] * theta[34]) + (Y[22] * theta[35] + Y[23] * theta[36] + Y[24] * theta[37] + Y[25] * theta[38] + Y[26] * theta[39] + Y[27] * theta[40] + Y[28] * theta[41] + Y[29] * theta[42] + Y[2] * theta[11] + Y[30] * theta[43] + Y[31] * theta[44] + Y[32] * theta[45] + Y[33] * theta[46] + Y[34] * theta[47]) + (Y[35] * theta[48] + Y[36] * theta[49] + Y[37] * theta[50] + Y[38] * theta[51] + Y[39] * theta[52] + Y[3] * theta[12] + Y[40] * theta[53] + Y[41] * theta[54] + Y[42] * theta[55] + Y[43] * theta[56] + Y[44] * theta[57] + Y[45] * theta[58] + Y[46] * theta[59] + Y[47] * theta[60]) + (Y[48] * theta[61] + Y[49] * theta[62] + Y[4] * theta[13] + Y[50] * theta[63] + Y[51] * theta[64] + Y[52] * theta[65] + Y[53] * theta[66] + Y[54] * theta[67] + Y[55] * theta[68] + Y[56] * theta[69] + Y[5] * theta[14] + Y[7] * theta[20] + Y[8] * theta[21] + Y[9] * theta[22]);
+  const float t1 = Y[58] * t0;
   const float t2 = static_cast<float>((t1 > 0.0f) - (t1 < 0.0f));
   const float t3 = 0.5f * t2;
   const float t4 = 1.0f / theta[73];
   const float t5 = 0.5f + t3;
   const float t6 = t4 * t5 - theta[73] * (t3 - 0.5f);
-  tau_M[0] = Y[70] * theta[70] + Y[71] * theta[71] + Y[72] * theta[72] + t0 * t6;
-  const float t7 = (Y[108] * theta[10] + Y[109] * theta[11] + Y[110] * theta[12] + Y[111] * theta[13] + Y[112] * theta[14] + Y[113] * theta[15] + Y[114] * theta[16] + Y[115] * theta[17] + Y[118] * theta[20] + Y[119] * theta[21] + Y[120] * theta[22] + Y[121] * theta[23] + Y[122] * theta[24] + Y[123] * theta[25] + Y[124] * theta[26]) + (Y[125] * theta[27] + Y[126] * theta[28] + Y[127] * theta[29] + Y[128] * theta[30] + Y[129] * theta[31] + Y[130] * theta[32] + Y[131] * theta[33] + Y[132] * theta[34] + Y[133] * theta[35] + Y[134] * theta[36] + Y[135] * theta[37] + Y[136] * theta[38] + Y[137] * theta[39] + Y[138] * theta[40] + Y[139] * theta[41]) + (Y[140] * theta[42] + Y[141] * theta[43] + Y[142] * theta[44] + Y[143] * theta[45] + Y[144] * theta[46] + Y[145] * theta[47] + Y[146] * theta[48] + Y[147] * theta[49] + Y[148] * theta[50] + Y[149] * theta[51] + Y[150] * theta[52] + Y[151] * theta[53] + Y[152] * theta[54] + Y[153] * theta[55] + Y[154] * theta[56]) + (Y[155] * theta[57] + Y[156] * theta[58] + Y[157] * theta[59] + Y[158] * theta[60] + Y[159] * theta[61] + Y[160] * theta[62] + Y[161] * theta[63] + Y[162] * theta[64] + Y[163] * theta[65] + Y[164] * theta[66] + Y[165] * theta[67] + Y[166] * theta[68] + Y[167] * theta[69]);
-  const float t8 = Y[173] * t7;
+  tau_M[0] = Y[57] * theta[70] + Y[58] * theta[71] + Y[59] * theta[72] + t0 * t6;
+  const float t7 = (Y[100] * theta[52] + Y[101] * theta[53] + Y[102] * theta[54] + Y[103] * theta[55] + Y[104] * theta[56] + Y[105] * theta[57] + Y[106] * theta[58] + Y[107] * theta[59] + Y[108] * theta[60] + Y[109] * theta[61] + Y[110] * theta[62] + Y[111] * theta[63] + Y[112] * theta[64] + Y[113] * theta[65] + Y[114] * theta[66]) + (Y[115] * theta[67] + Y[116] * theta[68] + Y[117] * theta[69] + Y[60] * theta[10] + Y[61] * theta[11] + Y[62] * theta[12] + Y[63] * theta[13] + Y[64] * theta[14] + Y[65] * theta[15] + Y[66] * theta[16] + Y[67] * theta[17] + Y[68] * theta[20] + Y[69] * theta[21] + Y[70] * theta[22] + Y[71] * theta[23]) + (Y[72] * theta[24] + Y[73] * theta[25] + Y[74] * theta[26] + Y[75] * theta[27] + Y[76] * theta[28] + Y[77] * theta[29] + Y[78] * theta[30] + Y[79] * theta[31] + Y[80] * theta[32] + Y[81] * theta[33] + Y[82] * theta[34] + Y[83] * theta[35] + Y[84] * theta[36] + Y[85] * theta[37] + Y[86] * theta[38]) + (Y[87] * theta[39] + Y[88] * theta[40] + Y[89] * theta[41] + Y[90] * theta[42] + Y[91] * theta[43] + Y[92] * theta[44] + Y[93] * theta[45] + Y[94] * theta[46] + Y[95] * theta[47] + Y[96] * theta[48] + Y[97] * theta[49] + Y[98] * theta[50] + Y[99] * theta[51]);
+  const float t8 = Y[119] * t7;
   const float t9 = static_cast<float>((t8 > 0.0f) - (t8 < 0.0f));
   const float t10 = 0.5f * t9;
   const float t11 = 1.0f / theta[77];
   const float t12 = 0.5f + t10;
   const float t13 = t11 * t12 - theta[77] * (t10 - 0.5f);
-  tau_M[1] = Y[172] * theta[74] + Y[173] * theta[75] + Y[174] * theta[76] + t7 * t13;
-  const float t14 = (Y[216] * theta[20] + Y[217] * theta[21] + Y[218] * theta[22] + Y[219] * theta[23] + Y[220] * theta[24] + Y[221] * theta[25] + Y[222] * theta[26] + Y[223] * theta[27] + Y[226] * theta[30] + Y[227] * theta[31] + Y[228] * theta[32] + Y[229] * theta[33]) + (Y[230] * theta[34] + Y[231] * theta[35] + Y[232] * theta[36] + Y[233] * theta[37] + Y[234] * theta[38] + Y[236] * theta[40] + Y[237] * theta[41] + Y[238] * theta[42] + Y[239] * theta[43] + Y[240] * theta[44] + Y[241] * theta[45] + Y[242] * theta[46]) + (Y[243] * theta[47] + Y[244] * theta[48] + Y[245] * theta[49] + Y[246] * theta[50] + Y[247] * theta[51] + Y[248] * theta[52] + Y[249] * theta[53] + Y[250] * theta[54] + Y[251] * theta[55] + Y[252] * theta[56] + Y[253] * theta[57] + Y[254] * theta[58]) + (Y[255] * theta[59] + Y[256] * theta[60] + Y[257] * theta[61] + Y[258] * theta[62] + Y[259] * theta[63] + Y[260] * theta[64] + Y[261] * theta[65] + Y[262] * theta[66] + Y[263] * theta[67] + Y[264] * theta[68] + Y[265] * theta[69]);
-  const float t15 = Y[275] * t14;
+  tau_M[1] = Y[118] * theta[74] + Y[119] * theta[75] + Y[120] * theta[76] + t7 * t13;
+  const float t14 = (Y[121] * theta[20] + Y[122] * theta[21] + Y[123] * theta[22] + Y[124] * theta[23] + Y[125] * theta[24] + Y[126] * theta[25] + Y[127] * theta[26] + Y[128] * theta[27] + Y[129] * theta[30] + Y[130] * theta[31] + Y[131] * theta[32] + Y[132] * theta[33]) + (Y[133] * theta[34] + Y[134] * theta[35] + Y[135] * theta[36] + Y[136] * theta[37] + Y[137] * theta[38] + Y[138] * theta[40] + Y[139] * theta[41] + Y[140] * theta[42] + Y[141] * theta[43] + Y[142] * theta[44] + Y[143] * theta[45] + Y[144] * theta[46]) + (Y[145] * theta[47] + Y[146] * theta[48] + Y[147] * theta[49] + Y[148] * theta[50] + Y[149] * theta[51] + Y[150] * theta[52] + Y[151] * theta[53] + Y[152] * theta[54] + Y[153] * theta[55] + Y[154] * theta[56] + Y[155] * theta[57] + Y[156] * theta[58]) + (Y[157] * theta[59] + Y[158] * theta[60] + Y[159] * theta[61] + Y[160] * theta[62] + Y[161] * theta[63] + Y[162] * theta[64] + Y[163] * theta[65] + Y[164] * theta[66] + Y[165] * theta[67] + Y[166] * theta[68] + Y[167] * theta[69]);
+  const float t15 = Y[169] * t14;
   const float t16 = static_cast<float>((t15 > 0.0f) - (t15 < 0.0f));
   const float t17 = 0.5f * t16;
   const float t18 = 1.0f / theta[81];
   const float t19 = 0.5f + t17;
   const float t20 = t18 * t19 - theta[81] * (t17 - 0.5f);
-  tau_M[2] = Y[274] * theta[78] + Y[275] * theta[79] + Y[276] * theta[80] + t14 * t20;
-  const float t21 = (Y[324] * theta[30] + Y[325] * theta[31] + Y[326] * theta[32] + Y[327] * theta[33] + Y[328] * theta[34] + Y[329] * theta[35] + Y[330] * theta[36] + Y[331] * theta[37] + Y[334] * theta[40] + Y[335] * theta[41]) + (Y[336] * theta[42] + Y[337] * theta[43] + Y[338] * theta[44] + Y[339] * theta[45] + Y[340] * theta[46] + Y[341] * theta[47] + Y[342] * theta[48] + Y[343] * theta[49] + Y[344] * theta[50] + Y[345] * theta[51]) + (Y[346] * theta[52] + Y[347] * theta[53] + Y[348] * theta[54] + Y[349] * theta[55] + Y[350] * theta[56] + Y[351] * theta[57] + Y[352] * theta[58] + Y[353] * theta[59] + Y[354] * theta[60] + Y[355] * theta[61]) + (Y[356] * theta[62] + Y[357] * theta[63] + Y[358] * theta[64] + Y[359] * theta[65] + Y[360] * theta[66] + Y[361] * theta[67] + Y[362] * theta[68] + Y[363] * theta[69]);
-  const float t22 = Y[377] * t21;
+  tau_M[2] = Y[168] * theta[78] + Y[169] * theta[79] + Y[170] * theta[80] + t14 * t20;
+  const float t21 = (Y[171] * theta[30] + Y[172] * theta[31] + Y[173] * theta[32] + Y[174] * theta[33] + Y[175] * theta[34] + Y[176] * theta[35] + Y[177] * theta[36] + Y[178] * theta[37] + Y[179] * theta[40] + Y[180] * theta[41]) + (Y[181] * theta[42] + Y[182] * theta[43] + Y[183] * theta[44] + Y[184] * theta[45] + Y[185] * theta[46] + Y[186] * theta[47] + Y[187] * theta[48] + Y[188] * theta[49] + Y[189] * theta[50] + Y[190] * theta[51]) + (Y[191] * theta[52] + Y[192] * theta[53] + Y[193] * theta[54] + Y[194] * theta[55] + Y[195] * theta[56] + Y[196] * theta[57] + Y[197] * theta[58] + Y[198] * theta[59] + Y[199] * theta[60] + Y[200] * theta[61]) + (Y[201] * theta[62] + Y[202] * theta[63] + Y[203] * theta[64] + Y[204] * theta[65] + Y[205] * theta[66] + Y[206] * theta[67] + Y[207] * theta[68] + Y[208] * theta[69]);
+  const float t22 = Y[210] * t21;
   const float t23 = static_cast<float>((t22 > 0.0f) - (t22 < 0.0f));
   const float t24 = 0.5f * t23;
   const float t25 = 1.0f / theta[85];
   const float t26 = 0.5f + t24;
   const float t27 = t25 * t26 - theta[85] * (t24 - 0.5f);
-  tau_M[3] = Y[376] * theta[82] + Y[377] * theta[83] + Y[378] * theta[84] + t21 * t27;
-  const float t28 = Y[432] * theta[40] + Y[433] * theta[41] + Y[434] * theta[42] + Y[435] * theta[43] + Y[436] * theta[44] + Y[437] * theta[45] + Y[438] * theta[46] + Y[439] * theta[47] + Y[442] * theta[50] + Y[443] * theta[51] + Y[444] * theta[52] + Y[445] * theta[53] + Y[446] * theta[54] + Y[447] * theta[55] + Y[448] * theta[56] + Y[449] * theta[57] + Y[450] * theta[58] + Y[452] * theta[60] + Y[453] * theta[61] + Y[454] * theta[62] + Y[455] * theta[63] + Y[456] * theta[64] + Y[457] * theta[65] + Y[458] * theta[66] + Y[459] * theta[67] + Y[460] * theta[68] + Y[461] * theta[69];
-  const float t29 = Y[479] * t28;
+  tau_M[3] = Y[209] * theta[82] + Y[210] * theta[83] + Y[211] * theta[84] + t21 * t27;
+  const float t28 = Y[212] * theta[40] + Y[213] * theta[41] + Y[214] * theta[42] + Y[215] * theta[43] + Y[216] * theta[44] + Y[217] * theta[45] + Y[218] * theta[46] + Y[219] * theta[47] + Y[220] * theta[50] + Y[221] * theta[51] + Y[222] * theta[52] + Y[223] * theta[53] + Y[224] * theta[54] + Y[225] * theta[55] + Y[226] * theta[56] + Y[227] * theta[57] + Y[228] * theta[58] + Y[229] * theta[60] + Y[230] * theta[61] + Y[231] * theta[62] + Y[232] * theta[63] + Y[233] * theta[64] + Y[234] * theta[65] + Y[235] * theta[66] + Y[236] * theta[67] + Y[237] * theta[68] + Y[238] * theta[69];
+  const float t29 = Y[240] * t28;
   const float t30 = static_cast<float>((t29 > 0.0f) - (t29 < 0.0f));
   const float t31 = 0.5f * t30;
   const float t32 = 1.0f / theta[89];
   const float t33 = 0.5f + t31;
   const float t34 = t32 * t33 - theta[89] * (t31 - 0.5f);
-  tau_M[4] = Y[478] * theta[86] + Y[479] * theta[87] + Y[480] * theta[88] + t28 * t34;
-  const float t35 = Y[540] * theta[50] + Y[541] * theta[51] + Y[542] * theta[52] + Y[543] * theta[53] + Y[544] * theta[54] + Y[545] * theta[55] + Y[546] * theta[56] + Y[547] * theta[57] + Y[550] * theta[60] + Y[551] * theta[61] + Y[552] * theta[62] + Y[553] * theta[63] + Y[554] * theta[64] + Y[555] * theta[65] + Y[556] * theta[66] + Y[557] * theta[67] + Y[558] * theta[68] + Y[559] * theta[69];
-  const float t36 = Y[581] * t35;
+  tau_M[4] = Y[239] * theta[86] + Y[240] * theta[87] + Y[241] * theta[88] + t28 * t34;
+  const float t35 = Y[242] * theta[50] + Y[243] * theta[51] + Y[244] * theta[52] + Y[245] * theta[53] + Y[246] * theta[54] + Y[247] * theta[55] + Y[248] * theta[56] + Y[249] * theta[57] + Y[250] * theta[60] + Y[251] * theta[61] + Y[252] * theta[62] + Y[253] * theta[63] + Y[254] * theta[64] + Y[255] * theta[65] + Y[256] * theta[66] + Y[257] * theta[67] + Y[258] * theta[68] + Y[259] * theta[69];
+  const float t36 = Y[261] * t35;
   const float t37 = static_cast<float>((t36 > 0.0f) - (t36 < 0.0f));
   const float t38 = 0.5f * t37;
   const float t39 = 1.0f / theta[93];
   const float t40 = 0.5f + t38;
   const float t41 = t39 * t40 - theta[93] * (t38 - 0.5f);
-  tau_M[5] = Y[580] * theta[90] + Y[581] * theta[91] + Y[582] * theta[92] + t35 * t41;
-  const float t42 = Y[648] * theta[60] + Y[649] * theta[61] + Y[650] * theta[62] + Y[651] * theta[63] + Y[652] * theta[64] + Y[653] * theta[65] + Y[654] * theta[66] + Y[655] * theta[67];
-  const float t43 = Y[683] * t42;
+  tau_M[5] = Y[260] * theta[90] + Y[261] * theta[91] + Y[262] * theta[92] + t35 * t41;
+  const float t42 = Y[263] * theta[60] + Y[264] * theta[61] + Y[265] * theta[62] + Y[266] * theta[63] + Y[267] * theta[64] + Y[268] * theta[65] + Y[269] * theta[66] + Y[270] * theta[67];
+  const float t43 = Y[272] * t42;
   const float t44 = static_cast<float>((t43 > 0.0f) - (t43 < 0.0f));
   const float t45 = 0.5f * t44;
   const float t46 = 1.0f / theta[97];
   const float t47 = 0.5f + t45;
   const float t48 = t46 * t47 - theta[97] * (t45 - 0.5f);
-  tau_M[6] = Y[682] * theta[94] + Y[683] * theta[95] + Y[684] * theta[96] + t42 * t48;
-  J[5] = Y[5] * t6;  // ZZ1
-  for (int k = 0; k < 5; ++k) J[10 + k] = Y[10 + k] * t6;  // XX2 XY2 XZ2 YY2 YZ2
-  for (int k = 0; k < 50; ++k) J[20 + k] = Y[20 + k] * t6;  // XX3 XY3 XZ3 YY3 YZ3 ZZ3 MX3 MY3 MZ3 M3 XX4 XY4 XZ4 YY4 YZ4 ZZ4 MX4 MY4 MZ4 M4 XX5 XY5 XZ5 YY5 YZ5 ZZ5 MX5 MY5 MZ5 M5 XX6 XY6 XZ6 YY6 YZ6 ZZ6 MX6 MY6 MZ6 M6 XX7 XY7 XZ7 YY7 YZ7 ZZ7 MX7 MY7 MZ7 M7
-  J[70] = Y[70];  // JM1
-  J[71] = Y[71];  // Rv1
-  J[72] = Y[72];  // Rc1
+  tau_M[6] = Y[271] * theta[94] + Y[272] * theta[95] + Y[273] * theta[96] + t42 * t48;
+  J[5] = Y[0] * t6;  // ZZ1
+  for (int k = 0; k < 5; ++k) J[10 + k] = Y[1 + k] * t6;  // XX2 XY2 XZ2 YY2 YZ2
+  for (int k = 0; k < 50; ++k) J[20 + k] = Y[7 + k] * t6;  // XX3 XY3 XZ3 YY3 YZ3 ZZ3 MX3 MY3 MZ3 M3 XX4 XY4 XZ4 YY4 YZ4 ZZ4 MX4 MY4 MZ4 M4 XX5 XY5 XZ5 YY5 YZ5 ZZ5 MX5 MY5 MZ5 M5 XX6 XY6 XZ6 YY6 YZ6 ZZ6 MX6 MY6 MZ6 M6 XX7 XY7 XZ7 YY7 YZ7 ZZ7 MX7 MY7 MZ7 M7
+  J[70] = Y[57];  // JM1
+  J[71] = Y[58];  // Rv1
+  J[72] = Y[59];  // Rc1
   J[73] = -t0 * (t3 - 0.5f + t4 * t4 * t5);  // Rz1
-  for (int k = 0; k < 8; ++k) J[108 + k] = Y[108 + k] * t13;
-  for (int k = 0; k < 50; ++k) J[118 + k] = Y[118 + k] * t13;
-  J[172] = Y[172];
-  J[173] = Y[173];
-  J[174] = Y[174];
+  for (int k = 0; k < 8; ++k) J[108 + k] = Y[60 + k] * t13;
+  for (int k = 0; k < 50; ++k) J[118 + k] = Y[68 + k] * t13;
+  J[172] = Y[118];
+  J[173] = Y[119];
+  J[174] = Y[120];
   J[175] = -t7 * (t10 - 0.5f + t11 * t11 * t12);
-  for (int k = 0; k < 8; ++k) J[216 + k] = Y[216 + k] * t20;
-  for (int k = 0; k < 9; ++k) J[226 + k] = Y[226 + k] * t20;
-  for (int k = 0; k < 30; ++k) J[236 + k] = Y[236 + k] * t20;
-  J[274] = Y[274];
-  J[275] = Y[275];
-  J[276] = Y[276];
+  for (int k = 0; k < 8; ++k) J[216 + k] = Y[121 + k] * t20;
+  for (int k = 0; k < 9; ++k) J[226 + k] = Y[129 + k] * t20;
+  for (int k = 0; k < 30; ++k) J[236 + k] = Y[138 + k] * t20;
+  J[274] = Y[168];
+  J[275] = Y[169];
+  J[276] = Y[170];
   J[277] = -t14 * (t17 - 0.5f + t18 * t18 * t19);
-  for (int k = 0; k < 8; ++k) J[324 + k] = Y[324 + k] * t27;
-  for (int k = 0; k < 30; ++k) J[334 + k] = Y[334 + k] * t27;
-  J[376] = Y[376];
-  J[377] = Y[377];
-  J[378] = Y[378];
+  for (int k = 0; k < 8; ++k) J[324 + k] = Y[171 + k] * t27;
+  for (int k = 0; k < 30; ++k) J[334 + k] = Y[179 + k] * t27;
+  J[376] = Y[209];
+  J[377] = Y[210];
+  J[378] = Y[211];
   J[379] = -t21 * (t24 - 0.5f + t25 * t25 * t26);
-  for (int k = 0; k < 8; ++k) J[432 + k] = Y[432 + k] * t34;
-  for (int k = 0; k < 9; ++k) J[442 + k] = Y[442 + k] * t34;
-  for (int k = 0; k < 10; ++k) J[452 + k] = Y[452 + k] * t34;
-  J[478] = Y[478];
-  J[479] = Y[479];
-  J[480] = Y[480];
+  for (int k = 0; k < 8; ++k) J[432 + k] = Y[212 + k] * t34;
+  for (int k = 0; k < 9; ++k) J[442 + k] = Y[220 + k] * t34;
+  for (int k = 0; k < 10; ++k) J[452 + k] = Y[229 + k] * t34;
+  J[478] = Y[239];
+  J[479] = Y[240];
+  J[480] = Y[241];
   J[481] = -t28 * (t31 - 0.5f + t32 * t32 * t33);
-  for (int k = 0; k < 8; ++k) J[540 + k] = Y[540 + k] * t41;
-  for (int k = 0; k < 10; ++k) J[550 + k] = Y[550 + k] * t41;
-  J[580] = Y[580];
-  J[581] = Y[581];
-  J[582] = Y[582];
+  for (int k = 0; k < 8; ++k) J[540 + k] = Y[242 + k] * t41;
+  for (int k = 0; k < 10; ++k) J[550 + k] = Y[250 + k] * t41;
+  J[580] = Y[260];
+  J[581] = Y[261];
+  J[582] = Y[262];
   J[583] = -t35 * (t38 - 0.5f + t39 * t39 * t40);
-  for (int k = 0; k < 8; ++k) J[648 + k] = Y[648 + k] * t48;
-  J[682] = Y[682];
-  J[683] = Y[683];
-  J[684] = Y[684];
+  for (int k = 0; k < 8; ++k) J[648 + k] = Y[263 + k] * t48;
+  J[682] = Y[271];
+  J[683] = Y[272];
+  J[684] = Y[273];
   J[685] = -t42 * (t45 - 0.5f + t46 * t46 * t47);
 }
 

@@ -10,235 +10,233 @@
 namespace modelgen {
 namespace panda_arm {
 
-// drive_torque_jacobian from the sample's drive regressor Y (kDof x kDriveParams, row-major,
-// as drive_regressor writes it for that sample's q, dq, ddq) instead of q, dq, ddq: tau_M
+// drive_torque_jacobian from the sample's packed drive regressor Y (kDriveRegressorEntries
+// values, as drive_regressor writes it for that sample's q, dq, ddq) instead of q, dq, ddq: tau_M
 // (kDof) and J = d tau_M / d theta (kDof x kDriveParams, row-major, J[i * kDriveParams + k])
 // for the parameters theta, with no Newton-Euler pass, for the iterations of a
 // maximum-likelihood fit (Swevers et al. 2002 eq. 18). The inertial columns of row i are c_i Y
 // (c_i the efficiency factor of eq. 8), those of JM, Rv, Rc of motor i are copied from Y. The
 // efficiency branch and the Coulomb friction sign count as constant, as in
-// drive_torque_jacobian. Reads only the entries of Y that drive_regressor does not leave
-// structurally zero; every Rz must be non-zero.
+// drive_torque_jacobian. Every Rz must be non-zero.
 // J: 349 of its 756 entries are written; the others are zero for every input
 // and never written (the manifest lists them under "unwritten"): zero J once before the
 // first call.
 void drive_torque_jacobian_given_regressor(const double* Y, const double* theta, double* tau_M,
                                            double* J) {
-  const double t0 = (Y[10] * theta[10] + Y[11] * theta[11] + Y[12] * theta[12] + Y[13] * theta[13] + Y[14] * theta[14] + Y[20] * theta[20] + Y[21] * theta[21] + Y[22] * theta[22] + Y[23] * theta[23] + Y[24] * theta[24] + Y[25] * theta[25] + Y[26] * theta[26] + Y[27] * theta[27] + Y[28] * theta[28] + Y[29] * theta[29] + Y[30] * theta[30] + Y[31] * theta[31]) + (Y[32] * theta[32] + Y[33] * theta[33] + Y[34] * theta[34] + Y[35] * theta[35] + Y[36] * theta[36] + Y[37] * theta[37] + Y[38] * theta[38] + Y[39] * theta[39] + Y[40] * theta[40] + Y[41] * theta[41] + Y[42] * theta[42] + Y[43] * theta[43] + Y[44] * theta[44] + Y[45] * theta[45] + Y[46] * theta[46] + Y[47] * theta[47] + Y[48] * theta[48]) + (Y[49] * theta[49] + Y[50] * theta[50] + Y[51] * theta[51] + Y[52] * theta[52] + Y[53] * theta[53] + Y[54] * theta[54] + Y[55] * theta[55] + Y[56] * theta[56] + Y[57] * theta[57] + Y[58] * theta[58] + Y[59] * theta[59] + Y[5] * theta[5] + Y[60] * theta[60] + Y[61] * theta[61] + Y[62] * theta[62] + Y[63] * theta[63] + Y[64] * theta[64]) + (Y[65] * theta[65] + Y[66] * theta[66] + Y[67] * theta[67] + Y[68] * theta[68] + Y[69] * theta[69] + Y[70] * theta[70] + Y[71] * theta[71] + Y[72] * theta[72] + Y[73] * theta[73] + Y[74] * theta[74] + Y[75] * theta[75] + Y[76] * theta[76] + Y[77] * theta[77] + Y[78] * theta[78] + Y[79] * theta[79]);
-  const double t1 = Y[81] * t0;
+  const double t0 = (Y[0] * theta[5] + Y[10] * theta[23] + Y[11] * theta[24] + Y[12] * theta[25] + Y[13] * theta[26] + Y[14] * theta[27] + Y[15] * theta[28] + Y[16] * theta[29] + Y[17] * theta[30] + Y[18] * theta[31] + Y[19] * theta[32] + Y[1] * theta[10] + Y[20] * theta[33] + Y[21] * theta[34] + Y[22] * theta[35] + Y[23] * theta[36] + Y[24] * theta[37]) + (Y[25] * theta[38] + Y[26] * theta[39] + Y[27] * theta[40] + Y[28] * theta[41] + Y[29] * theta[42] + Y[2] * theta[11] + Y[30] * theta[43] + Y[31] * theta[44] + Y[32] * theta[45] + Y[33] * theta[46] + Y[34] * theta[47] + Y[35] * theta[48] + Y[36] * theta[49] + Y[37] * theta[50] + Y[38] * theta[51] + Y[39] * theta[52] + Y[3] * theta[12]) + (Y[40] * theta[53] + Y[41] * theta[54] + Y[42] * theta[55] + Y[43] * theta[56] + Y[44] * theta[57] + Y[45] * theta[58] + Y[46] * theta[59] + Y[47] * theta[60] + Y[48] * theta[61] + Y[49] * theta[62] + Y[4] * theta[13] + Y[50] * theta[63] + Y[51] * theta[64] + Y[52] * theta[65] + Y[53] * theta[66] + Y[54] * theta[67] + Y[55] * theta[68]) + (Y[56] * theta[69] + Y[57] * theta[70] + Y[58] * theta[71] + Y[59] * theta[72] + Y[5] * theta[14] + Y[60] * theta[73] + Y[61] * theta[74] + Y[62] * theta[75] + Y[63] * theta[76] + Y[64] * theta[77] + Y[65] * theta[78] + Y[66] * theta[79] + Y[7] * theta[20] + Y[8] * theta[21] + Y[9] * theta[22]);
+  const double t1 = Y[68] * t0;
   const double t2 = static_cast<double>((t1 > 0.0) - (t1 < 0.0));
   const double t3 = 0.5 * t2;
   const double t4 = 1.0 / theta[83];
   const double t5 = 0.5 + t3;
   const double t6 = t4 * t5 - theta[83] * (t3 - 0.5);
-  tau_M[0] = Y[80] * theta[80] + Y[81] * theta[81] + Y[82] * theta[82] + t0 * t6;
-  const double t7 = (Y[118] * theta[10] + Y[119] * theta[11] + Y[120] * theta[12] + Y[121] * theta[13] + Y[122] * theta[14] + Y[123] * theta[15] + Y[124] * theta[16] + Y[125] * theta[17] + Y[128] * theta[20] + Y[129] * theta[21] + Y[130] * theta[22] + Y[131] * theta[23] + Y[132] * theta[24] + Y[133] * theta[25] + Y[134] * theta[26] + Y[135] * theta[27] + Y[136] * theta[28]) + (Y[137] * theta[29] + Y[138] * theta[30] + Y[139] * theta[31] + Y[140] * theta[32] + Y[141] * theta[33] + Y[142] * theta[34] + Y[143] * theta[35] + Y[144] * theta[36] + Y[145] * theta[37] + Y[146] * theta[38] + Y[147] * theta[39] + Y[148] * theta[40] + Y[149] * theta[41] + Y[150] * theta[42] + Y[151] * theta[43] + Y[152] * theta[44] + Y[153] * theta[45]) + (Y[154] * theta[46] + Y[155] * theta[47] + Y[156] * theta[48] + Y[157] * theta[49] + Y[158] * theta[50] + Y[159] * theta[51] + Y[160] * theta[52] + Y[161] * theta[53] + Y[162] * theta[54] + Y[163] * theta[55] + Y[164] * theta[56] + Y[165] * theta[57] + Y[166] * theta[58] + Y[167] * theta[59] + Y[168] * theta[60] + Y[169] * theta[61] + Y[170] * theta[62]) + (Y[171] * theta[63] + Y[172] * theta[64] + Y[173] * theta[65] + Y[174] * theta[66] + Y[175] * theta[67] + Y[176] * theta[68] + Y[177] * theta[69] + Y[178] * theta[70] + Y[179] * theta[71] + Y[180] * theta[72] + Y[181] * theta[73] + Y[182] * theta[74] + Y[183] * theta[75] + Y[184] * theta[76] + Y[185] * theta[77] + Y[186] * theta[78] + Y[187] * theta[79]);
-  const double t8 = Y[193] * t7;
+  tau_M[0] = Y[67] * theta[80] + Y[68] * theta[81] + Y[69] * theta[82] + t0 * t6;
+  const double t7 = (Y[100] * theta[42] + Y[101] * theta[43] + Y[102] * theta[44] + Y[103] * theta[45] + Y[104] * theta[46] + Y[105] * theta[47] + Y[106] * theta[48] + Y[107] * theta[49] + Y[108] * theta[50] + Y[109] * theta[51] + Y[110] * theta[52] + Y[111] * theta[53] + Y[112] * theta[54] + Y[113] * theta[55] + Y[114] * theta[56] + Y[115] * theta[57] + Y[116] * theta[58]) + (Y[117] * theta[59] + Y[118] * theta[60] + Y[119] * theta[61] + Y[120] * theta[62] + Y[121] * theta[63] + Y[122] * theta[64] + Y[123] * theta[65] + Y[124] * theta[66] + Y[125] * theta[67] + Y[126] * theta[68] + Y[127] * theta[69] + Y[128] * theta[70] + Y[129] * theta[71] + Y[130] * theta[72] + Y[131] * theta[73] + Y[132] * theta[74] + Y[133] * theta[75]) + (Y[134] * theta[76] + Y[135] * theta[77] + Y[136] * theta[78] + Y[137] * theta[79] + Y[70] * theta[10] + Y[71] * theta[11] + Y[72] * theta[12] + Y[73] * theta[13] + Y[74] * theta[14] + Y[75] * theta[15] + Y[76] * theta[16] + Y[77] * theta[17] + Y[78] * theta[20] + Y[79] * theta[21] + Y[80] * theta[22] + Y[81] * theta[23] + Y[82] * theta[24]) + (Y[83] * theta[25] + Y[84] * theta[26] + Y[85] * theta[27] + Y[86] * theta[28] + Y[87] * theta[29] + Y[88] * theta[30] + Y[89] * theta[31] + Y[90] * theta[32] + Y[91] * theta[33] + Y[92] * theta[34] + Y[93] * theta[35] + Y[94] * theta[36] + Y[95] * theta[37] + Y[96] * theta[38] + Y[97] * theta[39] + Y[98] * theta[40] + Y[99] * theta[41]);
+  const double t8 = Y[139] * t7;
   const double t9 = static_cast<double>((t8 > 0.0) - (t8 < 0.0));
   const double t10 = 0.5 * t9;
   const double t11 = 1.0 / theta[87];
   const double t12 = 0.5 + t10;
   const double t13 = t11 * t12 - theta[87] * (t10 - 0.5);
-  tau_M[1] = Y[192] * theta[84] + Y[193] * theta[85] + Y[194] * theta[86] + t7 * t13;
-  const double t14 = (Y[236] * theta[20] + Y[237] * theta[21] + Y[238] * theta[22] + Y[239] * theta[23] + Y[240] * theta[24] + Y[241] * theta[25] + Y[242] * theta[26] + Y[243] * theta[27] + Y[246] * theta[30] + Y[247] * theta[31] + Y[248] * theta[32] + Y[249] * theta[33] + Y[250] * theta[34] + Y[251] * theta[35] + Y[252] * theta[36]) + (Y[253] * theta[37] + Y[254] * theta[38] + Y[255] * theta[39] + Y[256] * theta[40] + Y[257] * theta[41] + Y[258] * theta[42] + Y[259] * theta[43] + Y[260] * theta[44] + Y[261] * theta[45] + Y[262] * theta[46] + Y[263] * theta[47] + Y[264] * theta[48] + Y[265] * theta[49] + Y[266] * theta[50] + Y[267] * theta[51]) + (Y[268] * theta[52] + Y[269] * theta[53] + Y[270] * theta[54] + Y[271] * theta[55] + Y[272] * theta[56] + Y[273] * theta[57] + Y[274] * theta[58] + Y[275] * theta[59] + Y[276] * theta[60] + Y[277] * theta[61] + Y[278] * theta[62] + Y[279] * theta[63] + Y[280] * theta[64] + Y[281] * theta[65] + Y[282] * theta[66]) + (Y[283] * theta[67] + Y[284] * theta[68] + Y[285] * theta[69] + Y[286] * theta[70] + Y[287] * theta[71] + Y[288] * theta[72] + Y[289] * theta[73] + Y[290] * theta[74] + Y[291] * theta[75] + Y[292] * theta[76] + Y[293] * theta[77] + Y[294] * theta[78] + Y[295] * theta[79]);
-  const double t15 = Y[305] * t14;
+  tau_M[1] = Y[138] * theta[84] + Y[139] * theta[85] + Y[140] * theta[86] + t7 * t13;
+  const double t14 = (Y[141] * theta[20] + Y[142] * theta[21] + Y[143] * theta[22] + Y[144] * theta[23] + Y[145] * theta[24] + Y[146] * theta[25] + Y[147] * theta[26] + Y[148] * theta[27] + Y[149] * theta[30] + Y[150] * theta[31] + Y[151] * theta[32] + Y[152] * theta[33] + Y[153] * theta[34] + Y[154] * theta[35] + Y[155] * theta[36]) + (Y[156] * theta[37] + Y[157] * theta[38] + Y[158] * theta[39] + Y[159] * theta[40] + Y[160] * theta[41] + Y[161] * theta[42] + Y[162] * theta[43] + Y[163] * theta[44] + Y[164] * theta[45] + Y[165] * theta[46] + Y[166] * theta[47] + Y[167] * theta[48] + Y[168] * theta[49] + Y[169] * theta[50] + Y[170] * theta[51]) + (Y[171] * theta[52] + Y[172] * theta[53] + Y[173] * theta[54] + Y[174] * theta[55] + Y[175] * theta[56] + Y[176] * theta[57] + Y[177] * theta[58] + Y[178] * theta[59] + Y[179] * theta[60] + Y[180] * theta[61] + Y[181] * theta[62] + Y[182] * theta[63] + Y[183] * theta[64] + Y[184] * theta[65] + Y[185] * theta[66]) + (Y[186] * theta[67] + Y[187] * theta[68] + Y[188] * theta[69] + Y[189] * theta[70] + Y[190] * theta[71] + Y[191] * theta[72] + Y[192] * theta[73] + Y[193] * theta[74] + Y[194] * theta[75] + Y[195] * theta[76] + Y[196] * theta[77] + Y[197] * theta[78] + Y[198] * theta[79]);
+  const double t15 = Y[200] * t14;
   const double t16 = static_cast<double>((t15 > 0.0) - (t15 < 0.0));
   const double t17 = 0.5 * t16;
   const double t18 = 1.0 / theta[91];
   const double t19 = 0.5 + t17;
   const double t20 = t18 * t19 - theta[91] * (t17 - 0.5);
-  tau_M[2] = Y[304] * theta[88] + Y[305] * theta[89] + Y[306] * theta[90] + t14 * t20;
-  const double t21 = (Y[354] * theta[30] + Y[355] * theta[31] + Y[356] * theta[32] + Y[357] * theta[33] + Y[358] * theta[34] + Y[359] * theta[35] + Y[360] * theta[36] + Y[361] * theta[37] + Y[364] * theta[40] + Y[365] * theta[41] + Y[366] * theta[42] + Y[367] * theta[43]) + (Y[368] * theta[44] + Y[369] * theta[45] + Y[370] * theta[46] + Y[371] * theta[47] + Y[372] * theta[48] + Y[373] * theta[49] + Y[374] * theta[50] + Y[375] * theta[51] + Y[376] * theta[52] + Y[377] * theta[53] + Y[378] * theta[54] + Y[379] * theta[55]) + (Y[380] * theta[56] + Y[381] * theta[57] + Y[382] * theta[58] + Y[383] * theta[59] + Y[384] * theta[60] + Y[385] * theta[61] + Y[386] * theta[62] + Y[387] * theta[63] + Y[388] * theta[64] + Y[389] * theta[65] + Y[390] * theta[66] + Y[391] * theta[67]) + (Y[392] * theta[68] + Y[393] * theta[69] + Y[394] * theta[70] + Y[395] * theta[71] + Y[396] * theta[72] + Y[397] * theta[73] + Y[398] * theta[74] + Y[399] * theta[75] + Y[400] * theta[76] + Y[401] * theta[77] + Y[402] * theta[78] + Y[403] * theta[79]);
-  const double t22 = Y[417] * t21;
+  tau_M[2] = Y[199] * theta[88] + Y[200] * theta[89] + Y[201] * theta[90] + t14 * t20;
+  const double t21 = (Y[202] * theta[30] + Y[203] * theta[31] + Y[204] * theta[32] + Y[205] * theta[33] + Y[206] * theta[34] + Y[207] * theta[35] + Y[208] * theta[36] + Y[209] * theta[37] + Y[210] * theta[40] + Y[211] * theta[41] + Y[212] * theta[42] + Y[213] * theta[43]) + (Y[214] * theta[44] + Y[215] * theta[45] + Y[216] * theta[46] + Y[217] * theta[47] + Y[218] * theta[48] + Y[219] * theta[49] + Y[220] * theta[50] + Y[221] * theta[51] + Y[222] * theta[52] + Y[223] * theta[53] + Y[224] * theta[54] + Y[225] * theta[55]) + (Y[226] * theta[56] + Y[227] * theta[57] + Y[228] * theta[58] + Y[229] * theta[59] + Y[230] * theta[60] + Y[231] * theta[61] + Y[232] * theta[62] + Y[233] * theta[63] + Y[234] * theta[64] + Y[235] * theta[65] + Y[236] * theta[66] + Y[237] * theta[67]) + (Y[238] * theta[68] + Y[239] * theta[69] + Y[240] * theta[70] + Y[241] * theta[71] + Y[242] * theta[72] + Y[243] * theta[73] + Y[244] * theta[74] + Y[245] * theta[75] + Y[246] * theta[76] + Y[247] * theta[77] + Y[248] * theta[78] + Y[249] * theta[79]);
+  const double t22 = Y[251] * t21;
   const double t23 = static_cast<double>((t22 > 0.0) - (t22 < 0.0));
   const double t24 = 0.5 * t23;
   const double t25 = 1.0 / theta[95];
   const double t26 = 0.5 + t24;
   const double t27 = t25 * t26 - theta[95] * (t24 - 0.5);
-  tau_M[3] = Y[416] * theta[92] + Y[417] * theta[93] + Y[418] * theta[94] + t21 * t27;
-  const double t28 = (Y[472] * theta[40] + Y[473] * theta[41] + Y[474] * theta[42] + Y[475] * theta[43] + Y[476] * theta[44] + Y[477] * theta[45] + Y[478] * theta[46] + Y[479] * theta[47] + Y[482] * theta[50] + Y[483] * theta[51]) + (Y[484] * theta[52] + Y[485] * theta[53] + Y[486] * theta[54] + Y[487] * theta[55] + Y[488] * theta[56] + Y[489] * theta[57] + Y[490] * theta[58] + Y[492] * theta[60] + Y[493] * theta[61] + Y[494] * theta[62]) + (Y[495] * theta[63] + Y[496] * theta[64] + Y[497] * theta[65] + Y[498] * theta[66] + Y[499] * theta[67] + Y[500] * theta[68] + Y[501] * theta[69] + Y[502] * theta[70] + Y[503] * theta[71] + Y[504] * theta[72]) + (Y[505] * theta[73] + Y[506] * theta[74] + Y[507] * theta[75] + Y[508] * theta[76] + Y[509] * theta[77] + Y[510] * theta[78] + Y[511] * theta[79]);
-  const double t29 = Y[529] * t28;
+  tau_M[3] = Y[250] * theta[92] + Y[251] * theta[93] + Y[252] * theta[94] + t21 * t27;
+  const double t28 = (Y[253] * theta[40] + Y[254] * theta[41] + Y[255] * theta[42] + Y[256] * theta[43] + Y[257] * theta[44] + Y[258] * theta[45] + Y[259] * theta[46] + Y[260] * theta[47] + Y[261] * theta[50] + Y[262] * theta[51]) + (Y[263] * theta[52] + Y[264] * theta[53] + Y[265] * theta[54] + Y[266] * theta[55] + Y[267] * theta[56] + Y[268] * theta[57] + Y[269] * theta[58] + Y[270] * theta[60] + Y[271] * theta[61] + Y[272] * theta[62]) + (Y[273] * theta[63] + Y[274] * theta[64] + Y[275] * theta[65] + Y[276] * theta[66] + Y[277] * theta[67] + Y[278] * theta[68] + Y[279] * theta[69] + Y[280] * theta[70] + Y[281] * theta[71] + Y[282] * theta[72]) + (Y[283] * theta[73] + Y[284] * theta[74] + Y[285] * theta[75] + Y[286] * theta[76] + Y[287] * theta[77] + Y[288] * theta[78] + Y[289] * theta[79]);
+  const double t29 = Y[291] * t28;
   const double t30 = static_cast<double>((t29 > 0.0) - (t29 < 0.0));
   const double t31 = 0.5 * t30;
   const double t32 = 1.0 / theta[99];
   const double t33 = 0.5 + t31;
   const double t34 = t32 * t33 - theta[99] * (t31 - 0.5);
-  tau_M[4] = Y[528] * theta[96] + Y[529] * theta[97] + Y[530] * theta[98] + t28 * t34;
-  const double t35 = Y[590] * theta[50] + Y[591] * theta[51] + Y[592] * theta[52] + Y[593] * theta[53] + Y[594] * theta[54] + Y[595] * theta[55] + Y[596] * theta[56] + Y[597] * theta[57] + Y[600] * theta[60] + Y[601] * theta[61] + Y[602] * theta[62] + Y[603] * theta[63] + Y[604] * theta[64] + Y[605] * theta[65] + Y[606] * theta[66] + Y[607] * theta[67] + Y[608] * theta[68] + Y[609] * theta[69] + Y[610] * theta[70] + Y[611] * theta[71] + Y[612] * theta[72] + Y[613] * theta[73] + Y[614] * theta[74] + Y[615] * theta[75] + Y[616] * theta[76] + Y[617] * theta[77] + Y[618] * theta[78] + Y[619] * theta[79];
-  const double t36 = Y[641] * t35;
+  tau_M[4] = Y[290] * theta[96] + Y[291] * theta[97] + Y[292] * theta[98] + t28 * t34;
+  const double t35 = Y[293] * theta[50] + Y[294] * theta[51] + Y[295] * theta[52] + Y[296] * theta[53] + Y[297] * theta[54] + Y[298] * theta[55] + Y[299] * theta[56] + Y[300] * theta[57] + Y[301] * theta[60] + Y[302] * theta[61] + Y[303] * theta[62] + Y[304] * theta[63] + Y[305] * theta[64] + Y[306] * theta[65] + Y[307] * theta[66] + Y[308] * theta[67] + Y[309] * theta[68] + Y[310] * theta[69] + Y[311] * theta[70] + Y[312] * theta[71] + Y[313] * theta[72] + Y[314] * theta[73] + Y[315] * theta[74] + Y[316] * theta[75] + Y[317] * theta[76] + Y[318] * theta[77] + Y[319] * theta[78] + Y[320] * theta[79];
+  const double t36 = Y[322] * t35;
   const double t37 = static_cast<double>((t36 > 0.0) - (t36 < 0.0));
   const double t38 = 0.5 * t37;
   const double t39 = 1.0 / theta[103];
   const double t40 = 0.5 + t38;
   const double t41 = t39 * t40 - theta[103] * (t38 - 0.5);
-  tau_M[5] = Y[640] * theta[100] + Y[641] * theta[101] + Y[642] * theta[102] + t35 * t41;
-  const double t42 = Y[708] * theta[60] + Y[709] * theta[61] + Y[710] * theta[62] + Y[711] * theta[63] + Y[712] * theta[64] + Y[713] * theta[65] + Y[714] * theta[66] + Y[715] * theta[67] + Y[718] * theta[70] + Y[719] * theta[71] + Y[720] * theta[72] + Y[721] * theta[73] + Y[722] * theta[74] + Y[723] * theta[75] + Y[724] * theta[76] + Y[725] * theta[77];
-  const double t43 = Y[753] * t42;
+  tau_M[5] = Y[321] * theta[100] + Y[322] * theta[101] + Y[323] * theta[102] + t35 * t41;
+  const double t42 = Y[324] * theta[60] + Y[325] * theta[61] + Y[326] * theta[62] + Y[327] * theta[63] + Y[328] * theta[64] + Y[329] * theta[65] + Y[330] * theta[66] + Y[331] * theta[67] + Y[332] * theta[70] + Y[333] * theta[71] + Y[334] * theta[72] + Y[335] * theta[73] + Y[336] * theta[74] + Y[337] * theta[75] + Y[338] * theta[76] + Y[339] * theta[77];
+  const double t43 = Y[341] * t42;
   const double t44 = static_cast<double>((t43 > 0.0) - (t43 < 0.0));
   const double t45 = 0.5 * t44;
   const double t46 = 1.0 / theta[107];
   const double t47 = 0.5 + t45;
   const double t48 = t46 * t47 - theta[107] * (t45 - 0.5);
-  tau_M[6] = Y[752] * theta[104] + Y[753] * theta[105] + Y[754] * theta[106] + t42 * t48;
-  J[5] = Y[5] * t6;  // ZZ1
-  for (int k = 0; k < 5; ++k) J[10 + k] = Y[10 + k] * t6;  // XX2 XY2 XZ2 YY2 YZ2
-  for (int k = 0; k < 60; ++k) J[20 + k] = Y[20 + k] * t6;  // XX3 XY3 XZ3 YY3 YZ3 ZZ3 MX3 MY3 MZ3 M3 XX4 XY4 XZ4 YY4 YZ4 ZZ4 MX4 MY4 MZ4 M4 XX5 XY5 XZ5 YY5 YZ5 ZZ5 MX5 MY5 MZ5 M5 XX6 XY6 XZ6 YY6 YZ6 ZZ6 MX6 MY6 MZ6 M6 XX7 XY7 XZ7 YY7 YZ7 ZZ7 MX7 MY7 MZ7 M7 XX8 XY8 XZ8 YY8 YZ8 ZZ8 MX8 MY8 MZ8 M8
-  J[80] = Y[80];  // JM1
-  J[81] = Y[81];  // Rv1
-  J[82] = Y[82];  // Rc1
+  tau_M[6] = Y[340] * theta[104] + Y[341] * theta[105] + Y[342] * theta[106] + t42 * t48;
+  J[5] = Y[0] * t6;  // ZZ1
+  for (int k = 0; k < 5; ++k) J[10 + k] = Y[1 + k] * t6;  // XX2 XY2 XZ2 YY2 YZ2
+  for (int k = 0; k < 60; ++k) J[20 + k] = Y[7 + k] * t6;  // XX3 XY3 XZ3 YY3 YZ3 ZZ3 MX3 MY3 MZ3 M3 XX4 XY4 XZ4 YY4 YZ4 ZZ4 MX4 MY4 MZ4 M4 XX5 XY5 XZ5 YY5 YZ5 ZZ5 MX5 MY5 MZ5 M5 XX6 XY6 XZ6 YY6 YZ6 ZZ6 MX6 MY6 MZ6 M6 XX7 XY7 XZ7 YY7 YZ7 ZZ7 MX7 MY7 MZ7 M7 XX8 XY8 XZ8 YY8 YZ8 ZZ8 MX8 MY8 MZ8 M8
+  J[80] = Y[67];  // JM1
+  J[81] = Y[68];  // Rv1
+  J[82] = Y[69];  // Rc1
   J[83] = -t0 * (t3 - 0.5 + t4 * t4 * t5);  // Rz1
-  for (int k = 0; k < 8; ++k) J[118 + k] = Y[118 + k] * t13;
-  for (int k = 0; k < 60; ++k) J[128 + k] = Y[128 + k] * t13;
-  J[192] = Y[192];
-  J[193] = Y[193];
-  J[194] = Y[194];
+  for (int k = 0; k < 8; ++k) J[118 + k] = Y[70 + k] * t13;
+  for (int k = 0; k < 60; ++k) J[128 + k] = Y[78 + k] * t13;
+  J[192] = Y[138];
+  J[193] = Y[139];
+  J[194] = Y[140];
   J[195] = -t7 * (t10 - 0.5 + t11 * t11 * t12);
-  for (int k = 0; k < 8; ++k) J[236 + k] = Y[236 + k] * t20;
-  for (int k = 0; k < 50; ++k) J[246 + k] = Y[246 + k] * t20;
-  J[304] = Y[304];
-  J[305] = Y[305];
-  J[306] = Y[306];
+  for (int k = 0; k < 8; ++k) J[236 + k] = Y[141 + k] * t20;
+  for (int k = 0; k < 50; ++k) J[246 + k] = Y[149 + k] * t20;
+  J[304] = Y[199];
+  J[305] = Y[200];
+  J[306] = Y[201];
   J[307] = -t14 * (t17 - 0.5 + t18 * t18 * t19);
-  for (int k = 0; k < 8; ++k) J[354 + k] = Y[354 + k] * t27;
-  for (int k = 0; k < 40; ++k) J[364 + k] = Y[364 + k] * t27;
-  J[416] = Y[416];
-  J[417] = Y[417];
-  J[418] = Y[418];
+  for (int k = 0; k < 8; ++k) J[354 + k] = Y[202 + k] * t27;
+  for (int k = 0; k < 40; ++k) J[364 + k] = Y[210 + k] * t27;
+  J[416] = Y[250];
+  J[417] = Y[251];
+  J[418] = Y[252];
   J[419] = -t21 * (t24 - 0.5 + t25 * t25 * t26);
-  for (int k = 0; k < 8; ++k) J[472 + k] = Y[472 + k] * t34;
-  for (int k = 0; k < 9; ++k) J[482 + k] = Y[482 + k] * t34;
-  for (int k = 0; k < 20; ++k) J[492 + k] = Y[492 + k] * t34;
-  J[528] = Y[528];
-  J[529] = Y[529];
-  J[530] = Y[530];
+  for (int k = 0; k < 8; ++k) J[472 + k] = Y[253 + k] * t34;
+  for (int k = 0; k < 9; ++k) J[482 + k] = Y[261 + k] * t34;
+  for (int k = 0; k < 20; ++k) J[492 + k] = Y[270 + k] * t34;
+  J[528] = Y[290];
+  J[529] = Y[291];
+  J[530] = Y[292];
   J[531] = -t28 * (t31 - 0.5 + t32 * t32 * t33);
-  for (int k = 0; k < 8; ++k) J[590 + k] = Y[590 + k] * t41;
-  for (int k = 0; k < 20; ++k) J[600 + k] = Y[600 + k] * t41;
-  J[640] = Y[640];
-  J[641] = Y[641];
-  J[642] = Y[642];
+  for (int k = 0; k < 8; ++k) J[590 + k] = Y[293 + k] * t41;
+  for (int k = 0; k < 20; ++k) J[600 + k] = Y[301 + k] * t41;
+  J[640] = Y[321];
+  J[641] = Y[322];
+  J[642] = Y[323];
   J[643] = -t35 * (t38 - 0.5 + t39 * t39 * t40);
-  for (int k = 0; k < 8; ++k) J[708 + k] = Y[708 + k] * t48;
-  for (int k = 0; k < 8; ++k) J[718 + k] = Y[718 + k] * t48;
-  J[752] = Y[752];
-  J[753] = Y[753];
-  J[754] = Y[754];
+  for (int k = 0; k < 8; ++k) J[708 + k] = Y[324 + k] * t48;
+  for (int k = 0; k < 8; ++k) J[718 + k] = Y[332 + k] * t48;
+  J[752] = Y[340];
+  J[753] = Y[341];
+  J[754] = Y[342];
   J[755] = -t42 * (t45 - 0.5 + t46 * t46 * t47);
 }
 
-// drive_torque_jacobian from the sample's drive regressor Y (kDof x kDriveParams, row-major,
-// as drive_regressor writes it for that sample's q, dq, ddq) instead of q, dq, ddq: tau_M
+// drive_torque_jacobian from the sample's packed drive regressor Y (kDriveRegressorEntries
+// values, as drive_regressor writes it for that sample's q, dq, ddq) instead of q, dq, ddq: tau_M
 // (kDof) and J = d tau_M / d theta (kDof x kDriveParams, row-major, J[i * kDriveParams + k])
 // for the parameters theta, with no Newton-Euler pass, for the iterations of a
 // maximum-likelihood fit (Swevers et al. 2002 eq. 18). The inertial columns of row i are c_i Y
 // (c_i the efficiency factor of eq. 8), those of JM, Rv, Rc of motor i are copied from Y. The
 // efficiency branch and the Coulomb friction sign count as constant, as in
-// drive_torque_jacobian. Reads only the entries of Y that drive_regressor does not leave
-// structurally zero; every Rz must be non-zero.
+// drive_torque_jacobian. Every Rz must be non-zero.
 // J: 349 of its 756 entries are written; the others are zero for every input
 // and never written (the manifest lists them under "unwritten"): zero J once before the
 // first call.
 void drive_torque_jacobian_given_regressor(const float* Y, const float* theta, float* tau_M,
                                            float* J) {
-  const float t0 = (Y[10] * theta[10] + Y[11] * theta[11] + Y[12] * theta[12] + Y[13] * theta[13] + Y[14] * theta[14] + Y[20] * theta[20] + Y[21] * theta[21] + Y[22] * theta[22] + Y[23] * theta[23] + Y[24] * theta[24] + Y[25] * theta[25] + Y[26] * theta[26] + Y[27] * theta[27] + Y[28] * theta[28] + Y[29] * theta[29] + Y[30] * theta[30] + Y[31] * theta[31]) + (Y[32] * theta[32] + Y[33] * theta[33] + Y[34] * theta[34] + Y[35] * theta[35] + Y[36] * theta[36] + Y[37] * theta[37] + Y[38] * theta[38] + Y[39] * theta[39] + Y[40] * theta[40] + Y[41] * theta[41] + Y[42] * theta[42] + Y[43] * theta[43] + Y[44] * theta[44] + Y[45] * theta[45] + Y[46] * theta[46] + Y[47] * theta[47] + Y[48] * theta[48]) + (Y[49] * theta[49] + Y[50] * theta[50] + Y[51] * theta[51] + Y[52] * theta[52] + Y[53] * theta[53] + Y[54] * theta[54] + Y[55] * theta[55] + Y[56] * theta[56] + Y[57] * theta[57] + Y[58] * theta[58] + Y[59] * theta[59] + Y[5] * theta[5] + Y[60] * theta[60] + Y[61] * theta[61] + Y[62] * theta[62] + Y[63] * theta[63] + Y[64] * theta[64]) + (Y[65] * theta[65] + Y[66] * theta[66] + Y[67] * theta[67] + Y[68] * theta[68] + Y[69] * theta[69] + Y[70] * theta[70] + Y[71] * theta[71] + Y[72] * theta[72] + Y[73] * theta[73] + Y[74] * theta[74] + Y[75] * theta[75] + Y[76] * theta[76] + Y[77] * theta[77] + Y[78] * theta[78] + Y[79] * theta[79]);
-  const float t1 = Y[81] * t0;
+  const float t0 = (Y[0] * theta[5] + Y[10] * theta[23] + Y[11] * theta[24] + Y[12] * theta[25] + Y[13] * theta[26] + Y[14] * theta[27] + Y[15] * theta[28] + Y[16] * theta[29] + Y[17] * theta[30] + Y[18] * theta[31] + Y[19] * theta[32] + Y[1] * theta[10] + Y[20] * theta[33] + Y[21] * theta[34] + Y[22] * theta[35] + Y[23] * theta[36] + Y[24] * theta[37]) + (Y[25] * theta[38] + Y[26] * theta[39] + Y[27] * theta[40] + Y[28] * theta[41] + Y[29] * theta[42] + Y[2] * theta[11] + Y[30] * theta[43] + Y[31] * theta[44] + Y[32] * theta[45] + Y[33] * theta[46] + Y[34] * theta[47] + Y[35] * theta[48] + Y[36] * theta[49] + Y[37] * theta[50] + Y[38] * theta[51] + Y[39] * theta[52] + Y[3] * theta[12]) + (Y[40] * theta[53] + Y[41] * theta[54] + Y[42] * theta[55] + Y[43] * theta[56] + Y[44] * theta[57] + Y[45] * theta[58] + Y[46] * theta[59] + Y[47] * theta[60] + Y[48] * theta[61] + Y[49] * theta[62] + Y[4] * theta[13] + Y[50] * theta[63] + Y[51] * theta[64] + Y[52] * theta[65] + Y[53] * theta[66] + Y[54] * theta[67] + Y[55] * theta[68]) + (Y[56] * theta[69] + Y[57] * theta[70] + Y[58] * theta[71] + Y[59] * theta[72] + Y[5] * theta[14] + Y[60] * theta[73] + Y[61] * theta[74] + Y[62] * theta[75] + Y[63] * theta[76] + Y[64] * theta[77] + Y[65] * theta[78] + Y[66] * theta[79] + Y[7] * theta[20] + Y[8] * theta[21] + Y[9] * theta[22]);
+  const float t1 = Y[68] * t0;
   const float t2 = static_cast<float>((t1 > 0.0f) - (t1 < 0.0f));
   const float t3 = 0.5f * t2;
   const float t4 = 1.0f / theta[83];
   const float t5 = 0.5f + t3;
   const float t6 = t4 * t5 - theta[83] * (t3 - 0.5f);
-  tau_M[0] = Y[80] * theta[80] + Y[81] * theta[81] + Y[82] * theta[82] + t0 * t6;
-  const float t7 = (Y[118] * theta[10] + Y[119] * theta[11] + Y[120] * theta[12] + Y[121] * theta[13] + Y[122] * theta[14] + Y[123] * theta[15] + Y[124] * theta[16] + Y[125] * theta[17] + Y[128] * theta[20] + Y[129] * theta[21] + Y[130] * theta[22] + Y[131] * theta[23] + Y[132] * theta[24] + Y[133] * theta[25] + Y[134] * theta[26] + Y[135] * theta[27] + Y[136] * theta[28]) + (Y[137] * theta[29] + Y[138] * theta[30] + Y[139] * theta[31] + Y[140] * theta[32] + Y[141] * theta[33] + Y[142] * theta[34] + Y[143] * theta[35] + Y[144] * theta[36] + Y[145] * theta[37] + Y[146] * theta[38] + Y[147] * theta[39] + Y[148] * theta[40] + Y[149] * theta[41] + Y[150] * theta[42] + Y[151] * theta[43] + Y[152] * theta[44] + Y[153] * theta[45]) + (Y[154] * theta[46] + Y[155] * theta[47] + Y[156] * theta[48] + Y[157] * theta[49] + Y[158] * theta[50] + Y[159] * theta[51] + Y[160] * theta[52] + Y[161] * theta[53] + Y[162] * theta[54] + Y[163] * theta[55] + Y[164] * theta[56] + Y[165] * theta[57] + Y[166] * theta[58] + Y[167] * theta[59] + Y[168] * theta[60] + Y[169] * theta[61] + Y[170] * theta[62]) + (Y[171] * theta[63] + Y[172] * theta[64] + Y[173] * theta[65] + Y[174] * theta[66] + Y[175] * theta[67] + Y[176] * theta[68] + Y[177] * theta[69] + Y[178] * theta[70] + Y[179] * theta[71] + Y[180] * theta[72] + Y[181] * theta[73] + Y[182] * theta[74] + Y[183] * theta[75] + Y[184] * theta[76] + Y[185] * theta[77] + Y[186] * theta[78] + Y[187] * theta[79]);
-  const float t8 = Y[193] * t7;
+  tau_M[0] = Y[67] * theta[80] + Y[68] * theta[81] + Y[69] * theta[82] + t0 * t6;
+  const float t7 = (Y[100] * theta[42] + Y[101] * theta[43] + Y[102] * theta[44] + Y[103] * theta[45] + Y[104] * theta[46] + Y[105] * theta[47] + Y[106] * theta[48] + Y[107] * theta[49] + Y[108] * theta[50] + Y[109] * theta[51] + Y[110] * theta[52] + Y[111] * theta[53] + Y[112] * theta[54] + Y[113] * theta[55] + Y[114] * theta[56] + Y[115] * theta[57] + Y[116] * theta[58]) + (Y[117] * theta[59] + Y[118] * theta[60] + Y[119] * theta[61] + Y[120] * theta[62] + Y[121] * theta[63] + Y[122] * theta[64] + Y[123] * theta[65] + Y[124] * theta[66] + Y[125] * theta[67] + Y[126] * theta[68] + Y[127] * theta[69] + Y[128] * theta[70] + Y[129] * theta[71] + Y[130] * theta[72] + Y[131] * theta[73] + Y[132] * theta[74] + Y[133] * theta[75]) + (Y[134] * theta[76] + Y[135] * theta[77] + Y[136] * theta[78] + Y[137] * theta[79] + Y[70] * theta[10] + Y[71] * theta[11] + Y[72] * theta[12] + Y[73] * theta[13] + Y[74] * theta[14] + Y[75] * theta[15] + Y[76] * theta[16] + Y[77] * theta[17] + Y[78] * theta[20] + Y[79] * theta[21] + Y[80] * theta[22] + Y[81] * theta[23] + Y[82] * theta[24]) + (Y[83] * theta[25] + Y[84] * theta[26] + Y[85] * theta[27] + Y[86] * theta[28] + Y[87] * theta[29] + Y[88] * theta[30] + Y[89] * theta[31] + Y[90] * theta[32] + Y[91] * theta[33] + Y[92] * theta[34] + Y[93] * theta[35] + Y[94] * theta[36] + Y[95] * theta[37] + Y[96] * theta[38] + Y[97] * theta[39] + Y[98] * theta[40] + Y[99] * theta[41]);
+  const float t8 = Y[139] * t7;
   const float t9 = static_cast<float>((t8 > 0.0f) - (t8 < 0.0f));
   const float t10 = 0.5f * t9;
   const float t11 = 1.0f / theta[87];
   const float t12 = 0.5f + t10;
   const float t13 = t11 * t12 - theta[87] * (t10 - 0.5f);
-  tau_M[1] = Y[192] * theta[84] + Y[193] * theta[85] + Y[194] * theta[86] + t7 * t13;
-  const float t14 = (Y[236] * theta[20] + Y[237] * theta[21] + Y[238] * theta[22] + Y[239] * theta[23] + Y[240] * theta[24] + Y[241] * theta[25] + Y[242] * theta[26] + Y[243] * theta[27] + Y[246] * theta[30] + Y[247] * theta[31] + Y[248] * theta[32] + Y[249] * theta[33] + Y[250] * theta[34] + Y[251] * theta[35] + Y[252] * theta[36]) + (Y[253] * theta[37] + Y[254] * theta[38] + Y[255] * theta[39] + Y[256] * theta[40] + Y[257] * theta[41] + Y[258] * theta[42] + Y[259] * theta[43] + Y[260] * theta[44] + Y[261] * theta[45] + Y[262] * theta[46] + Y[263] * theta[47] + Y[264] * theta[48] + Y[265] * theta[49] + Y[266] * theta[50] + Y[267] * theta[51]) + (Y[268] * theta[52] + Y[269] * theta[53] + Y[270] * theta[54] + Y[271] * theta[55] + Y[272] * theta[56] + Y[273] * theta[57] + Y[274] * theta[58] + Y[275] * theta[59] + Y[276] * theta[60] + Y[277] * theta[61] + Y[278] * theta[62] + Y[279] * theta[63] + Y[280] * theta[64] + Y[281] * theta[65] + Y[282] * theta[66]) + (Y[283] * theta[67] + Y[284] * theta[68] + Y[285] * theta[69] + Y[286] * theta[70] + Y[287] * theta[71] + Y[288] * theta[72] + Y[289] * theta[73] + Y[290] * theta[74] + Y[291] * theta[75] + Y[292] * theta[76] + Y[293] * theta[77] + Y[294] * theta[78] + Y[295] * theta[79]);
-  const float t15 = Y[305] * t14;
+  tau_M[1] = Y[138] * theta[84] + Y[139] * theta[85] + Y[140] * theta[86] + t7 * t13;
+  const float t14 = (Y[141] * theta[20] + Y[142] * theta[21] + Y[143] * theta[22] + Y[144] * theta[23] + Y[145] * theta[24] + Y[146] * theta[25] + Y[147] * theta[26] + Y[148] * theta[27] + Y[149] * theta[30] + Y[150] * theta[31] + Y[151] * theta[32] + Y[152] * theta[33] + Y[153] * theta[34] + Y[154] * theta[35] + Y[155] * theta[36]) + (Y[156] * theta[37] + Y[157] * theta[38] + Y[158] * theta[39] + Y[159] * theta[40] + Y[160] * theta[41] + Y[161] * theta[42] + Y[162] * theta[43] + Y[163] * theta[44] + Y[164] * theta[45] + Y[165] * theta[46] + Y[166] * theta[47] + Y[167] * theta[48] + Y[168] * theta[49] + Y[169] * theta[50] + Y[170] * theta[51]) + (Y[171] * theta[52] + Y[172] * theta[53] + Y[173] * theta[54] + Y[174] * theta[55] + Y[175] * theta[56] + Y[176] * theta[57] + Y[177] * theta[58] + Y[178] * theta[59] + Y[179] * theta[60] + Y[180] * theta[61] + Y[181] * theta[62] + Y[182] * theta[63] + Y[183] * theta[64] + Y[184] * theta[65] + Y[185] * theta[66]) + (Y[186] * theta[67] + Y[187] * theta[68] + Y[188] * theta[69] + Y[189] * theta[70] + Y[190] * theta[71] + Y[191] * theta[72] + Y[192] * theta[73] + Y[193] * theta[74] + Y[194] * theta[75] + Y[195] * theta[76] + Y[196] * theta[77] + Y[197] * theta[78] + Y[198] * theta[79]);
+  const float t15 = Y[200] * t14;
   const float t16 = static_cast<float>((t15 > 0.0f) - (t15 < 0.0f));
   const float t17 = 0.5f * t16;
   const float t18 = 1.0f / theta[91];
   const float t19 = 0.5f + t17;
   const float t20 = t18 * t19 - theta[91] * (t17 - 0.5f);
-  tau_M[2] = Y[304] * theta[88] + Y[305] * theta[89] + Y[306] * theta[90] + t14 * t20;
-  const float t21 = (Y[354] * theta[30] + Y[355] * theta[31] + Y[356] * theta[32] + Y[357] * theta[33] + Y[358] * theta[34] + Y[359] * theta[35] + Y[360] * theta[36] + Y[361] * theta[37] + Y[364] * theta[40] + Y[365] * theta[41] + Y[366] * theta[42] + Y[367] * theta[43]) + (Y[368] * theta[44] + Y[369] * theta[45] + Y[370] * theta[46] + Y[371] * theta[47] + Y[372] * theta[48] + Y[373] * theta[49] + Y[374] * theta[50] + Y[375] * theta[51] + Y[376] * theta[52] + Y[377] * theta[53] + Y[378] * theta[54] + Y[379] * theta[55]) + (Y[380] * theta[56] + Y[381] * theta[57] + Y[382] * theta[58] + Y[383] * theta[59] + Y[384] * theta[60] + Y[385] * theta[61] + Y[386] * theta[62] + Y[387] * theta[63] + Y[388] * theta[64] + Y[389] * theta[65] + Y[390] * theta[66] + Y[391] * theta[67]) + (Y[392] * theta[68] + Y[393] * theta[69] + Y[394] * theta[70] + Y[395] * theta[71] + Y[396] * theta[72] + Y[397] * theta[73] + Y[398] * theta[74] + Y[399] * theta[75] + Y[400] * theta[76] + Y[401] * theta[77] + Y[402] * theta[78] + Y[403] * theta[79]);
-  const float t22 = Y[417] * t21;
+  tau_M[2] = Y[199] * theta[88] + Y[200] * theta[89] + Y[201] * theta[90] + t14 * t20;
+  const float t21 = (Y[202] * theta[30] + Y[203] * theta[31] + Y[204] * theta[32] + Y[205] * theta[33] + Y[206] * theta[34] + Y[207] * theta[35] + Y[208] * theta[36] + Y[209] * theta[37] + Y[210] * theta[40] + Y[211] * theta[41] + Y[212] * theta[42] + Y[213] * theta[43]) + (Y[214] * theta[44] + Y[215] * theta[45] + Y[216] * theta[46] + Y[217] * theta[47] + Y[218] * theta[48] + Y[219] * theta[49] + Y[220] * theta[50] + Y[221] * theta[51] + Y[222] * theta[52] + Y[223] * theta[53] + Y[224] * theta[54] + Y[225] * theta[55]) + (Y[226] * theta[56] + Y[227] * theta[57] + Y[228] * theta[58] + Y[229] * theta[59] + Y[230] * theta[60] + Y[231] * theta[61] + Y[232] * theta[62] + Y[233] * theta[63] + Y[234] * theta[64] + Y[235] * theta[65] + Y[236] * theta[66] + Y[237] * theta[67]) + (Y[238] * theta[68] + Y[239] * theta[69] + Y[240] * theta[70] + Y[241] * theta[71] + Y[242] * theta[72] + Y[243] * theta[73] + Y[244] * theta[74] + Y[245] * theta[75] + Y[246] * theta[76] + Y[247] * theta[77] + Y[248] * theta[78] + Y[249] * theta[79]);
+  const float t22 = Y[251] * t21;
   const float t23 = static_cast<float>((t22 > 0.0f) - (t22 < 0.0f));
   const float t24 = 0.5f * t23;
   const float t25 = 1.0f / theta[95];
   const float t26 = 0.5f + t24;
   const float t27 = t25 * t26 - theta[95] * (t24 - 0.5f);
-  tau_M[3] = Y[416] * theta[92] + Y[417] * theta[93] + Y[418] * theta[94] + t21 * t27;
-  const float t28 = (Y[472] * theta[40] + Y[473] * theta[41] + Y[474] * theta[42] + Y[475] * theta[43] + Y[476] * theta[44] + Y[477] * theta[45] + Y[478] * theta[46] + Y[479] * theta[47] + Y[482] * theta[50] + Y[483] * theta[51]) + (Y[484] * theta[52] + Y[485] * theta[53] + Y[486] * theta[54] + Y[487] * theta[55] + Y[488] * theta[56] + Y[489] * theta[57] + Y[490] * theta[58] + Y[492] * theta[60] + Y[493] * theta[61] + Y[494] * theta[62]) + (Y[495] * theta[63] + Y[496] * theta[64] + Y[497] * theta[65] + Y[498] * theta[66] + Y[499] * theta[67] + Y[500] * theta[68] + Y[501] * theta[69] + Y[502] * theta[70] + Y[503] * theta[71] + Y[504] * theta[72]) + (Y[505] * theta[73] + Y[506] * theta[74] + Y[507] * theta[75] + Y[508] * theta[76] + Y[509] * theta[77] + Y[510] * theta[78] + Y[511] * theta[79]);
-  const float t29 = Y[529] * t28;
+  tau_M[3] = Y[250] * theta[92] + Y[251] * theta[93] + Y[252] * theta[94] + t21 * t27;
+  const float t28 = (Y[253] * theta[40] + Y[254] * theta[41] + Y[255] * theta[42] + Y[256] * theta[43] + Y[257] * theta[44] + Y[258] * theta[45] + Y[259] * theta[46] + Y[260] * theta[47] + Y[261] * theta[50] + Y[262] * theta[51]) + (Y[263] * theta[52] + Y[264] * theta[53] + Y[265] * theta[54] + Y[266] * theta[55] + Y[267] * theta[56] + Y[268] * theta[57] + Y[269] * theta[58] + Y[270] * theta[60] + Y[271] * theta[61] + Y[272] * theta[62]) + (Y[273] * theta[63] + Y[274] * theta[64] + Y[275] * theta[65] + Y[276] * theta[66] + Y[277] * theta[67] + Y[278] * theta[68] + Y[279] * theta[69] + Y[280] * theta[70] + Y[281] * theta[71] + Y[282] * theta[72]) + (Y[283] * theta[73] + Y[284] * theta[74] + Y[285] * theta[75] + Y[286] * theta[76] + Y[287] * theta[77] + Y[288] * theta[78] + Y[289] * theta[79]);
+  const float t29 = Y[291] * t28;
   const float t30 = static_cast<float>((t29 > 0.0f) - (t29 < 0.0f));
   const float t31 = 0.5f * t30;
   const float t32 = 1.0f / theta[99];
   const float t33 = 0.5f + t31;
   const float t34 = t32 * t33 - theta[99] * (t31 - 0.5f);
-  tau_M[4] = Y[528] * theta[96] + Y[529] * theta[97] + Y[530] * theta[98] + t28 * t34;
-  const float t35 = Y[590] * theta[50] + Y[591] * theta[51] + Y[592] * theta[52] + Y[593] * theta[53] + Y[594] * theta[54] + Y[595] * theta[55] + Y[596] * theta[56] + Y[597] * theta[57] + Y[600] * theta[60] + Y[601] * theta[61] + Y[602] * theta[62] + Y[603] * theta[63] + Y[604] * theta[64] + Y[605] * theta[65] + Y[606] * theta[66] + Y[607] * theta[67] + Y[608] * theta[68] + Y[609] * theta[69] + Y[610] * theta[70] + Y[611] * theta[71] + Y[612] * theta[72] + Y[613] * theta[73] + Y[614] * theta[74] + Y[615] * theta[75] + Y[616] * theta[76] + Y[617] * theta[77] + Y[618] * theta[78] + Y[619] * theta[79];
-  const float t36 = Y[641] * t35;
+  tau_M[4] = Y[290] * theta[96] + Y[291] * theta[97] + Y[292] * theta[98] + t28 * t34;
+  const float t35 = Y[293] * theta[50] + Y[294] * theta[51] + Y[295] * theta[52] + Y[296] * theta[53] + Y[297] * theta[54] + Y[298] * theta[55] + Y[299] * theta[56] + Y[300] * theta[57] + Y[301] * theta[60] + Y[302] * theta[61] + Y[303] * theta[62] + Y[304] * theta[63] + Y[305] * theta[64] + Y[306] * theta[65] + Y[307] * theta[66] + Y[308] * theta[67] + Y[309] * theta[68] + Y[310] * theta[69] + Y[311] * theta[70] + Y[312] * theta[71] + Y[313] * theta[72] + Y[314] * theta[73] + Y[315] * theta[74] + Y[316] * theta[75] + Y[317] * theta[76] + Y[318] * theta[77] + Y[319] * theta[78] + Y[320] * theta[79];
+  const float t36 = Y[322] * t35;
   const float t37 = static_cast<float>((t36 > 0.0f) - (t36 < 0.0f));
   const float t38 = 0.5f * t37;
   const float t39 = 1.0f / theta[103];
   const float t40 = 0.5f + t38;
   const float t41 = t39 * t40 - theta[103] * (t38 - 0.5f);
-  tau_M[5] = Y[640] * theta[100] + Y[641] * theta[101] + Y[642] * theta[102] + t35 * t41;
-  const float t42 = Y[708] * theta[60] + Y[709] * theta[61] + Y[710] * theta[62] + Y[711] * theta[63] + Y[712] * theta[64] + Y[713] * theta[65] + Y[714] * theta[66] + Y[715] * theta[67] + Y[718] * theta[70] + Y[719] * theta[71] + Y[720] * theta[72] + Y[721] * theta[73] + Y[722] * theta[74] + Y[723] * theta[75] + Y[724] * theta[76] + Y[725] * theta[77];
-  const float t43 = Y[753] * t42;
+  tau_M[5] = Y[321] * theta[100] + Y[322] * theta[101] + Y[323] * theta[102] + t35 * t41;
+  const float t42 = Y[324] * theta[60] + Y[325] * theta[61] + Y[326] * theta[62] + Y[327] * theta[63] + Y[328] * theta[64] + Y[329] * theta[65] + Y[330] * theta[66] + Y[331] * theta[67] + Y[332] * theta[70] + Y[333] * theta[71] + Y[334] * theta[72] + Y[335] * theta[73] + Y[336] * theta[74] + Y[337] * theta[75] + Y[338] * theta[76] + Y[339] * theta[77];
+  const float t43 = Y[341] * t42;
   const float t44 = static_cast<float>((t43 > 0.0f) - (t43 < 0.0f));
   const float t45 = 0.5f * t44;
   const float t46 = 1.0f / theta[107];
   const float t47 = 0.5f + t45;
   const float t48 = t46 * t47 - theta[107] * (t45 - 0.5f);
-  tau_M[6] = Y[752] * theta[104] + Y[753] * theta[105] + Y[754] * theta[106] + t42 * t48;
-  J[5] = Y[5] * t6;  // ZZ1
-  for (int k = 0; k < 5; ++k) J[10 + k] = Y[10 + k] * t6;  // XX2 XY2 XZ2 YY2 YZ2
-  for (int k = 0; k < 60; ++k) J[20 + k] = Y[20 + k] * t6;  // XX3 XY3 XZ3 YY3 YZ3 ZZ3 MX3 MY3 MZ3 M3 XX4 XY4 XZ4 YY4 YZ4 ZZ4 MX4 MY4 MZ4 M4 XX5 XY5 XZ5 YY5 YZ5 ZZ5 MX5 MY5 MZ5 M5 XX6 XY6 XZ6 YY6 YZ6 ZZ6 MX6 MY6 MZ6 M6 XX7 XY7 XZ7 YY7 YZ7 ZZ7 MX7 MY7 MZ7 M7 XX8 XY8 XZ8 YY8 YZ8 ZZ8 MX8 MY8 MZ8 M8
-  J[80] = Y[80];  // JM1
-  J[81] = Y[81];  // Rv1
-  J[82] = Y[82];  // Rc1
+  tau_M[6] = Y[340] * theta[104] + Y[341] * theta[105] + Y[342] * theta[106] + t42 * t48;
+  J[5] = Y[0] * t6;  // ZZ1
+  for (int k = 0; k < 5; ++k) J[10 + k] = Y[1 + k] * t6;  // XX2 XY2 XZ2 YY2 YZ2
+  for (int k = 0; k < 60; ++k) J[20 + k] = Y[7 + k] * t6;  // XX3 XY3 XZ3 YY3 YZ3 ZZ3 MX3 MY3 MZ3 M3 XX4 XY4 XZ4 YY4 YZ4 ZZ4 MX4 MY4 MZ4 M4 XX5 XY5 XZ5 YY5 YZ5 ZZ5 MX5 MY5 MZ5 M5 XX6 XY6 XZ6 YY6 YZ6 ZZ6 MX6 MY6 MZ6 M6 XX7 XY7 XZ7 YY7 YZ7 ZZ7 MX7 MY7 MZ7 M7 XX8 XY8 XZ8 YY8 YZ8 ZZ8 MX8 MY8 MZ8 M8
+  J[80] = Y[67];  // JM1
+  J[81] = Y[68];  // Rv1
+  J[82] = Y[69];  // Rc1
   J[83] = -t0 * (t3 - 0.5f + t4 * t4 * t5);  // Rz1
-  for (int k = 0; k < 8; ++k) J[118 + k] = Y[118 + k] * t13;
-  for (int k = 0; k < 60; ++k) J[128 + k] = Y[128 + k] * t13;
-  J[192] = Y[192];
-  J[193] = Y[193];
-  J[194] = Y[194];
+  for (int k = 0; k < 8; ++k) J[118 + k] = Y[70 + k] * t13;
+  for (int k = 0; k < 60; ++k) J[128 + k] = Y[78 + k] * t13;
+  J[192] = Y[138];
+  J[193] = Y[139];
+  J[194] = Y[140];
   J[195] = -t7 * (t10 - 0.5f + t11 * t11 * t12);
-  for (int k = 0; k < 8; ++k) J[236 + k] = Y[236 + k] * t20;
-  for (int k = 0; k < 50; ++k) J[246 + k] = Y[246 + k] * t20;
-  J[304] = Y[304];
-  J[305] = Y[305];
-  J[306] = Y[306];
+  for (int k = 0; k < 8; ++k) J[236 + k] = Y[141 + k] * t20;
+  for (int k = 0; k < 50; ++k) J[246 + k] = Y[149 + k] * t20;
+  J[304] = Y[199];
+  J[305] = Y[200];
+  J[306] = Y[201];
   J[307] = -t14 * (t17 - 0.5f + t18 * t18 * t19);
-  for (int k = 0; k < 8; ++k) J[354 + k] = Y[354 + k] * t27;
-  for (int k = 0; k < 40; ++k) J[364 + k] = Y[364 + k] * t27;
-  J[416] = Y[416];
-  J[417] = Y[417];
-  J[418] = Y[418];
+  for (int k = 0; k < 8; ++k) J[354 + k] = Y[202 + k] * t27;
+  for (int k = 0; k < 40; ++k) J[364 + k] = Y[210 + k] * t27;
+  J[416] = Y[250];
+  J[417] = Y[251];
+  J[418] = Y[252];
   J[419] = -t21 * (t24 - 0.5f + t25 * t25 * t26);
-  for (int k = 0; k < 8; ++k) J[472 + k] = Y[472 + k] * t34;
-  for (int k = 0; k < 9; ++k) J[482 + k] = Y[482 + k] * t34;
-  for (int k = 0; k < 20; ++k) J[492 + k] = Y[492 + k] * t34;
-  J[528] = Y[528];
-  J[529] = Y[529];
-  J[530] = Y[530];
+  for (int k = 0; k < 8; ++k) J[472 + k] = Y[253 + k] * t34;
+  for (int k = 0; k < 9; ++k) J[482 + k] = Y[261 + k] * t34;
+  for (int k = 0; k < 20; ++k) J[492 + k] = Y[270 + k] * t34;
+  J[528] = Y[290];
+  J[529] = Y[291];
+  J[530] = Y[292];
   J[531] = -t28 * (t31 - 0.5f + t32 * t32 * t33);
-  for (int k = 0; k < 8; ++k) J[590 + k] = Y[590 + k] * t41;
-  for (int k = 0; k < 20; ++k) J[600 + k] = Y[600 + k] * t41;
-  J[640] = Y[640];
-  J[641] = Y[641];
-  J[642] = Y[642];
+  for (int k = 0; k < 8; ++k) J[590 + k] = Y[293 + k] * t41;
+  for (int k = 0; k < 20; ++k) J[600 + k] = Y[301 + k] * t41;
+  J[640] = Y[321];
+  J[641] = Y[322];
+  J[642] = Y[323];
   J[643] = -t35 * (t38 - 0.5f + t39 * t39 * t40);
-  for (int k = 0; k < 8; ++k) J[708 + k] = Y[708 + k] * t48;
-  for (int k = 0; k < 8; ++k) J[718 + k] = Y[718 + k] * t48;
-  J[752] = Y[752];
-  J[753] = Y[753];
-  J[754] = Y[754];
+  for (int k = 0; k < 8; ++k) J[708 + k] = Y[324 + k] * t48;
+  for (int k = 0; k < 8; ++k) J[718 + k] = Y[332 + k] * t48;
+  J[752] = Y[340];
+  J[753] = Y[341];
+  J[754] = Y[342];
   J[755] = -t42 * (t45 - 0.5f + t46 * t46 * t47);
 }
 

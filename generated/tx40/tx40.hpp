@@ -34,7 +34,7 @@ namespace modelgen {
 namespace tx40 {
 
 // Version of this generated interface; the runtime's adapter for generated models checks it.
-constexpr int kFormatVersion = 4;
+constexpr int kFormatVersion = 5;
 // Moving joints: the length of q, dq, ddq and tau.
 constexpr int kDof = 6;
 // Standard dynamic parameters (Gautier & Briot eq. 3): the length of p, the columns of W.
@@ -45,6 +45,9 @@ constexpr int kBaseParams = 61;
 // Parameters theta of the Swevers drive model (eq. 14): the length of theta, the columns of
 // drive_torque_jacobian.
 constexpr int kDriveParams = 94;
+// Entries of the drive regressor Y (kDof x kDriveParams) that are not structurally zero: the
+// length of the packed Y that drive_regressor writes and the _given_regressor functions read.
+constexpr int kDriveRegressorEntries = 258;
 
 // Names of the standard parameters in the order of p: "XX1", "XY1", ... as in DESIGN.md.
 extern const char* const kStandardParamNames[kStandardParams];
@@ -55,6 +58,11 @@ extern const char* const kBaseParamNames[kBaseParams];
 // (XXj ... Mj of every body, as in kStandardParamNames), then per moving joint JMj, Rvj, Rcj,
 // Rzj (motor inertia, viscous and Coulomb friction, transmission efficiency).
 extern const char* const kDriveParamNames[kDriveParams];
+// Where each entry of the packed drive regressor sits in the dense one: packed Y[p] is entry
+// kDriveRegressorIndex[p] of the row-major kDof x kDriveParams regressor (row i of that index
+// is i / kDriveParams, its parameter i % kDriveParams); every other dense entry is always 0.
+// Increasing.
+extern const int kDriveRegressorIndex[kDriveRegressorEntries];
 
 // The drive chain of the description, for data measured on the motor side. Row-major
 // kDof x kDof K with dq_motor = K dq and tau = K^T tau_motor (Gautier & Briot eq. 25).
@@ -257,38 +265,37 @@ void drive_torque_state_jacobian(const float* q, const float* dq, const float* d
 
 // Regressor Y of the drive model with unit efficiencies (Swevers et al. 2002, the linear model
 // of section 3.2): drive_torque(q, dq, ddq, theta) = Y theta whenever every Rz in theta is 1.
-// Inputs as for drive_torque, without theta. Output Y: kDof x kDriveParams, row-major, in the
-// order of kDriveParamNames. With K = kMotorFromJoint, row i holds (K^-T W)[i, :] in the
+// Inputs as for drive_torque, without theta. Output Y, packed: the kDriveRegressorEntries
+// entries of the kDof x kDriveParams regressor (row-major, columns in the order of
+// kDriveParamNames) that are not structurally zero, entry p being dense entry
+// kDriveRegressorIndex[p]. With K = kMotorFromJoint, row i holds (K^-T W)[i, :] in the
 // inertial columns (W the inertial columns of idim_regressor_standard, eq. 10), ddq_M_i,
 // dq_M_i and sign(dq_M_i) (eq. 9) in the columns of JM, Rv and Rc of motor i, and 0 elsewhere
 // (the Rz columns too). Y does not depend on theta: a fit computes it once per sample and
-// passes it to drive_torque_given_regressor and drive_torque_jacobian_given_regressor, which
-// read only its entries that are not structurally zero. Calls idim_regressor_standard into a
-// local array of kDof * kStandardParams values (on the stack).
-// Y: 256 of its 564 entries are written; the others are zero for every input
+// passes it to drive_torque_given_regressor and drive_torque_jacobian_given_regressor. Calls
+// idim_regressor_standard into a local array of kDof * kStandardParams values (on the stack).
+// Y: 256 of its 258 entries are written; the others are zero for every input
 // and never written (the manifest lists them under "unwritten"): zero Y once before the
 // first call.
 void drive_regressor(const double* q, const double* dq, const double* ddq, double* Y);
 void drive_regressor(const float* q, const float* dq, const float* ddq, float* Y);
 
-// drive_torque from the sample's drive regressor Y (kDof x kDriveParams, row-major, as
+// drive_torque from the sample's packed drive regressor Y (kDriveRegressorEntries values, as
 // drive_regressor writes it for that sample's q, dq, ddq) instead of q, dq, ddq: the same
 // motor torques tau_M (kDof) for the parameters theta (kDriveParams), with no Newton-Euler
 // pass. tau'_G = Y theta over the inertial columns (eq. 10), the efficiency branch (eq. 8) and
-// the motor terms (eq. 5-7) as in drive_torque. Reads only the entries of Y that
-// drive_regressor does not leave structurally zero; every Rz must be non-zero.
+// the motor terms (eq. 5-7) as in drive_torque. Every Rz must be non-zero.
 void drive_torque_given_regressor(const double* Y, const double* theta, double* tau_M);
 void drive_torque_given_regressor(const float* Y, const float* theta, float* tau_M);
 
-// drive_torque_jacobian from the sample's drive regressor Y (kDof x kDriveParams, row-major,
-// as drive_regressor writes it for that sample's q, dq, ddq) instead of q, dq, ddq: tau_M
+// drive_torque_jacobian from the sample's packed drive regressor Y (kDriveRegressorEntries
+// values, as drive_regressor writes it for that sample's q, dq, ddq) instead of q, dq, ddq: tau_M
 // (kDof) and J = d tau_M / d theta (kDof x kDriveParams, row-major, J[i * kDriveParams + k])
 // for the parameters theta, with no Newton-Euler pass, for the iterations of a
 // maximum-likelihood fit (Swevers et al. 2002 eq. 18). The inertial columns of row i are c_i Y
 // (c_i the efficiency factor of eq. 8), those of JM, Rv, Rc of motor i are copied from Y. The
 // efficiency branch and the Coulomb friction sign count as constant, as in
-// drive_torque_jacobian. Reads only the entries of Y that drive_regressor does not leave
-// structurally zero; every Rz must be non-zero.
+// drive_torque_jacobian. Every Rz must be non-zero.
 // J: 262 of its 564 entries are written; the others are zero for every input
 // and never written (the manifest lists them under "unwritten"): zero J once before the
 // first call.
@@ -305,11 +312,14 @@ struct Model {
   static constexpr int kStandardParams = ::modelgen::tx40::kStandardParams;
   static constexpr int kBaseParams = ::modelgen::tx40::kBaseParams;
   static constexpr int kDriveParams = ::modelgen::tx40::kDriveParams;
+  static constexpr int kDriveRegressorEntries =
+      ::modelgen::tx40::kDriveRegressorEntries;
   static const char* name() { return "tx40"; }
   static const char* input_sha256() { return "8a2f905d78aeaa2a733324532df16a3f3b000f2d2ef68a724a12c92f21ed3654"; }
   static const char* const* standard_param_names() { return kStandardParamNames; }
   static const char* const* base_param_names() { return kBaseParamNames; }
   static const char* const* drive_param_names() { return kDriveParamNames; }
+  static const int* drive_regressor_index() { return kDriveRegressorIndex; }
   static const double* motor_from_joint() { return kMotorFromJoint; }
   static const double* torque_constant() { return kTorqueConstant; }
   static const double* joint_offset() { return kJointOffset; }

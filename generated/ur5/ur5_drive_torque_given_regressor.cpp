@@ -10,82 +10,80 @@
 namespace modelgen {
 namespace ur5 {
 
-// drive_torque from the sample's drive regressor Y (kDof x kDriveParams, row-major, as
+// drive_torque from the sample's packed drive regressor Y (kDriveRegressorEntries values, as
 // drive_regressor writes it for that sample's q, dq, ddq) instead of q, dq, ddq: the same
 // motor torques tau_M (kDof) for the parameters theta (kDriveParams), with no Newton-Euler
 // pass. tau'_G = Y theta over the inertial columns (eq. 10), the efficiency branch (eq. 8) and
-// the motor terms (eq. 5-7) as in drive_torque. Reads only the entries of Y that
-// drive_regressor does not leave structurally zero; every Rz must be non-zero.
+// the motor terms (eq. 5-7) as in drive_torque. Every Rz must be non-zero.
 void drive_torque_given_regressor(const double* Y, const double* theta, double* tau_M) {
-  const double t0 = (Y[10] * theta[10] + Y[11] * theta[11] + Y[12] * theta[12] + Y[14] * theta[14] + Y[15] * theta[15] + Y[16] * theta[16] + Y[17] * theta[17] + Y[18] * theta[18] + Y[19] * theta[19] + Y[20] * theta[20] + Y[21] * theta[21] + Y[22] * theta[22]) + (Y[24] * theta[24] + Y[25] * theta[25] + Y[26] * theta[26] + Y[27] * theta[27] + Y[28] * theta[28] + Y[29] * theta[29] + Y[30] * theta[30] + Y[31] * theta[31] + Y[32] * theta[32] + Y[34] * theta[34] + Y[35] * theta[35] + Y[36] * theta[36]) + (Y[37] * theta[37] + Y[38] * theta[38] + Y[39] * theta[39] + Y[40] * theta[40] + Y[41] * theta[41] + Y[42] * theta[42] + Y[43] * theta[43] + Y[44] * theta[44] + Y[45] * theta[45] + Y[46] * theta[46] + Y[47] * theta[47] + Y[48] * theta[48]) + (Y[49] * theta[49] + Y[50] * theta[50] + Y[51] * theta[51] + Y[52] * theta[52] + Y[53] * theta[53] + Y[54] * theta[54] + Y[55] * theta[55] + Y[56] * theta[56] + Y[57] * theta[57] + Y[58] * theta[58] + Y[59] * theta[59] + Y[5] * theta[5]);
-  const double t1 = Y[61] * t0;
+  const double t0 = (Y[0] * theta[5] + Y[10] * theta[19] + Y[11] * theta[20] + Y[12] * theta[21] + Y[13] * theta[22] + Y[15] * theta[24] + Y[16] * theta[25] + Y[17] * theta[26] + Y[18] * theta[27] + Y[19] * theta[28] + Y[1] * theta[10] + Y[20] * theta[29]) + (Y[21] * theta[30] + Y[22] * theta[31] + Y[23] * theta[32] + Y[25] * theta[34] + Y[26] * theta[35] + Y[27] * theta[36] + Y[28] * theta[37] + Y[29] * theta[38] + Y[2] * theta[11] + Y[30] * theta[39] + Y[31] * theta[40] + Y[32] * theta[41]) + (Y[33] * theta[42] + Y[34] * theta[43] + Y[35] * theta[44] + Y[36] * theta[45] + Y[37] * theta[46] + Y[38] * theta[47] + Y[39] * theta[48] + Y[3] * theta[12] + Y[40] * theta[49] + Y[41] * theta[50] + Y[42] * theta[51] + Y[43] * theta[52]) + (Y[44] * theta[53] + Y[45] * theta[54] + Y[46] * theta[55] + Y[47] * theta[56] + Y[48] * theta[57] + Y[49] * theta[58] + Y[50] * theta[59] + Y[5] * theta[14] + Y[6] * theta[15] + Y[7] * theta[16] + Y[8] * theta[17] + Y[9] * theta[18]);
+  const double t1 = Y[52] * t0;
   const double t2 = static_cast<double>((t1 > 0.0) - (t1 < 0.0));
   const double t3 = 0.5 * t2;
-  tau_M[0] = Y[60] * theta[60] + Y[61] * theta[61] + Y[62] * theta[62] - t0 * (theta[63] * (t3 - 0.5) - (1.0 / theta[63]) * (0.5 + t3));
-  const double t4 = (Y[100] * theta[16] + Y[102] * theta[18] + Y[104] * theta[20] + Y[105] * theta[21] + Y[106] * theta[22] + Y[107] * theta[23] + Y[108] * theta[24] + Y[109] * theta[25] + Y[110] * theta[26] + Y[111] * theta[27] + Y[112] * theta[28] + Y[113] * theta[29]) + (Y[114] * theta[30] + Y[115] * theta[31] + Y[116] * theta[32] + Y[117] * theta[33] + Y[118] * theta[34] + Y[119] * theta[35] + Y[120] * theta[36] + Y[121] * theta[37] + Y[122] * theta[38] + Y[123] * theta[39] + Y[124] * theta[40] + Y[125] * theta[41]) + (Y[126] * theta[42] + Y[127] * theta[43] + Y[128] * theta[44] + Y[129] * theta[45] + Y[130] * theta[46] + Y[131] * theta[47] + Y[132] * theta[48] + Y[133] * theta[49] + Y[134] * theta[50] + Y[135] * theta[51] + Y[136] * theta[52] + Y[137] * theta[53]) + (Y[138] * theta[54] + Y[139] * theta[55] + Y[140] * theta[56] + Y[141] * theta[57] + Y[142] * theta[58] + Y[143] * theta[59] + Y[94] * theta[10] + Y[95] * theta[11] + Y[96] * theta[12] + Y[97] * theta[13] + Y[98] * theta[14] + Y[99] * theta[15]);
-  const double t5 = Y[149] * t4;
+  tau_M[0] = Y[51] * theta[60] + Y[52] * theta[61] + Y[53] * theta[62] - t0 * (theta[63] * (t3 - 0.5) - (1.0 / theta[63]) * (0.5 + t3));
+  const double t4 = (Y[100] * theta[58] + Y[101] * theta[59] + Y[54] * theta[10] + Y[55] * theta[11] + Y[56] * theta[12] + Y[57] * theta[13] + Y[58] * theta[14] + Y[59] * theta[15] + Y[60] * theta[16] + Y[61] * theta[18] + Y[62] * theta[20] + Y[63] * theta[21]) + (Y[64] * theta[22] + Y[65] * theta[23] + Y[66] * theta[24] + Y[67] * theta[25] + Y[68] * theta[26] + Y[69] * theta[27] + Y[70] * theta[28] + Y[71] * theta[29] + Y[72] * theta[30] + Y[73] * theta[31] + Y[74] * theta[32] + Y[75] * theta[33]) + (Y[76] * theta[34] + Y[77] * theta[35] + Y[78] * theta[36] + Y[79] * theta[37] + Y[80] * theta[38] + Y[81] * theta[39] + Y[82] * theta[40] + Y[83] * theta[41] + Y[84] * theta[42] + Y[85] * theta[43] + Y[86] * theta[44] + Y[87] * theta[45]) + (Y[88] * theta[46] + Y[89] * theta[47] + Y[90] * theta[48] + Y[91] * theta[49] + Y[92] * theta[50] + Y[93] * theta[51] + Y[94] * theta[52] + Y[95] * theta[53] + Y[96] * theta[54] + Y[97] * theta[55] + Y[98] * theta[56] + Y[99] * theta[57]);
+  const double t5 = Y[103] * t4;
   const double t6 = static_cast<double>((t5 > 0.0) - (t5 < 0.0));
   const double t7 = 0.5 * t6;
-  tau_M[1] = Y[148] * theta[64] + Y[149] * theta[65] + Y[150] * theta[66] - t4 * (theta[67] * (t7 - 0.5) - (1.0 / theta[67]) * (0.5 + t7));
-  const double t8 = (Y[188] * theta[20] + Y[189] * theta[21] + Y[190] * theta[22] + Y[191] * theta[23] + Y[192] * theta[24] + Y[193] * theta[25] + Y[194] * theta[26] + Y[196] * theta[28] + Y[198] * theta[30] + Y[199] * theta[31]) + (Y[200] * theta[32] + Y[201] * theta[33] + Y[202] * theta[34] + Y[203] * theta[35] + Y[204] * theta[36] + Y[205] * theta[37] + Y[206] * theta[38] + Y[207] * theta[39] + Y[208] * theta[40] + Y[209] * theta[41]) + (Y[210] * theta[42] + Y[211] * theta[43] + Y[212] * theta[44] + Y[213] * theta[45] + Y[214] * theta[46] + Y[215] * theta[47] + Y[216] * theta[48] + Y[217] * theta[49] + Y[218] * theta[50] + Y[219] * theta[51]) + (Y[220] * theta[52] + Y[221] * theta[53] + Y[222] * theta[54] + Y[223] * theta[55] + Y[224] * theta[56] + Y[225] * theta[57] + Y[226] * theta[58] + Y[227] * theta[59]);
-  const double t9 = Y[237] * t8;
+  tau_M[1] = Y[102] * theta[64] + Y[103] * theta[65] + Y[104] * theta[66] - t4 * (theta[67] * (t7 - 0.5) - (1.0 / theta[67]) * (0.5 + t7));
+  const double t8 = (Y[105] * theta[20] + Y[106] * theta[21] + Y[107] * theta[22] + Y[108] * theta[23] + Y[109] * theta[24] + Y[110] * theta[25] + Y[111] * theta[26] + Y[112] * theta[28] + Y[113] * theta[30] + Y[114] * theta[31]) + (Y[115] * theta[32] + Y[116] * theta[33] + Y[117] * theta[34] + Y[118] * theta[35] + Y[119] * theta[36] + Y[120] * theta[37] + Y[121] * theta[38] + Y[122] * theta[39] + Y[123] * theta[40] + Y[124] * theta[41]) + (Y[125] * theta[42] + Y[126] * theta[43] + Y[127] * theta[44] + Y[128] * theta[45] + Y[129] * theta[46] + Y[130] * theta[47] + Y[131] * theta[48] + Y[132] * theta[49] + Y[133] * theta[50] + Y[134] * theta[51]) + (Y[135] * theta[52] + Y[136] * theta[53] + Y[137] * theta[54] + Y[138] * theta[55] + Y[139] * theta[56] + Y[140] * theta[57] + Y[141] * theta[58] + Y[142] * theta[59]);
+  const double t9 = Y[144] * t8;
   const double t10 = static_cast<double>((t9 > 0.0) - (t9 < 0.0));
   const double t11 = 0.5 * t10;
-  tau_M[2] = Y[236] * theta[68] + Y[237] * theta[69] + Y[238] * theta[70] - t8 * (theta[71] * (t11 - 0.5) - (1.0 / theta[71]) * (0.5 + t11));
-  const double t12 = Y[282] * theta[30] + Y[283] * theta[31] + Y[284] * theta[32] + Y[285] * theta[33] + Y[286] * theta[34] + Y[287] * theta[35] + Y[288] * theta[36] + Y[290] * theta[38] + Y[292] * theta[40] + Y[293] * theta[41] + Y[294] * theta[42] + Y[295] * theta[43] + Y[296] * theta[44] + Y[297] * theta[45] + Y[298] * theta[46] + Y[299] * theta[47] + Y[300] * theta[48] + Y[302] * theta[50] + Y[303] * theta[51] + Y[304] * theta[52] + Y[305] * theta[53] + Y[306] * theta[54] + Y[307] * theta[55] + Y[308] * theta[56] + Y[309] * theta[57] + Y[310] * theta[58] + Y[311] * theta[59];
-  const double t13 = Y[325] * t12;
+  tau_M[2] = Y[143] * theta[68] + Y[144] * theta[69] + Y[145] * theta[70] - t8 * (theta[71] * (t11 - 0.5) - (1.0 / theta[71]) * (0.5 + t11));
+  const double t12 = Y[146] * theta[30] + Y[147] * theta[31] + Y[148] * theta[32] + Y[149] * theta[33] + Y[150] * theta[34] + Y[151] * theta[35] + Y[152] * theta[36] + Y[153] * theta[38] + Y[154] * theta[40] + Y[155] * theta[41] + Y[156] * theta[42] + Y[157] * theta[43] + Y[158] * theta[44] + Y[159] * theta[45] + Y[160] * theta[46] + Y[161] * theta[47] + Y[162] * theta[48] + Y[163] * theta[50] + Y[164] * theta[51] + Y[165] * theta[52] + Y[166] * theta[53] + Y[167] * theta[54] + Y[168] * theta[55] + Y[169] * theta[56] + Y[170] * theta[57] + Y[171] * theta[58] + Y[172] * theta[59];
+  const double t13 = Y[174] * t12;
   const double t14 = static_cast<double>((t13 > 0.0) - (t13 < 0.0));
   const double t15 = 0.5 * t14;
-  tau_M[3] = Y[324] * theta[72] + Y[325] * theta[73] + Y[326] * theta[74] - t12 * (theta[75] * (t15 - 0.5) - (1.0 / theta[75]) * (0.5 + t15));
-  const double t16 = Y[376] * theta[40] + Y[377] * theta[41] + Y[378] * theta[42] + Y[379] * theta[43] + Y[380] * theta[44] + Y[381] * theta[45] + Y[382] * theta[46] + Y[383] * theta[47] + Y[386] * theta[50] + Y[387] * theta[51] + Y[388] * theta[52] + Y[389] * theta[53] + Y[390] * theta[54] + Y[391] * theta[55] + Y[392] * theta[56] + Y[393] * theta[57] + Y[394] * theta[58];
-  const double t17 = Y[413] * t16;
+  tau_M[3] = Y[173] * theta[72] + Y[174] * theta[73] + Y[175] * theta[74] - t12 * (theta[75] * (t15 - 0.5) - (1.0 / theta[75]) * (0.5 + t15));
+  const double t16 = Y[176] * theta[40] + Y[177] * theta[41] + Y[178] * theta[42] + Y[179] * theta[43] + Y[180] * theta[44] + Y[181] * theta[45] + Y[182] * theta[46] + Y[183] * theta[47] + Y[184] * theta[50] + Y[185] * theta[51] + Y[186] * theta[52] + Y[187] * theta[53] + Y[188] * theta[54] + Y[189] * theta[55] + Y[190] * theta[56] + Y[191] * theta[57] + Y[192] * theta[58];
+  const double t17 = Y[194] * t16;
   const double t18 = static_cast<double>((t17 > 0.0) - (t17 < 0.0));
   const double t19 = 0.5 * t18;
-  tau_M[4] = Y[412] * theta[76] + Y[413] * theta[77] + Y[414] * theta[78] - t16 * (theta[79] * (t19 - 0.5) - (1.0 / theta[79]) * (0.5 + t19));
-  const double t20 = Y[470] * theta[50] + Y[471] * theta[51] + Y[472] * theta[52] + Y[473] * theta[53] + Y[474] * theta[54] + Y[475] * theta[55] + Y[476] * theta[56] + Y[478] * theta[58];
-  const double t21 = Y[501] * t20;
+  tau_M[4] = Y[193] * theta[76] + Y[194] * theta[77] + Y[195] * theta[78] - t16 * (theta[79] * (t19 - 0.5) - (1.0 / theta[79]) * (0.5 + t19));
+  const double t20 = Y[196] * theta[50] + Y[197] * theta[51] + Y[198] * theta[52] + Y[199] * theta[53] + Y[200] * theta[54] + Y[201] * theta[55] + Y[202] * theta[56] + Y[203] * theta[58];
+  const double t21 = Y[205] * t20;
   const double t22 = static_cast<double>((t21 > 0.0) - (t21 < 0.0));
   const double t23 = 0.5 * t22;
-  tau_M[5] = Y[500] * theta[80] + Y[501] * theta[81] + Y[502] * theta[82] - t20 * (theta[83] * (t23 - 0.5) - (1.0 / theta[83]) * (0.5 + t23));
+  tau_M[5] = Y[204] * theta[80] + Y[205] * theta[81] + Y[206] * theta[82] - t20 * (theta[83] * (t23 - 0.5) - (1.0 / theta[83]) * (0.5 + t23));
 }
 
-// drive_torque from the sample's drive regressor Y (kDof x kDriveParams, row-major, as
+// drive_torque from the sample's packed drive regressor Y (kDriveRegressorEntries values, as
 // drive_regressor writes it for that sample's q, dq, ddq) instead of q, dq, ddq: the same
 // motor torques tau_M (kDof) for the parameters theta (kDriveParams), with no Newton-Euler
 // pass. tau'_G = Y theta over the inertial columns (eq. 10), the efficiency branch (eq. 8) and
-// the motor terms (eq. 5-7) as in drive_torque. Reads only the entries of Y that
-// drive_regressor does not leave structurally zero; every Rz must be non-zero.
+// the motor terms (eq. 5-7) as in drive_torque. Every Rz must be non-zero.
 void drive_torque_given_regressor(const float* Y, const float* theta, float* tau_M) {
-  const float t0 = (Y[10] * theta[10] + Y[11] * theta[11] + Y[12] * theta[12] + Y[14] * theta[14] + Y[15] * theta[15] + Y[16] * theta[16] + Y[17] * theta[17] + Y[18] * theta[18] + Y[19] * theta[19] + Y[20] * theta[20] + Y[21] * theta[21] + Y[22] * theta[22]) + (Y[24] * theta[24] + Y[25] * theta[25] + Y[26] * theta[26] + Y[27] * theta[27] + Y[28] * theta[28] + Y[29] * theta[29] + Y[30] * theta[30] + Y[31] * theta[31] + Y[32] * theta[32] + Y[34] * theta[34] + Y[35] * theta[35] + Y[36] * theta[36]) + (Y[37] * theta[37] + Y[38] * theta[38] + Y[39] * theta[39] + Y[40] * theta[40] + Y[41] * theta[41] + Y[42] * theta[42] + Y[43] * theta[43] + Y[44] * theta[44] + Y[45] * theta[45] + Y[46] * theta[46] + Y[47] * theta[47] + Y[48] * theta[48]) + (Y[49] * theta[49] + Y[50] * theta[50] + Y[51] * theta[51] + Y[52] * theta[52] + Y[53] * theta[53] + Y[54] * theta[54] + Y[55] * theta[55] + Y[56] * theta[56] + Y[57] * theta[57] + Y[58] * theta[58] + Y[59] * theta[59] + Y[5] * theta[5]);
-  const float t1 = Y[61] * t0;
+  const float t0 = (Y[0] * theta[5] + Y[10] * theta[19] + Y[11] * theta[20] + Y[12] * theta[21] + Y[13] * theta[22] + Y[15] * theta[24] + Y[16] * theta[25] + Y[17] * theta[26] + Y[18] * theta[27] + Y[19] * theta[28] + Y[1] * theta[10] + Y[20] * theta[29]) + (Y[21] * theta[30] + Y[22] * theta[31] + Y[23] * theta[32] + Y[25] * theta[34] + Y[26] * theta[35] + Y[27] * theta[36] + Y[28] * theta[37] + Y[29] * theta[38] + Y[2] * theta[11] + Y[30] * theta[39] + Y[31] * theta[40] + Y[32] * theta[41]) + (Y[33] * theta[42] + Y[34] * theta[43] + Y[35] * theta[44] + Y[36] * theta[45] + Y[37] * theta[46] + Y[38] * theta[47] + Y[39] * theta[48] + Y[3] * theta[12] + Y[40] * theta[49] + Y[41] * theta[50] + Y[42] * theta[51] + Y[43] * theta[52]) + (Y[44] * theta[53] + Y[45] * theta[54] + Y[46] * theta[55] + Y[47] * theta[56] + Y[48] * theta[57] + Y[49] * theta[58] + Y[50] * theta[59] + Y[5] * theta[14] + Y[6] * theta[15] + Y[7] * theta[16] + Y[8] * theta[17] + Y[9] * theta[18]);
+  const float t1 = Y[52] * t0;
   const float t2 = static_cast<float>((t1 > 0.0f) - (t1 < 0.0f));
   const float t3 = 0.5f * t2;
-  tau_M[0] = Y[60] * theta[60] + Y[61] * theta[61] + Y[62] * theta[62] - t0 * (theta[63] * (t3 - 0.5f) - (1.0f / theta[63]) * (0.5f + t3));
-  const float t4 = (Y[100] * theta[16] + Y[102] * theta[18] + Y[104] * theta[20] + Y[105] * theta[21] + Y[106] * theta[22] + Y[107] * theta[23] + Y[108] * theta[24] + Y[109] * theta[25] + Y[110] * theta[26] + Y[111] * theta[27] + Y[112] * theta[28] + Y[113] * theta[29]) + (Y[114] * theta[30] + Y[115] * theta[31] + Y[116] * theta[32] + Y[117] * theta[33] + Y[118] * theta[34] + Y[119] * theta[35] + Y[120] * theta[36] + Y[121] * theta[37] + Y[122] * theta[38] + Y[123] * theta[39] + Y[124] * theta[40] + Y[125] * theta[41]) + (Y[126] * theta[42] + Y[127] * theta[43] + Y[128] * theta[44] + Y[129] * theta[45] + Y[130] * theta[46] + Y[131] * theta[47] + Y[132] * theta[48] + Y[133] * theta[49] + Y[134] * theta[50] + Y[135] * theta[51] + Y[136] * theta[52] + Y[137] * theta[53]) + (Y[138] * theta[54] + Y[139] * theta[55] + Y[140] * theta[56] + Y[141] * theta[57] + Y[142] * theta[58] + Y[143] * theta[59] + Y[94] * theta[10] + Y[95] * theta[11] + Y[96] * theta[12] + Y[97] * theta[13] + Y[98] * theta[14] + Y[99] * theta[15]);
-  const float t5 = Y[149] * t4;
+  tau_M[0] = Y[51] * theta[60] + Y[52] * theta[61] + Y[53] * theta[62] - t0 * (theta[63] * (t3 - 0.5f) - (1.0f / theta[63]) * (0.5f + t3));
+  const float t4 = (Y[100] * theta[58] + Y[101] * theta[59] + Y[54] * theta[10] + Y[55] * theta[11] + Y[56] * theta[12] + Y[57] * theta[13] + Y[58] * theta[14] + Y[59] * theta[15] + Y[60] * theta[16] + Y[61] * theta[18] + Y[62] * theta[20] + Y[63] * theta[21]) + (Y[64] * theta[22] + Y[65] * theta[23] + Y[66] * theta[24] + Y[67] * theta[25] + Y[68] * theta[26] + Y[69] * theta[27] + Y[70] * theta[28] + Y[71] * theta[29] + Y[72] * theta[30] + Y[73] * theta[31] + Y[74] * theta[32] + Y[75] * theta[33]) + (Y[76] * theta[34] + Y[77] * theta[35] + Y[78] * theta[36] + Y[79] * theta[37] + Y[80] * theta[38] + Y[81] * theta[39] + Y[82] * theta[40] + Y[83] * theta[41] + Y[84] * theta[42] + Y[85] * theta[43] + Y[86] * theta[44] + Y[87] * theta[45]) + (Y[88] * theta[46] + Y[89] * theta[47] + Y[90] * theta[48] + Y[91] * theta[49] + Y[92] * theta[50] + Y[93] * theta[51] + Y[94] * theta[52] + Y[95] * theta[53] + Y[96] * theta[54] + Y[97] * theta[55] + Y[98] * theta[56] + Y[99] * theta[57]);
+  const float t5 = Y[103] * t4;
   const float t6 = static_cast<float>((t5 > 0.0f) - (t5 < 0.0f));
   const float t7 = 0.5f * t6;
-  tau_M[1] = Y[148] * theta[64] + Y[149] * theta[65] + Y[150] * theta[66] - t4 * (theta[67] * (t7 - 0.5f) - (1.0f / theta[67]) * (0.5f + t7));
-  const float t8 = (Y[188] * theta[20] + Y[189] * theta[21] + Y[190] * theta[22] + Y[191] * theta[23] + Y[192] * theta[24] + Y[193] * theta[25] + Y[194] * theta[26] + Y[196] * theta[28] + Y[198] * theta[30] + Y[199] * theta[31]) + (Y[200] * theta[32] + Y[201] * theta[33] + Y[202] * theta[34] + Y[203] * theta[35] + Y[204] * theta[36] + Y[205] * theta[37] + Y[206] * theta[38] + Y[207] * theta[39] + Y[208] * theta[40] + Y[209] * theta[41]) + (Y[210] * theta[42] + Y[211] * theta[43] + Y[212] * theta[44] + Y[213] * theta[45] + Y[214] * theta[46] + Y[215] * theta[47] + Y[216] * theta[48] + Y[217] * theta[49] + Y[218] * theta[50] + Y[219] * theta[51]) + (Y[220] * theta[52] + Y[221] * theta[53] + Y[222] * theta[54] + Y[223] * theta[55] + Y[224] * theta[56] + Y[225] * theta[57] + Y[226] * theta[58] + Y[227] * theta[59]);
-  const float t9 = Y[237] * t8;
+  tau_M[1] = Y[102] * theta[64] + Y[103] * theta[65] + Y[104] * theta[66] - t4 * (theta[67] * (t7 - 0.5f) - (1.0f / theta[67]) * (0.5f + t7));
+  const float t8 = (Y[105] * theta[20] + Y[106] * theta[21] + Y[107] * theta[22] + Y[108] * theta[23] + Y[109] * theta[24] + Y[110] * theta[25] + Y[111] * theta[26] + Y[112] * theta[28] + Y[113] * theta[30] + Y[114] * theta[31]) + (Y[115] * theta[32] + Y[116] * theta[33] + Y[117] * theta[34] + Y[118] * theta[35] + Y[119] * theta[36] + Y[120] * theta[37] + Y[121] * theta[38] + Y[122] * theta[39] + Y[123] * theta[40] + Y[124] * theta[41]) + (Y[125] * theta[42] + Y[126] * theta[43] + Y[127] * theta[44] + Y[128] * theta[45] + Y[129] * theta[46] + Y[130] * theta[47] + Y[131] * theta[48] + Y[132] * theta[49] + Y[133] * theta[50] + Y[134] * theta[51]) + (Y[135] * theta[52] + Y[136] * theta[53] + Y[137] * theta[54] + Y[138] * theta[55] + Y[139] * theta[56] + Y[140] * theta[57] + Y[141] * theta[58] + Y[142] * theta[59]);
+  const float t9 = Y[144] * t8;
   const float t10 = static_cast<float>((t9 > 0.0f) - (t9 < 0.0f));
   const float t11 = 0.5f * t10;
-  tau_M[2] = Y[236] * theta[68] + Y[237] * theta[69] + Y[238] * theta[70] - t8 * (theta[71] * (t11 - 0.5f) - (1.0f / theta[71]) * (0.5f + t11));
-  const float t12 = Y[282] * theta[30] + Y[283] * theta[31] + Y[284] * theta[32] + Y[285] * theta[33] + Y[286] * theta[34] + Y[287] * theta[35] + Y[288] * theta[36] + Y[290] * theta[38] + Y[292] * theta[40] + Y[293] * theta[41] + Y[294] * theta[42] + Y[295] * theta[43] + Y[296] * theta[44] + Y[297] * theta[45] + Y[298] * theta[46] + Y[299] * theta[47] + Y[300] * theta[48] + Y[302] * theta[50] + Y[303] * theta[51] + Y[304] * theta[52] + Y[305] * theta[53] + Y[306] * theta[54] + Y[307] * theta[55] + Y[308] * theta[56] + Y[309] * theta[57] + Y[310] * theta[58] + Y[311] * theta[59];
-  const float t13 = Y[325] * t12;
+  tau_M[2] = Y[143] * theta[68] + Y[144] * theta[69] + Y[145] * theta[70] - t8 * (theta[71] * (t11 - 0.5f) - (1.0f / theta[71]) * (0.5f + t11));
+  const float t12 = Y[146] * theta[30] + Y[147] * theta[31] + Y[148] * theta[32] + Y[149] * theta[33] + Y[150] * theta[34] + Y[151] * theta[35] + Y[152] * theta[36] + Y[153] * theta[38] + Y[154] * theta[40] + Y[155] * theta[41] + Y[156] * theta[42] + Y[157] * theta[43] + Y[158] * theta[44] + Y[159] * theta[45] + Y[160] * theta[46] + Y[161] * theta[47] + Y[162] * theta[48] + Y[163] * theta[50] + Y[164] * theta[51] + Y[165] * theta[52] + Y[166] * theta[53] + Y[167] * theta[54] + Y[168] * theta[55] + Y[169] * theta[56] + Y[170] * theta[57] + Y[171] * theta[58] + Y[172] * theta[59];
+  const float t13 = Y[174] * t12;
   const float t14 = static_cast<float>((t13 > 0.0f) - (t13 < 0.0f));
   const float t15 = 0.5f * t14;
-  tau_M[3] = Y[324] * theta[72] + Y[325] * theta[73] + Y[326] * theta[74] - t12 * (theta[75] * (t15 - 0.5f) - (1.0f / theta[75]) * (0.5f + t15));
-  const float t16 = Y[376] * theta[40] + Y[377] * theta[41] + Y[378] * theta[42] + Y[379] * theta[43] + Y[380] * theta[44] + Y[381] * theta[45] + Y[382] * theta[46] + Y[383] * theta[47] + Y[386] * theta[50] + Y[387] * theta[51] + Y[388] * theta[52] + Y[389] * theta[53] + Y[390] * theta[54] + Y[391] * theta[55] + Y[392] * theta[56] + Y[393] * theta[57] + Y[394] * theta[58];
-  const float t17 = Y[413] * t16;
+  tau_M[3] = Y[173] * theta[72] + Y[174] * theta[73] + Y[175] * theta[74] - t12 * (theta[75] * (t15 - 0.5f) - (1.0f / theta[75]) * (0.5f + t15));
+  const float t16 = Y[176] * theta[40] + Y[177] * theta[41] + Y[178] * theta[42] + Y[179] * theta[43] + Y[180] * theta[44] + Y[181] * theta[45] + Y[182] * theta[46] + Y[183] * theta[47] + Y[184] * theta[50] + Y[185] * theta[51] + Y[186] * theta[52] + Y[187] * theta[53] + Y[188] * theta[54] + Y[189] * theta[55] + Y[190] * theta[56] + Y[191] * theta[57] + Y[192] * theta[58];
+  const float t17 = Y[194] * t16;
   const float t18 = static_cast<float>((t17 > 0.0f) - (t17 < 0.0f));
   const float t19 = 0.5f * t18;
-  tau_M[4] = Y[412] * theta[76] + Y[413] * theta[77] + Y[414] * theta[78] - t16 * (theta[79] * (t19 - 0.5f) - (1.0f / theta[79]) * (0.5f + t19));
-  const float t20 = Y[470] * theta[50] + Y[471] * theta[51] + Y[472] * theta[52] + Y[473] * theta[53] + Y[474] * theta[54] + Y[475] * theta[55] + Y[476] * theta[56] + Y[478] * theta[58];
-  const float t21 = Y[501] * t20;
+  tau_M[4] = Y[193] * theta[76] + Y[194] * theta[77] + Y[195] * theta[78] - t16 * (theta[79] * (t19 - 0.5f) - (1.0f / theta[79]) * (0.5f + t19));
+  const float t20 = Y[196] * theta[50] + Y[197] * theta[51] + Y[198] * theta[52] + Y[199] * theta[53] + Y[200] * theta[54] + Y[201] * theta[55] + Y[202] * theta[56] + Y[203] * theta[58];
+  const float t21 = Y[205] * t20;
   const float t22 = static_cast<float>((t21 > 0.0f) - (t21 < 0.0f));
   const float t23 = 0.5f * t22;
-  tau_M[5] = Y[500] * theta[80] + Y[501] * theta[81] + Y[502] * theta[82] - t20 * (theta[83] * (t23 - 0.5f) - (1.0f / theta[83]) * (0.5f + t23));
+  tau_M[5] = Y[204] * theta[80] + Y[205] * theta[81] + Y[206] * theta[82] - t20 * (theta[83] * (t23 - 0.5f) - (1.0f / theta[83]) * (0.5f + t23));
 }
 
 }  // namespace ur5

@@ -10,221 +10,219 @@
 namespace modelgen {
 namespace ur5 {
 
-// drive_torque_jacobian from the sample's drive regressor Y (kDof x kDriveParams, row-major,
-// as drive_regressor writes it for that sample's q, dq, ddq) instead of q, dq, ddq: tau_M
+// drive_torque_jacobian from the sample's packed drive regressor Y (kDriveRegressorEntries
+// values, as drive_regressor writes it for that sample's q, dq, ddq) instead of q, dq, ddq: tau_M
 // (kDof) and J = d tau_M / d theta (kDof x kDriveParams, row-major, J[i * kDriveParams + k])
 // for the parameters theta, with no Newton-Euler pass, for the iterations of a
 // maximum-likelihood fit (Swevers et al. 2002 eq. 18). The inertial columns of row i are c_i Y
 // (c_i the efficiency factor of eq. 8), those of JM, Rv, Rc of motor i are copied from Y. The
 // efficiency branch and the Coulomb friction sign count as constant, as in
-// drive_torque_jacobian. Reads only the entries of Y that drive_regressor does not leave
-// structurally zero; every Rz must be non-zero.
+// drive_torque_jacobian. Every Rz must be non-zero.
 // J: 210 of its 504 entries are written; the others are zero for every input
 // and never written (the manifest lists them under "unwritten"): zero J once before the
 // first call.
 void drive_torque_jacobian_given_regressor(const double* Y, const double* theta, double* tau_M,
                                            double* J) {
-  const double t0 = (Y[10] * theta[10] + Y[11] * theta[11] + Y[12] * theta[12] + Y[14] * theta[14] + Y[15] * theta[15] + Y[16] * theta[16] + Y[17] * theta[17] + Y[18] * theta[18] + Y[19] * theta[19] + Y[20] * theta[20] + Y[21] * theta[21] + Y[22] * theta[22]) + (Y[24] * theta[24] + Y[25] * theta[25] + Y[26] * theta[26] + Y[27] * theta[27] + Y[28] * theta[28] + Y[29] * theta[29] + Y[30] * theta[30] + Y[31] * theta[31] + Y[32] * theta[32] + Y[34] * theta[34] + Y[35] * theta[35] + Y[36] * theta[36]) + (Y[37] * theta[37] + Y[38] * theta[38] + Y[39] * theta[39] + Y[40] * theta[40] + Y[41] * theta[41] + Y[42] * theta[42] + Y[43] * theta[43] + Y[44] * theta[44] + Y[45] * theta[45] + Y[46] * theta[46] + Y[47] * theta[47] + Y[48] * theta[48]) + (Y[49] * theta[49] + Y[50] * theta[50] + Y[51] * theta[51] + Y[52] * theta[52] + Y[53] * theta[53] + Y[54] * theta[54] + Y[55] * theta[55] + Y[56] * theta[56] + Y[57] * theta[57] + Y[58] * theta[58] + Y[59] * theta[59] + Y[5] * theta[5]);
-  const double t1 = Y[61] * t0;
+  const double t0 = (Y[0] * theta[5] + Y[10] * theta[19] + Y[11] * theta[20] + Y[12] * theta[21] + Y[13] * theta[22] + Y[15] * theta[24] + Y[16] * theta[25] + Y[17] * theta[26] + Y[18] * theta[27] + Y[19] * theta[28] + Y[1] * theta[10] + Y[20] * theta[29]) + (Y[21] * theta[30] + Y[22] * theta[31] + Y[23] * theta[32] + Y[25] * theta[34] + Y[26] * theta[35] + Y[27] * theta[36] + Y[28] * theta[37] + Y[29] * theta[38] + Y[2] * theta[11] + Y[30] * theta[39] + Y[31] * theta[40] + Y[32] * theta[41]) + (Y[33] * theta[42] + Y[34] * theta[43] + Y[35] * theta[44] + Y[36] * theta[45] + Y[37] * theta[46] + Y[38] * theta[47] + Y[39] * theta[48] + Y[3] * theta[12] + Y[40] * theta[49] + Y[41] * theta[50] + Y[42] * theta[51] + Y[43] * theta[52]) + (Y[44] * theta[53] + Y[45] * theta[54] + Y[46] * theta[55] + Y[47] * theta[56] + Y[48] * theta[57] + Y[49] * theta[58] + Y[50] * theta[59] + Y[5] * theta[14] + Y[6] * theta[15] + Y[7] * theta[16] + Y[8] * theta[17] + Y[9] * theta[18]);
+  const double t1 = Y[52] * t0;
   const double t2 = static_cast<double>((t1 > 0.0) - (t1 < 0.0));
   const double t3 = 0.5 * t2;
   const double t4 = 1.0 / theta[63];
   const double t5 = 0.5 + t3;
   const double t6 = t4 * t5 - theta[63] * (t3 - 0.5);
-  tau_M[0] = Y[60] * theta[60] + Y[61] * theta[61] + Y[62] * theta[62] + t0 * t6;
-  const double t7 = (Y[100] * theta[16] + Y[102] * theta[18] + Y[104] * theta[20] + Y[105] * theta[21] + Y[106] * theta[22] + Y[107] * theta[23] + Y[108] * theta[24] + Y[109] * theta[25] + Y[110] * theta[26] + Y[111] * theta[27] + Y[112] * theta[28] + Y[113] * theta[29]) + (Y[114] * theta[30] + Y[115] * theta[31] + Y[116] * theta[32] + Y[117] * theta[33] + Y[118] * theta[34] + Y[119] * theta[35] + Y[120] * theta[36] + Y[121] * theta[37] + Y[122] * theta[38] + Y[123] * theta[39] + Y[124] * theta[40] + Y[125] * theta[41]) + (Y[126] * theta[42] + Y[127] * theta[43] + Y[128] * theta[44] + Y[129] * theta[45] + Y[130] * theta[46] + Y[131] * theta[47] + Y[132] * theta[48] + Y[133] * theta[49] + Y[134] * theta[50] + Y[135] * theta[51] + Y[136] * theta[52] + Y[137] * theta[53]) + (Y[138] * theta[54] + Y[139] * theta[55] + Y[140] * theta[56] + Y[141] * theta[57] + Y[142] * theta[58] + Y[143] * theta[59] + Y[94] * theta[10] + Y[95] * theta[11] + Y[96] * theta[12] + Y[97] * theta[13] + Y[98] * theta[14] + Y[99] * theta[15]);
-  const double t8 = Y[149] * t7;
+  tau_M[0] = Y[51] * theta[60] + Y[52] * theta[61] + Y[53] * theta[62] + t0 * t6;
+  const double t7 = (Y[100] * theta[58] + Y[101] * theta[59] + Y[54] * theta[10] + Y[55] * theta[11] + Y[56] * theta[12] + Y[57] * theta[13] + Y[58] * theta[14] + Y[59] * theta[15] + Y[60] * theta[16] + Y[61] * theta[18] + Y[62] * theta[20] + Y[63] * theta[21]) + (Y[64] * theta[22] + Y[65] * theta[23] + Y[66] * theta[24] + Y[67] * theta[25] + Y[68] * theta[26] + Y[69] * theta[27] + Y[70] * theta[28] + Y[71] * theta[29] + Y[72] * theta[30] + Y[73] * theta[31] + Y[74] * theta[32] + Y[75] * theta[33]) + (Y[76] * theta[34] + Y[77] * theta[35] + Y[78] * theta[36] + Y[79] * theta[37] + Y[80] * theta[38] + Y[81] * theta[39] + Y[82] * theta[40] + Y[83] * theta[41] + Y[84] * theta[42] + Y[85] * theta[43] + Y[86] * theta[44] + Y[87] * theta[45]) + (Y[88] * theta[46] + Y[89] * theta[47] + Y[90] * theta[48] + Y[91] * theta[49] + Y[92] * theta[50] + Y[93] * theta[51] + Y[94] * theta[52] + Y[95] * theta[53] + Y[96] * theta[54] + Y[97] * theta[55] + Y[98] * theta[56] + Y[99] * theta[57]);
+  const double t8 = Y[103] * t7;
   const double t9 = static_cast<double>((t8 > 0.0) - (t8 < 0.0));
   const double t10 = 0.5 * t9;
   const double t11 = 1.0 / theta[67];
   const double t12 = 0.5 + t10;
   const double t13 = t11 * t12 - theta[67] * (t10 - 0.5);
-  tau_M[1] = Y[148] * theta[64] + Y[149] * theta[65] + Y[150] * theta[66] + t7 * t13;
-  const double t14 = (Y[188] * theta[20] + Y[189] * theta[21] + Y[190] * theta[22] + Y[191] * theta[23] + Y[192] * theta[24] + Y[193] * theta[25] + Y[194] * theta[26] + Y[196] * theta[28] + Y[198] * theta[30] + Y[199] * theta[31]) + (Y[200] * theta[32] + Y[201] * theta[33] + Y[202] * theta[34] + Y[203] * theta[35] + Y[204] * theta[36] + Y[205] * theta[37] + Y[206] * theta[38] + Y[207] * theta[39] + Y[208] * theta[40] + Y[209] * theta[41]) + (Y[210] * theta[42] + Y[211] * theta[43] + Y[212] * theta[44] + Y[213] * theta[45] + Y[214] * theta[46] + Y[215] * theta[47] + Y[216] * theta[48] + Y[217] * theta[49] + Y[218] * theta[50] + Y[219] * theta[51]) + (Y[220] * theta[52] + Y[221] * theta[53] + Y[222] * theta[54] + Y[223] * theta[55] + Y[224] * theta[56] + Y[225] * theta[57] + Y[226] * theta[58] + Y[227] * theta[59]);
-  const double t15 = Y[237] * t14;
+  tau_M[1] = Y[102] * theta[64] + Y[103] * theta[65] + Y[104] * theta[66] + t7 * t13;
+  const double t14 = (Y[105] * theta[20] + Y[106] * theta[21] + Y[107] * theta[22] + Y[108] * theta[23] + Y[109] * theta[24] + Y[110] * theta[25] + Y[111] * theta[26] + Y[112] * theta[28] + Y[113] * theta[30] + Y[114] * theta[31]) + (Y[115] * theta[32] + Y[116] * theta[33] + Y[117] * theta[34] + Y[118] * theta[35] + Y[119] * theta[36] + Y[120] * theta[37] + Y[121] * theta[38] + Y[122] * theta[39] + Y[123] * theta[40] + Y[124] * theta[41]) + (Y[125] * theta[42] + Y[126] * theta[43] + Y[127] * theta[44] + Y[128] * theta[45] + Y[129] * theta[46] + Y[130] * theta[47] + Y[131] * theta[48] + Y[132] * theta[49] + Y[133] * theta[50] + Y[134] * theta[51]) + (Y[135] * theta[52] + Y[136] * theta[53] + Y[137] * theta[54] + Y[138] * theta[55] + Y[139] * theta[56] + Y[140] * theta[57] + Y[141] * theta[58] + Y[142] * theta[59]);
+  const double t15 = Y[144] * t14;
   const double t16 = static_cast<double>((t15 > 0.0) - (t15 < 0.0));
   const double t17 = 0.5 * t16;
   const double t18 = 1.0 / theta[71];
   const double t19 = 0.5 + t17;
   const double t20 = t18 * t19 - theta[71] * (t17 - 0.5);
-  tau_M[2] = Y[236] * theta[68] + Y[237] * theta[69] + Y[238] * theta[70] + t14 * t20;
-  const double t21 = Y[282] * theta[30] + Y[283] * theta[31] + Y[284] * theta[32] + Y[285] * theta[33] + Y[286] * theta[34] + Y[287] * theta[35] + Y[288] * theta[36] + Y[290] * theta[38] + Y[292] * theta[40] + Y[293] * theta[41] + Y[294] * theta[42] + Y[295] * theta[43] + Y[296] * theta[44] + Y[297] * theta[45] + Y[298] * theta[46] + Y[299] * theta[47] + Y[300] * theta[48] + Y[302] * theta[50] + Y[303] * theta[51] + Y[304] * theta[52] + Y[305] * theta[53] + Y[306] * theta[54] + Y[307] * theta[55] + Y[308] * theta[56] + Y[309] * theta[57] + Y[310] * theta[58] + Y[311] * theta[59];
-  const double t22 = Y[325] * t21;
+  tau_M[2] = Y[143] * theta[68] + Y[144] * theta[69] + Y[145] * theta[70] + t14 * t20;
+  const double t21 = Y[146] * theta[30] + Y[147] * theta[31] + Y[148] * theta[32] + Y[149] * theta[33] + Y[150] * theta[34] + Y[151] * theta[35] + Y[152] * theta[36] + Y[153] * theta[38] + Y[154] * theta[40] + Y[155] * theta[41] + Y[156] * theta[42] + Y[157] * theta[43] + Y[158] * theta[44] + Y[159] * theta[45] + Y[160] * theta[46] + Y[161] * theta[47] + Y[162] * theta[48] + Y[163] * theta[50] + Y[164] * theta[51] + Y[165] * theta[52] + Y[166] * theta[53] + Y[167] * theta[54] + Y[168] * theta[55] + Y[169] * theta[56] + Y[170] * theta[57] + Y[171] * theta[58] + Y[172] * theta[59];
+  const double t22 = Y[174] * t21;
   const double t23 = static_cast<double>((t22 > 0.0) - (t22 < 0.0));
   const double t24 = 0.5 * t23;
   const double t25 = 1.0 / theta[75];
   const double t26 = 0.5 + t24;
   const double t27 = t25 * t26 - theta[75] * (t24 - 0.5);
-  tau_M[3] = Y[324] * theta[72] + Y[325] * theta[73] + Y[326] * theta[74] + t21 * t27;
-  const double t28 = Y[376] * theta[40] + Y[377] * theta[41] + Y[378] * theta[42] + Y[379] * theta[43] + Y[380] * theta[44] + Y[381] * theta[45] + Y[382] * theta[46] + Y[383] * theta[47] + Y[386] * theta[50] + Y[387] * theta[51] + Y[388] * theta[52] + Y[389] * theta[53] + Y[390] * theta[54] + Y[391] * theta[55] + Y[392] * theta[56] + Y[393] * theta[57] + Y[394] * theta[58];
-  const double t29 = Y[413] * t28;
+  tau_M[3] = Y[173] * theta[72] + Y[174] * theta[73] + Y[175] * theta[74] + t21 * t27;
+  const double t28 = Y[176] * theta[40] + Y[177] * theta[41] + Y[178] * theta[42] + Y[179] * theta[43] + Y[180] * theta[44] + Y[181] * theta[45] + Y[182] * theta[46] + Y[183] * theta[47] + Y[184] * theta[50] + Y[185] * theta[51] + Y[186] * theta[52] + Y[187] * theta[53] + Y[188] * theta[54] + Y[189] * theta[55] + Y[190] * theta[56] + Y[191] * theta[57] + Y[192] * theta[58];
+  const double t29 = Y[194] * t28;
   const double t30 = static_cast<double>((t29 > 0.0) - (t29 < 0.0));
   const double t31 = 0.5 * t30;
   const double t32 = 1.0 / theta[79];
   const double t33 = 0.5 + t31;
   const double t34 = t32 * t33 - theta[79] * (t31 - 0.5);
-  tau_M[4] = Y[412] * theta[76] + Y[413] * theta[77] + Y[414] * theta[78] + t28 * t34;
-  const double t35 = Y[470] * theta[50] + Y[471] * theta[51] + Y[472] * theta[52] + Y[473] * theta[53] + Y[474] * theta[54] + Y[475] * theta[55] + Y[476] * theta[56] + Y[478] * theta[58];
-  const double t36 = Y[501] * t35;
+  tau_M[4] = Y[193] * theta[76] + Y[194] * theta[77] + Y[195] * theta[78] + t28 * t34;
+  const double t35 = Y[196] * theta[50] + Y[197] * theta[51] + Y[198] * theta[52] + Y[199] * theta[53] + Y[200] * theta[54] + Y[201] * theta[55] + Y[202] * theta[56] + Y[203] * theta[58];
+  const double t36 = Y[205] * t35;
   const double t37 = static_cast<double>((t36 > 0.0) - (t36 < 0.0));
   const double t38 = 0.5 * t37;
   const double t39 = 1.0 / theta[83];
   const double t40 = 0.5 + t38;
   const double t41 = t39 * t40 - theta[83] * (t38 - 0.5);
-  tau_M[5] = Y[500] * theta[80] + Y[501] * theta[81] + Y[502] * theta[82] + t35 * t41;
-  J[5] = Y[5] * t6;  // ZZ1
-  J[10] = Y[10] * t6;  // XX2
-  J[11] = Y[11] * t6;  // XY2
-  J[12] = Y[12] * t6;  // XZ2
-  for (int k = 0; k < 9; ++k) J[14 + k] = Y[14 + k] * t6;  // YZ2 ZZ2 MX2 MY2 MZ2 M2 XX3 XY3 XZ3
-  for (int k = 0; k < 9; ++k) J[24 + k] = Y[24 + k] * t6;  // YZ3 ZZ3 MX3 MY3 MZ3 M3 XX4 XY4 XZ4
-  for (int k = 0; k < 26; ++k) J[34 + k] = Y[34 + k] * t6;  // YZ4 ZZ4 MX4 MY4 MZ4 M4 XX5 XY5 XZ5 YY5 YZ5 ZZ5 MX5 MY5 MZ5 M5 XX6 XY6 XZ6 YY6 YZ6 ZZ6 MX6 MY6 MZ6 M6
-  J[60] = Y[60];  // JM1
-  J[61] = Y[61];  // Rv1
-  J[62] = Y[62];  // Rc1
+  tau_M[5] = Y[204] * theta[80] + Y[205] * theta[81] + Y[206] * theta[82] + t35 * t41;
+  J[5] = Y[0] * t6;  // ZZ1
+  J[10] = Y[1] * t6;  // XX2
+  J[11] = Y[2] * t6;  // XY2
+  J[12] = Y[3] * t6;  // XZ2
+  for (int k = 0; k < 9; ++k) J[14 + k] = Y[5 + k] * t6;  // YZ2 ZZ2 MX2 MY2 MZ2 M2 XX3 XY3 XZ3
+  for (int k = 0; k < 9; ++k) J[24 + k] = Y[15 + k] * t6;  // YZ3 ZZ3 MX3 MY3 MZ3 M3 XX4 XY4 XZ4
+  for (int k = 0; k < 26; ++k) J[34 + k] = Y[25 + k] * t6;  // YZ4 ZZ4 MX4 MY4 MZ4 M4 XX5 XY5 XZ5 YY5 YZ5 ZZ5 MX5 MY5 MZ5 M5 XX6 XY6 XZ6 YY6 YZ6 ZZ6 MX6 MY6 MZ6 M6
+  J[60] = Y[51];  // JM1
+  J[61] = Y[52];  // Rv1
+  J[62] = Y[53];  // Rc1
   J[63] = -t0 * (t3 - 0.5 + t4 * t4 * t5);  // Rz1
-  for (int k = 0; k < 7; ++k) J[94 + k] = Y[94 + k] * t13;
-  J[102] = Y[102] * t13;
-  for (int k = 0; k < 40; ++k) J[104 + k] = Y[104 + k] * t13;
-  J[148] = Y[148];
-  J[149] = Y[149];
-  J[150] = Y[150];
+  for (int k = 0; k < 7; ++k) J[94 + k] = Y[54 + k] * t13;
+  J[102] = Y[61] * t13;
+  for (int k = 0; k < 40; ++k) J[104 + k] = Y[62 + k] * t13;
+  J[148] = Y[102];
+  J[149] = Y[103];
+  J[150] = Y[104];
   J[151] = -t7 * (t10 - 0.5 + t11 * t11 * t12);
-  for (int k = 0; k < 7; ++k) J[188 + k] = Y[188 + k] * t20;
-  J[196] = Y[196] * t20;
-  for (int k = 0; k < 30; ++k) J[198 + k] = Y[198 + k] * t20;
-  J[236] = Y[236];
-  J[237] = Y[237];
-  J[238] = Y[238];
+  for (int k = 0; k < 7; ++k) J[188 + k] = Y[105 + k] * t20;
+  J[196] = Y[112] * t20;
+  for (int k = 0; k < 30; ++k) J[198 + k] = Y[113 + k] * t20;
+  J[236] = Y[143];
+  J[237] = Y[144];
+  J[238] = Y[145];
   J[239] = -t14 * (t17 - 0.5 + t18 * t18 * t19);
-  for (int k = 0; k < 7; ++k) J[282 + k] = Y[282 + k] * t27;
-  J[290] = Y[290] * t27;
-  for (int k = 0; k < 9; ++k) J[292 + k] = Y[292 + k] * t27;
-  for (int k = 0; k < 10; ++k) J[302 + k] = Y[302 + k] * t27;
-  J[324] = Y[324];
-  J[325] = Y[325];
-  J[326] = Y[326];
+  for (int k = 0; k < 7; ++k) J[282 + k] = Y[146 + k] * t27;
+  J[290] = Y[153] * t27;
+  for (int k = 0; k < 9; ++k) J[292 + k] = Y[154 + k] * t27;
+  for (int k = 0; k < 10; ++k) J[302 + k] = Y[163 + k] * t27;
+  J[324] = Y[173];
+  J[325] = Y[174];
+  J[326] = Y[175];
   J[327] = -t21 * (t24 - 0.5 + t25 * t25 * t26);
-  for (int k = 0; k < 8; ++k) J[376 + k] = Y[376 + k] * t34;
-  for (int k = 0; k < 9; ++k) J[386 + k] = Y[386 + k] * t34;
-  J[412] = Y[412];
-  J[413] = Y[413];
-  J[414] = Y[414];
+  for (int k = 0; k < 8; ++k) J[376 + k] = Y[176 + k] * t34;
+  for (int k = 0; k < 9; ++k) J[386 + k] = Y[184 + k] * t34;
+  J[412] = Y[193];
+  J[413] = Y[194];
+  J[414] = Y[195];
   J[415] = -t28 * (t31 - 0.5 + t32 * t32 * t33);
-  for (int k = 0; k < 7; ++k) J[470 + k] = Y[470 + k] * t41;
-  J[478] = Y[478] * t41;
-  J[500] = Y[500];
-  J[501] = Y[501];
-  J[502] = Y[502];
+  for (int k = 0; k < 7; ++k) J[470 + k] = Y[196 + k] * t41;
+  J[478] = Y[203] * t41;
+  J[500] = Y[204];
+  J[501] = Y[205];
+  J[502] = Y[206];
   J[503] = -t35 * (t38 - 0.5 + t39 * t39 * t40);
 }
 
-// drive_torque_jacobian from the sample's drive regressor Y (kDof x kDriveParams, row-major,
-// as drive_regressor writes it for that sample's q, dq, ddq) instead of q, dq, ddq: tau_M
+// drive_torque_jacobian from the sample's packed drive regressor Y (kDriveRegressorEntries
+// values, as drive_regressor writes it for that sample's q, dq, ddq) instead of q, dq, ddq: tau_M
 // (kDof) and J = d tau_M / d theta (kDof x kDriveParams, row-major, J[i * kDriveParams + k])
 // for the parameters theta, with no Newton-Euler pass, for the iterations of a
 // maximum-likelihood fit (Swevers et al. 2002 eq. 18). The inertial columns of row i are c_i Y
 // (c_i the efficiency factor of eq. 8), those of JM, Rv, Rc of motor i are copied from Y. The
 // efficiency branch and the Coulomb friction sign count as constant, as in
-// drive_torque_jacobian. Reads only the entries of Y that drive_regressor does not leave
-// structurally zero; every Rz must be non-zero.
+// drive_torque_jacobian. Every Rz must be non-zero.
 // J: 210 of its 504 entries are written; the others are zero for every input
 // and never written (the manifest lists them under "unwritten"): zero J once before the
 // first call.
 void drive_torque_jacobian_given_regressor(const float* Y, const float* theta, float* tau_M,
                                            float* J) {
-  const float t0 = (Y[10] * theta[10] + Y[11] * theta[11] + Y[12] * theta[12] + Y[14] * theta[14] + Y[15] * theta[15] + Y[16] * theta[16] + Y[17] * theta[17] + Y[18] * theta[18] + Y[19] * theta[19] + Y[20] * theta[20] + Y[21] * theta[21] + Y[22] * theta[22]) + (Y[24] * theta[24] + Y[25] * theta[25] + Y[26] * theta[26] + Y[27] * theta[27] + Y[28] * theta[28] + Y[29] * theta[29] + Y[30] * theta[30] + Y[31] * theta[31] + Y[32] * theta[32] + Y[34] * theta[34] + Y[35] * theta[35] + Y[36] * theta[36]) + (Y[37] * theta[37] + Y[38] * theta[38] + Y[39] * theta[39] + Y[40] * theta[40] + Y[41] * theta[41] + Y[42] * theta[42] + Y[43] * theta[43] + Y[44] * theta[44] + Y[45] * theta[45] + Y[46] * theta[46] + Y[47] * theta[47] + Y[48] * theta[48]) + (Y[49] * theta[49] + Y[50] * theta[50] + Y[51] * theta[51] + Y[52] * theta[52] + Y[53] * theta[53] + Y[54] * theta[54] + Y[55] * theta[55] + Y[56] * theta[56] + Y[57] * theta[57] + Y[58] * theta[58] + Y[59] * theta[59] + Y[5] * theta[5]);
-  const float t1 = Y[61] * t0;
+  const float t0 = (Y[0] * theta[5] + Y[10] * theta[19] + Y[11] * theta[20] + Y[12] * theta[21] + Y[13] * theta[22] + Y[15] * theta[24] + Y[16] * theta[25] + Y[17] * theta[26] + Y[18] * theta[27] + Y[19] * theta[28] + Y[1] * theta[10] + Y[20] * theta[29]) + (Y[21] * theta[30] + Y[22] * theta[31] + Y[23] * theta[32] + Y[25] * theta[34] + Y[26] * theta[35] + Y[27] * theta[36] + Y[28] * theta[37] + Y[29] * theta[38] + Y[2] * theta[11] + Y[30] * theta[39] + Y[31] * theta[40] + Y[32] * theta[41]) + (Y[33] * theta[42] + Y[34] * theta[43] + Y[35] * theta[44] + Y[36] * theta[45] + Y[37] * theta[46] + Y[38] * theta[47] + Y[39] * theta[48] + Y[3] * theta[12] + Y[40] * theta[49] + Y[41] * theta[50] + Y[42] * theta[51] + Y[43] * theta[52]) + (Y[44] * theta[53] + Y[45] * theta[54] + Y[46] * theta[55] + Y[47] * theta[56] + Y[48] * theta[57] + Y[49] * theta[58] + Y[50] * theta[59] + Y[5] * theta[14] + Y[6] * theta[15] + Y[7] * theta[16] + Y[8] * theta[17] + Y[9] * theta[18]);
+  const float t1 = Y[52] * t0;
   const float t2 = static_cast<float>((t1 > 0.0f) - (t1 < 0.0f));
   const float t3 = 0.5f * t2;
   const float t4 = 1.0f / theta[63];
   const float t5 = 0.5f + t3;
   const float t6 = t4 * t5 - theta[63] * (t3 - 0.5f);
-  tau_M[0] = Y[60] * theta[60] + Y[61] * theta[61] + Y[62] * theta[62] + t0 * t6;
-  const float t7 = (Y[100] * theta[16] + Y[102] * theta[18] + Y[104] * theta[20] + Y[105] * theta[21] + Y[106] * theta[22] + Y[107] * theta[23] + Y[108] * theta[24] + Y[109] * theta[25] + Y[110] * theta[26] + Y[111] * theta[27] + Y[112] * theta[28] + Y[113] * theta[29]) + (Y[114] * theta[30] + Y[115] * theta[31] + Y[116] * theta[32] + Y[117] * theta[33] + Y[118] * theta[34] + Y[119] * theta[35] + Y[120] * theta[36] + Y[121] * theta[37] + Y[122] * theta[38] + Y[123] * theta[39] + Y[124] * theta[40] + Y[125] * theta[41]) + (Y[126] * theta[42] + Y[127] * theta[43] + Y[128] * theta[44] + Y[129] * theta[45] + Y[130] * theta[46] + Y[131] * theta[47] + Y[132] * theta[48] + Y[133] * theta[49] + Y[134] * theta[50] + Y[135] * theta[51] + Y[136] * theta[52] + Y[137] * theta[53]) + (Y[138] * theta[54] + Y[139] * theta[55] + Y[140] * theta[56] + Y[141] * theta[57] + Y[142] * theta[58] + Y[143] * theta[59] + Y[94] * theta[10] + Y[95] * theta[11] + Y[96] * theta[12] + Y[97] * theta[13] + Y[98] * theta[14] + Y[99] * theta[15]);
-  const float t8 = Y[149] * t7;
+  tau_M[0] = Y[51] * theta[60] + Y[52] * theta[61] + Y[53] * theta[62] + t0 * t6;
+  const float t7 = (Y[100] * theta[58] + Y[101] * theta[59] + Y[54] * theta[10] + Y[55] * theta[11] + Y[56] * theta[12] + Y[57] * theta[13] + Y[58] * theta[14] + Y[59] * theta[15] + Y[60] * theta[16] + Y[61] * theta[18] + Y[62] * theta[20] + Y[63] * theta[21]) + (Y[64] * theta[22] + Y[65] * theta[23] + Y[66] * theta[24] + Y[67] * theta[25] + Y[68] * theta[26] + Y[69] * theta[27] + Y[70] * theta[28] + Y[71] * theta[29] + Y[72] * theta[30] + Y[73] * theta[31] + Y[74] * theta[32] + Y[75] * theta[33]) + (Y[76] * theta[34] + Y[77] * theta[35] + Y[78] * theta[36] + Y[79] * theta[37] + Y[80] * theta[38] + Y[81] * theta[39] + Y[82] * theta[40] + Y[83] * theta[41] + Y[84] * theta[42] + Y[85] * theta[43] + Y[86] * theta[44] + Y[87] * theta[45]) + (Y[88] * theta[46] + Y[89] * theta[47] + Y[90] * theta[48] + Y[91] * theta[49] + Y[92] * theta[50] + Y[93] * theta[51] + Y[94] * theta[52] + Y[95] * theta[53] + Y[96] * theta[54] + Y[97] * theta[55] + Y[98] * theta[56] + Y[99] * theta[57]);
+  const float t8 = Y[103] * t7;
   const float t9 = static_cast<float>((t8 > 0.0f) - (t8 < 0.0f));
   const float t10 = 0.5f * t9;
   const float t11 = 1.0f / theta[67];
   const float t12 = 0.5f + t10;
   const float t13 = t11 * t12 - theta[67] * (t10 - 0.5f);
-  tau_M[1] = Y[148] * theta[64] + Y[149] * theta[65] + Y[150] * theta[66] + t7 * t13;
-  const float t14 = (Y[188] * theta[20] + Y[189] * theta[21] + Y[190] * theta[22] + Y[191] * theta[23] + Y[192] * theta[24] + Y[193] * theta[25] + Y[194] * theta[26] + Y[196] * theta[28] + Y[198] * theta[30] + Y[199] * theta[31]) + (Y[200] * theta[32] + Y[201] * theta[33] + Y[202] * theta[34] + Y[203] * theta[35] + Y[204] * theta[36] + Y[205] * theta[37] + Y[206] * theta[38] + Y[207] * theta[39] + Y[208] * theta[40] + Y[209] * theta[41]) + (Y[210] * theta[42] + Y[211] * theta[43] + Y[212] * theta[44] + Y[213] * theta[45] + Y[214] * theta[46] + Y[215] * theta[47] + Y[216] * theta[48] + Y[217] * theta[49] + Y[218] * theta[50] + Y[219] * theta[51]) + (Y[220] * theta[52] + Y[221] * theta[53] + Y[222] * theta[54] + Y[223] * theta[55] + Y[224] * theta[56] + Y[225] * theta[57] + Y[226] * theta[58] + Y[227] * theta[59]);
-  const float t15 = Y[237] * t14;
+  tau_M[1] = Y[102] * theta[64] + Y[103] * theta[65] + Y[104] * theta[66] + t7 * t13;
+  const float t14 = (Y[105] * theta[20] + Y[106] * theta[21] + Y[107] * theta[22] + Y[108] * theta[23] + Y[109] * theta[24] + Y[110] * theta[25] + Y[111] * theta[26] + Y[112] * theta[28] + Y[113] * theta[30] + Y[114] * theta[31]) + (Y[115] * theta[32] + Y[116] * theta[33] + Y[117] * theta[34] + Y[118] * theta[35] + Y[119] * theta[36] + Y[120] * theta[37] + Y[121] * theta[38] + Y[122] * theta[39] + Y[123] * theta[40] + Y[124] * theta[41]) + (Y[125] * theta[42] + Y[126] * theta[43] + Y[127] * theta[44] + Y[128] * theta[45] + Y[129] * theta[46] + Y[130] * theta[47] + Y[131] * theta[48] + Y[132] * theta[49] + Y[133] * theta[50] + Y[134] * theta[51]) + (Y[135] * theta[52] + Y[136] * theta[53] + Y[137] * theta[54] + Y[138] * theta[55] + Y[139] * theta[56] + Y[140] * theta[57] + Y[141] * theta[58] + Y[142] * theta[59]);
+  const float t15 = Y[144] * t14;
   const float t16 = static_cast<float>((t15 > 0.0f) - (t15 < 0.0f));
   const float t17 = 0.5f * t16;
   const float t18 = 1.0f / theta[71];
   const float t19 = 0.5f + t17;
   const float t20 = t18 * t19 - theta[71] * (t17 - 0.5f);
-  tau_M[2] = Y[236] * theta[68] + Y[237] * theta[69] + Y[238] * theta[70] + t14 * t20;
-  const float t21 = Y[282] * theta[30] + Y[283] * theta[31] + Y[284] * theta[32] + Y[285] * theta[33] + Y[286] * theta[34] + Y[287] * theta[35] + Y[288] * theta[36] + Y[290] * theta[38] + Y[292] * theta[40] + Y[293] * theta[41] + Y[294] * theta[42] + Y[295] * theta[43] + Y[296] * theta[44] + Y[297] * theta[45] + Y[298] * theta[46] + Y[299] * theta[47] + Y[300] * theta[48] + Y[302] * theta[50] + Y[303] * theta[51] + Y[304] * theta[52] + Y[305] * theta[53] + Y[306] * theta[54] + Y[307] * theta[55] + Y[308] * theta[56] + Y[309] * theta[57] + Y[310] * theta[58] + Y[311] * theta[59];
-  const float t22 = Y[325] * t21;
+  tau_M[2] = Y[143] * theta[68] + Y[144] * theta[69] + Y[145] * theta[70] + t14 * t20;
+  const float t21 = Y[146] * theta[30] + Y[147] * theta[31] + Y[148] * theta[32] + Y[149] * theta[33] + Y[150] * theta[34] + Y[151] * theta[35] + Y[152] * theta[36] + Y[153] * theta[38] + Y[154] * theta[40] + Y[155] * theta[41] + Y[156] * theta[42] + Y[157] * theta[43] + Y[158] * theta[44] + Y[159] * theta[45] + Y[160] * theta[46] + Y[161] * theta[47] + Y[162] * theta[48] + Y[163] * theta[50] + Y[164] * theta[51] + Y[165] * theta[52] + Y[166] * theta[53] + Y[167] * theta[54] + Y[168] * theta[55] + Y[169] * theta[56] + Y[170] * theta[57] + Y[171] * theta[58] + Y[172] * theta[59];
+  const float t22 = Y[174] * t21;
   const float t23 = static_cast<float>((t22 > 0.0f) - (t22 < 0.0f));
   const float t24 = 0.5f * t23;
   const float t25 = 1.0f / theta[75];
   const float t26 = 0.5f + t24;
   const float t27 = t25 * t26 - theta[75] * (t24 - 0.5f);
-  tau_M[3] = Y[324] * theta[72] + Y[325] * theta[73] + Y[326] * theta[74] + t21 * t27;
-  const float t28 = Y[376] * theta[40] + Y[377] * theta[41] + Y[378] * theta[42] + Y[379] * theta[43] + Y[380] * theta[44] + Y[381] * theta[45] + Y[382] * theta[46] + Y[383] * theta[47] + Y[386] * theta[50] + Y[387] * theta[51] + Y[388] * theta[52] + Y[389] * theta[53] + Y[390] * theta[54] + Y[391] * theta[55] + Y[392] * theta[56] + Y[393] * theta[57] + Y[394] * theta[58];
-  const float t29 = Y[413] * t28;
+  tau_M[3] = Y[173] * theta[72] + Y[174] * theta[73] + Y[175] * theta[74] + t21 * t27;
+  const float t28 = Y[176] * theta[40] + Y[177] * theta[41] + Y[178] * theta[42] + Y[179] * theta[43] + Y[180] * theta[44] + Y[181] * theta[45] + Y[182] * theta[46] + Y[183] * theta[47] + Y[184] * theta[50] + Y[185] * theta[51] + Y[186] * theta[52] + Y[187] * theta[53] + Y[188] * theta[54] + Y[189] * theta[55] + Y[190] * theta[56] + Y[191] * theta[57] + Y[192] * theta[58];
+  const float t29 = Y[194] * t28;
   const float t30 = static_cast<float>((t29 > 0.0f) - (t29 < 0.0f));
   const float t31 = 0.5f * t30;
   const float t32 = 1.0f / theta[79];
   const float t33 = 0.5f + t31;
   const float t34 = t32 * t33 - theta[79] * (t31 - 0.5f);
-  tau_M[4] = Y[412] * theta[76] + Y[413] * theta[77] + Y[414] * theta[78] + t28 * t34;
-  const float t35 = Y[470] * theta[50] + Y[471] * theta[51] + Y[472] * theta[52] + Y[473] * theta[53] + Y[474] * theta[54] + Y[475] * theta[55] + Y[476] * theta[56] + Y[478] * theta[58];
-  const float t36 = Y[501] * t35;
+  tau_M[4] = Y[193] * theta[76] + Y[194] * theta[77] + Y[195] * theta[78] + t28 * t34;
+  const float t35 = Y[196] * theta[50] + Y[197] * theta[51] + Y[198] * theta[52] + Y[199] * theta[53] + Y[200] * theta[54] + Y[201] * theta[55] + Y[202] * theta[56] + Y[203] * theta[58];
+  const float t36 = Y[205] * t35;
   const float t37 = static_cast<float>((t36 > 0.0f) - (t36 < 0.0f));
   const float t38 = 0.5f * t37;
   const float t39 = 1.0f / theta[83];
   const float t40 = 0.5f + t38;
   const float t41 = t39 * t40 - theta[83] * (t38 - 0.5f);
-  tau_M[5] = Y[500] * theta[80] + Y[501] * theta[81] + Y[502] * theta[82] + t35 * t41;
-  J[5] = Y[5] * t6;  // ZZ1
-  J[10] = Y[10] * t6;  // XX2
-  J[11] = Y[11] * t6;  // XY2
-  J[12] = Y[12] * t6;  // XZ2
-  for (int k = 0; k < 9; ++k) J[14 + k] = Y[14 + k] * t6;  // YZ2 ZZ2 MX2 MY2 MZ2 M2 XX3 XY3 XZ3
-  for (int k = 0; k < 9; ++k) J[24 + k] = Y[24 + k] * t6;  // YZ3 ZZ3 MX3 MY3 MZ3 M3 XX4 XY4 XZ4
-  for (int k = 0; k < 26; ++k) J[34 + k] = Y[34 + k] * t6;  // YZ4 ZZ4 MX4 MY4 MZ4 M4 XX5 XY5 XZ5 YY5 YZ5 ZZ5 MX5 MY5 MZ5 M5 XX6 XY6 XZ6 YY6 YZ6 ZZ6 MX6 MY6 MZ6 M6
-  J[60] = Y[60];  // JM1
-  J[61] = Y[61];  // Rv1
-  J[62] = Y[62];  // Rc1
+  tau_M[5] = Y[204] * theta[80] + Y[205] * theta[81] + Y[206] * theta[82] + t35 * t41;
+  J[5] = Y[0] * t6;  // ZZ1
+  J[10] = Y[1] * t6;  // XX2
+  J[11] = Y[2] * t6;  // XY2
+  J[12] = Y[3] * t6;  // XZ2
+  for (int k = 0; k < 9; ++k) J[14 + k] = Y[5 + k] * t6;  // YZ2 ZZ2 MX2 MY2 MZ2 M2 XX3 XY3 XZ3
+  for (int k = 0; k < 9; ++k) J[24 + k] = Y[15 + k] * t6;  // YZ3 ZZ3 MX3 MY3 MZ3 M3 XX4 XY4 XZ4
+  for (int k = 0; k < 26; ++k) J[34 + k] = Y[25 + k] * t6;  // YZ4 ZZ4 MX4 MY4 MZ4 M4 XX5 XY5 XZ5 YY5 YZ5 ZZ5 MX5 MY5 MZ5 M5 XX6 XY6 XZ6 YY6 YZ6 ZZ6 MX6 MY6 MZ6 M6
+  J[60] = Y[51];  // JM1
+  J[61] = Y[52];  // Rv1
+  J[62] = Y[53];  // Rc1
   J[63] = -t0 * (t3 - 0.5f + t4 * t4 * t5);  // Rz1
-  for (int k = 0; k < 7; ++k) J[94 + k] = Y[94 + k] * t13;
-  J[102] = Y[102] * t13;
-  for (int k = 0; k < 40; ++k) J[104 + k] = Y[104 + k] * t13;
-  J[148] = Y[148];
-  J[149] = Y[149];
-  J[150] = Y[150];
+  for (int k = 0; k < 7; ++k) J[94 + k] = Y[54 + k] * t13;
+  J[102] = Y[61] * t13;
+  for (int k = 0; k < 40; ++k) J[104 + k] = Y[62 + k] * t13;
+  J[148] = Y[102];
+  J[149] = Y[103];
+  J[150] = Y[104];
   J[151] = -t7 * (t10 - 0.5f + t11 * t11 * t12);
-  for (int k = 0; k < 7; ++k) J[188 + k] = Y[188 + k] * t20;
-  J[196] = Y[196] * t20;
-  for (int k = 0; k < 30; ++k) J[198 + k] = Y[198 + k] * t20;
-  J[236] = Y[236];
-  J[237] = Y[237];
-  J[238] = Y[238];
+  for (int k = 0; k < 7; ++k) J[188 + k] = Y[105 + k] * t20;
+  J[196] = Y[112] * t20;
+  for (int k = 0; k < 30; ++k) J[198 + k] = Y[113 + k] * t20;
+  J[236] = Y[143];
+  J[237] = Y[144];
+  J[238] = Y[145];
   J[239] = -t14 * (t17 - 0.5f + t18 * t18 * t19);
-  for (int k = 0; k < 7; ++k) J[282 + k] = Y[282 + k] * t27;
-  J[290] = Y[290] * t27;
-  for (int k = 0; k < 9; ++k) J[292 + k] = Y[292 + k] * t27;
-  for (int k = 0; k < 10; ++k) J[302 + k] = Y[302 + k] * t27;
-  J[324] = Y[324];
-  J[325] = Y[325];
-  J[326] = Y[326];
+  for (int k = 0; k < 7; ++k) J[282 + k] = Y[146 + k] * t27;
+  J[290] = Y[153] * t27;
+  for (int k = 0; k < 9; ++k) J[292 + k] = Y[154 + k] * t27;
+  for (int k = 0; k < 10; ++k) J[302 + k] = Y[163 + k] * t27;
+  J[324] = Y[173];
+  J[325] = Y[174];
+  J[326] = Y[175];
   J[327] = -t21 * (t24 - 0.5f + t25 * t25 * t26);
-  for (int k = 0; k < 8; ++k) J[376 + k] = Y[376 + k] * t34;
-  for (int k = 0; k < 9; ++k) J[386 + k] = Y[386 + k] * t34;
-  J[412] = Y[412];
-  J[413] = Y[413];
-  J[414] = Y[414];
+  for (int k = 0; k < 8; ++k) J[376 + k] = Y[176 + k] * t34;
+  for (int k = 0; k < 9; ++k) J[386 + k] = Y[184 + k] * t34;
+  J[412] = Y[193];
+  J[413] = Y[194];
+  J[414] = Y[195];
   J[415] = -t28 * (t31 - 0.5f + t32 * t32 * t33);
-  for (int k = 0; k < 7; ++k) J[470 + k] = Y[470 + k] * t41;
-  J[478] = Y[478] * t41;
-  J[500] = Y[500];
-  J[501] = Y[501];
-  J[502] = Y[502];
+  for (int k = 0; k < 7; ++k) J[470 + k] = Y[196 + k] * t41;
+  J[478] = Y[203] * t41;
+  J[500] = Y[204];
+  J[501] = Y[205];
+  J[502] = Y[206];
   J[503] = -t35 * (t38 - 0.5f + t39 * t39 * t40);
 }
 

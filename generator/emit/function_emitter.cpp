@@ -62,7 +62,8 @@ std::vector<int> zero_entries(const Built& built, const std::string& array,
 // (ExprGraph), so a body is the same whichever builders ran before it.
 std::vector<Built> run_builders(const RobotModel& model, const BaseParameterSet& base,
                                 ExprGraph& graph, const std::vector<Scalar>& scalars,
-                                const std::vector<EntryPoint>& chosen, ModelSizes& sizes) {
+                                const std::vector<EntryPoint>& chosen, ModelSizes& sizes,
+                                std::vector<int>& drive_regressor_index) {
   BuildContext context{model, base, graph, make_symbolic_inputs(graph, model.tree), scalars};
   const std::vector<FunctionEntry>& registry = function_registry();
   std::vector<bool> needed(registry.size(), false);
@@ -93,6 +94,8 @@ std::vector<Built> run_builders(const RobotModel& model, const BaseParameterSet&
   }
   sizes = {model.tree.dof, context.num_params(), context.num_base(),
            static_cast<int>(make_drive_parameters(graph, model.tree).theta.size())};
+  drive_regressor_index = drive_regressor_entries(context);
+  sizes.drive_regressor_entries = static_cast<int>(drive_regressor_index.size());
   for (const Built& b : built) check_output_count(b, sizes);
   OutputSimplifier simplify(graph);
   for (std::size_t i = 0; i < built.size(); ++i) {
@@ -183,10 +186,13 @@ std::vector<EmittedFunction> emit_functions(const RobotModel& model, const BaseP
                                             ExprGraph& graph, const std::vector<Scalar>& scalars,
                                             bool with_estimate,
                                             const std::vector<std::string>& selection,
-                                            std::vector<std::string>* added) {
+                                            std::vector<std::string>* added,
+                                            std::vector<int>* drive_regressor_index) {
   const std::vector<EntryPoint> chosen = select_entry_points(selection, with_estimate, added);
   ModelSizes sizes;
-  const std::vector<Built> built = run_builders(model, base, graph, scalars, chosen, sizes);
+  std::vector<int> index;
+  const std::vector<Built> built = run_builders(model, base, graph, scalars, chosen, sizes, index);
+  if (drive_regressor_index) *drive_regressor_index = std::move(index);
   std::vector<EmittedFunction> functions;
   WriterWorkspace workspace;
   for (const EntryPoint& point : chosen) {

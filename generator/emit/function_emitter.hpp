@@ -38,13 +38,16 @@ struct EmittedFunction {
 /// with its functions in registry order followed by their _sincos variants; the functions on
 /// identified constants (Emitted::kWithEstimate) only `with_estimate`. A non-empty `selection`
 /// (entry-point names, as modelgen --functions takes them) keeps only those and the entry points
-/// they need, and runs only their builders (select_entry_points, which fills `added`). Throws
+/// they need, and runs only their builders (select_entry_points, which fills `added`).
+/// `drive_regressor_index` receives the packed drive regressor's layout (the dense index of each
+/// entry, build_context.hpp's drive_regressor_entries), whatever the selection. Throws
 /// UsageError for a name that is not an entry point of this model, and std::logic_error when a
 /// builder writes more or fewer values than its entry declares.
 std::vector<EmittedFunction> emit_functions(const RobotModel& model, const BaseParameterSet& base,
                                             ExprGraph& graph, const std::vector<Scalar>& scalars,
                                             bool with_estimate = false,
                                             const std::vector<std::string>& selection = {},
-                                            std::vector<std::string>* added = nullptr);
+                                            std::vector<std::string>* added = nullptr,
+                                            std::vector<int>* drive_regressor_index = nullptr);
 
 }  // namespace modelgen::gen

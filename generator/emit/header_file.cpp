@@ -119,6 +119,7 @@ std::string render_header(const RenderInput& in) {
       .set("standard_param_count", static_cast<long long>(in.model.tree.params.size()))
       .set("base_param_count", static_cast<long long>(in.base.params.size()))
       .set("drive_param_count", static_cast<long long>(in.drive_param_names.size()))
+      .set("drive_regressor_entry_count", static_cast<long long>(in.drive_regressor_index.size()))
       .set_block("identified_declarations",
                  [&](CodeWriter& out) { write_identified_declarations(in, out); })
       .set_block("model_struct", [&](CodeWriter& out) { write_model_struct(in, out); })

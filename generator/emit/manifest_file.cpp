@@ -108,6 +108,8 @@ std::string render_manifest(const RenderInput& in) {
   document["standard_parameters"] = standard;
   document["base_parameters"] = base_parameters(in);
   document["drive_parameters"] = in.drive_param_names;
+  // Packed entry p of drive_regressor's Y is entry drive_regressor_index[p] of the dense one.
+  document["drive_regressor_index"] = in.drive_regressor_index;
   document["functions"] = functions(in);
   document["files"] = files(in);
   if (in.input.estimate) {

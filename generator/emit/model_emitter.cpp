@@ -42,15 +42,18 @@ GeneratedModel emit_model(const RobotModel& model, const GenerationInput& input)
   if (input.estimate) identified = identified_values(*input.estimate, model, base, input.scalars);
   ExprGraph graph;
   GeneratedModel result;
+  std::vector<int> drive_regressor_index;
   RenderInput in{model,
                  input,
                  base,
                  {},
+                 {},
                  sha256_hex(input.input_bytes),
                  emit_functions(model, base, graph, input.scalars, input.estimate.has_value(),
-                                input.functions, &result.added_callees),
+                                input.functions, &result.added_callees, &drive_regressor_index),
                  std::move(identified)};
   in.drive_param_names = make_drive_parameters(graph, model.tree).names;
+  in.drive_regressor_index = std::move(drive_regressor_index);
 
   result.notes = model.notes;
   if (input.estimate) result.warnings = input.estimate->warnings;

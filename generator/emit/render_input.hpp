@@ -17,6 +17,9 @@ struct RenderInput {
   const GenerationInput& input;
   const BaseParameterSet& base;
   std::vector<std::string> drive_param_names;  ///< theta of drive_torque, in order
+  /// The dense index (row-major kDof x kDriveParams) of each entry of the packed drive
+  /// regressor Y, in order (build_context.hpp's drive_regressor_entries).
+  std::vector<int> drive_regressor_index;
   std::string sha256;                          ///< of input.input_bytes, 64 hex digits
   std::vector<EmittedFunction> functions;      ///< in the order of the generated files
   /// The estimate's values (--params) in the order of base.params; empty without an estimate.

@@ -98,6 +98,12 @@ std::string render_source(const RenderInput& in) {
       .set_block("base_param_names", [&](CodeWriter& out) { write_name_list(base_names, out); })
       .set_block("drive_param_names",
                  [&](CodeWriter& out) { write_name_list(in.drive_param_names, out); })
+      .set_block("drive_regressor_index",
+                 [&](CodeWriter& out) {
+                   std::vector<std::string> items;
+                   for (int k : in.drive_regressor_index) items.push_back(std::to_string(k));
+                   write_list(items, out);
+                 })
       .set_block("motor_from_joint",
                  [&](CodeWriter& out) { write_matrix_rows(drives.motor_from_joint, scalar, out); })
       .set_block("torque_constant",

@@ -72,10 +72,23 @@ std::vector<ExprId> drive_regressor_on_standard_inputs(BuildContext& context,
                                 drive, W);
 }
 
-std::vector<ExprId> drive_regressor_input(BuildContext& context, const DriveParameters& drive) {
-  std::vector<ExprId> Y = drive_regressor_on_standard_inputs(context, drive);
+std::vector<int> drive_regressor_entries(BuildContext& context) {
+  const DriveParameters drive = make_drive_parameters(context.graph, context.tree());
+  const std::vector<ExprId> Y = drive_regressor_on_standard_inputs(context, drive);
+  std::vector<int> entries;
   for (std::size_t k = 0; k < Y.size(); ++k) {
-    if (!context.graph.is_zero(Y[k])) Y[k] = input_symbol(context.graph, "Y", static_cast<int>(k));
+    if (!context.graph.is_zero(Y[k])) entries.push_back(static_cast<int>(k));
+  }
+  return entries;
+}
+
+std::vector<ExprId> drive_regressor_input(BuildContext& context, const DriveParameters& drive) {
+  const std::vector<int> entries = drive_regressor_entries(context);
+  std::vector<ExprId> Y(static_cast<std::size_t>(context.dof()) * drive.theta.size(),
+                        context.graph.zero());
+  for (std::size_t p = 0; p < entries.size(); ++p) {
+    Y[static_cast<std::size_t>(entries[p])] =
+        input_symbol(context.graph, "Y", static_cast<int>(p));
   }
   return Y;
 }

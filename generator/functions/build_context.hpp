@@ -56,13 +56,19 @@ std::vector<FunctionOutput> vector_outputs(const std::string& array,
 
 /// The drive regressor Y (derive_drive_regressor) on the standard regressor read from the input
 /// array W_std: an entry of W_std that is zero in the symbolic regressor is zero here too, so
-/// Y's structurally zero entries are known. drive_regressor writes this Y; the functions given
-/// it read only its other entries.
+/// Y's structurally zero entries are known. Dense, row-major dof x theta.
 std::vector<ExprId> drive_regressor_on_standard_inputs(BuildContext& context,
                                                        const DriveParameters& drive);
 
-/// The input array Y of the functions given the drive regressor: the symbol Y[k] where
-/// drive_regressor writes an entry that is not structurally zero, zero elsewhere.
+/// The entries of the dense drive regressor (drive_regressor_on_standard_inputs) that are not
+/// structurally zero, in increasing order: the packed layout drive_regressor writes, entry p of
+/// the packed array being dense entry result[p]. Depends on the robot only. A few may still be
+/// zero for every input once simplified; drive_regressor leaves those unwritten (its
+/// "unwritten" entries in the manifest) and its readers take them as zero.
+std::vector<int> drive_regressor_entries(BuildContext& context);
+
+/// The input array Y of the functions given the drive regressor, dense row-major dof x theta:
+/// the packed input symbol Y[p] at the p-th entry of drive_regressor_entries, zero elsewhere.
 std::vector<ExprId> drive_regressor_input(BuildContext& context, const DriveParameters& drive);
 
 /// A zero-initialized local array and a call to another entry point, as prologue statements.

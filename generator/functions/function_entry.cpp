@@ -18,6 +18,8 @@ int extent_size(Extent extent, const ModelSizes& sizes) {
       return sizes.base_params;
     case Extent::kDriveParams:
       return sizes.drive_params;
+    case Extent::kDriveRegressorEntries:
+      return sizes.drive_regressor_entries;
   }
   return 0;
 }

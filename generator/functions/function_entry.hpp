@@ -26,7 +26,17 @@ enum class Section {
 };
 
 /// A dimension of an array, in the counts of the generated header.
-enum class Extent { kOne, kDof, kState, kStandardParams, kBaseParams, kDriveParams };
+/// kDriveRegressorEntries: the drive regressor's entries that are not structurally zero (the
+/// packed layout, build_context.hpp's drive_regressor_entries).
+enum class Extent {
+  kOne,
+  kDof,
+  kState,
+  kStandardParams,
+  kBaseParams,
+  kDriveParams,
+  kDriveRegressorEntries
+};
 
 /// An input or output array of a generated function: rows x cols values, row-major.
 struct ArraySpec {
@@ -90,6 +100,7 @@ struct ModelSizes {
   int standard_params = 0;
   int base_params = 0;
   int drive_params = 0;
+  int drive_regressor_entries = 0;
 };
 
 /// Number of values of `extent` (kState: q, dq and ddq together, 3 dof).

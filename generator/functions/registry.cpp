@@ -31,8 +31,9 @@ using S = Section;
 
 // The arrays most functions share.
 const ArraySpec kQ{"q", E::kDof}, kDq{"dq", E::kDof}, kDdq{"ddq", E::kDof};
-// The drive regressor of one sample, written by drive_regressor.
-const ArraySpec kY{"Y", E::kDof, E::kDriveParams};
+// The drive regressor of one sample, packed (its entries that are not structurally zero), as
+// drive_regressor writes it.
+const ArraySpec kY{"Y", E::kDriveRegressorEntries};
 
 // Not every function has a _sincos variant: the state Jacobian's body is several times that of
 // the inverse dynamics, so sharing the sines and cosines would save under 1 % of its work for

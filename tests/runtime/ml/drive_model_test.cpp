@@ -182,6 +182,7 @@ struct FakeGenerated {
   static constexpr int kFormatVersion = kGeneratedFormatVersion;
   static constexpr int kDof = 6;
   static constexpr int kDriveParams = 94;
+  static constexpr int kDriveRegressorEntries = 9;  // any length: the adapter's stride
   static const ReferenceDriveModel* reference;
   static const char* const* drive_param_names() {
     static std::vector<const char*> names;
@@ -203,7 +204,7 @@ struct FakeGenerated {
   }
   // The sample of Y, or -1 when Y is not what drive_regressor wrote into a zeroed buffer.
   static Eigen::Index sample(const double* Y) {
-    for (int k = 1; k < kDof * kDriveParams; ++k) {
+    for (int k = 1; k < kDriveRegressorEntries; ++k) {
       if (Y[k] != 0) return -1;
     }
     return static_cast<Eigen::Index>(Y[0]);

@@ -204,17 +204,35 @@ class DriveTorque : public testing::Test {
     return J;
   }
 
-  // The drive regressor Y of state x (kDof x kDriveParams), into a zeroed buffer as a caller
-  // binding samples prepares it.
+  // The drive regressor Y of state x, dense (kDof x kDriveParams): drive_regressor's packed Y,
+  // written into a zeroed buffer as a caller binding samples prepares it, placed by
+  // kDriveRegressorIndex.
   RowMajor regressor(const Eigen::VectorXd& x) const {
-    RowMajor Y = RowMajor::Zero(n, m);
-    Model::drive_regressor(x.data(), x.data() + n, x.data() + 2 * n, Y.data());
+    std::vector<double> packed(Model::kDriveRegressorEntries, 0.0);
+    Model::drive_regressor(x.data(), x.data() + n, x.data() + 2 * n, packed.data());
+    return unpacked(packed.data());
+  }
+  template <class T>
+  static Eigen::Matrix<T, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> unpacked(const T* packed) {
+    Eigen::Matrix<T, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> Y =
+        Eigen::Matrix<T, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>::Zero(n, m);
+    for (int p = 0; p < Model::kDriveRegressorEntries; ++p) {
+      Y.data()[Model::drive_regressor_index()[p]] = packed[p];
+    }
     return Y;
+  }
+  // The packed form of a dense Y, as the _given_regressor functions read it.
+  static std::vector<double> packed(const RowMajor& Y) {
+    std::vector<double> packed(Model::kDriveRegressorEntries);
+    for (int p = 0; p < Model::kDriveRegressorEntries; ++p) {
+      packed[p] = Y.data()[Model::drive_regressor_index()[p]];
+    }
+    return packed;
   }
 
   Eigen::VectorXd given_regressor(const RowMajor& Y, const Eigen::VectorXd& theta) const {
     Eigen::VectorXd tau = Eigen::VectorXd::Constant(n, std::nan(""));
-    Model::drive_torque_given_regressor(Y.data(), theta.data(), tau.data());
+    Model::drive_torque_given_regressor(packed(Y).data(), theta.data(), tau.data());
     return tau;
   }
 
@@ -224,7 +242,8 @@ class DriveTorque : public testing::Test {
                                     Eigen::VectorXd* tau = nullptr) const {
     RowMajor J = RowMajor::Zero(n, m);
     Eigen::VectorXd tau_M = Eigen::VectorXd::Constant(n, std::nan(""));
-    Model::drive_torque_jacobian_given_regressor(Y.data(), theta.data(), tau_M.data(), J.data());
+    Model::drive_torque_jacobian_given_regressor(packed(Y).data(), theta.data(), tau_M.data(),
+                                                 J.data());
     if (tau != nullptr) *tau = tau_M;
     return J;
   }
@@ -359,6 +378,45 @@ TYPED_TEST(DriveTorque, ManifestListsTheSameParameters) {
   const std::vector<std::string> names = manifest.at("drive_parameters");
   ASSERT_EQ(static_cast<int>(names.size()), Model::kDriveParams);
   for (int k = 0; k < Model::kDriveParams; ++k) EXPECT_EQ(names[k], Model::drive_param_names()[k]);
+}
+
+// The packed layout: increasing dense indices, the manifest's too, and tight: each packed entry
+// is non-zero at some random state unless the manifest lists it as never written. (That no
+// dense entry left out is ever non-zero is DriveRegressorIsTheJacobianAtUnitEfficiency's
+// comparison with the numeric model.)
+TYPED_TEST(DriveTorque, PackedRegressorHoldsExactlyTheEntriesThatCanBeNonZero) {
+  using Model = typename TypeParam::Model;
+  constexpr int n = TestFixture::n, m = TestFixture::m;
+  std::ifstream file(test::source_path(TypeParam::kManifest));
+  std::stringstream text;
+  text << file.rdbuf();
+  const nlohmann::json manifest = nlohmann::json::parse(text.str());
+  const std::vector<int> index = manifest.at("drive_regressor_index");
+  ASSERT_EQ(static_cast<int>(index.size()), Model::kDriveRegressorEntries);
+  ASSERT_LT(Model::kDriveRegressorEntries, n * m);
+  for (int p = 0; p < Model::kDriveRegressorEntries; ++p) {
+    EXPECT_EQ(Model::drive_regressor_index()[p], index[p]) << "p = " << p;
+    EXPECT_GE(index[p], p == 0 ? 0 : index[p - 1] + 1) << "p = " << p;
+    EXPECT_LT(index[p], n * m);
+  }
+  std::vector<int> unwritten;
+  for (const nlohmann::json& function : manifest.at("functions")) {
+    if (function.at("name") == "drive_regressor" && function.contains("unwritten")) {
+      unwritten = function.at("unwritten").at("Y").get<std::vector<int>>();
+    }
+  }
+  std::vector<bool> seen(Model::kDriveRegressorEntries, false);
+  test::Random random(2402);
+  for (int s = 0; s < 20; ++s) {
+    const Eigen::VectorXd x = this->random_state(random);
+    std::vector<double> Y(Model::kDriveRegressorEntries, 0.0);
+    Model::drive_regressor(x.data(), x.data() + n, x.data() + 2 * n, Y.data());
+    for (int p = 0; p < Model::kDriveRegressorEntries; ++p) seen[p] = seen[p] || Y[p] != 0.0;
+  }
+  for (int p = 0; p < Model::kDriveRegressorEntries; ++p) {
+    const bool never_written = std::find(unwritten.begin(), unwritten.end(), p) != unwritten.end();
+    EXPECT_NE(seen[p], never_written) << "packed entry " << p << " (dense " << index[p] << ")";
+  }
 }
 
 TYPED_TEST(DriveTorque, EqualsTheNumericModelOnBothEfficiencyBranches) {
@@ -575,12 +633,14 @@ TYPED_TEST(DriveTorque, FloatGivenRegressorAgreesWithDouble) {
     const Eigen::VectorXd theta = this->random_theta(random);
     const Eigen::VectorXd x = this->smooth_state(random, theta, 1e-3);
     const Eigen::VectorXf xf = x.cast<float>(), thetaf = theta.cast<float>();
-    RowMajorF Y = RowMajorF::Zero(n, m), J = RowMajorF::Zero(n, m);  // zeros are not written
+    std::vector<float> Y(TypeParam::Model::kDriveRegressorEntries, 0.0f);  // zeros are not written
+    RowMajorF J = RowMajorF::Zero(n, m);
     Eigen::VectorXf tau(n);
     TypeParam::drive_regressor_float(xf.data(), xf.data() + n, xf.data() + 2 * n, Y.data());
     TypeParam::drive_torque_jacobian_given_regressor_float(Y.data(), thetaf.data(), tau.data(),
                                                            J.data());
-    worst = std::max(worst, relative_difference(Y.cast<double>(), this->regressor(x)));
+    worst = std::max(worst, relative_difference(TestFixture::unpacked(Y.data()).template cast<double>(),
+                                                this->regressor(x)));
     worst = std::max(worst, relative_difference(J.cast<double>(), this->theta_jacobian(x, theta)));
   }
   EXPECT_LT(worst, 1e-4);

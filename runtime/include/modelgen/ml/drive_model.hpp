@@ -115,12 +115,13 @@ class ReferenceDriveModel final : public DriveModel {
 };
 
 /// A generated drive model compiled in: GeneratedDriveModel<modelgen::kr150::Model>, using the
-/// generated kDof, kDriveParams, drive_param_names(), drive_regressor(q, dq, ddq, Y),
-/// drive_torque_given_regressor(Y, theta, tau_M) and
-/// drive_torque_jacobian_given_regressor(Y, theta, tau_M, J) (Y and J kDof x kDriveParams,
-/// row-major). set_samples() stores the drive regressor Y of every sample, the part of the model
-/// that does not depend on theta (samples x kDof x kDriveParams doubles: 6.9 MB for the KR150's
-/// 1540 samples); torque() and torque_jacobian() then only read it, so they may run from several
+/// generated kDof, kDriveParams, kDriveRegressorEntries, drive_param_names(),
+/// drive_regressor(q, dq, ddq, Y), drive_torque_given_regressor(Y, theta, tau_M) and
+/// drive_torque_jacobian_given_regressor(Y, theta, tau_M, J) (Y packed: its entries that are not
+/// structurally zero; J kDof x kDriveParams, row-major). set_samples() stores the packed drive
+/// regressor Y of every sample, the part of the model that does not depend on theta (samples x
+/// kDriveRegressorEntries doubles: 3.3 MB for the KR150's 1540 samples, where the dense Y would
+/// take 6.9 MB); torque() and torque_jacobian() then only read it, so they may run from several
 /// threads at once.
 template <class Generated>
 class GeneratedDriveModel final : public DriveModel {
@@ -128,7 +129,7 @@ class GeneratedDriveModel final : public DriveModel {
                 "this generated model was made by a modelgen whose generated format differs "
                 "from this runtime's: regenerate it with the modelgen of this runtime");
   static constexpr int kDof = Generated::kDof;
-  static constexpr Eigen::Index kStride = Eigen::Index{Generated::kDof} * Generated::kDriveParams;
+  static constexpr Eigen::Index kStride = Generated::kDriveRegressorEntries;
 
  public:
   GeneratedDriveModel()
@@ -145,8 +146,8 @@ class GeneratedDriveModel final : public DriveModel {
       throw std::invalid_argument("drive model: q, dq, ddq must be samples x " +
                                   std::to_string(dof()) + " matrices of equal size");
     }
-    // Zero-filled before drive_regressor writes each sample: an entry it leaves unwritten (a
-    // structural zero) stays zero.
+    // Zero-filled before drive_regressor writes each sample: an entry it leaves unwritten (one
+    // the generator found always zero) stays zero.
     Y_.assign(static_cast<std::size_t>(n * kStride), 0.0);
     double x[3 * kDof];  // one sample's q, dq, ddq, contiguous as the generated code reads them
     for (Eigen::Index s = 0; s < n; ++s) {
@@ -178,7 +179,7 @@ class GeneratedDriveModel final : public DriveModel {
 
   std::vector<std::string> names_;
   Eigen::Index samples_ = 0;
-  std::vector<double> Y_;  // per sample: Y, kDof x kDriveParams, row-major
+  std::vector<double> Y_;  // per sample: the packed Y, kDriveRegressorEntries values
 };
 
 }  // namespace modelgen

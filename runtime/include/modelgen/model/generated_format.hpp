@@ -6,6 +6,6 @@
 
 namespace modelgen {
 
-constexpr int kGeneratedFormatVersion = 4;
+constexpr int kGeneratedFormatVersion = 5;
 
 }  // namespace modelgen
