@@ -14,8 +14,9 @@ namespace kr150 {
 // values, as drive_regressor writes it for that sample's q, dq, ddq) instead of q, dq, ddq: tau_M
 // (kDof) and J = d tau_M / d theta (kDof x kDriveParams, row-major, J[i * kDriveParams + k])
 // for the parameters theta, with no Newton-Euler pass, for the iterations of a
-// maximum-likelihood fit (Swevers et al. 2002 eq. 18). The inertial columns of row i are c_i Y
-// (c_i the efficiency factor of eq. 8), those of JM, Rv, Rc of motor i are copied from Y. The
+// maximum-likelihood fit (Swevers et al. 2002 eq. 18). The inertial columns of row i are c_i
+// times row i of the unpacked Y (c_i the efficiency factor of eq. 8), those of JM, Rv, Rc of
+// motor i are copied from Y. The
 // efficiency branch and the Coulomb friction sign count as constant, as in
 // drive_torque_jacobian. Every Rz must be non-zero.
 // J: 267 of its 564 entries are written; the others are zero for every input
@@ -120,8 +121,9 @@ void drive_torque_jacobian_given_regressor(const double* Y, const double* theta,
 // values, as drive_regressor writes it for that sample's q, dq, ddq) instead of q, dq, ddq: tau_M
 // (kDof) and J = d tau_M / d theta (kDof x kDriveParams, row-major, J[i * kDriveParams + k])
 // for the parameters theta, with no Newton-Euler pass, for the iterations of a
-// maximum-likelihood fit (Swevers et al. 2002 eq. 18). The inertial columns of row i are c_i Y
-// (c_i the efficiency factor of eq. 8), those of JM, Rv, Rc of motor i are copied from Y. The
+// maximum-likelihood fit (Swevers et al. 2002 eq. 18). The inertial columns of row i are c_i
+// times row i of the unpacked Y (c_i the efficiency factor of eq. 8), those of JM, Rv, Rc of
+// motor i are copied from Y. The
 // efficiency branch and the Coulomb friction sign count as constant, as in
 // drive_torque_jacobian. Every Rz must be non-zero.
 // J: 267 of its 564 entries are written; the others are zero for every input

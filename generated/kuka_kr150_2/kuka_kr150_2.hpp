@@ -58,10 +58,10 @@ extern const char* const kBaseParamNames[kBaseParams];
 // (XXj ... Mj of every body, as in kStandardParamNames), then per moving joint JMj, Rvj, Rcj,
 // Rzj (motor inertia, viscous and Coulomb friction, transmission efficiency).
 extern const char* const kDriveParamNames[kDriveParams];
-// Where each entry of the packed drive regressor sits in the dense one: packed Y[p] is entry
-// kDriveRegressorIndex[p] of the row-major kDof x kDriveParams regressor (row i of that index
-// is i / kDriveParams, its parameter i % kDriveParams); every other dense entry is always 0.
-// Increasing.
+// Where each entry of the packed drive regressor sits in the dense one, in increasing order:
+// packed Y[p] is entry k = kDriveRegressorIndex[p] of the row-major kDof x kDriveParams
+// regressor, in row k / kDriveParams and column k % kDriveParams; every other dense entry is
+// always 0. drive_regressor's "unwritten" entries in the manifest are packed positions p.
 extern const int kDriveRegressorIndex[kDriveRegressorEntries];
 
 // The drive chain of the description, for data measured on the motor side. Row-major
@@ -292,8 +292,9 @@ void drive_torque_given_regressor(const float* Y, const float* theta, float* tau
 // values, as drive_regressor writes it for that sample's q, dq, ddq) instead of q, dq, ddq: tau_M
 // (kDof) and J = d tau_M / d theta (kDof x kDriveParams, row-major, J[i * kDriveParams + k])
 // for the parameters theta, with no Newton-Euler pass, for the iterations of a
-// maximum-likelihood fit (Swevers et al. 2002 eq. 18). The inertial columns of row i are c_i Y
-// (c_i the efficiency factor of eq. 8), those of JM, Rv, Rc of motor i are copied from Y. The
+// maximum-likelihood fit (Swevers et al. 2002 eq. 18). The inertial columns of row i are c_i
+// times row i of the unpacked Y (c_i the efficiency factor of eq. 8), those of JM, Rv, Rc of
+// motor i are copied from Y. The
 // efficiency branch and the Coulomb friction sign count as constant, as in
 // drive_torque_jacobian. Every Rz must be non-zero.
 // J: 211 of its 504 entries are written; the others are zero for every input

@@ -39,8 +39,8 @@ void check_output_count(const Built& built, const ModelSizes& sizes) {
 
 // The entries of `array` (an output of `built`) that are the constant 0. The builders write
 // each array's entries in index order (row_major_outputs, vector_outputs).
-std::vector<int> zero_entries(const Built& built, const std::string& array,
-                              const ExprGraph& graph, const ModelSizes& sizes) {
+std::vector<int> zero_entries(const Built& built, const std::string& array, const ExprGraph& graph,
+                              const ModelSizes& sizes) {
   std::vector<int> zeros;
   std::size_t next = 0;
   for (const ArraySpec& spec : built.entry->outputs) {
@@ -59,7 +59,8 @@ std::vector<int> zero_entries(const Built& built, const std::string& array,
 // (FunctionDefinition::reads; built, not emitted), in registry order, their outputs simplified
 // (exact zeros removed, sign-normal form: output_simplifier.hpp) and the entries they read that
 // their writer never writes replaced by 0. Operand order depends on structure only
-// (ExprGraph), so a body is the same whichever builders ran before it.
+// (ExprGraph), so a body is the same whichever builders ran before it. Also gives the packed
+// drive regressor's layout (drive_regressor_entries).
 std::vector<Built> run_builders(const RobotModel& model, const BaseParameterSet& base,
                                 ExprGraph& graph, const std::vector<Scalar>& scalars,
                                 const std::vector<EntryPoint>& chosen, ModelSizes& sizes,
@@ -78,9 +79,9 @@ std::vector<Built> run_builders(const RobotModel& model, const BaseParameterSet&
     if (!needed[i]) continue;
     definitions[i] = registry[i].build(context);
     for (const FunctionDefinition::ReadsOutput& read : definitions[i]->reads) {
-      const auto writer = std::find_if(registry.begin(), registry.end(), [&](const FunctionEntry& e) {
-        return read.function == e.name;
-      });
+      const auto writer =
+          std::find_if(registry.begin(), registry.end(),
+                       [&](const FunctionEntry& e) { return read.function == e.name; });
       if (writer == registry.end() || writer - registry.begin() >= static_cast<std::ptrdiff_t>(i)) {
         throw std::logic_error(std::string("emit_functions: ") + registry[i].name + " reads " +
                                read.function + ", which is not before it in the registry");
@@ -94,6 +95,9 @@ std::vector<Built> run_builders(const RobotModel& model, const BaseParameterSet&
   }
   sizes = {model.tree.dof, context.num_params(), context.num_base(),
            static_cast<int>(make_drive_parameters(graph, model.tree).theta.size())};
+  // The packed layout whatever the selection: the header declares it and sizes Y by it. It only
+  // adds shared nodes to the graph (no simplifier runs before this point), so the bodies stay
+  // those of the full run (ModelgenCli.AFunctionGeneratedAloneHasTheCodeOfTheFullRun).
   drive_regressor_index = drive_regressor_entries(context);
   sizes.drive_regressor_entries = static_cast<int>(drive_regressor_index.size());
   for (const Built& b : built) check_output_count(b, sizes);
@@ -101,11 +105,13 @@ std::vector<Built> run_builders(const RobotModel& model, const BaseParameterSet&
   for (std::size_t i = 0; i < built.size(); ++i) {
     FunctionDefinition& definition = built[i].definition;
     std::vector<ExprId> values;
-    for (const FunctionOutput& output : definition.outputs) values.push_back(simplify(output.value));
+    for (const FunctionOutput& output : definition.outputs)
+      values.push_back(simplify(output.value));
     std::vector<ExprId> zero_leaves;
     for (const FunctionDefinition::ReadsOutput& read : definition.reads) {
-      const auto writer = std::find_if(built.begin(), built.begin() + static_cast<std::ptrdiff_t>(i),
-                                       [&](const Built& b) { return read.function == b.entry->name; });
+      const auto writer =
+          std::find_if(built.begin(), built.begin() + static_cast<std::ptrdiff_t>(i),
+                       [&](const Built& b) { return read.function == b.entry->name; });
       for (int k : zero_entries(*writer, read.output, graph, sizes)) {
         zero_leaves.push_back(input_symbol(graph, read.array, k));
       }
@@ -149,9 +155,9 @@ EmittedFunction emit(const Built& built, bool sincos, const ExprGraph& graph,
   const FunctionDefinition& definition = built.definition;
   function.unwritten = unwritten_entries(built, graph, sizes);
   for (Scalar scalar : scalars) {
-    FunctionBody body = write_statements(graph, definition.outputs, scalar,
-                                         sincos ? TrigSource::kGiven : TrigSource::kCompute,
-                                         workspace);
+    FunctionBody body =
+        write_statements(graph, definition.outputs, scalar,
+                         sincos ? TrigSource::kGiven : TrigSource::kCompute, workspace);
     if (definition.prologue) {
       std::vector<std::string> lines = definition.prologue(scalar);
       lines.insert(lines.end(), body.lines.begin(), body.lines.end());

@@ -72,23 +72,26 @@ std::vector<ExprId> drive_regressor_on_standard_inputs(BuildContext& context,
                                 drive, W);
 }
 
-std::vector<int> drive_regressor_entries(BuildContext& context) {
-  const DriveParameters drive = make_drive_parameters(context.graph, context.tree());
-  const std::vector<ExprId> Y = drive_regressor_on_standard_inputs(context, drive);
+std::vector<int> drive_regressor_entries(const std::vector<ExprId>& dense_Y,
+                                         const ExprGraph& graph) {
   std::vector<int> entries;
-  for (std::size_t k = 0; k < Y.size(); ++k) {
-    if (!context.graph.is_zero(Y[k])) entries.push_back(static_cast<int>(k));
+  for (std::size_t k = 0; k < dense_Y.size(); ++k) {
+    if (!graph.is_zero(dense_Y[k])) entries.push_back(static_cast<int>(k));
   }
   return entries;
 }
 
+std::vector<int> drive_regressor_entries(BuildContext& context) {
+  const DriveParameters drive = make_drive_parameters(context.graph, context.tree());
+  return drive_regressor_entries(drive_regressor_on_standard_inputs(context, drive), context.graph);
+}
+
 std::vector<ExprId> drive_regressor_input(BuildContext& context, const DriveParameters& drive) {
-  const std::vector<int> entries = drive_regressor_entries(context);
-  std::vector<ExprId> Y(static_cast<std::size_t>(context.dof()) * drive.theta.size(),
-                        context.graph.zero());
+  std::vector<ExprId> Y = drive_regressor_on_standard_inputs(context, drive);
+  const std::vector<int> entries = drive_regressor_entries(Y, context.graph);
+  std::fill(Y.begin(), Y.end(), context.graph.zero());
   for (std::size_t p = 0; p < entries.size(); ++p) {
-    Y[static_cast<std::size_t>(entries[p])] =
-        input_symbol(context.graph, "Y", static_cast<int>(p));
+    Y[static_cast<std::size_t>(entries[p])] = input_symbol(context.graph, "Y", static_cast<int>(p));
   }
   return Y;
 }

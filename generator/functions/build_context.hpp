@@ -66,6 +66,9 @@ std::vector<ExprId> drive_regressor_on_standard_inputs(BuildContext& context,
 /// zero for every input once simplified; drive_regressor leaves those unwritten (its
 /// "unwritten" entries in the manifest) and its readers take them as zero.
 std::vector<int> drive_regressor_entries(BuildContext& context);
+/// The same from the dense drive regressor already derived.
+std::vector<int> drive_regressor_entries(const std::vector<ExprId>& dense_Y,
+                                         const ExprGraph& graph);
 
 /// The input array Y of the functions given the drive regressor, dense row-major dof x theta:
 /// the packed input symbol Y[p] at the p-th entry of drive_regressor_entries, zero elsewhere.

@@ -16,7 +16,7 @@ FunctionDefinition build_drive_regressor(BuildContext& context) {
   const int columns = static_cast<int>(drive.theta.size());
   // Packed: only the entries that are not structurally zero, each named by its place.
   FunctionDefinition definition;
-  const std::vector<int> entries = drive_regressor_entries(context);
+  const std::vector<int> entries = drive_regressor_entries(Y, context.graph);
   for (std::size_t p = 0; p < entries.size(); ++p) {
     const int k = entries[p];
     definition.outputs.push_back({element("Y", static_cast<int>(p)), Y[static_cast<std::size_t>(k)],

@@ -1,6 +1,6 @@
 // The drive model F (Swevers eq. 12) on a sample's drive regressor Y (drive_regressor): the
-// torques of a residual-only evaluation in a fit, with no Newton-Euler pass. Only Y's entries
-// that are not structurally zero are read.
+// torques of a residual-only evaluation in a fit, with no Newton-Euler pass. Y is packed
+// (drive_regressor_input); the entries drive_regressor never writes are taken as 0 (`reads`).
 
 #include "generator/dynamics/drive_model.hpp"
 #include "generator/functions/build_context.hpp"

@@ -1,8 +1,9 @@
 // drive_torque_jacobian on a sample's drive regressor Y (drive_regressor) instead of the state:
 // tau_M and d tau_M / d theta (Swevers eq. 14, 18) with no Newton-Euler pass, what a fit
-// evaluates on every iteration. The inertial columns are c_i Y(i, k), the motor columns Y's
-// own, Rz's from the efficiency factor; the sign terms count as constant (drive_model.hpp).
-// Only Y's entries that are not structurally zero are read.
+// evaluates on every iteration. The inertial columns are c_i Y(i, k) (Y unpacked), the motor
+// columns Y's own, Rz's from the efficiency factor; the sign terms count as constant
+// (drive_model.hpp). Y is packed (drive_regressor_input); the entries drive_regressor never
+// writes are taken as 0 (`reads`).
 
 #include "generator/dynamics/drive_model.hpp"
 #include "generator/functions/build_context.hpp"

@@ -89,7 +89,8 @@ TEST(ModelgenCli, FunctionsKeepsTheChosenEntryPointsAndTheirCallees) {
   EXPECT_EQ(manifest.find("\"name\": \"mass_matrix\""), std::string::npos);
 }
 
-// Only the builders of the chosen functions run, and operand order depends on structure alone,
+// Only the builders of the chosen functions run (and the derivation of the packed drive
+// regressor's layout, for the header), and operand order depends on structure alone,
 // so a function's code is the same generated alone as with all the others.
 TEST(ModelgenCli, AFunctionGeneratedAloneHasTheCodeOfTheFullRun) {
   const fs::path all = fresh_directory("cli_alone_all"), alone = fresh_directory("cli_alone");

@@ -192,7 +192,9 @@ struct FakeGenerated {
     return names.data();
   }
   static const States* states;
+  static std::vector<const double*> written;  // where drive_regressor wrote each sample's Y
   static void drive_regressor(const double* q, const double* dq, const double* ddq, double* Y) {
+    written.push_back(Y);
     Y[0] = -1;
     for (Eigen::Index s = 0; s < states->q.rows(); ++s) {
       if (states->q.row(s) == Eigen::Map<const Eigen::RowVectorXd>(q, kDof) &&
@@ -230,6 +232,7 @@ struct FakeGenerated {
 };
 const ReferenceDriveModel* FakeGenerated::reference = nullptr;
 const States* FakeGenerated::states = nullptr;
+std::vector<const double*> FakeGenerated::written;
 
 TEST(GeneratedDriveModel, AdapterPassesEachSamplesStateAndParameters) {
   const Kr150 robot;
@@ -241,8 +244,15 @@ TEST(GeneratedDriveModel, AdapterPassesEachSamplesStateAndParameters) {
   FakeGenerated::states = &x;
   GeneratedDriveModel<FakeGenerated> adapter;
   EXPECT_EQ(adapter.param_names(), reference.param_names());
+  FakeGenerated::written.clear();
   adapter.set_samples(x.q, x.dq, x.ddq);
   ASSERT_EQ(adapter.num_samples(), 7);
+  // One packed Y per sample, kDriveRegressorEntries apart (not the dense kDof x kDriveParams).
+  ASSERT_EQ(FakeGenerated::written.size(), 7u);
+  for (std::size_t s = 1; s < 7; ++s) {
+    EXPECT_EQ(FakeGenerated::written[s] - FakeGenerated::written[s - 1],
+              FakeGenerated::kDriveRegressorEntries);
+  }
   const Eigen::VectorXd theta = random_theta(robot, reference, random);
   for (int s = 0; s < 7; ++s) {
     std::vector<double> a(6), b(6), c(6), Ja(6 * 94), Jb(6 * 94);
