@@ -52,114 +52,129 @@ std::string unidentifiable(const Eigen::MatrixXd& A, double scale, Eigen::Index 
   return out;
 }
 
-}  // namespace
-
-LeastSquaresResult Reducer::solve(const std::vector<int>& kept,
-                                  const std::vector<std::string>& names, bool weighted) {
-  const Eigen::Index b = static_cast<Eigen::Index>(kept.size());
-  const Eigen::Index rows = this->rows();
-  if (rows <= b) {
-    throw EstimationError("only " + std::to_string(rows) + " equations for " + std::to_string(b) +
-                          " parameters: more data are needed");
+// slot[k]: where column k of W goes in the fit (-1: left out); the right-hand side goes last.
+class Slots {
+ public:
+  Slots(const std::vector<int>& kept, int params)
+      : slot_(static_cast<std::size_t>(params) + 1, -1) {
+    const Eigen::Index b = static_cast<Eigen::Index>(kept.size());
+    for (Eigen::Index j = 0; j < b; ++j) slot_[static_cast<std::size_t>(kept[j])] = j;
+    slot_[static_cast<std::size_t>(params)] = b;
   }
-  const int bad = first_non_finite();
-  if (bad >= 0) {
-    throw EstimationError("W or Y holds NaN or infinite values (in " +
-                          label(static_cast<std::size_t>(bad)) + ")");
+  // The slot of the group's column at position p.
+  Eigen::Index of(const Group& g, Eigen::Index p) const {
+    return slot_[static_cast<std::size_t>(g.columns[static_cast<std::size_t>(p)])];
   }
-  // slot[k]: where column k of W goes in the fit (-1: left out); the right-hand side goes last.
-  std::vector<Eigen::Index> slot(static_cast<std::size_t>(params_) + 1, -1);
-  for (Eigen::Index j = 0; j < b; ++j) slot[static_cast<std::size_t>(kept[j])] = j;
-  slot[static_cast<std::size_t>(params_)] = b;
-  const auto slot_of = [&](const Group& g, Eigen::Index p) {
-    return slot[static_cast<std::size_t>(g.columns[static_cast<std::size_t>(p)])];
-  };
 
-  std::vector<double> sigma(groups_.size(), 1.0);
-  if (weighted) {
-    // Eq. 20: each group's error standard deviation from the OLS solution of its own equations
-    // on the columns it sees, from its factor: [W_g y_g] = Q_g R_g, so the residual norms agree.
-    for (std::size_t g = 0; g < groups_.size(); ++g) {
-      const Group& group = groups_[g];
-      if (group.rows == 0) {
-        throw EstimationError(label(g) + " has no equations");
-      }
-      const Eigen::Index w = group.width();
-      std::vector<Eigen::Index> seen;  // positions, in the order of the fit's columns
-      for (Eigen::Index p = 0; p < w; ++p) {
-        const Eigen::Index j = slot_of(group, p);
-        if (j >= 0 && j < b) seen.push_back(p);
-      }
-      std::sort(seen.begin(), seen.end(), [&](Eigen::Index x, Eigen::Index y) {
-        return slot_of(group, x) < slot_of(group, y);
-      });
-      const Eigen::Index c = static_cast<Eigen::Index>(seen.size());
-      if (group.rows <= c) {
-        throw EstimationError(label(g) + " has " + std::to_string(group.rows) + " equations for " +
-                              std::to_string(c) +
-                              " parameters: too few to estimate its error level");
-      }
-      const auto R = group.S.topRows(w);
-      const Eigen::VectorXd r = R.col(0);
-      double squares = r.squaredNorm();
-      Eigen::Index rank = 0;
-      if (c > 0) {
-        Eigen::MatrixXd A(w, c);
-        for (Eigen::Index j = 0; j < c; ++j) A.col(j) = R.col(seen[static_cast<std::size_t>(j)]);
-        const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(A);
-        squares = (r - A * qr.solve(r)).squaredNorm();
-        rank = qr.rank();
-      }
-      sigma[g] = std::sqrt(squares / static_cast<double>(group.rows - rank));
+ private:
+  std::vector<Eigen::Index> slot_;
+};
+
+// Eq. 20: each group's error standard deviation from the OLS solution of its own equations
+// on the columns it sees, from its factor: [W_g y_g] = Q_g R_g, so the residual norms agree.
+std::vector<double> group_sigmas(const Reducer& reducer, const Slots& slots, Eigen::Index b) {
+  std::vector<double> sigma(static_cast<std::size_t>(reducer.groups()), 1.0);
+  for (std::size_t g = 0; g < sigma.size(); ++g) {
+    const Group& group = reducer.group(static_cast<int>(g));
+    if (group.rows == 0) {
+      throw EstimationError(reducer.label(g) + " has no equations");
     }
-    // A group fitted exactly (noise-free data) gets the largest weight the others allow, not
-    // an infinite one that would overflow the factorization.
-    const double largest = *std::max_element(sigma.begin(), sigma.end());
-    for (double& s : sigma) {
-      if (!(s > 0)) s = largest > 0 ? 1e-6 * largest : 1.0;
+    const Eigen::Index w = group.width();
+    std::vector<Eigen::Index> seen;  // positions, in the order of the fit's columns
+    for (Eigen::Index p = 0; p < w; ++p) {
+      const Eigen::Index j = slots.of(group, p);
+      if (j >= 0 && j < b) seen.push_back(p);
     }
+    std::sort(seen.begin(), seen.end(), [&](Eigen::Index x, Eigen::Index y) {
+      return slots.of(group, x) < slots.of(group, y);
+    });
+    const Eigen::Index c = static_cast<Eigen::Index>(seen.size());
+    if (group.rows <= c) {
+      throw EstimationError(reducer.label(g) + " has " + std::to_string(group.rows) +
+                            " equations for " + std::to_string(c) +
+                            " parameters: too few to estimate its error level");
+    }
+    const auto R = group.S.topRows(w);
+    const Eigen::VectorXd r = R.col(0);
+    double squares = r.squaredNorm();
+    Eigen::Index rank = 0;
+    if (c > 0) {
+      Eigen::MatrixXd A(w, c);
+      for (Eigen::Index j = 0; j < c; ++j) A.col(j) = R.col(seen[static_cast<std::size_t>(j)]);
+      const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(A);
+      squares = (r - A * qr.solve(r)).squaredNorm();
+      rank = qr.rank();
+    }
+    sigma[g] = std::sqrt(squares / static_cast<double>(group.rows - rank));
   }
+  // A group fitted exactly (noise-free data) gets the largest weight the others allow, not
+  // an infinite one that would overflow the factorization.
+  const double largest = *std::max_element(sigma.begin(), sigma.end());
+  for (double& s : sigma) {
+    if (!(s > 0)) s = largest > 0 ? 1e-6 * largest : 1.0;
+  }
+  return sigma;
+}
 
-  // The weighted system [W_w y_w] = blockdiag(Q_g) M, M the factors / sigma_g stacked: the same
-  // least-squares problem, the same R up to signs, in sum(width) rows instead of r.
+// The weighted system's factors M, and the largest |entry| of the weighted W (for the message
+// on rank).
+struct WeightedFactors {
+  Eigen::MatrixXd M;
+  double scale = 0;
+};
+
+// The weighted system [W_w y_w] = blockdiag(Q_g) M, M the factors / sigma_g stacked: the same
+// least-squares problem, the same R up to signs, in sum(width) rows instead of r.
+WeightedFactors weighted_factors(const Reducer& reducer, const Slots& slots,
+                                 const std::vector<double>& sigma, Eigen::Index b) {
   Eigen::Index stacked_rows = 0;
-  for (const Group& g : groups_) stacked_rows += g.width();
-  Eigen::MatrixXd M = Eigen::MatrixXd::Zero(stacked_rows, b + 1);
-  double scale = 0;  // the largest |entry| of the weighted W, for the message on rank
+  for (int g = 0; g < reducer.groups(); ++g) stacked_rows += reducer.group(g).width();
+  WeightedFactors factors;
+  Eigen::MatrixXd& M = factors.M;
+  M = Eigen::MatrixXd::Zero(stacked_rows, b + 1);
   Eigen::Index row = 0;
-  for (std::size_t g = 0; g < groups_.size(); ++g) {
-    const Group& group = groups_[g];
+  for (std::size_t g = 0; g < sigma.size(); ++g) {
+    const Group& group = reducer.group(static_cast<int>(g));
     const Eigen::Index w = group.width();
     for (Eigen::Index p = 0; p < w; ++p) {
-      const Eigen::Index j = slot_of(group, p);
+      const Eigen::Index j = slots.of(group, p);
       if (j < 0) continue;
       M.block(row, j, w, 1) = group.S.col(p).head(w) / sigma[g];
       if (j < b) {
         const int k = group.columns[static_cast<std::size_t>(p)];
-        scale = std::max(scale, group.column_max[static_cast<std::size_t>(k)] / sigma[g]);
+        factors.scale =
+            std::max(factors.scale, group.column_max[static_cast<std::size_t>(k)] / sigma[g]);
       }
     }
     row += w;
   }
-  Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(M.leftCols(b));
-  qr.setThreshold(1e-10);
-  if (qr.rank() < b) {
-    std::string why = unidentifiable(M.leftCols(b), scale, rows, names);
-    if (why.empty()) {
-      // Dependent only at the scale of the whole matrix (e.g. WLS weights of very different
-      // sizes): name the columns the pivoting QR left last, those it could not resolve.
-      why =
-          " too weakly determined next to the others (the data or the weights make them "
-          "negligible):";
-      const auto& order = qr.colsPermutation().indices();
-      for (Eigen::Index i = qr.rank(); i < b; ++i) {
-        why += " " + names[static_cast<std::size_t>(order[i])];
-      }
-      why += ".";
+  return factors;
+}
+
+// The error for a rank-deficient W, naming the columns that make it so.
+[[noreturn]] void throw_rank_deficient(const Eigen::ColPivHouseholderQR<Eigen::MatrixXd>& qr,
+                                       const WeightedFactors& factors, Eigen::Index rows,
+                                       const std::vector<std::string>& names, Eigen::Index b) {
+  std::string why = unidentifiable(factors.M.leftCols(b), factors.scale, rows, names);
+  if (why.empty()) {
+    // Dependent only at the scale of the whole matrix (e.g. WLS weights of very different
+    // sizes): name the columns the pivoting QR left last, those it could not resolve.
+    why =
+        " too weakly determined next to the others (the data or the weights make them "
+        "negligible):";
+    const auto& order = qr.colsPermutation().indices();
+    for (Eigen::Index i = qr.rank(); i < b; ++i) {
+      why += " " + names[static_cast<std::size_t>(order[i])];
     }
-    throw EstimationError("W is rank-deficient (rank " + std::to_string(qr.rank()) + " of " +
-                          std::to_string(b) + "):" + why);
+    why += ".";
   }
+  throw EstimationError("W is rank-deficient (rank " + std::to_string(qr.rank()) + " of " +
+                        std::to_string(b) + "):" + why);
+}
+
+// The estimate and its statistics (eq. 17-19) from the QR of the weighted system.
+LeastSquaresResult estimate(const Eigen::ColPivHouseholderQR<Eigen::MatrixXd>& qr,
+                            const Eigen::MatrixXd& M, Eigen::Index rows, Eigen::Index b) {
   LeastSquaresResult result;
   result.value = qr.solve(M.col(b));
   // Eq. 17: unbiased estimate of the (weighted) equation error's variance.
@@ -190,20 +205,51 @@ LeastSquaresResult Reducer::solve(const std::vector<int>& kept,
   // The singular values of R are those of the weighted W.
   const Eigen::VectorXd singular = Eigen::JacobiSVD<Eigen::MatrixXd>(R).singularValues();
   result.condition_number = singular[0] / singular[b - 1];
-  // ||y - W value|| on the unweighted equations, group by group from the factors.
+  return result;
+}
+
+// ||y - W value|| / ||y|| on the unweighted equations, group by group from the factors.
+double relative_error_norm(const Reducer& reducer, const Slots& slots, const Eigen::VectorXd& value,
+                           Eigen::Index b) {
   double residual_squares = 0, y_squares = 0;
-  for (const Group& group : groups_) {
+  for (int g = 0; g < reducer.groups(); ++g) {
+    const Group& group = reducer.group(g);
     const Eigen::Index w = group.width();
     Eigen::VectorXd r = -group.S.col(0).head(w);
     for (Eigen::Index p = 1; p < w; ++p) {
-      const Eigen::Index j = slot_of(group, p);
-      if (j >= 0 && j < b) r += group.S.col(p).head(w) * result.value[j];
+      const Eigen::Index j = slots.of(group, p);
+      if (j >= 0 && j < b) r += group.S.col(p).head(w) * value[j];
     }
     residual_squares += r.squaredNorm();
     y_squares += group.y_squared;
   }
-  result.relative_error_norm =
-      y_squares > 0 ? std::sqrt(residual_squares / y_squares) : std::sqrt(residual_squares);
+  return y_squares > 0 ? std::sqrt(residual_squares / y_squares) : std::sqrt(residual_squares);
+}
+
+}  // namespace
+
+LeastSquaresResult Reducer::solve(const std::vector<int>& kept,
+                                  const std::vector<std::string>& names, bool weighted) {
+  const Eigen::Index b = static_cast<Eigen::Index>(kept.size());
+  const Eigen::Index rows = this->rows();
+  if (rows <= b) {
+    throw EstimationError("only " + std::to_string(rows) + " equations for " + std::to_string(b) +
+                          " parameters: more data are needed");
+  }
+  const int bad = first_non_finite();
+  if (bad >= 0) {
+    throw EstimationError("W or Y holds NaN or infinite values (in " +
+                          label(static_cast<std::size_t>(bad)) + ")");
+  }
+  const Slots slots(kept, params_);
+  const std::vector<double> sigma =
+      weighted ? group_sigmas(*this, slots, b) : std::vector<double>(groups_.size(), 1.0);
+  const WeightedFactors factors = weighted_factors(*this, slots, sigma, b);
+  Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(factors.M.leftCols(b));
+  qr.setThreshold(1e-10);
+  if (qr.rank() < b) throw_rank_deficient(qr, factors, rows, names, b);
+  LeastSquaresResult result = estimate(qr, factors.M, rows, b);
+  result.relative_error_norm = relative_error_norm(*this, slots, result.value, b);
   if (weighted) result.group_std_dev = sigma;
   return result;
 }

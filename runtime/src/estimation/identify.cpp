@@ -99,51 +99,55 @@ std::string slow_error(const Trajectory& x, const std::vector<double>& min_speed
          "); give a smaller one";
 }
 
-}  // namespace
+// One finite, nonnegative minimum speed per joint, or none.
+void check_min_speed(const std::vector<double>& min_speed, int n) {
+  if (min_speed.empty()) return;
+  if (static_cast<int>(min_speed.size()) != n) {
+    throw EstimationError(std::to_string(min_speed.size()) + " minimum speeds for " +
+                          std::to_string(n) + " joints: give one per joint");
+  }
+  for (const double v : min_speed) {
+    if (!(v >= 0) || !std::isfinite(v)) {
+      throw EstimationError("a minimum speed must be a finite number >= 0");
+    }
+  }
+}
 
-Identification identify(const IdentificationModel& model, const std::vector<Trajectory>& all,
-                        Method method, const IdentifyOptions& options) {
-  const int n = model.dof(), nb = model.num_base_params();
-  if (all.empty()) throw EstimationError("no trajectories: identification needs data");
+// Experiments streamed sample by sample lose their slow samples here (counted into
+// `slow_samples`); decimated ones lose their slow decimated rows in build_decimated (after
+// eq. 13-14).
+std::vector<Trajectory> fast_samples(const std::vector<Trajectory>& all,
+                                     const IdentifyOptions& options, int n,
+                                     Eigen::Index& slow_samples) {
   const std::vector<double>& min_speed = options.min_speed;
-  if (!min_speed.empty()) {
-    if (static_cast<int>(min_speed.size()) != n) {
-      throw EstimationError(std::to_string(min_speed.size()) + " minimum speeds for " +
-                            std::to_string(n) + " joints: give one per joint");
-    }
-    for (const double v : min_speed) {
-      if (!(v >= 0) || !std::isfinite(v)) {
-        throw EstimationError("a minimum speed must be a finite number >= 0");
-      }
-    }
-  }
-  // Experiments streamed sample by sample lose their slow samples here; decimated ones lose
-  // their slow decimated rows in build_decimated (after eq. 13-14).
   std::vector<Trajectory> fast;
-  Eigen::Index slow_samples = 0;
-  if (!min_speed.empty()) {
-    fast.reserve(all.size());
-    for (std::size_t e = 0; e < all.size(); ++e) {
-      const Trajectory& x = all[e];
-      const bool decimated = e < options.decimation.size() && options.decimation[e] > 1;
-      if (decimated || x.dq.rows() != x.t.size() || x.dq.cols() != n) {
-        fast.push_back(x);  // decimated, or malformed: the checks below say what is wrong
-        continue;
-      }
-      std::vector<Eigen::Index> kept;
-      for (Eigen::Index s = 0; s < x.t.size(); ++s) {
-        if (detail::fast_enough(x.dq.row(s), min_speed)) kept.push_back(s);
-      }
-      if (kept.empty() && x.t.size() > 0) throw EstimationError(slow_error(x, min_speed, "sample"));
-      slow_samples += x.t.size() - static_cast<Eigen::Index>(kept.size());
-      Trajectory y = x;
-      y.t = x.t(kept);
-      for (Eigen::MatrixXd* m : {&y.q, &y.dq, &y.ddq, &y.tau}) *m = (*m)(kept, Eigen::all).eval();
-      fast.push_back(std::move(y));
+  fast.reserve(all.size());
+  for (std::size_t e = 0; e < all.size(); ++e) {
+    const Trajectory& x = all[e];
+    const bool decimated = e < options.decimation.size() && options.decimation[e] > 1;
+    if (decimated || x.dq.rows() != x.t.size() || x.dq.cols() != n) {
+      fast.push_back(x);  // decimated, or malformed: the checks below say what is wrong
+      continue;
     }
+    std::vector<Eigen::Index> kept;
+    for (Eigen::Index s = 0; s < x.t.size(); ++s) {
+      if (detail::fast_enough(x.dq.row(s), min_speed)) kept.push_back(s);
+    }
+    if (kept.empty() && x.t.size() > 0) throw EstimationError(slow_error(x, min_speed, "sample"));
+    slow_samples += x.t.size() - static_cast<Eigen::Index>(kept.size());
+    Trajectory y = x;
+    y.t = x.t(kept);
+    for (Eigen::MatrixXd* m : {&y.q, &y.dq, &y.ddq, &y.tau}) *m = (*m)(kept, Eigen::all).eval();
+    fast.push_back(std::move(y));
   }
-  const std::vector<Trajectory>& data = min_speed.empty() ? all : fast;
-  std::vector<int> decimation = options.decimation;
+  return fast;
+}
+
+// One decimation factor per experiment (1 for all when none are given), each one the filters
+// can make and that leaves samples clear of their edges.
+std::vector<int> checked_decimation(const std::vector<Trajectory>& data,
+                                    const std::vector<int>& given) {
+  std::vector<int> decimation = given;
   if (decimation.empty()) decimation.assign(data.size(), 1);
   if (decimation.size() != data.size()) {
     throw EstimationError(std::to_string(decimation.size()) + " decimation factors for " +
@@ -167,6 +171,11 @@ Identification identify(const IdentificationModel& model, const std::vector<Traj
                             " samples clear of the filter's edges");
     }
   }
+  return decimation;
+}
+
+// The number of samples of all experiments, each checked for its shape and finite values.
+Eigen::Index checked_samples(const std::vector<Trajectory>& data, int n) {
   Eigen::Index samples = 0;
   for (const Trajectory& x : data) {
     if (x.q.cols() != n) {
@@ -184,22 +193,11 @@ Identification identify(const IdentificationModel& model, const std::vector<Traj
     check_finite(x, n);
     samples += m;
   }
-  const bool power = method == Method::kPimWls;
-  const int groups = static_cast<int>(data.size()) * (power ? 1 : n);
-  const bool parallel = samples >= kParallelSamples;
-  const std::array<std::vector<Piece>, 2> parts = split_samples(data, decimation);
-  Progress progress(options.progress, samples);
-  progress.report(0.0);
+  return samples;
+}
 
-  std::array<LeastSquaresAccumulator, 2> equations = {LeastSquaresAccumulator(nb, groups),
-                                                      LeastSquaresAccumulator(nb, groups)};
-  detail::run_two_parts(
-      parallel,
-      [&](int part, bool caller) {
-        build_equations(model, data, parts[part], power, equations[part], progress, caller);
-      },
-      [&progress] { progress.stop(); });
-  equations[0].merge(std::move(equations[1]));
+// The accumulator's group names: one per experiment for PIM, one per experiment and joint else.
+std::vector<std::string> group_labels(const std::vector<Trajectory>& data, bool power, int n) {
   std::vector<std::string> labels;
   for (const Trajectory& x : data) {
     if (power) {
@@ -208,31 +206,41 @@ Identification identify(const IdentificationModel& model, const std::vector<Traj
       for (int j = 0; j < n; ++j) labels.push_back(x.source + ", joint " + std::to_string(j + 1));
     }
   }
-  equations[0].name_groups(std::move(labels));
-  // Decimated experiments, one at a time: each needs its whole W before filtering.
-  std::vector<DecimatedExperiment> decimated;
+  return labels;
+}
+
+// Decimated experiments, one at a time: each needs its whole W before filtering. Returns the
+// samples used (decimated rows count per sample), adds the slow rows to `slow_samples`.
+Eigen::Index add_decimated(const IdentificationModel& model, const std::vector<Trajectory>& data,
+                           const std::vector<int>& decimation, bool power,
+                           const std::vector<double>& min_speed, LeastSquaresAccumulator& equations,
+                           Progress& progress, std::vector<DecimatedExperiment>& decimated,
+                           Eigen::Index& slow_samples) {
+  const int n = model.dof();
   Eigen::Index used_samples = 0;
   for (std::size_t e = 0; e < data.size(); ++e) {
     if (decimation[e] == 1) {
       used_samples += data[e].t.size();
       continue;
     }
-    decimated.push_back(build_decimated(model, data[e], e, decimation[e], power, min_speed,
-                                        equations[0], progress));
+    decimated.push_back(
+        build_decimated(model, data[e], e, decimation[e], power, min_speed, equations, progress));
     if (decimated.back().W.rows() == 0) {
       throw EstimationError(slow_error(data[e], min_speed, "decimated row"));
     }
     used_samples += decimated.back().W.rows() / n;
     slow_samples += decimated.back().slow_rows;
   }
+  return used_samples;
+}
 
-  Identification out;
-  out.names = model.base_param_names();
-  out.samples = used_samples;
-  out.slow_samples = slow_samples;
+// OLS or WLS on the accumulated equations; an error that may come from the decimation says so.
+LeastSquaresResult fit_equations(LeastSquaresAccumulator& equations, Method method,
+                                 const std::vector<std::string>& names,
+                                 const std::vector<Trajectory>& data,
+                                 const std::vector<int>& decimation) {
   try {
-    out.fit =
-        method == Method::kOls ? equations[0].fit_ols(out.names) : equations[0].fit_wls(out.names);
+    return method == Method::kOls ? equations.fit_ols(names) : equations.fit_wls(names);
   } catch (const EstimationError& e) {
     // Too few equations or an unexcited column may come from the decimation: say so.
     std::string hint;
@@ -246,6 +254,16 @@ Identification identify(const IdentificationModel& model, const std::vector<Traj
     throw EstimationError(e.where(), std::string(e.what()) + hint +
                           "; a smaller decimation factor keeps more equations)");
   }
+}
+
+// The estimate's torque errors and torques per axis, and the error norms of `out`.
+void torque_statistics(const IdentificationModel& model, const std::vector<Trajectory>& data,
+                       const std::array<std::vector<Piece>, 2>& parts,
+                       const std::vector<DecimatedExperiment>& decimated,
+                       const LeastSquaresAccumulator& equations, int groups, bool power,
+                       bool parallel, Eigen::Index used_samples, Progress& progress,
+                       Identification& out) {
+  const int n = model.dof();
   Eigen::VectorXd error_squares = Eigen::VectorXd::Zero(n), torque_squares = error_squares;
   if (power) {
     progress.start_pass();
@@ -271,7 +289,7 @@ Identification identify(const IdentificationModel& model, const std::vector<Traj
     // The IDIM's groups are the torque equations of one joint and experiment: their residual
     // norms come from the factors, ||tau_g - W_g beta|| = ||R_g [beta; -1]||.
     for (int g = 0; g < groups; ++g) {
-      const double r = equations[0].residual_norm(g, out.fit.value), y = equations[0].y_norm(g);
+      const double r = equations.residual_norm(g, out.fit.value), y = equations.y_norm(g);
       error_squares[g % n] += r * r;
       torque_squares[g % n] += y * y;
     }
@@ -281,6 +299,50 @@ Identification identify(const IdentificationModel& model, const std::vector<Traj
       std::sqrt(error_squares.sum()) / std::max(std::sqrt(torque_squares.sum()), 1e-300);
   out.rms_error = (error_squares / static_cast<double>(used_samples)).cwiseSqrt();
   out.rms_torque = (torque_squares / static_cast<double>(used_samples)).cwiseSqrt();
+}
+
+}  // namespace
+
+Identification identify(const IdentificationModel& model, const std::vector<Trajectory>& all,
+                        Method method, const IdentifyOptions& options) {
+  const int n = model.dof(), nb = model.num_base_params();
+  if (all.empty()) throw EstimationError("no trajectories: identification needs data");
+  const std::vector<double>& min_speed = options.min_speed;
+  check_min_speed(min_speed, n);
+  std::vector<Trajectory> fast;
+  Eigen::Index slow_samples = 0;
+  if (!min_speed.empty()) fast = fast_samples(all, options, n, slow_samples);
+  const std::vector<Trajectory>& data = min_speed.empty() ? all : fast;
+  const std::vector<int> decimation = checked_decimation(data, options.decimation);
+  const Eigen::Index samples = checked_samples(data, n);
+  const bool power = method == Method::kPimWls;
+  const int groups = static_cast<int>(data.size()) * (power ? 1 : n);
+  const bool parallel = samples >= kParallelSamples;
+  const std::array<std::vector<Piece>, 2> parts = split_samples(data, decimation);
+  Progress progress(options.progress, samples);
+  progress.report(0.0);
+
+  std::array<LeastSquaresAccumulator, 2> equations = {LeastSquaresAccumulator(nb, groups),
+                                                      LeastSquaresAccumulator(nb, groups)};
+  detail::run_two_parts(
+      parallel,
+      [&](int part, bool caller) {
+        build_equations(model, data, parts[part], power, equations[part], progress, caller);
+      },
+      [&progress] { progress.stop(); });
+  equations[0].merge(std::move(equations[1]));
+  equations[0].name_groups(group_labels(data, power, n));
+  std::vector<DecimatedExperiment> decimated;
+  const Eigen::Index used_samples = add_decimated(model, data, decimation, power, min_speed,
+                                                  equations[0], progress, decimated, slow_samples);
+
+  Identification out;
+  out.names = model.base_param_names();
+  out.samples = used_samples;
+  out.slow_samples = slow_samples;
+  out.fit = fit_equations(equations[0], method, out.names, data, decimation);
+  torque_statistics(model, data, parts, decimated, equations[0], groups, power, parallel,
+                    used_samples, progress, out);
   if (options.essential_r_sigma) {
     out.essential = essential_parameters(equations[0], method != Method::kOls, out.names,
                                          *options.essential_r_sigma);

@@ -27,219 +27,13 @@
 #include "modelgen/model/identification_model.hpp"
 #include "modelgen/model/physical_consistency.hpp"
 #include "modelgen/model/pseudo_inertia.hpp"
+#include "runtime/src/estimation/physical_barrier.hpp"
 
 namespace modelgen {
 namespace {
 
-// Where each standard parameter lives among the optimiser's blocks.
-struct Layout {
-  std::vector<std::array<int, 10>> body_params;  // complete bodies: their ten standard indices
-  std::vector<int> scalar_params;                // every other standard parameter
-};
-
-Layout make_layout(const RigidBodyTree& tree) {
-  Layout layout;
-  std::vector<char> in_body(tree.params.size(), 0);
-  for (const auto& index : inertial_param_indices(tree)) {
-    if (std::find(index.begin(), index.end(), -1) != index.end()) continue;
-    layout.body_params.push_back(index);
-    for (int k : index) in_body[static_cast<std::size_t>(k)] = 1;
-  }
-  for (std::size_t k = 0; k < tree.params.size(); ++k) {
-    if (!in_body[k]) layout.scalar_params.push_back(static_cast<int>(k));
-  }
-  return layout;
-}
-
-// The optimisation variables: per complete body the ten distinct entries of its pseudo-inertia
-// (off-diagonal ones times sqrt 2, so that the Euclidean norm is the Frobenius norm and the
-// projection onto the consistent set clips eigenvalues), stored in that body's ten standard
-// slots; every other parameter as itself. standard = T variables, T linear.
-constexpr double kSqrt2 = 1.4142135623730951;
-constexpr int kEntryRow[10] = {0, 0, 0, 1, 1, 2, 0, 1, 2, 3};
-constexpr int kEntryCol[10] = {0, 1, 2, 1, 2, 2, 3, 3, 3, 3};
-
-Eigen::Matrix4d pseudo_inertia_of_entries(const double* x) {
-  Eigen::Matrix4d P;
-  for (int e = 0; e < 10; ++e) {
-    const double v = kEntryRow[e] == kEntryCol[e] ? x[e] : x[e] / kSqrt2;
-    P(kEntryRow[e], kEntryCol[e]) = P(kEntryCol[e], kEntryRow[e]) = v;
-  }
-  return P;
-}
-
-void entries_of_pseudo_inertia(const Eigen::Matrix4d& P, double* x) {
-  for (int e = 0; e < 10; ++e) {
-    x[e] = P(kEntryRow[e], kEntryCol[e]) * (kEntryRow[e] == kEntryCol[e] ? 1.0 : kSqrt2);
-  }
-}
-
-Eigen::MatrixXd standard_from_variables(const Layout& layout, Eigen::Index n) {
-  Eigen::MatrixXd T = Eigen::MatrixXd::Zero(n, n);
-  for (int k : layout.scalar_params) T(k, k) = 1;
-  for (const auto& index : layout.body_params) {
-    for (int e = 0; e < 10; ++e) {
-      double x[10] = {}, p[10];
-      x[e] = 1;
-      const Eigen::Matrix4d P = pseudo_inertia_of_entries(x);
-      inertial_from_pseudo_inertia(P, p);
-      for (int s = 0; s < 10; ++s) T(index[s], index[e]) = p[s];
-    }
-  }
-  return T;
-}
-
-// Projection onto the consistent set (in the variables, scaled per body by one factor, which
-// leaves the cone unchanged): each pseudo-inertia's eigenvalues raised to at least its body's
-// floor (strictly positive definite: a mass, and a log-Cholesky factor, for every body),
-// bounded parameters to at least 0.
-void project(const Layout& layout, const std::vector<char>& bounded,
-             const std::vector<double>& body_floor, Eigen::VectorXd& x) {
-  for (std::size_t b = 0; b < layout.body_params.size(); ++b) {
-    const auto& index = layout.body_params[b];
-    double entries[10];
-    for (int e = 0; e < 10; ++e) entries[e] = x[index[e]];
-    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix4d> eig(pseudo_inertia_of_entries(entries));
-    const Eigen::Vector4d clipped = eig.eigenvalues().cwiseMax(body_floor[b]);
-    entries_of_pseudo_inertia(
-        eig.eigenvectors() * clipped.asDiagonal() * eig.eigenvectors().transpose(), entries);
-    for (int e = 0; e < 10; ++e) x[index[e]] = entries[e];
-  }
-  for (int k : layout.scalar_params) {
-    if (bounded[static_cast<std::size_t>(k)]) x[k] = std::max(x[k], 0.0);
-  }
-}
-
-// One scale per body (its variables' largest column norm in A) and per scalar, so that the
-// penalty rho weighs every block alike.
-Eigen::VectorXd variable_scales(const Layout& layout, const Eigen::MatrixXd& A) {
-  Eigen::VectorXd d = A.colwise().norm().transpose();
-  for (const auto& index : layout.body_params) {
-    double largest = 0;
-    for (int k : index) largest = std::max(largest, d[k]);
-    for (int k : index) d[k] = largest;
-  }
-  // Variables the data barely see (rounding in K, or no effect at all) keep a scale of the
-  // order of the others, not one that would blow up their prior term.
-  const double floor = std::max(1e-6 * d.maxCoeff(), 1e-300);
-  return d.cwiseMax(floor);
-}
-
-// The basis of the variables: P = sum_e x_e E_e over a body's ten entries.
-std::array<Eigen::Matrix4d, 10> entry_basis() {
-  std::array<Eigen::Matrix4d, 10> E;
-  for (int e = 0; e < 10; ++e) {
-    double x[10] = {};
-    x[e] = 1;
-    E[static_cast<std::size_t>(e)] = pseudo_inertia_of_entries(x);
-  }
-  return E;
-}
-
-// The log barrier of the consistent set, -sum log det(P_b - floor_b 1) - sum log y_k over the
-// bounded parameters, with its gradient and Hessian; false when y is not strictly inside.
-bool barrier(const Layout& layout, const std::vector<char>& bounded,
-             const std::vector<double>& body_floor, const Eigen::VectorXd& y, double& value,
-             Eigen::VectorXd* gradient, Eigen::MatrixXd* hessian) {
-  static const std::array<Eigen::Matrix4d, 10> E = entry_basis();
-  value = 0;
-  for (std::size_t b = 0; b < layout.body_params.size(); ++b) {
-    const auto& index = layout.body_params[b];
-    double entries[10];
-    for (int e = 0; e < 10; ++e) entries[e] = y[index[e]];
-    const Eigen::Matrix4d S =
-        pseudo_inertia_of_entries(entries) - body_floor[b] * Eigen::Matrix4d::Identity();
-    const Eigen::LLT<Eigen::Matrix4d> llt(S);
-    if (llt.info() != Eigen::Success || !(llt.matrixLLT().diagonal().minCoeff() > 0)) return false;
-    value -= 2 * llt.matrixLLT().diagonal().array().log().sum();
-    if (gradient == nullptr) continue;
-    const Eigen::Matrix4d S_inverse = llt.solve(Eigen::Matrix4d::Identity());
-    std::array<Eigen::Matrix4d, 10> SE;
-    for (int e = 0; e < 10; ++e) SE[e] = S_inverse * E[e];
-    for (int e = 0; e < 10; ++e) {
-      (*gradient)[index[e]] -= SE[e].trace();
-      for (int f = 0; f <= e; ++f) {
-        const double h = (SE[e] * SE[f]).trace();  // d2(-log det S) = tr(S^-1 E_e S^-1 E_f)
-        (*hessian)(index[e], index[f]) += h;
-        if (f != e) (*hessian)(index[f], index[e]) += h;
-      }
-    }
-  }
-  for (int k : layout.scalar_params) {
-    if (!bounded[static_cast<std::size_t>(k)]) continue;
-    if (!(y[k] > 0)) return false;
-    value -= std::log(y[k]);
-    if (gradient == nullptr) continue;
-    (*gradient)[k] -= 1 / y[k];
-    (*hessian)(k, k) += 1 / (y[k] * y[k]);
-  }
-  return true;
-}
-
-// min 1/2 y'Hy - h'y over the consistent set by the barrier method (Boyd & Vandenberghe,
-// Convex Optimization, algorithm 11.1: Newton's method with backtracking on
-// t f + barrier, t growing tenfold, until the duality gap m / t is negligible).
-struct BarrierOutcome {
-  Eigen::VectorXd y;
-  Eigen::VectorXd push;  // per variable, how hard its constraint pushes at the end (duals)
-  int iterations = 0;
-  bool converged = false;
-};
-
-BarrierOutcome minimise_on_consistent_set(const Eigen::MatrixXd& H, const Eigen::VectorXd& h,
-                                          const Layout& layout, const std::vector<char>& bounded,
-                                          const std::vector<double>& body_floor,
-                                          Eigen::VectorXd y, int max_iterations) {
-  const Eigen::Index n = y.size();
-  double m = 4.0 * static_cast<double>(layout.body_params.size());
-  for (int k : layout.scalar_params) m += bounded[static_cast<std::size_t>(k)] ? 1 : 0;
-  const auto objective = [&](const Eigen::VectorXd& v) { return 0.5 * v.dot(H * v) - h.dot(v); };
-  const double size = std::max({1.0, std::abs(objective(y)), h.cwiseAbs().maxCoeff()});
-  BarrierOutcome out;
-  double t = m / size;
-  for (int outer = 0; outer < 40 && out.iterations < max_iterations; ++outer) {
-    for (int inner = 0; inner < 200 && out.iterations < max_iterations; ++inner) {
-      double value = 0;
-      Eigen::VectorXd gradient = t * (H * y - h);
-      Eigen::MatrixXd hessian = t * H;
-      barrier(layout, bounded, body_floor, y, value, &gradient, &hessian);
-      const Eigen::VectorXd step = -hessian.ldlt().solve(gradient);
-      const double decrement = -gradient.dot(step);
-      ++out.iterations;
-      if (!(decrement > 2e-14)) break;
-      const double phi = t * objective(y) + value;
-      double s = 1;
-      for (int halving = 0; halving < 80; ++halving, s *= 0.5) {
-        const Eigen::VectorXd trial = y + s * step;
-        double trial_value = 0;
-        if (barrier(layout, bounded, body_floor, trial, trial_value, nullptr, nullptr) &&
-            t * objective(trial) + trial_value <= phi - 0.25 * s * decrement) {
-          break;
-        }
-      }
-      y += s * step;
-      if (decrement < 1e-10) break;
-    }
-    if (m / t < 1e-13 * size) {
-      out.converged = true;
-      break;
-    }
-    t *= 10;
-  }
-  // The duals: the barrier's gradient over t (for a body the largest entry of its block).
-  double value = 0;
-  Eigen::VectorXd gradient = Eigen::VectorXd::Zero(n);
-  Eigen::MatrixXd hessian = Eigen::MatrixXd::Zero(n, n);
-  barrier(layout, bounded, body_floor, y, value, &gradient, &hessian);
-  out.push = gradient.cwiseAbs() / t;
-  for (const auto& index : layout.body_params) {
-    double largest = 0;
-    for (int k : index) largest = std::max(largest, out.push[k]);
-    for (int k : index) out.push[k] = largest;
-  }
-  out.y = y;
-  return out;
-}
+using detail::BarrierOutcome;
+using detail::Layout;
 
 // Scales for the prior term: the largest reference value of the parameter's group (a body's
 // inertia entries, its first moments, its mass; all drive parameters of one kind), so that a
@@ -430,7 +224,7 @@ PhysicalFitResult fit_physical(const RigidBodyTree& tree, const Eigen::MatrixXd&
     throw EstimationError("physical fit: the information matrix is not positive definite");
   }
   const Eigen::MatrixXd U = llt.matrixU();  // information = U'U
-  const Layout layout = make_layout(tree);
+  const Layout layout = detail::make_layout(tree);
   const auto n = static_cast<Eigen::Index>(tree.params.size());
   std::vector<char> bounded(static_cast<std::size_t>(n), 0);
   for (Eigen::Index k = 0; k < n; ++k) {
@@ -446,9 +240,9 @@ PhysicalFitResult fit_physical(const RigidBodyTree& tree, const Eigen::MatrixXd&
   }
   const Eigen::VectorXd nearest =
       a_priori + K.completeOrthogonalDecomposition().solve(beta_hat - K * a_priori);
-  const Eigen::MatrixXd T = standard_from_variables(layout, n);  // invertible, body by body
+  const Eigen::MatrixXd T = detail::standard_from_variables(layout, n);  // invertible, body by body
   const Eigen::MatrixXd A_x = U * K * T;
-  const Eigen::VectorXd d = variable_scales(layout, A_x);
+  const Eigen::VectorXd d = detail::variable_scales(layout, A_x);
   const Eigen::MatrixXd A = A_x * d.cwiseInverse().asDiagonal();
   // Each body's eigenvalue floor: 1e-8 of the largest eigenvalue of its pseudo-inertia at the
   // nearest set, a numerical device that keeps every mass positive; the data cannot tell it
@@ -464,7 +258,7 @@ PhysicalFitResult fit_physical(const RigidBodyTree& tree, const Eigen::MatrixXd&
   Eigen::VectorXd y0 = T.fullPivLu().solve(nearest).cwiseProduct(d);
   std::vector<double> start_floor = body_floor;
   for (double& f : start_floor) f *= 2;
-  project(layout, bounded, start_floor, y0);
+  detail::project(layout, bounded, start_floor, y0);
   for (int k : layout.scalar_params) {
     if (bounded[static_cast<std::size_t>(k)]) y0[k] = std::max(y0[k], 1e-3);
   }
@@ -487,9 +281,9 @@ PhysicalFitResult fit_physical(const RigidBodyTree& tree, const Eigen::MatrixXd&
   const Eigen::VectorXd g = w.cwiseProduct(prior_value);
 
   const Eigen::VectorXd b = U * beta_hat;
-  const BarrierOutcome solved = minimise_on_consistent_set(
-      A.transpose() * A + G.transpose() * G, A.transpose() * b + G.transpose() * g, layout,
-      bounded, body_floor, y0, options.max_iterations);
+  const BarrierOutcome solved = detail::minimise_on_consistent_set(
+      A.transpose() * A + G.transpose() * G, A.transpose() * b + G.transpose() * g, layout, bounded,
+      body_floor, y0, options.max_iterations);
 
   PhysicalFitResult result;
   result.converged = solved.converged;

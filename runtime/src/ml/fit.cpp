@@ -12,6 +12,7 @@
 
 #include "modelgen/estimation/estimation_error.hpp"
 #include "modelgen/ml/linear_route.hpp"
+#include "runtime/src/estimation/solver_setup.hpp"
 #include "runtime/src/ml/problem_impl.hpp"
 #include "runtime/src/ml/standard_deviations.hpp"
 
@@ -62,21 +63,8 @@ MlFitResult fit_ml(MlProblem& problem, const MlFitOptions& options) {
   } else if (!held.empty()) {
     solver_problem.SetManifold(theta1.data(), new ceres::SubsetManifold(U, held));
   }
-  ceres::Solver::Options solver_options;
-  solver_options.minimizer_type = ceres::TRUST_REGION;
-  solver_options.trust_region_strategy_type = ceres::LEVENBERG_MARQUARDT;
-  solver_options.linear_solver_type = ceres::DENSE_QR;
-  solver_options.max_num_iterations = options.max_iterations;
-  solver_options.num_threads = std::max(1, options.threads);
-  solver_options.function_tolerance = 1e-12;
-  solver_options.parameter_tolerance = 1e-12;
-  solver_options.gradient_tolerance = 1e-14;
-  solver_options.logging_type = ceres::SILENT;
-  ceres::Solver::Summary summary;
-  ceres::Solve(solver_options, &solver_problem, &summary);
-  if (summary.termination_type == ceres::FAILURE) {
-    throw EstimationError("maximum likelihood: Levenberg-Marquardt failed: " + summary.message);
-  }
+  const ceres::Solver::Summary summary = detail::solve_levenberg_marquardt(
+      solver_problem, options.max_iterations, options.threads, "maximum likelihood");
   result.converged = summary.termination_type == ceres::CONVERGENCE;
   result.iterations = static_cast<int>(summary.iterations.size()) - 1;
   result.solve_seconds = summary.minimizer_time_in_seconds;

@@ -27,22 +27,13 @@ using detail::fail;
 using detail::format;
 using detail::next_power_of_two;
 
-}  // namespace
+constexpr double kMinCorrelation = 0.9, kDecorrelated = 0.5;
 
-double detect_period(const Trajectory& x) {
-  constexpr double kMinCorrelation = 0.9, kDecorrelated = 0.5;
-  const double dt = uniform_sample_time(x);
-  check_shapes(x, false);
-  check_finite(x, x.q, "q");
+// Pooled Pearson correlation of q(k) with q(k + m) over the overlap, per lag m:
+// r(m) = sum_j cov_j(m) / sum_j sqrt(var_a_j(m) var_b_j(m)), segment means removed, so each
+// axis counts with its position variance. The lagged products come from one FFT per axis.
+std::vector<double> lag_correlation(const Trajectory& x, Eigen::Index max_lag) {
   const Eigen::Index n = x.t.size(), dof = x.q.cols();
-  if (n < 8) fail(x, "fewer than 8 samples to find a period in");
-  // Lags up to 3/4 of the record: a quarter still overlaps, enough to see a period longer
-  // than half the record and say that fewer than 2 periods were recorded.
-  const Eigen::Index max_lag = n - n / 4;
-
-  // Pooled Pearson correlation of q(k) with q(k + m) over the overlap, per lag m:
-  // r(m) = sum_j cov_j(m) / sum_j sqrt(var_a_j(m) var_b_j(m)), segment means removed, so each
-  // axis counts with its position variance. The lagged products come from one FFT per axis.
   const Eigen::Index fft_size = next_power_of_two(2 * n);
   Eigen::FFT<double> fft;
   std::vector<Complex> padded(fft_size), spectrum, power(fft_size, 0.0);
@@ -82,9 +73,13 @@ double detect_period(const Trajectory& x) {
   for (Eigen::Index m = 0; m <= max_lag; ++m) {
     r[m] = norm[m] > 0 ? (lagged[m].real() + cov[m]) / norm[m] : 0.0;
   }
+  return r;
+}
 
-  // Skip the lobe around lag 0 (down to a clear decorrelation, so that a small vibration on a
-  // slow motion is not taken for a period), then take the highest correlation.
+// The first lag past the lobe around lag 0 (down to a clear decorrelation, so that a small
+// vibration on a slow motion is not taken for a period).
+Eigen::Index end_of_first_lobe(const Trajectory& x, const std::vector<double>& r) {
+  const Eigen::Index max_lag = static_cast<Eigen::Index>(r.size()) - 1;
   Eigen::Index start = 1;
   while (start <= max_lag && r[start] >= kDecorrelated) ++start;
   if (start > max_lag) {
@@ -92,6 +87,13 @@ double detect_period(const Trajectory& x) {
          "no period found: the positions never decorrelate over the record (a drift or a "
          "motion slower than the record)");
   }
+  return start;
+}
+
+// The lag of the highest correlation from `start` on, which must be a clear one.
+Eigen::Index highest_correlation(const Trajectory& x, const std::vector<double>& r,
+                                 Eigen::Index start, double dt) {
+  const Eigen::Index max_lag = static_cast<Eigen::Index>(r.size()) - 1;
   Eigen::Index best = start;
   for (Eigen::Index m = start; m <= max_lag; ++m) {
     if (r[m] > r[best]) best = m;
@@ -101,40 +103,50 @@ double detect_period(const Trajectory& x) {
                 format(kMinCorrelation) + " (best " + format(r[best]) + " at a lag of " +
                 format(static_cast<double>(best) * dt) + " s)");
   }
-  // Every multiple of the period correlates about as well as the best; noise lowers them all
-  // alike. The period is the first run of lags that high, at its maximum.
-  const double threshold = r[best] - (1e-3 + 0.5 * (1.0 - r[best]));
-  auto peak_near = [&](Eigen::Index from, Eigen::Index to) {
-    Eigen::Index at = from;
-    for (Eigen::Index m = from; m <= to; ++m) {
-      if (r[m] > r[at]) at = m;
+  return best;
+}
+
+// The lag of the highest correlation in [from, to].
+Eigen::Index peak_near(const std::vector<double>& r, Eigen::Index from, Eigen::Index to) {
+  Eigen::Index at = from;
+  for (Eigen::Index m = from; m <= to; ++m) {
+    if (r[m] > r[at]) at = m;
+  }
+  return at;
+}
+
+// Sub-sample position of a peak: least-squares parabola over the lags d = -w..w around it.
+// r is a smooth function of the lag plus a part that is white from lag to lag (noise
+// correlated with noise), which more lags average out; but the peak is slightly asymmetric
+// (the overlap shrinks as the lag grows), which biases wider fits. So w is the smallest
+// window that brings the vertex's noise to 0.01 sample: its standard deviation is about
+// s / (2 |c| sqrt(2 w^3 / 3)) for white noise s on r and curvature c, with s estimated from
+// third differences of r (variance 20 s^2 for white noise) and c from the lag-0 lobe
+// (r drops to 0.5 at `start`: c = 0.5 / start^2 there, times the peak's height).
+class PeakRefiner {
+ public:
+  PeakRefiner(const std::vector<double>& r, Eigen::Index start, Eigen::Index best)
+      : r_(r), max_lag_(static_cast<Eigen::Index>(r.size()) - 1) {
+    std::vector<double> third;
+    for (Eigen::Index m = start; m + 3 <= max_lag_; ++m) {
+      third.push_back(std::abs(r[m + 3] - 3.0 * r[m + 2] + 3.0 * r[m + 1] - r[m]));
     }
-    return at;
-  };
-  // Sub-sample position of a peak: least-squares parabola over the lags d = -w..w around it.
-  // r is a smooth function of the lag plus a part that is white from lag to lag (noise
-  // correlated with noise), which more lags average out; but the peak is slightly asymmetric
-  // (the overlap shrinks as the lag grows), which biases wider fits. So w is the smallest
-  // window that brings the vertex's noise to 0.01 sample: its standard deviation is about
-  // s / (2 |c| sqrt(2 w^3 / 3)) for white noise s on r and curvature c, with s estimated from
-  // third differences of r (variance 20 s^2 for white noise) and c from the lag-0 lobe
-  // (r drops to 0.5 at `start`: c = 0.5 / start^2 there, times the peak's height).
-  std::vector<double> third;
-  for (Eigen::Index m = start; m + 3 <= max_lag; ++m) {
-    third.push_back(std::abs(r[m + 3] - 3.0 * r[m + 2] + 3.0 * r[m + 1] - r[m]));
+    double white = 0;
+    if (!third.empty()) {
+      std::nth_element(third.begin(), third.begin() + third.size() / 2, third.end());
+      white = third[third.size() / 2] / 0.6745 / std::sqrt(20.0);  // median |N(0, s)| = 0.6745 s
+    }
+    const double curvature = 0.5 * r[best] / (static_cast<double>(start) * start);
+    const double ratio = white / (2.0 * curvature * 0.01);
+    half_width_ = std::clamp<Eigen::Index>(
+        static_cast<Eigen::Index>(std::ceil(std::cbrt(1.5 * ratio * ratio))), 1,
+        std::max<Eigen::Index>(1, start / 4));
   }
-  double white = 0;
-  if (!third.empty()) {
-    std::nth_element(third.begin(), third.begin() + third.size() / 2, third.end());
-    white = third[third.size() / 2] / 0.6745 / std::sqrt(20.0);  // median |N(0, s)| = 0.6745 s
-  }
-  const double curvature = 0.5 * r[best] / (static_cast<double>(start) * start);
-  const double ratio = white / (2.0 * curvature * 0.01);
-  const Eigen::Index half_width =
-      std::clamp<Eigen::Index>(static_cast<Eigen::Index>(std::ceil(std::cbrt(1.5 * ratio * ratio))),
-                               1, std::max<Eigen::Index>(1, start / 4));
-  auto refine = [&](Eigen::Index m) {
-    const Eigen::Index w = std::min({half_width, m, max_lag - m});
+
+  // The vertex of the parabola around lag m, within the window.
+  double operator()(Eigen::Index m) const {
+    const std::vector<double>& r = r_;
+    const Eigen::Index w = std::min({half_width_, m, max_lag_ - m});
     if (w < 1) return static_cast<double>(m);
     // r = p0 + p1 d + p2 d^2 on d = -w..w: odd sums vanish.
     double s2 = 0, s4 = 0, r0 = 0, r1 = 0, r2 = 0;
@@ -152,19 +164,44 @@ double detect_period(const Trajectory& x) {
     if (!(p2 < 0)) return static_cast<double>(m);
     return static_cast<double>(m) +
            std::clamp(-p1 / (2.0 * p2), -static_cast<double>(w), static_cast<double>(w));
-  };
+  }
+
+ private:
+  const std::vector<double>& r_;
+  const Eigen::Index max_lag_;
+  Eigen::Index half_width_ = 1;
+};
+
+}  // namespace
+
+double detect_period(const Trajectory& x) {
+  const double dt = uniform_sample_time(x);
+  check_shapes(x, false);
+  check_finite(x, x.q, "q");
+  const Eigen::Index n = x.t.size();
+  if (n < 8) fail(x, "fewer than 8 samples to find a period in");
+  // Lags up to 3/4 of the record: a quarter still overlaps, enough to see a period longer
+  // than half the record and say that fewer than 2 periods were recorded.
+  const Eigen::Index max_lag = n - n / 4;
+  const std::vector<double> r = lag_correlation(x, max_lag);
+  const Eigen::Index start = end_of_first_lobe(x, r);
+  const Eigen::Index best = highest_correlation(x, r, start, dt);
+  // Every multiple of the period correlates about as well as the best; noise lowers them all
+  // alike. The period is the first run of lags that high, at its maximum.
+  const double threshold = r[best] - (1e-3 + 0.5 * (1.0 - r[best]));
+  const PeakRefiner refine(r, start, best);
   Eigen::Index first = start;
   while (r[first] < threshold) ++first;
   Eigen::Index last = first;
   while (last < max_lag && r[last + 1] >= threshold) ++last;
-  const Eigen::Index peak = peak_near(first, last);
+  const Eigen::Index peak = peak_near(r, first, last);
   // The peaks at the multiples k T of the period, m_k = k T: least squares through the
   // origin, T = sum k m_k / sum k^2, dominated by the farthest multiples.
   double lag = refine(peak), moment = lag, weight = 1;
   for (int multiple = 2;; ++multiple) {
     const auto centre = static_cast<Eigen::Index>(std::llround(multiple * lag));
     if (centre + 3 > max_lag) break;
-    const Eigen::Index at = peak_near(centre - 2, centre + 2);
+    const Eigen::Index at = peak_near(r, centre - 2, centre + 2);
     if (r[at] < threshold) break;
     moment += multiple * refine(at);
     weight += static_cast<double>(multiple) * multiple;

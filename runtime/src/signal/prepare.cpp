@@ -158,72 +158,141 @@ PreparedExperiment prepare_experiment(Trajectory raw, const DriveChain& drive,
 
 namespace {
 
-PreparedExperiment prepare_joint_side(Trajectory raw, const PreparationOptions& options,
-                                      bool keep_edges) {
-  PreparedExperiment out;
-  std::string resampled;
-  // Every digital filter here (averaging per period, position filter, decimation) assumes a
-  // uniform sample time.
+// Every digital filter here (averaging per period, position filter, decimation) assumes a
+// uniform sample time: a record that needs one and does not have it is resampled. Returns the
+// summary's words for it ("" when nothing was done).
+std::string resample_if_needed(Trajectory& raw, const PreparationOptions& options) {
   const bool needs_uniform =
       options.periodic || (!raw.has_velocity && !options.raw) || options.decimation.value_or(1) > 1;
-  if (needs_uniform && raw.t.size() >= 3 && !is_uniform(raw.t)) {
-    const double dt = nominal_step(raw.t);
-    raw = resample_uniform(raw, dt);
-    resampled = "resampled on a uniform grid of " + number(dt * 1e3) +
-                " ms (linear interpolation: the time stamps are not uniform); ";
-  }
+  if (!(needs_uniform && raw.t.size() >= 3 && !is_uniform(raw.t))) return "";
+  const double dt = nominal_step(raw.t);
+  raw = resample_uniform(raw, dt);
+  return "resampled on a uniform grid of " + number(dt * 1e3) +
+         " ms (linear interpolation: the time stamps are not uniform); ";
+}
 
-  if (options.periodic) {
-    // Swevers 2002, section 4: average whole periods, noise variance of the averages, DFT
-    // re-estimation of eq. 15 and analytic eq. 16-17.
-    double period = 0;
-    if (options.period) {
-      period = *options.period;
-    } else {
-      // An excitation played on the controller's clock has a whole number of samples per
-      // period: the detected period is rounded to it (detect_period's advice).
-      const double dt = uniform_sample_time(raw);
-      period = std::round(detect_period(raw) / dt) * dt;
-    }
-    std::string skipped;
-    if (options.skip_periods > 0) skipped = skip_whole_periods(raw, period, options.skip_periods);
-    PeriodicAverage average = average_periods(raw, period);
-    const int harmonics = options.harmonics ? *options.harmonics : select_harmonics(average);
-    const FourierTrajectory fourier = fit_fourier(average.averaged, average.period, harmonics);
-    apply_fourier(average.averaged, fourier);
-    // Bona & Curatella 3.4: the averaged torques keep the lines that stand out of their noise;
-    // the controller's content above them (the D term's encoder noise) is dropped.
-    // When every harmonic stands out (noise-free data), nothing is noise: the torques stay whole
-    // (projecting them would still drop an even period's Nyquist line).
-    const int torque_harmonics = select_torque_harmonics(average, harmonics);
-    const bool whole = torque_harmonics >= (average.samples_per_period - 1) / 2;
-    if (!whole) keep_harmonics(average.averaged, average.averaged.tau, torque_harmonics);
-    out.data = std::move(average.averaged);
-    out.tau_noise_variance = average.tau_noise_variance;
-    out.noise = periodic_noise(average, harmonics, whole ? -1 : torque_harmonics);
-    out.decimation = options.decimation.value_or(1);
-    out.summary = resampled + skipped + "periodic: " + std::to_string(average.periods) +
-                  " periods of " +
-                  std::to_string(average.samples_per_period) + " samples (period " +
-                  number(average.period, 6) + " s" + (options.period ? "" : ", detected") +
-                  ") averaged, " + std::to_string(harmonics) +
-                  " harmonics re-estimated, " +
-                  (whole ? std::string("torques kept whole (every harmonic above their noise)")
-                         : "torques kept up to harmonic " + std::to_string(torque_harmonics) +
-                               " (" + number(torque_harmonics / average.period, 3) + " Hz)") +
-                  "; torque noise std of the averages:";
-    for (Eigen::Index j = 0; j < out.tau_noise_variance.size(); ++j) {
-      out.summary += " " + number(std::sqrt(out.tau_noise_variance[j]), 3);
-    }
-    if (average.dropped_samples > 0) {
-      out.warning = raw.source + ": warning: the record is not a whole number of periods; the " +
-                    std::to_string(average.dropped_samples) + " samples (" +
-                    number(average.dropped_seconds) +
-                    " s) after the last whole period are not used";
-    }
-    return out;
-  }
+// The period to average over: the given one, or the detected one.
+double averaging_period(const Trajectory& raw, const PreparationOptions& options) {
+  if (options.period) return *options.period;
+  // An excitation played on the controller's clock has a whole number of samples per
+  // period: the detected period is rounded to it (detect_period's advice).
+  const double dt = uniform_sample_time(raw);
+  return std::round(detect_period(raw) / dt) * dt;
+}
 
+// Swevers 2002, section 4: average whole periods, noise variance of the averages, DFT
+// re-estimation of eq. 15 and analytic eq. 16-17.
+PreparedExperiment prepare_periodic(Trajectory& raw, const PreparationOptions& options,
+                                    const std::string& resampled) {
+  PreparedExperiment out;
+  const double period = averaging_period(raw, options);
+  std::string skipped;
+  if (options.skip_periods > 0) skipped = skip_whole_periods(raw, period, options.skip_periods);
+  PeriodicAverage average = average_periods(raw, period);
+  const int harmonics = options.harmonics ? *options.harmonics : select_harmonics(average);
+  const FourierTrajectory fourier = fit_fourier(average.averaged, average.period, harmonics);
+  apply_fourier(average.averaged, fourier);
+  // Bona & Curatella 3.4: the averaged torques keep the lines that stand out of their noise;
+  // the controller's content above them (the D term's encoder noise) is dropped.
+  // When every harmonic stands out (noise-free data), nothing is noise: the torques stay whole
+  // (projecting them would still drop an even period's Nyquist line).
+  const int torque_harmonics = select_torque_harmonics(average, harmonics);
+  const bool whole = torque_harmonics >= (average.samples_per_period - 1) / 2;
+  if (!whole) keep_harmonics(average.averaged, average.averaged.tau, torque_harmonics);
+  out.data = std::move(average.averaged);
+  out.tau_noise_variance = average.tau_noise_variance;
+  out.noise = periodic_noise(average, harmonics, whole ? -1 : torque_harmonics);
+  out.decimation = options.decimation.value_or(1);
+  out.summary = resampled + skipped + "periodic: " + std::to_string(average.periods) +
+                " periods of " + std::to_string(average.samples_per_period) + " samples (period " +
+                number(average.period, 6) + " s" + (options.period ? "" : ", detected") +
+                ") averaged, " + std::to_string(harmonics) + " harmonics re-estimated, " +
+                (whole ? std::string("torques kept whole (every harmonic above their noise)")
+                       : "torques kept up to harmonic " + std::to_string(torque_harmonics) + " (" +
+                             number(torque_harmonics / average.period, 3) + " Hz)") +
+                "; torque noise std of the averages:";
+  for (Eigen::Index j = 0; j < out.tau_noise_variance.size(); ++j) {
+    out.summary += " " + number(std::sqrt(out.tau_noise_variance[j]), 3);
+  }
+  if (average.dropped_samples > 0) {
+    out.warning = raw.source + ": warning: the record is not a whole number of periods; the " +
+                  std::to_string(average.dropped_samples) + " samples (" +
+                  number(average.dropped_seconds) + " s) after the last whole period are not used";
+  }
+  return out;
+}
+
+// Gautier & Briot, section IV.A: position filter well above the dynamics, central
+// differences, then the parallel decimation of Y and W (eq. 13-14) in identify().
+void filter_and_differentiate(Trajectory& raw, const PreparationOptions& options, bool keep_edges,
+                              const std::string& resampled, PreparedExperiment& out) {
+  const double dt = uniform_sample_time(raw);
+  // The bandwidth is only needed for what the user did not set.
+  const bool need_bandwidth = !options.cutoff_hz || !options.decimation;
+  ExcitationBands bands;
+  if (options.bandwidth_hz) {
+    bands.bandwidth_hz = *options.bandwidth_hz;
+  } else if (need_bandwidth) {
+    bands = estimate_bands(raw);
+  }
+  const double bandwidth = bands.bandwidth_hz;
+  out.bandwidth_hz = bandwidth;
+  FilterPlan plan;
+  if (need_bandwidth) {
+    try {
+      plan = plan_filtering(1.0 / dt, bandwidth);
+    } catch (const std::invalid_argument& e) {
+      throw DataError(raw.source + ": error: " + e.what());
+    }
+  }
+  if (options.cutoff_hz) plan.position_cutoff_hz = *options.cutoff_hz;
+  if (options.decimation) plan.decimation_factor = *options.decimation;
+  filter_positions(raw, plan.position_cutoff_hz, plan.position_order);
+  // The zero-phase filter's start and end are only approximately right (its edges assume
+  // the signal continues as its reflection), and differentiating twice amplifies that: the
+  // samples within kEdgePeriods cut-off periods of either end are dropped.
+  const Eigen::Index edge =
+      static_cast<Eigen::Index>(std::ceil(kEdgePeriods / (plan.position_cutoff_hz * dt)));
+  const Eigen::Index kept = raw.t.size() - 2 * edge;
+  if (kept < 3) {
+    throw DataError(raw.source + ": error: too short for a position filter at " +
+                    number(plan.position_cutoff_hz, 3) + " Hz: its edges (" + std::to_string(edge) +
+                    " samples at each end) leave " +
+                    std::to_string(std::max<Eigen::Index>(kept, 0)) + " samples");
+  }
+  if (!keep_edges) {
+    raw.t = raw.t.segment(edge, kept).eval();
+    for (Eigen::MatrixXd* m : {&raw.q, &raw.dq, &raw.ddq, &raw.tau}) {
+      *m = m->middleRows(edge, kept).eval();
+    }
+  }
+  out.decimation = plan.decimation_factor;
+  std::string band;
+  if (options.bandwidth_hz) {
+    band = ", excitation bandwidth " + number(bandwidth, 3) + " Hz (given)";
+  } else if (need_bandwidth) {
+    band = ", excitation bandwidth " + number(bandwidth, 3) +
+           " Hz (estimated: 99% of the "
+           "velocities' energy below " +
+           number(bands.velocity_hz, 3) + " Hz" +
+           (bands.torque_hz > 0 ? ", of the torques' below " + number(bands.torque_hz, 3) + " Hz"
+                                : std::string()) +
+           ")";
+  }
+  out.summary = resampled + "sampled at " + number(1.0 / dt) + " Hz" + band +
+                "; positions low-passed at " + number(plan.position_cutoff_hz, 3) +
+                " Hz (zero phase), central differences, " + number(edge * dt, 3) +
+                (keep_edges ? " s at each end within the filter's edges (approximate)"
+                            : " s dropped at each end (filter edges), parallel decimation by " +
+                                  std::to_string(out.decimation));
+}
+
+PreparedExperiment prepare_joint_side(Trajectory raw, const PreparationOptions& options,
+                                      bool keep_edges) {
+  const std::string resampled = resample_if_needed(raw, options);
+  if (options.periodic) return prepare_periodic(raw, options, resampled);
+
+  PreparedExperiment out;
   const std::string decimated =
       options.decimation.value_or(1) > 1
           ? ", parallel decimation by " + std::to_string(*options.decimation)
@@ -241,64 +310,7 @@ PreparedExperiment prepare_joint_side(Trajectory raw, const PreparationOptions& 
     out.decimation = options.decimation.value_or(1);
     out.summary = resampled + "central differences of the positions, no filter" + decimated;
   } else {
-    // Gautier & Briot, section IV.A: position filter well above the dynamics, central
-    // differences, then the parallel decimation of Y and W (eq. 13-14) in identify().
-    const double dt = uniform_sample_time(raw);
-    // The bandwidth is only needed for what the user did not set.
-    const bool need_bandwidth = !options.cutoff_hz || !options.decimation;
-    ExcitationBands bands;
-    if (options.bandwidth_hz) {
-      bands.bandwidth_hz = *options.bandwidth_hz;
-    } else if (need_bandwidth) {
-      bands = estimate_bands(raw);
-    }
-    const double bandwidth = bands.bandwidth_hz;
-    out.bandwidth_hz = bandwidth;
-    FilterPlan plan;
-    if (need_bandwidth) {
-      try {
-        plan = plan_filtering(1.0 / dt, bandwidth);
-      } catch (const std::invalid_argument& e) {
-        throw DataError(raw.source + ": error: " + e.what());
-      }
-    }
-    if (options.cutoff_hz) plan.position_cutoff_hz = *options.cutoff_hz;
-    if (options.decimation) plan.decimation_factor = *options.decimation;
-    filter_positions(raw, plan.position_cutoff_hz, plan.position_order);
-    // The zero-phase filter's start and end are only approximately right (its edges assume
-    // the signal continues as its reflection), and differentiating twice amplifies that: the
-    // samples within kEdgePeriods cut-off periods of either end are dropped.
-    const Eigen::Index edge =
-        static_cast<Eigen::Index>(std::ceil(kEdgePeriods / (plan.position_cutoff_hz * dt)));
-    const Eigen::Index kept = raw.t.size() - 2 * edge;
-    if (kept < 3) {
-      throw DataError(raw.source + ": error: too short for a position filter at " +
-                      number(plan.position_cutoff_hz, 3) + " Hz: its edges (" +
-                      std::to_string(edge) + " samples at each end) leave " +
-                      std::to_string(std::max<Eigen::Index>(kept, 0)) + " samples");
-    }
-    if (!keep_edges) {
-      raw.t = raw.t.segment(edge, kept).eval();
-      for (Eigen::MatrixXd* m : {&raw.q, &raw.dq, &raw.ddq, &raw.tau}) {
-        *m = m->middleRows(edge, kept).eval();
-      }
-    }
-    out.decimation = plan.decimation_factor;
-    std::string band;
-    if (options.bandwidth_hz) {
-      band = ", excitation bandwidth " + number(bandwidth, 3) + " Hz (given)";
-    } else if (need_bandwidth) {
-      band = ", excitation bandwidth " + number(bandwidth, 3) + " Hz (estimated: 99% of the "
-             "velocities' energy below " + number(bands.velocity_hz, 3) + " Hz" +
-             (bands.torque_hz > 0 ? ", of the torques' below " + number(bands.torque_hz, 3) + " Hz"
-                                  : std::string()) + ")";
-    }
-    out.summary = resampled + "sampled at " + number(1.0 / dt) + " Hz" + band +
-                  "; positions low-passed at " + number(plan.position_cutoff_hz, 3) +
-                  " Hz (zero phase), central differences, " + number(edge * dt, 3) +
-                  (keep_edges ? " s at each end within the filter's edges (approximate)"
-                              : " s dropped at each end (filter edges), parallel decimation by " +
-                                    std::to_string(out.decimation));
+    filter_and_differentiate(raw, options, keep_edges, resampled, out);
   }
   out.data = std::move(raw);
   return out;

@@ -1,0 +1,209 @@
+// The barrier method of physical_barrier.hpp: the log det barrier of each body's pseudo-inertia
+// cone and the log barrier of the bounded parameters, with gradient and Hessian in closed form
+// (d2(-log det S) = tr(S^-1 E_e S^-1 E_f)), and Newton's method with backtracking on
+// t f + barrier (Boyd & Vandenberghe, algorithm 11.1).
+
+#include "runtime/src/estimation/physical_barrier.hpp"
+
+#include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+
+#include "modelgen/model/physical_consistency.hpp"
+#include "modelgen/model/pseudo_inertia.hpp"
+
+namespace modelgen::detail {
+namespace {
+
+// The optimisation variables: per complete body the ten distinct entries of its pseudo-inertia
+// (off-diagonal ones times sqrt 2, so that the Euclidean norm is the Frobenius norm and the
+// projection onto the consistent set clips eigenvalues), stored in that body's ten standard
+// slots; every other parameter as itself. standard = T variables, T linear.
+constexpr double kSqrt2 = 1.4142135623730951;
+constexpr int kEntryRow[10] = {0, 0, 0, 1, 1, 2, 0, 1, 2, 3};
+constexpr int kEntryCol[10] = {0, 1, 2, 1, 2, 2, 3, 3, 3, 3};
+
+Eigen::Matrix4d pseudo_inertia_of_entries(const double* x) {
+  Eigen::Matrix4d P;
+  for (int e = 0; e < 10; ++e) {
+    const double v = kEntryRow[e] == kEntryCol[e] ? x[e] : x[e] / kSqrt2;
+    P(kEntryRow[e], kEntryCol[e]) = P(kEntryCol[e], kEntryRow[e]) = v;
+  }
+  return P;
+}
+
+void entries_of_pseudo_inertia(const Eigen::Matrix4d& P, double* x) {
+  for (int e = 0; e < 10; ++e) {
+    x[e] = P(kEntryRow[e], kEntryCol[e]) * (kEntryRow[e] == kEntryCol[e] ? 1.0 : kSqrt2);
+  }
+}
+
+// The basis of the variables: P = sum_e x_e E_e over a body's ten entries.
+std::array<Eigen::Matrix4d, 10> entry_basis() {
+  std::array<Eigen::Matrix4d, 10> E;
+  for (int e = 0; e < 10; ++e) {
+    double x[10] = {};
+    x[e] = 1;
+    E[static_cast<std::size_t>(e)] = pseudo_inertia_of_entries(x);
+  }
+  return E;
+}
+
+// The log barrier of the consistent set, -sum log det(P_b - floor_b 1) - sum log y_k over the
+// bounded parameters, with its gradient and Hessian; false when y is not strictly inside.
+bool barrier(const Layout& layout, const std::vector<char>& bounded,
+             const std::vector<double>& body_floor, const Eigen::VectorXd& y, double& value,
+             Eigen::VectorXd* gradient, Eigen::MatrixXd* hessian) {
+  static const std::array<Eigen::Matrix4d, 10> E = entry_basis();
+  value = 0;
+  for (std::size_t b = 0; b < layout.body_params.size(); ++b) {
+    const auto& index = layout.body_params[b];
+    double entries[10];
+    for (int e = 0; e < 10; ++e) entries[e] = y[index[e]];
+    const Eigen::Matrix4d S =
+        pseudo_inertia_of_entries(entries) - body_floor[b] * Eigen::Matrix4d::Identity();
+    const Eigen::LLT<Eigen::Matrix4d> llt(S);
+    if (llt.info() != Eigen::Success || !(llt.matrixLLT().diagonal().minCoeff() > 0)) return false;
+    value -= 2 * llt.matrixLLT().diagonal().array().log().sum();
+    if (gradient == nullptr) continue;
+    const Eigen::Matrix4d S_inverse = llt.solve(Eigen::Matrix4d::Identity());
+    std::array<Eigen::Matrix4d, 10> SE;
+    for (int e = 0; e < 10; ++e) SE[e] = S_inverse * E[e];
+    for (int e = 0; e < 10; ++e) {
+      (*gradient)[index[e]] -= SE[e].trace();
+      for (int f = 0; f <= e; ++f) {
+        const double h = (SE[e] * SE[f]).trace();  // d2(-log det S) = tr(S^-1 E_e S^-1 E_f)
+        (*hessian)(index[e], index[f]) += h;
+        if (f != e) (*hessian)(index[f], index[e]) += h;
+      }
+    }
+  }
+  for (int k : layout.scalar_params) {
+    if (!bounded[static_cast<std::size_t>(k)]) continue;
+    if (!(y[k] > 0)) return false;
+    value -= std::log(y[k]);
+    if (gradient == nullptr) continue;
+    (*gradient)[k] -= 1 / y[k];
+    (*hessian)(k, k) += 1 / (y[k] * y[k]);
+  }
+  return true;
+}
+
+}  // namespace
+
+Layout make_layout(const RigidBodyTree& tree) {
+  Layout layout;
+  std::vector<char> in_body(tree.params.size(), 0);
+  for (const auto& index : inertial_param_indices(tree)) {
+    if (std::find(index.begin(), index.end(), -1) != index.end()) continue;
+    layout.body_params.push_back(index);
+    for (int k : index) in_body[static_cast<std::size_t>(k)] = 1;
+  }
+  for (std::size_t k = 0; k < tree.params.size(); ++k) {
+    if (!in_body[k]) layout.scalar_params.push_back(static_cast<int>(k));
+  }
+  return layout;
+}
+
+Eigen::MatrixXd standard_from_variables(const Layout& layout, Eigen::Index n) {
+  Eigen::MatrixXd T = Eigen::MatrixXd::Zero(n, n);
+  for (int k : layout.scalar_params) T(k, k) = 1;
+  for (const auto& index : layout.body_params) {
+    for (int e = 0; e < 10; ++e) {
+      double x[10] = {}, p[10];
+      x[e] = 1;
+      const Eigen::Matrix4d P = pseudo_inertia_of_entries(x);
+      inertial_from_pseudo_inertia(P, p);
+      for (int s = 0; s < 10; ++s) T(index[s], index[e]) = p[s];
+    }
+  }
+  return T;
+}
+
+void project(const Layout& layout, const std::vector<char>& bounded,
+             const std::vector<double>& body_floor, Eigen::VectorXd& x) {
+  for (std::size_t b = 0; b < layout.body_params.size(); ++b) {
+    const auto& index = layout.body_params[b];
+    double entries[10];
+    for (int e = 0; e < 10; ++e) entries[e] = x[index[e]];
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix4d> eig(pseudo_inertia_of_entries(entries));
+    const Eigen::Vector4d clipped = eig.eigenvalues().cwiseMax(body_floor[b]);
+    entries_of_pseudo_inertia(
+        eig.eigenvectors() * clipped.asDiagonal() * eig.eigenvectors().transpose(), entries);
+    for (int e = 0; e < 10; ++e) x[index[e]] = entries[e];
+  }
+  for (int k : layout.scalar_params) {
+    if (bounded[static_cast<std::size_t>(k)]) x[k] = std::max(x[k], 0.0);
+  }
+}
+
+Eigen::VectorXd variable_scales(const Layout& layout, const Eigen::MatrixXd& A) {
+  Eigen::VectorXd d = A.colwise().norm().transpose();
+  for (const auto& index : layout.body_params) {
+    double largest = 0;
+    for (int k : index) largest = std::max(largest, d[k]);
+    for (int k : index) d[k] = largest;
+  }
+  // Variables the data barely see (rounding in K, or no effect at all) keep a scale of the
+  // order of the others, not one that would blow up their prior term.
+  const double floor = std::max(1e-6 * d.maxCoeff(), 1e-300);
+  return d.cwiseMax(floor);
+}
+
+BarrierOutcome minimise_on_consistent_set(const Eigen::MatrixXd& H, const Eigen::VectorXd& h,
+                                          const Layout& layout, const std::vector<char>& bounded,
+                                          const std::vector<double>& body_floor, Eigen::VectorXd y,
+                                          int max_iterations) {
+  const Eigen::Index n = y.size();
+  double m = 4.0 * static_cast<double>(layout.body_params.size());
+  for (int k : layout.scalar_params) m += bounded[static_cast<std::size_t>(k)] ? 1 : 0;
+  const auto objective = [&](const Eigen::VectorXd& v) { return 0.5 * v.dot(H * v) - h.dot(v); };
+  const double size = std::max({1.0, std::abs(objective(y)), h.cwiseAbs().maxCoeff()});
+  BarrierOutcome out;
+  double t = m / size;
+  for (int outer = 0; outer < 40 && out.iterations < max_iterations; ++outer) {
+    for (int inner = 0; inner < 200 && out.iterations < max_iterations; ++inner) {
+      double value = 0;
+      Eigen::VectorXd gradient = t * (H * y - h);
+      Eigen::MatrixXd hessian = t * H;
+      barrier(layout, bounded, body_floor, y, value, &gradient, &hessian);
+      const Eigen::VectorXd step = -hessian.ldlt().solve(gradient);
+      const double decrement = -gradient.dot(step);
+      ++out.iterations;
+      if (!(decrement > 2e-14)) break;
+      const double phi = t * objective(y) + value;
+      double s = 1;
+      for (int halving = 0; halving < 80; ++halving, s *= 0.5) {
+        const Eigen::VectorXd trial = y + s * step;
+        double trial_value = 0;
+        if (barrier(layout, bounded, body_floor, trial, trial_value, nullptr, nullptr) &&
+            t * objective(trial) + trial_value <= phi - 0.25 * s * decrement) {
+          break;
+        }
+      }
+      y += s * step;
+      if (decrement < 1e-10) break;
+    }
+    if (m / t < 1e-13 * size) {
+      out.converged = true;
+      break;
+    }
+    t *= 10;
+  }
+  // The duals: the barrier's gradient over t (for a body the largest entry of its block).
+  double value = 0;
+  Eigen::VectorXd gradient = Eigen::VectorXd::Zero(n);
+  Eigen::MatrixXd hessian = Eigen::MatrixXd::Zero(n, n);
+  barrier(layout, bounded, body_floor, y, value, &gradient, &hessian);
+  out.push = gradient.cwiseAbs() / t;
+  for (const auto& index : layout.body_params) {
+    double largest = 0;
+    for (int k : index) largest = std::max(largest, out.push[k]);
+    for (int k : index) out.push[k] = largest;
+  }
+  out.y = y;
+  return out;
+}
+
+}  // namespace modelgen::detail

@@ -1,0 +1,57 @@
+// The barrier method of the physically consistent fit (physical.cpp): the optimiser's variables
+// (per complete body the ten distinct entries of its pseudo-inertia, every other standard
+// parameter as itself), the projection onto the consistent set, and min 1/2 y'Hy - h'y over that
+// set by Newton steps on the log det barrier (Boyd & Vandenberghe, Convex Optimization, section
+// 11.3).
+#pragma once
+
+#include <array>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "modelgen/model/rigid_body_tree.hpp"
+
+namespace modelgen::detail {
+
+// Where each standard parameter lives among the optimiser's blocks.
+struct Layout {
+  std::vector<std::array<int, 10>> body_params;  // complete bodies: their ten standard indices
+  std::vector<int> scalar_params;                // every other standard parameter
+};
+
+Layout make_layout(const RigidBodyTree& tree);
+
+// The optimisation variables: per complete body the ten distinct entries of its pseudo-inertia
+// (off-diagonal ones times sqrt 2, so that the Euclidean norm is the Frobenius norm and the
+// projection onto the consistent set clips eigenvalues), stored in that body's ten standard
+// slots; every other parameter as itself. Returns T, n x n: standard = T variables.
+Eigen::MatrixXd standard_from_variables(const Layout& layout, Eigen::Index n);
+
+// Projection onto the consistent set (in the variables, scaled per body by one factor, which
+// leaves the cone unchanged): each pseudo-inertia's eigenvalues raised to at least its body's
+// floor (strictly positive definite: a mass, and a log-Cholesky factor, for every body),
+// bounded parameters to at least 0.
+void project(const Layout& layout, const std::vector<char>& bounded,
+             const std::vector<double>& body_floor, Eigen::VectorXd& x);
+
+// One scale per body (its variables' largest column norm in A) and per scalar, so that the
+// penalty rho weighs every block alike.
+Eigen::VectorXd variable_scales(const Layout& layout, const Eigen::MatrixXd& A);
+
+// min 1/2 y'Hy - h'y over the consistent set by the barrier method (Boyd & Vandenberghe,
+// Convex Optimization, algorithm 11.1: Newton's method with backtracking on
+// t f + barrier, t growing tenfold, until the duality gap m / t is negligible).
+struct BarrierOutcome {
+  Eigen::VectorXd y;
+  Eigen::VectorXd push;  // per variable, how hard its constraint pushes at the end (duals)
+  int iterations = 0;
+  bool converged = false;
+};
+
+BarrierOutcome minimise_on_consistent_set(const Eigen::MatrixXd& H, const Eigen::VectorXd& h,
+                                          const Layout& layout, const std::vector<char>& bounded,
+                                          const std::vector<double>& body_floor, Eigen::VectorXd y,
+                                          int max_iterations);
+
+}  // namespace modelgen::detail
