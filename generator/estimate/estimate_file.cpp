@@ -10,17 +10,19 @@
 
 #include <nlohmann/json.hpp>
 
+#include "modelgen/io/json_file.hpp"
 #include "modelgen/model/load_robot.hpp"
 #include "modelgen/model/number_text.hpp"
 #include "modelgen/model/sha256.hpp"
-#include "runtime/cli/json_file.hpp"
 
 namespace modelgen::gen {
 
+using io::read_json_document;
+
 namespace {
 
-using internal::json_pointer;
-using internal::JsonDocument;
+using io::json_pointer;
+using io::JsonDocument;
 
 // The base parameters are linear combinations of standard ones whose coefficients come from the
 // geometry (Gautier & Briot, regrouping): another description's estimate carries the same names
@@ -98,7 +100,7 @@ EstimateEntry read_entry(const JsonDocument& document, std::size_t k) {
 
 EstimateFile read_estimate_file(const std::string& path, const std::string& description_path,
                                 const std::string& description_sha256) {
-  const JsonDocument document = internal::read_json_document(path);
+  const JsonDocument document = read_json_document(path);
   EstimateFile estimate;
   estimate.path = path;
   estimate.file_name = std::filesystem::path(path).filename().string();

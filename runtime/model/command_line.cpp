@@ -65,6 +65,41 @@ double parse_number(const std::string& text, const std::string& option) {
   return value;
 }
 
+std::vector<std::string> comma_items(const std::string& text, const std::string& option) {
+  std::vector<std::string> items;
+  std::size_t start = 0;
+  while (true) {
+    const std::size_t comma = text.find(',', start);
+    const std::size_t end = comma == std::string::npos ? text.size() : comma;
+    if (end == start) throw UsageError(option + ": empty item in '" + text + "'");
+    items.push_back(text.substr(start, end - start));
+    if (comma == std::string::npos) return items;
+    start = comma + 1;
+  }
+}
+
+std::vector<double> per_axis_values(const std::string& text, const std::string& option, int count,
+                                    const std::string& what, const std::string& axes,
+                                    AxisValue rule) {
+  std::vector<double> values;
+  for (const std::string& item : comma_items(text, option)) {
+    const double value = parse_number(item, option);
+    if (rule == AxisValue::kNonNegative && !(value >= 0)) {
+      throw UsageError(option + ": a " + what + " cannot be negative, not '" + item + "'");
+    }
+    if (rule == AxisValue::kPositive && !(value > 0)) {
+      throw UsageError(option + ": a " + what + " must be positive, not '" + item + "'");
+    }
+    values.push_back(value);
+  }
+  if (values.size() == 1) values.assign(static_cast<std::size_t>(count), values.front());
+  if (static_cast<int>(values.size()) != count) {
+    throw UsageError(option + " needs one " + what + " or " + std::to_string(count) + " (one per " +
+                     axes + "), not " + std::to_string(values.size()) + ": '" + text + "'");
+  }
+  return values;
+}
+
 double angle_tolerance_option(const CommandLine& line) {
   if (!line.has("--angle-tolerance")) return kDefaultAngleTolerance;
   const std::string& text = line.one("--angle-tolerance");

@@ -35,7 +35,8 @@ std::string read_source_file(const std::string& path) {
   return bytes.str();
 }
 
-RobotModel load_robot(const std::string& path, const LoadOptions& options) {
+RobotModel load_robot_text(const std::string& path, const std::string& text,
+                           const LoadOptions& options) {
   if (!(options.angle_tolerance >= 0 && options.angle_tolerance < std::numbers::pi / 4)) {
     // Beyond pi/4 every angle would be within reach of some quarter turn.
     throw std::invalid_argument("angle tolerance must be in [0, pi/4)");
@@ -45,18 +46,24 @@ RobotModel load_robot(const std::string& path, const LoadOptions& options) {
     if (!options.base_link.empty() || !options.tip_link.empty()) {
       throw InputError({path}, "--base and --tip apply to URDF descriptions only");
     }
-    RobotModel model = load_mdh_yaml(path, read_source_file(path), options.angle_tolerance);
+    RobotModel model = load_mdh_yaml(path, text, options.angle_tolerance);
     if (!options.name.empty()) {
       check_robot_name(options.name, {path});
       model.name = options.name;
     }
     return model;
   }
-  if (extension == ".urdf" || extension == ".xml") {
-    return load_urdf(path, read_source_file(path), options);
-  }
+  if (extension == ".urdf" || extension == ".xml") return load_urdf(path, text, options);
   throw InputError({path}, "unknown description format '" + extension +
                                "': expected .yaml/.yml (modified DH) or .urdf");
+}
+
+RobotModel load_robot(const std::string& path, const LoadOptions& options) {
+  const std::string extension = std::filesystem::path(path).extension().string();
+  if (extension != ".yaml" && extension != ".yml" && extension != ".urdf" && extension != ".xml") {
+    return load_robot_text(path, "", options);  // refuses the format before reading
+  }
+  return load_robot_text(path, read_source_file(path), options);
 }
 
 }  // namespace modelgen

@@ -5,7 +5,7 @@
 #include <cstdint>
 
 #include "modelgen/excitation/fourier_trajectory.hpp"
-#include "runtime/cli/fourier_file.hpp"
+#include "runtime/cli/data/fourier_file.hpp"
 #include "tests/fuzz/fuzz_input.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

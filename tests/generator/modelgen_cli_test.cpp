@@ -167,7 +167,7 @@ TEST(ModelgenCli, UnknownFunctionIsAUsageErrorListingTheValidOnes) {
       << identified.err;
   const CliRun empty = modelgen(base + " --functions inverse_dynamics,,mass_matrix");
   EXPECT_EQ(empty.exit_code, 2);
-  EXPECT_NE(empty.err.find("--functions: empty name"), std::string::npos) << empty.err;
+  EXPECT_NE(empty.err.find("--functions: empty item"), std::string::npos) << empty.err;
 }
 
 TEST(ModelgenCli, BadDescriptionLeavesExistingOutputUntouched) {

@@ -12,7 +12,7 @@
 
 #include "modelgen/model/identification_model.hpp"
 #include "modelgen/model/load_robot.hpp"
-#include "runtime/cli/shipped_models.hpp"
+#include "runtime/cli/common/shipped_models.hpp"
 #include "tests/support/kdl_oracle.hpp"
 #include "tests/support/test_support.hpp"
 

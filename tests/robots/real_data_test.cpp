@@ -19,14 +19,14 @@
 
 #include <gtest/gtest.h>
 
+#include "modelgen/data/trajectory.hpp"
 #include "modelgen/estimation/identify.hpp"
 #include "modelgen/estimation/physical.hpp"
 #include "modelgen/estimation/predict.hpp"
 #include "modelgen/model/load_robot.hpp"
 #include "modelgen/model/physical_consistency.hpp"
-#include "modelgen/data/trajectory.hpp"
 #include "modelgen/signal/prepare.hpp"
-#include "runtime/cli/shipped_models.hpp"
+#include "runtime/cli/common/shipped_models.hpp"
 #include "tests/support/test_support.hpp"
 
 namespace modelgen {

@@ -17,7 +17,7 @@
 #include "modelgen/model/identification_model.hpp"
 #include "modelgen/model/load_robot.hpp"
 #include "modelgen/signal/decimation.hpp"
-#include "runtime/cli/shipped_models.hpp"
+#include "runtime/cli/common/shipped_models.hpp"
 #include "tests/runtime/cli/modelid_cli_support.hpp"
 #include "tests/support/kdl_oracle.hpp"
 

@@ -147,7 +147,7 @@ TEST(ModelidPhysical, OptionsAreChecked) {
   const CliRun bad_weight =
       modelid("fit --robot kr150 --method wls --physical --prior-weight -1" + data);
   EXPECT_NE(bad_weight.exit_code, 0);
-  EXPECT_NE(bad_weight.err.find("--prior-weight must be a positive number"), std::string::npos)
+  EXPECT_NE(bad_weight.err.find("--prior-weight must be positive"), std::string::npos)
       << bad_weight.err;
   // The ML fits take --physical too, and check its weight the same way.
   const CliRun ml = modelid("fit --robot kr150 --method ml --approach 2 --periodic --prior-weight 1" + data);

@@ -448,7 +448,7 @@ TEST(ModelidSimulate, UsageAndInputErrors) {
     EXPECT_FALSE(fs::exists(dir / "out.csv")) << c.arguments;
   }
   // The help names the drive mode.
-  const CliRun help = modelid("--help");
+  const CliRun help = modelid("simulate --help");
   EXPECT_NE(help.out.find("--drive THETA.json"), std::string::npos) << help.out;
 }
 

@@ -15,7 +15,7 @@
 
 #include "modelgen/closed_loop/closed_loop_simulation.hpp"
 #include "modelgen/signal/prepare.hpp"
-#include "runtime/cli/shipped_models.hpp"
+#include "runtime/cli/common/shipped_models.hpp"
 #include "tests/support/test_support.hpp"
 #include "tests/support/tx40_truth.hpp"
 

@@ -11,7 +11,7 @@
 #include "modelgen/data/joint_side.hpp"
 #include "modelgen/model/identification_model.hpp"
 #include "modelgen/model/load_robot.hpp"
-#include "runtime/cli/shipped_models.hpp"
+#include "runtime/cli/common/shipped_models.hpp"
 #include "tests/support/test_support.hpp"
 
 namespace modelgen {

@@ -27,7 +27,7 @@
 #include "modelgen/signal/fourier_fit.hpp"
 #include "modelgen/signal/gaussian_noise.hpp"
 #include "modelgen/signal/prepare.hpp"
-#include "runtime/cli/shipped_models.hpp"
+#include "runtime/cli/common/shipped_models.hpp"
 #include "tests/support/cli_runner.hpp"
 #include "tests/support/test_support.hpp"
 #include "tests/support/tx40_truth.hpp"

@@ -50,6 +50,21 @@ CommandLine parse_command_line(int argc, char** argv, int first, const std::stri
 /// otherwise.
 double parse_number(const std::string& text, const std::string& option);
 
+/// The comma-separated items of an option's value ("3,4,5"). UsageError naming `option` for an
+/// empty value or an empty item (",,", a trailing comma): it is a typo, never "nothing".
+std::vector<std::string> comma_items(const std::string& text, const std::string& option);
+
+/// What a per-axis number may be.
+enum class AxisValue { kNonNegative, kPositive };
+
+/// One number per axis from "V" (every axis) or "V1,...,Vn" (n = `count`), for options such as
+/// --noise or --min-speed. UsageError naming `option`, `what` ("standard deviation") and
+/// `axes` ("joint", "motor") for an item that is not a number or breaks `rule`, or a count
+/// that is neither 1 nor `count`.
+std::vector<double> per_axis_values(const std::string& text, const std::string& option, int count,
+                                    const std::string& what, const std::string& axes,
+                                    AxisValue rule);
+
 /// The value of --angle-tolerance RAD (LoadOptions::angle_tolerance) when given, else the
 /// default; UsageError unless 0 <= RAD < 0.7 (beyond pi/4 every angle would be near some
 /// quarter turn).

@@ -28,6 +28,12 @@ struct LoadOptions {
 /// Throws InputError naming the file, line and field on any problem.
 RobotModel load_robot(const std::string& path, const LoadOptions& options = {});
 
+/// Loads the description `text` as load_robot loads the file `path`: the extension of `path`
+/// says the format, and messages name `path` (a description written but not yet saved, as
+/// modelid export checks its output).
+RobotModel load_robot_text(const std::string& path, const std::string& text,
+                           const LoadOptions& options = {});
+
 /// The whole file as bytes; InputError if it cannot be read.
 std::string read_source_file(const std::string& path);
 

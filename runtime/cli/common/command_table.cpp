@@ -1,0 +1,67 @@
+// The table of modelid's commands and the usage text derived from their option tables.
+
+#include "runtime/cli/common/commands.hpp"
+
+namespace modelgen::internal {
+
+const std::vector<Command>& modelid_commands() {
+  static const std::vector<Command> commands = {
+      {fit_spec, run_fit},
+      {predict_spec, run_predict},
+      {simulate_spec, run_simulate},
+      {validate_spec, run_validate},
+      {export_spec, run_export},
+      {design_spec, run_design},
+      {check_trajectory_spec, run_check_trajectory},
+      {check_spec, run_check},
+  };
+  return commands;
+}
+
+const Command* find_command(const std::string& name) {
+  for (const Command& command : modelid_commands()) {
+    if (command.spec().name == name) return &command;
+  }
+  return nullptr;
+}
+
+std::string modelid_usage() {
+  std::string text = "usage:";
+  for (const Command& command : modelid_commands()) {
+    text += (text == "usage:" ? " " : "       ") + usage_line(command.spec()) + "\n";
+  }
+  text += "       modelid --version | --help\n\n";
+  for (const Command& command : modelid_commands()) {
+    const CommandSpec& spec = command.spec();
+    const std::string head = "  " + spec.name;
+    text += head + std::string(head.size() < 20 ? 20 - head.size() : 1, ' ') +
+            wrapped(spec.summary, 20, 20) + "\n";
+  }
+  text +=
+      "\n'modelid COMMAND --help' lists a command's options. ROBOT is a description (.yaml/.urdf,\n"
+      "through the numeric reference) or the name of a compiled-in generated model (tx40, kr150,\n"
+      "ur5, iiwa14, panda, kuka_kr150_2, panda_arm, comau_smart_six). Exit codes: 0 success,\n"
+      "1 bad input or data, 2 bad usage, 3 internal error. docs/commands/ has a page per\n"
+      "command.\n";
+  return text;
+}
+
+std::vector<OptionSpec> common_options() {
+  OptionSpec tolerance{.name = "--angle-tolerance",
+                       .type = ValueType::kNonNegative,
+                       .value = "RAD",
+                       .help =
+                           "read a description as modelgen does: angles within RAD of a "
+                           "multiple of pi/2 and axis components within RAD of 0 are taken "
+                           "as exact, with a note; 0 takes every value as written",
+                       .unit = "rad",
+                       .default_value = "1e-4",
+                       .group = "Every command"};
+  OptionSpec progress{.name = "--progress",
+                      .type = ValueType::kFlag,
+                      .help = "progress lines on stderr also when it is not a terminal (a log)",
+                      .group = "Every command"};
+  return {tolerance, progress};
+}
+
+}  // namespace modelgen::internal

@@ -1,0 +1,70 @@
+// Resolves --robot: a path that exists is a description, otherwise a compiled-in model name.
+
+#include "runtime/cli/common/model_source.hpp"
+
+#include <filesystem>
+#include <iostream>
+#include <stdexcept>
+
+#include "modelgen/model/load_robot.hpp"
+#include "modelgen/model/sha256.hpp"
+#include "runtime/cli/common/shipped_models.hpp"
+
+namespace modelgen::internal {
+
+namespace {
+
+// The moving joints' names and limits, in the order of the model's joints.
+void take_limits(const RobotModel& description, int dof, ModelSource& source) {
+  if (description.dof() != dof || description.joints.size() != description.tree.bodies.size()) {
+    return;
+  }
+  source.joint_names.resize(dof);
+  source.limits.resize(dof);
+  for (std::size_t b = 0; b < description.joints.size(); ++b) {
+    const int j = description.tree.bodies[b].dof_index;
+    if (j < 0 || j >= dof) continue;
+    source.joint_names[j] = description.joints[b].name;
+    source.limits[j] = description.joints[b].limits;
+  }
+}
+
+}  // namespace
+
+ModelSource load_model_source(const std::string& robot, double angle_tolerance) {
+  ModelSource source;
+  // A folder named like a compiled-in model (build/kr150 after generating it) is not a file.
+  if (std::filesystem::exists(robot) && !std::filesystem::is_directory(robot)) {
+    LoadOptions options;
+    options.angle_tolerance = angle_tolerance;
+    source.description = modelgen::load_robot(robot, options);
+    // Rounded quarter turns taken as exact, as modelgen does with its default tolerance, so
+    // a description gives the same model here as its generated code.
+    for (const DescriptionNote& note : source.description->notes) {
+      std::cerr << note.to_string() << "\n";
+    }
+    source.model = std::make_unique<ReferenceModel>(
+        source.description->name, source.description->tree,
+        sha256_hex(read_source_file(robot)), source.description->drives);
+    take_limits(*source.description, source.model->dof(), source);
+    return source;
+  }
+  source.model = make_shipped_model(robot);
+  if (source.model != nullptr) {
+    const std::string path = shipped_description_path(robot);
+    if (!path.empty()) {
+      source.shipped_description = modelgen::load_robot(path);
+      take_limits(*source.shipped_description, source.model->dof(), source);
+    }
+  }
+  if (source.model == nullptr) {
+    std::string names;
+    for (const std::string& name : shipped_model_names()) names += " " + name;
+    throw std::invalid_argument("--robot '" + robot +
+                                "' is neither a description file nor a compiled-in model (" +
+                                "compiled in:" + names + ")");
+  }
+  return source;
+}
+
+}  // namespace modelgen::internal

@@ -1,0 +1,61 @@
+// Progress lines on stderr; the terminal test is done once per indicator.
+
+#include "runtime/cli/common/progress.hpp"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <utility>
+
+namespace modelgen::internal {
+
+namespace {
+
+constexpr auto kRedrawInterval = std::chrono::milliseconds(100);
+bool log_progress = false;
+
+}  // namespace
+
+void show_progress_in_logs(bool show) { log_progress = show; }
+
+Progress::Progress(std::string label, long long total)
+    : label_(std::move(label)),
+      total_(std::max(total, 1LL)),
+      terminal_(::isatty(STDERR_FILENO) == 1),
+      start_(std::chrono::steady_clock::now()),
+      last_draw_(start_ - kRedrawInterval) {}
+
+Progress::~Progress() { finish(); }
+
+void Progress::update(long long done, const std::string& detail) {
+  if (finished_) return;
+  const auto now = std::chrono::steady_clock::now();
+  const int percent = static_cast<int>(100 * std::clamp(done, 0LL, total_) / total_);
+  const std::string tail = detail.empty() ? "" : " " + detail;
+  if (terminal_) {
+    if (now - last_draw_ < kRedrawInterval) return;
+    last_draw_ = now;
+    // \r and "erase to end of line": the line is redrawn in place.
+    std::fprintf(stderr, "\rmodelid: %s %3d%%%s\033[K", label_.c_str(), percent, tail.c_str());
+    std::fflush(stderr);
+    line_shown_ = true;
+    return;
+  }
+  if (!log_progress) return;
+  const int quarter = percent / 25;
+  if (quarter <= quarters_printed_) return;
+  quarters_printed_ = quarter;
+  std::fprintf(stderr, "modelid: %s %d%%%s\n", label_.c_str(), percent, tail.c_str());
+}
+
+void Progress::finish() {
+  if (finished_) return;
+  finished_ = true;
+  if (terminal_ && line_shown_) {
+    std::fprintf(stderr, "\r\033[K");
+    std::fflush(stderr);
+  }
+}
+
+}  // namespace modelgen::internal

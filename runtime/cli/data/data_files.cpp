@@ -1,0 +1,33 @@
+// Reading and preparing the --data files of fit and predict, one experiment per file.
+
+#include "runtime/cli/data/data_files.hpp"
+
+#include <iostream>
+#include <stdexcept>
+
+#include "runtime/cli/common/progress.hpp"
+
+namespace modelgen::internal {
+
+Experiments read_experiments(const std::vector<std::string>& paths,
+                             const IdentificationModel& model, const PreparationOptions& options,
+                             EffortColumns effort, std::ostream& report) {
+  Experiments out;
+  Progress progress("reading data", static_cast<long long>(paths.size()));
+  for (const std::string& path : paths) {
+    progress.update(static_cast<long long>(out.data.size()), path);
+    PreparedExperiment prepared = prepare_experiment(read_trajectory_csv(path, model.dof(), effort),
+                                                     model.drive_chain(), options);
+    report << "  " << path << ": " << prepared.summary << "\n";
+    if (!prepared.warning.empty()) std::cerr << prepared.warning << "\n";
+    out.data.push_back(std::move(prepared.data));
+    out.decimation.push_back(prepared.decimation);
+    out.bandwidth_hz.push_back(prepared.bandwidth_hz);
+    out.tau_noise_variance.push_back(std::move(prepared.tau_noise_variance));
+    out.noise.push_back(std::move(prepared.noise));
+  }
+  progress.update(static_cast<long long>(out.data.size()));
+  return out;
+}
+
+}  // namespace modelgen::internal

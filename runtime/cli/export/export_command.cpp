@@ -1,0 +1,117 @@
+// modelid export: the identified values of an estimate of fit --physical written back into the
+// robot's description: a URDF's <inertial>s (urdf_export.cpp) or a YAML description's `known:`
+// section (yaml_export.cpp). The written text is loaded again and must give the estimate's base
+// parameters before it replaces anything.
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <filesystem>
+#include <iostream>
+#include <map>
+#include <stdexcept>
+#include <string>
+
+#include <Eigen/Core>
+
+#include "modelgen/model/load_robot.hpp"
+#include "modelgen/model/number_text.hpp"
+#include "modelgen/model/urdf_export.hpp"
+#include "modelgen/model/yaml_export.hpp"
+#include "runtime/cli/common/arguments.hpp"
+#include "runtime/cli/common/commands.hpp"
+#include "runtime/cli/common/model_source.hpp"
+#include "runtime/cli/export/identified_standard.hpp"
+
+namespace modelgen::internal {
+
+namespace {
+
+bool is_urdf_path(const std::string& path) {
+  const std::string extension = std::filesystem::path(path).extension().string();
+  return extension == ".urdf" || extension == ".xml";
+}
+
+bool is_yaml_path(const std::string& path) {
+  const std::string extension = std::filesystem::path(path).extension().string();
+  return extension == ".yaml" || extension == ".yml";
+}
+
+// The written description, loaded as the user will load it, must give the estimate's base
+// parameters (what has no place in a URDF, the drive parameters, taken from the estimate).
+void check_round_trip(const std::string& output, const std::string& text, bool urdf,
+                      const RobotModel& description, const IdentificationModel& model,
+                      const Eigen::VectorXd& standard, const LoadOptions& options) {
+  const RobotModel again = load_robot_text(output, text, options);
+  if (again.param_names() != description.param_names()) {
+    throw std::logic_error("export: the written description has other standard parameters");
+  }
+  Eigen::VectorXd read_back = standard;
+  for (std::size_t k = 0; k < again.tree.params.size(); ++k) {
+    if (!urdf || inertial_slot(again.tree.params[k].kind) >= 0) {
+      read_back[static_cast<Eigen::Index>(k)] = again.known_values[k].value_or(0.0);
+    }
+  }
+  Eigen::VectorXd expected(model.num_base_params()), got(model.num_base_params());
+  model.base_from_standard(standard.data(), expected.data());
+  model.base_from_standard(read_back.data(), got.data());
+  for (Eigen::Index b = 0; b < got.size(); ++b) {
+    if (!(std::abs(got[b] - expected[b]) <= 1e-9 * (1 + std::abs(expected[b])))) {
+      throw std::logic_error("export: the written description gives " +
+                             model.base_param_names()[static_cast<std::size_t>(b)] + " = " +
+                             shortest_text(got[b]) + ", the estimate " +
+                             shortest_text(expected[b]));
+    }
+  }
+}
+
+}  // namespace
+
+int run_export(const CommandLine& args) {
+  const std::string robot = args.one("--robot");
+  const std::string params = args.one("--params");
+  const std::string output = args.one("-o");
+  const bool urdf = is_urdf_path(robot);
+  if (!std::filesystem::is_regular_file(robot) || !(urdf || is_yaml_path(robot))) {
+    throw UsageError{"export needs the description file (.urdf or .yaml) as --robot, not '" +
+                     robot + "': it writes that file with the identified values"};
+  }
+  if (urdf ? !is_urdf_path(output) : !is_yaml_path(output)) {
+    throw UsageError{std::string("-o '") + output + "': the identified description is a " +
+                     (urdf ? "URDF; give it the extension .urdf"
+                           : "YAML description; give it "
+                             "the extension .yaml")};
+  }
+  LoadOptions options;
+  options.angle_tolerance = angle_tolerance_option(args);
+  const ModelSource source = load_model_source(robot, options.angle_tolerance);
+  const RobotModel& description = *source.description;
+  const IdentifiedStandard identified =
+      read_identified_standard(params, description, *source.model);
+
+  const std::string estimate = std::filesystem::path(params).filename().string();
+  const std::string method = identified.method.empty() ? "" : " (" + identified.method + ")";
+  const std::string text = read_source_file(robot);
+  std::string written;
+  if (urdf) {
+    const UrdfExport exported = identified_urdf(
+        robot, text, description, identified.values, options,
+        "the <inertial> of each moving link is identified, from " + estimate + method +
+            "; the links fixed to a moving link keep their a-priori inertials, unless export "
+            "warned that it moved them onto the moving link.");
+    for (const std::string& warning : exported.warnings) std::cerr << warning << "\n";
+    written = exported.text;
+  } else {
+    written = identified_yaml(robot, text, description, identified.values,
+                              "Identified by modelid export from " + estimate + method +
+                                  ":\nevery standard parameter, physically consistent.");
+  }
+  check_round_trip(output, written, urdf, description, *source.model, identified.values, options);
+  write_file(output, written);
+  std::cerr << "modelid export: the identified " << (urdf ? "inertials" : "values") << " of "
+            << description.name << " written to " << output
+            << (urdf ? "" : " as its known: section") << "\n";
+  return 0;
+}
+
+}  // namespace modelgen::internal

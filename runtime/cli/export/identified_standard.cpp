@@ -1,0 +1,80 @@
+// EST.json's "standard" block for modelid export, through the same JSON reader (positions for
+// every key) as the other parameter files.
+
+#include "runtime/cli/export/identified_standard.hpp"
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "modelgen/io/estimate_file.hpp"
+#include "modelgen/io/json_file.hpp"
+#include "modelgen/io/parameter_file.hpp"
+#include "modelgen/model/error.hpp"
+#include "modelgen/model/physical_consistency.hpp"
+
+namespace modelgen::internal {
+
+using namespace modelgen::io;  // the file formats (modelgen/io/)
+
+IdentifiedStandard read_identified_standard(const std::string& path, const RobotModel& description,
+                                            const IdentificationModel& model) {
+  check_estimate_model(path, model);
+  const JsonDocument document = read_json_document(path);
+  const nlohmann::json& json = document.value;
+  if (!json.is_object() || !json.contains("standard")) {
+    throw InputError(document.at(""),
+                     "the estimate has no \"standard\" block: base parameters alone do not "
+                     "determine each link's inertial; refit with 'modelid fit --physical -o "
+                     "EST.json', which writes a physically consistent standard set");
+  }
+  const nlohmann::json& block = json["standard"];
+  const std::string block_pointer = json_pointer("", "standard");
+  if (!block.is_object()) {
+    throw InputError(document.at(block_pointer), "\"standard\" must be an object of name: value");
+  }
+
+  const std::vector<std::string>& names = model.standard_param_names();
+  IdentifiedStandard out;
+  out.values = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(names.size()));
+  std::vector<bool> given(names.size(), false);
+  for (const auto& [name, value] : block.items()) {
+    const SourceLocation where = document.at(json_pointer(block_pointer, name));
+    std::size_t k = 0;
+    while (k < names.size() && names[k] != name) ++k;
+    if (k == names.size()) {
+      throw InputError(where, "'" + name + "' is not a standard parameter of '" + model.name() +
+                                  "'" + did_you_mean(name, names));
+    }
+    if (!value.is_number()) throw InputError(where, "the value of '" + name + "' is not a number");
+    out.values[static_cast<Eigen::Index>(k)] = value.get<double>();
+    given[k] = true;
+  }
+  for (std::size_t k = 0; k < names.size(); ++k) {
+    if (!given[k]) {
+      throw InputError(document.at(block_pointer),
+                       "\"standard\" has no value for '" + names[k] +
+                           "'; an estimate of fit --physical gives every standard parameter of "
+                           "the robot");
+    }
+  }
+  // The base estimate and the standard set must agree (a hand-edited file would make export
+  // write something else than was identified); read_base_parameters checks it.
+  if (json.contains("parameters")) read_base_parameters(path, model);
+  if (json.contains("method") && json["method"].is_string()) out.method = json["method"];
+
+  // What export writes must load again: the loaders refuse impossible inertials.
+  for (const PhysicalViolation& violation : physical_violations(description.tree, out.values)) {
+    const std::string& link =
+        description.tree.bodies[static_cast<std::size_t>(violation.body)].name;
+    throw InputError(document.at(json_pointer(block_pointer, violation.parameter)),
+                     "link '" + link + "': " + violation.condition +
+                         "; export writes physically consistent values only (fit --physical "
+                         "gives them)");
+  }
+  return out;
+}
+
+}  // namespace modelgen::internal

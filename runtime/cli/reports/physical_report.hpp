@@ -1,0 +1,51 @@
+// fit --physical: the physically consistent estimate beside the unconstrained one, on the
+// terminal and in EST.json (modelgen/estimation/physical.hpp).
+#pragma once
+
+#include <iosfwd>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "modelgen/estimation/least_squares.hpp"
+#include "modelgen/estimation/physical.hpp"
+#include "modelgen/io/estimate_file.hpp"
+#include "modelgen/model/identification_model.hpp"
+#include "modelgen/model/robot_model.hpp"
+
+namespace modelgen::internal {
+
+using namespace modelgen::io;  // the file formats (modelgen/io/)
+
+struct PhysicalEstimate {
+  PhysicalFitResult fit;
+  double prior_weight = 0;
+  std::vector<std::string> standard_names;
+  std::vector<LinkInertial> links;
+  double rel_error_norm = 0;  ///< of the torques with the consistent estimate, set by the caller
+};
+
+/// The consistent fit of `unconstrained` for the model described by `description`, with the
+/// description's a-priori values (URDF inertials, YAML `known`) as the prior. Throws
+/// std::runtime_error when the description does not match the model.
+PhysicalEstimate physical_estimate(const RobotModel& description, const IdentificationModel& model,
+                                   const LeastSquaresResult& unconstrained, double prior_weight);
+
+/// The mass, centre of mass and inertia about it of every complete body of `tree`.
+std::vector<LinkInertial> link_inertials(const RigidBodyTree& tree, const Eigen::VectorXd& standard);
+
+/// EST.json's block of the consistent fit.
+PhysicalBlock physical_block(const PhysicalEstimate& physical,
+                             const std::vector<EstimatedParameter>& unconstrained,
+                             double unconstrained_rel_error_norm);
+
+/// The table of both estimates, the cost of consistency and the binding constraints.
+/// `residual_dof` is the unconstrained fit's equations minus parameters (the weighted sum of
+/// squares over sigma^2 it reached).
+void print_physical(std::ostream& out, const std::vector<std::string>& base_names,
+                    const LeastSquaresResult& unconstrained, double unconstrained_rel_error_norm,
+                    const PhysicalEstimate& physical, long long residual_dof);
+
+}  // namespace modelgen::internal

@@ -1,0 +1,96 @@
+// The estimate file of modelid (EST.json): what `fit -o` writes, and the check that an
+// estimate given to `predict` belongs to the model it is used with. The parameter values are
+// read back by read_base_parameters (runtime/cli/parameter_file.hpp).
+#pragma once
+
+#include <array>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "modelgen/model/identification_model.hpp"
+
+namespace modelgen::io {
+
+struct EstimatedParameter {
+  std::string name;             ///< base parameter name, e.g. "ZZ1R"
+  double value = 0;             ///< SI units of the parameter (kg m^2, kg m, kg, N m s/rad, ...)
+  double std_dev = 0;           ///< standard deviation, same unit (Gautier & Briot eq. 18)
+  double rel_std_dev = 0;       ///< in %, +inf for a zero estimate (written as null)
+  std::optional<double> truth;  ///< from fit --truth
+};
+
+/// The essential parameters (Gautier & Briot, iterative elimination with ratio r_sigma).
+struct EssentialEstimate {
+  double r_sigma = 0;
+  std::vector<std::string> kept;               ///< in base parameter order
+  std::vector<std::string> eliminated;         ///< in elimination order
+  std::vector<EstimatedParameter> parameters;  ///< the kept ones, re-estimated
+  double rel_error_norm = 0;                   ///< of the fitted equations
+  double condition_number = 0;
+};
+
+/// A body's mass distribution for people: mass, centre of mass and inertia about it, in the
+/// body frame (SI units).
+struct LinkInertial {
+  std::string body;
+  double mass = 0;
+  std::array<double, 3> com{};
+  std::array<double, 6> inertia_com{};  ///< xx, xy, xz, yy, yz, zz (tensor entries)
+};
+
+/// What fit --physical adds; the consistent base estimate itself is EstimateFile::parameters.
+struct PhysicalBlock {
+  double prior_weight = 0;
+  double cost_increase = 0;  ///< of the weighted sum of squares, in sigma^2
+  double unconstrained_rel_error_norm = 0;
+  std::vector<std::string> binding_constraints;
+  std::vector<EstimatedParameter> unconstrained;               ///< the fit without constraints
+  std::vector<std::pair<std::string, double>> standard;        ///< consistent, by standard name
+  std::vector<LinkInertial> links;
+};
+
+struct EstimateFile {
+  std::string model;                           ///< IdentificationModel::name()
+  std::string description_sha256;              ///< of the description the model was made from
+  std::string method;                          ///< "IDIM-OLS", "IDIM-WLS", "PIM-WLS"
+  std::vector<EstimatedParameter> parameters;  ///< every base parameter, in model order
+  double rel_error_norm = 0;                   ///< ||tau - W beta|| / ||tau||
+  double condition_number = 0;
+  double residual_std = 0;                  ///< sigma_rho (eq. 17)
+  std::vector<double> rms_per_axis;         ///< rms torque error per joint
+  std::vector<double> rms_torque_per_axis;  ///< rms measured torque per joint
+  long long samples = 0;
+  std::vector<std::string> data;  ///< the --data files as given
+  /// The data options the fit was run with, as command-line words (data_option_words).
+  std::vector<std::string> data_options;
+  std::optional<EssentialEstimate> essential;
+  std::optional<PhysicalBlock> physical;
+};
+
+/// The JSON text of an estimate: {"model", "description_sha256", "method", "samples", "data",
+/// "data_options", "rel_error_norm", "condition_number", "residual_std", "rms_per_axis",
+/// "rms_torque_per_axis", "parameters": [{"name", "value", "std", "rel_std", "truth"?}],
+/// "essential"?: {"r_sigma", "kept", "eliminated", "parameters", "rel_error_norm",
+/// "condition_number"}, "standard"?: {"XX1": ..., ...}, "links"?: [{"body", "mass", "com",
+/// "inertia_com"}], "physical"?: {"prior_weight", "cost_increase", "binding_constraints",
+/// "unconstrained_rel_error_norm", "unconstrained": [...]}}. Non-finite numbers are written as
+/// null.
+std::string estimate_json(const EstimateFile& estimate);
+
+/// Refuses a parameter file made for another model: when the JSON file at `path` has a
+/// non-empty "description_sha256" that differs from model.description_sha256(), throws
+/// InputError "PATH: error: the estimate belongs to another model ...". Files without the field
+/// (hand-written parameter files) pass. Throws InputError for a file that cannot be read or is
+/// not JSON, or whose field is not a string.
+/// `what` names the file in the message ("estimate", "truth").
+void check_estimate_model(const std::string& path, const IdentificationModel& model,
+                          const std::string& what = "estimate");
+
+/// The "data_options" of the estimate file at `path` (words as fit wrote them), or nothing
+/// when the file has none (hand-written parameter files, estimates of older versions).
+/// Throws std::runtime_error "PATH: error: ..." when the field is not a list of strings.
+std::optional<std::vector<std::string>> read_data_options(const std::string& path);
+
+}  // namespace modelgen::io

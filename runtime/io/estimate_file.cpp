@@ -1,0 +1,128 @@
+// EST.json through nlohmann::json: writing the estimate of fit, checking the model of an
+// estimate before predict uses it.
+
+#include "modelgen/io/estimate_file.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+#include <nlohmann/json.hpp>
+
+#include "modelgen/io/json_file.hpp"
+#include "modelgen/model/error.hpp"
+
+namespace modelgen::io {
+
+namespace {
+
+// JSON has no infinity or NaN: a relative standard deviation of a zero estimate is null.
+nlohmann::json number(double value) {
+  return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json();
+}
+
+nlohmann::json parameters_json(const std::vector<EstimatedParameter>& parameters) {
+  nlohmann::json list = nlohmann::json::array();
+  for (const EstimatedParameter& p : parameters) {
+    nlohmann::json entry = {{"name", p.name},
+                            {"value", number(p.value)},
+                            {"std", number(p.std_dev)},
+                            {"rel_std", number(p.rel_std_dev)}};
+    if (p.truth) entry["truth"] = number(*p.truth);
+    list.push_back(std::move(entry));
+  }
+  return list;
+}
+
+nlohmann::json numbers(const std::vector<double>& values) {
+  nlohmann::json list = nlohmann::json::array();
+  for (double value : values) list.push_back(number(value));
+  return list;
+}
+
+}  // namespace
+
+std::string estimate_json(const EstimateFile& estimate) {
+  nlohmann::json out;
+  out["model"] = estimate.model;
+  out["description_sha256"] = estimate.description_sha256;
+  out["method"] = estimate.method;
+  out["samples"] = estimate.samples;
+  out["data"] = estimate.data;
+  out["data_options"] = estimate.data_options;
+  out["rel_error_norm"] = number(estimate.rel_error_norm);
+  out["condition_number"] = number(estimate.condition_number);
+  out["residual_std"] = number(estimate.residual_std);
+  out["rms_per_axis"] = numbers(estimate.rms_per_axis);
+  out["rms_torque_per_axis"] = numbers(estimate.rms_torque_per_axis);
+  out["parameters"] = parameters_json(estimate.parameters);
+  if (estimate.essential) {
+    const EssentialEstimate& e = *estimate.essential;
+    out["essential"] = {{"r_sigma", e.r_sigma},
+                        {"kept", e.kept},
+                        {"eliminated", e.eliminated},
+                        {"parameters", parameters_json(e.parameters)},
+                        {"rel_error_norm", number(e.rel_error_norm)},
+                        {"condition_number", number(e.condition_number)}};
+  }
+  if (estimate.physical) {
+    const PhysicalBlock& p = *estimate.physical;
+    nlohmann::json standard = nlohmann::json::object();
+    for (const auto& [name, value] : p.standard) standard[name] = number(value);
+    out["standard"] = std::move(standard);
+    nlohmann::json links = nlohmann::json::array();
+    for (const LinkInertial& link : p.links) {
+      links.push_back({{"body", link.body},
+                       {"mass", number(link.mass)},
+                       {"com", numbers({link.com.begin(), link.com.end()})},
+                       {"inertia_com", numbers({link.inertia_com.begin(), link.inertia_com.end()})}});
+    }
+    out["links"] = std::move(links);
+    out["physical"] = {{"prior_weight", number(p.prior_weight)},
+                       {"cost_increase", number(p.cost_increase)},
+                       {"binding_constraints", p.binding_constraints},
+                       {"unconstrained_rel_error_norm", number(p.unconstrained_rel_error_norm)},
+                       {"unconstrained", parameters_json(p.unconstrained)}};
+  }
+  return out.dump(2) + "\n";
+}
+
+void check_estimate_model(const std::string& path, const IdentificationModel& model,
+                          const std::string& what) {
+  const JsonDocument document = read_json_document(path);
+  const nlohmann::json& json = document.value;
+  if (!json.is_object() || !json.contains("description_sha256")) return;
+  const nlohmann::json& field = json["description_sha256"];
+  if (!field.is_string()) {
+    throw InputError(document.at("/description_sha256"), "\"description_sha256\" must be a string");
+  }
+  const std::string sha = field.get<std::string>();
+  if (sha.empty() || sha == model.description_sha256()) return;
+  std::string made_for = "another model";
+  if (json.contains("model") && json["model"].is_string()) {
+    made_for = "'" + json["model"].get<std::string>() + "'";
+  }
+  throw InputError({path}, "the " + what + " belongs to another model: it was " +
+                               "identified on " + made_for + " (description_sha256 '" + sha +
+                               "'), --robot is '" + model.name() + "' (description_sha256 '" +
+                               model.description_sha256() + "'); the hashes differ");
+}
+
+std::optional<std::vector<std::string>> read_data_options(const std::string& path) {
+  const nlohmann::json json = read_json_file(path);
+  if (!json.is_object() || !json.contains("data_options")) return std::nullopt;
+  const nlohmann::json& field = json["data_options"];
+  std::vector<std::string> words;
+  if (field.is_array()) {
+    for (const nlohmann::json& word : field) {
+      if (!word.is_string()) break;
+      words.push_back(word.get<std::string>());
+    }
+  }
+  if (!field.is_array() || words.size() != field.size()) {
+    throw std::runtime_error(path + ": error: \"data_options\" must be a list of strings (the " +
+                             "command-line words of the fit's data options)");
+  }
+  return words;
+}
+
+}  // namespace modelgen::io
