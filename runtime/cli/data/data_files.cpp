@@ -11,13 +11,14 @@ namespace modelgen::internal {
 
 Experiments read_experiments(const std::vector<std::string>& paths,
                              const IdentificationModel& model, const PreparationOptions& options,
-                             EffortColumns effort, std::ostream& report) {
+                             EffortColumns effort, std::ostream& report, bool keep_raw) {
   Experiments out;
   Progress progress("reading data", static_cast<long long>(paths.size()));
   for (const std::string& path : paths) {
     progress.update(static_cast<long long>(out.data.size()), path);
-    PreparedExperiment prepared = prepare_experiment(read_trajectory_csv(path, model.dof(), effort),
-                                                     model.drive_chain(), options);
+    Trajectory raw = read_trajectory_csv(path, model.dof(), effort);
+    if (keep_raw) out.raw.push_back(raw);
+    PreparedExperiment prepared = prepare_experiment(std::move(raw), model.drive_chain(), options);
     report << "  " << path << ": " << prepared.summary << "\n";
     if (!prepared.warning.empty()) std::cerr << prepared.warning << "\n";
     out.data.push_back(std::move(prepared.data));

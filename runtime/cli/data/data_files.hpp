@@ -47,15 +47,19 @@ struct Experiments {
   std::vector<Eigen::VectorXd> tau_noise_variance;
   /// Per experiment: the noise of its prepared q, dq, ddq, tau with --periodic, else empty.
   std::vector<PeriodicNoise> noise;
+  /// Per experiment: the file as read, before the preparation, when read_experiments was asked
+  /// to keep it (the closed-loop fits need the reference qr and the first samples); else empty.
+  std::vector<Trajectory> raw;
 };
 
 /// Reads each CSV file (read_trajectory_csv: t, q1..qn, tau1..taun or currents i1..in,
 /// optionally dq, ddq) for `model` and prepares it (prepare_experiment with the model's drive
 /// chain); prints one summary line per file to `report` and warnings to stderr. Shows
 /// progress on stderr for many or large files. Throws DataError naming the file, line and
-/// column of the first problem.
+/// column of the first problem. With `keep_raw`, Experiments::raw holds each file as read (each
+/// file is read once either way).
 Experiments read_experiments(const std::vector<std::string>& paths,
                              const IdentificationModel& model, const PreparationOptions& options,
-                             EffortColumns effort, std::ostream& report);
+                             EffortColumns effort, std::ostream& report, bool keep_raw = false);
 
 }  // namespace modelgen::internal

@@ -18,6 +18,7 @@
 #include "runtime/cli/common/text_format.hpp"
 #include "runtime/cli/data/fourier_file.hpp"
 #include "runtime/cli/excitation/a_priori_torque.hpp"
+#include "runtime/cli/excitation/design_report.hpp"
 #include "runtime/cli/excitation/trajectory_limits.hpp"
 #include "runtime/cli/plots/torque_plots.hpp"
 #include "runtime/cli/plots/trajectory_plot.hpp"
@@ -118,23 +119,6 @@ std::vector<JointLimits> design_limits(const CommandLine& args, const ModelSourc
   return limits;
 }
 
-// The description's a-priori base parameters (unknown standard values taken as 0), or none.
-std::optional<Eigen::VectorXd> a_priori_base(const ModelSource& source) {
-  const RobotModel* description = source.any_description();
-  if (description == nullptr || description->param_names() != source.model->standard_param_names()) {
-    return std::nullopt;
-  }
-  Eigen::VectorXd standard = Eigen::VectorXd::Zero(source.model->num_standard_params());
-  bool any = false;
-  for (std::size_t k = 0; k < description->known_values.size(); ++k) {
-    if (description->known_values[k]) standard[static_cast<Eigen::Index>(k)] = *description->known_values[k], any = true;
-  }
-  if (!any) return std::nullopt;
-  Eigen::VectorXd beta(source.model->num_base_params());
-  source.model->base_from_standard(standard.data(), beta.data());
-  return beta;
-}
-
 std::string trajectory_yaml(const ExcitationDesign& design, const std::string& header) {
   std::ostringstream out;
   out << header << "period: " << shortest(design.period) << "\nform: position\njoints:\n";
@@ -154,10 +138,8 @@ std::string trajectory_yaml(const ExcitationDesign& design, const std::string& h
   return out.str();
 }
 
-}  // namespace
-
-int run_design(const CommandLine& args) {
-  const ModelSource source = load_model_source(args.one("--robot"), angle_tolerance_option(args));
+// The problem the options describe (fit's table checked types; the ranges are design's).
+ExcitationDesignProblem design_problem(const CommandLine& args, const ModelSource& source) {
   const IdentificationModel& model = *source.model;
   ExcitationDesignProblem problem;
   problem.model = &model;
@@ -171,11 +153,8 @@ int run_design(const CommandLine& args) {
   problem.hold = parse_hold(args, source, problem.moving);
   if (const auto beta = effort_check_parameters(std::cerr, "design", source)) problem.a_priori = *beta;
   if (args.has("--criterion")) {
-    const std::string& name = args.one("--criterion");
-    if (name != "cond" && name != "logdet") {
-      throw UsageError{"--criterion is 'cond' or 'logdet', not '" + name + "'"};
-    }
-    problem.criterion = name == "cond" ? DesignCriterion::kCond : DesignCriterion::kLogDet;
+    problem.criterion =
+        args.one("--criterion") == "cond" ? DesignCriterion::kCond : DesignCriterion::kLogDet;
   }
   if (args.has("--margin")) {
     problem.margin = parse_number(args.one("--margin"), "--margin");
@@ -195,14 +174,42 @@ int run_design(const CommandLine& args) {
       throw UsageError{"--seed must be a non-negative integer, not '" + text + "'"};
     }
   }
+  problem.progress = [](const std::string& line) {
+    std::cerr << "modelid design: " << line << "\n";
+  };
+  return problem;
+}
+
+// The head of the written file: the command that makes it again (the options that change it,
+// as given) and the criterion it reached.
+std::string design_header(const CommandLine& args, const ExcitationDesignProblem& problem,
+                          const ExcitationDesign& design) {
+  std::ostringstream header;
+  header << "# made by: modelid design";
+  for (const char* option : {"--robot", "--angle-tolerance", "--period", "--harmonics", "--axes",
+                             "--hold", "--criterion", "--margin", "--starts", "--seed", "--samples",
+                             "--ddq-limit", "--max-evaluations"}) {
+    if (args.has(option)) header << " " << option << " " << args.one(option);
+  }
+  header << "\n# criterion "
+         << (problem.criterion == DesignCriterion::kCond ? "log cond" : "-log det")
+         << ": best of 100 random feasible starts " << fixed(design.before.value, 0, 6)
+         << ", this design " << fixed(design.after.value, 0, 6) << "\n";
+  return header.str();
+}
+
+}  // namespace
+
+int run_design(const CommandLine& args) {
+  const ModelSource source = load_model_source(args.one("--robot"), angle_tolerance_option(args));
+  const IdentificationModel& model = *source.model;
+  const ExcitationDesignProblem problem = design_problem(args, source);
   const double noise = args.has("--noise") ? parse_number(args.one("--noise"), "--noise") : 1.0;
-  if (!(noise > 0)) throw UsageError{"--noise must be a positive standard deviation (N m)"};
   const std::string& output = args.one("-o");
   if (args.has("--plot")) check_plot_folder(args.one("--plot"));
   // Read before the optimisation: a broken file should not cost a design run.
   std::optional<FourierTrajectory> compared;
   if (args.has("--compare")) compared = read_fourier(args.one("--compare"), model.dof());
-  problem.progress = [](const std::string& line) { std::cerr << "modelid design: " << line << "\n"; };
 
   // The library's reasons (effort limits no start meets) name no file; the description is it.
   const ExcitationDesign design = [&] {
@@ -215,116 +222,15 @@ int run_design(const CommandLine& args) {
     }
   }();
 
-  // The file first: the report below is about what was written.
-  // The command that makes this file again (the options that change it, as given).
-  std::ostringstream header;
-  header << "# made by: modelid design";
-  for (const char* option : {"--robot", "--angle-tolerance", "--period", "--harmonics", "--axes",
-                             "--hold", "--criterion", "--margin", "--starts", "--seed",
-                             "--samples", "--ddq-limit", "--max-evaluations"}) {
-    if (args.has(option)) header << " " << option << " " << args.one(option);
-  }
-  header << "\n# criterion " << (problem.criterion == DesignCriterion::kCond ? "log cond" : "-log det")
-         << ": best of 100 random feasible starts " << fixed(design.before.value, 0, 6)
-         << ", this design " << fixed(design.after.value, 0, 6) << "\n";
-  write_file(output, trajectory_yaml(design, header.str()));
-
-  std::ostream& out = std::cout;
-  const auto& names = model.base_param_names();
-  out << model.name() << ": " << problem.moving.size() << " moving axes, " << problem.harmonics
-      << " harmonics, period " << shortest(problem.period) << " s; the regressor stacked over "
-      << design.samples << " samples of one period (" << fixed(design.samples / problem.period, 0, 6)
-      << " Hz); columns divided by their RMS norm over the random starts (fixed: units drop "
-         "out, a weakly excited parameter still counts)\n";
-  out << "base parameters the moving axes excite: " << design.columns.size() << " of "
-      << names.size();
-  if (design.columns.size() < names.size()) {
-    out << " (left out:";
-    for (std::size_t c = 0; c < names.size(); ++c) {
-      if (std::find(design.columns.begin(), design.columns.end(), static_cast<int>(c)) == design.columns.end()) {
-        out << " " << names[c];
-      }
-    }
-    out << ")";
-  }
-  out << "\n";
-  const auto line = [&out](const std::string& what, const CriterionValue& v) {
-    out << pad(what, 28) << "cond " << fixed(v.cond_scaled, 0, 5) << ", unit columns "
-        << fixed(v.cond_unit, 0, 5) << ", unscaled " << fixed(v.cond_unscaled, 0, 5)
-        << "; smallest singular value " << fixed(v.sigma_min_scaled, 0, 5) << ", unscaled "
-        << fixed(v.sigma_min_unscaled, 0, 5) << "\n";
-  };
-  out << "criterion " << (problem.criterion == DesignCriterion::kCond ? "log cond" : "-log det")
-      << ": best of 100 random feasible starts " << fixed(design.before.value, 0, 6)
-      << ", designed " << fixed(design.after.value, 0, 6) << " (" << design.evaluations
-      << " evaluations)\n";
-  // How far the criterion could go at all: a pair of columns nearly parallel sets a floor no
-  // column scaling removes (Coulomb and viscous friction of one joint, typically: sign(dq) and
-  // dq). `selected` holds the excited columns.
-  const auto floor = [&](const std::string& what, const Eigen::MatrixXd& selected) {
-    const CollinearPair pair = most_collinear_pair(selected);
-    out << pad(what, 28) << "most collinear columns "
-        << names[static_cast<std::size_t>(design.columns[static_cast<std::size_t>(pair.first)])] << " and "
-        << names[static_cast<std::size_t>(design.columns[static_cast<std::size_t>(pair.second)])] << " (|cos| "
-        << fixed(pair.correlation, 0, 4) << "): no column scaling brings cond below "
-        << fixed(pair.cond_floor, 0, 4) << "\n";
-  };
-  line("best random feasible start:", design.before);
-  line("design:", design.after);
-  Eigen::MatrixXd W(design.regressor.rows(), static_cast<Eigen::Index>(design.columns.size()));
-  for (std::size_t c = 0; c < design.columns.size(); ++c) W.col(static_cast<Eigen::Index>(c)) = design.regressor.col(design.columns[c]);
-  floor("design:", W);
-  if (compared) {
-    // The same criterion on another trajectory (Swevers 2002 Table 1, say): the same columns
-    // and the same number of samples per period.
-    const Eigen::MatrixXd W = stacked_regressor(model, *compared, design.samples);
-    Eigen::MatrixXd selected(W.rows(), static_cast<Eigen::Index>(design.columns.size()));
-    for (std::size_t c = 0; c < design.columns.size(); ++c) {
-      selected.col(static_cast<Eigen::Index>(c)) = W.col(design.columns[c]);
-    }
-    const CriterionValue value = evaluate_criterion(selected, design.scale, problem.criterion, false);
-    out << "--compare " << args.one("--compare") << ": criterion " << fixed(value.value, 0, 6)
-        << " (period " << shortest(compared->period) << " s, " << design.samples << " samples)\n";
-    line("--compare:", value);
-    floor("--compare:", selected);
-  }
-  for (std::size_t j = 0; j < design.shrink.size(); ++j) {
-    if (design.shrink[j] < 1) {
-      out << joint_label(source, static_cast<int>(j)) << ": left a limit between the optimiser's "
-          << "constraint points; its oscillation shrunk by " << fixed(100 * (1 - design.shrink[j]), 0, 3)
-          << "% to stay inside on the dense grid\n";
-    }
-  }
-  // sigma^2 (W^T W)^-1 over the excited columns: the covariance of an OLS fit of one period
-  // sampled as assumed, with the noise --noise on every torque sample.
-  const Eigen::VectorXd expected_sd = expected_std_devs(W, noise);
-  const std::optional<Eigen::VectorXd> prior = a_priori_base(source);
-  out << "expected standard deviations for --noise " << shortest(noise)
-      << " N m per torque sample, one period at the rate above"
-      << (prior ? ", %std of the description's a-priori values" : "") << ":\n";
-  for (std::size_t c = 0; c < design.columns.size(); ++c) {
-    const double sd = expected_sd[static_cast<Eigen::Index>(c)];
-    out << "  " << pad(names[static_cast<std::size_t>(design.columns[c])], 10) << " sd " << fixed(sd, 0, 4);
-    if (prior && (*prior)[design.columns[c]] != 0) {
-      out << "  " << fixed(100 * sd / std::abs((*prior)[design.columns[c]]), 0, 3) << "%";
-    }
-    out << "\n";
-  }
+  // The file first: the report is about what was written.
+  write_file(output, trajectory_yaml(design, design_header(args, problem, design)));
   const FourierTrajectory trajectory = to_trajectory(design.q0, design.a, design.b, design.period);
-  const long points = limit_grid_points(trajectory);
-  out << "limit use on " << points << " points of one period (" << fixed(points / design.period, 0, 6)
-      << " Hz), margin " << shortest(problem.margin) << ":\n";
-  print_limit_use(out, source, trajectory_extremes(trajectory), problem.limits);
-  if (problem.a_priori.size() > 0) {
-    if (design.torque_shrink < 1) {
-      out << "the a-priori torques left an effort limit between the optimiser's constraint "
-             "points; every oscillation shrunk by "
-          << fixed(100 * (1 - design.torque_shrink), 0, 3) << "% to stay inside on the dense grid\n";
-    }
-    out << "a-priori joint torques (the description's inertial values; drive and friction values "
-           "it does not give taken as 0), held within the effort limits times the margin:\n";
-    print_torque_use(out, source, torque_peaks(model, problem.a_priori, trajectory), problem.limits);
-  }
+  const DesignReport report{source, problem, design, trajectory};
+  print_conditioning(std::cout, report);
+  if (compared) print_comparison(std::cout, report, *compared, args.one("--compare"));
+  print_shrinks(std::cout, report);
+  print_expected_precision(std::cout, report, noise);
+  print_limits_and_torques(std::cout, report);
   std::cerr << "modelid design: written to " << output << "\n";
   if (args.has("--plot")) {
     const std::string plot = write_trajectory_plot(args.one("--plot"), trajectory, source, problem.limits,

@@ -6,40 +6,22 @@
 #include <chrono>
 #include <cmath>
 
-#include "modelgen/data/trajectory_csv.hpp"
 #include "runtime/cli/common/text_format.hpp"
 #include "runtime/cli/data/controller_file.hpp"
 
 namespace modelgen::internal {
 
-std::optional<ClosedLoopMethod> closed_loop_method(const std::string& text) {
-  if (text == "iv") return ClosedLoopMethod::kIv;
-  if (text == "didim") return ClosedLoopMethod::kDidim;
-  return std::nullopt;
-}
-
-const char* closed_loop_method_name(ClosedLoopMethod method) {
-  return method == ClosedLoopMethod::kIv ? "IDIM-IV" : "DIDIM";
-}
-
 Identification fit_closed_loop(const CommandLine& args, const IdentificationModel& model,
                                const Experiments& experiments,
                                const std::vector<double>& min_speed, ClosedLoopMethod method,
                                std::ostream& report, std::ostream& log) {
-  const char* name = closed_loop_method_name(method);
-  if (!args.has("--controller")) {
-    throw UsageError{std::string("--method ") + args.one("--method") +
-                     " simulates the robot under its controller: give --controller C.yaml"};
-  }
-  if (args.has("--motor-side") || args.has("--periodic")) {
-    throw UsageError{std::string(name) + " works on joint-side records on the controller's "
-                     "clock, without --motor-side or --periodic"};
-  }
+  const char* name = method == ClosedLoopMethod::kIv ? "IDIM-IV" : "DIDIM";
+  // --controller given, no --motor-side or --periodic: checked before the data were read.
   const PidGains gains = read_controller(args.one("--controller"), model.dof());
   const std::vector<std::string>& paths = args.all("--data");
   std::vector<ClosedLoopRecord> records;
   for (std::size_t e = 0; e < paths.size(); ++e) {
-    const Trajectory raw = read_trajectory_csv(paths[e], model.dof());
+    const Trajectory& raw = experiments.raw[e];  // read with the preparation, not again
     if (raw.qr.size() == 0) {
       throw DataError(paths[e] + ": error: " + name + " needs the reference positions of the "
                       "record, columns qr1..qr" + std::to_string(model.dof()) +

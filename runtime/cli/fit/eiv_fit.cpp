@@ -9,8 +9,6 @@
 
 namespace modelgen::internal {
 
-bool is_eiv_method(const std::string& text) { return text == "ml-eiv"; }
-
 void check_eiv_arguments(const CommandLine& args) {
   if (!args.has("--periodic")) {
     throw UsageError{

@@ -11,12 +11,8 @@
 
 namespace modelgen::internal {
 
-/// True for "ml-eiv".
-bool is_eiv_method(const std::string& text);
-
 /// Before the data are read: UsageError without --periodic (the noise of q, dq, ddq comes from
-/// the period average), and for the options the method does not use (--decimate, --min-speed,
-/// --essential, --controller).
+/// the period average). fit's table refuses the options the method does not use.
 void check_eiv_arguments(const CommandLine& args);
 
 /// Fits `model` to the prepared periods of `experiments` (each with its PeriodicNoise) and

@@ -1,37 +1,11 @@
 // modelid fit's options and methods, declared once: the table the command line is parsed by,
 // `modelid fit --help` and the usage come from.
 
-#include <stdexcept>
-
 #include "runtime/cli/common/commands.hpp"
 #include "runtime/cli/data/data_files.hpp"
 #include "runtime/cli/fit/fit_methods.hpp"
 
 namespace modelgen::internal {
-
-const std::vector<FitMethod>& fit_methods() {
-  static const std::vector<FitMethod> methods = {
-      {"ols", "IDIM-OLS",
-       "ordinary least squares on the inverse dynamic model "
-       "(Gautier & Briot eq. 14-19)"},
-      {"wls", "IDIM-WLS", "weighted least squares, one weight per joint (eq. 20)"},
-      {"pim-wls", "PIM-WLS", "the power identification model, weighted (eq. 8-12)"},
-      {"iv", "IDIM-IV",
-       "instrumental variables from a simulation under --controller (closed "
-       "loop, Janot et al. 2014)"},
-      {"didim", "DIDIM",
-       "the direct and inverse dynamic model under --controller (closed loop, "
-       "Gautier et al. 2013)"},
-      {"pm", "PM", "the projection method on closed-loop records (Bona & Curatella eq. 10-12)"},
-      {"ml", "ML",
-       "maximum likelihood of the nonlinear drive model with a-priori link values "
-       "(Swevers et al. 2002, eq. 18; --approach)"},
-      {"ml-eiv", "ML-EIV",
-       "errors-in-variables maximum likelihood on averaged periods "
-       "(Bona & Curatella eq. 13-16)"},
-  };
-  return methods;
-}
 
 namespace {
 
@@ -151,13 +125,6 @@ CommandSpec make_fit_spec() {
 const CommandSpec& fit_spec() {
   static const CommandSpec spec = make_fit_spec();
   return spec;
-}
-
-const FitMethod& fit_method(const std::string& name) {
-  for (const FitMethod& method : fit_methods()) {
-    if (method.name == name) return method;
-  }
-  throw std::logic_error("fit_method: '" + name + "' is not in the table of methods");
 }
 
 }  // namespace modelgen::internal

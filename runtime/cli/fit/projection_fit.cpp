@@ -9,7 +9,6 @@
 #include <string>
 
 #include "modelgen/closed_loop/projection_method.hpp"
-#include "modelgen/data/trajectory_csv.hpp"
 #include "modelgen/estimation/estimation_error.hpp"
 #include "runtime/cli/common/text_format.hpp"
 
@@ -40,18 +39,13 @@ int fir_lags(const std::string& text) {
 Identification fit_projection(const CommandLine& args, const IdentificationModel& model,
                               const Experiments& experiments, const std::vector<double>& min_speed,
                               std::ostream& report, std::ostream& log) {
-  if (args.has("--motor-side") || args.has("--periodic")) {
-    throw UsageError{
-        "the projection method (--method pm) works on joint-side records, without "
-        "--motor-side or --periodic"};
-  }
   ProjectionOptions options;
   if (args.has("--fir-lags")) options.fir_lags = fir_lags(args.one("--fir-lags"));
   options.min_speed = min_speed;
   const std::vector<std::string>& paths = args.all("--data");
   std::vector<ProjectionRecord> records;
   for (std::size_t e = 0; e < paths.size(); ++e) {
-    const Trajectory raw = read_trajectory_csv(paths[e], model.dof());
+    const Trajectory& raw = experiments.raw[e];  // read with the preparation, not again
     if (raw.qr.size() == 0) {
       throw DataError(paths[e] +
                       ": error: the projection method (--method pm) needs the "

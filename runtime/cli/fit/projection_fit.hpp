@@ -15,14 +15,14 @@ namespace modelgen::internal {
 /// Above this fraction of the torque norm discarded by the projection, fit --method pm warns.
 inline constexpr double kDiscardedWarning = 0.03;
 
-/// Identifies `model` by the projection method from the --data files of `args` (each read
-/// again for its reference columns qr1..qrn; `experiments` are the same files prepared), with
+/// Identifies `model` by the projection method from the --data files of `args` (`experiments`
+/// holds them prepared and as read, for the reference columns qr1..qrn), with
 /// the FIR's lags from --fir-lags or the decorrelation test, leaving out the samples slower than
 /// `min_speed` in stage 2. Prints the FIR's order, the test and the discarded fraction per joint
 /// to `report`, and to `log` a warning when more than kDiscardedWarning of the torque is
-/// discarded or the test fails. Throws UsageError with --motor-side, --periodic or a bad
-/// --fir-lags; DataError for a file without qr columns or whose prepared samples are not its
-/// own (resampled); EstimationError from the method.
+/// discarded or the test fails. Throws UsageError for a bad --fir-lags; DataError for a file
+/// without qr columns or whose prepared samples are not its own (resampled); EstimationError from
+/// the method.
 Identification fit_projection(const CommandLine& args, const IdentificationModel& model,
                               const Experiments& experiments, const std::vector<double>& min_speed,
                               std::ostream& report, std::ostream& log);
