@@ -64,4 +64,17 @@ std::vector<OptionSpec> common_options() {
   return {tolerance, progress};
 }
 
+OptionSpec robot_option(std::string value, std::string help) {
+  return {.name = "--robot", .value = std::move(value), .help = std::move(help), .required = true};
+}
+
+CommandSpec modelid_command(std::string name, std::string summary,
+                            std::vector<OptionSpec> options) {
+  CommandSpec spec{.program = "modelid", .name = std::move(name), .summary = std::move(summary)};
+  spec.options = std::move(options);
+  const std::vector<OptionSpec> common = common_options();
+  spec.options.insert(spec.options.end(), common.begin(), common.end());
+  return spec;
+}
+
 }  // namespace modelgen::internal

@@ -56,4 +56,12 @@ std::string modelid_usage();
 /// The options every command takes (--robot's --angle-tolerance, --progress), for the tables.
 std::vector<OptionSpec> common_options();
 
+/// --robot, required: a description file or the name of a shipped model (`value` and `help`
+/// say otherwise where a command needs a description file).
+OptionSpec robot_option(std::string value = "ROBOT",
+                        std::string help = "the description file or shipped model");
+
+/// The table of modelid COMMAND: `options`, then those every command takes.
+CommandSpec modelid_command(std::string name, std::string summary, std::vector<OptionSpec> options);
+
 }  // namespace modelgen::internal

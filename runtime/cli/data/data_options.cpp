@@ -2,6 +2,7 @@
 // table, the words fit records in EST.json so that predict prepares data the same way, and the
 // preparation they ask for.
 
+#include <algorithm>
 #include <stdexcept>
 
 #include "modelgen/signal/decimation.hpp"
@@ -106,7 +107,11 @@ const CommandSpec& data_options_spec() {
 
 void add_data_options(CommandSpec& spec) {
   const CommandSpec& data = data_options_spec();
-  spec.options.insert(spec.options.end(), data.options.begin(), data.options.end());
+  // Before the options every command takes, which close the table.
+  auto at = std::find_if(spec.options.begin(), spec.options.end(), [](const OptionSpec& option) {
+    return option.name == "--angle-tolerance";
+  });
+  spec.options.insert(at, data.options.begin(), data.options.end());
   spec.exclusive.insert(spec.exclusive.end(), data.exclusive.begin(), data.exclusive.end());
 }
 

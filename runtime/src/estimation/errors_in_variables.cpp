@@ -26,7 +26,7 @@
 
 namespace modelgen {
 
-using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+using RowMajor = RowMajorMatrix;
 
 namespace {
 
@@ -175,14 +175,7 @@ bool ErrorsInVariablesAccess::evaluate_block(const ErrorsInVariablesObjective& o
     // b = -G = W theta - tau.
     const Eigen::VectorXd bi = W * th - x.tau.row(k).transpose();
     model.inverse_dynamics_state_jacobian(q.data(), dq.data(), ddq.data(), theta, Js.data());
-    // M = (d tau / d x) Sigma_x over the state part; B = [-Js, I] so B Sigma B' = M Js' + D_tau.
-    for (int j = 0; j < n; ++j) {
-      M.col(j) = Js.col(j) * v.q[j] + Js.col(2 * n + j) * v.q_ddq[j];
-      M.col(n + j) = Js.col(n + j) * v.dq[j];
-      M.col(2 * n + j) = Js.col(2 * n + j) * v.ddq[j] + Js.col(j) * v.q_ddq[j];
-    }
-    S2 = M * Js.transpose();
-    S2.diagonal() += v.tau;
+    equation_error_covariance(Js, v, M, S2);
     const Eigen::LLT<Eigen::MatrixXd> llt(S2);
     if (llt.info() != Eigen::Success) return false;
     const auto L = llt.matrixL();

@@ -10,6 +10,23 @@
 
 namespace modelgen {
 
+using RowMajorMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+
+/// S_ML^2 of one sample (Bona & Curatella eq. 16), the covariance of its equation error: with
+/// B = [-Js, I], B Sigma B' = M Js' + D_tau, M = (d tau / d x) Sigma_x over the state part, from
+/// the state Jacobian `Js` (n x 3n) and the sample's noise `v`. `M` (n x 3n) is work space.
+inline void equation_error_covariance(const RowMajorMatrix& Js, const PeriodicNoise& v,
+                                      Eigen::MatrixXd& M, Eigen::MatrixXd& S2) {
+  const Eigen::Index n = Js.rows();
+  for (Eigen::Index j = 0; j < n; ++j) {
+    M.col(j) = Js.col(j) * v.q[j] + Js.col(2 * n + j) * v.q_ddq[j];
+    M.col(n + j) = Js.col(n + j) * v.dq[j];
+    M.col(2 * n + j) = Js.col(2 * n + j) * v.ddq[j] + Js.col(j) * v.q_ddq[j];
+  }
+  S2 = M * Js.transpose();
+  S2.diagonal() += v.tau;
+}
+
 struct ErrorsInVariablesAccess {
   // Residuals (and Jacobian rows) of samples [begin, end) into r and J at row (begin * dof).
   static bool evaluate_block(const ErrorsInVariablesObjective& o, const double* theta,

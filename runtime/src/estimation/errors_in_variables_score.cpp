@@ -16,7 +16,7 @@
 
 namespace modelgen {
 
-using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+using RowMajor = RowMajorMatrix;
 
 namespace {
 
@@ -95,13 +95,7 @@ std::optional<Eigen::MatrixXd> ErrorsInVariablesAccess::score_covariance(
       ddq = x.ddq.row(k).transpose();
       model.inverse_dynamics_state_jacobian(q.data(), dq.data(), ddq.data(), theta.data(),
                                             Js.data());
-      for (int j = 0; j < n; ++j) {
-        M.col(j) = Js.col(j) * v.q[j] + Js.col(2 * n + j) * v.q_ddq[j];
-        M.col(n + j) = Js.col(n + j) * v.dq[j];
-        M.col(2 * n + j) = Js.col(2 * n + j) * v.ddq[j] + Js.col(j) * v.q_ddq[j];
-      }
-      S2 = M * Js.transpose();
-      S2.diagonal() += v.tau;
+      equation_error_covariance(Js, v, M, S2);
       const Eigen::LLT<Eigen::MatrixXd> llt(S2);
       const Eigen::MatrixXd Jk = J.middleRows((first + k) * n, n);
       A[static_cast<std::size_t>(k)] = llt.matrixU().solve(Jk).transpose();  // L^-T J_k
