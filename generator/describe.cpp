@@ -89,55 +89,60 @@ void print_matrix(std::ostream& out, const Eigen::MatrixXd& m, const std::string
   out << body.str().substr(body.str().find('\n') + 1);  // drop the empty header line
 }
 
-}  // namespace
-
-std::string describe(const RobotModel& model) {
-  std::ostringstream out;
+void print_summary(std::ostream& out, const RobotModel& model) {
   const RigidBodyTree& tree = model.tree;
   const bool mdh = model.format == DescriptionFormat::kMdhYaml;
   out << "robot " << model.name << " (" << (mdh ? "modified DH" : "URDF") << ", "
       << model.source_file << ")\n";
   out << "  " << tree.dof << " moving joints, " << tree.bodies.size() << " bodies, gravity "
       << vector_text(tree.gravity.data(), 3) << " m/s^2\n\n";
+}
 
-  if (mdh) {
-    out << "joints (Khalil-Kleinfinger modified DH: Rot_x(alpha) Trans_x(d) Rot_z(theta) "
-           "Trans_z(r))\n";
-    Table table({"j", "name", "type", "ant", "alpha", "d", "theta", "r", "q limits", "dq max",
-                 "ddq max"});
-    for (std::size_t j = 0; j < tree.bodies.size(); ++j) {
-      const Body& body = tree.bodies[j];
-      const JointDescription& joint = model.joints[j];
-      const MdhParameters& p = *joint.mdh;
-      table.add({std::to_string(j + 1), body.name, type_name(body.type),
-                 std::to_string(body.parent + 1), p.alpha.text, format_number(p.d), p.theta.text,
-                 format_number(p.r), limits_text(joint.limits), optional_number(joint.limits.dq),
-                 optional_number(joint.limits.ddq)});
-    }
-    table.print(out, "  ");
-  } else {
-    out << "bodies (frame j = parent frame * origin(xyz, rpy) * joint motion along axis)\n";
-    Table table({"j", "link", "joint", "type", "parent", "xyz", "rpy", "axis", "q limits",
-                 "dq max", "effort max"});
-    for (std::size_t j = 0; j < tree.bodies.size(); ++j) {
-      const Body& body = tree.bodies[j];
-      const JointDescription& joint = model.joints[j];
-      const auto angles = rpy(body.fixed.rotation);
-      table.add({std::to_string(j + 1), body.name, joint.name, type_name(body.type),
-                 body.parent < 0 ? joint.parent_link : tree.bodies[body.parent].name,
-                 vector_text(body.fixed.translation.data(), 3), vector_text(angles.data(), 3),
-                 vector_text(body.axis.data(), 3), limits_text(joint.limits),
-                 optional_number(joint.limits.dq), optional_number(joint.limits.effort)});
-    }
-    table.print(out, "  ");
+void print_mdh_joints(std::ostream& out, const RobotModel& model) {
+  const RigidBodyTree& tree = model.tree;
+  out << "joints (Khalil-Kleinfinger modified DH: Rot_x(alpha) Trans_x(d) Rot_z(theta) "
+         "Trans_z(r))\n";
+  Table table(
+      {"j", "name", "type", "ant", "alpha", "d", "theta", "r", "q limits", "dq max", "ddq max"});
+  for (std::size_t j = 0; j < tree.bodies.size(); ++j) {
+    const Body& body = tree.bodies[j];
+    const JointDescription& joint = model.joints[j];
+    const MdhParameters& p = *joint.mdh;
+    table.add({std::to_string(j + 1), body.name, type_name(body.type),
+               std::to_string(body.parent + 1), p.alpha.text, format_number(p.d), p.theta.text,
+               format_number(p.r), limits_text(joint.limits), optional_number(joint.limits.dq),
+               optional_number(joint.limits.ddq)});
   }
-  if (!model.notes.empty()) {
-    out << "\nangles taken as exact quarter turns (the table above shows the values used)\n";
-    for (const DescriptionNote& note : model.notes) {
-      out << "  line " << note.where.line << ": " << note.message << "\n";
-    }
-  }
+  table.print(out, "  ");
+}
 
+void print_urdf_bodies(std::ostream& out, const RobotModel& model) {
+  const RigidBodyTree& tree = model.tree;
+  out << "bodies (frame j = parent frame * origin(xyz, rpy) * joint motion along axis)\n";
+  Table table({"j", "link", "joint", "type", "parent", "xyz", "rpy", "axis", "q limits", "dq max",
+               "effort max"});
+  for (std::size_t j = 0; j < tree.bodies.size(); ++j) {
+    const Body& body = tree.bodies[j];
+    const JointDescription& joint = model.joints[j];
+    const auto angles = rpy(body.fixed.rotation);
+    table.add({std::to_string(j + 1), body.name, joint.name, type_name(body.type),
+               body.parent < 0 ? joint.parent_link : tree.bodies[body.parent].name,
+               vector_text(body.fixed.translation.data(), 3), vector_text(angles.data(), 3),
+               vector_text(body.axis.data(), 3), limits_text(joint.limits),
+               optional_number(joint.limits.dq), optional_number(joint.limits.effort)});
+  }
+  table.print(out, "  ");
+}
+
+void print_notes(std::ostream& out, const RobotModel& model) {
+  if (model.notes.empty()) return;
+  out << "\nangles taken as exact quarter turns (the table above shows the values used)\n";
+  for (const DescriptionNote& note : model.notes) {
+    out << "  line " << note.where.line << ": " << note.message << "\n";
+  }
+}
+
+void print_drive_chain(std::ostream& out, const RobotModel& model) {
   out << "\ndrive chain\n";
   const DriveChain& drives = model.drives;
   out << "  gear ratio: "
@@ -170,15 +175,21 @@ std::string describe(const RobotModel& model) {
         << vector_text(drives.joint_offset.data(), static_cast<int>(drives.joint_offset.size()))
         << "\n";
   }
+}
+
+void print_friction_and_payload(std::ostream& out, const RobotModel& model) {
   out << "  friction: " << (model.friction.viscous ? "viscous " : "")
       << (model.friction.coulomb ? "Coulomb " : "") << (model.friction.offset ? "offset " : "")
       << (model.friction.asymmetric ? "(asymmetric, Bona & Curatella eq. 2)" : "(symmetric)")
       << "; drive inertia: " << (model.rotor_inertia ? "yes" : "no") << "\n";
   if (model.payload_body >= 0) {
     out << "  payload carried by link " << model.payload_body + 1 << " ("
-        << tree.bodies[model.payload_body].name << ")\n";
+        << model.tree.bodies[model.payload_body].name << ")\n";
   }
+}
 
+void print_parameters(std::ostream& out, const RobotModel& model) {
+  const RigidBodyTree& tree = model.tree;
   out << "\nstandard parameters (" << tree.params.size() << ", Gautier & Briot eq. 3)\n";
   for (std::size_t j = 0; j < tree.bodies.size(); ++j) {
     std::string line;
@@ -194,6 +205,22 @@ std::string describe(const RobotModel& model) {
     any_known = true;
     out << "  " << tree.params[k].name << " = " << format_number(*model.known_values[k]) << "\n";
   }
+}
+
+}  // namespace
+
+std::string describe(const RobotModel& model) {
+  std::ostringstream out;
+  print_summary(out, model);
+  if (model.format == DescriptionFormat::kMdhYaml) {
+    print_mdh_joints(out, model);
+  } else {
+    print_urdf_bodies(out, model);
+  }
+  print_notes(out, model);
+  print_drive_chain(out, model);
+  print_friction_and_payload(out, model);
+  print_parameters(out, model);
   return out.str();
 }
 

@@ -17,6 +17,8 @@
 #include <fstream>
 #include <regex>
 #include <sstream>
+#include <string>
+#include <vector>
 
 #include "modelgen/model/error.hpp"
 
@@ -152,32 +154,39 @@ void recover_interrupted_run(const fs::path& directory) {
   for (const fs::path& path : stale) fs::remove(path, ignored);
 }
 
-}  // namespace
+// Which existing files this set may replace or retire (FileSet::set_owner).
+struct Ownership {
+  const std::string& generated_mark;
+  const std::string& owner_mark;
 
-void FileSet::write_to(const std::string& directory) const {
+  // Whether an existing file was generated, and from another input than this set's.
+  bool generated(const fs::path& path) const {
+    return !generated_mark.empty() && first_line(path).find(generated_mark) != std::string::npos;
+  }
+  bool foreign(const fs::path& path) const {
+    return generated(path) && first_line(path).find(owner_mark) == std::string::npos;
+  }
+};
+
+void create_output_directory(const std::string& directory) {
   std::error_code ec;
   fs::create_directories(directory, ec);
   if (ec || !fs::is_directory(directory)) {
     throw InputError({directory}, "cannot create the output directory" +
                                       (ec ? ": " + ec.message() : std::string()));
   }
-  const DirectoryLock lock(directory);
-  recover_interrupted_run(directory);
-  // Whether an existing file was generated, and from another input than this set's.
-  const auto generated = [&](const fs::path& path) {
-    return !generated_mark_.empty() && first_line(path).find(generated_mark_) != std::string::npos;
-  };
-  const auto foreign = [&](const fs::path& path) {
-    return generated(path) && first_line(path).find(owner_mark_) == std::string::npos;
-  };
-  // Refuse before touching anything if a destination is something other than a file, or the
-  // output of another input.
-  for (const OutputFile& file : files_) {
+}
+
+// Refuse before touching anything if a destination is something other than a file, or the
+// output of another input.
+void check_destinations(const std::string& directory, const std::vector<OutputFile>& files,
+                        const Ownership& ownership) {
+  for (const OutputFile& file : files) {
     const fs::path destination = fs::path(directory) / file.name;
     if (fs::exists(fs::symlink_status(destination)) && !fs::is_regular_file(destination)) {
       throw InputError({destination.string()}, "exists and is not a regular file; not replaced");
     }
-    if (fs::exists(destination) && foreign(destination)) {
+    if (fs::exists(destination) && ownership.foreign(destination)) {
       throw InputError({destination.string()},
                        "was generated from another description (its first line: '" +
                            first_line(destination) +
@@ -185,19 +194,126 @@ void FileSet::write_to(const std::string& directory) const {
                            "(no file was changed)");
     }
   }
+}
+
+// The retired files still in `directory` that are this set's to remove.
+std::vector<std::string> files_to_retire(const std::string& directory,
+                                         const std::vector<std::string>& retired_names,
+                                         const Ownership& ownership) {
+  std::vector<std::string> retired;
+  for (const std::string& name : retired_names) {
+    const fs::path path = fs::path(directory) / name;
+    if (!fs::is_regular_file(fs::symlink_status(path))) continue;
+    if (!ownership.generated_mark.empty() &&
+        (!ownership.generated(path) || ownership.foreign(path))) {
+      continue;  // not ours
+    }
+    retired.push_back(name);
+  }
+  return retired;
+}
+
+// The temporaries, backups and journal of one write_to in one directory, so that a failure at
+// any step can undo everything done so far before it throws.
+class Replacements {
+ public:
+  explicit Replacements(const std::string& directory)
+      : directory_(directory),
+        suffix_(std::to_string(::getpid())),
+        journal_(directory_ / kJournal),
+        journal_temporary_(directory_ / (std::string(kJournal) + ".tmp-" + suffix_)) {}
+
+  bool empty() const { return replacements_.empty(); }
+
+  // Writes each file whose content changed to a temporary beside its destination.
+  void write_temporaries(const std::vector<OutputFile>& files) {
+    for (const OutputFile& file : files) {
+      const fs::path destination = directory_ / file.name;
+      if (same_content(destination, file.content)) continue;
+      Replacement r;
+      r.name = file.name;
+      r.destination = destination;
+      r.temporary = directory_ / ("." + file.name + ".tmp-" + suffix_);
+      r.backup = directory_ / ("." + file.name + ".old-" + suffix_);
+      replacements_.push_back(r);
+      const std::string reason = write_new_file(r.temporary, file.content);
+      if (!reason.empty()) {
+        roll_back();
+        throw InputError({destination.string()},
+                         "cannot write the file: " + reason + " (no file was changed)");
+      }
+    }
+  }
+
+  // The commit point: once the journal exists, the new set is what the folder will hold, even
+  // if this process dies during the renames below (the next run completes them).
+  void commit(const std::vector<std::string>& retired) {
+    std::string journal_text;
+    for (const Replacement& r : replacements_) {
+      journal_text += r.temporary.filename().string() + "\t" + r.name + "\n";
+    }
+    for (const std::string& name : retired) journal_text += "\t" + name + "\n";
+    journal_text += "end\n";
+    std::string reason = write_new_file(journal_temporary_, journal_text);
+    if (reason.empty()) {
+      std::error_code ec;
+      fs::rename(journal_temporary_, journal_, ec);
+      if (ec) reason = ec.message();
+    }
+    if (!reason.empty()) {
+      roll_back();
+      throw InputError({journal_.string()},
+                       "cannot write the file: " + reason + " (no file was changed)");
+    }
+  }
+
+  // Every new file is complete on disk; now swap them in, keeping a hard link to each old file
+  // until all swaps succeeded so that a failure can restore the previous set exactly.
+  void swap_in() {
+    std::error_code ec;
+    std::size_t renamed = 0;
+    for (Replacement& r : replacements_) {
+      if (fs::exists(r.destination)) {
+        fs::create_hard_link(r.destination, r.backup, ec);
+        if (ec) {
+          roll_back();
+          throw InputError({r.destination.string()},
+                           "cannot replace the file: " + ec.message() + " (no file was changed)");
+        }
+        r.backed_up = true;
+      }
+      fs::rename(r.temporary, r.destination, ec);
+      if (ec) {
+        roll_back();
+        throw InputError({r.destination.string()}, "cannot replace the file: " + ec.message() +
+                                                       " (no file was changed)");
+      }
+      r.replaced = true;
+      if (test_hooks::after_rename != nullptr) test_hooks::after_rename(++renamed);
+    }
+  }
+
+  // The new set is in place: retired files, backups and the journal go.
+  void finish(const std::vector<std::string>& retired) const {
+    std::error_code ignored;
+    for (const std::string& name : retired) fs::remove(directory_ / name, ignored);
+    for (const Replacement& r : replacements_) {
+      if (r.backed_up) fs::remove(r.backup, ignored);
+    }
+    fs::remove(journal_, ignored);
+  }
+
+ private:
   struct Replacement {
     std::string name;
     fs::path temporary, destination, backup;
     bool backed_up = false, replaced = false;
   };
-  std::vector<Replacement> replacements;
-  const std::string suffix = std::to_string(::getpid());
-  const fs::path journal = fs::path(directory) / kJournal;
-  const fs::path journal_temporary = fs::path(directory) / (std::string(kJournal) + ".tmp-" + suffix);
+
   // Undo everything done so far: new files out, old files back, temporaries and journal gone.
-  auto roll_back = [&] {
+  void roll_back() const {
     std::error_code ignored;
-    for (auto it = replacements.rbegin(); it != replacements.rend(); ++it) {
+    for (auto it = replacements_.rbegin(); it != replacements_.rend(); ++it) {
       if (it->backed_up) {
         fs::rename(it->backup, it->destination, ignored);
       } else if (it->replaced) {
@@ -205,79 +321,31 @@ void FileSet::write_to(const std::string& directory) const {
       }
       fs::remove(it->temporary, ignored);
     }
-    fs::remove(journal_temporary, ignored);
-    fs::remove(journal, ignored);
-  };
-  for (const OutputFile& file : files_) {
-    const fs::path destination = fs::path(directory) / file.name;
-    if (same_content(destination, file.content)) continue;
-    Replacement r;
-    r.name = file.name;
-    r.destination = destination;
-    r.temporary = fs::path(directory) / ("." + file.name + ".tmp-" + suffix);
-    r.backup = fs::path(directory) / ("." + file.name + ".old-" + suffix);
-    replacements.push_back(r);
-    const std::string reason = write_new_file(r.temporary, file.content);
-    if (!reason.empty()) {
-      roll_back();
-      throw InputError({destination.string()}, "cannot write the file: " + reason +
-                                                   " (no file was changed)");
-    }
+    fs::remove(journal_temporary_, ignored);
+    fs::remove(journal_, ignored);
   }
-  std::vector<std::string> retired;
-  for (const std::string& name : retired_) {
-    const fs::path path = fs::path(directory) / name;
-    if (!fs::is_regular_file(fs::symlink_status(path))) continue;
-    if (!generated_mark_.empty() && (!generated(path) || foreign(path))) continue;  // not ours
-    retired.push_back(name);
-  }
+
+  const fs::path directory_;
+  const std::string suffix_;
+  const fs::path journal_, journal_temporary_;
+  std::vector<Replacement> replacements_;
+};
+
+}  // namespace
+
+void FileSet::write_to(const std::string& directory) const {
+  create_output_directory(directory);
+  const DirectoryLock lock(directory);
+  recover_interrupted_run(directory);
+  const Ownership ownership{generated_mark_, owner_mark_};
+  check_destinations(directory, files_, ownership);
+  Replacements replacements(directory);
+  replacements.write_temporaries(files_);
+  const std::vector<std::string> retired = files_to_retire(directory, retired_, ownership);
   if (replacements.empty() && retired.empty()) return;
-  // The commit point: once the journal exists, the new set is what the folder will hold, even
-  // if this process dies during the renames below (the next run completes them).
-  std::string journal_text;
-  for (const Replacement& r : replacements) {
-    journal_text += r.temporary.filename().string() + "\t" + r.name + "\n";
-  }
-  for (const std::string& name : retired) journal_text += "\t" + name + "\n";
-  journal_text += "end\n";
-  std::string reason = write_new_file(journal_temporary, journal_text);
-  if (reason.empty()) {
-    fs::rename(journal_temporary, journal, ec);
-    if (ec) reason = ec.message();
-  }
-  if (!reason.empty()) {
-    roll_back();
-    throw InputError({journal.string()}, "cannot write the file: " + reason +
-                                             " (no file was changed)");
-  }
-  // Every new file is complete on disk; now swap them in, keeping a hard link to each old file
-  // until all swaps succeeded so that a failure can restore the previous set exactly.
-  std::size_t renamed = 0;
-  for (Replacement& r : replacements) {
-    if (fs::exists(r.destination)) {
-      fs::create_hard_link(r.destination, r.backup, ec);
-      if (ec) {
-        roll_back();
-        throw InputError({r.destination.string()}, "cannot replace the file: " + ec.message() +
-                                                       " (no file was changed)");
-      }
-      r.backed_up = true;
-    }
-    fs::rename(r.temporary, r.destination, ec);
-    if (ec) {
-      roll_back();
-      throw InputError({r.destination.string()}, "cannot replace the file: " + ec.message() +
-                                                     " (no file was changed)");
-    }
-    r.replaced = true;
-    if (test_hooks::after_rename != nullptr) test_hooks::after_rename(++renamed);
-  }
-  std::error_code ignored;
-  for (const std::string& name : retired) fs::remove(fs::path(directory) / name, ignored);
-  for (const Replacement& r : replacements) {
-    if (r.backed_up) fs::remove(r.backup, ignored);
-  }
-  fs::remove(journal, ignored);
+  replacements.commit(retired);
+  replacements.swap_in();
+  replacements.finish(retired);
 }
 
 }  // namespace modelgen::gen

@@ -1,24 +1,21 @@
 // Reads the YAML description (modified DH table, drive chain, friction options, a-priori
 // values) with yaml-cpp, checking every key and value and reporting positions from yaml-cpp's
 // marks (yaml_reader.hpp). Frame j from frame a(j): Rot_x(alpha) Trans_x(d) Rot_z(theta)
-// Trans_z(r) (DESIGN.md).
+// Trans_z(r) (DESIGN.md). The drive chain and the a-priori values have files of their own
+// (mdh_drive_chain.cpp, mdh_known_values.cpp).
 
 #include "runtime/model/mdh_yaml_loader.hpp"
 
 #include <algorithm>
-#include <array>
 #include <cmath>
-#include <cstdio>
-#include <map>
 #include <set>
 
-#include <Eigen/Eigenvalues>
-#include <Eigen/LU>
 #include <yaml-cpp/yaml.h>
 
 #include "modelgen/model/number_text.hpp"
-#include "modelgen/model/physical_consistency.hpp"
 #include "runtime/model/angle_snapping.hpp"
+#include "runtime/model/mdh_drive_chain.hpp"
+#include "runtime/model/mdh_known_values.hpp"
 #include "runtime/model/yaml_reader.hpp"
 
 namespace modelgen {
@@ -90,10 +87,10 @@ class MdhYamlLoader {
     read_joints(in_.require(root, "joints", "the robot description"));
     if (root["friction"]) read_friction(root["friction"]);
     if (root["rotor_inertia"]) model_.rotor_inertia = in_.boolean(root["rotor_inertia"], "rotor_inertia");
-    read_drives(root["drives"]);
+    read_drive_chain(in_, root["drives"], model_);
     build_standard_parameters(model_);
     if (root["payload"]) read_payload(root["payload"]);
-    if (root["known"]) read_known(root["known"]);
+    if (root["known"]) read_known_values(in_, root["known"], model_);
     validate(model_.tree);
     return std::move(model_);
   }
@@ -268,135 +265,6 @@ class MdhYamlLoader {
     if (node["asymmetric"]) model_.friction.asymmetric = in_.boolean(node["asymmetric"], "asymmetric");
   }
 
-  // 1-based link number of a moving joint -> 0-based dof index.
-  int dof_of_link(const YAML::Node& node, long link) {
-    if (link < 1 || link > static_cast<long>(model_.tree.bodies.size())) {
-      in_.fail(node, "joint " + std::to_string(link) + " does not exist");
-    }
-    const Body& body = model_.tree.bodies[link - 1];
-    if (body.type == JointType::kFixed) {
-      in_.fail(node, "joint " + std::to_string(link) + " ('" + body.name + "') is fixed and has no drive");
-    }
-    return body.dof_index;
-  }
-
-  Eigen::MatrixXd matrix(const YAML::Node& node, const std::string& field) {
-    if (!node.IsSequence() || node.size() == 0) {
-      in_.fail(node, "'" + field + "' must be a square matrix written as a list of rows");
-    }
-    const std::size_t rows = node.size();
-    Eigen::MatrixXd m(rows, rows);
-    for (std::size_t r = 0; r < rows; ++r) {
-      const YAML::Node row = node[r];
-      if (!row.IsSequence()) in_.fail(row, "row " + std::to_string(r + 1) + " of '" + field + "' must be a list of numbers");
-      if (row.size() != rows) {
-        in_.fail(row, "'" + field + "' is not square: it has " + std::to_string(rows) +
-                          " rows but row " + std::to_string(r + 1) + " has " +
-                          std::to_string(row.size()) + " entries");
-      }
-      for (std::size_t c = 0; c < rows; ++c) m(r, c) = in_.number(row[c], field);
-    }
-    return m;
-  }
-
-  void read_drives(const YAML::Node& node) {
-    DriveChain& drives = model_.drives;
-    const int n = model_.dof();
-    drives.motor_from_joint = Eigen::MatrixXd::Identity(n, n);
-    drives.torque_constant = Eigen::VectorXd::Zero(n);
-    drives.joint_offset = Eigen::VectorXd::Zero(n);
-    if (!node) return;
-    in_.check_keys(node, {"ratio", "coupling", "torque_constant", "joint_offset"}, "drives");
-    if (node["torque_constant"]) {
-      const std::vector<double> constants = in_.numbers(node["torque_constant"], "torque_constant", n);
-      drives.torque_constant = Eigen::Map<const Eigen::VectorXd>(constants.data(), n);
-      for (int i = 0; i < n; ++i) {
-        if (!(drives.torque_constant[i] > 0)) {
-          in_.fail(node["torque_constant"][i], "a torque constant must be positive (N m/A)");
-        }
-      }
-    }
-    if (node["joint_offset"]) {
-      const YAML::Node offsets = node["joint_offset"];
-      if (!offsets.IsSequence() || static_cast<int>(offsets.size()) != n) {
-        in_.fail(offsets, "'joint_offset' must list " + std::to_string(n) +
-                              " values, one per moving joint");
-      }
-      for (int i = 0; i < n; ++i) drives.joint_offset[i] = in_.angle(offsets[i], "joint_offset").value;
-    }
-    if (node["ratio"]) {
-      drives.ratio = in_.numbers(node["ratio"], "ratio", n);
-      for (std::size_t i = 0; i < drives.ratio.size(); ++i) {
-        if (drives.ratio[i] == 0) in_.fail(node["ratio"][i], "a gear ratio cannot be zero");
-      }
-    }
-    std::vector<double> ratio = drives.ratio.empty() ? std::vector<double>(n, 1.0) : drives.ratio;
-    for (int i = 0; i < n; ++i) drives.motor_from_joint(i, i) = ratio[i];
-    if (!node["coupling"]) return;
-
-    const YAML::Node coupling = node["coupling"];
-    in_.check_keys(coupling, {"joint_from_motor", "motor_from_joint", "joints"}, "coupling");
-    const bool swevers = static_cast<bool>(coupling["joint_from_motor"]);
-    const bool gautier = static_cast<bool>(coupling["motor_from_joint"]);
-    if (swevers == gautier) {
-      in_.fail(coupling, "coupling needs exactly one of 'joint_from_motor' (Swevers eq. 9: "
-                         "q_joint = V q_motor) and 'motor_from_joint' (Gautier eq. 25)");
-    }
-    drives.coupling_form = swevers ? "joint_from_motor" : "motor_from_joint";
-    const YAML::Node matrix_node = coupling[drives.coupling_form];
-    const Eigen::MatrixXd block = matrix(matrix_node, drives.coupling_form);
-    drives.coupling_as_written = block;
-    if (coupling["joints"]) {
-      const YAML::Node joints = coupling["joints"];
-      if (!joints.IsSequence()) in_.fail(joints, "'joints' must be a list of joint numbers");
-      for (const auto& j : joints) drives.coupled_joints.push_back(dof_of_link(j, in_.integer(j, "joints")));
-      if (std::set<int>(drives.coupled_joints.begin(), drives.coupled_joints.end()).size() !=
-          drives.coupled_joints.size()) {
-        in_.fail(joints, "'joints' lists a joint twice");
-      }
-    } else {
-      for (int i = 0; i < n; ++i) drives.coupled_joints.push_back(i);
-    }
-    if (block.rows() != static_cast<Eigen::Index>(drives.coupled_joints.size())) {
-      in_.fail(matrix_node, "'" + drives.coupling_form + "' is " + std::to_string(block.rows()) +
-                                "x" + std::to_string(block.rows()) + " but must be " +
-                                std::to_string(drives.coupled_joints.size()) + "x" +
-                                std::to_string(drives.coupled_joints.size()) +
-                                (coupling["joints"] ? " (one row per joint in 'joints')"
-                                                    : " (one row per moving joint; or list the "
-                                                      "coupled joints in 'joints')"));
-    }
-    Eigen::FullPivLU<Eigen::MatrixXd> lu(block);
-    lu.setThreshold(1e-9);
-    if (!lu.isInvertible()) {
-      in_.fail(matrix_node, "'" + drives.coupling_form + "' is singular (rank " +
-                                std::to_string(lu.rank()) + " of " + std::to_string(block.rows()) +
-                                "): motor and joint positions would not determine each other");
-    }
-    const std::vector<int>& idx = drives.coupled_joints;
-    const Eigen::Index m = block.rows();
-    if (gautier) {
-      // Gautier & Briot eq. 25: the matrix already carries the gear ratios on its diagonal.
-      for (Eigen::Index r = 0; r < m; ++r) {
-        const int i = idx[r];
-        if (!drives.ratio.empty() && std::abs(block(r, r) - drives.ratio[i]) > 1e-12 * std::abs(block(r, r))) {
-          in_.fail(matrix_node, "diagonal entry " + std::to_string(r + 1) + " of motor_from_joint (" +
-                                    std::to_string(block(r, r)) + ") disagrees with the gear ratio of joint " +
-                                    std::to_string(i + 1) + " (" + std::to_string(drives.ratio[i]) + ")");
-        }
-        for (Eigen::Index c = 0; c < m; ++c) drives.motor_from_joint(i, idx[c]) = block(r, c);
-      }
-    } else {
-      // Swevers eq. 9: q_joint = V (q_motor / ratio), so q_motor = diag(ratio) V^-1 q_joint.
-      const Eigen::MatrixXd inverse = lu.inverse();
-      for (Eigen::Index r = 0; r < m; ++r) {
-        for (Eigen::Index c = 0; c < m; ++c) {
-          drives.motor_from_joint(idx[r], idx[c]) = ratio[idx[r]] * inverse(r, c);
-        }
-      }
-    }
-  }
-
   void read_payload(const YAML::Node& node) {
     in_.check_keys(node, {"link"}, "payload");
     const YAML::Node link = in_.require(node, "link", "payload");
@@ -406,108 +274,6 @@ class MdhYamlLoader {
                          std::to_string(model_.tree.bodies.size()) + ")");
     }
     model_.payload_body = static_cast<int>(j) - 1;
-  }
-
-  void read_known(const YAML::Node& node) {
-    if (!node.IsMap()) in_.fail(node, "'known' must map standard parameter names to values");
-    const std::vector<std::string> names = model_.param_names();
-    std::map<int, YAML::Node> keys;  // where each known value was given
-    for (const auto& entry : node) {
-      const std::string key = entry.first.Scalar();
-      const int k = model_.param_index(key);
-      if (k < 0) {
-        in_.fail(entry.first, "'" + key + "' in 'known' is not a standard parameter of this robot" +
-                                  did_you_mean(key, names) + "; run 'modelgen describe' to list them");
-      }
-      if (model_.known_values[k]) in_.fail(entry.first, "'" + key + "' is given twice in 'known'");
-      const bool mass = model_.tree.params[k].kind == ParamKind::kM;
-      model_.known_values[k] =
-          mass ? in_.number(entry.second, key, kMaxMass, " kg") : in_.number(entry.second, key);
-      keys[k] = entry.first;
-    }
-    check_known_physical(keys);
-  }
-
-  // A-priori values describe a real body: no negative mass, moment of inertia or drive
-  // inertia, and an inertia tensor (when all six entries are known) that some mass
-  // distribution has, i.e. positive semi-definite (zero for a massless link is fine).
-  void check_known_physical(const std::map<int, YAML::Node>& keys) {
-    const std::vector<StandardParam>& params = model_.tree.params;
-    for (const auto& [k, node] : keys) {
-      const ParamKind kind = params[k].kind;
-      const bool inertial = kind == ParamKind::kM || kind == ParamKind::kXX ||
-                            kind == ParamKind::kYY || kind == ParamKind::kZZ;
-      if ((inertial || must_be_nonnegative(kind)) && *model_.known_values[k] < 0) {
-        const char* what = kind == ParamKind::kM                        ? "a mass"
-                           : inertial || kind == ParamKind::kIa ||
-                                   kind == ParamKind::kIam              ? "an inertia"
-                                                                        : "a friction coefficient";
-        in_.fail(node, "'" + params[k].name + "' in 'known' is " +
-                           shortest_text(*model_.known_values[k]) + ", but " + what +
-                           " cannot be negative");
-      }
-    }
-    check_known_bodies(keys);
-    for (std::size_t body = 0; body < model_.tree.bodies.size(); ++body) {
-      static const ParamKind kTensor[] = {ParamKind::kXX, ParamKind::kXY, ParamKind::kXZ,
-                                          ParamKind::kYY, ParamKind::kYZ, ParamKind::kZZ};
-      std::array<double, 6> I{};
-      int first = -1;
-      bool complete = true;
-      for (int e = 0; e < 6; ++e) {
-        int index = -1;
-        for (std::size_t k = 0; k < params.size(); ++k) {
-          if (params[k].body == static_cast<int>(body) && params[k].kind == kTensor[e]) {
-            index = static_cast<int>(k);
-          }
-        }
-        if (index < 0 || !model_.known_values[index]) {
-          complete = false;
-          break;
-        }
-        if (first < 0) first = index;
-        I[e] = *model_.known_values[index];
-      }
-      if (!complete) continue;
-      // Khalil's tensor entries: XY = -integral of x y dm, so J is [XX XY XZ; XY YY YZ; ...].
-      Eigen::Matrix3d J;
-      J << I[0], I[1], I[2], I[1], I[3], I[4], I[2], I[4], I[5];
-      const Eigen::Vector3d eigenvalues =
-          Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(J, Eigen::EigenvaluesOnly).eigenvalues();
-      if (eigenvalues.minCoeff() < -1e-9 * J.cwiseAbs().maxCoeff()) {
-        char text[96];
-        std::snprintf(text, sizeof text, "%.6g, %.6g, %.6g", eigenvalues[0], eigenvalues[1],
-                      eigenvalues[2]);
-        const std::string suffix = std::to_string(body + 1);
-        in_.fail(keys.at(first), "the inertia tensor of link " + suffix + " in 'known' (XX" +
-                                     suffix + " .. ZZ" + suffix +
-                                     ") is not positive semi-definite (principal moments " + text +
-                                     "): no mass distribution has it");
-      }
-    }
-  }
-
-  // A body whose ten inertial parameters are all known must be one some mass distribution
-  // has: its pseudo-inertia positive semidefinite (mass, centre of mass and the inertia about
-  // it with the triangle inequalities), which the tensor about the frame origin alone is not.
-  void check_known_bodies(const std::map<int, YAML::Node>& keys) {
-    const auto indices = inertial_param_indices(model_.tree);
-    Eigen::VectorXd standard = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(model_.tree.params.size()));
-    std::vector<char> complete(indices.size(), 0);
-    for (std::size_t body = 0; body < indices.size(); ++body) {
-      complete[body] = std::all_of(indices[body].begin(), indices[body].end(), [&](int k) {
-        return k >= 0 && model_.known_values[static_cast<std::size_t>(k)].has_value();
-      });
-      if (!complete[body]) continue;
-      for (int k : indices[body]) standard[k] = *model_.known_values[static_cast<std::size_t>(k)];
-    }
-    for (const PhysicalViolation& violation : physical_violations(model_.tree, standard)) {
-      if (violation.body < 0 || !complete[static_cast<std::size_t>(violation.body)]) continue;
-      const int first = indices[static_cast<std::size_t>(violation.body)][0];
-      in_.fail(keys.at(first), "link " + std::to_string(violation.body + 1) + " in 'known' (" +
-                                   violation.parameter + "): " + violation.condition +
-                                   "; no mass distribution has these values");
-    }
   }
 
   YamlReader in_;

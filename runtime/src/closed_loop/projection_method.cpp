@@ -1,6 +1,6 @@
 // The projection method: a least-squares non-causal FIR from the references to the torque on
-// the decimated rows (Bona & Curatella eq. 10-11), its order by a decorrelation test, then
-// IDIM-WLS on the projected torque (eq. 12).
+// the decimated rows (Bona & Curatella eq. 10-11, fitted in fir_projection.cpp), its order by
+// a decorrelation test, then IDIM-WLS on the projected torque (eq. 12).
 
 #include "modelgen/closed_loop/projection_method.hpp"
 
@@ -9,38 +9,19 @@
 #include <limits>
 #include <string>
 
-#include <Eigen/Cholesky>
-#include <Eigen/QR>
-
 #include "modelgen/estimation/estimation_error.hpp"
 #include "modelgen/signal/decimation.hpp"
+#include "runtime/src/closed_loop/fir_projection.hpp"
 
 namespace modelgen {
 
 namespace {
 
-// Two-sided 99 % point of the standard normal: a white-noise correlation of N samples stays
-// within kBand99 / sqrt(N) with 99 % probability.
-constexpr double kBand99 = 2.58;
+using detail::kHeld;
+
 // Lags the test looks beyond 2M: u~ left correlated with the references shows at the lags
 // just past the FIR's support.
 constexpr int kTestMargin = 10;
-// Singular values of the column-scaled regressor below this fraction of the largest are
-// treated as zero: a periodic reference of H harmonics makes its lags exactly dependent.
-constexpr double kRankThreshold = 1e-10;
-// A reference whose range is below this fraction of its size is held: its lags are the
-// constant column again.
-constexpr double kHeld = 1e-12;
-
-// The z with P(|N(0,1)| > z) = p, by bisection on erfc (monotone).
-double normal_two_sided(double p) {
-  double low = 0, high = 40;
-  for (int i = 0; i < 200; ++i) {
-    const double mid = 0.5 * (low + high);
-    (std::erfc(mid / std::sqrt(2.0)) > p ? low : high) = mid;
-  }
-  return 0.5 * (low + high);
-}
 
 // Raw reference rows first_row + s - shift, s = 0..samples-1, paired as held torques were
 // (the mean of a sample and the one before) when `hold`; rows outside the record take its
@@ -56,25 +37,6 @@ Eigen::MatrixXd shifted_reference(const Eigen::MatrixXd& qr, Eigen::Index first_
         hold ? Eigen::RowVectorXd(0.5 * (row(r) + row(r - 1))) : Eigen::RowVectorXd(row(r));
   }
   return out;
-}
-
-// The regressor of eq. 10 for lags -M..M of the moving references, after the constant.
-Eigen::MatrixXd fir_regressor(const LaggedReferences& references, const std::vector<int>& moving,
-                              int lags) {
-  const Eigen::Index rows = references.constant.size();
-  Eigen::MatrixXd phi(rows, 1 + static_cast<Eigen::Index>(moving.size()) * (2 * lags + 1));
-  phi.col(0) = references.constant;
-  Eigen::Index column = 1;
-  for (const int i : moving) {
-    for (int k = -lags; k <= lags; ++k) phi.col(column++) = references.at(k).col(i);
-  }
-  return phi;
-}
-
-double correlation(const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
-  const Eigen::VectorXd x = a.array() - a.mean(), y = b.array() - b.mean();
-  const double norms = x.norm() * y.norm();
-  return norms > 0 ? x.dot(y) / norms : 0.0;
 }
 
 // The one-sided 99 % point of chi-square with `dof` degrees of freedom (Wilson-Hilferty).
@@ -97,6 +59,96 @@ bool explains_more(const FirProjection& smaller, const FirProjection& larger) {
     if (drop / variance > chi_square_99(static_cast<double>(extra))) return true;
   }
   return false;
+}
+
+// Each record's torques on its decimated rows, after checking the record against the robot.
+std::vector<Eigen::MatrixXd> decimated_torques(int n,
+                                               const std::vector<ProjectionRecord>& records) {
+  std::vector<Eigen::MatrixXd> torques;  // u on each record's decimated rows
+  for (std::size_t e = 0; e < records.size(); ++e) {
+    const ProjectionRecord& r = records[e];
+    const std::string name = r.prepared.source.empty()
+                                 ? "closed-loop record " + std::to_string(e + 1)
+                                 : r.prepared.source;
+    const Eigen::Index samples = r.prepared.t.size();
+    if (r.qr.cols() != n || r.prepared.tau.cols() != n || r.prepared.tau.rows() != samples) {
+      throw EstimationError(name + ": the record does not have the robot's " + std::to_string(n) +
+                            " joints (reference or torques)");
+    }
+    if (r.first_row < 0 || r.first_row + samples > r.qr.rows() || samples < 2) {
+      throw EstimationError(name + ": the prepared samples are not within the reference's");
+    }
+    if (r.decimation < 1) throw EstimationError(name + ": decimation factor below 1");
+    torques.push_back(decimate_interior(r.prepared.tau, r.decimation));
+  }
+  return torques;
+}
+
+// The most references that move in one record (on its prepared samples).
+Eigen::Index most_moving_references(int n, const std::vector<ProjectionRecord>& records) {
+  Eigen::Index moving = 0;
+  for (const ProjectionRecord& r : records) {
+    const Eigen::MatrixXd used = r.qr.middleRows(r.first_row, r.prepared.t.size());
+    Eigen::Index count = 0;
+    for (Eigen::Index i = 0; i < n; ++i) {
+      const double range = used.col(i).maxCoeff() - used.col(i).minCoeff();
+      if (range > kHeld * std::max(1.0, used.col(i).cwiseAbs().maxCoeff())) ++count;
+    }
+    moving = std::max(moving, count);
+  }
+  return moving;
+}
+
+// The M to try: the one given, if `fewest` rows allow it, else the ladder they allow.
+std::vector<int> lags_to_try(const std::optional<int>& fir_lags, Eigen::Index fewest,
+                             Eigen::Index moving) {
+  std::vector<int> ladder;
+  if (fir_lags) {
+    if (*fir_lags < 0) {
+      throw EstimationError("the FIR's lags M must be >= 0, not " + std::to_string(*fir_lags));
+    }
+    // Checked before the lagged references are built: their 4M + 21 shifted copies of a
+    // reference would take memory (and 2M + 10 overflow) long before the fit could refuse M.
+    const Eigen::Index coefficients = 1 + moving * (2 * static_cast<Eigen::Index>(*fir_lags) + 1);
+    if (fewest < kMinRowsPerCoefficient * coefficients) {
+      // The largest M with 1 + moving (2M + 1) coefficients of kMinRowsPerCoefficient rows.
+      const Eigen::Index largest =
+          moving == 0 ? -1 : (fewest / kMinRowsPerCoefficient - 1 - moving) / (2 * moving);
+      throw EstimationError("the projection method: M = " + std::to_string(*fir_lags) +
+                            " lags need " + std::to_string(kMinRowsPerCoefficient * coefficients) +
+                            " decimated rows (" + std::to_string(kMinRowsPerCoefficient) +
+                            " per coefficient), the records have " + std::to_string(fewest) +
+                            (largest < 0 ? std::string("; record longer or decimate less")
+                                         : "; choose M <= " + std::to_string(largest)));
+    }
+    ladder.push_back(*fir_lags);
+  } else {
+    ladder = fir_lag_ladder(fewest, moving, std::numeric_limits<int>::max());
+    if (ladder.empty()) {
+      throw EstimationError("the projection method: " + std::to_string(fewest) +
+                            " decimated rows are too few for a FIR from " + std::to_string(moving) +
+                            " moving references (" + std::to_string(kMinRowsPerCoefficient) +
+                            " rows per coefficient); record longer or decimate less");
+    }
+  }
+  return ladder;
+}
+
+// u^ at the raw rate: decimation is linear, so identify()'s decimation of it is the fitted
+// u^ on the same rows.
+Eigen::MatrixXd projected_at_raw_rate(const ProjectionRecord& r, const FirProjection& fir) {
+  const Eigen::Index samples = r.prepared.t.size();
+  Eigen::MatrixXd u_hat = Eigen::MatrixXd::Ones(samples, 1) * fir.coefficients.row(0);
+  Eigen::Index row = 1;
+  for (const int i : fir.moving) {
+    for (int k = -fir.lags; k <= fir.lags; ++k, ++row) {
+      const Eigen::VectorXd delayed = shifted_reference(r.qr, r.first_row, samples, r.torque_hold,
+                                                        static_cast<Eigen::Index>(k) * r.decimation)
+                                          .col(i);
+      u_hat += delayed * fir.coefficients.row(row);
+    }
+  }
+  return u_hat;
 }
 
 }  // namespace
@@ -159,93 +211,6 @@ FirChoice choose_fir_projection(const std::vector<Eigen::MatrixXd>& u,
   return out;
 }
 
-FirProjection fit_fir_projection(const Eigen::MatrixXd& u, const LaggedReferences& references,
-                                 int lags) {
-  if (lags < 0) throw EstimationError("FIR projection: lags " + std::to_string(lags) + " < 0");
-  const int window = decorrelation_window(lags);
-  if (references.max_lag < window ||
-      references.by_lag.size() != static_cast<std::size_t>(2 * references.max_lag + 1)) {
-    throw EstimationError(
-        "FIR projection: the references reach lag " + std::to_string(references.max_lag) +
-        ", the test of M = " + std::to_string(lags) + " needs " + std::to_string(window));
-  }
-  const Eigen::Index rows = u.rows();
-  for (const Eigen::MatrixXd& r : references.by_lag) {
-    if (r.rows() != rows || r.cols() != references.at(0).cols()) {
-      throw EstimationError("FIR projection: the references have " + std::to_string(r.rows()) +
-                            " rows, the torques " + std::to_string(rows));
-    }
-  }
-  if (references.constant.size() != rows) {
-    throw EstimationError("FIR projection: the constant regressor does not match the torques");
-  }
-  FirProjection out;
-  out.lags = lags;
-  for (Eigen::Index i = 0; i < references.at(0).cols(); ++i) {
-    const Eigen::VectorXd r = references.at(0).col(i);
-    const double range = r.maxCoeff() - r.minCoeff();
-    if (range > kHeld * std::max(1.0, r.cwiseAbs().maxCoeff()))
-      out.moving.push_back(static_cast<int>(i));
-  }
-  // The constant: a linear FIR about the record's mean posture leaves an offset (gravity at
-  // that posture, the friction's mean) that the references' lags would otherwise have to
-  // imitate through their own means, bending the filter.
-  const Eigen::MatrixXd phi = fir_regressor(references, out.moving, lags);
-  const Eigen::Index p = phi.cols();
-  if (rows < kMinRowsPerCoefficient * p) {
-    throw EstimationError("FIR projection: " + std::to_string(rows) + " rows for " +
-                          std::to_string(p) + " FIR coefficients (M = " + std::to_string(lags) +
-                          "); at least " + std::to_string(kMinRowsPerCoefficient) +
-                          " rows per coefficient are needed: choose a smaller M");
-  }
-  const Eigen::VectorXd scale = phi.colwise().norm().cwiseMax(1e-300).cwiseInverse();
-  const Eigen::MatrixXd scaled = phi * scale.asDiagonal();
-  // The threshold before the decomposition: the complete orthogonal step uses the rank.
-  Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod(scaled.rows(), scaled.cols());
-  cod.setThreshold(kRankThreshold);
-  cod.compute(scaled);
-  out.coefficients = scale.asDiagonal() * cod.solve(u);
-  out.projected = phi * out.coefficients;
-  out.rank = cod.rank();
-  out.full_rank = out.rank == p;
-  const Eigen::MatrixXd residual = u - out.projected;
-  out.residual_squares = residual.colwise().squaredNorm().transpose();
-  out.coefficient_std =
-      Eigen::MatrixXd::Constant(p, u.cols(), std::numeric_limits<double>::quiet_NaN());
-  if (out.full_rank && rows > p) {
-    const Eigen::MatrixXd inverse =
-        (scaled.transpose() * scaled).ldlt().solve(Eigen::MatrixXd::Identity(p, p));
-    const Eigen::VectorXd unit = scale.cwiseProduct(inverse.diagonal().cwiseMax(0).cwiseSqrt());
-    for (Eigen::Index j = 0; j < u.cols(); ++j) {
-      const double sigma = std::sqrt(residual.col(j).squaredNorm() / static_cast<double>(rows - p));
-      out.coefficient_std.col(j) = sigma * unit;
-    }
-  }
-  out.test.window = window;
-  out.test.tested = static_cast<long long>(u.cols()) * static_cast<long long>(out.moving.size()) *
-                    2 * (window - lags);
-  const double root_n = std::sqrt(static_cast<double>(rows));
-  out.test.single_band = kBand99 / root_n;
-  // Sidak: each correlation at the level that leaves all m within the band 99 times in 100.
-  const double each = 1 - std::pow(0.99, 1.0 / static_cast<double>(std::max(out.test.tested, 1LL)));
-  out.test.band = normal_two_sided(each) / root_n;
-  for (Eigen::Index j = 0; j < u.cols(); ++j) {
-    for (const int i : out.moving) {
-      for (int k = -window; k <= window; ++k) {
-        if (std::abs(k) <= lags) continue;  // zero by construction
-        const double c = std::abs(correlation(residual.col(j), references.at(k).col(i)));
-        if (c > out.test.worst) {
-          out.test.worst = c;
-          out.test.worst_channel = static_cast<int>(j);
-          out.test.worst_reference = i;
-          out.test.worst_lag = k;
-        }
-      }
-    }
-  }
-  return out;
-}
-
 LaggedReferences lagged_references(const Eigen::MatrixXd& qr, Eigen::Index first_row,
                                    Eigen::Index samples, int decimation, bool torque_hold,
                                    int max_lag) {
@@ -270,68 +235,13 @@ LaggedReferences lagged_references(const Eigen::MatrixXd& qr, Eigen::Index first
 ProjectedRecords project_records(int n, const std::vector<ProjectionRecord>& records,
                                  const std::optional<int>& fir_lags) {
   if (records.empty()) throw EstimationError("the projection method needs a record");
-  std::vector<Eigen::MatrixXd> torques;  // u on each record's decimated rows
-  for (std::size_t e = 0; e < records.size(); ++e) {
-    const ProjectionRecord& r = records[e];
-    const std::string name = r.prepared.source.empty()
-                                 ? "closed-loop record " + std::to_string(e + 1)
-                                 : r.prepared.source;
-    const Eigen::Index samples = r.prepared.t.size();
-    if (r.qr.cols() != n || r.prepared.tau.cols() != n || r.prepared.tau.rows() != samples) {
-      throw EstimationError(name + ": the record does not have the robot's " + std::to_string(n) +
-                            " joints (reference or torques)");
-    }
-    if (r.first_row < 0 || r.first_row + samples > r.qr.rows() || samples < 2) {
-      throw EstimationError(name + ": the prepared samples are not within the reference's");
-    }
-    if (r.decimation < 1) throw EstimationError(name + ": decimation factor below 1");
-    torques.push_back(decimate_interior(r.prepared.tau, r.decimation));
-  }
+  const std::vector<Eigen::MatrixXd> torques = decimated_torques(n, records);
 
   // The M the rows allow: every moving reference's 2M + 1 lags and the constant, at least
   // kMinRowsPerCoefficient rows each.
   Eigen::Index fewest = std::numeric_limits<Eigen::Index>::max();
   for (const Eigen::MatrixXd& u : torques) fewest = std::min(fewest, u.rows());
-  Eigen::Index moving = 0;
-  for (const ProjectionRecord& r : records) {
-    const Eigen::MatrixXd used = r.qr.middleRows(r.first_row, r.prepared.t.size());
-    Eigen::Index count = 0;
-    for (Eigen::Index i = 0; i < n; ++i) {
-      const double range = used.col(i).maxCoeff() - used.col(i).minCoeff();
-      if (range > kHeld * std::max(1.0, used.col(i).cwiseAbs().maxCoeff())) ++count;
-    }
-    moving = std::max(moving, count);
-  }
-  std::vector<int> ladder;
-  if (fir_lags) {
-    if (*fir_lags < 0) {
-      throw EstimationError("the FIR's lags M must be >= 0, not " + std::to_string(*fir_lags));
-    }
-    // Checked before the lagged references are built: their 4M + 21 shifted copies of a
-    // reference would take memory (and 2M + 10 overflow) long before the fit could refuse M.
-    const Eigen::Index coefficients = 1 + moving * (2 * static_cast<Eigen::Index>(*fir_lags) + 1);
-    if (fewest < kMinRowsPerCoefficient * coefficients) {
-      // The largest M with 1 + moving (2M + 1) coefficients of kMinRowsPerCoefficient rows.
-      const Eigen::Index largest =
-          moving == 0 ? -1 : (fewest / kMinRowsPerCoefficient - 1 - moving) / (2 * moving);
-      throw EstimationError(
-          "the projection method: M = " + std::to_string(*fir_lags) + " lags need " +
-          std::to_string(kMinRowsPerCoefficient * coefficients) + " decimated rows (" +
-          std::to_string(kMinRowsPerCoefficient) + " per coefficient), the records have " +
-          std::to_string(fewest) +
-          (largest < 0 ? std::string("; record longer or decimate less")
-                       : "; choose M <= " + std::to_string(largest)));
-    }
-    ladder.push_back(*fir_lags);
-  } else {
-    ladder = fir_lag_ladder(fewest, moving, std::numeric_limits<int>::max());
-    if (ladder.empty()) {
-      throw EstimationError("the projection method: " + std::to_string(fewest) +
-                            " decimated rows are too few for a FIR from " + std::to_string(moving) +
-                            " moving references (" + std::to_string(kMinRowsPerCoefficient) +
-                            " rows per coefficient); record longer or decimate less");
-    }
-  }
+  const std::vector<int> ladder = lags_to_try(fir_lags, fewest, most_moving_references(n, records));
   std::vector<LaggedReferences> references;
   for (const ProjectionRecord& r : records) {
     references.push_back(lagged_references(r.qr, r.first_row, r.prepared.t.size(), r.decimation,
@@ -349,25 +259,9 @@ ProjectedRecords project_records(int n, const std::vector<ProjectionRecord>& rec
   // Discarded fraction on the decimated rows; u^ at the raw rate.
   Eigen::VectorXd lost = Eigen::VectorXd::Zero(n), total = Eigen::VectorXd::Zero(n);
   for (std::size_t e = 0; e < records.size(); ++e) {
-    const ProjectionRecord& r = records[e];
-    const FirProjection& fir = chosen[e];
-    lost += (torques[e] - fir.projected).colwise().squaredNorm().transpose();
+    lost += (torques[e] - chosen[e].projected).colwise().squaredNorm().transpose();
     total += torques[e].colwise().squaredNorm().transpose();
-    // u^ at the raw rate: decimation is linear, so identify()'s decimation of it is the fitted
-    // u^ on the same rows.
-    const Eigen::Index samples = r.prepared.t.size();
-    Eigen::MatrixXd u_hat = Eigen::MatrixXd::Ones(samples, 1) * fir.coefficients.row(0);
-    Eigen::Index row = 1;
-    for (const int i : fir.moving) {
-      for (int k = -fir.lags; k <= fir.lags; ++k, ++row) {
-        const Eigen::VectorXd delayed =
-            shifted_reference(r.qr, r.first_row, samples, r.torque_hold,
-                              static_cast<Eigen::Index>(k) * r.decimation)
-                .col(i);
-        u_hat += delayed * fir.coefficients.row(row);
-      }
-    }
-    out.projected.push_back(std::move(u_hat));
+    out.projected.push_back(projected_at_raw_rate(records[e], chosen[e]));
   }
   out.discarded = (lost.array() / total.array().max(1e-300)).sqrt();
   out.discarded_total = std::sqrt(lost.sum() / std::max(total.sum(), 1e-300));

@@ -58,11 +58,8 @@ std::string brief(double value) {
 // a time stamp far off (1e9 s) with a uniform grid too large for memory.
 constexpr double kMaxGapSteps = 100;
 
-}  // namespace
-
-Trajectory read_trajectory_csv(const std::string& path, int dof, EffortColumns effort) {
-  std::ifstream in(path);
-  if (!in) fail(path, 0, "", "cannot open the file");
+// Fails unless the file is within modelid's size limit (checked before reading it).
+void check_file_size(const std::string& path) {
   std::error_code size_error;
   const std::uintmax_t bytes = std::filesystem::file_size(path, size_error);
   if (!size_error && bytes > kMaxDataFileBytes) {
@@ -71,98 +68,130 @@ Trajectory read_trajectory_csv(const std::string& path, int dof, EffortColumns e
              std::to_string(kMaxDataFileBytes >> 20) +
              " MiB per data file: split it into several experiments");
   }
-  std::string line;
-  int line_number = 0;
-  std::vector<std::string> header;
-  while (std::getline(in, line)) {
-    ++line_number;
-    if (line.find_first_not_of(" \t\r") != std::string::npos) break;
+}
+
+// One read of a trajectory CSV: the header, the columns it names, the rows, then the checks
+// that need all rows.
+class TrajectoryCsvReader {
+ public:
+  TrajectoryCsvReader(const std::string& path, int dof, EffortColumns effort, std::istream& in)
+      : path_(path), dof_(dof), effort_(effort), in_(in) {}
+
+  Trajectory read() {
+    read_header();
+    find_columns();
+    check_references_complete();
+    check_derivatives_complete();
+    read_rows();
+    if (rows_.size() < 3) fail(path_, line_number_, "", "fewer than 3 samples");
+    check_time_steps();
+    if (effort_ == EffortColumns::kRequired) check_some_effort();
+    return trajectory();
   }
-  header = split(line);
-  std::map<std::string, int> column;
-  for (std::size_t c = 0; c < header.size(); ++c) {
-    const auto [at, added] = column.emplace(header[c], static_cast<int>(c));
-    // Which of two same-named columns is meant cannot be known.
-    if (!added && !header[c].empty()) {
-      fail(path, line_number, header[c],
-           "column '" + header[c] + "' appears twice in the header (fields " +
-               std::to_string(at->second + 1) + " and " + std::to_string(c + 1) + ")");
+
+ private:
+  // The first line that is not blank.
+  void read_header() {
+    std::string line;
+    while (std::getline(in_, line)) {
+      ++line_number_;
+      if (line.find_first_not_of(" \t\r") != std::string::npos) break;
     }
-  }
-  auto find = [&](const std::string& name, bool required) {
-    auto found = column.find(name);
-    if (found != column.end()) return found->second;
-    if (required) {
-      std::string present;
-      for (const std::string& h : header) present += (present.empty() ? "" : ", ") + h;
-      fail(path, line_number, name,
-           "missing column '" + name + "' (the header has: " + present + "); expected t, q1..q" +
-               std::to_string(dof) + ", tau1..tau" + std::to_string(dof) +
-               " (or motor currents i1..i" + std::to_string(dof) +
-               ") and optionally dq1.., ddq1..");
-    }
-    return -1;
-  };
-  const int t_column = find("t", true);
-  // Torques or currents: decided by the first joint's column, then required for every joint.
-  Measured measured = Measured::kTorque;
-  if (column.count("tau1") && column.count("i1")) {
-    fail(path, line_number, "i1", "both torque (tau) and current (i) columns: give one kind");
-  }
-  if (column.count("i1")) {
-    measured = Measured::kCurrent;
-  } else if (!column.count("tau1") && effort == EffortColumns::kOptional) {
-    measured = Measured::kNothing;
-  }
-  const std::string effort_prefix = measured == Measured::kCurrent ? "i" : "tau";
-  std::vector<int> q(dof), tau(dof, -1), dq(dof), ddq(dof), qr(dof);
-  bool velocity = true, any_derivative = false, reference = true, any_reference = false;
-  for (int j = 0; j < dof; ++j) {
-    const std::string k = std::to_string(j + 1);
-    q[j] = find("q" + k, true);
-    if (measured != Measured::kNothing) tau[j] = find(effort_prefix + k, true);
-    dq[j] = find("dq" + k, false);
-    ddq[j] = find("ddq" + k, false);
-    qr[j] = find("qr" + k, false);
-    reference = reference && qr[j] >= 0;
-    any_reference = any_reference || qr[j] >= 0;
-    velocity = velocity && dq[j] >= 0 && ddq[j] >= 0;
-    any_derivative = any_derivative || dq[j] >= 0 || ddq[j] >= 0;
-  }
-  // A closed-loop method given the references of some joints only would take the others' as 0.
-  if (any_reference && !reference) {
-    for (int j = 0; j < dof; ++j) {
-      if (qr[j] < 0) {
-        fail(path, line_number, "qr" + std::to_string(j + 1),
-             "missing column 'qr" + std::to_string(j + 1) + "': reference positions are given for "
-             "some joints, give qr1..qr" + std::to_string(dof) + " or none");
+    header_ = split(line);
+    for (std::size_t c = 0; c < header_.size(); ++c) {
+      const auto [at, added] = column_.emplace(header_[c], static_cast<int>(c));
+      // Which of two same-named columns is meant cannot be known.
+      if (!added && !header_[c].empty()) {
+        fail(path_, line_number_, header_[c],
+             "column '" + header_[c] + "' appears twice in the header (fields " +
+                 std::to_string(at->second + 1) + " and " + std::to_string(c + 1) + ")");
       }
     }
   }
+
+  int find(const std::string& name, bool required) const {
+    auto found = column_.find(name);
+    if (found != column_.end()) return found->second;
+    if (required) {
+      std::string present;
+      for (const std::string& h : header_) present += (present.empty() ? "" : ", ") + h;
+      fail(path_, line_number_, name,
+           "missing column '" + name + "' (the header has: " + present + "); expected t, q1..q" +
+               std::to_string(dof_) + ", tau1..tau" + std::to_string(dof_) +
+               " (or motor currents i1..i" + std::to_string(dof_) +
+               ") and optionally dq1.., ddq1..");
+    }
+    return -1;
+  }
+
+  void find_columns() {
+    t_column_ = find("t", true);
+    // Torques or currents: decided by the first joint's column, then required for every joint.
+    if (column_.count("tau1") && column_.count("i1")) {
+      fail(path_, line_number_, "i1", "both torque (tau) and current (i) columns: give one kind");
+    }
+    if (column_.count("i1")) {
+      measured_ = Measured::kCurrent;
+    } else if (!column_.count("tau1") && effort_ == EffortColumns::kOptional) {
+      measured_ = Measured::kNothing;
+    }
+    effort_prefix_ = measured_ == Measured::kCurrent ? "i" : "tau";
+    q_.assign(dof_, 0);
+    tau_.assign(dof_, -1);
+    dq_.assign(dof_, 0);
+    ddq_.assign(dof_, 0);
+    qr_.assign(dof_, 0);
+    for (int j = 0; j < dof_; ++j) {
+      const std::string k = std::to_string(j + 1);
+      q_[j] = find("q" + k, true);
+      if (measured_ != Measured::kNothing) tau_[j] = find(effort_prefix_ + k, true);
+      dq_[j] = find("dq" + k, false);
+      ddq_[j] = find("ddq" + k, false);
+      qr_[j] = find("qr" + k, false);
+      reference_ = reference_ && qr_[j] >= 0;
+      any_reference_ = any_reference_ || qr_[j] >= 0;
+      velocity_ = velocity_ && dq_[j] >= 0 && ddq_[j] >= 0;
+      any_derivative_ = any_derivative_ || dq_[j] >= 0 || ddq_[j] >= 0;
+    }
+  }
+
+  // A closed-loop method given the references of some joints only would take the others' as 0.
+  void check_references_complete() const {
+    if (!any_reference_ || reference_) return;
+    for (int j = 0; j < dof_; ++j) {
+      if (qr_[j] < 0) {
+        fail(path_, line_number_, "qr" + std::to_string(j + 1),
+             "missing column 'qr" + std::to_string(j + 1) +
+                 "': reference positions are given for "
+                 "some joints, give qr1..qr" +
+                 std::to_string(dof_) + " or none");
+      }
+    }
+  }
+
   // Velocities without accelerations (or some axes only) would be silently ignored, the
   // derivatives all taken from the positions: refused, so that the user chooses.
-  if (any_derivative && !velocity) {
-    for (int j = 0; j < dof; ++j) {
+  void check_derivatives_complete() const {
+    if (!any_derivative_ || velocity_) return;
+    for (int j = 0; j < dof_; ++j) {
       const std::string k = std::to_string(j + 1);
-      for (const auto& [name, index] : {std::pair{"dq" + k, dq[j]}, std::pair{"ddq" + k, ddq[j]}}) {
+      for (const auto& [name, index] :
+           {std::pair{"dq" + k, dq_[j]}, std::pair{"ddq" + k, ddq_[j]}}) {
         if (index >= 0) continue;
-        fail(path, line_number, name,
+        fail(path_, line_number_, name,
              "missing column '" + name + "': velocities and accelerations are used together, " +
-                 "dq1..dq" + std::to_string(dof) + " and ddq1..ddq" + std::to_string(dof) +
+                 "dq1..dq" + std::to_string(dof_) + " and ddq1..ddq" + std::to_string(dof_) +
                  "; give all of them, or none (then both come from the positions)");
       }
     }
   }
 
-  std::vector<std::vector<double>> rows;
-  std::vector<int> row_line;  // the line of each row, for messages about time steps
-  while (std::getline(in, line)) {
-    ++line_number;
-    if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
+  // The fields of one data line as numbers, every one checked.
+  std::vector<double> parse_row(const std::string& line) const {
     const std::vector<std::string> fields = split(line);
-    if (fields.size() != header.size()) {
-      fail(path, line_number, "",
-           "expected " + std::to_string(header.size()) + " fields like the header, found " +
+    if (fields.size() != header_.size()) {
+      fail(path_, line_number_, "",
+           "expected " + std::to_string(header_.size()) + " fields like the header, found " +
                std::to_string(fields.size()));
     }
     std::vector<double> values(fields.size());
@@ -173,84 +202,123 @@ Trajectory read_trajectory_csv(const std::string& path, int dof, EffortColumns e
       if (!text.empty() && *first == '+') ++first;
       auto [end, ec] = std::from_chars(first, text.data() + text.size(), value);
       if (text.empty() || ec != std::errc() || end != text.data() + text.size()) {
-        fail(path, line_number, header[c], "'" + text + "' is not a number");
+        fail(path_, line_number_, header_[c], "'" + text + "' is not a number");
       }
-      if (!std::isfinite(value)) fail(path, line_number, header[c], "value is NaN or infinite");
+      if (!std::isfinite(value)) fail(path_, line_number_, header_[c], "value is NaN or infinite");
       values[c] = value;
     }
-    if (!rows.empty() && !(values[t_column] > rows.back()[t_column])) {
-      fail(path, line_number, "t",
-           "time does not increase (" + format(values[t_column]) + " after " +
-               format(rows.back()[t_column]) + ")");
-    }
-    if (rows.size() == kMaxDataRows) {
-      fail(path, line_number, "",
-           "more than " + std::to_string(kMaxDataRows) +
-               " samples, modelid's limit per data file (the regressor of one sample takes "
-               "about 3 KB for six axes): split the file into several experiments or decimate "
-               "it first");
-    }
-    rows.push_back(std::move(values));
-    row_line.push_back(line_number);
+    return values;
   }
-  if (rows.size() < 3) fail(path, line_number, "", "fewer than 3 samples");
-  // Holes in the time stamps, against the median step.
-  std::vector<double> steps(rows.size() - 1);
-  for (std::size_t s = 0; s + 1 < rows.size(); ++s) {
-    steps[s] = rows[s + 1][t_column] - rows[s][t_column];
-  }
-  std::vector<double> sorted = steps;
-  std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
-  const double median = sorted[sorted.size() / 2];
-  for (std::size_t s = 0; s < steps.size(); ++s) {
-    if (steps[s] > kMaxGapSteps * median) {
-      fail(path, row_line[s + 1], "t",
-           "time jumps from " + brief(rows[s][t_column]) + " s (line " +
-               std::to_string(row_line[s]) + ") to " + brief(rows[s + 1][t_column]) +
-               " s, " + brief(std::round(steps[s] / median)) +
-               " sample times (median " + brief(median) + " s); a hole longer than " +
-               brief(kMaxGapSteps) +
-               " sample times is not filled with invented samples: split the file at the "
-               "hole into two experiments (--data A --data B)");
-    }
-  }
-  if (effort == EffortColumns::kRequired) {
-    bool any_effort = false;
-    for (const std::vector<double>& row : rows) {
-      for (int j = 0; j < dof; ++j) any_effort = any_effort || row[tau[j]] != 0;
-    }
-    if (!any_effort) {
-      fail(path, 0, "", "every " +
-                            std::string(measured == Measured::kCurrent ? "current" : "torque") +
-                            " (" + effort_prefix + "1.." + effort_prefix + std::to_string(dof) +
-                            ") is zero: there is nothing to identify from");
+
+  void read_rows() {
+    std::string line;
+    while (std::getline(in_, line)) {
+      ++line_number_;
+      if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
+      std::vector<double> values = parse_row(line);
+      if (!rows_.empty() && !(values[t_column_] > rows_.back()[t_column_])) {
+        fail(path_, line_number_, "t",
+             "time does not increase (" + format(values[t_column_]) + " after " +
+                 format(rows_.back()[t_column_]) + ")");
+      }
+      if (rows_.size() == kMaxDataRows) {
+        fail(path_, line_number_, "",
+             "more than " + std::to_string(kMaxDataRows) +
+                 " samples, modelid's limit per data file (the regressor of one sample takes "
+                 "about 3 KB for six axes): split the file into several experiments or decimate "
+                 "it first");
+      }
+      rows_.push_back(std::move(values));
+      row_line_.push_back(line_number_);
     }
   }
 
-  Trajectory out;
-  out.source = path;
-  const Eigen::Index n = static_cast<Eigen::Index>(rows.size());
-  out.t.resize(n);
-  out.q.resize(n, dof);
-  out.tau = Eigen::MatrixXd::Zero(n, dof);
-  out.measured = measured;
-  out.dq = Eigen::MatrixXd::Zero(n, dof);
-  out.ddq = Eigen::MatrixXd::Zero(n, dof);
-  out.has_velocity = velocity;
-  if (reference) out.qr.resize(n, dof);
-  for (Eigen::Index s = 0; s < n; ++s) {
-    out.t[s] = rows[s][t_column];
-    for (int j = 0; j < dof; ++j) {
-      out.q(s, j) = rows[s][q[j]];
-      if (tau[j] >= 0) out.tau(s, j) = rows[s][tau[j]];
-      if (reference) out.qr(s, j) = rows[s][qr[j]];
-      if (velocity) {
-        out.dq(s, j) = rows[s][dq[j]];
-        out.ddq(s, j) = rows[s][ddq[j]];
+  // Holes in the time stamps, against the median step.
+  void check_time_steps() const {
+    std::vector<double> steps(rows_.size() - 1);
+    for (std::size_t s = 0; s + 1 < rows_.size(); ++s) {
+      steps[s] = rows_[s + 1][t_column_] - rows_[s][t_column_];
+    }
+    std::vector<double> sorted = steps;
+    std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
+    const double median = sorted[sorted.size() / 2];
+    for (std::size_t s = 0; s < steps.size(); ++s) {
+      if (steps[s] > kMaxGapSteps * median) {
+        fail(path_, row_line_[s + 1], "t",
+             "time jumps from " + brief(rows_[s][t_column_]) + " s (line " +
+                 std::to_string(row_line_[s]) + ") to " + brief(rows_[s + 1][t_column_]) + " s, " +
+                 brief(std::round(steps[s] / median)) + " sample times (median " + brief(median) +
+                 " s); a hole longer than " + brief(kMaxGapSteps) +
+                 " sample times is not filled with invented samples: split the file at the "
+                 "hole into two experiments (--data A --data B)");
       }
     }
   }
-  return out;
+
+  void check_some_effort() const {
+    bool any_effort = false;
+    for (const std::vector<double>& row : rows_) {
+      for (int j = 0; j < dof_; ++j) any_effort = any_effort || row[tau_[j]] != 0;
+    }
+    if (!any_effort) {
+      fail(path_, 0, "",
+           "every " + std::string(measured_ == Measured::kCurrent ? "current" : "torque") + " (" +
+               effort_prefix_ + "1.." + effort_prefix_ + std::to_string(dof_) +
+               ") is zero: there is nothing to identify from");
+    }
+  }
+
+  Trajectory trajectory() const {
+    Trajectory out;
+    out.source = path_;
+    const Eigen::Index n = static_cast<Eigen::Index>(rows_.size());
+    out.t.resize(n);
+    out.q.resize(n, dof_);
+    out.tau = Eigen::MatrixXd::Zero(n, dof_);
+    out.measured = measured_;
+    out.dq = Eigen::MatrixXd::Zero(n, dof_);
+    out.ddq = Eigen::MatrixXd::Zero(n, dof_);
+    out.has_velocity = velocity_;
+    if (reference_) out.qr.resize(n, dof_);
+    for (Eigen::Index s = 0; s < n; ++s) {
+      out.t[s] = rows_[s][t_column_];
+      for (int j = 0; j < dof_; ++j) {
+        out.q(s, j) = rows_[s][q_[j]];
+        if (tau_[j] >= 0) out.tau(s, j) = rows_[s][tau_[j]];
+        if (reference_) out.qr(s, j) = rows_[s][qr_[j]];
+        if (velocity_) {
+          out.dq(s, j) = rows_[s][dq_[j]];
+          out.ddq(s, j) = rows_[s][ddq_[j]];
+        }
+      }
+    }
+    return out;
+  }
+
+  const std::string& path_;
+  const int dof_;
+  const EffortColumns effort_;
+  std::istream& in_;
+  int line_number_ = 0;
+  std::vector<std::string> header_;
+  std::map<std::string, int> column_;
+  // The column of each quantity per joint; -1 where absent.
+  int t_column_ = -1;
+  std::vector<int> q_, tau_, dq_, ddq_, qr_;
+  Measured measured_ = Measured::kTorque;
+  std::string effort_prefix_;
+  bool velocity_ = true, any_derivative_ = false, reference_ = true, any_reference_ = false;
+  std::vector<std::vector<double>> rows_;
+  std::vector<int> row_line_;  // the line of each row, for messages about time steps
+};
+
+}  // namespace
+
+Trajectory read_trajectory_csv(const std::string& path, int dof, EffortColumns effort) {
+  std::ifstream in(path);
+  if (!in) fail(path, 0, "", "cannot open the file");
+  check_file_size(path);
+  return TrajectoryCsvReader(path, dof, effort, in).read();
 }
 
 void write_trajectory_csv(const std::string& path, const Trajectory& x) {
