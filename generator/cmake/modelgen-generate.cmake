@@ -17,46 +17,42 @@
 # It is the cache variable MODELGEN_EXECUTABLE when set (like Protobuf_PROTOC_EXECUTABLE),
 # otherwise the imported target modelgen::modelgen of find_package(modelgen COMPONENTS
 # generator), or the modelgen target of modelgen's own build. The generated code needs nothing
-# from the package.
-
-# Every entry point modelgen generates, in the order of its files, with the entry points each
-# one needs after a colon ("modelgen --list-functions" prints the same; a test compares them,
-# and modelgen_generate() compares them with a MODELGEN_EXECUTABLE or installed modelgen).
-set(MODELGEN_ENTRY_POINTS
-  idim_regressor_standard
-  inverse_dynamics_standard
-  joint_sincos
-  idim_regressor_standard_sincos:joint_sincos
-  inverse_dynamics_standard_sincos:joint_sincos
-  base_from_standard
-  idim_regressor
-  inverse_dynamics
-  mass_matrix
-  idim_regressor_sincos:joint_sincos
-  inverse_dynamics_sincos:joint_sincos
-  mass_matrix_sincos:joint_sincos
-  inverse_dynamics_state_jacobian
-  energy_regressor
-  power_regressor
-  energy_regressor_sincos:joint_sincos
-  power_regressor_sincos:joint_sincos
-  drive_torque
-  drive_torque_jacobian:idim_regressor_standard
-  drive_torque_state_jacobian:base_from_standard,inverse_dynamics,inverse_dynamics_state_jacobian
-  drive_regressor:idim_regressor_standard
-  drive_torque_given_regressor
-  drive_torque_jacobian_given_regressor
-  inverse_dynamics_identified:inverse_dynamics)
+# from the package. Which files modelgen writes comes from modelgen itself (--list-functions,
+# its registry of generated functions), asked at configure time; the modelgen target of the
+# same build cannot be asked yet, so there the entry points compile as one source that includes
+# those the manifest lists.
 
 set(MODELGEN_EXECUTABLE "" CACHE FILEPATH
     "The modelgen that modelgen_generate() runs (a build-machine executable in a cross build); \
 empty: modelgen::modelgen")
 
-# The entry points of MODELGEN_ENTRY_POINTS that `selection` needs (itself and what it calls,
-# transitively), in file order; inverse_dynamics_identified only `with_params`.
-function(_modelgen_needed_functions out selection with_params)
+# The entry points the modelgen at `executable` writes, in the order of its files, each with
+# the entry points it needs after a colon ("name:callee,callee"): its --list-functions, which
+# prints its registry of generated functions. Asked once per executable and configure.
+function(_modelgen_entry_points out executable)
+  string(MAKE_C_IDENTIFIER "${executable}" key)
+  get_property(known GLOBAL PROPERTY _modelgen_entry_points_${key} SET)
+  if(NOT known)
+    execute_process(COMMAND ${executable} --list-functions RESULT_VARIABLE result
+                    OUTPUT_VARIABLE listed ERROR_VARIABLE errors)
+    if(NOT result EQUAL 0 OR listed STREQUAL "")
+      message(FATAL_ERROR "modelgen_generate: ${executable} --list-functions failed "
+                          "(${result}): ${errors}")
+    endif()
+    string(STRIP "${listed}" listed)
+    string(REPLACE "\n" ";" listed "${listed}")
+    set_property(GLOBAL PROPERTY _modelgen_entry_points_${key} "${listed}")
+  endif()
+  get_property(entries GLOBAL PROPERTY _modelgen_entry_points_${key})
+  set(${out} ${entries} PARENT_SCOPE)
+endfunction()
+
+# The entry points of `entries` (as _modelgen_entry_points gives them) that `selection` needs
+# (itself and what it calls, transitively), in file order; inverse_dynamics_identified only
+# `with_params`.
+function(_modelgen_needed_functions out entries selection with_params)
   set(names)
-  foreach(entry ${MODELGEN_ENTRY_POINTS})
+  foreach(entry ${entries})
     string(REGEX REPLACE ":.*" "" name "${entry}")
     list(APPEND names ${name})
   endforeach()
@@ -82,7 +78,7 @@ function(_modelgen_needed_functions out selection with_params)
   set(pending ${selection})
   while(pending)
     list(POP_FRONT pending name)
-    foreach(entry ${MODELGEN_ENTRY_POINTS})
+    foreach(entry ${entries})
       if(entry MATCHES "^${name}:(.*)$")
         string(REPLACE "," ";" callees "${CMAKE_MATCH_1}")
         foreach(callee ${callees})
@@ -103,26 +99,6 @@ function(_modelgen_needed_functions out selection with_params)
     endif()
   endforeach()
   set(${out} ${ordered} PARENT_SCOPE)
-endfunction()
-
-# Stops when the modelgen at `executable` generates other entry points than this file knows (a
-# MODELGEN_EXECUTABLE of another version): its files would not be compiled, or not be there.
-# Runs it once per executable and configure.
-function(_modelgen_check_entry_points executable)
-  string(MAKE_C_IDENTIFIER "${executable}" key)
-  get_property(checked GLOBAL PROPERTY _modelgen_checked_${key})
-  if(checked)
-    return()
-  endif()
-  execute_process(COMMAND ${executable} --list-functions RESULT_VARIABLE result
-                  OUTPUT_VARIABLE listed ERROR_VARIABLE errors)
-  string(REPLACE ";" "\n" table "${MODELGEN_ENTRY_POINTS}")
-  if(NOT result EQUAL 0 OR NOT listed STREQUAL "${table}\n")
-    message(FATAL_ERROR "modelgen_generate: ${executable} does not generate the entry points "
-                        "this modelgen_generate() knows (--list-functions: ${result}${errors}); use "
-                        "the modelgen-generate.cmake installed with that modelgen")
-  endif()
-  set_property(GLOBAL PROPERTY _modelgen_checked_${key} TRUE)
 endfunction()
 
 function(modelgen_generate)
@@ -184,12 +160,15 @@ function(modelgen_generate)
     set(params_dependency ${params})
     set(with_params TRUE)
   endif()
-  _modelgen_needed_functions(functions "${arg_FUNCTIONS}" ${with_params})
   set(functions_option)
   if(arg_FUNCTIONS)
     string(REPLACE ";" "," functions_list "${arg_FUNCTIONS}")
     set(functions_option --functions ${functions_list})
   endif()
+  # The generator, and the modelgen whose --list-functions says which files it writes: one that
+  # runs now (MODELGEN_EXECUTABLE, an installed modelgen::modelgen), or none for the modelgen
+  # target of this build, which is not built yet.
+  set(lister)
   if(MODELGEN_EXECUTABLE)
     if(NOT EXISTS "${MODELGEN_EXECUTABLE}")
       message(FATAL_ERROR "modelgen_generate: MODELGEN_EXECUTABLE '${MODELGEN_EXECUTABLE}' "
@@ -197,15 +176,13 @@ function(modelgen_generate)
     endif()
     set(generator ${MODELGEN_EXECUTABLE})
     set(generator_dependency ${MODELGEN_EXECUTABLE})
-    _modelgen_check_entry_points(${MODELGEN_EXECUTABLE})
+    set(lister ${MODELGEN_EXECUTABLE})
   elseif(TARGET modelgen::modelgen)
     set(generator modelgen::modelgen)
     set(generator_dependency $<TARGET_FILE:modelgen::modelgen>)
-    # An installed modelgen can run now; the one of modelgen's own build is not built yet.
     get_target_property(imported modelgen::modelgen IMPORTED)
     if(imported)
-      get_target_property(location modelgen::modelgen LOCATION)
-      _modelgen_check_entry_points(${location})
+      get_target_property(lister modelgen::modelgen LOCATION)
     endif()
   else()
     message(FATAL_ERROR "modelgen_generate: no modelgen to run: find_package(modelgen "
@@ -215,9 +192,36 @@ function(modelgen_generate)
   # Output names follow the description's file stem, as on the modelgen command line.
   get_filename_component(stem ${robot} NAME_WLE)
   set(sources ${arg_OUT_DIR}/${stem}.cpp)
-  foreach(function ${functions})
-    list(APPEND sources ${arg_OUT_DIR}/${stem}_${function}.cpp)
-  endforeach()
+  set(collect_command)
+  if(lister)
+    # A source per entry point: the library compiles in parallel, a firmware links what it calls.
+    _modelgen_entry_points(entries ${lister})
+    _modelgen_needed_functions(functions "${entries}" "${arg_FUNCTIONS}" ${with_params})
+    foreach(function ${functions})
+      list(APPEND sources ${arg_OUT_DIR}/${stem}_${function}.cpp)
+    endforeach()
+  else()
+    # Which files the generator writes is known once it ran: one source includes the entry
+    # points its manifest lists (modelgen checks FUNCTIONS itself).
+    set(collector ${CMAKE_CURRENT_BINARY_DIR}/modelgen/collect_entry_points.cmake)
+    file(CONFIGURE OUTPUT ${collector} CONTENT [=[
+file(READ ${MANIFEST} manifest)
+string(JSON count LENGTH "${manifest}" files)
+set(text "// Generated by modelgen_generate(): every entry point ${STEM}.json lists.\n")
+math(EXPR last "${count} - 1")
+foreach(index RANGE ${last})
+  string(JSON file GET "${manifest}" files ${index})
+  if(file MATCHES "^${STEM}_.*\\.cpp$")
+    string(APPEND text "#include \"${file}\"\n")
+  endif()
+endforeach()
+file(CONFIGURE OUTPUT ${OUTPUT} CONTENT "${text}")
+]=] @ONLY)
+    set(collected ${arg_OUT_DIR}/${stem}_entry_points.cpp)
+    list(APPEND sources ${collected})
+    set(collect_command COMMAND ${CMAKE_COMMAND} -DMANIFEST=${arg_OUT_DIR}/${stem}.json
+                        -DSTEM=${stem} -DOUTPUT=${collected} -P ${collector})
+  endif()
   set(stamp ${arg_OUT_DIR}/${stem}.stamp)
   # The arguments as a file the stamp depends on: changing FUNCTIONS, SCALAR or OPTIONS
   # re-runs modelgen with Make too (Ninja re-runs on a changed command by itself). Rewritten
@@ -231,6 +235,7 @@ function(modelgen_generate)
     BYPRODUCTS ${sources} ${arg_OUT_DIR}/${stem}.hpp ${arg_OUT_DIR}/${stem}.json
     COMMAND ${generator} ${robot} -o ${arg_OUT_DIR} --scalar ${arg_SCALAR}
             ${params_option} ${functions_option} ${arg_OPTIONS}
+    ${collect_command}
     COMMAND ${CMAKE_COMMAND} -E touch ${stamp}
     DEPENDS ${robot} ${params_dependency} ${generator_dependency} ${arguments_file}
     COMMENT "modelgen: generating ${stem} for ${arg_TARGET}"

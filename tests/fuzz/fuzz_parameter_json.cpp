@@ -5,11 +5,11 @@
 #include <cstdint>
 #include <memory>
 
+#include "modelgen/io/drive_parameter_file.hpp"
 #include "modelgen/io/estimate_file.hpp"
 #include "modelgen/io/parameter_file.hpp"
 #include "modelgen/model/identification_model.hpp"
 #include "modelgen/model/load_robot.hpp"
-#include "runtime/cli/data/drive_parameter_file.hpp"
 #include "tests/fuzz/fuzz_input.hpp"
 
 namespace {
@@ -31,7 +31,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     modelgen::io::read_base_parameters(path, model);
   });
   modelgen::fuzz::expect_only_input_errors([&] {
-    modelgen::internal::read_drive_parameter_values(path, {"M1", "ZZ1", "Rv1", "load_m"});
+    modelgen::io::read_drive_parameter_values(path, {"M1", "ZZ1", "Rv1", "load_m"});
   });
   return 0;
 }

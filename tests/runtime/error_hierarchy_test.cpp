@@ -9,9 +9,9 @@
 #include <gtest/gtest.h>
 
 #include "modelgen/data/data_error.hpp"
-#include "modelgen/data/trajectory_csv.hpp"
 #include "modelgen/estimation/estimation_error.hpp"
 #include "modelgen/estimation/least_squares.hpp"
+#include "modelgen/io/experiment/trajectory_csv.hpp"
 #include "modelgen/model/command_line.hpp"
 #include "modelgen/model/error.hpp"
 #include "modelgen/model/load_robot.hpp"
@@ -19,6 +19,8 @@
 
 namespace modelgen {
 namespace {
+
+using namespace modelgen::io;  // the data CSV (modelgen/io/experiment/trajectory_csv.hpp)
 
 TEST(ErrorHierarchy, ADescriptionErrorIsAnErrorWithFileAndLine) {
   const std::string path = test::source_path("tests/bad_inputs/yaml/unknown_key.yaml");

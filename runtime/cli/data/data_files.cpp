@@ -9,6 +9,8 @@
 
 namespace modelgen::internal {
 
+using namespace modelgen::io;  // the file formats (modelgen/io/)
+
 Experiments read_experiments(const std::vector<std::string>& paths,
                              const IdentificationModel& model, const PreparationOptions& options,
                              EffortColumns effort, std::ostream& report, bool keep_raw) {

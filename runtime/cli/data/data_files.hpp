@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "modelgen/data/trajectory.hpp"
-#include "modelgen/data/trajectory_csv.hpp"
+#include "modelgen/io/experiment/trajectory_csv.hpp"
 #include "modelgen/model/identification_model.hpp"
 #include "modelgen/model/option_table.hpp"
 #include "modelgen/signal/prepare.hpp"
@@ -60,6 +60,6 @@ struct Experiments {
 /// file is read once either way).
 Experiments read_experiments(const std::vector<std::string>& paths,
                              const IdentificationModel& model, const PreparationOptions& options,
-                             EffortColumns effort, std::ostream& report, bool keep_raw = false);
+                             io::EffortColumns effort, std::ostream& report, bool keep_raw = false);
 
 }  // namespace modelgen::internal

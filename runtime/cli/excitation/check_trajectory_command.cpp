@@ -5,16 +5,18 @@
 #include <iostream>
 
 #include "modelgen/excitation/limit_use.hpp"
+#include "modelgen/io/experiment/fourier_file.hpp"
 #include "runtime/cli/common/commands.hpp"
 #include "runtime/cli/common/model_source.hpp"
 #include "runtime/cli/common/text_format.hpp"
-#include "runtime/cli/data/fourier_file.hpp"
 #include "runtime/cli/excitation/a_priori_torque.hpp"
 #include "runtime/cli/excitation/trajectory_limits.hpp"
 #include "runtime/cli/plots/torque_plots.hpp"
 #include "runtime/cli/plots/trajectory_plot.hpp"
 
 namespace modelgen::internal {
+
+using namespace modelgen::io;  // the file formats (modelgen/io/)
 
 int run_check_trajectory(const CommandLine& args) {
   const ModelSource source = load_model_source(args.one("--robot"), angle_tolerance_option(args));

@@ -13,10 +13,10 @@
 #include "modelgen/excitation/excitation_design.hpp"
 #include "modelgen/excitation/expected_precision.hpp"
 #include "modelgen/excitation/limit_use.hpp"
+#include "modelgen/io/experiment/fourier_file.hpp"
 #include "runtime/cli/common/commands.hpp"
 #include "runtime/cli/common/model_source.hpp"
 #include "runtime/cli/common/text_format.hpp"
-#include "runtime/cli/data/fourier_file.hpp"
 #include "runtime/cli/excitation/a_priori_torque.hpp"
 #include "runtime/cli/excitation/design_report.hpp"
 #include "runtime/cli/excitation/trajectory_limits.hpp"
@@ -24,6 +24,8 @@
 #include "runtime/cli/plots/trajectory_plot.hpp"
 
 namespace modelgen::internal {
+
+using namespace modelgen::io;  // the file formats (modelgen/io/)
 
 namespace {
 

@@ -6,10 +6,12 @@
 #include <chrono>
 #include <cmath>
 
+#include "modelgen/io/experiment/controller_file.hpp"
 #include "runtime/cli/common/text_format.hpp"
-#include "runtime/cli/data/controller_file.hpp"
 
 namespace modelgen::internal {
+
+using namespace modelgen::io;  // the file formats (modelgen/io/)
 
 Identification fit_closed_loop(const CommandLine& args, const IdentificationModel& model,
                                const Experiments& experiments,

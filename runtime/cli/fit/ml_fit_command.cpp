@@ -19,9 +19,10 @@
 #include <set>
 #include <sstream>
 
-#include "modelgen/data/trajectory_csv.hpp"
 #include "modelgen/estimation/estimation_error.hpp"
 #include "modelgen/estimation/identify.hpp"
+#include "modelgen/io/drive_parameter_file.hpp"
+#include "modelgen/io/experiment/trajectory_csv.hpp"
 #include "modelgen/ml/drive_model.hpp"
 #include "modelgen/ml/fit.hpp"
 #include "modelgen/ml/linear_route.hpp"
@@ -34,11 +35,13 @@
 #include "runtime/cli/common/shipped_models.hpp"
 #include "runtime/cli/common/text_format.hpp"
 #include "runtime/cli/data/data_files.hpp"
-#include "runtime/cli/data/drive_parameter_file.hpp"
+#include "runtime/cli/data/drive_parameter_checks.hpp"
 #include "runtime/cli/fit/ml_plan.hpp"
 #include "runtime/cli/reports/ml_report.hpp"
 
 namespace modelgen::internal {
+
+using namespace modelgen::io;  // the file formats (modelgen/io/)
 
 namespace {
 

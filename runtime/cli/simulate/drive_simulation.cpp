@@ -10,13 +10,16 @@
 #include <vector>
 
 #include "modelgen/data/trajectory.hpp"
+#include "modelgen/io/drive_parameter_file.hpp"
 #include "modelgen/ml/drive_model.hpp"
 #include "modelgen/ml/load_parameters.hpp"
 #include "modelgen/ml/problem.hpp"
 #include "runtime/cli/common/text_format.hpp"
-#include "runtime/cli/data/drive_parameter_file.hpp"
+#include "runtime/cli/data/drive_parameter_checks.hpp"
 
 namespace modelgen::internal {
+
+using namespace modelgen::io;  // the file formats (modelgen/io/)
 
 namespace {
 

@@ -17,9 +17,11 @@
 
 #include "modelgen/closed_loop/closed_loop_simulation.hpp"
 #include "modelgen/data/trajectory.hpp"
-#include "modelgen/data/trajectory_csv.hpp"
 #include "modelgen/excitation/fourier_trajectory.hpp"
 #include "modelgen/io/estimate_file.hpp"
+#include "modelgen/io/experiment/controller_file.hpp"
+#include "modelgen/io/experiment/fourier_file.hpp"
+#include "modelgen/io/experiment/trajectory_csv.hpp"
 #include "modelgen/io/parameter_file.hpp"
 #include "modelgen/ml/drive_model.hpp"
 #include "modelgen/model/number_text.hpp"
@@ -28,8 +30,6 @@
 #include "runtime/cli/common/commands.hpp"
 #include "runtime/cli/common/model_source.hpp"
 #include "runtime/cli/common/progress.hpp"
-#include "runtime/cli/data/controller_file.hpp"
-#include "runtime/cli/data/fourier_file.hpp"
 #include "runtime/cli/excitation/trajectory_limits.hpp"
 #include "runtime/cli/simulate/drive_simulation.hpp"
 

@@ -9,14 +9,14 @@
 #include <numbers>
 
 #include "modelgen/closed_loop/closed_loop_simulation.hpp"
-#include "modelgen/data/trajectory_csv.hpp"
 #include "modelgen/io/estimate_file.hpp"
+#include "modelgen/io/experiment/controller_file.hpp"
+#include "modelgen/io/experiment/trajectory_csv.hpp"
 #include "modelgen/io/parameter_file.hpp"
 #include "modelgen/model/number_text.hpp"
 #include "runtime/cli/common/commands.hpp"
 #include "runtime/cli/common/model_source.hpp"
 #include "runtime/cli/common/text_format.hpp"
-#include "runtime/cli/data/controller_file.hpp"
 #include "runtime/cli/plots/torque_plots.hpp"
 
 namespace modelgen::internal {

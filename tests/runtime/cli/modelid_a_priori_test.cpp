@@ -13,7 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "modelgen/data/trajectory.hpp"
-#include "modelgen/data/trajectory_csv.hpp"
+#include "modelgen/io/experiment/trajectory_csv.hpp"
 #include "modelgen/model/load_robot.hpp"
 #include "tests/support/cli_runner.hpp"
 #include "tests/support/kdl_oracle.hpp"
@@ -21,6 +21,8 @@
 
 namespace modelgen {
 namespace {
+
+using namespace modelgen::io;  // the data CSV (modelgen/io/experiment/trajectory_csv.hpp)
 
 namespace fs = std::filesystem;
 using test::CliRun;

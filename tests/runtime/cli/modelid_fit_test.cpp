@@ -16,10 +16,10 @@
 #include <nlohmann/json.hpp>
 
 #include "modelgen/data/trajectory.hpp"
-#include "modelgen/data/trajectory_csv.hpp"
 #include "modelgen/estimation/identify.hpp"
 #include "modelgen/estimation/least_squares.hpp"
 #include "modelgen/excitation/fourier_trajectory.hpp"
+#include "modelgen/io/experiment/trajectory_csv.hpp"
 #include "modelgen/model/identification_model.hpp"
 #include "modelgen/model/load_robot.hpp"
 #include "tests/runtime/cli/modelid_cli_support.hpp"
@@ -27,6 +27,8 @@
 
 namespace modelgen {
 namespace {
+
+using namespace modelgen::io;  // the data CSV (modelgen/io/experiment/trajectory_csv.hpp)
 
 namespace fs = std::filesystem;
 using test::CliRun;

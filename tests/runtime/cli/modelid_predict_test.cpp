@@ -15,7 +15,7 @@
 #include <nlohmann/json.hpp>
 
 #include "modelgen/data/trajectory.hpp"
-#include "modelgen/data/trajectory_csv.hpp"
+#include "modelgen/io/experiment/trajectory_csv.hpp"
 #include "modelgen/model/load_robot.hpp"
 #include "modelgen/model/reference_dynamics.hpp"
 #include "tests/runtime/cli/modelid_cli_support.hpp"
@@ -23,6 +23,8 @@
 
 namespace modelgen {
 namespace {
+
+using namespace modelgen::io;  // the data CSV (modelgen/io/experiment/trajectory_csv.hpp)
 
 namespace fs = std::filesystem;
 using test::CliRun;

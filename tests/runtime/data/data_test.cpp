@@ -8,13 +8,15 @@
 
 #include "modelgen/data/data_error.hpp"
 #include "modelgen/data/trajectory.hpp"
-#include "modelgen/data/trajectory_csv.hpp"
 #include "modelgen/excitation/fourier_trajectory.hpp"
+#include "modelgen/io/experiment/trajectory_csv.hpp"
 #include "modelgen/signal/differentiation.hpp"
 #include "tests/support/test_support.hpp"
 
 namespace modelgen {
 namespace {
+
+using namespace modelgen::io;  // the data CSV (modelgen/io/experiment/trajectory_csv.hpp)
 
 // The broken files of tests/bad_inputs/data/ and their messages are run through modelid by
 // tests/bad_inputs/bad_inputs_test.cpp; here the library's side of one of them.

@@ -19,9 +19,9 @@
 #include <Eigen/Core>
 #include <gtest/gtest.h>
 
-#include "modelgen/data/trajectory_csv.hpp"
 #include "modelgen/estimation/errors_in_variables.hpp"
 #include "modelgen/excitation/fourier_trajectory.hpp"
+#include "modelgen/io/experiment/trajectory_csv.hpp"
 #include "modelgen/model/identification_model.hpp"
 #include "modelgen/model/load_robot.hpp"
 #include "modelgen/signal/fourier_fit.hpp"
@@ -34,6 +34,8 @@
 
 namespace modelgen {
 namespace {
+
+using namespace modelgen::io;  // the data CSV (modelgen/io/experiment/trajectory_csv.hpp)
 
 constexpr int kDof = 6;
 constexpr double kPeriod = 10.0;  // s

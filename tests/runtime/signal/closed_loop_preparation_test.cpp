@@ -12,9 +12,9 @@
 #include <string>
 #include <vector>
 
+#include <gtest/gtest.h>
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
-#include <gtest/gtest.h>
 
 #include "generated/tx40/tx40.hpp"
 #include "modelgen/data/trajectory.hpp"
@@ -31,11 +31,11 @@ namespace modelgen {
 namespace {
 
 constexpr int kDof = tx40::kDof;
-constexpr double kSampleTime = 1e-3;  // s, the controller's clock
-constexpr int kSubsteps = 4;          // RK4 steps per controller sample
+constexpr double kSampleTime = 1e-3;    // s, the controller's clock
+constexpr int kSubsteps = 4;            // RK4 steps per controller sample
 constexpr double kEncoderNoise = 2e-4;  // rad, standard deviation
-constexpr double kPeriod = 5.0;       // s, of the reference
-constexpr int kHarmonics = 5;         // reference band: 1 Hz
+constexpr double kPeriod = 5.0;         // s, of the reference
+constexpr int kHarmonics = 5;           // reference band: 1 Hz
 constexpr int kPeriods = 4;
 // Per joint: inertia the loop is tuned for (kg m^2, about the diagonal of M), and the reference's
 // largest swing (rad) and speed (rad/s).
@@ -137,8 +137,8 @@ Trajectory closed_loop_record(const IdentificationModel& model, const Eigen::Vec
     const Eigen::VectorXd e = qr - measured;
     if (k == 0) e_previous = e;
     integral += kSampleTime * pid.ki.cwiseProduct(e);
-    const Eigen::VectorXd tau = pid.kp.cwiseProduct(e) + integral +
-                                pid.kd.cwiseProduct(e - e_previous) / kSampleTime;
+    const Eigen::VectorXd tau =
+        pid.kp.cwiseProduct(e) + integral + pid.kd.cwiseProduct(e - e_previous) / kSampleTime;
     e_previous = e;
     out.t[k] = t;
     out.q.row(k) = measured.transpose();
@@ -170,8 +170,7 @@ struct FitSummary {
 };
 
 FitSummary fit(const IdentificationModel& model, const Eigen::VectorXd& beta,
-               const Trajectory& record, const PreparationOptions& options,
-               double min_speed = 0) {
+               const Trajectory& record, const PreparationOptions& options, double min_speed = 0) {
   PreparedExperiment prepared = prepare_experiment(record, DriveChain::identity(kDof), options);
   std::cout << "[ prepared ] " << prepared.summary << "\n";
   std::vector<Trajectory> data{prepared.data};
@@ -206,8 +205,8 @@ FitSummary fit(const IdentificationModel& model, const Eigen::VectorXd& beta,
   }
   std::cout << "[ fit      ] relative error norm " << out.rel_error_norm << " (truth "
             << out.truth_rel_error_norm << "), " << out.well_identified
-            << " parameters with %std < 10, worst |error| / sd " << out.worst_z << " ("
-            << out.worst << ")\n";
+            << " parameters with %std < 10, worst |error| / sd " << out.worst_z << " (" << out.worst
+            << ")\n";
   return out;
 }
 

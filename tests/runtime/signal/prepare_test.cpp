@@ -167,9 +167,11 @@ TEST(Prepare, SkippedPeriodsLeaveTheStartTransientOutOfTheAverage) {
   options.periodic = true;
   options.period = 1.0;
   options.harmonics = 2;
-  const PreparedExperiment all = prepare_experiment(periodic_with_transient(4), DriveChain::identity(1), options);
+  const PreparedExperiment all =
+      prepare_experiment(periodic_with_transient(4), DriveChain::identity(1), options);
   options.skip_periods = 1;
-  const PreparedExperiment skipped = prepare_experiment(periodic_with_transient(4), DriveChain::identity(1), options);
+  const PreparedExperiment skipped =
+      prepare_experiment(periodic_with_transient(4), DriveChain::identity(1), options);
   // Averaged over periods 2-4 only, the torque is the periodic part (the transient has decayed
   // to 5 e^-10 = 2.3e-4 at t = 1 s), and its spread over the periods is that remainder.
   double worst = 0;

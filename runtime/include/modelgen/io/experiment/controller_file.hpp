@@ -5,7 +5,7 @@
 
 #include "modelgen/closed_loop/pid_controller.hpp"
 
-namespace modelgen::internal {
+namespace modelgen::io {
 
 /// Reads {type: pid, sample_time: S, kp: [..], ki: [..], kd: [..]} with one gain per joint
 /// (joint side: N m/rad, N m/(rad s), N m s/rad). Throws modelgen::InputError naming the file,
@@ -14,4 +14,4 @@ namespace modelgen::internal {
 /// whose length is not `dof`, a gain that is negative or not a number, kp = 0.
 PidGains read_controller(const std::string& path, int dof);
 
-}  // namespace modelgen::internal
+}  // namespace modelgen::io

@@ -1,47 +1,16 @@
-// Drive-model parameter files through nlohmann::json.
+// What makes drive-model parameter values impossible for a robot.
 
-#include "runtime/cli/data/drive_parameter_file.hpp"
-
-#include <nlohmann/json.hpp>
+#include "runtime/cli/data/drive_parameter_checks.hpp"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <stdexcept>
 
-#include "modelgen/io/json_file.hpp"
 #include "modelgen/ml/load_parameters.hpp"
-#include "modelgen/model/error.hpp"
 #include "modelgen/model/number_text.hpp"
 #include "modelgen/model/physical_consistency.hpp"
 
 namespace modelgen::internal {
-
-using namespace modelgen::io;  // the file formats (modelgen/io/)
-
-std::map<std::string, double> read_drive_parameter_values(const std::string& path,
-                                                          const std::vector<std::string>& names) {
-  const JsonDocument document = read_json_document(path);
-  const nlohmann::json& json = document.value;
-  if (!json.is_object()) {
-    throw InputError(document.at(""), "expected an object {\"name\": value, ...}");
-  }
-  std::map<std::string, double> out;
-  for (const auto& [name, value] : json.items()) {
-    const SourceLocation where = document.at(json_pointer("", name));
-    if (std::find(names.begin(), names.end(), name) == names.end()) {
-      throw InputError(where, "'" + name +
-                                  "' is not a parameter of the drive model (XXj..Mj, JMj, Rvj, "
-                                  "Rcj, Rzj, load_m, load_cx, ...)" +
-                                  modelgen::did_you_mean(name, names));
-    }
-    if (!value.is_number() || !std::isfinite(value.get<double>())) {
-      throw InputError(where, "'" + name + "' must be a finite number");
-    }
-    out[name] = value.get<double>();
-  }
-  return out;
-}
 
 std::vector<std::string> drive_parameter_violations(const std::map<std::string, double>& values,
                                                     const RigidBodyTree& tree) {
@@ -80,7 +49,8 @@ std::vector<std::string> drive_parameter_violations(const std::map<std::string, 
     ++given;
   }
   if (given == kLoadParams) {
-    for (const std::string& w : physical_consistency_warnings(LoadParameters::from_vector(load.data()))) {
+    for (const std::string& w :
+         physical_consistency_warnings(LoadParameters::from_vector(load.data()))) {
       out.push_back("load: " + w);
     }
   }

@@ -8,7 +8,7 @@
 #include "modelgen/data/data_error.hpp"
 #include "modelgen/data/trajectory.hpp"
 
-namespace modelgen {
+namespace modelgen::io {
 
 /// Limits of one data file: its size, and its samples (each sample's regressor rows take about
 /// 3 KB for six axes, so a million samples take 3 GB before the decimation).
@@ -39,4 +39,4 @@ Trajectory read_trajectory_csv(const std::string& path, int dof,
 /// has_velocity), tau, and qr when the trajectory has reference positions.
 void write_trajectory_csv(const std::string& path, const Trajectory& trajectory);
 
-}  // namespace modelgen
+}  // namespace modelgen::io

@@ -1,13 +1,13 @@
 // controller.yaml through yaml-cpp and the description loader's positioned reader.
 
-#include "runtime/cli/data/controller_file.hpp"
+#include "modelgen/io/experiment/controller_file.hpp"
 
 #include <yaml-cpp/yaml.h>
 
 #include "modelgen/model/error.hpp"
 #include "runtime/model/yaml_reader.hpp"
 
-namespace modelgen::internal {
+namespace modelgen::io {
 
 namespace {
 
@@ -73,4 +73,4 @@ PidGains read_controller(const std::string& path, int dof) {
   }
 }
 
-}  // namespace modelgen::internal
+}  // namespace modelgen::io

@@ -8,7 +8,7 @@
 
 #include "modelgen/excitation/fourier_trajectory.hpp"
 
-namespace modelgen::internal {
+namespace modelgen::io {
 
 /// Hard limits of a trajectory file: a period from a millisecond to about eleven days, and
 /// harmonics up to 1000 (the papers use up to 25); beyond them a typo would make simulate
@@ -25,4 +25,4 @@ constexpr long kMaxFourierHarmonic = 1000;
 /// outside the limits above, a harmonic given twice, a joint count that differs from `dof`.
 FourierTrajectory read_fourier(const std::string& path, int dof);
 
-}  // namespace modelgen::internal
+}  // namespace modelgen::io

@@ -1,6 +1,6 @@
 // CSV trajectories: header-driven column lookup, every field checked, errors positioned.
 
-#include "modelgen/data/trajectory_csv.hpp"
+#include "modelgen/io/experiment/trajectory_csv.hpp"
 
 #include <algorithm>
 #include <cerrno>
@@ -19,7 +19,7 @@
 
 #include "modelgen/model/number_text.hpp"
 
-namespace modelgen {
+namespace modelgen::io {
 
 namespace {
 
@@ -359,4 +359,4 @@ void write_trajectory_csv(const std::string& path, const Trajectory& x) {
   }
 }
 
-}  // namespace modelgen
+}  // namespace modelgen::io

@@ -2,7 +2,7 @@
 // every key checked (unknown or given twice), every number finite, and hard limits on the
 // period and the harmonics so that a typo cannot make `simulate` run for hours.
 
-#include "runtime/cli/data/fourier_file.hpp"
+#include "modelgen/io/experiment/fourier_file.hpp"
 
 #include <algorithm>
 #include <array>
@@ -16,7 +16,7 @@
 #include "modelgen/model/error.hpp"
 #include "runtime/model/yaml_reader.hpp"
 
-namespace modelgen::internal {
+namespace modelgen::io {
 
 namespace {
 
@@ -145,4 +145,4 @@ FourierTrajectory read_fourier(const std::string& path, int dof) {
   }
 }
 
-}  // namespace modelgen::internal
+}  // namespace modelgen::io
