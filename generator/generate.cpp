@@ -36,27 +36,6 @@ std::string normalized_command(const std::string& robot_path, const LoadOptions&
   return command;
 }
 
-namespace {
-
-// The names of --functions once each, in the order of the generated files, so that the
-// banner's command does not depend on how they were listed. Unknown names are kept (at the
-// end) for emit_functions to refuse with the list of valid ones.
-std::vector<std::string> in_file_order(const std::vector<std::string>& functions,
-                                       bool with_estimate) {
-  std::vector<std::string> ordered;
-  for (const std::string& name : entry_point_names(with_estimate)) {
-    if (std::find(functions.begin(), functions.end(), name) != functions.end()) {
-      ordered.push_back(name);
-    }
-  }
-  for (const std::string& name : functions) {
-    if (std::find(ordered.begin(), ordered.end(), name) == ordered.end()) ordered.push_back(name);
-  }
-  return ordered;
-}
-
-}  // namespace
-
 GeneratedModel generate_from_file(const std::string& robot_path, const LoadOptions& options,
                                   const std::string& scalar, const std::string& params_path,
                                   const std::vector<std::string>& functions) {
@@ -73,9 +52,9 @@ GeneratedModel generate_from_file(const std::string& robot_path, const LoadOptio
   input.stem = path.stem().string();
   input.input_name = path.filename().string();
   input.input_bytes = read_source_file(robot_path);
-  input.functions = in_file_order(functions, !params_path.empty());
+  input.functions = select_functions(functions, !params_path.empty());
   input.command_line =
-      normalized_command(robot_path, options, scalar, params_path, input.functions);
+      normalized_command(robot_path, options, scalar, params_path, input.functions.asked);
   if (!params_path.empty()) {
     input.estimate = read_estimate_file(params_path, robot_path, sha256_hex(input.input_bytes));
   }

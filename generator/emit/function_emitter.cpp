@@ -190,24 +190,28 @@ void add_callee_counts(std::vector<EmittedFunction>& functions) {
 
 std::vector<EmittedFunction> emit_functions(const RobotModel& model, const BaseParameterSet& base,
                                             ExprGraph& graph, const std::vector<Scalar>& scalars,
-                                            bool with_estimate,
-                                            const std::vector<std::string>& selection,
-                                            std::vector<std::string>* added,
+                                            const std::vector<EntryPoint>& generated,
                                             std::vector<int>* drive_regressor_index) {
-  const std::vector<EntryPoint> chosen = select_entry_points(selection, with_estimate, added);
   ModelSizes sizes;
   std::vector<int> index;
-  const std::vector<Built> built = run_builders(model, base, graph, scalars, chosen, sizes, index);
+  const std::vector<Built> built =
+      run_builders(model, base, graph, scalars, generated, sizes, index);
   if (drive_regressor_index) *drive_regressor_index = std::move(index);
   std::vector<EmittedFunction> functions;
   WriterWorkspace workspace;
-  for (const EntryPoint& point : chosen) {
+  for (const EntryPoint& point : generated) {
     const auto b = std::find_if(built.begin(), built.end(),
                                 [&](const Built& item) { return item.entry == point.entry; });
     functions.push_back(emit(*b, point.sincos, graph, scalars, sizes, workspace));
   }
   add_callee_counts(functions);
   return functions;
+}
+
+std::vector<EmittedFunction> emit_functions(const RobotModel& model, const BaseParameterSet& base,
+                                            ExprGraph& graph, const std::vector<Scalar>& scalars,
+                                            bool with_estimate) {
+  return emit_functions(model, base, graph, scalars, entry_points(with_estimate));
 }
 
 }  // namespace modelgen::gen

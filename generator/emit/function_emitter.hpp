@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "generator/emit/statement_writer.hpp"
+#include "generator/functions/entry_points.hpp"
 #include "generator/functions/function_entry.hpp"
 #include "generator/symbolic/expr.hpp"
 #include "modelgen/model/base_parameters.hpp"
@@ -34,20 +35,19 @@ struct EmittedFunction {
   std::vector<UnwrittenEntries> unwritten;  ///< per output array with entries left unwritten
 };
 
-/// Every entry point in the order of the generated files: the sections in their order, each
-/// with its functions in registry order followed by their _sincos variants; the functions on
-/// identified constants (Emitted::kWithEstimate) only `with_estimate`. A non-empty `selection`
-/// (entry-point names, as modelgen --functions takes them) keeps only those and the entry points
-/// they need, and runs only their builders (select_entry_points, which fills `added`).
-/// `drive_regressor_index` receives the packed drive regressor's layout (the dense index of each
-/// entry, build_context.hpp's drive_regressor_entries), whatever the selection. Throws
-/// UsageError for a name that is not an entry point of this model, and std::logic_error when a
-/// builder writes more or fewer values than its entry declares.
+/// The entry points `generated` (select_functions' choice, in file order), for each scalar
+/// type; only their builders run. `drive_regressor_index` receives the packed drive
+/// regressor's layout (the dense index of each entry, build_context.hpp's
+/// drive_regressor_entries), whatever the selection. Throws std::logic_error when a builder
+/// writes more or fewer values than its entry declares.
 std::vector<EmittedFunction> emit_functions(const RobotModel& model, const BaseParameterSet& base,
                                             ExprGraph& graph, const std::vector<Scalar>& scalars,
-                                            bool with_estimate = false,
-                                            const std::vector<std::string>& selection = {},
-                                            std::vector<std::string>* added = nullptr,
+                                            const std::vector<EntryPoint>& generated,
                                             std::vector<int>* drive_regressor_index = nullptr);
+
+/// Every entry point of a model `with_estimate` or not (entry_points()), as above.
+std::vector<EmittedFunction> emit_functions(const RobotModel& model, const BaseParameterSet& base,
+                                            ExprGraph& graph, const std::vector<Scalar>& scalars,
+                                            bool with_estimate = false);
 
 }  // namespace modelgen::gen

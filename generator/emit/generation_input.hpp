@@ -7,6 +7,7 @@
 
 #include "generator/emit/number_format.hpp"
 #include "generator/estimate/estimate_file.hpp"
+#include "generator/functions/entry_points.hpp"
 
 namespace modelgen::gen {
 
@@ -20,8 +21,8 @@ struct GenerationInput {
   /// The estimate of --params, whose base parameters become constants and
   /// inverse_dynamics_identified; none without it.
   std::optional<EstimateFile> estimate;
-  /// The entry points asked for (--functions), in file order; empty for all of them.
-  std::vector<std::string> functions;
+  /// The entry points to generate (select_functions of --functions).
+  FunctionSelection functions;
 };
 
 }  // namespace modelgen::gen

@@ -69,15 +69,12 @@ void check_names(const std::vector<std::string>& selection, bool with_estimate) 
   }
 }
 
-}  // namespace
-
-std::vector<EntryPoint> select_entry_points(const std::vector<std::string>& selection,
-                                            bool with_estimate, std::vector<std::string>* added) {
-  const std::vector<EntryPoint> all = entry_points(with_estimate);
-  if (selection.empty()) return all;
-  check_names(selection, with_estimate);
-  std::set<std::string> kept(selection.begin(), selection.end());
-  std::vector<std::string> pending(selection.begin(), selection.end());
+// `asked` and, transitively, what each needs; `added` says why each one not asked for came in.
+std::set<std::string> close_over_needs(const std::vector<std::string>& asked,
+                                       const std::vector<EntryPoint>& all,
+                                       std::vector<std::string>& added) {
+  std::set<std::string> kept(asked.begin(), asked.end());
+  std::vector<std::string> pending(asked.begin(), asked.end());
   while (!pending.empty()) {
     const std::string name = pending.back();
     pending.pop_back();
@@ -86,18 +83,35 @@ std::vector<EntryPoint> select_entry_points(const std::vector<std::string>& sele
       for (const std::string& needed : needs(point)) {
         if (!kept.insert(needed).second) continue;
         pending.push_back(needed);
-        if (added == nullptr) continue;
-        added->push_back(needed == "joint_sincos" && point.sincos
-                             ? name + " takes sin_q, cos_q from joint_sincos"
-                             : name + " calls " + needed);
+        added.push_back(needed == "joint_sincos" && point.sincos
+                            ? name + " takes sin_q, cos_q from joint_sincos"
+                            : name + " calls " + needed);
       }
     }
   }
-  std::vector<EntryPoint> chosen;
-  for (const EntryPoint& point : all) {
-    if (kept.count(point.name())) chosen.push_back(point);
+  return kept;
+}
+
+}  // namespace
+
+FunctionSelection select_functions(const std::vector<std::string>& asked, bool with_estimate) {
+  FunctionSelection selection;
+  selection.every_name = entry_point_names(true);
+  const std::vector<EntryPoint> all = entry_points(with_estimate);
+  if (asked.empty()) {
+    selection.generated = all;
+    return selection;
   }
-  return chosen;
+  check_names(asked, with_estimate);
+  const std::set<std::string> kept = close_over_needs(asked, all, selection.added);
+  for (const EntryPoint& point : all) {
+    if (kept.count(point.name()) == 0) continue;
+    selection.generated.push_back(point);
+    if (std::find(asked.begin(), asked.end(), point.name()) != asked.end()) {
+      selection.asked.push_back(point.name());
+    }
+  }
+  return selection;
 }
 
 }  // namespace modelgen::gen

@@ -30,15 +30,27 @@ std::vector<std::string> needs(const EntryPoint& point);
 
 /// Every entry point (entry_point_names(true)), one per line, followed by ":" and the entry
 /// points it needs, comma-separated, when it needs any: what `modelgen --list-functions`
-/// prints and modelgen_generate() mirrors (MODELGEN_ENTRY_POINTS).
+/// prints, from which modelgen_generate() learns the files of each --functions choice.
 std::string entry_point_list();
 
-/// The entry points to generate for `selection` (--functions; empty: all), in file order: the
-/// selection and, transitively, what it needs. `added` (if given) receives "x calls y" or "x
-/// takes sin_q, cos_q from joint_sincos" for each one needed that was not asked for. Throws
-/// UsageError for a name that is not an entry point of a model `with_estimate` or not.
-std::vector<EntryPoint> select_entry_points(const std::vector<std::string>& selection,
-                                            bool with_estimate,
-                                            std::vector<std::string>* added = nullptr);
+/// The functions of one modelgen run, chosen once (select_functions) and handed to the emitter.
+struct FunctionSelection {
+  /// The entry points to generate, in file order: those asked for and, transitively, what
+  /// they need; every one when none was asked for.
+  std::vector<EntryPoint> generated;
+  /// The names asked for (--functions), once each and in file order (the banner's command
+  /// line); empty for all.
+  std::vector<std::string> asked;
+  /// For each one generated that was not asked for: "x calls y" or "x takes sin_q, cos_q from
+  /// joint_sincos".
+  std::vector<std::string> added;
+  /// Every entry point of any model (entry_point_names(true)): the files an earlier run into
+  /// the same folder may have left.
+  std::vector<std::string> every_name;
+};
+
+/// The functions to generate for `asked` (--functions; empty: all) in a model `with_estimate`
+/// or not. Throws UsageError for a name that is not an entry point of such a model.
+FunctionSelection select_functions(const std::vector<std::string>& asked, bool with_estimate);
 
 }  // namespace modelgen::gen
