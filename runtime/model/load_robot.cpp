@@ -50,6 +50,10 @@ RobotModel load_robot_text(const std::string& path, const std::string& text,
     if (!options.name.empty()) {
       check_robot_name(options.name, {path});
       model.name = options.name;
+      // The note on the file's own name (robot_identifier) says what --name has just decided.
+      std::erase_if(model.notes, [](const DescriptionNote& note) {
+        return note.message.starts_with("robot name '");
+      });
     }
     return model;
   }

@@ -77,8 +77,7 @@ class MdhYamlLoader {
     model_.format = DescriptionFormat::kMdhYaml;
     model_.tree.angle_precision = angle_tolerance_;
     const YAML::Node name = in_.require(root, "name", "the robot description");
-    model_.name = in_.text(name, "name");
-    check_robot_name(model_.name, in_.at(name));
+    model_.name = robot_identifier(in_.text(name, "name"), in_.at(name), model_.notes);
     if (root["gravity"]) {
       const auto g = in_.numbers(root["gravity"], "gravity", 3);
       for (int i = 0; i < 3; ++i) in_.within(root["gravity"][i], "gravity", g[i], kMaxLength, " m/s^2");

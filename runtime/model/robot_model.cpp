@@ -2,6 +2,7 @@
 
 #include "modelgen/model/robot_model.hpp"
 
+#include <algorithm>
 #include <cctype>
 #include <charconv>
 #include <cmath>
@@ -204,7 +205,16 @@ void build_standard_parameters(RobotModel& model) {
   model.known_values.assign(params.size(), std::nullopt);
 }
 
-void check_robot_name(const std::string& name, const SourceLocation& where) {
+namespace {
+
+bool is_identifier(const std::string& name) {
+  if (name.empty() || std::isdigit(static_cast<unsigned char>(name[0]))) return false;
+  return std::all_of(name.begin(), name.end(), [](char c) {
+    return std::isalnum(static_cast<unsigned char>(c)) || c == '_';
+  });
+}
+
+bool is_reserved(const std::string& name) {
   static const std::set<std::string> kReserved = {
       "alignas", "alignof", "and", "and_eq", "asm", "auto", "bitand", "bitor", "bool", "break",
       "case", "catch", "char", "char8_t", "char16_t", "char32_t", "class", "compl", "concept",
@@ -218,20 +228,46 @@ void check_robot_name(const std::string& name, const SourceLocation& where) {
       "throw", "true", "try", "typedef", "typeid", "typename", "union", "unsigned", "using",
       "virtual", "void", "volatile", "wchar_t", "while", "xor", "xor_eq", "std", "modelgen",
       "internal", "gen"};
-  bool identifier = !name.empty() && !std::isdigit(static_cast<unsigned char>(name[0]));
-  for (char c : name) {
-    if (!std::isalnum(static_cast<unsigned char>(c)) && c != '_') identifier = false;
-  }
-  if (!identifier) {
+  return kReserved.count(name) > 0 || name.find("__") != std::string::npos ||
+         (!name.empty() && name[0] == '_');
+}
+
+}  // namespace
+
+void check_robot_name(const std::string& name, const SourceLocation& where) {
+  if (!is_identifier(name)) {
     throw InputError(where, "robot name '" + name +
                                 "' is not a C++ identifier (letters, digits and '_', not starting "
                                 "with a digit); it becomes the namespace of the generated code");
   }
-  if (kReserved.count(name) || name.find("__") != std::string::npos || name[0] == '_') {
+  if (is_reserved(name)) {
     throw InputError(where, "robot name '" + name +
                                 "' is reserved (a C++ keyword, 'std', 'modelgen', 'internal', "
                                 "'gen', or a reserved identifier); choose another name");
   }
+}
+
+std::string robot_identifier(const std::string& name, const SourceLocation& where,
+                             std::vector<DescriptionNote>& notes) {
+  if (is_identifier(name) && !is_reserved(name)) return name;
+  std::string id;
+  for (char c : name) {
+    const auto u = static_cast<unsigned char>(c);
+    if (std::isalnum(u) && u < 128) {
+      id += static_cast<char>(std::tolower(u));
+    } else if (!id.empty() && id.back() != '_') {
+      id += '_';
+    }
+  }
+  while (!id.empty() && id.back() == '_') id.pop_back();
+  if (id.empty() || std::isdigit(static_cast<unsigned char>(id[0]))) id = "robot_" + id;
+  if (id.back() == '_') id.pop_back();
+  if (is_reserved(id)) id += "_robot";
+  notes.push_back({where, "robot name '" + name +
+                              "' is not usable as a C++ namespace; the "
+                              "generated code is namespace modelgen::" +
+                              id + " (--name chooses another)"});
+  return id;
 }
 
 std::array<double, 10> standard_from_inertial(double mass, const std::array<double, 3>& com,

@@ -115,19 +115,14 @@ urdf::ModelInterfaceSharedPtr parse_with_urdfdom(const std::string& path, const 
   return urdf;
 }
 
-// --name, else the <robot> name, checked either way.
+// --name (which must be an identifier), else the <robot> name made one (with a note).
 std::string robot_name(const std::string& path, const UrdfStructure& structure,
-                       const LoadOptions& options) {
+                       const LoadOptions& options, std::vector<DescriptionNote>& notes) {
   if (!options.name.empty()) {
     check_robot_name(options.name, {path});
     return options.name;
   }
-  try {
-    check_robot_name(structure.robot_name, {path, structure.robot_line, 0});
-  } catch (const InputError& e) {
-    throw InputError(e.where(), e.message() + "; choose another name with --name");
-  }
-  return structure.robot_name;
+  return robot_identifier(structure.robot_name, {path, structure.robot_line, 0}, notes);
 }
 
 // --base, else the first link without a parent joint.
@@ -190,7 +185,7 @@ RobotModel load_urdf(const std::string& path, const std::string& text, const Loa
   RobotModel model;
   model.format = DescriptionFormat::kUrdf;
   model.source_file = path;
-  model.name = robot_name(path, structure, options);
+  model.name = robot_name(path, structure, options, model.notes);
 
   const int base = base_link(path, structure, options);
   const std::string& base_name = structure.links[base].name;

@@ -109,6 +109,18 @@ TEST(MdhYamlLoader, StandardParametersFollowDesignOrder) {
   EXPECT_FALSE(model.known_values[model.param_index("M1")].has_value());
 }
 
+TEST(MdhYamlLoader, ANameThatIsNoNamespaceBecomesOneWithANote) {
+  const std::string text =
+      "name: class\n"
+      "joints:\n"
+      "  - {type: revolute, alpha: 0, d: 0, theta: 0, r: 0}\n";
+  const RobotModel model = load_mdh_yaml("inline.yaml", text);
+  EXPECT_EQ(model.name, "class_robot");
+  ASSERT_EQ(model.notes.size(), 1u);
+  EXPECT_EQ(model.notes[0].where.line, 1);
+  EXPECT_NE(model.notes[0].message.find("modelgen::class_robot"), std::string::npos);
+}
+
 TEST(MdhYamlLoader, FrictionOptionsShapeTheParameterList) {
   const std::string text =
       "name: arm\n"

@@ -431,18 +431,49 @@ TEST(UrdfLoader, BranchesFollowFileOrderNotNameOrder) {
   EXPECT_EQ(model.tree.bodies[2].dof_index, 2);
 }
 
-TEST(UrdfLoader, RobotNameThatIsNoIdentifierSuggestsNameOption) {
-  const std::string text = one_joint_urdf("my-robot", "");
-  try {
-    load_urdf("named.urdf", text, {});
-    FAIL() << "expected InputError";
-  } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("named.urdf:1:"), std::string::npos) << e.what();
-    EXPECT_NE(std::string(e.what()).find("--name"), std::string::npos) << e.what();
-  }
+TEST(UrdfLoader, AVendorsRobotNameBecomesAnIdentifierWithANote) {
+  const std::string text = one_joint_urdf("GEN3-6DOF_NO-VISION_URDF_ARM_V01", "");
+  const RobotModel model = load_urdf("named.urdf", text, {});
+  EXPECT_EQ(model.name, "gen3_6dof_no_vision_urdf_arm_v01");
+  ASSERT_FALSE(model.notes.empty());
+  const std::string note = model.notes.front().to_string();
+  EXPECT_NE(note.find("named.urdf:1:"), std::string::npos) << note;
+  EXPECT_NE(note.find("'GEN3-6DOF_NO-VISION_URDF_ARM_V01'"), std::string::npos) << note;
+  EXPECT_NE(note.find("modelgen::gen3_6dof_no_vision_urdf_arm_v01"), std::string::npos) << note;
+  EXPECT_NE(note.find("--name"), std::string::npos) << note;
+
   LoadOptions options;
   options.name = "my_robot";
-  EXPECT_EQ(load_urdf("named.urdf", text, options).name, "my_robot");
+  const RobotModel named = load_urdf("named.urdf", text, options);
+  EXPECT_EQ(named.name, "my_robot");
+  for (const DescriptionNote& n : named.notes) {
+    EXPECT_EQ(n.message.find("robot name"), std::string::npos) << n.to_string();
+  }
+  // What the user chose must be an identifier already: nothing is made of it silently.
+  options.name = "my-robot";
+  EXPECT_THROW(load_urdf("named.urdf", text, options), InputError);
+}
+
+TEST(RobotIdentifier, MakesEveryNameAUsableNamespaceAndKeepsGoodOnes) {
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"KR150", "KR150"},  // an identifier stays as written
+      {"kuka_kr150_2", "kuka_kr150_2"},
+      {"GEN3-6DOF_NO-VISION_URDF_ARM_V01", "gen3_6dof_no_vision_urdf_arm_v01"},
+      {"6axis", "robot_6axis"},
+      {"class", "class_robot"},
+      {"std", "std_robot"},
+      {"__x__y", "x_y"},
+      {"my robot (v2)", "my_robot_v2"},
+      {"-", "robot"},
+      {"", "robot"},
+      {"Roboter\xc3\x84rm", "roboter_rm"}};
+  for (const auto& [name, expected] : cases) {
+    std::vector<DescriptionNote> notes;
+    const std::string id = robot_identifier(name, {"r.urdf", 1, 1}, notes);
+    EXPECT_EQ(id, expected) << name;
+    EXPECT_NO_THROW(check_robot_name(id, {"r.urdf"})) << name << " -> " << id;
+    EXPECT_EQ(notes.size(), name == expected ? 0u : 1u) << name;
+  }
 }
 
 // ---------------------------------------------------------------------------------------------

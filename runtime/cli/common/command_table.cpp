@@ -57,11 +57,18 @@ std::vector<OptionSpec> common_options() {
                        .unit = "rad",
                        .default_value = "1e-4",
                        .group = "Every command"};
+  OptionSpec name{.name = "--name",
+                  .value = "NAME",
+                  .help =
+                      "the robot's name, for a description file whose own name is no C++ "
+                      "identifier (made one, with a note, without --name)",
+                  .default_value = "from the file",
+                  .group = "Every command"};
   OptionSpec progress{.name = "--progress",
                       .type = ValueType::kFlag,
                       .help = "progress lines on stderr also when it is not a terminal (a log)",
                       .group = "Every command"};
-  return {tolerance, progress};
+  return {tolerance, name, progress};
 }
 
 OptionSpec robot_option(std::string value, std::string help) {

@@ -31,12 +31,17 @@ void take_limits(const RobotModel& description, int dof, ModelSource& source) {
 
 }  // namespace
 
-ModelSource load_model_source(const std::string& robot, double angle_tolerance) {
+LoadOptions description_options(const CommandLine& args) {
+  LoadOptions options;
+  options.angle_tolerance = angle_tolerance_option(args);
+  options.name = args.one_or("--name", "");
+  return options;
+}
+
+ModelSource load_model_source(const std::string& robot, const LoadOptions& options) {
   ModelSource source;
   // A folder named like a compiled-in model (build/kr150 after generating it) is not a file.
   if (std::filesystem::exists(robot) && !std::filesystem::is_directory(robot)) {
-    LoadOptions options;
-    options.angle_tolerance = angle_tolerance;
     source.description = modelgen::load_robot(robot, options);
     // Rounded quarter turns taken as exact, as modelgen does with its default tolerance, so
     // a description gives the same model here as its generated code.
@@ -50,6 +55,10 @@ ModelSource load_model_source(const std::string& robot, double angle_tolerance) 
     return source;
   }
   source.model = make_shipped_model(robot);
+  if (source.model != nullptr && !options.name.empty()) {
+    throw UsageError{"--name applies to a description file; '" + robot +
+                     "' is a compiled-in model, named '" + source.model->name() + "'"};
+  }
   if (source.model != nullptr) {
     const std::string path = shipped_description_path(robot);
     if (!path.empty()) {

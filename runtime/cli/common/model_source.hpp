@@ -7,9 +7,10 @@
 #include <string>
 #include <vector>
 
+#include "modelgen/model/command_line.hpp"
+#include "modelgen/model/identification_model.hpp"
 #include "modelgen/model/load_robot.hpp"
 #include "modelgen/model/robot_model.hpp"
-#include "modelgen/model/identification_model.hpp"
 
 namespace modelgen::internal {
 
@@ -34,9 +35,12 @@ struct ModelSource {
 
 /// Throws modelgen::InputError for a file that does not load, std::invalid_argument for a name
 /// that is neither a file nor a compiled-in model (the message lists the compiled-in ones).
-/// A description file is read with `angle_tolerance` (LoadOptions::angle_tolerance; the
-/// --angle-tolerance option), its notes printed on standard error.
-ModelSource load_model_source(const std::string& robot,
-                              double angle_tolerance = kDefaultAngleTolerance);
+/// A description file is read with `options` (--angle-tolerance, --name:
+/// description_options), its notes printed on standard error; a compiled-in model refuses a
+/// --name (UsageError).
+ModelSource load_model_source(const std::string& robot, const LoadOptions& options = {});
+
+/// The options every command reads a description with: --angle-tolerance and --name.
+LoadOptions description_options(const CommandLine& args);
 
 }  // namespace modelgen::internal

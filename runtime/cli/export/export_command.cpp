@@ -82,9 +82,8 @@ int run_export(const CommandLine& args) {
                            : "YAML description; give it "
                              "the extension .yaml")};
   }
-  LoadOptions options;
-  options.angle_tolerance = angle_tolerance_option(args);
-  const ModelSource source = load_model_source(robot, options.angle_tolerance);
+  const LoadOptions options = description_options(args);
+  const ModelSource source = load_model_source(robot, options);
   const RobotModel& description = *source.description;
   const IdentifiedStandard identified =
       read_identified_standard(params, description, *source.model);

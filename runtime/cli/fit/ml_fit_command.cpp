@@ -268,7 +268,7 @@ std::string ml_estimate_json(const CommandLine& args, const IdentificationModel&
 
 int run_fit_ml(const CommandLine& args, double prior_weight) {
   const MlRequest request = read_ml_request(args);
-  const ModelSource source = load_model_source(args.one("--robot"), angle_tolerance_option(args));
+  const ModelSource source = load_model_source(args.one("--robot"), description_options(args));
   const RobotModel& description = ml_description(source, args, request);
   const IdentificationModel& model = *source.model;
 

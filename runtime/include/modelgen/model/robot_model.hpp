@@ -115,6 +115,14 @@ void build_standard_parameters(RobotModel& model);
 /// an identifier, not a keyword, not "internal" or "gen".
 void check_robot_name(const std::string& name, const SourceLocation& where);
 
+/// The name of the generated code for a description's robot `name`: `name` itself when
+/// check_robot_name accepts it, otherwise an identifier made from it (letters lowercased, every
+/// run of other characters one '_', "robot_" before a leading digit, "_robot" after a reserved
+/// word: "GEN3-6DOF_NO-VISION" -> "gen3_6dof_no_vision"), with a note at `where` in `notes`.
+/// Vendors name robots freely; only an explicit --name must be an identifier already.
+std::string robot_identifier(const std::string& name, const SourceLocation& where,
+                             std::vector<DescriptionNote>& notes);
+
 /// Standard parameters of a body from its mass, centre of mass c (in the body frame) and inertia
 /// about the centre of mass expressed in a frame rotated by R_inertial (row-major) from the body
 /// frame: rotation then the parallel-axis theorem, J_O = R I_c R^T + m (|c|^2 1 - c c^T).
