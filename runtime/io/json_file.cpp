@@ -1,13 +1,20 @@
-// JSON input files through nlohmann::json: a SAX pass over the text records where each key
-// and element starts and refuses duplicated keys and unparsable numbers with their position,
-// then the document is built from the same text.
+// JSON input files through nlohmann::json, in one SAX pass over the text: each event builds
+// the document (nlohmann's own DOM builder) and records where its value starts in a tree shaped
+// like the document; duplicated keys, unparsable numbers and nesting beyond the limit are
+// refused with their position. Every step is linear in the text: positions come from line
+// starts found once, and no value carries the path to it.
 
 #include "modelgen/io/json_file.hpp"
 
+#include <algorithm>
 #include <cctype>
+#include <charconv>
+#include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <sstream>
+#include <system_error>
+#include <utility>
 #include <vector>
 
 namespace modelgen::io {
@@ -41,23 +48,32 @@ struct CountingIterator {
   bool operator!=(const CountingIterator& other) const { return at != other.at; }
 };
 
+// The SAX handler: positions here, the document by nlohmann's DOM builder (the one
+// json::parse uses), which the events are passed on to.
 class PositionRecorder : public nlohmann::json_sax<nlohmann::json> {
  public:
   PositionRecorder(const std::string& path, const std::string& text, const std::size_t& consumed,
                    JsonDocument& document)
-      : path_(path), text_(text), consumed_(consumed), document_(document) {}
+      : path_(path), text_(text), consumed_(consumed), document_(document), dom_(document.value) {
+    line_starts_.push_back(0);
+    for (std::size_t k = 0; k < text.size(); ++k) {
+      if (text[k] == '\n') line_starts_.push_back(k + 1);
+    }
+  }
 
-  bool null() override { return value(); }
-  bool boolean(bool) override { return value(); }
-  bool number_integer(number_integer_t) override { return value(); }
-  bool number_unsigned(number_unsigned_t) override { return value(); }
-  bool number_float(number_float_t, const string_t&) override { return value(); }
-  bool string(string_t&) override { return value(); }
-  bool binary(binary_t&) override { return value(); }
-  bool start_object(std::size_t) override { return open(true); }
-  bool start_array(std::size_t) override { return open(false); }
-  bool end_object() override { return close(); }
-  bool end_array() override { return close(); }
+  bool null() override { return value() && dom_.null(); }
+  bool boolean(bool v) override { return value() && dom_.boolean(v); }
+  bool number_integer(number_integer_t v) override { return value() && dom_.number_integer(v); }
+  bool number_unsigned(number_unsigned_t v) override { return value() && dom_.number_unsigned(v); }
+  bool number_float(number_float_t v, const string_t& s) override {
+    return value() && dom_.number_float(v, s);
+  }
+  bool string(string_t& v) override { return value() && dom_.string(v); }
+  bool binary(binary_t& v) override { return value() && dom_.binary(v); }
+  bool start_object(std::size_t n) override { return open(true) && dom_.start_object(n); }
+  bool start_array(std::size_t n) override { return open(false) && dom_.start_array(n); }
+  bool end_object() override { return close() && dom_.end_object(); }
+  bool end_array() override { return close() && dom_.end_array(); }
 
   bool key(string_t& key) override {
     // The parser has just read the key's closing quote; its opening quote is the last
@@ -71,18 +87,19 @@ class PositionRecorder : public nlohmann::json_sax<nlohmann::json> {
       while (open_quote > backslashes && text_[open_quote - backslashes - 1] == '\\') ++backslashes;
       if (backslashes % 2 == 0) break;
     }
-    Frame& frame = frames_.back();
     const std::pair<int, int> here = line_column(open_quote);
-    const auto [earlier, inserted] = frame.keys.emplace(key, here);
+    auto& members = frames_.back()->inside->members;
+    const auto [earlier, inserted] = members.try_emplace(key);
     if (!inserted) {
       throw InputError({path_, here.first, here.second},
                        "key '" + key + "' is given twice in one object (first at line " +
-                           std::to_string(earlier->second.first) +
+                           std::to_string(earlier->second.line) +
                            "); JSON keeps only one of them, so give each key once");
     }
-    frame.key = key;
-    frame.key_position = here;
-    return true;
+    earlier->second.line = here.first;
+    earlier->second.column = here.second;
+    member_ = &earlier->second;
+    return dom_.key(key);
   }
 
   bool parse_error(std::size_t position, const std::string& last_token,
@@ -111,52 +128,35 @@ class PositionRecorder : public nlohmann::json_sax<nlohmann::json> {
   }
 
  private:
-  struct Frame {
-    bool object = false;
-    std::string pointer;
-    std::size_t next_index = 0;
-    std::map<std::string, std::pair<int, int>> keys;
-    std::string key;
-    std::pair<int, int> key_position;
-  };
-
-  // 1-based line and column of the character at `offset`.
+  // 1-based line and column of the character at `offset`: a binary search among the line
+  // starts, which are found once (counting from the file's start for every value made the
+  // reader quadratic in the file's size).
   std::pair<int, int> line_column(std::size_t offset) const {
-    int line = 1;
-    std::size_t line_start = 0;
-    for (std::size_t k = 0; k < offset && k < text_.size(); ++k) {
-      if (text_[k] == '\n') {
-        ++line;
-        line_start = k + 1;
-      }
-    }
-    return {line, static_cast<int>(offset - line_start) + 1};
+    const auto after = std::upper_bound(line_starts_.begin(), line_starts_.end(), offset);
+    const std::size_t line = static_cast<std::size_t>(after - line_starts_.begin());
+    return {static_cast<int>(line), static_cast<int>(offset - line_starts_[line - 1]) + 1};
   }
 
-  // Records the pointer and position of the value that starts now; returns its pointer.
-  std::string place() {
+  // The position of the value that starts now: the root, the member whose key was just read,
+  // or the next element of the open array.
+  JsonPosition& place() {
     if (frames_.empty()) {
-      document_.positions[""] = {1, 1};
-      return "";
+      document_.root.line = document_.root.column = 1;
+      return document_.root;
     }
-    Frame& parent = frames_.back();
-    std::string pointer;
-    std::pair<int, int> where;
-    if (parent.object) {
-      pointer = json_pointer(parent.pointer, parent.key);
-      where = parent.key_position;
-    } else {
-      pointer = json_pointer(parent.pointer, std::to_string(parent.next_index++));
-      // The parser has read the value's first character (and a scalar's first lookahead).
-      std::size_t start = consumed_ == 0 ? 0 : consumed_ - 1;
-      while (start > 0 && (text_[start] == ',' || text_[start] == ']' ||
-                           std::isspace(static_cast<unsigned char>(text_[start])))) {
-        --start;
-      }
-      where = line_column(start);
+    if (frames_object_.back()) return *member_;
+    JsonPositionsInside& parent = *frames_.back()->inside;
+    // The parser has read the value's first character (and a scalar's first lookahead).
+    std::size_t start = consumed_ == 0 ? 0 : consumed_ - 1;
+    while (start > 0 && (text_[start] == ',' || text_[start] == ']' ||
+                         std::isspace(static_cast<unsigned char>(text_[start])))) {
+      --start;
     }
-    document_.positions[pointer] = where;
-    return pointer;
+    const std::pair<int, int> where = line_column(start);
+    JsonPosition& element = parent.elements.emplace_back();
+    element.line = where.first;
+    element.column = where.second;
+    return element;
   }
 
   bool value() {
@@ -164,14 +164,27 @@ class PositionRecorder : public nlohmann::json_sax<nlohmann::json> {
     return true;
   }
   bool open(bool object) {
-    Frame frame;
-    frame.object = object;
-    frame.pointer = place();
-    frames_.push_back(std::move(frame));
+    // Each level costs a frame, and nlohmann::json recurses as deep when it copies or prints
+    // the document: a depth no file of modelid has is refused before it costs anything.
+    if (frames_.size() >= static_cast<std::size_t>(kMaxJsonDepth)) {
+      const std::pair<int, int> where = line_column(consumed_ == 0 ? 0 : consumed_ - 1);
+      throw InputError({path_, where.first, where.second},
+                       std::string("this ") + (object ? "object" : "array") + " is nested " +
+                           std::to_string(frames_.size() + 1) +
+                           " levels deep, beyond the limit of " + std::to_string(kMaxJsonDepth) +
+                           " (README, Limits); parameter and estimate files nest a few levels");
+    }
+    // The open containers are the last elements of their arrays (or members, which do not
+    // move), and an array grows only once its open element is closed: the pointers stay valid.
+    JsonPosition& here = place();
+    here.inside = std::make_unique<JsonPositionsInside>();
+    frames_.push_back(&here);
+    frames_object_.push_back(object);
     return true;
   }
   bool close() {
     frames_.pop_back();
+    frames_object_.pop_back();
     return true;
   }
 
@@ -179,15 +192,51 @@ class PositionRecorder : public nlohmann::json_sax<nlohmann::json> {
   const std::string& text_;
   const std::size_t& consumed_;
   JsonDocument& document_;
-  std::vector<Frame> frames_;
+  nlohmann::detail::json_sax_dom_parser<nlohmann::json> dom_;
+  std::vector<std::size_t> line_starts_;  // offset of the first character of each line
+  std::vector<JsonPosition*> frames_;     // the open arrays and objects, outermost first
+  std::vector<bool> frames_object_;       // whether each is an object
+  JsonPosition* member_ = nullptr;        // the member whose key was read last
 };
+
+// The next token of a JSON pointer from `at` (just after a '/'), unescaped as RFC 6901 says.
+std::string pointer_token(const std::string& pointer, std::size_t& at) {
+  std::string token;
+  for (; at < pointer.size() && pointer[at] != '/'; ++at) {
+    if (pointer[at] == '~' && at + 1 < pointer.size() &&
+        (pointer[at + 1] == '0' || pointer[at + 1] == '1')) {
+      token += pointer[++at] == '0' ? '~' : '/';
+    } else {
+      token += pointer[at];
+    }
+  }
+  return token;
+}
 
 }  // namespace
 
 SourceLocation JsonDocument::at(const std::string& pointer) const {
-  const auto found = positions.find(pointer);
-  if (found == positions.end()) return {path};
-  return {path, found->second.first, found->second.second};
+  const JsonPosition* node = &root;
+  std::size_t at = 0;
+  while (at < pointer.size()) {
+    if (pointer[at] != '/' || node->inside == nullptr) return {path};
+    ++at;
+    const std::string token = pointer_token(pointer, at);
+    const JsonPositionsInside& inside = *node->inside;
+    if (const auto member = inside.members.find(token); member != inside.members.end()) {
+      node = &member->second;
+      continue;
+    }
+    std::size_t index = 0;
+    const auto [end, ec] = std::from_chars(token.data(), token.data() + token.size(), index);
+    if (token.empty() || ec != std::errc() || end != token.data() + token.size() ||
+        index >= inside.elements.size()) {
+      return {path};
+    }
+    node = &inside.elements[index];
+  }
+  if (node->line == 0) return {path};
+  return {path, node->line, node->column};
 }
 
 std::string json_pointer(const std::string& pointer, std::string_view token) {
@@ -207,6 +256,14 @@ std::string json_pointer(const std::string& pointer, std::string_view token) {
 JsonDocument read_json_document(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError({path}, "cannot open the file");
+  std::error_code size_error;
+  const std::uintmax_t bytes = std::filesystem::file_size(path, size_error);
+  if (!size_error && bytes > kMaxJsonBytes) {
+    throw InputError({path}, "the file has " + std::to_string(bytes) +
+                                 " bytes, beyond the limit of " +
+                                 std::to_string(kMaxJsonBytes >> 20) +
+                                 " MiB a parameter or estimate file may hold (README, Limits)");
+  }
   std::ostringstream buffer;
   buffer << in.rdbuf();
   const std::string text = buffer.str();
@@ -217,7 +274,6 @@ JsonDocument read_json_document(const std::string& path) {
   const CountingIterator first{text.data(), &consumed};
   const CountingIterator last{text.data() + text.size(), &consumed};
   nlohmann::json::sax_parse(first, last, &recorder);
-  document.value = nlohmann::json::parse(text);
   return document;
 }
 

@@ -38,6 +38,29 @@ double number(const nlohmann::json& value, const SourceLocation& where, const st
   return value.get<double>();
 }
 
+// fit -o writes every base parameter into "parameters": one missing was deleted by hand or
+// lost, and taking it as 0, as the hand-written "base" and "standard" forms do, would predict,
+// simulate or export another robot than the one identified.
+void check_every_base_parameter(const JsonDocument& document, const IdentificationModel& model,
+                                const std::map<std::string, int>& given) {
+  const std::vector<std::string>& names = model.base_param_names();
+  std::string missing;
+  std::size_t count = 0;
+  for (const std::string& name : names) {
+    if (given.count(name) != 0) continue;
+    missing += (missing.empty() ? "'" : ", '") + name + "'";
+    ++count;
+  }
+  if (count == 0) return;
+  throw InputError(document.at("/parameters"),
+                   "\"parameters\" has no value for the base parameter" +
+                       std::string(count > 1 ? "s " : " ") + missing + " of " + model.name() +
+                       " (" + std::to_string(names.size() - count) + " of " +
+                       std::to_string(names.size()) +
+                       " given); an estimate of fit holds every base parameter, and a missing "
+                       "one is not 0");
+}
+
 }  // namespace
 
 Eigen::VectorXd read_base_parameters(const std::string& path, const IdentificationModel& model) {
@@ -110,6 +133,7 @@ Eigen::VectorXd read_base_parameters(const std::string& path, const Identificati
       }
       beta[index] = number(entry["value"], document.at(json_pointer(entry_pointer, "value")), name);
     }
+    check_every_base_parameter(document, model, line_of);
   } else {
     throw InputError(document.at(""), "expected a \"standard\", \"base\" or \"parameters\" entry");
   }
@@ -128,16 +152,15 @@ Eigen::VectorXd read_base_parameters(const std::string& path, const Identificati
   return beta;
 }
 
-void check_physically_possible(const std::string& path, const IdentificationModel& model,
-                               const RobotModel& description) {
-  if (description.param_names() != model.standard_param_names()) return;
+PhysicalProblems physical_problems(const std::string& path, const IdentificationModel& model,
+                                   const RobotModel& description) {
+  PhysicalProblems out;
+  if (description.param_names() != model.standard_param_names()) return out;
   const RigidBodyTree& tree = description.tree;
   const JsonDocument document = read_json_document(path);
   const nlohmann::json& json = document.value;
-  std::vector<std::string> problems;
-  std::string key;
   if (json.contains("standard")) {
-    key = "standard";
+    out.key = "standard";
     Eigen::VectorXd p = Eigen::VectorXd::Zero(model.num_standard_params());
     for (const auto& [name, value] : json["standard"].items()) {
       const SourceLocation where = document.at(json_pointer("/standard", name));
@@ -147,26 +170,37 @@ void check_physically_possible(const std::string& path, const IdentificationMode
     for (const PhysicalViolation& v : physical_violations(tree, p)) {
       const std::string link =
           v.body >= 0 ? "link '" + tree.bodies[static_cast<std::size_t>(v.body)].name + "' " : "";
-      problems.push_back(link + v.parameter + ": " + v.condition);
+      out.problems.push_back(link + v.parameter + ": " + v.condition);
     }
   } else {
-    key = json.contains("base") ? "base" : "parameters";
+    out.key = json.contains("base") ? "base" : "parameters";
     const Eigen::VectorXd beta = read_base_parameters(path, model);
     const std::vector<std::string>& names = model.base_param_names();
     for (std::size_t b = 0; b < names.size(); ++b) {
       for (const StandardParam& param : tree.params) {
         if (param.name != names[b] || !must_be_nonnegative(param.kind)) continue;
         const double value = beta[static_cast<Eigen::Index>(b)];
-        if (value < 0) problems.push_back(names[b] + " = " + shortest_text(value) + " is negative");
+        if (value < 0) {
+          out.problems.push_back(names[b] + " = " + shortest_text(value) + " is negative");
+        }
       }
     }
   }
-  if (problems.empty()) return;
+  out.where = document.at(json_pointer("", out.key));
+  return out;
+}
+
+std::string PhysicalProblems::text() const {
   std::string list;
   for (const std::string& problem : problems) list += (list.empty() ? "" : "; ") + problem;
-  throw InputError(document.at(json_pointer("", key)),
-                   "these parameters cannot be those of a physical robot: " + list +
-                       " (fit --physical gives estimates that can)");
+  return "these parameters cannot be those of a physical robot: " + list;
+}
+
+void check_physically_possible(const std::string& path, const IdentificationModel& model,
+                               const RobotModel& description) {
+  const PhysicalProblems found = physical_problems(path, model, description);
+  if (found.problems.empty()) return;
+  throw InputError(found.where, found.text() + " (fit --physical gives estimates that can)");
 }
 
 }  // namespace modelgen::io

@@ -215,25 +215,35 @@ void UrdfElementChecker::check_joint_axis(const tinyxml2::XMLElement* joint,
                                           const std::string& owner, JointEntry& entry) const {
   const tinyxml2::XMLElement* axis = joint->FirstChildElement("axis");
   if (axis == nullptr || !is_moving(entry.type)) return;
-  const auto xyz = numbers(axis, "xyz", 3, owner + ": axis", false, kMaxMagnitude);
-  if (xyz && (*xyz)[0] == 0 && (*xyz)[1] == 0 && (*xyz)[2] == 0) {
+  // The URDF specification defaults the axis to 1 0 0 when <axis> is left out (urdfdom does
+  // so) but requires xyz in an <axis>; urdfdom then leaves the axis 0 0 0, which no joint
+  // moves along. A misspelt attribute (xyzz) is most likely the axis meant, so it is named.
+  if (axis->Attribute("xyz") == nullptr) {
+    std::string others;
+    std::string suggestion;
+    for (const tinyxml2::XMLAttribute* a = axis->FirstAttribute(); a != nullptr; a = a->Next()) {
+      others += std::string(others.empty() ? ", but " : ", ") + "'" + a->Name() + "'";
+      if (suggestion.empty()) suggestion = did_you_mean(a->Name(), {"xyz"});
+    }
+    fail(axis, owner + ": <axis> has no xyz attribute" + others + suggestion +
+                   "; URDF requires xyz in an <axis> (leave <axis> out for the default axis 1 0 "
+                   "0)");
+  }
+  const std::vector<double> xyz = *numbers(axis, "xyz", 3, owner + ": axis", true, kMaxMagnitude);
+  if (xyz[0] == 0 && xyz[1] == 0 && xyz[2] == 0) {
     fail(axis, owner + ": axis xyz='" + axis->Attribute("xyz") +
                    "' is the zero vector; give the direction of motion");
   }
   // Scaled before squaring, so that the norm of 1e-200 does not underflow to 0 here.
-  if (xyz) {
-    const double scale = std::max({std::abs((*xyz)[0]), std::abs((*xyz)[1]), std::abs((*xyz)[2])});
-    const double norm = scale * std::hypot((*xyz)[0] / scale, (*xyz)[1] / scale, (*xyz)[2] / scale);
-    if (norm < kMinAxisNorm) {
-      fail(axis, owner + ": axis xyz='" + axis->Attribute("xyz") + "' has norm " +
-                     shortest_text(norm) + ", below the limit of " + shortest_text(kMinAxisNorm) +
-                     " (README, Limits); write a unit vector");
-    }
+  const double scale = std::max({std::abs(xyz[0]), std::abs(xyz[1]), std::abs(xyz[2])});
+  const double norm = scale * std::hypot(xyz[0] / scale, xyz[1] / scale, xyz[2] / scale);
+  if (norm < kMinAxisNorm) {
+    fail(axis, owner + ": axis xyz='" + axis->Attribute("xyz") + "' has norm " +
+                   shortest_text(norm) + ", below the limit of " + shortest_text(kMinAxisNorm) +
+                   " (README, Limits); write a unit vector");
   }
-  if (xyz) {
-    entry.axis = std::array<double, 3>{(*xyz)[0], (*xyz)[1], (*xyz)[2]};
-    entry.axis_line = axis->GetLineNum();
-  }
+  entry.axis = std::array<double, 3>{xyz[0], xyz[1], xyz[2]};
+  entry.axis_line = axis->GetLineNum();
 }
 
 // The <limit> of a joint, required for revolute and prismatic joints.

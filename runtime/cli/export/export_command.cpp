@@ -14,6 +14,7 @@
 
 #include <Eigen/Core>
 
+#include "modelgen/model/error.hpp"
 #include "modelgen/model/load_robot.hpp"
 #include "modelgen/model/number_text.hpp"
 #include "modelgen/model/urdf_export.hpp"
@@ -41,8 +42,19 @@ bool is_yaml_path(const std::string& path) {
 // parameters (what has no place in a URDF, the drive parameters, taken from the estimate).
 void check_round_trip(const std::string& output, const std::string& text, bool urdf,
                       const RobotModel& description, const IdentificationModel& model,
-                      const Eigen::VectorXd& standard, const LoadOptions& options) {
-  const RobotModel again = load_robot_text(output, text, options);
+                      const Eigen::VectorXd& standard, const LoadOptions& options,
+                      const std::string& params) {
+  // Values within the limits can still make one beyond them (a centre of mass h / m of 2 km
+  // from a light link): said against the estimate, as the output was never written.
+  RobotModel again;
+  try {
+    again = load_robot_text(output, text, options);
+  } catch (const InputError& e) {
+    throw InputError({params},
+                     "the description export would write from this estimate is "
+                     "refused on loading it: " +
+                         e.message() + "; nothing was written");
+  }
   if (again.param_names() != description.param_names()) {
     throw std::logic_error("export: the written description has other standard parameters");
   }
@@ -105,7 +117,8 @@ int run_export(const CommandLine& args) {
                               "Identified by modelid export from " + estimate + method +
                                   ":\nevery standard parameter, physically consistent.");
   }
-  check_round_trip(output, written, urdf, description, *source.model, identified.values, options);
+  check_round_trip(output, written, urdf, description, *source.model, identified.values, options,
+                   params);
   write_file(output, written);
   std::cerr << "modelid export: the identified " << (urdf ? "inertials" : "values") << " of "
             << description.name << " written to " << output

@@ -3,6 +3,7 @@
 
 #include "runtime/cli/export/identified_standard.hpp"
 
+#include <cmath>
 #include <cstddef>
 #include <string>
 #include <vector>
@@ -12,12 +13,33 @@
 #include "modelgen/io/estimate_file.hpp"
 #include "modelgen/io/json_file.hpp"
 #include "modelgen/io/parameter_file.hpp"
+#include "modelgen/model/description_limits.hpp"
 #include "modelgen/model/error.hpp"
+#include "modelgen/model/number_text.hpp"
 #include "modelgen/model/physical_consistency.hpp"
 
 namespace modelgen::internal {
 
 using namespace modelgen::io;  // the file formats (modelgen/io/)
+
+namespace {
+
+// The description export writes is loaded again, and the loaders refuse values beyond the
+// description limits (README, Limits): said here, against the estimate, rather than against a
+// description that was never written.
+void check_within_limits(const SourceLocation& where, const std::string& name, double value,
+                         ParamKind kind) {
+  const bool mass = kind == ParamKind::kM;
+  const double limit = mass ? kMaxMass : kMaxMagnitude;
+  if (std::abs(value) <= limit) return;
+  const std::string unit = mass ? " kg" : "";
+  throw InputError(where, "'" + name + "' is " + shortest_text(value) + unit +
+                              ", beyond the limit of " + shortest_text(limit) + unit +
+                              " a description may hold (README, Limits); export writes only "
+                              "what loads again");
+}
+
+}  // namespace
 
 IdentifiedStandard read_identified_standard(const std::string& path, const RobotModel& description,
                                             const IdentificationModel& model) {
@@ -50,6 +72,7 @@ IdentifiedStandard read_identified_standard(const std::string& path, const Robot
     }
     if (!value.is_number()) throw InputError(where, "the value of '" + name + "' is not a number");
     out.values[static_cast<Eigen::Index>(k)] = value.get<double>();
+    check_within_limits(where, name, value.get<double>(), description.tree.params[k].kind);
     given[k] = true;
   }
   for (std::size_t k = 0; k < names.size(); ++k) {

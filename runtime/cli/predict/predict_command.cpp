@@ -16,6 +16,7 @@
 #include "runtime/cli/data/data_files.hpp"
 #include "runtime/cli/data/limit_check.hpp"
 #include "runtime/cli/plots/torque_plots.hpp"
+#include "runtime/cli/reports/finite_output.hpp"
 #include "runtime/cli/reports/prediction_output.hpp"
 
 namespace modelgen::internal {
@@ -54,6 +55,19 @@ int run_predict(const CommandLine& args) {
   // parameter name, or worse, match by chance.
   check_estimate_model(params, model);
   const Eigen::VectorXd beta = read_base_parameters(params, model);
+  // simulate refuses a standard set no body has (a negative mass): its forward dynamics and
+  // data would be meaningless. predict evaluates tau = W beta, linear in the base parameters,
+  // which physical standard sets may give as well, so its torques are well defined and it
+  // says what is wrong but predicts. Base sets are left alone: an unconstrained fit's
+  // estimate of a friction may well be negative.
+  if (const RobotModel* description = source.any_description()) {
+    const PhysicalProblems physical = physical_problems(params, model, *description);
+    if (physical.key == "standard" && !physical.problems.empty()) {
+      std::cerr << physical.where.to_string() << ": warning: " << physical.text()
+                << "; predict gives the torques of their base parameters all the same "
+                   "(simulate refuses them)\n";
+    }
+  }
   if (args.has("--plot")) check_plot_folder(args.one("--plot"));
   // The data are prepared as the fit prepared them (EST.json's data options) unless this
   // command line gives data options of its own; stderr says which.
@@ -98,6 +112,8 @@ int run_predict(const CommandLine& args) {
   const TorquePrediction prediction =
       predict_with_progress(model, experiments.data, beta, experiments.decimation);
   const std::vector<Trajectory>& data = experiments.data;
+  check_prediction_finite(params, data, prediction, measured,
+                          largest_parameter(beta, model.base_param_names()));
 
   std::cout << "modelid predict: " << model.name() << " on " << data.size() << " experiment(s), "
             << prediction.samples << " samples, parameters from " << params << "\n"

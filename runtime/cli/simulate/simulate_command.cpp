@@ -13,6 +13,7 @@
 #include <optional>
 #include <sstream>
 #include <stdexcept>
+#include <utility>
 #include <vector>
 
 #include "modelgen/closed_loop/closed_loop_simulation.hpp"
@@ -31,6 +32,7 @@
 #include "runtime/cli/common/model_source.hpp"
 #include "runtime/cli/common/progress.hpp"
 #include "runtime/cli/excitation/trajectory_limits.hpp"
+#include "runtime/cli/reports/finite_output.hpp"
 #include "runtime/cli/simulate/drive_simulation.hpp"
 
 namespace modelgen::internal {
@@ -45,6 +47,26 @@ std::vector<double> parse_noise(const std::string& text, int dof, const std::str
                                 const std::string& option = "--noise",
                                 const std::string& what = "standard deviation") {
   return per_axis_values(text, option, dof, what, axes, AxisValue::kNonNegative);
+}
+
+// Where the simulated values come from, for a message about them: the file and which of its
+// values is largest (largest_parameter).
+struct ValueSource {
+  std::string file;
+  std::string largest;
+};
+
+// Every number simulate writes must be finite: a parameter of 1e308 gives torques beyond the
+// range of a double, which the CSV would hold as inf and fit would refuse on reading it.
+void check_finite_output(const Trajectory& x, const ValueSource& values) {
+  for (const auto& [column, m] :
+       {std::pair{"q", &x.q}, {"dq", &x.dq}, {"ddq", &x.ddq}, {"tau", &x.tau}, {"qr", &x.qr}}) {
+    const std::string found = first_non_finite(*m, x.t, column);
+    if (found.empty()) continue;
+    throw InputError({values.file}, "the simulated " + found + ", beyond the range of a double" +
+                                        values.largest +
+                                        "; simulate writes finite numbers only, and wrote nothing");
+  }
 }
 
 // Without --params: the base parameters of the description's a-priori values (URDF
@@ -104,7 +126,8 @@ Eigen::VectorXd a_priori_base_parameters(const ModelSource& source,
 // reference's state at t = 0; writes t, q (measured), tau (commanded, plus noise), qr.
 Trajectory simulate_under_controller(const CommandLine& args, const IdentificationModel& model,
                                      const std::vector<double>& beta,
-                                     const FourierTrajectory& fourier, std::uint64_t seed) {
+                                     const FourierTrajectory& fourier, std::uint64_t seed,
+                                     const ValueSource& values) {
   if (args.has("--noise") || args.has("--sample-time")) {
     throw UsageError{"with --controller the torque noise is --noise-tau and the sample time the "
                      "controller's sample_time; --noise and --sample-time are for open loop"};
@@ -159,6 +182,7 @@ Trajectory simulate_under_controller(const CommandLine& args, const Identificati
   x.tau = run.tau_recorded;
   x.qr = run.qr;
   x.dq = x.ddq = Eigen::MatrixXd::Zero(x.t.size(), n);
+  check_finite_output(x, values);
   const Eigen::VectorXd error = (run.q - run.qr).cwiseAbs().colwise().maxCoeff().transpose();
   std::cerr << "modelid simulate: " << x.t.size() << " samples of " << model.name()
             << " under the PID at " << 1.0 / ts << " Hz written to " << args.one("-o")
@@ -179,9 +203,12 @@ int run_simulate(const CommandLine& args) {
   }
   const IdentificationModel& model = *source.model;
   Eigen::VectorXd beta;
+  ValueSource values;
   if (!drive_mode && !args.has("--params")) {
     beta = a_priori_base_parameters(source, model);
+    values.file = source.any_description()->source_file;
   } else if (!drive_mode) {
+    values.file = args.one("--params");
     check_estimate_model(args.one("--params"), model);
     beta = read_base_parameters(args.one("--params"), model);
     // A simulation of a robot that cannot exist would make data no robot gives.
@@ -206,9 +233,11 @@ int run_simulate(const CommandLine& args) {
       throw UsageError{"--seed must be a non-negative integer, not '" + text + "'"};
     }
   }
+  if (!drive_mode) values.largest = largest_parameter(beta, model.base_param_names());
   if (args.has("--controller")) {
     const std::vector<double> base(beta.data(), beta.data() + beta.size());
-    write_trajectory_csv(args.one("-o"), simulate_under_controller(args, model, base, fourier, seed));
+    write_trajectory_csv(args.one("-o"),
+                         simulate_under_controller(args, model, base, fourier, seed, values));
     return 0;
   }
   const std::vector<double> noise =
@@ -224,6 +253,8 @@ int run_simulate(const CommandLine& args) {
   if (drive_mode) {
     drive_model.emplace(source.description->tree, model.drive_chain());
     truth = read_drive_truth(args.one("--drive"), *source.description, *drive_model);
+    values = {args.one("--drive"),
+              largest_parameter(truth.theta, drive_model->param_names(), "drive parameter")};
     if (!truth.note.empty()) std::cerr << "modelid simulate: note: " << truth.note << "\n";
   }
   Trajectory x = sample(fourier, sample_time, periods * fourier.period);
@@ -255,6 +286,7 @@ int run_simulate(const CommandLine& args) {
   if (drive_mode) x.tau = x.tau * model.drive_chain().motor_from_joint;
   progress.update(x.t.size());
   progress.finish();
+  check_finite_output(x, values);
   write_trajectory_csv(output, x);
   std::cerr << "modelid simulate: " << x.t.size() << " samples of " << model.name()
             << " written to " << output << "\n";

@@ -3,9 +3,11 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include <Eigen/Core>
 
+#include "modelgen/model/error.hpp"
 #include "modelgen/model/identification_model.hpp"
 #include "modelgen/model/robot_model.hpp"
 
@@ -15,11 +17,28 @@ namespace modelgen::io {
 ///   {"standard": {"ZZ1": 1.2, ...}}   standard parameters by name, missing ones 0, converted
 ///                                      through the regrouping relations;
 ///   {"base": {"ZZ1R": 1.2, ...}}       base parameters by name, missing ones 0;
-///   {"parameters": [{"name": "ZZ1R", "value": 1.2}, ...]}   an estimate written by `fit`.
+///   {"parameters": [{"name": "ZZ1R", "value": 1.2}, ...]}   an estimate written by `fit`,
+///                                      every base parameter.
 /// Throws InputError naming the file, line and column and the problem: a syntax error, a
 /// number beyond a double, a key or parameter given twice, more than one of the three forms,
-/// an empty or unknown parameter name (with the closest name).
+/// an empty or unknown parameter name (with the closest name), a base parameter missing from
+/// "parameters" (each missing one named).
 Eigen::VectorXd read_base_parameters(const std::string& path, const IdentificationModel& model);
+
+/// What check_physically_possible finds, without throwing.
+struct PhysicalProblems {
+  std::string key;                    ///< the entry judged: "standard", "base" or "parameters"
+  SourceLocation where;               ///< its position in the file
+  std::vector<std::string> problems;  ///< one per violated condition, naming link and parameter
+  /// "these parameters cannot be those of a physical robot: <problems, '; '-separated>".
+  std::string text() const;
+};
+
+/// The conditions the values of the parameter file at `path` break, as
+/// check_physically_possible judges them; no problems (and an empty key) when `description`'s
+/// parameters are not the model's.
+PhysicalProblems physical_problems(const std::string& path, const IdentificationModel& model,
+                                   const RobotModel& description);
 
 /// Throws InputError at the file's "standard" (or "base", "parameters") entry when its values
 /// cannot be those of a physical robot (modelgen/model/physical_consistency.hpp): a standard
