@@ -11,6 +11,7 @@
 #include "generator/dynamics/base_report.hpp"
 #include "generator/functions/entry_points.hpp"
 #include "generator/generate.hpp"
+#include "generator/output/file_set.hpp"
 #include "generator/version.hpp"
 #include "modelgen/model/load_robot.hpp"
 #include "modelgen/model/option_table.hpp"
@@ -55,6 +56,9 @@ int main(int argc, char** argv) {
       std::cout << modelgen::gen::describe_base_parameters(
           model, modelgen::derive_base_parameters(model.tree), closed ? &*closed : nullptr);
     } else {
+      // A run killed while writing this folder left it mixed: repaired before anything else,
+      // so that a run that fails below (a bad description) does it too.
+      modelgen::gen::recover_output_directory(args.output_dir);
       const modelgen::gen::GeneratedModel generated =
           modelgen::gen::generate_from_file(args.robot, args.load, args.scalar, args.params,
                                             args.functions);

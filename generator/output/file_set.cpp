@@ -1,30 +1,34 @@
-// All-or-nothing writing of generated files: temporaries, then a journal that commits the new
-// set, then rename(2) of each temporary over its destination. A failure before the journal
-// leaves the old set; a failure after it restores the old files from hard-linked backups; a
-// kill after it is completed by the next run in the same folder (roll forward), so a killed
-// run never leaves a mixed set behind once modelgen runs again, nor stray hidden files.
+// All-or-nothing writing of generated files, in one of two ways. When the output folder holds
+// only this set's files (or does not exist), the new set is built in a sibling folder and
+// swapped in with one rename (directory_swap.hpp): the folder shows the old set or the new one,
+// whatever happens. Otherwise (the user's own files beside the set, or a file system that
+// cannot exchange folders) a journal: temporaries, then a journal that commits the new set,
+// then rename(2) of each temporary over its destination. A failure before the journal leaves
+// the old set; a failure after it restores the old files from hard-linked backups; a kill
+// after it is completed by the next run in the same folder (roll forward), which modelgen
+// does first thing (recover_output_directory), even a run that then fails.
 
 #include "generator/output/file_set.hpp"
 
-#include <fcntl.h>
-#include <signal.h>
-#include <sys/file.h>
 #include <unistd.h>
 
-#include <cerrno>
-#include <cstring>
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
-#include <regex>
-#include <sstream>
 #include <string>
 #include <vector>
 
+#include "generator/output/directory_swap.hpp"
+#include "generator/output/file_system.hpp"
 #include "modelgen/model/error.hpp"
 
 namespace modelgen::gen {
 
 namespace fs = std::filesystem;
+using detail::first_line;
+using detail::same_content;
+using detail::step_done;
+using detail::write_new_file;
 
 namespace test_hooks {
 void (*after_rename)(std::size_t renamed) = nullptr;
@@ -45,74 +49,9 @@ namespace {
 
 constexpr const char* kJournal = ".modelgen-commit";
 
-bool same_content(const fs::path& path, const std::string& content) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return false;
-  std::ostringstream existing;
-  existing << in.rdbuf();
-  return existing.str() == content;
-}
-
-// Writes `content` to a new file at `path` and flushes it to the disk; on failure, returns the
-// system's reason (strerror), so a full disk says "No space left on device".
-std::string write_new_file(const fs::path& path, const std::string& content) {
-  const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
-  if (fd < 0) return std::strerror(errno);
-  std::size_t written = 0;
-  while (written < content.size()) {
-    const ssize_t n = ::write(fd, content.data() + written, content.size() - written);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) {
-      const std::string reason = n < 0 ? std::strerror(errno) : "nothing written";
-      ::close(fd);
-      return reason;
-    }
-    written += static_cast<std::size_t>(n);
-  }
-  // The journal commits the set: its temporaries must be on the disk before it is.
-  if (::fsync(fd) != 0 && errno != EINVAL) {
-    const std::string reason = std::strerror(errno);
-    ::close(fd);
-    return reason;
-  }
-  if (::close(fd) != 0) return std::strerror(errno);
-  return "";
-}
-
-std::string first_line(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::string line;
-  std::getline(in, line);
-  return line;
-}
-
-// An exclusive lock on the output directory for the whole write: two runs into one folder (a
-// parallel build generating twice) take turns, so neither completes the other's journal while
-// it is still renaming. Released when the object goes.
-class DirectoryLock {
- public:
-  explicit DirectoryLock(const fs::path& directory)
-      : fd_(::open(directory.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC)) {
-    if (fd_ >= 0) {
-      while (::flock(fd_, LOCK_EX) != 0 && errno == EINTR) {
-      }
-    }
-  }
-  ~DirectoryLock() {
-    if (fd_ >= 0) ::close(fd_);
-  }
-  DirectoryLock(const DirectoryLock&) = delete;
-  DirectoryLock& operator=(const DirectoryLock&) = delete;
-
- private:
-  int fd_;
-};
-
-bool process_alive(long pid) { return pid > 0 && (::kill(static_cast<pid_t>(pid), 0) == 0 || errno == EPERM); }
-
 // Finishes what a killed run committed (its journal lists "temporary\tdestination" lines, and
 // "\tname" for a file to remove): every temporary still there is renamed into place, retired
-// files are removed, then backups, leftovers of runs that no longer exist and the journal go.
+// files are removed, then the journal goes (backups and temporaries: detail::remove_leftovers).
 void recover_interrupted_run(const fs::path& directory) {
   std::error_code ignored;
   const fs::path journal = directory / kJournal;
@@ -140,18 +79,8 @@ void recover_interrupted_run(const fs::path& directory) {
       }
     }
     fs::remove(journal, ignored);
+    step_done();
   }
-  // ".<name>.tmp-<pid>", ".<name>.old-<pid>" and ".modelgen-commit.tmp-<pid>" of dead runs.
-  static const std::regex leftover(R"(^\..+\.(tmp|old)-([0-9]+)$)");
-  std::vector<fs::path> stale;
-  for (const auto& entry : fs::directory_iterator(directory, ignored)) {
-    const std::string name = entry.path().filename().string();
-    std::smatch match;
-    if (std::regex_match(name, match, leftover) && !process_alive(std::stol(match[2].str()))) {
-      stale.push_back(entry.path());
-    }
-  }
-  for (const fs::path& path : stale) fs::remove(path, ignored);
 }
 
 // Which existing files this set may replace or retire (FileSet::set_owner).
@@ -242,6 +171,7 @@ class Replacements {
         throw InputError({destination.string()},
                          "cannot write the file: " + reason + " (no file was changed)");
       }
+      step_done();
     }
   }
 
@@ -265,6 +195,7 @@ class Replacements {
       throw InputError({journal_.string()},
                        "cannot write the file: " + reason + " (no file was changed)");
     }
+    step_done();
   }
 
   // Every new file is complete on disk; now swap them in, keeping a hard link to each old file
@@ -281,6 +212,7 @@ class Replacements {
                            "cannot replace the file: " + ec.message() + " (no file was changed)");
         }
         r.backed_up = true;
+        step_done();
       }
       fs::rename(r.temporary, r.destination, ec);
       if (ec) {
@@ -289,6 +221,7 @@ class Replacements {
                                                        " (no file was changed)");
       }
       r.replaced = true;
+      step_done();
       if (test_hooks::after_rename != nullptr) test_hooks::after_rename(++renamed);
     }
   }
@@ -296,11 +229,15 @@ class Replacements {
   // The new set is in place: retired files, backups and the journal go.
   void finish(const std::vector<std::string>& retired) const {
     std::error_code ignored;
-    for (const std::string& name : retired) fs::remove(directory_ / name, ignored);
+    for (const std::string& name : retired) {
+      fs::remove(directory_ / name, ignored);
+      step_done();
+    }
     for (const Replacement& r : replacements_) {
       if (r.backed_up) fs::remove(r.backup, ignored);
     }
     fs::remove(journal_, ignored);
+    step_done();
   }
 
  private:
@@ -331,21 +268,94 @@ class Replacements {
   std::vector<Replacement> replacements_;
 };
 
+// The folder `directory` names, absolute, with its symbolic links resolved (a link to a folder
+// keeps pointing to the folder that gets the new set); empty when it cannot be swapped at all.
+fs::path swap_target(const std::string& directory) {
+  std::error_code ec;
+  fs::path path = fs::weakly_canonical(fs::absolute(directory, ec), ec);
+  if (ec) return {};
+  if (path.filename().empty()) path = path.parent_path();  // a trailing separator
+  if (path.filename().empty() || path == path.root_path()) return {};
+  return path;
+}
+
+// Whether every entry of the folder is a file the set accounts for (one of its files, a file
+// it retires, or a file generated from its input), so that replacing the whole folder takes
+// nothing else away; fills the plan's old names and the files it keeps by hard link.
+bool only_this_sets_files(const fs::path& folder, const std::vector<OutputFile>& files,
+                          const std::vector<std::string>& retired, const Ownership& ownership,
+                          detail::SwapPlan& plan) {
+  std::error_code ec;
+  for (const auto& entry : fs::directory_iterator(folder, ec)) {
+    const std::string name = entry.path().filename().string();
+    if (!fs::is_regular_file(fs::symlink_status(entry.path(), ec))) return false;
+    plan.old_names.push_back(name);
+    const auto same_name = [&](const OutputFile& file) { return file.name == name; };
+    const auto found = std::find_if(files.begin(), files.end(), same_name);
+    if (found != files.end()) {
+      if (same_content(entry.path(), found->content)) plan.linked.push_back(name);
+      continue;
+    }
+    if (std::find(retired.begin(), retired.end(), name) != retired.end()) continue;
+    if (!ownership.generated(entry.path()) || ownership.foreign(entry.path())) return false;
+    plan.linked.push_back(name);  // generated from this input by an earlier run: kept
+  }
+  return !ec;
+}
+
 }  // namespace
 
 void FileSet::write_to(const std::string& directory) const {
-  create_output_directory(directory);
-  const DirectoryLock lock(directory);
-  recover_interrupted_run(directory);
+  detail::reset_steps();
   const Ownership ownership{generated_mark_, owner_mark_};
+  const fs::path target = swap_target(directory);
+  const bool flat = std::none_of(files_.begin(), files_.end(), [](const OutputFile& file) {
+    return file.name.find('/') != std::string::npos;
+  });
+  std::error_code ec;
+  // No folder yet: the new one appears complete, by one rename of the folder built beside it.
+  if (flat && !target.empty() && !fs::exists(fs::symlink_status(target, ec))) {
+    detail::remove_leftovers(target);
+    fs::create_directories(target.parent_path(), ec);
+    detail::SwapPlan plan{target, {}, {}, {}};
+    for (const OutputFile& file : files_) plan.written.push_back(&file);
+    if (!ec && detail::swap_in_directory(plan) == detail::SwapResult::kDone) return;
+  }
+  create_output_directory(directory);
+  const detail::DirectoryLock lock(directory);
+  recover_interrupted_run(directory);
+  detail::remove_leftovers(target.empty() ? fs::path(directory) : target);
   check_destinations(directory, files_, ownership);
+  const std::vector<std::string> retired = files_to_retire(directory, retired_, ownership);
+  detail::SwapPlan plan{target, {}, {}, {}};
+  if (flat && !target.empty() && only_this_sets_files(target, files_, retired, ownership, plan)) {
+    for (const OutputFile& file : files_) {
+      if (std::find(plan.linked.begin(), plan.linked.end(), file.name) == plan.linked.end()) {
+        plan.written.push_back(&file);
+      }
+    }
+    if (plan.written.empty() && plan.linked.size() == plan.old_names.size()) return;  // the same
+    if (detail::swap_in_directory(plan) == detail::SwapResult::kDone) return;
+  }
   Replacements replacements(directory);
   replacements.write_temporaries(files_);
-  const std::vector<std::string> retired = files_to_retire(directory, retired_, ownership);
   if (replacements.empty() && retired.empty()) return;
   replacements.commit(retired);
   replacements.swap_in();
   replacements.finish(retired);
+}
+
+void recover_output_directory(const std::string& directory) {
+  detail::reset_steps();
+  const fs::path target = swap_target(directory);
+  std::error_code ec;
+  if (!fs::is_directory(directory, ec)) {
+    if (!target.empty()) detail::remove_leftovers(target);  // a new folder never swapped in
+    return;
+  }
+  const detail::DirectoryLock lock(directory);
+  if (lock.held()) recover_interrupted_run(directory);
+  detail::remove_leftovers(target.empty() ? fs::path(directory) : target);
 }
 
 }  // namespace modelgen::gen

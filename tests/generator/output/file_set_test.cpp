@@ -221,6 +221,7 @@ TEST(FileSet, ARunKilledBeforeRemovingRetiredFilesIsCompletedByTheNextRun) {
   fs::create_directories(out);
   write(out / "tx40.hpp", "old header\n");
   write(out / "tx40_mass_matrix.cpp", "function of an earlier run\n");
+  write(out / "notes.txt", "the user's own file: file by file, under the journal\n");
   FileSet files;
   files.add("tx40.hpp", "new header\n");
   files.retire("tx40_mass_matrix.cpp");
@@ -228,7 +229,7 @@ TEST(FileSet, ARunKilledBeforeRemovingRetiredFilesIsCompletedByTheNextRun) {
   write_and_die_after_rename(files, out, 1);
   ASSERT_TRUE(fs::exists(out / "tx40_mass_matrix.cpp"));
   FileSet{}.write_to(out.string());
-  EXPECT_EQ(names(out), std::vector<std::string>{"tx40.hpp"});
+  EXPECT_EQ(names(out), (std::vector<std::string>{"notes.txt", "tx40.hpp"}));
   EXPECT_EQ(read(out / "tx40.hpp"), "new header\n");
 }
 
@@ -238,6 +239,7 @@ TEST(FileSet, AKilledRunThenANewSetLeavesOnlyTheNewSet) {
   fs::create_directories(out);
   write(out / "a.hpp", "old header\n");
   write(out / "a.cpp", "old source\n");
+  write(out / "notes.txt", "the user's own file: file by file, under the journal\n");
   FileSet killed;
   killed.add("a.hpp", "killed header\n");
   killed.add("a.cpp", "killed source\n");
@@ -249,7 +251,7 @@ TEST(FileSet, AKilledRunThenANewSetLeavesOnlyTheNewSet) {
   next.write_to(out.string());
   EXPECT_EQ(read(out / "a.hpp"), "next header\n");
   EXPECT_EQ(read(out / "a.cpp"), "next source\n");
-  EXPECT_EQ(names(out), (std::vector<std::string>{"a.cpp", "a.hpp"}));
+  EXPECT_EQ(names(out), (std::vector<std::string>{"a.cpp", "a.hpp", "notes.txt"}));
 }
 
 TEST(FileSet, AFullDiskGivesTheSystemsReasonAndChangesNothing) {

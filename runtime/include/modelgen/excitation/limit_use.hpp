@@ -20,11 +20,15 @@ struct JointExtremes {
 };
 
 /// Grid points per period: `rate` (Hz) times the period, and at least 1000 per period of the
-/// highest harmonic, so a peak is missed by less than (pi/1000)^2 / 2 = 5e-6 of its amplitude.
+/// highest harmonic L, so a peak is missed by less than (pi/1000)^2 / 2 = 5e-6 of its amplitude;
+/// rounded up to a multiple of the power of two >= L (fewer than 2 L points more) when the count
+/// has no divisor of the form 2^a 3^b 5^c near L, for the FFT evaluation of the grid.
 long limit_grid_points(const FourierTrajectory& trajectory, double rate = 1000.0);
 
 /// The extremes of every joint of `trajectory` on limit_grid_points(trajectory, rate) points of
-/// one period (the series is periodic: one period holds every value it takes).
+/// one period (the series is periodic: one period holds every value it takes), each at the
+/// first grid point that reaches it (equal peaks: the earliest), its value from evaluate().
+/// The cost is O(n log L) for n points and L harmonics, not O(n L).
 std::vector<JointExtremes> trajectory_extremes(const FourierTrajectory& trajectory,
                                                double rate = 1000.0);
 
