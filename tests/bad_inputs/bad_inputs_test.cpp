@@ -196,5 +196,30 @@ TEST(BadInputs, DescriptionOfUnknownFormat) {
   EXPECT_EQ(run.out, "");
 }
 
+// A folder or a missing file where an experiment's YAML is expected: the same message style as
+// for a description, never the stream library's "basic_filebuf::underflow".
+TEST(BadInputs, FolderOrMissingFileAsControllerOrTrajectory) {
+  const std::string simulate =
+      "simulate --robot tests/bad_inputs/robots/two_axes.yaml --params "
+      "tests/bad_inputs/robots/two_axes_params.json --ignore-limits -o /nonexistent/out.csv ";
+  const std::string trajectory = "--trajectory tests/bad_inputs/robots/two_axes_trajectory.yaml ";
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {simulate + "--trajectory tests/bad_inputs",
+       "tests/bad_inputs: error: is a directory, "
+       "not a trajectory file\n"},
+      {simulate + trajectory + "--controller tests/bad_inputs",
+       "tests/bad_inputs: error: is a directory, not a controller file\n"},
+      {simulate + "--trajectory tests/no_such.yaml",
+       "tests/no_such.yaml: error: cannot open the file (does it exist and is it readable?)\n"},
+      {simulate + trajectory + "--controller tests/no_such.yaml",
+       "tests/no_such.yaml: error: cannot open the file (does it exist and is it readable?)\n"}};
+  for (const auto& [arguments, message] : cases) {
+    const test::CliRun run = test::modelid(arguments, {.working_directory = test::source_path("")});
+    EXPECT_EQ(run.exit_code, 1) << arguments;
+    EXPECT_NE(run.err.find(message), std::string::npos) << arguments << "\n" << run.err;
+    EXPECT_EQ(run.err.find("basic_filebuf"), std::string::npos) << run.err;
+  }
+}
+
 }  // namespace
 }  // namespace modelgen

@@ -5,21 +5,17 @@
 #include <yaml-cpp/yaml.h>
 
 #include "modelgen/model/error.hpp"
+#include "runtime/io/experiment/yaml_file.hpp"
 #include "runtime/model/yaml_reader.hpp"
 
 namespace modelgen::io {
 
 namespace {
 
+constexpr double kMinControllerSampleTime = 1e-6;
+
 PidGains read_checked(const std::string& path, int dof) {
-  YAML::Node root;
-  try {
-    root = YAML::LoadFile(path);
-  } catch (const YAML::BadFile&) {
-    throw modelgen::InputError({path}, "cannot read the controller file");
-  } catch (const YAML::Exception& e) {
-    throw modelgen::InputError({path, e.mark.line + 1, e.mark.column + 1}, e.msg);
-  }
+  const YAML::Node root = load_yaml_file(path, "a controller file");
   const YamlReader in(path);
   if (!root.IsMap()) {
     throw modelgen::InputError({path}, "a controller is a mapping: type: pid, sample_time, kp, "
@@ -34,9 +30,13 @@ PidGains read_checked(const std::string& path, int dof) {
   PidGains gains;
   const YAML::Node ts = in.require(root, "sample_time", "the controller");
   gains.sample_time = in.number(ts, "sample_time");
-  if (!(gains.sample_time > 0) || gains.sample_time > 1) {
-    in.fail(ts, "'sample_time' is the controller's period in seconds, greater than 0 and at "
-                "most 1 (e.g. 0.001 for 1 kHz), got " + ts.Scalar());
+  // Below a microsecond no joint controller runs, and a closed-loop simulation would take
+  // hours of steps per second of motion.
+  if (!(gains.sample_time >= kMinControllerSampleTime) || gains.sample_time > 1) {
+    in.fail(ts,
+            "'sample_time' is the controller's period in seconds, from 1e-06 (1 MHz) to 1 "
+            "(e.g. 0.001 for 1 kHz), got " +
+                ts.Scalar());
   }
   Eigen::VectorXd* lists[] = {&gains.kp, &gains.ki, &gains.kd};
   const char* names[] = {"kp", "ki", "kd"};

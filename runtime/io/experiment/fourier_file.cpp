@@ -14,6 +14,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include "modelgen/model/error.hpp"
+#include "runtime/io/experiment/yaml_file.hpp"
 #include "runtime/model/yaml_reader.hpp"
 
 namespace modelgen::io {
@@ -21,12 +22,7 @@ namespace modelgen::io {
 namespace {
 
 FourierTrajectory read_fourier_checked(const std::string& path, int dof) {
-  YAML::Node root;
-  try {
-    root = YAML::LoadFile(path);
-  } catch (const YAML::Exception& e) {
-    throw modelgen::InputError({path, e.mark.line + 1, e.mark.column + 1}, e.msg);
-  }
+  const YAML::Node root = load_yaml_file(path, "a trajectory file");
   const YamlReader in(path);
   FourierTrajectory f;
   if (!root.IsMap() || !root["period"] || !root["joints"] || !root["joints"].IsSequence()) {
