@@ -56,8 +56,7 @@ int main(int argc, char** argv) {
           model, modelgen::derive_base_parameters(model.tree), closed ? &*closed : nullptr);
     } else {
       const modelgen::gen::GeneratedModel generated =
-          modelgen::gen::generate_from_file(args.robot, args.load, args.scalar, args.params,
-                                            args.functions);
+          modelgen::gen::generate_from_file(args.robot, args.load, args.generation);
       print_notes(generated.notes);
       for (const std::string& added : generated.added_callees) {
         std::cerr << "modelgen: note: --functions: " << added << ", which is generated too\n";
