@@ -67,17 +67,25 @@ CommandSpec make_generate_spec() {
        .value = "EST.json",
        .help = "an estimate of 'modelid fit -o' made on ROBOT: its base parameters become "
                "kIdentifiedBase and inverse_dynamics_identified uses them (firmware values)"},
+      {.name = "--loadable",
+       .type = ValueType::kFlag,
+       .help = "also write STEM_loadable.cpp, the C entry point of the model compiled as a "
+               "shared library, for the runtime to load at run time (needs every function, in "
+               "double)"},
   };
   const std::vector<OptionSpec> shared = description_options();
   spec.options.insert(spec.options.end(), shared.begin(), shared.end());
-  spec.exclusive = {{"-o", "--output", "they name the same folder"}};
+  spec.exclusive = {
+      {"-o", "--output", "they name the same folder"},
+      {"--loadable", "--functions", "a loadable model needs every function the runtime calls"}};
   return spec;
 }
 
 CommandSpec make_inspect_spec(const char* name, const char* summary) {
   CommandSpec spec{.program = "modelgen", .name = name, .summary = summary, .operands = "ROBOT"};
   spec.options = description_options();
-  for (const char* option : {"-o", "--output", "--scalar", "--functions", "--params"}) {
+  for (const char* option :
+       {"-o", "--output", "--scalar", "--functions", "--params", "--loadable"}) {
     spec.elsewhere.emplace_back(option, "generation (-o DIR)");
   }
   return spec;
@@ -131,11 +139,19 @@ Arguments parse_arguments(int argc, char** argv) {
   args.load.tip_link = line.one_or("--tip", "");
   args.load.name = line.one_or("--name", "");
   args.load.angle_tolerance = angle_tolerance_option(line);
-  args.scalar = line.one_or("--scalar", "both");
+  args.generation.scalar = line.one_or("--scalar", "both");
   args.output_dir = line.one_or("-o", line.one_or("--output", ""));
-  args.params = line.one_or("--params", "");
-  if (line.has("--params") && args.params.empty()) throw UsageError("--params needs a file");
-  if (line.has("--functions")) args.functions = comma_items(line.one("--functions"), "--functions");
+  args.generation.params_path = line.one_or("--params", "");
+  if (line.has("--params") && args.generation.params_path.empty()) {
+    throw UsageError("--params needs a file");
+  }
+  if (line.has("--functions")) {
+    args.generation.functions = comma_items(line.one("--functions"), "--functions");
+  }
+  args.generation.loadable = line.has("--loadable");
+  if (args.generation.loadable && args.generation.scalar == "float") {
+    throw UsageError("--loadable needs the double entry points: use --scalar double or both");
+  }
   if (line.positional.empty()) throw UsageError("no robot description given");
   if (line.positional.size() != 1) {
     throw UsageError(spec.name.empty() ? "give exactly one ROBOT file"

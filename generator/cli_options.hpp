@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "generator/generate.hpp"
 #include "modelgen/model/load_robot.hpp"
 #include "modelgen/model/option_table.hpp"
 
@@ -14,9 +15,7 @@ struct Arguments {
   std::string command;  ///< "describe", "base" or "generate"
   std::string robot;
   std::string output_dir;
-  std::string scalar = "both";
-  std::string params;                  ///< --params EST.json; empty without it
-  std::vector<std::string> functions;  ///< --functions; empty for all
+  GenerationOptions generation;  ///< --scalar, --params, --functions, --loadable
   LoadOptions load;
 };
 

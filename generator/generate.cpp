@@ -5,16 +5,34 @@
 #include <algorithm>
 #include <filesystem>
 
-#include "generator/functions/entry_points.hpp"
 #include "generator/estimate/estimate_file.hpp"
+#include "generator/functions/entry_points.hpp"
+#include "modelgen/model/command_line.hpp"
 #include "modelgen/model/number_text.hpp"
 #include "modelgen/model/sha256.hpp"
 
 namespace modelgen::gen {
 
+namespace {
+
+// The loadable table points to the double entry points the runtime's adapters call.
+void check_loadable(const GenerationOptions& generation) {
+  if (!generation.loadable) return;
+  if (!generation.functions.empty()) {
+    throw UsageError("--loadable needs every function the runtime calls: leave out --functions");
+  }
+  if (generation.scalar == "float") {
+    throw UsageError("--loadable needs the double entry points: use --scalar double or both");
+  }
+}
+
+}  // namespace
+
 std::string normalized_command(const std::string& robot_path, const LoadOptions& options,
-                               const std::string& scalar, const std::string& params_path,
-                               const std::vector<std::string>& functions) {
+                               const GenerationOptions& generation) {
+  const std::string& scalar = generation.scalar;
+  const std::string& params_path = generation.params_path;
+  const std::vector<std::string>& functions = generation.functions;
   std::string command =
       "modelgen " + std::filesystem::path(robot_path).filename().string() + " -o <dir>";
   if (!options.name.empty()) command += " --name " + options.name;
@@ -33,12 +51,15 @@ std::string normalized_command(const std::string& robot_path, const LoadOptions&
     command += " --functions ";
     for (std::size_t i = 0; i < functions.size(); ++i) command += (i ? "," : "") + functions[i];
   }
+  if (generation.loadable) command += " --loadable";
   return command;
 }
 
 GeneratedModel generate_from_file(const std::string& robot_path, const LoadOptions& options,
-                                  const std::string& scalar, const std::string& params_path,
-                                  const std::vector<std::string>& functions) {
+                                  const GenerationOptions& generation) {
+  const std::string& scalar = generation.scalar;
+  const std::string& params_path = generation.params_path;
+  check_loadable(generation);
   GenerationInput input;
   if (scalar == "double") {
     input.scalars = {Scalar::kDouble};
@@ -52,9 +73,11 @@ GeneratedModel generate_from_file(const std::string& robot_path, const LoadOptio
   input.stem = path.stem().string();
   input.input_name = path.filename().string();
   input.input_bytes = read_source_file(robot_path);
-  input.functions = select_functions(functions, !params_path.empty());
-  input.command_line =
-      normalized_command(robot_path, options, scalar, params_path, input.functions.asked);
+  input.functions = select_functions(generation.functions, !params_path.empty());
+  input.loadable = generation.loadable;
+  GenerationOptions normalized = generation;
+  normalized.functions = input.functions.asked;
+  input.command_line = normalized_command(robot_path, options, normalized);
   if (!params_path.empty()) {
     input.estimate = read_estimate_file(params_path, robot_path, sha256_hex(input.input_bytes));
   }

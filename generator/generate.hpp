@@ -10,25 +10,33 @@
 
 namespace modelgen::gen {
 
+/// What a run generates besides the description's model (modelgen's options other than those
+/// of LoadOptions).
+struct GenerationOptions {
+  /// "both" (double and float entry points), "double" or "float".
+  std::string scalar = "both";
+  /// When not empty, an estimate of `modelid fit -o` whose base parameters become constants
+  /// and inverse_dynamics_identified (firmware values).
+  std::string params_path = {};
+  /// When not empty, the entry points to generate (--functions; the ones they call come too).
+  std::vector<std::string> functions = {};
+  /// Also STEM_loadable.cpp, the C entry point of a shared library of the model (--loadable);
+  /// needs every function and double entry points first.
+  bool loadable = false;
+};
+
 /// Loads `robot_path` and emits its model. The output file stem is the description's file name
 /// without extension; the banner's command line is normalized (file name only, options that
-/// change the output in a fixed order). Throws InputError for a bad description.
-/// `scalar` is "both" (double and float entry points), "double" or "float". `params_path`, when
-/// not empty, is an estimate of `modelid fit -o` whose base parameters become constants and
-/// inverse_dynamics_identified (firmware values); InputError for a bad or foreign estimate.
-/// `functions`, when not empty, are the entry points to generate (--functions; the ones they
-/// call come too); UsageError for a name that is not one.
+/// change the output in a fixed order). Throws InputError for a bad description, a bad or
+/// foreign estimate; UsageError for a function name that is not one, or --loadable with
+/// --functions or --scalar float.
 GeneratedModel generate_from_file(const std::string& robot_path, const LoadOptions& options,
-                                  const std::string& scalar = "both",
-                                  const std::string& params_path = "",
-                                  const std::vector<std::string>& functions = {});
+                                  const GenerationOptions& generation = {});
 
 /// "modelgen kr150.yaml -o <dir>" plus --name/--base/--tip/--scalar/--angle-tolerance/--params/
-/// --functions when not the default, in that order (--params by file name only, as the
-/// description; --functions in file order).
+/// --functions/--loadable when not the default, in that order (--params by file name only, as
+/// the description; --functions in file order).
 std::string normalized_command(const std::string& robot_path, const LoadOptions& options,
-                               const std::string& scalar = "both",
-                               const std::string& params_path = "",
-                               const std::vector<std::string>& functions = {});
+                               const GenerationOptions& generation = {});
 
 }  // namespace modelgen::gen

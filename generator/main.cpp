@@ -60,8 +60,7 @@ int main(int argc, char** argv) {
       // so that a run that fails below (a bad description) does it too.
       modelgen::gen::recover_output_directory(args.output_dir);
       const modelgen::gen::GeneratedModel generated =
-          modelgen::gen::generate_from_file(args.robot, args.load, args.scalar, args.params,
-                                            args.functions);
+          modelgen::gen::generate_from_file(args.robot, args.load, args.generation);
       print_notes(generated.notes);
       for (const std::string& added : generated.added_callees) {
         std::cerr << "modelgen: note: --functions: " << added << ", which is generated too\n";

@@ -23,6 +23,9 @@ struct GenerationInput {
   std::optional<EstimateFile> estimate;
   /// The entry points to generate (select_functions of --functions).
   FunctionSelection functions;
+  /// Also STEM_loadable.cpp, the C entry point of a shared library of the model (--loadable;
+  /// every function generated, double first).
+  bool loadable = false;
 };
 
 }  // namespace modelgen::gen

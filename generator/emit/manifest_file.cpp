@@ -7,6 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "generator/emit/loadable_file.hpp"
 #include "generator/emit/number_format.hpp"
 #include "generator/version.hpp"
 #include "modelgen/model/generated_format.hpp"
@@ -69,6 +70,7 @@ Json files(const RenderInput& in) {
   list.push_back(in.header_name());
   list.push_back(in.source_name());
   for (const EmittedFunction& f : in.functions) list.push_back(in.function_source_name(f.name));
+  if (in.input.loadable) list.push_back(in.loadable_name());
   list.push_back(in.manifest_name());
   return list;
 }
@@ -112,6 +114,8 @@ std::string render_manifest(const RenderInput& in) {
   document["drive_regressor_index"] = in.drive_regressor_index;
   document["functions"] = functions(in);
   document["files"] = files(in);
+  // What a shared library of the model compiles (--loadable): the table's functions only.
+  if (in.input.loadable) document["loadable_sources"] = loadable_sources(in);
   if (in.input.estimate) {
     const EstimateFile& estimate = *in.input.estimate;
     document["identified_from"] = Json{

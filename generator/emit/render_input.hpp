@@ -32,6 +32,8 @@ struct RenderInput {
     return input.stem + "_" + function + ".cpp";
   }
   std::string manifest_name() const { return input.stem + ".json"; }
+  /// The C entry point of a model built as a shared library (--loadable).
+  std::string loadable_name() const { return input.stem + "_loadable.cpp"; }
 };
 
 }  // namespace modelgen::gen
