@@ -104,8 +104,9 @@ void check_table(const modelgen_loadable_table& t, const std::string& path,
            std::string(t.input_sha256 != nullptr ? t.input_sha256 : "(none)") +
            ", the description's is " + description_sha256);
   }
-  if (std::string problem = size_problem(t); !problem.empty())
+  if (std::string problem = size_problem(t); !problem.empty()) {
     refuse("bad model table: " + problem);
+  }
   if (std::string problem = pointer_problem(t); !problem.empty()) {
     refuse("bad model table: " + problem);
   }
