@@ -1,7 +1,7 @@
 // The estimate file of `modelid fit -o` (EST.json) as `modelgen --params` reads it: the base
 // parameter values by name, checked against the description being compiled, for the constants
-// baked into the generated code. The JSON goes through modelid's own reader
-// (runtime/cli/json_file), so every complaint names the file, line and column.
+// baked into the generated code. The JSON goes through the file formats' reader
+// (modelgen/io/json_file.hpp), so every complaint names the file, line and column.
 #pragma once
 
 #include <string>

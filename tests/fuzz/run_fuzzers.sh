@@ -11,7 +11,7 @@ build=$(cd "$1" && pwd)
 runs=${2:-}
 declare -A default_runs=([fuzz_mdh_yaml]=1500 [fuzz_urdf]=1000 [fuzz_data_csv]=10000
                          [fuzz_parameter_json]=10000 [fuzz_trajectory_yaml]=5000
-                         [fuzz_controller_yaml]=5000)
+                         [fuzz_controller_yaml]=5000 [fuzz_estimate_json]=5000)
 source_dir=$(cd "$(dirname "$0")/../.." && pwd)
 work=$build/fuzz
 rm -rf "$work"
@@ -37,6 +37,7 @@ seeds fuzz_parameter_json tests/bad_inputs/parameters/*.json tests/bad_inputs/ro
   $(find robots/data -name '*.json' | sort)
 seeds fuzz_trajectory_yaml tests/bad_inputs/trajectory/*.yaml \
   tests/bad_inputs/robots/two_axes_trajectory.yaml $(grep -rl '^period:' robots/data | sort)
+seeds fuzz_estimate_json tests/bad_inputs/estimate/*.json
 seeds fuzz_controller_yaml tests/bad_inputs/controller/*.yaml \
   $(find robots/data -name 'controller*.yaml' | sort)
 
@@ -44,7 +45,7 @@ export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1}
 export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1}
 failed=0
 for target in fuzz_mdh_yaml fuzz_urdf fuzz_data_csv fuzz_parameter_json fuzz_trajectory_yaml \
-              fuzz_controller_yaml; do
+              fuzz_controller_yaml fuzz_estimate_json; do
   max_len=4096
   [ "$target" = fuzz_urdf ] && max_len=32768
   # A description near the 32-joint limit takes about 65 s of CPU to derive under the
