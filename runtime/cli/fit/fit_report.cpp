@@ -12,6 +12,7 @@
 #include "runtime/cli/reports/estimate_warnings.hpp"
 #include "runtime/cli/reports/prediction_output.hpp"
 #include "runtime/cli/reports/preparation_check.hpp"
+#include "runtime/cli/reports/truth_comparison.hpp"
 
 namespace modelgen::internal {
 
@@ -37,6 +38,11 @@ void print_wrapped(const std::vector<std::string>& names, const std::string& ind
     line += (line.size() > indent.size() ? " " : "") + name;
   }
   if (line.size() > indent.size()) std::cout << line << "\n";
+}
+
+// A right-aligned column of 10 characters: the value, or '-' when there is none.
+std::string optional_fixed(const std::optional<double>& value) {
+  return value ? fixed(*value, 10, 3) : std::string(9, ' ') + "-";
 }
 
 }  // namespace
@@ -73,7 +79,7 @@ std::vector<EstimatedParameter> estimated(const Eigen::VectorXd& value,
 bool print_parameter_table(const std::vector<EstimatedParameter>& parameters) {
   const bool with_truth = !parameters.empty() && parameters.front().truth.has_value();
   std::cout << "  parameter          value          std      %std"
-            << (with_truth ? "           truth" : "") << "\n";
+            << (with_truth ? "           truth    error %    err/std" : "") << "\n";
   bool marked = false;
   for (const EstimatedParameter& p : parameters) {
     const bool poor = !(p.rel_std_dev <= kPoorlyIdentifiedPercent);
@@ -82,7 +88,11 @@ bool print_parameter_table(const std::vector<EstimatedParameter>& parameters) {
     const std::string marker = poor ? " *" : (with_truth ? "  " : "");
     std::cout << "  " << pad(p.name, 9) << " " << fixed(p.value, 13, 6) << " "
               << fixed(p.std_dev, 12, 3) << " " << fixed(p.rel_std_dev, 9, 3) << marker
-              << (with_truth ? " " + fixed(*p.truth, 13, 6) : "") << "\n";
+              << (with_truth
+                      ? " " + fixed(*p.truth, 13, 6) + " " + optional_fixed(percent_from_truth(p)) +
+                            " " + optional_fixed(sigmas_from_truth(p))
+                      : "")
+              << "\n";
   }
   return marked;
 }
@@ -145,6 +155,10 @@ void print_fit(const FitSummary& fit, const std::vector<EstimatedParameter>& par
   if (print_parameter_table(parameters)) {
     std::cout << "  * %std above " << kPoorlyIdentifiedPercent
               << ": poorly identified by these data\n";
+  }
+  if (!parameters.empty() && parameters.front().truth) {
+    print_truth_comparison(compare_with_truth(parameters, kPoorlyIdentifiedPercent),
+                           kPoorlyIdentifiedPercent);
   }
   std::cout << "  relative error norm of the torques " << fixed(id.torque_rel_error_norm, 0, 4)
             << ", condition number " << fixed(id.fit.condition_number, 0, 4) << "\n";
