@@ -63,6 +63,19 @@ double essential_ratio(const CommandLine& args) {
   return r_sigma;
 }
 
+// `method`'s estimate; an EstimationError names the data files it comes from (a rank-deficient
+// W says which columns, and the files say where to look).
+Identification estimate_from_files(const FitMethod& method, const FitContext& context,
+                                   const std::vector<std::string>& files) {
+  try {
+    return method.estimate(context);
+  } catch (const EstimationError& e) {
+    std::string names;
+    for (const std::string& file : files) names += (names.empty() ? "" : ", ") + file;
+    throw EstimationError(names + ": " + e.what());
+  }
+}
+
 // The truth of --truth in base parameters, read before the fit so that a wrong file costs no
 // fitting time; a truth made from another description (its hash differs) would compare
 // numbers of different parameters. Empty without --truth.
@@ -143,8 +156,8 @@ int run_fit(const CommandLine& args) {
     fitting.update(static_cast<long long>(1000 * fraction));
   };
   std::ostringstream method_report;
-  const Identification id =
-      method.estimate({args, model, experiments, options, method_report, std::cerr});
+  const Identification id = estimate_from_files(
+      method, {args, model, experiments, options, method_report, std::cerr}, args.all("--data"));
   fitting.finish();
 
   // The report.
