@@ -39,8 +39,9 @@ std::string modelid_usage() {
   }
   text +=
       "\n'modelid COMMAND --help' lists a command's options. ROBOT is a description (.yaml/.urdf,\n"
-      "through the numeric reference) or the name of a compiled-in generated model (tx40, kr150,\n"
-      "ur5, iiwa14, panda, kuka_kr150_2, panda_arm, comau_smart_six). Exit codes: 0 success,\n"
+      "its model compiled and cached on first use; docs/compiled-models.md) or the name of a\n"
+      "compiled-in generated model (tx40, kr150, ur5, iiwa14, panda, kuka_kr150_2, panda_arm,\n"
+      "comau_smart_six). Exit codes: 0 success,\n"
       "1 bad input or data, 2 bad usage, 3 internal error. docs/commands/ has a page per\n"
       "command.\n";
   return text;
@@ -68,7 +69,14 @@ std::vector<OptionSpec> common_options() {
                       .type = ValueType::kFlag,
                       .help = "progress lines on stderr also when it is not a terminal (a log)",
                       .group = "Every command"};
-  return {tolerance, name, progress};
+  OptionSpec no_compile{.name = "--no-compile",
+                        .type = ValueType::kFlag,
+                        .help =
+                            "evaluate a description file's model with the numeric reference "
+                            "instead of generating, compiling and caching it "
+                            "(docs/compiled-models.md)",
+                        .group = "Every command"};
+  return {tolerance, name, no_compile, progress};
 }
 
 OptionSpec robot_option(std::string value, std::string help) {

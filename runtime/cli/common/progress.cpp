@@ -19,6 +19,15 @@ bool log_progress = false;
 
 void show_progress_in_logs(bool show) { log_progress = show; }
 
+void progress_message(const std::string& text) {
+  if (::isatty(STDERR_FILENO) == 1) {
+    std::fprintf(stderr, "\r\033[Kmodelid: %s\n", text.c_str());
+  } else if (log_progress) {
+    std::fprintf(stderr, "modelid: %s\n", text.c_str());
+  }
+  std::fflush(stderr);
+}
+
 Progress::Progress(std::string label, long long total)
     : label_(std::move(label)),
       total_(std::max(total, 1LL)),

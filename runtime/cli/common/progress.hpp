@@ -16,6 +16,11 @@ namespace modelgen::internal {
 /// default: scripts and tests read stderr for warnings and errors.
 void show_progress_in_logs(bool show);
 
+/// Prints "modelid: TEXT" as a line of its own where progress is shown (a terminal, or a log
+/// with --progress), over a progress line being drawn; nothing otherwise. For one-off steps
+/// ("compiling the model ...").
+void progress_message(const std::string& text);
+
 class Progress {
  public:
   Progress(std::string label, long long total);

@@ -19,7 +19,7 @@ namespace modelgen::internal {
 using namespace modelgen::io;  // the file formats (modelgen/io/)
 
 int run_check_trajectory(const CommandLine& args) {
-  const ModelSource source = load_model_source(args.one("--robot"), description_options(args));
+  const ModelSource source = load_model_source(args.one("--robot"), args);
   const std::string& path = args.one("--trajectory");
   if (args.has("--plot")) check_plot_folder(args.one("--plot"));
   const FourierTrajectory trajectory = read_fourier(path, source.model->dof());

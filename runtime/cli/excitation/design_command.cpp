@@ -203,7 +203,7 @@ std::string design_header(const CommandLine& args, const ExcitationDesignProblem
 }  // namespace
 
 int run_design(const CommandLine& args) {
-  const ModelSource source = load_model_source(args.one("--robot"), description_options(args));
+  const ModelSource source = load_model_source(args.one("--robot"), args);
   const IdentificationModel& model = *source.model;
   const ExcitationDesignProblem problem = design_problem(args, source);
   const double noise = args.has("--noise") ? parse_number(args.one("--noise"), "--noise") : 1.0;

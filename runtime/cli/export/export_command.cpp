@@ -95,7 +95,7 @@ int run_export(const CommandLine& args) {
                              "the extension .yaml")};
   }
   const LoadOptions options = description_options(args);
-  const ModelSource source = load_model_source(robot, options);
+  const ModelSource source = load_model_source(robot, options, DescriptionModel::kNumeric);
   const RobotModel& description = *source.description;
   const IdentifiedStandard identified =
       read_identified_standard(params, description, *source.model);

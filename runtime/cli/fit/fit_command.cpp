@@ -129,7 +129,7 @@ int run_fit(const CommandLine& args) {
   if (method.route == FitRoute::kDriveModel) return run_fit_ml(args, weight);
   if (method.check != nullptr) method.check(args);
   const double r_sigma = essential_ratio(args);
-  const ModelSource source = load_model_source(args.one("--robot"), description_options(args));
+  const ModelSource source = load_model_source(args.one("--robot"), args);
   const IdentificationModel& model = *source.model;
   // A plot folder that cannot be made fails now, before the data are read.
   if (args.has("--plot")) check_plot_folder(args.one("--plot"));

@@ -268,15 +268,18 @@ std::string ml_estimate_json(const CommandLine& args, const IdentificationModel&
 
 int run_fit_ml(const CommandLine& args, double prior_weight) {
   const MlRequest request = read_ml_request(args);
-  const ModelSource source = load_model_source(args.one("--robot"), description_options(args));
+  const ModelSource source = load_model_source(args.one("--robot"), args);
   const RobotModel& description = ml_description(source, args, request);
   const IdentificationModel& model = *source.model;
 
   // The generated drive model (flattened analytic Jacobians) when this description is one
-  // modelid carries compiled in, else the numeric reference's.
+  // modelid carries compiled in or has compiled, else the numeric reference's.
   std::string generated_name;
   std::unique_ptr<DriveModel> drive_model =
       make_shipped_drive_model(model.description_sha256(), &generated_name);
+  if (drive_model == nullptr && (drive_model = compiled_drive_model(source)) != nullptr) {
+    generated_name = model.name() + ", compiled from its description";
+  }
   if (drive_model == nullptr) {
     drive_model = std::make_unique<ReferenceDriveModel>(description.tree, model.drive_chain());
   }

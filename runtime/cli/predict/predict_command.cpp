@@ -47,7 +47,7 @@ void print_errors(const std::vector<Trajectory>& data, const TorquePrediction& p
 }  // namespace
 
 int run_predict(const CommandLine& args) {
-  const ModelSource source = load_model_source(args.one("--robot"), description_options(args));
+  const ModelSource source = load_model_source(args.one("--robot"), args);
   const IdentificationModel& model = *source.model;
   const std::string& params = args.one("--params");
   if (!args.has("--data")) throw UsageError{"predict needs at least one --data file"};

@@ -196,7 +196,7 @@ Trajectory simulate_under_controller(const CommandLine& args, const Identificati
 
 int run_simulate(const CommandLine& args) {
   const bool drive_mode = args.has("--drive");
-  const ModelSource source = load_model_source(args.one("--robot"), description_options(args));
+  const ModelSource source = load_model_source(args.one("--robot"), args);
   if (drive_mode && !source.description) {
     throw UsageError{"--drive needs --robot to be a description file (.yaml/.urdf), not '" +
                      args.one("--robot") + "'"};

@@ -34,7 +34,7 @@ double rms(const Eigen::VectorXd& v) { return std::sqrt(v.squaredNorm() / static
 }  // namespace
 
 int run_validate(const CommandLine& args) {
-  const ModelSource source = load_model_source(args.one("--robot"), description_options(args));
+  const ModelSource source = load_model_source(args.one("--robot"), args);
   const IdentificationModel& model = *source.model;
   const int n = model.dof();
   check_estimate_model(args.one("--params"), model);
