@@ -1,6 +1,6 @@
 # modelgen_generate(TARGET <name> ROBOT <description> [OUT_DIR <dir>]
 #                   [SCALAR double|float|both] [FUNCTIONS <entry point>...] [PARAMS <EST.json>]
-#                   [OPTIONS <modelgen options>...])
+#                   [LOADABLE] [OPTIONS <modelgen options>...])
 #
 # Runs modelgen at build time on a robot description (MDH .yaml or .urdf) and defines a static
 # library TARGET holding the generated code, with the output directory as its include path
@@ -12,6 +12,11 @@
 # parameters become the constants kIdentifiedBase and inverse_dynamics_identified uses them. It
 # may be the OUTPUT of an add_custom_command of the same directory (a fit run at build time).
 # The generated sources are also listed in the variable <TARGET>_SOURCES of the caller.
+# LOADABLE makes TARGET a shared library (MODULE) with modelgen --loadable's C entry point
+# instead: the model modelid loads for this description without compiling anything at run time,
+# when the library is in a folder of $MODELGEN_MODEL_PATH or installed into
+# <prefix>/lib/modelgen/models (docs/compiled-models.md). It needs every function, so it takes
+# no FUNCTIONS.
 #
 # The generator is a host tool, as protoc is: in a cross build it runs on the build machine.
 # It is the cache variable MODELGEN_EXECUTABLE when set (like Protobuf_PROTOC_EXECUTABLE),
@@ -102,7 +107,7 @@ function(_modelgen_needed_functions out entries selection with_params)
 endfunction()
 
 function(modelgen_generate)
-  cmake_parse_arguments(PARSE_ARGV 0 arg "" "TARGET;ROBOT;OUT_DIR;SCALAR;PARAMS"
+  cmake_parse_arguments(PARSE_ARGV 0 arg "LOADABLE" "TARGET;ROBOT;OUT_DIR;SCALAR;PARAMS"
                         "OPTIONS;FUNCTIONS")
   if(arg_UNPARSED_ARGUMENTS)
     list(GET arg_UNPARSED_ARGUMENTS 0 unknown)
@@ -124,7 +129,7 @@ function(modelgen_generate)
   # function turns into the library's sources.
   foreach(option ${arg_OPTIONS})
     foreach(pair "-o|OUT_DIR" "--output|OUT_DIR" "--scalar|SCALAR" "--params|PARAMS"
-                 "--functions|FUNCTIONS")
+                 "--functions|FUNCTIONS" "--loadable|LOADABLE")
       string(REPLACE "|" ";" pair "${pair}")
       list(GET pair 0 flag)
       list(GET pair 1 argument)
@@ -133,6 +138,9 @@ function(modelgen_generate)
       endif()
     endforeach()
   endforeach()
+  if(arg_LOADABLE AND arg_FUNCTIONS)
+    message(FATAL_ERROR "modelgen_generate: LOADABLE takes every function, not FUNCTIONS")
+  endif()
   if(NOT arg_OUT_DIR)
     set(arg_OUT_DIR ${CMAKE_CURRENT_BINARY_DIR}/modelgen/${arg_TARGET})
   endif()
@@ -159,6 +167,10 @@ function(modelgen_generate)
     set(params_option --params ${params})
     set(params_dependency ${params})
     set(with_params TRUE)
+  endif()
+  set(loadable_option)
+  if(arg_LOADABLE)
+    set(loadable_option --loadable)
   endif()
   set(functions_option)
   if(arg_FUNCTIONS)
@@ -200,6 +212,9 @@ function(modelgen_generate)
     foreach(function ${functions})
       list(APPEND sources ${arg_OUT_DIR}/${stem}_${function}.cpp)
     endforeach()
+    if(arg_LOADABLE)
+      list(APPEND sources ${arg_OUT_DIR}/${stem}_loadable.cpp)
+    endif()
   else()
     # Which files the generator writes is known once it ran: one source includes the entry
     # points its manifest lists (modelgen checks FUNCTIONS itself).
@@ -228,19 +243,23 @@ file(CONFIGURE OUTPUT ${OUTPUT} CONTENT "${text}")
   # only when they change.
   set(arguments_file ${CMAKE_CURRENT_BINARY_DIR}/modelgen/${arg_TARGET}.arguments)
   string(REPLACE ";" " " arguments
-         "--scalar;${arg_SCALAR};${params_option};${functions_option};${arg_OPTIONS}")
+         "--scalar;${arg_SCALAR};${params_option};${functions_option};${loadable_option};${arg_OPTIONS}")
   file(CONFIGURE OUTPUT ${arguments_file} CONTENT "${arguments}\n" @ONLY)
   add_custom_command(
     OUTPUT ${stamp}
     BYPRODUCTS ${sources} ${arg_OUT_DIR}/${stem}.hpp ${arg_OUT_DIR}/${stem}.json
     COMMAND ${generator} ${robot} -o ${arg_OUT_DIR} --scalar ${arg_SCALAR}
-            ${params_option} ${functions_option} ${arg_OPTIONS}
+            ${params_option} ${functions_option} ${loadable_option} ${arg_OPTIONS}
     ${collect_command}
     COMMAND ${CMAKE_COMMAND} -E touch ${stamp}
     DEPENDS ${robot} ${params_dependency} ${generator_dependency} ${arguments_file}
     COMMENT "modelgen: generating ${stem} for ${arg_TARGET}"
     VERBATIM)
-  add_library(${arg_TARGET} STATIC ${sources} ${arg_OUT_DIR}/${stem}.hpp ${stamp})
+  if(arg_LOADABLE)
+    add_library(${arg_TARGET} MODULE ${sources} ${arg_OUT_DIR}/${stem}.hpp ${stamp})
+  else()
+    add_library(${arg_TARGET} STATIC ${sources} ${arg_OUT_DIR}/${stem}.hpp ${stamp})
+  endif()
   target_include_directories(${arg_TARGET} PUBLIC ${arg_OUT_DIR})
   target_compile_features(${arg_TARGET} PUBLIC cxx_std_11)
   set(${arg_TARGET}_SOURCES ${sources} PARENT_SCOPE)

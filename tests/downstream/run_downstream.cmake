@@ -28,3 +28,18 @@ if(NOT last_output MATCHES "^MX2 -9\\.810000 reference -9\\.810000 difference ([
   message(FATAL_ERROR "unexpected consumer output: '${last_output}'")
 endif()
 message(STATUS "downstream consumer printed: ${last_output}")
+
+# The installed modelid on a description whose model the consumer built (LOADABLE), with no
+# compiler to run: it must load that library (MODELGEN_MODEL_PATH) without a note and without
+# compiling into its cache.
+execute_process(
+  COMMAND ${CMAKE_COMMAND} -E env MODELGEN_MODEL_PATH=${WORK_DIR}/build
+          CXX=${WORK_DIR}/no-such-compiler MODELGEN_CACHE_DIR=${WORK_DIR}/cache
+          ${WORK_DIR}/prefix/bin/modelid design
+          --robot ${SOURCE_DIR}/tests/model/loadable/puma560.yaml --period 5 --harmonics 2
+          --starts 1 --max-evaluations 20 -o ${WORK_DIR}/design.yaml
+  RESULT_VARIABLE result OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(NOT result EQUAL 0 OR err MATCHES "note:" OR EXISTS ${WORK_DIR}/cache)
+  message(FATAL_ERROR "modelid did not use the prebuilt model (exit ${result}):\n${err}")
+endif()
+message(STATUS "the installed modelid loaded the prebuilt puma560 model")

@@ -15,6 +15,21 @@ namespace {
 constexpr auto kRedrawInterval = std::chrono::milliseconds(100);
 bool log_progress = false;
 
+// " (about 40 s left)" from the pace so far, once there is a pace to tell (a second and 1 % in).
+std::string time_left(std::chrono::steady_clock::duration elapsed, long long done,
+                      long long total) {
+  const double seconds = std::chrono::duration<double>(elapsed).count();
+  if (seconds < 1.0 || done * 100 < total || done >= total) return "";
+  const double left = seconds * static_cast<double>(total - done) / static_cast<double>(done);
+  char text[48];
+  if (left < 90) {
+    std::snprintf(text, sizeof text, " (about %.0f s left)", std::max(1.0, left));
+  } else {
+    std::snprintf(text, sizeof text, " (about %.0f min left)", left / 60);
+  }
+  return text;
+}
+
 }  // namespace
 
 void show_progress_in_logs(bool show) { log_progress = show; }
@@ -41,7 +56,8 @@ void Progress::update(long long done, const std::string& detail) {
   if (finished_) return;
   const auto now = std::chrono::steady_clock::now();
   const int percent = static_cast<int>(100 * std::clamp(done, 0LL, total_) / total_);
-  const std::string tail = detail.empty() ? "" : " " + detail;
+  const std::string tail = time_left(now - start_, std::clamp(done, 0LL, total_), total_) +
+                           (detail.empty() ? "" : " " + detail);
   if (terminal_) {
     if (now - last_draw_ < kRedrawInterval) return;
     last_draw_ = now;

@@ -8,8 +8,9 @@
 namespace modelgen::internal {
 
 /// Reports how much of `total` units of work is done. On a terminal (isatty(2)) one line,
-/// "modelid: LABEL 42% DETAIL", rewritten in place at most ten times a second and erased by
-/// finish(). Otherwise (a file, a pipe) nothing, unless the user asked with --progress
+/// "modelid: LABEL 42% (about 40 s left) DETAIL" (the time left from the pace so far, once a
+/// second and 1 % of the work are done), rewritten in place at most ten times a second and erased
+/// by finish(). Otherwise (a file, a pipe) nothing, unless the user asked with --progress
 /// (show_progress_in_logs): then one line at each quarter of the work at most: four lines in a
 /// log, never a stream of updates.
 /// Whether progress lines go to a stderr that is not a terminal (modelid --progress). Off by

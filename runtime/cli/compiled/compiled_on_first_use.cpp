@@ -1,7 +1,10 @@
-// std::call_once: the first evaluation compiles (or loads from the cache) exactly once, also
-// when several threads evaluate at once, and later calls cost one atomic load.
+// std::call_once: the first evaluation loads a model built at build time, or else compiles it
+// (or loads it from the cache), exactly once, also when several threads evaluate at once; later
+// calls cost one atomic load.
 
 #include "runtime/cli/compiled/compiled_on_first_use.hpp"
+
+#include "runtime/cli/compiled/prebuilt_models.hpp"
 
 namespace modelgen::internal {
 
@@ -11,7 +14,9 @@ CompiledOnFirstUse::CompiledOnFirstUse(std::unique_ptr<IdentificationModel> refe
 
 const ModelLibrary* CompiledOnFirstUse::library() const {
   std::call_once(tried_, [this] {
-    library_ = compiled_model({path_, options_, reference_.get()});
+    const DescriptionToCompile description{path_, options_, reference_.get()};
+    library_ = prebuilt_model(description);
+    if (!library_) library_ = compiled_model(description);
     if (library_) compiled_ = library_->identification_model();
   });
   return library_ ? &*library_ : nullptr;
