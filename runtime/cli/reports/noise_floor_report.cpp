@@ -66,7 +66,8 @@ void print_relative_errors(std::ostream& out, double full_band, const BandCompar
   const std::string above = percent(f.out_of_band_fraction) +
                             " of the measured torque's energy lies above the excitation band";
   if (!f.in_band_headline) out << " <- headline (" << above << ")";
-  out << "\n  relative error norm in the band: " << fixed(f.in_band, 0, 6);
+  out << "\n  relative error norm in the band: " << fixed(f.in_band, 0, 6) << " (rms "
+      << fixed(f.in_band_rms, 0, 4) << " N m)";
   if (f.in_band_headline) {
     out << " <- headline: " << above << ", beyond any model of the excitation (full band "
         << fixed(full_band, 0, 6) << ")";

@@ -34,7 +34,8 @@ BandComparison compare_in_band(const std::vector<Trajectory>& motion,
                                const std::optional<std::string>& trajectory_path, int dof);
 
 /// The relative error norm lines: full band ("relative error norm ||tau - tau_pred|| / ||tau||:
-/// X"), in the band ("relative error norm in the band: X"), the noise floor in the band and the
+/// X"), in the band ("relative error norm in the band: X (rms E N m)"), the noise floor in the
+/// band ("noise floor in the band: X, rms E N m (how it was estimated)") and the
 /// band itself; the headline figure is marked "<- headline" and says why. Without a band, the
 /// full-band line and the reason.
 void print_relative_errors(std::ostream& out, double full_band, const BandComparison& comparison,
