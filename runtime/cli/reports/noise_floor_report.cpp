@@ -45,8 +45,12 @@ BandComparison compare_in_band(const std::vector<Trajectory>& motion,
     try {
       band = from_file ? *from_file : band_of_positions(motion[e]);
     } catch (const DataError& problem) {
+      // Not an error of the run: the comparison goes on in full band only, and says why.
+      const std::string what = problem.what();
+      const std::size_t at = what.find("error: ");
       out.records.clear();
-      out.missing = problem.what();
+      out.missing = motion[e].source + ": " +
+                    (at == std::string::npos ? what : what.substr(at + 7));
       return out;
     }
     out.records.push_back(band_energies(tau[e], error[e], dt, band));
