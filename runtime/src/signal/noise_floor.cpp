@@ -45,8 +45,9 @@ WindowedSpectrum windowed_spectrum(const Eigen::Ref<const Eigen::VectorXd>& x) {
   Eigen::VectorXd y(n);
   WindowedSpectrum out;
   for (Eigen::Index k = 0; k < n; ++k) {
-    const double w = 0.5 - 0.5 * std::cos(2 * std::numbers::pi * static_cast<double>(k) /
-                                          static_cast<double>(n - 1));
+    const double w = n < 2 ? 1.0
+                           : 0.5 - 0.5 * std::cos(2 * std::numbers::pi * static_cast<double>(k) /
+                                                  static_cast<double>(n - 1));
     y[k] = w * x[k];
     out.window_energy += w * w;
   }
@@ -176,7 +177,10 @@ BandEnergies band_energies(const Eigen::MatrixXd& tau, const Eigen::MatrixXd& er
     const bool aligned =
         std::abs(exact - static_cast<double>(per_period)) * static_cast<double>(periods) <=
         kMaxMisalignment;
-    if (periods >= 2 && aligned) {
+    // The differences span periods - 1 periods: their band needs lines to average over.
+    const Eigen::Index difference_lines =
+        per_period > 0 ? band_edge(band.band_hz, n - per_period, dt) : 0;
+    if (periods >= 2 && aligned && difference_lines >= kMinNoiseLines) {
       out.noise_in_band = noise_from_periods(error, dt, band.band_hz, per_period);
       out.noise_origin =
           "the error's change from period to period, over " + std::to_string(periods) + " periods";

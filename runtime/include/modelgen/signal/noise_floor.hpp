@@ -60,10 +60,11 @@ struct BandEnergies {
 /// at or below the band's edge (the window keeps content far above the band, and the jump
 /// between the record's ends, out of the band's lines). The noise of the error in the band:
 /// - periodic (band.period > 0, at least 2 whole periods of round(period / dt) samples that
-///   stay aligned within 0.25 sample): from the differences between consecutive periods,
-///   e(t + period) - e(t), in which what repeats (the excitation, whatever a model of it
-///   explains) cancels and the noise is left, with twice its power on average over a band of
-///   whole harmonics: half their energy in the band, scaled to the record's length;
+///   stay aligned within 0.25 sample, and at least 4 lines in the band): from the differences
+///   between consecutive periods, e(t + period) - e(t), in which what repeats (the excitation,
+///   whatever a model of it explains) cancels and the noise is left, with twice its power on
+///   average over a band of whole harmonics: half their energy in the band, scaled to the record's
+///   length;
 /// - otherwise: the lower quartile of the error's windowed line powers in the band, divided by
 ///   -ln(0.75) (the quartile of exponentially distributed noise powers), over every line of the
 ///   band; it assumes most lines of the band hold noise only.
