@@ -1,7 +1,8 @@
 // modelid predict: joint torques of an estimate (base parameters) on measured trajectories by
 // the model's inverse dynamics (Gautier & Briot eq. 4-6), compared with the measured torques
 // per axis (Swevers 2002, Table 3: rms torque, rms error, error in %) and as a relative error
-// norm ||tau - tau_pred|| / ||tau|| (Gautier & Briot, Tables III-IV).
+// norm ||tau - tau_pred|| / ||tau|| (Gautier & Briot, Tables III-IV), in full and in the
+// excitation band, next to the record's noise floor there.
 
 #include <cmath>
 #include <iostream>
@@ -17,6 +18,7 @@
 #include "runtime/cli/data/limit_check.hpp"
 #include "runtime/cli/plots/torque_plots.hpp"
 #include "runtime/cli/reports/finite_output.hpp"
+#include "runtime/cli/reports/noise_floor_report.hpp"
 #include "runtime/cli/reports/prediction_output.hpp"
 
 namespace modelgen::internal {
@@ -25,7 +27,8 @@ using namespace modelgen::io;  // the file formats (modelgen/io/)
 
 namespace {
 
-void print_errors(const std::vector<Trajectory>& data, const TorquePrediction& prediction) {
+void print_errors(const std::vector<Trajectory>& data, const TorquePrediction& prediction,
+                  const BandComparison& band) {
   std::cout << "  axis   rms torque    rms error   error %\n";
   for (Eigen::Index j = 0; j < prediction.rms_torque.size(); ++j) {
     const double torque = prediction.rms_torque[j], error = prediction.rms_error[j];
@@ -34,8 +37,9 @@ void print_errors(const std::vector<Trajectory>& data, const TorquePrediction& p
     std::cout << "  " << fixed(static_cast<double>(j + 1), 4, 3) << " " << fixed(torque, 12, 6)
               << " " << fixed(error, 12, 6) << " " << percent << "\n";
   }
-  std::cout << "  relative error norm ||tau - tau_pred|| / ||tau||: "
-            << fixed(prediction.rel_error_norm, 0, 6) << "\n";
+  std::vector<std::string> sources;
+  for (const Trajectory& x : data) sources.push_back(x.source);
+  print_relative_errors(std::cout, prediction.rel_error_norm, band, sources);
   if (data.size() > 1) {
     for (std::size_t e = 0; e < data.size(); ++e) {
       std::cout << "    experiment " << e + 1 << " (" << data[e].source
@@ -115,11 +119,22 @@ int run_predict(const CommandLine& args) {
   check_prediction_finite(params, data, prediction, measured,
                           largest_parameter(beta, model.base_param_names()));
 
+  // The part of the measured torque no model of the excitation explains: above its band, and
+  // the noise in it (issue 31). Found before anything is printed: --trajectory may be wrong.
+  BandComparison band;
+  if (measured) {
+    const std::optional<std::string> trajectory =
+        args.has("--trajectory") ? std::optional<std::string>(args.one("--trajectory"))
+                                 : std::nullopt;
+    std::vector<Eigen::MatrixXd> measured_tau;
+    for (const Trajectory& x : data) measured_tau.push_back(x.tau);
+    band = compare_in_band(data, measured_tau, prediction.error, trajectory, model.dof());
+  }
   std::cout << "modelid predict: " << model.name() << " on " << data.size() << " experiment(s), "
             << prediction.samples << " samples, parameters from " << params << "\n"
             << data_report.str();
   if (measured) {
-    print_errors(data, prediction);
+    print_errors(data, prediction, band);
   } else {
     std::cout << "  no measured torques in the data: predicted torques only\n";
   }

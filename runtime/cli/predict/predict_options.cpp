@@ -21,6 +21,10 @@ const CommandSpec& predict_spec() {
           .required = true},
          {.name = "-o", .value = "PRED.csv", .help = "write measured and predicted torques"},
          {.name = "--plot", .value = "DIR", .help = "write the torques as CSV and SVG into DIR"},
+         {.name = "--trajectory",
+          .value = "TRAJ.yaml",
+          .help = "the Fourier excitation of the data: its period and top harmonic give the "
+                  "band the error is judged in (default: found in the positions)"},
          {.name = "--decimated",
           .type = ValueType::kFlag,
           .help = "compare where the fit compared: after the parallel decimation's filter"}});

@@ -1,12 +1,14 @@
 // modelid validate: the identified model under the robot's controller along a validation
 // record's reference (Bona & Curatella section 3.5), compared with what the robot did: the
-// position error in degrees and the torque error in N m per joint.
+// position error in degrees and the torque error in N m per joint, and the relative error in
+// the excitation band against the record's own noise floor there.
 
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <numbers>
+#include <optional>
 
 #include "modelgen/closed_loop/closed_loop_simulation.hpp"
 #include "modelgen/io/estimate_file.hpp"
@@ -18,16 +20,13 @@
 #include "runtime/cli/common/model_source.hpp"
 #include "runtime/cli/common/text_format.hpp"
 #include "runtime/cli/plots/torque_plots.hpp"
+#include "runtime/cli/reports/noise_floor_report.hpp"
 
 namespace modelgen::internal {
 
 using namespace modelgen::io;  // the file formats (modelgen/io/)
 
 namespace {
-
-// Bona & Curatella section 3.5: what their validation reached on the COMAU Smart S2.
-constexpr double kBonaPositionDegrees = 0.1;
-constexpr double kBonaTorque = 0.2;  // N m
 
 double rms(const Eigen::VectorXd& v) { return std::sqrt(v.squaredNorm() / static_cast<double>(v.size())); }
 
@@ -69,6 +68,15 @@ int run_validate(const CommandLine& args) {
     throw std::runtime_error(args.one("--params") + ": error: the estimate cannot be simulated "
                              "under this controller: " + e.what());
   }
+  // The record's own floor (issue 31): its torque above the reference's band, and the noise in
+  // the band. The reference is the excitation without the encoder's noise.
+  Trajectory reference = record;
+  reference.q = record.qr;
+  const std::optional<std::string> trajectory =
+      args.has("--trajectory") ? std::optional<std::string>(args.one("--trajectory"))
+                               : std::nullopt;
+  const BandComparison band =
+      compare_in_band({reference}, {record.tau}, {record.tau - run.tau_command}, trajectory, n);
   const Eigen::MatrixXd position_error =
       (record.q - run.q) * (180.0 / std::numbers::pi);  // degrees
   const Eigen::MatrixXd torque_error = record.tau - run.tau_command;
@@ -86,9 +94,7 @@ int run_validate(const CommandLine& args) {
               << fixed(rms(record.tau.col(j)), 10, 4) << "\n";
   }
   const double relative = torque_error.norm() / record.tau.norm();
-  std::cout << "  relative error norm of the torques " << fixed(relative, 0, 4)
-            << "; Bona & Curatella section 3.5 reached below " << kBonaPositionDegrees
-            << " deg and " << kBonaTorque << " N m on their robot\n";
+  print_relative_errors(std::cout, relative, band, {path});
   if (args.has("--plot")) {
     const std::string dir = args.one("--plot");
     TorquePrediction prediction;

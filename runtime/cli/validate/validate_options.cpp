@@ -21,6 +21,10 @@ const CommandSpec& validate_spec() {
         .value = "FILE",
         .help = "the closed-loop record (t, q, tau, qr)",
         .required = true},
+       {.name = "--trajectory",
+        .value = "TRAJ.yaml",
+        .help = "the Fourier excitation of the record: its period and top harmonic give the "
+                "band the error is judged in (default: found in the reference)"},
        {.name = "--plot",
         .value = "DIR",
         .help = "write the compared positions and torques into DIR"}});
