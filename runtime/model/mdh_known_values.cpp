@@ -16,6 +16,7 @@
 
 #include "modelgen/model/number_text.hpp"
 #include "modelgen/model/physical_consistency.hpp"
+#include "runtime/model/magnitude_checks.hpp"
 
 namespace modelgen {
 
@@ -138,6 +139,7 @@ void read_known_values(const YamlReader& in, const YAML::Node& node, RobotModel&
     model.known_values[k] =
         mass ? in.number(entry.second, key, kMaxMass, " kg") : in.number(entry.second, key);
     keys[k] = entry.first;
+    if (mass) check_mass(in.at(entry.second), "known." + key, *model.known_values[k], model.notes);
   }
   check_known_physical(in, model, keys);
 }

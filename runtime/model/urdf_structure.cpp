@@ -16,6 +16,7 @@
 
 #include "modelgen/model/description_limits.hpp"
 #include "modelgen/model/error.hpp"
+#include "runtime/model/magnitude_checks.hpp"
 #include "runtime/model/urdf_xml_checks.hpp"
 
 namespace modelgen {
@@ -107,6 +108,7 @@ class StructureChecker : private UrdfElementChecker {
     if ((*m)[0] < 0) {
       fail(mass, owner + ": mass value='" + mass->Attribute("value") + "' is negative");
     }
+    check_mass({path(), mass->GetLineNum(), 0}, owner + ": mass value", (*m)[0], structure_.notes);
     const tinyxml2::XMLElement* inertia = inertial->FirstChildElement("inertia");
     if (inertia == nullptr) {
       fail(inertial, owner +
@@ -138,6 +140,24 @@ class StructureChecker : private UrdfElementChecker {
     return element;
   }
 
+  // Revolute limits in degrees or deg/s load without error; flagged (magnitude_checks.hpp).
+  // check_joint_limit has read the numbers already.
+  void check_limit_magnitudes(const tinyxml2::XMLElement* limit, const std::string& owner,
+                              const std::string& type) {
+    if (limit == nullptr || (type != "revolute" && type != "continuous")) return;
+    const SourceLocation where{path(), limit->GetLineNum(), 0};
+    if (type == "revolute") {
+      for (const char* side : {"lower", "upper"}) {
+        if (limit->Attribute(side) != nullptr) {
+          check_angle_limit(where, owner + ": limit " + side, limit->DoubleAttribute(side),
+                            structure_.notes);
+        }
+      }
+    }
+    check_velocity_limit(where, owner + ": limit velocity", limit->DoubleAttribute("velocity"),
+                         structure_.notes);
+  }
+
   JointEntry check_joint(const tinyxml2::XMLElement* joint) {
     JointEntry entry;
     entry.line = joint->GetLineNum();
@@ -162,7 +182,7 @@ class StructureChecker : private UrdfElementChecker {
                       "; expected revolute, continuous, prismatic or fixed");
     }
 
-    for (const char* element : {"parent", "child", "origin", "axis", "limit"}) {
+    for (const char* element : {"parent", "child", "origin", "axis", "limit", "mimic"}) {
       check_single(joint, element, owner);
     }
     link_reference(joint, owner, "parent", entry.parent);
@@ -170,6 +190,15 @@ class StructureChecker : private UrdfElementChecker {
     entry.origin = check_origin(joint, owner + ": origin");
     check_joint_axis(joint, owner, entry);
     check_joint_limit(joint, owner, entry);
+    check_limit_magnitudes(joint->FirstChildElement("limit"), owner, entry.type);
+    if (const tinyxml2::XMLElement* mimic = joint->FirstChildElement("mimic")) {
+      const char* leader = mimic->Attribute("joint");
+      if (leader == nullptr || *leader == '\0') {
+        fail(mimic, owner + ": <mimic> has no joint attribute naming the joint it follows");
+      }
+      entry.mimic_leader = leader;
+      entry.mimic_line = mimic->GetLineNum();
+    }
     return entry;
   }
 

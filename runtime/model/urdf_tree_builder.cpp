@@ -169,6 +169,7 @@ JointDescription TreeBuilder::joint_description(const urdf::Joint& urdf_joint,
   description.name = entry.name;
   description.parent_link = entry.parent;
   description.where = {path_, entry.line, 0};
+  description.limits.continuous = entry.type == "continuous";
   if (urdf_joint.limits) {
     const urdf::JointLimits& limits = *urdf_joint.limits;
     if (entry.type != "continuous") {
@@ -196,6 +197,18 @@ void TreeBuilder::visit(int j, int body, const Eigen::Isometry3d& body_from_link
     if (body >= 0) add_inertial(entry.child, body, body_from_child);
     push_children(child, body, body_from_child);
     return;
+  }
+  if (!entry.mimic_leader.empty()) {
+    // A follower moves with its leader (q = multiplier * q_leader + offset): as a joint of its
+    // own it is a degree of freedom the robot does not have. Not an error (yet): the shipped
+    // Panda is modelled with its second finger as a joint (robots/urdf/SOURCES.md).
+    model_.notes.push_back({{path_, entry.mimic_line, 0},
+                            "joint '" + entry.name + "' mimics joint '" + entry.mimic_leader +
+                                "' but is modelled as an independent degree of freedom (modelgen "
+                                "has no mimic constraint); to leave it out, cut the part it moves "
+                                "off with --tip LINK, or make '" +
+                                entry.name + "' fixed (docs/commands/modelgen.md, Mimic joints)",
+                            true});
   }
   if (model_.tree.dof == kMaxMovingJoints) {
     throw InputError({path_, entry.line, 0},

@@ -108,7 +108,8 @@ std::vector<JointLimits> design_limits(const CommandLine& args, const ModelSourc
   for (int j : moving) {
     const JointLimits& limit = limits[static_cast<std::size_t>(j)];
     std::string key;
-    if (!limit.q_lower || !limit.q_upper) key = "q";
+    if ((!limit.q_lower || !limit.q_upper) && !limit.continuous)
+      key = "q";
     else if (!limit.dq) key = "dq";
     else if (!limit.ddq) key = "ddq";
     if (key.empty()) continue;

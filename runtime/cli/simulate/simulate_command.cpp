@@ -13,6 +13,7 @@
 #include <optional>
 #include <sstream>
 #include <stdexcept>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -133,7 +134,9 @@ Trajectory simulate_under_controller(const CommandLine& args, const Identificati
                      "controller's sample_time; --noise and --sample-time are for open loop"};
   }
   const int n = model.dof();
-  PidController controller(read_controller(args.one("--controller"), n));
+  std::vector<std::string> warnings;
+  PidController controller(read_controller(args.one("--controller"), n, &warnings));
+  for (const std::string& warning : warnings) std::cerr << warning << "\n";
   const double ts = controller.gains().sample_time;
   const double periods =
       args.has("--periods") ? parse_number(args.one("--periods"), "--periods") : 1.0;

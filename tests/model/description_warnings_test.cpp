@@ -1,0 +1,152 @@
+// What real descriptions hold that loads but needs a second look: mimic joints (modelled as
+// independent joints, with a warning), continuous joints (no position limit), and magnitudes
+// that are likely unit slips (degrees, deg/s, grams), for URDF and MDH YAML alike.
+
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "modelgen/model/load_robot.hpp"
+#include "tests/support/test_support.hpp"
+
+namespace modelgen {
+namespace {
+
+// The notes of `model` that are warnings, as printed.
+std::vector<std::string> warnings(const RobotModel& model) {
+  std::vector<std::string> found;
+  for (const DescriptionNote& note : model.notes) {
+    if (note.warning) found.push_back(note.to_string());
+  }
+  return found;
+}
+
+// One link 'l1' of mass `mass` on joint 'j1' of type `type` with the given <limit> attributes.
+std::string one_joint_urdf(const std::string& type, const std::string& limit,
+                           const std::string& mass = "2") {
+  return "<?xml version=\"1.0\"?>\n"  // line 1
+         "<robot name=\"arm\">\n"     // 2
+         "  <link name=\"base\"/>\n"  // 3
+         "  <link name=\"l1\">\n"     // 4
+         "    <inertial>\n"           // 5
+         "      <mass value=\"" +
+         mass +
+         "\"/>\n"  // 6
+         "      <inertia ixx=\"0.1\" ixy=\"0\" ixz=\"0\" iyy=\"0.1\" iyz=\"0\" izz=\"0.1\"/>\n"
+         "    </inertial>\n"  // 8
+         "  </link>\n"        // 9
+         "  <joint name=\"j1\" type=\"" +
+         type +
+         "\">\n"                          // 10
+         "    <parent link=\"base\"/>\n"  // 11
+         "    <child link=\"l1\"/>\n"     // 12
+         "    <axis xyz=\"0 0 1\"/>\n"    // 13
+         "    <limit " +
+         limit +
+         "/>\n"  // 14
+         "  </joint>\n"
+         "</robot>\n";
+}
+
+TEST(DescriptionWarnings, PandaMimicFingerIsAJointWithAWarning) {
+  const std::string path = test::source_path("robots/urdf/franka_panda.urdf");
+  const RobotModel model = load_robot(path);
+  EXPECT_EQ(model.dof(), 9);  // the follower stays a joint (robots/urdf/SOURCES.md)
+  const std::vector<std::string> found = warnings(model);
+  ASSERT_EQ(found.size(), 1u);
+  EXPECT_EQ(found[0], path +
+                          ":348: warning: joint 'panda_finger_joint2' mimics joint "
+                          "'panda_finger_joint1' but is modelled as an independent degree of "
+                          "freedom (modelgen has no mimic constraint); to leave it out, cut "
+                          "the part it moves off with --tip LINK, or make "
+                          "'panda_finger_joint2' fixed (docs/commands/modelgen.md, Mimic "
+                          "joints)");
+  // Cut at the hand, the fingers and their warning are gone.
+  LoadOptions options;
+  options.tip_link = "panda_hand";
+  const RobotModel arm = load_robot(path, options);
+  EXPECT_EQ(arm.dof(), 7);
+  EXPECT_TRUE(warnings(arm).empty());
+}
+
+TEST(DescriptionWarnings, ContinuousJointHasNoPositionLimit) {
+  // urdfdom drops lower and upper on a continuous joint; the velocity limit stays.
+  const RobotModel model =
+      load_robot_text("spin.urdf", one_joint_urdf("continuous",
+                                                  "lower=\"-1\" upper=\"1\" velocity=\"2\" "
+                                                  "effort=\"5\""));
+  ASSERT_EQ(model.joints.size(), 1u);
+  const JointLimits& limits = model.joints[0].limits;
+  EXPECT_TRUE(limits.continuous);
+  EXPECT_FALSE(limits.q_lower.has_value());
+  EXPECT_FALSE(limits.q_upper.has_value());
+  EXPECT_EQ(limits.dq.value_or(0), 2);
+  EXPECT_EQ(limits.effort.value_or(0), 5);
+  const RobotModel revolute =
+      load_robot_text("arm.urdf", one_joint_urdf("revolute",
+                                                 "lower=\"-1\" upper=\"1\" velocity=\"2\" "
+                                                 "effort=\"5\""));
+  EXPECT_FALSE(revolute.joints[0].limits.continuous);
+  EXPECT_TRUE(warnings(revolute).empty());
+}
+
+TEST(DescriptionWarnings, UrdfLimitsInDegreesAndMassInGrams) {
+  const RobotModel model = load_robot_text(
+      "arm.urdf",
+      one_joint_urdf("revolute", "lower=\"-128\" upper=\"6\" velocity=\"180\" effort=\"5\"",
+                     "25000"));
+  const std::vector<std::string> found = warnings(model);
+  ASSERT_EQ(found.size(), 3u);
+  EXPECT_EQ(found[0],
+            "arm.urdf:6: warning: link 'l1': mass value is 25000 kg, above 10000 kg; "
+            "masses are in kg: grams?");
+  EXPECT_EQ(found[1],
+            "arm.urdf:14: warning: joint 'j1': limit lower is -128 rad, more than one "
+            "turn (2 pi) to that side; limits are in radians: degrees?");
+  EXPECT_EQ(found[2],
+            "arm.urdf:14: warning: joint 'j1': limit velocity is 180 rad/s, above 50 "
+            "rad/s; velocity limits are in rad/s: degrees per second?");
+  // 2 pi as UR writes it (6.28318530718, a little above), 50 rad/s and 10 t are plausible.
+  EXPECT_TRUE(
+      warnings(load_robot_text("arm.urdf", one_joint_urdf("revolute",
+                                                          "lower=\"-6.28318530718\" upper=\"1\" "
+                                                          "velocity=\"50\" effort=\"5\"",
+                                                          "10000")))
+          .empty());
+  // A prismatic joint's limits are metres: no angle check.
+  EXPECT_TRUE(warnings(load_robot_text("arm.urdf", one_joint_urdf("prismatic",
+                                                                  "lower=\"0\" upper=\"7\" "
+                                                                  "velocity=\"1\" effort=\"5\"")))
+                  .empty());
+}
+
+TEST(DescriptionWarnings, MdhLimitsInDegreesAndMassInGrams) {
+  const RobotModel model = load_robot_text("arm.yaml",
+                                           "name: arm\n"
+                                           "joints:\n"
+                                           "  - {name: J1, type: revolute, ant: 0, alpha: 0, d: 0, "
+                                           "theta: 0, r: 0,\n"
+                                           "     limits: {q: [-170, 170], dq: 3}}\n"
+                                           "  - {name: J2, type: revolute, alpha: 0, d: 0.5, "
+                                           "theta: 0, r: 0,\n"
+                                           "     limits: {q: [-1, 1], dq: 120}}\n"
+                                           "known: {M2: 30000}\n");
+  const std::vector<std::string> found = warnings(model);
+  ASSERT_EQ(found.size(), 4u);
+  EXPECT_EQ(found[0],
+            "arm.yaml:4:18: warning: joint 1: limits.q lower is -170 rad, more than "
+            "one turn (2 pi) to that side; limits are in radians: degrees?");
+  EXPECT_EQ(found[1],
+            "arm.yaml:4:18: warning: joint 1: limits.q upper is 170 rad, more than "
+            "one turn (2 pi) to that side; limits are in radians: degrees?");
+  EXPECT_EQ(found[2],
+            "arm.yaml:6:31: warning: joint 2: limits.dq is 120 rad/s, above 50 rad/s; "
+            "velocity limits are in rad/s: degrees per second?");
+  EXPECT_EQ(found[3],
+            "arm.yaml:7:13: warning: known.M2 is 30000 kg, above 10000 kg; masses are "
+            "in kg: grams?");
+}
+
+}  // namespace
+}  // namespace modelgen
