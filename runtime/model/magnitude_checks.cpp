@@ -5,6 +5,7 @@
 #include "runtime/model/magnitude_checks.hpp"
 
 #include <cmath>
+#include <numbers>
 #include <string>
 #include <vector>
 
@@ -12,10 +13,30 @@
 
 namespace modelgen {
 
+namespace {
+
+// Whether a revolute limit beyond one turn reads as a value in degrees rather than a multi-turn
+// joint in radians. A human writes degrees as a whole or half number (128, 170.5); a multi-turn
+// limit in radians is a converted whole number of degrees (6.10865238198 is 350 degrees, the
+// COMAU wrist's 47.1238898 is 2700 degrees to 1e-7 rad) or a multiple of pi/4 written to two
+// decimals (4.71, 12.57). Anything else beyond one turn (10.3) is not a usual radian value either.
+bool reads_as_degrees(double value) {
+  constexpr double kPi = std::numbers::pi;
+  const double magnitude = std::abs(value);
+  if (std::abs(2 * magnitude - std::round(2 * magnitude)) < 1e-9) return true;
+  const double degrees = magnitude * 180 / kPi;
+  if (std::abs(degrees - std::round(degrees)) < 1e-3) return false;
+  const double quarter_turns = magnitude / (kPi / 4);
+  if (std::abs(quarter_turns - std::round(quarter_turns)) * (kPi / 4) < 0.005) return false;
+  return true;
+}
+
+}  // namespace
+
 void check_angle_limit(const SourceLocation& where, const std::string& what, double value,
                        std::vector<DescriptionNote>& notes) {
   // Files write 2 pi rounded (UR: 6.28318530718, a little above): a slack of 1e-4 rad.
-  if (std::abs(value) <= kPlausibleAngle + 1e-4) return;
+  if (std::abs(value) <= kPlausibleAngle + 1e-4 || !reads_as_degrees(value)) return;
   notes.push_back({where,
                    what + " is " + shortest_text(value) +
                        " rad, more than one turn (2 pi) to that side; limits are in radians: "

@@ -11,14 +11,17 @@
 
 namespace modelgen {
 
-/// Beyond these a value is flagged: a revolute limit more than one turn to either side, a
-/// revolute velocity limit above 50 rad/s (about 480 rpm at the joint), a link above 10 t.
+/// Beyond these a value is flagged: a revolute limit more than one turn to either side (that
+/// also reads as degrees), a revolute velocity limit above 50 rad/s (about 480 rpm at the
+/// joint), a link above 10 t.
 inline constexpr double kPlausibleAngle = 6.283185307179586;  // 2 pi rad
 inline constexpr double kPlausibleVelocity = 50;              // rad/s
 inline constexpr double kPlausibleMass = 10000;               // kg
 
-/// A warning if a revolute position limit `value` (rad) is beyond one turn; `what` names the
-/// joint and the field ("joint 'j1': limit lower").
+/// A warning if a revolute position limit `value` (rad) is beyond one turn and reads as degrees
+/// (a whole or half number, or no whole number of degrees nor multiple of pi/4 in radians:
+/// 47.1238898, 15 pi, is a multi-turn wrist and passes); `what` names the joint and the field
+/// ("joint 'j1': limit lower").
 void check_angle_limit(const SourceLocation& where, const std::string& what, double value,
                        std::vector<DescriptionNote>& notes);
 /// A warning if a revolute velocity limit `value` (rad/s) is above kPlausibleVelocity.

@@ -121,6 +121,33 @@ TEST(DescriptionWarnings, UrdfLimitsInDegreesAndMassInGrams) {
                   .empty());
 }
 
+// Beyond one turn, a limit is flagged only when it reads as degrees: a whole or half number,
+// or a value that is neither a converted whole number of degrees nor a multiple of pi/4.
+TEST(DescriptionWarnings, MultiTurnRadiansAreNotTakenForDegrees) {
+  // The value as the upper limit, or as the lower one when negative.
+  const auto flagged = [](const std::string& value) {
+    const bool negative = value.front() == '-';
+    const std::string limit = "lower=\"" + (negative ? value : "-1") + "\" upper=\"" +
+                              (negative ? "1" : value) + "\" velocity=\"2\" effort=\"5\"";
+    return !warnings(load_robot_text("arm.urdf", one_joint_urdf("revolute", limit))).empty();
+  };
+  // 15 pi (2700 degrees, the COMAU Smart Six wrist, robots/comau_smart_six.yaml), 4 pi to 1e-9
+  // and to two decimals, 2.5 pi to two decimals, 350 degrees in radians.
+  for (const char* radians : {"47.1238898", "-47.1238898", "12.566370614", "12.57", "7.85", "6.10865238198"}) {
+    EXPECT_FALSE(flagged(radians)) << radians;
+  }
+  // Whole and half numbers as degrees are written, and a value no radian limit has.
+  for (const char* degrees : {"128", "-128", "170.5", "2700", "355", "7", "10.3"}) {
+    EXPECT_TRUE(flagged(degrees)) << degrees;
+  }
+}
+
+TEST(DescriptionWarnings, ShippedComauWristIsNotFlagged) {
+  const RobotModel model = load_robot(test::source_path("robots/comau_smart_six.yaml"));
+  EXPECT_TRUE(warnings(model).empty());
+  EXPECT_NEAR(model.joints[5].limits.q_upper.value_or(0), 15 * 3.141592653589793, 1e-6);
+}
+
 TEST(DescriptionWarnings, MdhLimitsInDegreesAndMassInGrams) {
   const RobotModel model = load_robot_text("arm.yaml",
                                            "name: arm\n"
