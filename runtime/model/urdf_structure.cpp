@@ -158,6 +158,25 @@ class StructureChecker : private UrdfElementChecker {
                          structure_.notes);
   }
 
+  // Vendor files carry a joint with two <origin> (FloBaRoID's kuka_lwr4.urdf, line 55, a
+  // placement left over from an edit). urdfdom, and so every ROS tool, uses the first and
+  // ignores the rest; so does modelgen, with a warning naming both lines, so the model is the
+  // one the user sees in RViz and the leftover is not missed.
+  void note_second_origin(const tinyxml2::XMLElement* joint, const std::string& owner) {
+    const tinyxml2::XMLElement* first = joint->FirstChildElement("origin");
+    if (first == nullptr) return;
+    for (const tinyxml2::XMLElement* other = first->NextSiblingElement("origin"); other != nullptr;
+         other = other->NextSiblingElement("origin")) {
+      structure_.notes.push_back(
+          {{path(), other->GetLineNum(), 0},
+           owner + " has a second <origin>; the first (line " +
+               std::to_string(first->GetLineNum()) +
+               ") is used and this one ignored, as urdfdom and ROS do; delete the one you did "
+               "not mean",
+           true});
+    }
+  }
+
   JointEntry check_joint(const tinyxml2::XMLElement* joint) {
     JointEntry entry;
     entry.line = joint->GetLineNum();
@@ -182,9 +201,10 @@ class StructureChecker : private UrdfElementChecker {
                       "; expected revolute, continuous, prismatic or fixed");
     }
 
-    for (const char* element : {"parent", "child", "origin", "axis", "limit", "mimic"}) {
+    for (const char* element : {"parent", "child", "axis", "limit", "mimic"}) {
       check_single(joint, element, owner);
     }
+    note_second_origin(joint, owner);
     link_reference(joint, owner, "parent", entry.parent);
     link_reference(joint, owner, "child", entry.child);
     entry.origin = check_origin(joint, owner + ": origin");

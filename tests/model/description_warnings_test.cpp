@@ -2,6 +2,7 @@
 // independent joints, with a warning), continuous joints (no position limit), and magnitudes
 // that are likely unit slips (degrees, deg/s, grams), for URDF and MDH YAML alike.
 
+#include <array>
 #include <string>
 #include <vector>
 
@@ -119,6 +120,32 @@ TEST(DescriptionWarnings, UrdfLimitsInDegreesAndMassInGrams) {
                                                                   "lower=\"0\" upper=\"7\" "
                                                                   "velocity=\"1\" effort=\"5\"")))
                   .empty());
+}
+
+// FloBaRoID's kuka_lwr4.urdf (robots-ref) has a joint with two <origin>: urdfdom takes the
+// first, so modelgen does too, with a warning at the second naming the first's line.
+TEST(DescriptionWarnings, SecondJointOriginIsIgnoredWithAWarning) {
+  const std::string text =
+      "<robot name=\"arm\">\n"                                               // 1
+      "  <link name=\"base\"/>\n"                                            // 2
+      "  <link name=\"l1\"/>\n"                                              // 3
+      "  <joint name=\"j1\" type=\"revolute\">\n"                            // 4
+      "    <origin xyz=\"-0.25 0 1\"/>\n"                                    // 5
+      "    <origin xyz=\"0 0 0\"/>\n"                                        // 6
+      "    <parent link=\"base\"/>\n"                                        // 7
+      "    <child link=\"l1\"/>\n"                                           // 8
+      "    <axis xyz=\"0 0 1\"/>\n"                                          // 9
+      "    <limit lower=\"-1\" upper=\"1\" velocity=\"1\" effort=\"1\"/>\n"  // 10
+      "  </joint>\n"
+      "</robot>\n";
+  const RobotModel model = load_robot_text("lwr.urdf", text);
+  const std::vector<std::string> found = warnings(model);
+  ASSERT_EQ(found.size(), 1u);
+  EXPECT_EQ(found[0],
+            "lwr.urdf:6: warning: joint 'j1' has a second <origin>; the first (line 5) is used "
+            "and this one ignored, as urdfdom and ROS do; delete the one you did not mean");
+  ASSERT_EQ(model.tree.bodies.size(), 1u);
+  EXPECT_EQ(model.tree.bodies[0].fixed.translation, (std::array<double, 3>{-0.25, 0, 1}));
 }
 
 // Beyond one turn, a limit is flagged only when it reads as degrees: a whole or half number,
