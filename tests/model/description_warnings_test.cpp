@@ -1,6 +1,7 @@
-// What real descriptions hold that loads but needs a second look: mimic joints (modelled as
-// independent joints, with a warning), continuous joints (no position limit), and magnitudes
-// that are likely unit slips (degrees, deg/s, grams), for URDF and MDH YAML alike.
+// What real descriptions hold that loads but needs a second look, or is refused: mimic joints
+// (refused unless --mimic-as-joint), a joint's second <origin>, continuous joints (no position
+// limit), and magnitudes that are likely unit slips (degrees, deg/s, grams), for URDF and MDH
+// YAML alike.
 
 #include <array>
 #include <string>
@@ -8,6 +9,7 @@
 
 #include <gtest/gtest.h>
 
+#include "modelgen/model/error.hpp"
 #include "modelgen/model/load_robot.hpp"
 #include "tests/support/test_support.hpp"
 
@@ -50,25 +52,71 @@ std::string one_joint_urdf(const std::string& type, const std::string& limit,
          "</robot>\n";
 }
 
-TEST(DescriptionWarnings, PandaMimicFingerIsAJointWithAWarning) {
-  const std::string path = test::source_path("robots/urdf/franka_panda.urdf");
-  const RobotModel model = load_robot(path);
-  EXPECT_EQ(model.dof(), 9);  // the follower stays a joint (robots/urdf/SOURCES.md)
-  const std::vector<std::string> found = warnings(model);
-  ASSERT_EQ(found.size(), 1u);
-  EXPECT_EQ(found[0], path +
-                          ":348: warning: joint 'panda_finger_joint2' mimics joint "
-                          "'panda_finger_joint1' but is modelled as an independent degree of "
-                          "freedom (modelgen has no mimic constraint); to leave it out, cut "
-                          "the part it moves off with --tip LINK, or make "
-                          "'panda_finger_joint2' fixed (docs/commands/modelgen.md, Mimic "
-                          "joints)");
-  // Cut at the hand, the fingers and their warning are gone.
-  LoadOptions options;
-  options.tip_link = "panda_hand";
-  const RobotModel arm = load_robot(path, options);
-  EXPECT_EQ(arm.dof(), 7);
+// A hand on 'base' with two prismatic fingers, the second mimicking the first (as the Panda as
+// published: tests/model/corpus/franka_panda.urdf).
+std::string mimic_gripper_urdf() {
+  return "<robot name=\"gripper\">\n"                           // 1
+         "  <link name=\"base\"/>\n"                            // 2
+         "  <link name=\"hand\"/>\n"                            // 3
+         "  <link name=\"left\"/>\n"                            // 4
+         "  <link name=\"right\"/>\n"                           // 5
+         "  <joint name=\"wrist\" type=\"revolute\">\n"         // 6
+         "    <parent link=\"base\"/><child link=\"hand\"/>\n"  // 7
+         "    <axis xyz=\"0 0 1\"/>\n"                          // 8
+         "    <limit lower=\"-1\" upper=\"1\" velocity=\"1\" effort=\"1\"/>\n"
+         "  </joint>\n"                                         // 10
+         "  <joint name=\"finger_1\" type=\"prismatic\">\n"     // 11
+         "    <parent link=\"hand\"/><child link=\"left\"/>\n"  // 12
+         "    <axis xyz=\"0 1 0\"/>\n"                          // 13
+         "    <limit lower=\"0\" upper=\"0.04\" velocity=\"0.2\" effort=\"20\"/>\n"
+         "  </joint>\n"                                          // 15
+         "  <joint name=\"finger_2\" type=\"prismatic\">\n"      // 16
+         "    <parent link=\"hand\"/><child link=\"right\"/>\n"  // 17
+         "    <axis xyz=\"0 -1 0\"/>\n"                          // 18
+         "    <limit lower=\"0\" upper=\"0.04\" velocity=\"0.2\" effort=\"20\"/>\n"
+         "    <mimic joint=\"finger_1\" multiplier=\"1\" offset=\"0\"/>\n"  // 20
+         "  </joint>\n"
+         "</robot>\n";
+}
+
+TEST(DescriptionWarnings, MimicFollowerIsRefusedNamingItAndItsLeader) {
+  try {
+    load_robot_text("gripper.urdf", mimic_gripper_urdf());
+    FAIL() << "a mimic follower loaded as a joint without --mimic-as-joint";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "gripper.urdf:20: error: joint 'finger_2' mimics joint 'finger_1' (moves with "
+              "it), but modelgen has no mimic constraint and would model it as a degree of "
+              "freedom the robot does not have; leave the part it moves out with --tip LINK, "
+              "make 'finger_2' fixed in a copy of the file, or keep it as an independent joint "
+              "with --mimic-as-joint (docs/commands/modelgen.md, Mimic joints)");
+  }
+}
+
+TEST(DescriptionWarnings, MimicFollowerWaysOut) {
+  // Cut at the hand: the fingers, and the follower with them, are not modelled.
+  LoadOptions cut;
+  cut.tip_link = "hand";
+  const RobotModel arm = load_robot_text("gripper.urdf", mimic_gripper_urdf(), cut);
+  EXPECT_EQ(arm.dof(), 1);
   EXPECT_TRUE(warnings(arm).empty());
+  // Asked for: the follower is a joint of its own, with a warning at its <mimic>.
+  LoadOptions as_joint;
+  as_joint.mimic_as_joint = true;
+  const RobotModel all = load_robot_text("gripper.urdf", mimic_gripper_urdf(), as_joint);
+  EXPECT_EQ(all.dof(), 3);
+  const std::vector<std::string> found = warnings(all);
+  ASSERT_EQ(found.size(), 1u);
+  EXPECT_EQ(found[0],
+            "gripper.urdf:20: warning: joint 'finger_2' mimics joint 'finger_1' but is modelled "
+            "as an independent degree of freedom, as --mimic-as-joint asks");
+}
+
+TEST(DescriptionWarnings, ShippedPandaHasTwoIndependentFingersWithoutWarning) {
+  // robots/urdf/SOURCES.md: the shipped copy has its <mimic> replaced by a comment.
+  const RobotModel model = load_robot(test::source_path("robots/urdf/franka_panda.urdf"));
+  EXPECT_EQ(model.dof(), 9);
+  EXPECT_TRUE(warnings(model).empty());
 }
 
 TEST(DescriptionWarnings, ContinuousJointHasNoPositionLimit) {
