@@ -32,6 +32,7 @@
 #include "runtime/cli/common/commands.hpp"
 #include "runtime/cli/common/model_source.hpp"
 #include "runtime/cli/common/progress.hpp"
+#include "runtime/cli/common/q_limit_option.hpp"
 #include "runtime/cli/excitation/trajectory_limits.hpp"
 #include "runtime/cli/reports/finite_output.hpp"
 #include "runtime/cli/simulate/drive_simulation.hpp"
@@ -199,7 +200,8 @@ Trajectory simulate_under_controller(const CommandLine& args, const Identificati
 
 int run_simulate(const CommandLine& args) {
   const bool drive_mode = args.has("--drive");
-  const ModelSource source = load_model_source(args.one("--robot"), description_options(args));
+  ModelSource source = load_model_source(args.one("--robot"), description_options(args));
+  apply_q_limit_option(args, source);
   if (drive_mode && !source.description) {
     throw UsageError{"--drive needs --robot to be a description file (.yaml/.urdf), not '" +
                      args.one("--robot") + "'"};

@@ -1,11 +1,13 @@
 // A URDF `continuous` joint has no position limit (urdfdom drops lower and upper on one):
-// check-trajectory and design take it as unbounded in q, while its velocity limit still holds.
+// check-trajectory and design take it as unbounded in q, while its velocity limit still holds;
+// --q-limit JOINT=LO,HI gives it (or any joint) a range.
 // The robot: joint 1 'spin' continuous about the vertical (dq limit 2 rad/s), joint 2 'elbow'
 // revolute in [-1.5, 1.5] (dq limit 3 rad/s).
 
 #include <filesystem>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -116,6 +118,71 @@ TEST(ModelidContinuousJoint, DesignNeedsNoPositionLimit) {
                                " --ddq-limit 10 --trajectory " + quoted(dir / "design.yaml"));
   EXPECT_EQ(check.exit_code, 0) << check.out << check.err;
   EXPECT_EQ(check.out.find('!'), std::string::npos) << check.out;
+}
+
+// Joint 1 swings over [9.5, 10.5] rad (write_trajectory): against [9, 11] its q use is the
+// distance from the middle, 0.5, over half the range, 1: 50.0%; against [-3, 3], 10.5 / 3.
+TEST(ModelidContinuousJoint, QLimitGivesAContinuousJointARange) {
+  const fs::path dir = test_folder();
+  write_text(dir / "spinner.urdf", kUrdf);
+  const std::string check = "check-trajectory --robot " + quoted(dir / "spinner.urdf") +
+                            " --trajectory " + quoted(write_trajectory(dir, "0.5"));
+  const CliRun within = modelid(check + " --q-limit spin=9,11");
+  ASSERT_EQ(within.exit_code, 0) << within.out << within.err;
+  const std::vector<std::string> spin = row_of(within.out, "1");
+  ASSERT_GE(spin.size(), 5u) << within.out;
+  EXPECT_NE(within.out.find("50.0%"), std::string::npos) << within.out;
+  // By number, and beyond the range: 350.0% and exit 1.
+  const CliRun beyond = modelid(check + " --q-limit 1=-3,3");
+  EXPECT_EQ(beyond.exit_code, 1) << beyond.out << beyond.err;
+  EXPECT_NE(beyond.out.find("350.0%!"), std::string::npos) << beyond.out;
+  // simulate refuses the trajectory against the range given.
+  const CliRun simulate =
+      modelid("simulate --robot " + quoted(dir / "spinner.urdf") + " --trajectory " +
+              quoted(dir / "spin.yaml") + " --q-limit spin=-3,3 -o " + quoted(dir / "run.csv"));
+  EXPECT_EQ(simulate.exit_code, 1) << simulate.out << simulate.err;
+  EXPECT_NE(simulate.err.find("leaves its q limit"), std::string::npos) << simulate.err;
+  EXPECT_FALSE(fs::exists(dir / "run.csv"));
+}
+
+TEST(ModelidContinuousJoint, DesignKeepsAQLimitGiven) {
+  const fs::path dir = test_folder();
+  write_text(dir / "spinner.urdf", kUrdf);
+  const std::string robot = " --robot " + quoted(dir / "spinner.urdf");
+  const CliRun run = modelid("design" + robot +
+                             " --period 2 --harmonics 2 --margin 0.9 --samples 60 --starts 2 "
+                             "--seed 5 --ddq-limit 10 --q-limit spin=-0.2,0.2 -o " +
+                             quoted(dir / "design.yaml"));
+  ASSERT_EQ(run.exit_code, 0) << run.out << run.err;
+  // The written header says how to make it again, the range included.
+  EXPECT_NE(read_text(dir / "design.yaml").find("--q-limit spin=-0.2,0.2"), std::string::npos);
+  const CliRun check = modelid("check-trajectory" + robot + " --ddq-limit 10 --trajectory " +
+                               quoted(dir / "design.yaml") + " --q-limit spin=-0.2,0.2");
+  EXPECT_EQ(check.exit_code, 0) << check.out << check.err;
+  EXPECT_EQ(check.out.find('!'), std::string::npos) << check.out;
+}
+
+TEST(ModelidContinuousJoint, QLimitUsageErrorsNameTheOption) {
+  const fs::path dir = test_folder();
+  write_text(dir / "spinner.urdf", kUrdf);
+  const std::string check = "check-trajectory --robot " + quoted(dir / "spinner.urdf") +
+                            " --trajectory " + quoted(write_trajectory(dir, "0.5"));
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"spin", "--q-limit 'spin': expected JOINT=LO,HI"},
+      {"spn=1,2", "no moving joint 'spn' (did you mean 'spin'?)"},
+      {"3=1,2", "or its number, 1 to 2"},
+      {"spin=2,1", "the lower bound must be below the upper one"},
+      {"spin=1", "expected two bounds LO,HI"},
+      {"spin=a,1", "--q-limit"},
+  };
+  for (const auto& [value, message] : cases) {
+    const CliRun run = modelid(check + " --q-limit " + value);
+    EXPECT_EQ(run.exit_code, 2) << value << run.err;
+    EXPECT_NE(run.err.find(message), std::string::npos) << value << "\n" << run.err;
+  }
+  const CliRun twice = modelid(check + " --q-limit spin=1,2 --q-limit 1=0,3");
+  EXPECT_EQ(twice.exit_code, 2);
+  EXPECT_NE(twice.err.find("joint 1 is given a range twice"), std::string::npos) << twice.err;
 }
 
 }  // namespace
