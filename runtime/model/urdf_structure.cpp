@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstddef>
 #include <map>
 #include <string>
@@ -73,6 +74,7 @@ class StructureChecker : private UrdfElementChecker {
       link_joint(std::move(entry));
     }
     check_tree();
+    check_inertia_sizes();
     return std::move(structure_);
   }
 
@@ -121,6 +123,29 @@ class StructureChecker : private UrdfElementChecker {
       I[k++] = (*numbers(inertia, entry, 1, owner + ": inertia", true, kMaxMagnitude))[0];
     }
     check_inertia(inertia, owner, I);
+    LinkEntry& entry = structure_.links.back();
+    entry.mass = (*m)[0];
+    entry.inertia_trace = I[0] + I[3] + I[5];
+    entry.inertia_line = inertia->GetLineNum();
+  }
+
+  // Inertias too large for the link's size (magnitude_checks.hpp): the size is what the file
+  // says of it, the farthest child joint or centre of mass from the link frame (meshes are not
+  // read).
+  void check_inertia_sizes() {
+    const auto norm = [](const std::array<double, 3>& v) {
+      return std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+    };
+    for (std::size_t l = 0; l < structure_.links.size(); ++l) {
+      const LinkEntry& link = structure_.links[l];
+      if (link.inertia_line == 0) continue;
+      double size = norm(link.inertial_origin.xyz);
+      for (const int j : structure_.child_joints[l]) {
+        size = std::max(size, norm(structure_.joints[j].origin.xyz));
+      }
+      check_inertia_size({path(), link.inertia_line, 0}, "link '" + link.name + "'", link.mass,
+                         link.inertia_trace, size, structure_.notes);
+    }
   }
 
   const tinyxml2::XMLElement* link_reference(const tinyxml2::XMLElement* joint,

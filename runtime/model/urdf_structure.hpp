@@ -27,6 +27,9 @@ struct LinkEntry {
   std::string name;
   int line = 0;
   OriginEntry inertial_origin;  // of its <inertial>, if any
+  double mass = 0;              // of its <inertial>, 0 if none
+  double inertia_trace = 0;     // ixx + iyy + izz of its <inertia>, 0 if none
+  int inertia_line = 0;         // line of its <inertia>, 0 if none
 };
 
 struct JointEntry {

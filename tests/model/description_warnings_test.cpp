@@ -223,6 +223,71 @@ TEST(DescriptionWarnings, ShippedComauWristIsNotFlagged) {
   EXPECT_NEAR(model.joints[5].limits.q_upper.value_or(0), 15 * 3.141592653589793, 1e-6);
 }
 
+// A 2 kg rod 0.5 m long along x, centre of mass at 0.25 m: about its centre iyy = izz =
+// m l^2 / 12 = 0.0416667 kg m^2, ixx about 0. Its mass lies sqrt(trace / 2m) = 0.144 m from the
+// centre (rms), 0.58 times its size 0.25 m. Written in g m^2 (x 1000) that is 4.56 m, 18 times;
+// in kg mm^2 (x 1e6) 144 m.
+std::string rod_urdf(const std::string& iyy) {
+  return "<robot name=\"rod\">\n"              // 1
+         "  <link name=\"base\"/>\n"           // 2
+         "  <link name=\"l1\">\n"              // 3
+         "    <inertial>\n"                    // 4
+         "      <origin xyz=\"0.25 0 0\"/>\n"  // 5
+         "      <mass value=\"2\"/>\n"         // 6
+         "      <inertia ixx=\"0\" ixy=\"0\" ixz=\"0\" iyy=\"" +
+         iyy + "\" iyz=\"0\" izz=\"" + iyy +
+         "\"/>\n"  // 7
+         "    </inertial>\n"
+         "  </link>\n"
+         "  <joint name=\"j1\" type=\"revolute\">\n"
+         "    <parent link=\"base\"/><child link=\"l1\"/>\n"
+         "    <axis xyz=\"0 0 1\"/>\n"
+         "    <limit lower=\"-1\" upper=\"1\" velocity=\"1\" effort=\"1\"/>\n"
+         "  </joint>\n"
+         "</robot>\n";
+}
+
+TEST(DescriptionWarnings, InertiaTooLargeForTheLinkNamesTheLikelyUnit) {
+  EXPECT_TRUE(warnings(load_robot_text("rod.urdf", rod_urdf("0.0416667"))).empty());
+  const std::vector<std::string> grams = warnings(load_robot_text("rod.urdf", rod_urdf("41.6667")));
+  ASSERT_EQ(grams.size(), 1u);
+  EXPECT_EQ(grams[0],
+            "rod.urdf:7: warning: link 'l1': moments of inertia about the centre of "
+            "mass summing to 83.3 kg m^2 for a mass of 2 kg put its mass 4.56 m from its centre "
+            "(rms), more than 10 times the link's size of 0.25 m (its farthest child joint or "
+            "centre of mass, at least 0.1 m); inertias are in kg m^2: g m^2 or kg cm^2?");
+  const std::vector<std::string> mm = warnings(load_robot_text("rod.urdf", rod_urdf("41666.7")));
+  ASSERT_EQ(mm.size(), 1u);
+  EXPECT_NE(mm[0].find("put its mass 144 m from its centre"), std::string::npos) << mm[0];
+  EXPECT_NE(mm[0].find("inertias are in kg m^2: kg mm^2?"), std::string::npos) << mm[0];
+}
+
+// The same rod as MDH 'known' values about the frame origin: the parallel-axis theorem gives
+// XX = 0, YY = ZZ = 0.0416667 + 2 * 0.25^2 = 0.1666667 kg m^2, MX = 0.5 kg m; in g m^2 the
+// moments (not the first moments) are 1000 times larger: 166.6667, and about the centre of mass
+// 166.6667 - 0.125 = 166.5417 each.
+TEST(DescriptionWarnings, MdhInertiaTooLargeForTheLink) {
+  const auto rod = [](const std::string& yy) {
+    return load_robot_text("rod.yaml",
+                           "name: rod\n"
+                           "joints:\n"
+                           "  - {name: J1, type: revolute, ant: 0, alpha: 0, d: 0, theta: 0, "
+                           "r: 0}\n"
+                           "known: {XX1: 0, XY1: 0, XZ1: 0, YY1: " +
+                               yy + ", YZ1: 0, ZZ1: " + yy +
+                               ", MX1: 0.5, MY1: 0, MZ1: 0, M1: 2}\n");
+  };
+  EXPECT_TRUE(warnings(rod("0.1666667")).empty());
+  const std::vector<std::string> found = warnings(rod("166.6667"));
+  ASSERT_EQ(found.size(), 1u);
+  EXPECT_EQ(found[0],
+            "rod.yaml:4:9: warning: link 1 in 'known' (XX1, YY1, ZZ1): moments of inertia about "
+            "the centre of mass summing to 333 kg m^2 for a mass of 2 kg put its mass 9.13 m "
+            "from its centre (rms), more than 10 times the link's size of 0.25 m (its farthest "
+            "child joint or centre of mass, at least 0.1 m); inertias are in kg m^2: g m^2 or "
+            "kg cm^2?");
+}
+
 TEST(DescriptionWarnings, MdhLimitsInDegreesAndMassInGrams) {
   const RobotModel model = load_robot_text("arm.yaml",
                                            "name: arm\n"
