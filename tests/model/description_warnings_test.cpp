@@ -208,7 +208,8 @@ TEST(DescriptionWarnings, MultiTurnRadiansAreNotTakenForDegrees) {
   };
   // 15 pi (2700 degrees, the COMAU Smart Six wrist, robots/comau_smart_six.yaml), 4 pi to 1e-9
   // and to two decimals, 2.5 pi to two decimals, 350 degrees in radians.
-  for (const char* radians : {"47.1238898", "-47.1238898", "12.566370614", "12.57", "7.85", "6.10865238198"}) {
+  for (const char* radians :
+       {"47.1238898", "-47.1238898", "12.566370614", "12.57", "7.85", "6.10865238198"}) {
     EXPECT_FALSE(flagged(radians)) << radians;
   }
   // Whole and half numbers as degrees are written, and a value no radian limit has.

@@ -39,8 +39,9 @@ int joint_index(const std::string& joint, const ModelSource& source, const std::
 OptionSpec q_limit_option_spec() {
   return {.name = "--q-limit",
           .value = "JOINT=LO,HI",
-          .help = "the position range of a joint (by name or 1-based number), replacing the "
-                  "description's or giving a continuous joint one",
+          .help =
+              "the position range of a joint (by name or 1-based number), replacing the "
+              "description's or giving a continuous joint one",
           .unit = "rad or m",
           .repeatable = true};
 }
