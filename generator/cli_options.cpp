@@ -23,6 +23,11 @@ std::vector<OptionSpec> description_options() {
        .help = "URDF: keep only the chain from the base to "
                "this link",
        .group = kSelection},
+      {.name = "--mimic-as-joint",
+       .type = ValueType::kFlag,
+       .help = "URDF: keep a <mimic> follower as an independent joint (refused without: modelgen "
+               "has no mimic constraint)",
+       .group = kSelection},
       {.name = "--name",
        .value = "NAME",
        .help = "the robot name (the C++ namespace of generated code)",
@@ -138,6 +143,7 @@ Arguments parse_arguments(int argc, char** argv) {
   args.load.base_link = line.one_or("--base", "");
   args.load.tip_link = line.one_or("--tip", "");
   args.load.name = line.one_or("--name", "");
+  args.load.mimic_as_joint = line.has("--mimic-as-joint");
   args.load.angle_tolerance = angle_tolerance_option(line);
   args.generation.scalar = line.one_or("--scalar", "both");
   args.output_dir = line.one_or("-o", line.one_or("--output", ""));

@@ -54,7 +54,7 @@ std::string optional_number(const std::optional<double>& v) {
 }
 
 std::string limits_text(const JointLimits& limits) {
-  if (!limits.q_lower) return "-";
+  if (!limits.q_lower) return limits.continuous ? "continuous" : "-";
   std::string out = "[";
   out += format_number(*limits.q_lower);
   out += ", ";
@@ -135,10 +135,19 @@ void print_urdf_bodies(std::ostream& out, const RobotModel& model) {
 }
 
 void print_notes(std::ostream& out, const RobotModel& model) {
-  if (model.notes.empty()) return;
-  out << "\nangles taken as exact quarter turns (the table above shows the values used)\n";
-  for (const DescriptionNote& note : model.notes) {
-    out << "  line " << note.where.line << ": " << note.message << "\n";
+  // Warnings (likely unit slips, mimic joints) first, then what the loader changed.
+  for (const bool warnings : {true, false}) {
+    bool first = true;
+    for (const DescriptionNote& note : model.notes) {
+      if (note.warning != warnings) continue;
+      if (first) {
+        out << (warnings ? "\nwarnings (values to check; the tables above show them as read)\n"
+                         : "\nangles taken as exact quarter turns (the table above shows the "
+                           "values used)\n");
+        first = false;
+      }
+      out << "  line " << note.where.line << ": " << note.message << "\n";
+    }
   }
 }
 

@@ -38,6 +38,7 @@ std::string normalized_command(const std::string& robot_path, const LoadOptions&
   if (!options.name.empty()) command += " --name " + options.name;
   if (!options.base_link.empty()) command += " --base " + options.base_link;
   if (!options.tip_link.empty()) command += " --tip " + options.tip_link;
+  if (options.mimic_as_joint) command += " --mimic-as-joint";
   if (scalar != "both") command += " --scalar " + scalar;
   if (options.angle_tolerance != kDefaultAngleTolerance) {
     command += " --angle-tolerance " + shortest_text(options.angle_tolerance);

@@ -6,8 +6,10 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdio>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -16,6 +18,7 @@
 
 #include "modelgen/model/number_text.hpp"
 #include "modelgen/model/physical_consistency.hpp"
+#include "runtime/model/magnitude_checks.hpp"
 
 namespace modelgen {
 
@@ -110,6 +113,51 @@ void check_known_tensors(const YamlReader& in, const RobotModel& model,
   }
 }
 
+// The known value of `kind` for `body`, if any.
+std::optional<double> known_of(const RobotModel& model, int body, ParamKind kind, int* index) {
+  const std::vector<StandardParam>& params = model.tree.params;
+  for (std::size_t k = 0; k < params.size(); ++k) {
+    if (params[k].body == body && params[k].kind == kind && model.known_values[k]) {
+      if (index != nullptr) *index = static_cast<int>(k);
+      return model.known_values[k];
+    }
+  }
+  return std::nullopt;
+}
+
+// Inertias too large for the link (magnitude_checks.hpp), for bodies whose XX, YY, ZZ, MX, MY,
+// MZ and M are known. They are about the frame origin: by the parallel-axis theorem the trace
+// about the centre of mass is XX + YY + ZZ - 2 |MS|^2 / M. The size is the farthest child frame
+// or the centre of mass from the frame origin.
+void note_known_inertia_sizes(const YamlReader& in, const RobotModel& model,
+                              const std::map<int, YAML::Node>& keys,
+                              std::vector<DescriptionNote>& notes) {
+  for (std::size_t b = 0; b < model.tree.bodies.size(); ++b) {
+    const int body = static_cast<int>(b);
+    int first = -1;
+    const auto xx = known_of(model, body, ParamKind::kXX, &first);
+    const auto yy = known_of(model, body, ParamKind::kYY, nullptr);
+    const auto zz = known_of(model, body, ParamKind::kZZ, nullptr);
+    const auto mx = known_of(model, body, ParamKind::kMX, nullptr);
+    const auto my = known_of(model, body, ParamKind::kMY, nullptr);
+    const auto mz = known_of(model, body, ParamKind::kMZ, nullptr);
+    const auto m = known_of(model, body, ParamKind::kM, nullptr);
+    if (!xx || !yy || !zz || !mx || !my || !mz || !m || !(*m > 0)) continue;
+    const double ms2 = *mx * *mx + *my * *my + *mz * *mz;
+    double size = std::sqrt(ms2) / *m;
+    for (const Body& child : model.tree.bodies) {
+      if (child.parent != body) continue;
+      const auto& t = child.fixed.translation;
+      size = std::max(size, std::sqrt(t[0] * t[0] + t[1] * t[1] + t[2] * t[2]));
+    }
+    const std::string suffix = std::to_string(body + 1);
+    check_inertia_size(
+        in.at(keys.at(first)),
+        "link " + suffix + " in 'known' (XX" + suffix + ", YY" + suffix + ", ZZ" + suffix + ")", *m,
+        *xx + *yy + *zz - 2 * ms2 / *m, size, notes);
+  }
+}
+
 // A-priori values describe a real body: no negative mass, moment of inertia or drive
 // inertia, and an inertia tensor (when all six entries are known) that some mass
 // distribution has, i.e. positive semi-definite (zero for a massless link is fine).
@@ -138,8 +186,10 @@ void read_known_values(const YamlReader& in, const YAML::Node& node, RobotModel&
     model.known_values[k] =
         mass ? in.number(entry.second, key, kMaxMass, " kg") : in.number(entry.second, key);
     keys[k] = entry.first;
+    if (mass) check_mass(in.at(entry.second), "known." + key, *model.known_values[k], model.notes);
   }
   check_known_physical(in, model, keys);
+  note_known_inertia_sizes(in, model, keys, model.notes);
 }
 
 }  // namespace modelgen

@@ -14,6 +14,7 @@
 
 #include "modelgen/model/number_text.hpp"
 #include "runtime/model/angle_snapping.hpp"
+#include "runtime/model/magnitude_checks.hpp"
 #include "runtime/model/mdh_drive_chain.hpp"
 #include "runtime/model/mdh_known_values.hpp"
 #include "runtime/model/yaml_reader.hpp"
@@ -249,8 +250,15 @@ class MdhYamlLoader {
       if (!(q[0] < q[1])) in_.fail(node["q"], "position limits must be [lower, upper] with lower < upper");
       limits.q_lower = q[0];
       limits.q_upper = q[1];
+      if (type == JointType::kRevolute) {
+        check_angle_limit(in_.at(node["q"]), context + ": limits.q lower", q[0], model_.notes);
+        check_angle_limit(in_.at(node["q"]), context + ": limits.q upper", q[1], model_.notes);
+      }
     }
     if (node["dq"]) limits.dq = in_.positive(node["dq"], "dq");
+    if (limits.dq && type == JointType::kRevolute) {
+      check_velocity_limit(in_.at(node["dq"]), context + ": limits.dq", *limits.dq, model_.notes);
+    }
     if (node["ddq"]) limits.ddq = in_.positive(node["ddq"], "ddq");
     if (node["effort"]) limits.effort = in_.positive(node["effort"], "effort");
     return limits;

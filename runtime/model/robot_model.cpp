@@ -135,7 +135,9 @@ std::optional<Angle> parse_angle(std::string_view text) {
   return a;
 }
 
-std::string DescriptionNote::to_string() const { return where.to_string() + ": note: " + message; }
+std::string DescriptionNote::to_string() const {
+  return where.to_string() + (warning ? ": warning: " : ": note: ") + message;
+}
 
 int RobotModel::param_index(std::string_view param_name) const {
   for (std::size_t k = 0; k < tree.params.size(); ++k) {

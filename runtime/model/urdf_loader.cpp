@@ -193,7 +193,8 @@ RobotModel load_urdf(const std::string& path, const std::string& text, const Loa
 
   TreeBuilder builder(path, structure, *urdf, path_joints ? &*path_joints : nullptr, model);
   model.tree.angle_precision = options.angle_tolerance;
-  builder.build(base, options.angle_tolerance);
+  builder.build(base, options.angle_tolerance, options.mimic_as_joint);
+  model.notes.insert(model.notes.end(), structure.notes.begin(), structure.notes.end());
   std::stable_sort(model.notes.begin(), model.notes.end(),
                    [](const DescriptionNote& a, const DescriptionNote& b) {
                      return a.where.line < b.where.line;

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstddef>
 #include <map>
 #include <string>
@@ -16,6 +17,7 @@
 
 #include "modelgen/model/description_limits.hpp"
 #include "modelgen/model/error.hpp"
+#include "runtime/model/magnitude_checks.hpp"
 #include "runtime/model/urdf_xml_checks.hpp"
 
 namespace modelgen {
@@ -72,6 +74,7 @@ class StructureChecker : private UrdfElementChecker {
       link_joint(std::move(entry));
     }
     check_tree();
+    check_inertia_sizes();
     return std::move(structure_);
   }
 
@@ -107,6 +110,7 @@ class StructureChecker : private UrdfElementChecker {
     if ((*m)[0] < 0) {
       fail(mass, owner + ": mass value='" + mass->Attribute("value") + "' is negative");
     }
+    check_mass({path(), mass->GetLineNum(), 0}, owner + ": mass value", (*m)[0], structure_.notes);
     const tinyxml2::XMLElement* inertia = inertial->FirstChildElement("inertia");
     if (inertia == nullptr) {
       fail(inertial, owner +
@@ -119,6 +123,29 @@ class StructureChecker : private UrdfElementChecker {
       I[k++] = (*numbers(inertia, entry, 1, owner + ": inertia", true, kMaxMagnitude))[0];
     }
     check_inertia(inertia, owner, I);
+    LinkEntry& entry = structure_.links.back();
+    entry.mass = (*m)[0];
+    entry.inertia_trace = I[0] + I[3] + I[5];
+    entry.inertia_line = inertia->GetLineNum();
+  }
+
+  // Inertias too large for the link's size (magnitude_checks.hpp): the size is what the file
+  // says of it, the farthest child joint or centre of mass from the link frame (meshes are not
+  // read).
+  void check_inertia_sizes() {
+    const auto norm = [](const std::array<double, 3>& v) {
+      return std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+    };
+    for (std::size_t l = 0; l < structure_.links.size(); ++l) {
+      const LinkEntry& link = structure_.links[l];
+      if (link.inertia_line == 0) continue;
+      double size = norm(link.inertial_origin.xyz);
+      for (const int j : structure_.child_joints[l]) {
+        size = std::max(size, norm(structure_.joints[j].origin.xyz));
+      }
+      check_inertia_size({path(), link.inertia_line, 0}, "link '" + link.name + "'", link.mass,
+                         link.inertia_trace, size, structure_.notes);
+    }
   }
 
   const tinyxml2::XMLElement* link_reference(const tinyxml2::XMLElement* joint,
@@ -136,6 +163,43 @@ class StructureChecker : private UrdfElementChecker {
                         did_you_mean(name, link_names_));
     }
     return element;
+  }
+
+  // Revolute limits in degrees or deg/s load without error; flagged (magnitude_checks.hpp).
+  // check_joint_limit has read the numbers already.
+  void check_limit_magnitudes(const tinyxml2::XMLElement* limit, const std::string& owner,
+                              const std::string& type) {
+    if (limit == nullptr || (type != "revolute" && type != "continuous")) return;
+    const SourceLocation where{path(), limit->GetLineNum(), 0};
+    if (type == "revolute") {
+      for (const char* side : {"lower", "upper"}) {
+        if (limit->Attribute(side) != nullptr) {
+          check_angle_limit(where, owner + ": limit " + side, limit->DoubleAttribute(side),
+                            structure_.notes);
+        }
+      }
+    }
+    check_velocity_limit(where, owner + ": limit velocity", limit->DoubleAttribute("velocity"),
+                         structure_.notes);
+  }
+
+  // Vendor files carry a joint with two <origin> (FloBaRoID's kuka_lwr4.urdf, line 55, a
+  // placement left over from an edit). urdfdom, and so every ROS tool, uses the first and
+  // ignores the rest; so does modelgen, with a warning naming both lines, so the model is the
+  // one the user sees in RViz and the leftover is not missed.
+  void note_second_origin(const tinyxml2::XMLElement* joint, const std::string& owner) {
+    const tinyxml2::XMLElement* first = joint->FirstChildElement("origin");
+    if (first == nullptr) return;
+    for (const tinyxml2::XMLElement* other = first->NextSiblingElement("origin"); other != nullptr;
+         other = other->NextSiblingElement("origin")) {
+      structure_.notes.push_back(
+          {{path(), other->GetLineNum(), 0},
+           owner + " has a second <origin>; the first (line " +
+               std::to_string(first->GetLineNum()) +
+               ") is used and this one ignored, as urdfdom and ROS do; delete the one you did "
+               "not mean",
+           true});
+    }
   }
 
   JointEntry check_joint(const tinyxml2::XMLElement* joint) {
@@ -162,14 +226,24 @@ class StructureChecker : private UrdfElementChecker {
                       "; expected revolute, continuous, prismatic or fixed");
     }
 
-    for (const char* element : {"parent", "child", "origin", "axis", "limit"}) {
+    for (const char* element : {"parent", "child", "axis", "limit", "mimic"}) {
       check_single(joint, element, owner);
     }
+    note_second_origin(joint, owner);
     link_reference(joint, owner, "parent", entry.parent);
     link_reference(joint, owner, "child", entry.child);
     entry.origin = check_origin(joint, owner + ": origin");
     check_joint_axis(joint, owner, entry);
     check_joint_limit(joint, owner, entry);
+    check_limit_magnitudes(joint->FirstChildElement("limit"), owner, entry.type);
+    if (const tinyxml2::XMLElement* mimic = joint->FirstChildElement("mimic")) {
+      const char* leader = mimic->Attribute("joint");
+      if (leader == nullptr || *leader == '\0') {
+        fail(mimic, owner + ": <mimic> has no joint attribute naming the joint it follows");
+      }
+      entry.mimic_leader = leader;
+      entry.mimic_line = mimic->GetLineNum();
+    }
     return entry;
   }
 

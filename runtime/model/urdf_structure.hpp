@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "modelgen/model/robot_model.hpp"
+
 namespace modelgen {
 
 // What the TinyXML2 pass keeps: names, file order and lines. urdfdom keeps joints in a map
@@ -25,6 +27,9 @@ struct LinkEntry {
   std::string name;
   int line = 0;
   OriginEntry inertial_origin;  // of its <inertial>, if any
+  double mass = 0;              // of its <inertial>, 0 if none
+  double inertia_trace = 0;     // ixx + iyy + izz of its <inertia>, 0 if none
+  int inertia_line = 0;         // line of its <inertia>, 0 if none
 };
 
 struct JointEntry {
@@ -38,6 +43,8 @@ struct JointEntry {
   OriginEntry origin;
   std::optional<std::array<double, 3>> axis;  // <axis xyz> of a moving joint, as written
   int axis_line = 0;
+  std::string mimic_leader;  // <mimic joint=...>: the joint this one follows, empty if none
+  int mimic_line = 0;
 };
 
 struct UrdfStructure {
@@ -48,6 +55,7 @@ struct UrdfStructure {
   std::vector<JointEntry> joints;
   std::vector<int> parent_joint;               // per link: index into joints, -1 for a root
   std::vector<std::vector<int>> child_joints;  // per link: indices into joints, file order
+  std::vector<DescriptionNote> notes;          // likely unit slips (magnitude_checks.hpp)
 };
 
 inline bool is_moving(const std::string& type) {

@@ -63,8 +63,9 @@ Frame to_frame(const Eigen::Isometry3d& transform) {
 }  // namespace
 
 // `tolerance`: LoadOptions::angle_tolerance, for snapping rounded quarter turns.
-void TreeBuilder::build(int base_link, double tolerance) {
+void TreeBuilder::build(int base_link, double tolerance, bool mimic_as_joint) {
   tolerance_ = tolerance;
+  mimic_as_joint_ = mimic_as_joint;
   // Depth first in file order, with a stack of its own: a chain of thousands of fixed links
   // would overflow the call stack if this recursed.
   push_children(base_link, -1, Eigen::Isometry3d::Identity());
@@ -169,6 +170,7 @@ JointDescription TreeBuilder::joint_description(const urdf::Joint& urdf_joint,
   description.name = entry.name;
   description.parent_link = entry.parent;
   description.where = {path_, entry.line, 0};
+  description.limits.continuous = entry.type == "continuous";
   if (urdf_joint.limits) {
     const urdf::JointLimits& limits = *urdf_joint.limits;
     if (entry.type != "continuous") {
@@ -181,6 +183,29 @@ JointDescription TreeBuilder::joint_description(const urdf::Joint& urdf_joint,
     if (limits.effort > 0) description.limits.effort = limits.effort;
   }
   return description;
+}
+
+// A follower moves with its leader (q = multiplier * q_leader + offset): as a joint of its own
+// it is a degree of freedom the robot does not have, and its regressor columns are excited by
+// motions the robot cannot make. modelgen has no such constraint (issue 29), so a follower in
+// the modelled part is refused unless the user asked for it as a joint (--mimic-as-joint).
+void TreeBuilder::note_mimic(const JointEntry& entry) {
+  const std::string follows =
+      "joint '" + entry.name + "' mimics joint '" + entry.mimic_leader + "'";
+  if (!mimic_as_joint_) {
+    throw InputError({path_, entry.mimic_line, 0},
+                     follows +
+                         " (moves with it), but modelgen has no mimic constraint and would "
+                         "model it as a degree of freedom the robot does not have; leave the "
+                         "part it moves out with --tip LINK, make '" +
+                         entry.name +
+                         "' fixed in a copy of the file, or keep it as an independent joint "
+                         "with --mimic-as-joint (docs/commands/modelgen.md, Mimic joints)");
+  }
+  model_.notes.push_back({{path_, entry.mimic_line, 0},
+                          follows + " but is modelled as an independent degree of freedom, as "
+                                    "--mimic-as-joint asks",
+                          true});
 }
 
 void TreeBuilder::visit(int j, int body, const Eigen::Isometry3d& body_from_link) {
@@ -197,6 +222,7 @@ void TreeBuilder::visit(int j, int body, const Eigen::Isometry3d& body_from_link
     push_children(child, body, body_from_child);
     return;
   }
+  if (!entry.mimic_leader.empty()) note_mimic(entry);
   if (model_.tree.dof == kMaxMovingJoints) {
     throw InputError({path_, entry.line, 0},
                      "joint '" + entry.name + "' is moving joint " +

@@ -24,8 +24,9 @@ class TreeBuilder {
               const urdf::ModelInterface& urdf, const std::set<int>* kept_joints, RobotModel& model)
       : path_(path), structure_(structure), urdf_(urdf), kept_joints_(kept_joints), model_(model) {}
 
-  // `tolerance`: LoadOptions::angle_tolerance, for snapping rounded quarter turns.
-  void build(int base_link, double tolerance);
+  // `tolerance`: LoadOptions::angle_tolerance, for snapping rounded quarter turns;
+  // `mimic_as_joint`: LoadOptions::mimic_as_joint.
+  void build(int base_link, double tolerance, bool mimic_as_joint);
 
   // The summed inertial parameters per body; nullopt for bodies none of whose links has an
   // <inertial>, so an absent inertial stays unknown rather than becoming zero.
@@ -41,6 +42,7 @@ class TreeBuilder {
   void push_children(int link, int body, const Eigen::Isometry3d& body_from_link);
   JointDescription joint_description(const urdf::Joint& urdf_joint, const JointEntry& entry) const;
   void visit(int j, int body, const Eigen::Isometry3d& body_from_link);
+  void note_mimic(const JointEntry& entry);
 
   // A joint still to visit: below `body`, its parent link at `body_from_link` in that body.
   struct Pending {
@@ -57,6 +59,7 @@ class TreeBuilder {
   std::vector<std::optional<std::array<double, 10>>> inertials_;
   std::vector<Pending> pending_;
   double tolerance_ = 0;
+  bool mimic_as_joint_ = false;
 };
 
 }  // namespace modelgen

@@ -65,6 +65,21 @@ std::vector<OptionSpec> common_options() {
                       "identifier (made one, with a note, without --name)",
                   .default_value = "from the file",
                   .group = "Every command"};
+  OptionSpec base{.name = "--base",
+                  .value = "LINK",
+                  .help = "URDF description: the link to use as the fixed base",
+                  .default_value = "the URDF root",
+                  .group = "Every command"};
+  OptionSpec tip{.name = "--tip",
+                 .value = "LINK",
+                 .help = "URDF description: keep only the chain from the base to this link",
+                 .group = "Every command"};
+  OptionSpec mimic{.name = "--mimic-as-joint",
+                   .type = ValueType::kFlag,
+                   .help =
+                       "URDF description: keep a <mimic> follower as an independent joint "
+                       "(refused without: modelgen has no mimic constraint)",
+                   .group = "Every command"};
   OptionSpec progress{.name = "--progress",
                       .type = ValueType::kFlag,
                       .help = "progress lines on stderr also when it is not a terminal (a log)",
@@ -76,7 +91,7 @@ std::vector<OptionSpec> common_options() {
                             "instead of generating, compiling and caching it "
                             "(docs/compiled-models.md)",
                         .group = "Every command"};
-  return {tolerance, name, no_compile, progress};
+  return {tolerance, name, base, tip, mimic, no_compile, progress};
 }
 
 OptionSpec robot_option(std::string value, std::string help) {

@@ -61,6 +61,9 @@ LoadOptions description_options(const CommandLine& args) {
   LoadOptions options;
   options.angle_tolerance = angle_tolerance_option(args);
   options.name = args.one_or("--name", "");
+  options.base_link = args.one_or("--base", "");
+  options.tip_link = args.one_or("--tip", "");
+  options.mimic_as_joint = args.has("--mimic-as-joint");
   return options;
 }
 
@@ -89,6 +92,11 @@ ModelSource load_model_source(const std::string& robot, const LoadOptions& optio
   if (source.model != nullptr && !options.name.empty()) {
     throw UsageError{"--name applies to a description file; '" + robot +
                      "' is a compiled-in model, named '" + source.model->name() + "'"};
+  }
+  if (source.model != nullptr &&
+      (!options.base_link.empty() || !options.tip_link.empty() || options.mimic_as_joint)) {
+    throw UsageError{"--base, --tip and --mimic-as-joint apply to a URDF description file; '" +
+                     robot + "' is a compiled-in model"};
   }
   if (source.model != nullptr) {
     const std::string path = shipped_description_path(robot);

@@ -45,9 +45,9 @@ enum class DescriptionModel {
 
 /// Throws modelgen::InputError for a file that does not load, std::invalid_argument for a name
 /// that is neither a file nor a compiled-in model (the message lists the compiled-in ones).
-/// A description file is read with `options` (--angle-tolerance, --name:
-/// description_options), its notes printed on standard error; a compiled-in model refuses a
-/// --name (UsageError).
+/// A description file is read with `options` (--angle-tolerance, --name, --base, --tip,
+/// --mimic-as-joint: description_options), its notes printed on standard error; a compiled-in
+/// model refuses --name, --base, --tip and --mimic-as-joint (UsageError).
 ModelSource load_model_source(const std::string& robot, const LoadOptions& options = {},
                               DescriptionModel how = DescriptionModel::kCompiled);
 
@@ -56,7 +56,8 @@ ModelSource load_model_source(const std::string& robot, const LoadOptions& optio
 /// compiled model.
 std::unique_ptr<DriveModel> compiled_drive_model(const ModelSource& source);
 
-/// The options every command reads a description with: --angle-tolerance and --name.
+/// The options every command reads a description with: --angle-tolerance, --name, --base,
+/// --tip and --mimic-as-joint.
 LoadOptions description_options(const CommandLine& args);
 
 /// load_model_source(robot, description_options(args), kCompiled or, with --no-compile,

@@ -35,6 +35,7 @@ std::string generator_command(const ModelBuild& build, const fs::path& output) {
     command += " --base " + shell_quoted(build.options.base_link);
   }
   if (!build.options.tip_link.empty()) command += " --tip " + shell_quoted(build.options.tip_link);
+  if (build.options.mimic_as_joint) command += " --mimic-as-joint";
   return command;
 }
 

@@ -128,7 +128,8 @@ std::string cache_key_text(const DescriptionToCompile& description) {
   const std::string compiler = host_compiler();
   return "description " + description.reference->description_sha256() + "\nangle-tolerance " +
          tolerance + "\nname " + description.options.name + "\nbase " +
-         description.options.base_link + "\ntip " + description.options.tip_link + "\nmodelid " +
+         description.options.base_link + "\ntip " + description.options.tip_link +
+         "\nmimic-as-joint " + (description.options.mimic_as_joint ? "yes" : "no") + "\nmodelid " +
          kModelidVersion + " format " + std::to_string(kGeneratedFormatVersion) + " abi " +
          std::to_string(MODELGEN_LOADABLE_ABI_VERSION) + "\nmodelgen " +
          program_identity(generator_program()) + "\ncompiler " + compiler + " (" +

@@ -8,6 +8,7 @@
 #include "modelgen/io/experiment/fourier_file.hpp"
 #include "runtime/cli/common/commands.hpp"
 #include "runtime/cli/common/model_source.hpp"
+#include "runtime/cli/common/q_limit_option.hpp"
 #include "runtime/cli/common/text_format.hpp"
 #include "runtime/cli/excitation/a_priori_torque.hpp"
 #include "runtime/cli/excitation/trajectory_limits.hpp"
@@ -19,7 +20,8 @@ namespace modelgen::internal {
 using namespace modelgen::io;  // the file formats (modelgen/io/)
 
 int run_check_trajectory(const CommandLine& args) {
-  const ModelSource source = load_model_source(args.one("--robot"), args);
+  ModelSource source = load_model_source(args.one("--robot"), args);
+  apply_q_limit_option(args, source);
   const std::string& path = args.one("--trajectory");
   if (args.has("--plot")) check_plot_folder(args.one("--plot"));
   const FourierTrajectory trajectory = read_fourier(path, source.model->dof());

@@ -2,6 +2,7 @@
 // (modelgen/model/option_table.hpp).
 
 #include "runtime/cli/common/commands.hpp"
+#include "runtime/cli/common/q_limit_option.hpp"
 
 namespace modelgen::internal {
 
@@ -19,6 +20,7 @@ const CommandSpec& check_trajectory_spec() {
         .value = "A[,A2,...]",
         .help = "acceleration limits the description lacks (one or one per joint)",
         .unit = "rad/s^2 or m/s^2"},
+       q_limit_option_spec(),
        {.name = "--plot",
         .value = "DIR",
         .help = "write DIR/trajectory.svg: q, dq, ddq per joint against the limits"}});

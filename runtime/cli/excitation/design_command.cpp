@@ -16,6 +16,7 @@
 #include "modelgen/io/experiment/fourier_file.hpp"
 #include "runtime/cli/common/commands.hpp"
 #include "runtime/cli/common/model_source.hpp"
+#include "runtime/cli/common/q_limit_option.hpp"
 #include "runtime/cli/common/text_format.hpp"
 #include "runtime/cli/excitation/a_priori_torque.hpp"
 #include "runtime/cli/excitation/design_report.hpp"
@@ -108,7 +109,8 @@ std::vector<JointLimits> design_limits(const CommandLine& args, const ModelSourc
   for (int j : moving) {
     const JointLimits& limit = limits[static_cast<std::size_t>(j)];
     std::string key;
-    if (!limit.q_lower || !limit.q_upper) key = "q";
+    if ((!limit.q_lower || !limit.q_upper) && !limit.continuous)
+      key = "q";
     else if (!limit.dq) key = "dq";
     else if (!limit.ddq) key = "ddq";
     if (key.empty()) continue;
@@ -188,11 +190,14 @@ std::string design_header(const CommandLine& args, const ExcitationDesignProblem
                           const ExcitationDesign& design) {
   std::ostringstream header;
   header << "# made by: modelid design";
-  for (const char* option : {"--robot", "--angle-tolerance", "--period", "--harmonics", "--axes",
-                             "--hold", "--criterion", "--margin", "--starts", "--seed", "--samples",
-                             "--ddq-limit", "--max-evaluations"}) {
+  for (const char* option :
+       {"--robot", "--angle-tolerance", "--name", "--base", "--tip", "--period", "--harmonics",
+        "--axes", "--hold", "--criterion", "--margin", "--starts", "--seed", "--samples",
+        "--ddq-limit", "--max-evaluations"}) {
     if (args.has(option)) header << " " << option << " " << args.one(option);
   }
+  if (args.has("--mimic-as-joint")) header << " --mimic-as-joint";
+  for (const std::string& range : args.all("--q-limit")) header << " --q-limit " << range;
   header << "\n# criterion "
          << (problem.criterion == DesignCriterion::kCond ? "log cond" : "-log det")
          << ": best of 100 random feasible starts " << fixed(design.before.value, 0, 6)
@@ -203,7 +208,8 @@ std::string design_header(const CommandLine& args, const ExcitationDesignProblem
 }  // namespace
 
 int run_design(const CommandLine& args) {
-  const ModelSource source = load_model_source(args.one("--robot"), args);
+  ModelSource source = load_model_source(args.one("--robot"), args);
+  apply_q_limit_option(args, source);
   const IdentificationModel& model = *source.model;
   const ExcitationDesignProblem problem = design_problem(args, source);
   const double noise = args.has("--noise") ? parse_number(args.one("--noise"), "--noise") : 1.0;

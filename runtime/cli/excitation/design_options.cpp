@@ -1,6 +1,7 @@
 // modelid design's options, declared once (modelgen/model/option_table.hpp).
 
 #include "runtime/cli/common/commands.hpp"
+#include "runtime/cli/common/q_limit_option.hpp"
 
 namespace modelgen::internal {
 
@@ -70,6 +71,7 @@ CommandSpec make_design_spec() {
            .value = "A[,A2,...]",
            .help = "acceleration limits (one or one per joint; they replace the description's)",
            .unit = "rad/s^2 or m/s^2"},
+          q_limit_option_spec(),
           {.name = "--max-evaluations",
            .type = ValueType::kCount,
            .value = "N",

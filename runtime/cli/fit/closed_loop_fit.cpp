@@ -5,6 +5,9 @@
 
 #include <chrono>
 #include <cmath>
+#include <iostream>
+#include <string>
+#include <vector>
 
 #include "modelgen/io/experiment/controller_file.hpp"
 #include "runtime/cli/common/text_format.hpp"
@@ -19,7 +22,9 @@ Identification fit_closed_loop(const CommandLine& args, const IdentificationMode
                                std::ostream& report, std::ostream& log) {
   const char* name = method == ClosedLoopMethod::kIv ? "IDIM-IV" : "DIDIM";
   // --controller given, no --motor-side or --periodic: checked before the data were read.
-  const PidGains gains = read_controller(args.one("--controller"), model.dof());
+  std::vector<std::string> warnings;
+  const PidGains gains = read_controller(args.one("--controller"), model.dof(), &warnings);
+  for (const std::string& warning : warnings) std::cerr << warning << "\n";
   const std::vector<std::string>& paths = args.all("--data");
   std::vector<ClosedLoopRecord> records;
   for (std::size_t e = 0; e < paths.size(); ++e) {

@@ -13,6 +13,7 @@
 #include <optional>
 #include <sstream>
 #include <stdexcept>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -31,6 +32,7 @@
 #include "runtime/cli/common/commands.hpp"
 #include "runtime/cli/common/model_source.hpp"
 #include "runtime/cli/common/progress.hpp"
+#include "runtime/cli/common/q_limit_option.hpp"
 #include "runtime/cli/excitation/trajectory_limits.hpp"
 #include "runtime/cli/reports/finite_output.hpp"
 #include "runtime/cli/simulate/drive_simulation.hpp"
@@ -133,7 +135,9 @@ Trajectory simulate_under_controller(const CommandLine& args, const Identificati
                      "controller's sample_time; --noise and --sample-time are for open loop"};
   }
   const int n = model.dof();
-  PidController controller(read_controller(args.one("--controller"), n));
+  std::vector<std::string> warnings;
+  PidController controller(read_controller(args.one("--controller"), n, &warnings));
+  for (const std::string& warning : warnings) std::cerr << warning << "\n";
   const double ts = controller.gains().sample_time;
   const double periods =
       args.has("--periods") ? parse_number(args.one("--periods"), "--periods") : 1.0;
@@ -196,7 +200,8 @@ Trajectory simulate_under_controller(const CommandLine& args, const Identificati
 
 int run_simulate(const CommandLine& args) {
   const bool drive_mode = args.has("--drive");
-  const ModelSource source = load_model_source(args.one("--robot"), args);
+  ModelSource source = load_model_source(args.one("--robot"), args);
+  apply_q_limit_option(args, source);
   if (drive_mode && !source.description) {
     throw UsageError{"--drive needs --robot to be a description file (.yaml/.urdf), not '" +
                      args.one("--robot") + "'"};

@@ -1,6 +1,7 @@
 // modelid simulate's options, declared once (modelgen/model/option_table.hpp).
 
 #include "runtime/cli/common/commands.hpp"
+#include "runtime/cli/common/q_limit_option.hpp"
 
 namespace modelgen::internal {
 
@@ -56,6 +57,7 @@ CommandSpec make_simulate_spec() {
           {.name = "--ignore-limits",
            .type = ValueType::kFlag,
            .help = "simulate a trajectory beyond the description's joint limits anyway"},
+          q_limit_option_spec(),
           {.name = "-o", .value = "A.csv", .help = "the record to write", .required = true},
           {.name = "--controller",
            .value = "C.yaml",

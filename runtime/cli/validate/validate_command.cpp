@@ -9,6 +9,8 @@
 #include <iostream>
 #include <numbers>
 #include <optional>
+#include <string>
+#include <vector>
 
 #include "modelgen/closed_loop/closed_loop_simulation.hpp"
 #include "modelgen/io/estimate_file.hpp"
@@ -38,7 +40,9 @@ int run_validate(const CommandLine& args) {
   const int n = model.dof();
   check_estimate_model(args.one("--params"), model);
   const Eigen::VectorXd beta = read_base_parameters(args.one("--params"), model);
-  PidController controller(read_controller(args.one("--controller"), n));
+  std::vector<std::string> warnings;
+  PidController controller(read_controller(args.one("--controller"), n, &warnings));
+  for (const std::string& warning : warnings) std::cerr << warning << "\n";
   const double ts = controller.gains().sample_time;
   if (args.has("--plot")) check_plot_folder(args.one("--plot"));
   const std::string& path = args.one("--data");

@@ -2,9 +2,13 @@
 
 #include "modelgen/io/experiment/controller_file.hpp"
 
+#include <string>
+#include <vector>
+
 #include <yaml-cpp/yaml.h>
 
 #include "modelgen/model/error.hpp"
+#include "modelgen/model/number_text.hpp"
 #include "runtime/io/experiment/yaml_file.hpp"
 #include "runtime/model/yaml_reader.hpp"
 
@@ -13,8 +17,10 @@ namespace modelgen::io {
 namespace {
 
 constexpr double kMinControllerSampleTime = 1e-6;
+// Joint controllers run at 100 Hz or faster; from 0.1 s on, a millisecond value is the likely slip.
+constexpr double kSlowControllerSampleTime = 0.1;
 
-PidGains read_checked(const std::string& path, int dof) {
+PidGains read_checked(const std::string& path, int dof, std::vector<std::string>* warnings) {
   const YAML::Node root = load_yaml_file(path, "a controller file");
   const YamlReader in(path);
   if (!root.IsMap()) {
@@ -37,6 +43,12 @@ PidGains read_checked(const std::string& path, int dof) {
             "'sample_time' is the controller's period in seconds, from 1e-06 (1 MHz) to 1 "
             "(e.g. 0.001 for 1 kHz), got " +
                 ts.Scalar());
+  }
+  if (gains.sample_time >= kSlowControllerSampleTime && warnings != nullptr) {
+    const SourceLocation where = in.at(ts);
+    warnings->push_back(where.to_string() + ": warning: 'sample_time' is " + ts.Scalar() +
+                        " s, a controller running at " + shortest_text(1 / gains.sample_time) +
+                        " Hz; sample_time is in seconds: milliseconds? (0.001 for 1 kHz)");
   }
   Eigen::VectorXd* lists[] = {&gains.kp, &gains.ki, &gains.kd};
   const char* names[] = {"kp", "ki", "kd"};
@@ -65,9 +77,9 @@ PidGains read_checked(const std::string& path, int dof) {
 
 }  // namespace
 
-PidGains read_controller(const std::string& path, int dof) {
+PidGains read_controller(const std::string& path, int dof, std::vector<std::string>* warnings) {
   try {
-    return read_checked(path, dof);
+    return read_checked(path, dof, warnings);
   } catch (const YAML::Exception& e) {
     throw modelgen::InputError({path, e.mark.line + 1, e.mark.column + 1}, e.msg);
   }

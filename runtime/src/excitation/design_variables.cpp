@@ -37,8 +37,12 @@ Design::Design(const ExcitationDesignProblem& p)
       constraint_basis_(p.period, p.harmonics, 16 * p.harmonics) {
   for (int j : p.moving) {
     const JointLimits& limit = p.limits.at(static_cast<std::size_t>(j));
-    const double middle = (*limit.q_lower + *limit.q_upper) / 2;
-    const double half = (*limit.q_upper - *limit.q_lower) / 2;
+    // A continuous joint has no range: one wide enough never to bind (in a period the joint
+    // moves at most dq * period), about 0, where any offset can be taken modulo 2 pi.
+    const bool ranged = limit.q_lower && limit.q_upper;
+    const double middle = ranged ? (*limit.q_lower + *limit.q_upper) / 2 : 0;
+    const double half =
+        ranged ? (*limit.q_upper - *limit.q_lower) / 2 : std::numbers::pi + *limit.dq * p.period;
     bounds_.push_back({middle - p.margin * half, middle + p.margin * half, p.margin * *limit.dq,
                        p.margin * *limit.ddq});
   }

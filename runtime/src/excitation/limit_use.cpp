@@ -104,7 +104,8 @@ std::vector<std::pair<int, std::string>> missing_limits(const std::vector<JointL
   std::vector<std::pair<int, std::string>> missing;
   for (std::size_t j = 0; j < limits.size(); ++j) {
     const int joint = static_cast<int>(j);
-    if (!limits[j].q_lower || !limits[j].q_upper) missing.emplace_back(joint, "q");
+    const bool has_q = (limits[j].q_lower && limits[j].q_upper) || limits[j].continuous;
+    if (!has_q) missing.emplace_back(joint, "q");
     if (!limits[j].dq) missing.emplace_back(joint, "dq");
     if (!limits[j].ddq) missing.emplace_back(joint, "ddq");
   }

@@ -22,6 +22,10 @@ struct LoadOptions {
   /// a RobotModel note. Rank decisions on the geometry use it as its precision
   /// (RigidBodyTree::angle_precision). 0 takes every value as written.
   double angle_tolerance = kDefaultAngleTolerance;
+  /// URDF: a joint with <mimic> in the modelled part is refused (InputError naming it and its
+  /// leader: modelgen has no mimic constraint); true keeps it as an independent joint, with a
+  /// warning note.
+  bool mimic_as_joint = false;
 };
 
 /// Loads `path` (.yaml/.yml: MDH description; .urdf: URDF) into a validated RobotModel.

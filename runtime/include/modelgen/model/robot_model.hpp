@@ -53,6 +53,9 @@ struct JointLimits {
   std::optional<double> dq;                ///< max |velocity|
   std::optional<double> ddq;               ///< max |acceleration|
   std::optional<double> effort;            ///< max |torque|, N m or N
+  /// A URDF `continuous` joint: unbounded in q, so no q limit is needed (q_lower and q_upper
+  /// stay empty); its dq, ddq and effort limits still apply.
+  bool continuous = false;
 };
 
 /// One joint/link as described; index-aligned with RigidBodyTree::bodies.
@@ -74,10 +77,12 @@ struct FrictionOptions {
 enum class DescriptionFormat { kMdhYaml, kUrdf };
 
 /// Something the loader changed or assumed that the user should know about but that is not an
-/// error (a rounded quarter turn taken as exact). Printed as "file:line: note: message".
+/// error (a rounded quarter turn taken as exact). Printed as "file:line: note: message", or
+/// "file:line: warning: message" for a value that is likely a unit slip (degrees for radians).
 struct DescriptionNote {
   SourceLocation where;
   std::string message;
+  bool warning = false;
 
   std::string to_string() const;
 };

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "modelgen/closed_loop/pid_controller.hpp"
 
@@ -12,6 +13,10 @@ namespace modelgen::io {
 /// line and column for a syntax error, a missing, unknown or repeated key, another type, a
 /// sample time outside 1e-6 to 1 s (above it: a typo for milliseconds), a list
 /// whose length is not `dof`, a gain that is negative or not a number, kp = 0.
-PidGains read_controller(const std::string& path, int dof);
+/// A sample time of 0.1 s or more (no joint controller runs that slowly; 1 meant as 1 ms
+/// is the likely slip) is accepted with a "file:line:column: warning: ..." line appended to
+/// `warnings` when given, for the caller to print.
+PidGains read_controller(const std::string& path, int dof,
+                         std::vector<std::string>* warnings = nullptr);
 
 }  // namespace modelgen::io
