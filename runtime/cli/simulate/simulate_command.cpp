@@ -23,6 +23,7 @@
 #include "modelgen/io/experiment/controller_file.hpp"
 #include "modelgen/io/experiment/fourier_file.hpp"
 #include "modelgen/io/experiment/trajectory_csv.hpp"
+#include "modelgen/io/json_file.hpp"
 #include "modelgen/io/parameter_file.hpp"
 #include "modelgen/ml/drive_model.hpp"
 #include "modelgen/model/number_text.hpp"
@@ -209,11 +210,12 @@ int run_simulate(const CommandLine& args) {
     values.file = source.any_description()->source_file;
   } else if (!drive_mode) {
     values.file = args.one("--params");
-    check_estimate_model(args.one("--params"), model);
-    beta = read_base_parameters(args.one("--params"), model);
+    const JsonDocument parameters = read_json_document(args.one("--params"));  // read once
+    check_estimate_model(parameters, model);
+    beta = read_base_parameters(parameters, model);
     // A simulation of a robot that cannot exist would make data no robot gives.
     if (const RobotModel* description = source.any_description()) {
-      check_physically_possible(args.one("--params"), model, *description);
+      check_physically_possible(parameters, model, *description);
     }
   }
   const FourierTrajectory fourier = read_fourier(args.one("--trajectory"), model.dof());
