@@ -88,7 +88,12 @@ std::string estimate_json(const EstimateFile& estimate) {
 
 void check_estimate_model(const std::string& path, const IdentificationModel& model,
                           const std::string& what) {
-  const JsonDocument document = read_json_document(path);
+  check_estimate_model(read_json_document(path), model, what);
+}
+
+void check_estimate_model(const JsonDocument& document, const IdentificationModel& model,
+                          const std::string& what) {
+  const std::string& path = document.path;
   const nlohmann::json& json = document.value;
   if (!json.is_object() || !json.contains("description_sha256")) return;
   const nlohmann::json& field = json["description_sha256"];
@@ -108,7 +113,12 @@ void check_estimate_model(const std::string& path, const IdentificationModel& mo
 }
 
 std::optional<std::vector<std::string>> read_data_options(const std::string& path) {
-  const nlohmann::json json = read_json_file(path);
+  return read_data_options(read_json_document(path));
+}
+
+std::optional<std::vector<std::string>> read_data_options(const JsonDocument& document) {
+  const std::string& path = document.path;
+  const nlohmann::json& json = document.value;
   if (!json.is_object() || !json.contains("data_options")) return std::nullopt;
   const nlohmann::json& field = json["data_options"];
   std::vector<std::string> words;

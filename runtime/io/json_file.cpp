@@ -48,6 +48,9 @@ struct CountingIterator {
   bool operator!=(const CountingIterator& other) const { return at != other.at; }
 };
 
+// The kinds of scalar values, by how their text ends.
+enum class Scalar { kString, kWord, kNumber };
+
 // The SAX handler: positions here, the document by nlohmann's DOM builder (the one
 // json::parse uses), which the events are passed on to.
 class PositionRecorder : public nlohmann::json_sax<nlohmann::json> {
@@ -61,33 +64,27 @@ class PositionRecorder : public nlohmann::json_sax<nlohmann::json> {
     }
   }
 
-  bool null() override { return value() && dom_.null(); }
-  bool boolean(bool v) override { return value() && dom_.boolean(v); }
-  bool number_integer(number_integer_t v) override { return value() && dom_.number_integer(v); }
-  bool number_unsigned(number_unsigned_t v) override { return value() && dom_.number_unsigned(v); }
-  bool number_float(number_float_t v, const string_t& s) override {
-    return value() && dom_.number_float(v, s);
+  bool null() override { return value(Scalar::kWord) && dom_.null(); }
+  bool boolean(bool v) override { return value(Scalar::kWord) && dom_.boolean(v); }
+  bool number_integer(number_integer_t v) override {
+    return value(Scalar::kNumber) && dom_.number_integer(v);
   }
-  bool string(string_t& v) override { return value() && dom_.string(v); }
-  bool binary(binary_t& v) override { return value() && dom_.binary(v); }
+  bool number_unsigned(number_unsigned_t v) override {
+    return value(Scalar::kNumber) && dom_.number_unsigned(v);
+  }
+  bool number_float(number_float_t v, const string_t& s) override {
+    return value(Scalar::kNumber) && dom_.number_float(v, s);
+  }
+  bool string(string_t& v) override { return value(Scalar::kString) && dom_.string(v); }
+  bool binary(binary_t& v) override { return value(Scalar::kString) && dom_.binary(v); }
   bool start_object(std::size_t n) override { return open(true) && dom_.start_object(n); }
   bool start_array(std::size_t n) override { return open(false) && dom_.start_array(n); }
   bool end_object() override { return close() && dom_.end_object(); }
   bool end_array() override { return close() && dom_.end_array(); }
 
   bool key(string_t& key) override {
-    // The parser has just read the key's closing quote; its opening quote is the last
-    // unescaped one before it.
-    std::size_t close_quote = consumed_ == 0 ? 0 : consumed_ - 1;
-    std::size_t open_quote = close_quote;
-    while (open_quote > 0) {
-      --open_quote;
-      if (text_[open_quote] != '"') continue;
-      std::size_t backslashes = 0;
-      while (open_quote > backslashes && text_[open_quote - backslashes - 1] == '\\') ++backslashes;
-      if (backslashes % 2 == 0) break;
-    }
-    const std::pair<int, int> here = line_column(open_quote);
+    // The parser has just read the key's closing quote.
+    const std::pair<int, int> here = line_column(opening_quote(last_read()));
     auto& members = frames_.back()->inside->members;
     const auto [earlier, inserted] = members.try_emplace(key);
     if (!inserted) {
@@ -137,37 +134,75 @@ class PositionRecorder : public nlohmann::json_sax<nlohmann::json> {
     return {static_cast<int>(line), static_cast<int>(offset - line_starts_[line - 1]) + 1};
   }
 
-  // The position of the value that starts now: the root, the member whose key was just read,
-  // or the next element of the open array.
-  JsonPosition& place() {
+  // The offset of the last character the parser has read.
+  std::size_t last_read() const { return consumed_ == 0 ? 0 : consumed_ - 1; }
+
+  // The opening quote of the string whose closing quote is at `close_quote`: the last
+  // unescaped quote before it.
+  std::size_t opening_quote(std::size_t close_quote) const {
+    std::size_t open_quote = close_quote;
+    while (open_quote > 0) {
+      --open_quote;
+      if (text_[open_quote] != '"') continue;
+      std::size_t backslashes = 0;
+      while (open_quote > backslashes && text_[open_quote - backslashes - 1] == '\\') ++backslashes;
+      if (backslashes % 2 == 0) break;
+    }
+    return open_quote;
+  }
+
+  static bool in_number(char c) {
+    return std::isdigit(static_cast<unsigned char>(c)) || c == '-' || c == '+' || c == '.' ||
+           c == 'e' || c == 'E';
+  }
+
+  // The offset of the first character of the scalar the parser has just read, found by
+  // walking back over it alone (linear in the text overall). A string or a literal ends with
+  // the last character read; a number is known to end only once the character after it was
+  // read, so that one is stepped over first.
+  std::size_t scalar_start(Scalar kind) const {
+    std::size_t at = last_read();
+    switch (kind) {
+      case Scalar::kString:
+        return opening_quote(at);
+      case Scalar::kWord:
+        while (at > 0 && std::isalpha(static_cast<unsigned char>(text_[at - 1]))) --at;
+        return at;
+      case Scalar::kNumber:
+        if (at > 0 && !in_number(text_[at])) --at;
+        while (at > 0 && in_number(text_[at - 1])) --at;
+        return at;
+    }
+    return at;
+  }
+
+  // The position of the value that starts at `start`: the root, the member whose key was just
+  // read (at its key), or the next element of the open array (at its first character).
+  JsonPosition& place(std::size_t start) {
     if (frames_.empty()) {
       document_.root.line = document_.root.column = 1;
       return document_.root;
     }
     if (frames_object_.back()) return *member_;
-    JsonPositionsInside& parent = *frames_.back()->inside;
-    // The parser has read the value's first character (and a scalar's first lookahead).
-    std::size_t start = consumed_ == 0 ? 0 : consumed_ - 1;
-    while (start > 0 && (text_[start] == ',' || text_[start] == ']' ||
-                         std::isspace(static_cast<unsigned char>(text_[start])))) {
-      --start;
-    }
     const std::pair<int, int> where = line_column(start);
-    JsonPosition& element = parent.elements.emplace_back();
+    JsonPosition& element = frames_.back()->inside->elements.emplace_back();
     element.line = where.first;
     element.column = where.second;
     return element;
   }
 
-  bool value() {
-    place();
+  bool value(Scalar kind) {
+    // Only an element of an array is placed at its own first character: the walk back is
+    // skipped elsewhere.
+    const bool element = !frames_.empty() && !frames_object_.back();
+    place(element ? scalar_start(kind) : 0);
     return true;
   }
   bool open(bool object) {
     // Each level costs a frame, and nlohmann::json recurses as deep when it copies or prints
     // the document: a depth no file of modelid has is refused before it costs anything.
     if (frames_.size() >= static_cast<std::size_t>(kMaxJsonDepth)) {
-      const std::pair<int, int> where = line_column(consumed_ == 0 ? 0 : consumed_ - 1);
+      const std::pair<int, int> where = line_column(last_read());
       throw InputError({path_, where.first, where.second},
                        std::string("this ") + (object ? "object" : "array") + " is nested " +
                            std::to_string(frames_.size() + 1) +
@@ -176,7 +211,7 @@ class PositionRecorder : public nlohmann::json_sax<nlohmann::json> {
     }
     // The open containers are the last elements of their arrays (or members, which do not
     // move), and an array grows only once its open element is closed: the pointers stay valid.
-    JsonPosition& here = place();
+    JsonPosition& here = place(last_read());  // the bracket just read
     here.inside = std::make_unique<JsonPositionsInside>();
     frames_.push_back(&here);
     frames_object_.push_back(object);

@@ -64,7 +64,11 @@ void check_every_base_parameter(const JsonDocument& document, const Identificati
 }  // namespace
 
 Eigen::VectorXd read_base_parameters(const std::string& path, const IdentificationModel& model) {
-  const JsonDocument document = read_json_document(path);
+  return read_base_parameters(read_json_document(path), model);
+}
+
+Eigen::VectorXd read_base_parameters(const JsonDocument& document,
+                                     const IdentificationModel& model) {
   const nlohmann::json& json = document.value;
   if (!json.is_object()) {
     throw InputError(document.at(""), "expected an object with a \"standard\", \"base\" or "
@@ -154,10 +158,14 @@ Eigen::VectorXd read_base_parameters(const std::string& path, const Identificati
 
 PhysicalProblems physical_problems(const std::string& path, const IdentificationModel& model,
                                    const RobotModel& description) {
+  return physical_problems(read_json_document(path), model, description);
+}
+
+PhysicalProblems physical_problems(const JsonDocument& document, const IdentificationModel& model,
+                                   const RobotModel& description) {
   PhysicalProblems out;
   if (description.param_names() != model.standard_param_names()) return out;
   const RigidBodyTree& tree = description.tree;
-  const JsonDocument document = read_json_document(path);
   const nlohmann::json& json = document.value;
   if (json.contains("standard")) {
     out.key = "standard";
@@ -174,7 +182,7 @@ PhysicalProblems physical_problems(const std::string& path, const Identification
     }
   } else {
     out.key = json.contains("base") ? "base" : "parameters";
-    const Eigen::VectorXd beta = read_base_parameters(path, model);
+    const Eigen::VectorXd beta = read_base_parameters(document, model);
     const std::vector<std::string>& names = model.base_param_names();
     for (std::size_t b = 0; b < names.size(); ++b) {
       for (const StandardParam& param : tree.params) {
@@ -198,7 +206,12 @@ std::string PhysicalProblems::text() const {
 
 void check_physically_possible(const std::string& path, const IdentificationModel& model,
                                const RobotModel& description) {
-  const PhysicalProblems found = physical_problems(path, model, description);
+  check_physically_possible(read_json_document(path), model, description);
+}
+
+void check_physically_possible(const JsonDocument& document, const IdentificationModel& model,
+                               const RobotModel& description) {
+  const PhysicalProblems found = physical_problems(document, model, description);
   if (found.problems.empty()) return;
   throw InputError(found.where, found.text() + " (fit --physical gives estimates that can)");
 }

@@ -11,7 +11,8 @@ build=$(cd "$1" && pwd)
 runs=${2:-}
 declare -A default_runs=([fuzz_mdh_yaml]=1500 [fuzz_urdf]=1000 [fuzz_data_csv]=10000
                          [fuzz_parameter_json]=10000 [fuzz_trajectory_yaml]=5000
-                         [fuzz_controller_yaml]=5000 [fuzz_estimate_json]=5000)
+                         [fuzz_controller_yaml]=5000 [fuzz_estimate_json]=5000
+                         [fuzz_design_description]=300)
 source_dir=$(cd "$(dirname "$0")/../.." && pwd)
 work=$build/fuzz
 rm -rf "$work"
@@ -38,6 +39,8 @@ seeds fuzz_parameter_json tests/bad_inputs/parameters/*.json tests/bad_inputs/ro
 seeds fuzz_trajectory_yaml tests/bad_inputs/trajectory/*.yaml \
   tests/bad_inputs/robots/two_axes_trajectory.yaml $(grep -rl '^period:' robots/data | sort)
 seeds fuzz_estimate_json tests/bad_inputs/estimate/*.json
+seeds fuzz_design_description tests/bad_inputs/design/*.yaml tests/bad_inputs/robots/*.yaml \
+  $(grep -l 'limits:' robots/*.yaml | sort)
 seeds fuzz_controller_yaml tests/bad_inputs/controller/*.yaml \
   $(find robots/data -name 'controller*.yaml' | sort)
 
@@ -45,13 +48,14 @@ export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1}
 export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1}
 failed=0
 for target in fuzz_mdh_yaml fuzz_urdf fuzz_data_csv fuzz_parameter_json fuzz_trajectory_yaml \
-              fuzz_controller_yaml fuzz_estimate_json; do
+              fuzz_controller_yaml fuzz_estimate_json fuzz_design_description; do
   max_len=4096
   [ "$target" = fuzz_urdf ] && max_len=32768
   # A description near the 32-joint limit takes about 65 s of CPU to derive under the
   # sanitizers (found by this run from the 33-joint seed): a slow legal input, not a hang.
+  # The design target derives every description it is given as well.
   timeout=10
-  [ "$target" = fuzz_mdh_yaml ] || [ "$target" = fuzz_urdf ] && timeout=180
+  case $target in fuzz_mdh_yaml | fuzz_urdf | fuzz_design_description) timeout=180 ;; esac
   start=$(date +%s)
   if "$build/bin/$target" -runs="${runs:-${default_runs[$target]}}" -seed=1 -max_len="$max_len" -timeout="$timeout" \
       -rss_limit_mb=2560 -print_final_stats=1 -artifact_prefix="$work/$target/artifacts/" \

@@ -43,8 +43,8 @@ void check_within_limits(const SourceLocation& where, const std::string& name, d
 
 IdentifiedStandard read_identified_standard(const std::string& path, const RobotModel& description,
                                             const IdentificationModel& model) {
-  check_estimate_model(path, model);
-  const JsonDocument document = read_json_document(path);
+  const JsonDocument document = read_json_document(path);  // read once, for every check below
+  check_estimate_model(document, model);
   const nlohmann::json& json = document.value;
   if (!json.is_object() || !json.contains("standard")) {
     throw InputError(document.at(""),
@@ -85,7 +85,7 @@ IdentifiedStandard read_identified_standard(const std::string& path, const Robot
   }
   // The base estimate and the standard set must agree (a hand-edited file would make export
   // write something else than was identified); read_base_parameters checks it.
-  if (json.contains("parameters")) read_base_parameters(path, model);
+  if (json.contains("parameters")) read_base_parameters(document, model);
   if (json.contains("method") && json["method"].is_string()) out.method = json["method"];
 
   // What export writes must load again: the loaders refuse impossible inertials.

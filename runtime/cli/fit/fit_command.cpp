@@ -11,6 +11,7 @@
 
 #include "modelgen/estimation/predict.hpp"
 #include "modelgen/io/estimate_file.hpp"
+#include "modelgen/io/json_file.hpp"
 #include "modelgen/io/parameter_file.hpp"
 #include "runtime/cli/common/commands.hpp"
 #include "runtime/cli/common/model_source.hpp"
@@ -81,8 +82,9 @@ Identification estimate_from_files(const FitMethod& method, const FitContext& co
 // numbers of different parameters. Empty without --truth.
 Eigen::VectorXd read_truth(const CommandLine& args, const IdentificationModel& model) {
   if (!args.has("--truth")) return {};
-  check_estimate_model(args.one("--truth"), model, "truth");
-  return read_base_parameters(args.one("--truth"), model);
+  const JsonDocument truth = read_json_document(args.one("--truth"));  // read once
+  check_estimate_model(truth, model, "truth");
+  return read_base_parameters(truth, model);
 }
 
 // The estimate as EST.json holds it: the consistent one with --physical (the unconstrained one

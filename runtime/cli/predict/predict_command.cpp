@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "modelgen/io/estimate_file.hpp"
+#include "modelgen/io/json_file.hpp"
 #include "modelgen/io/parameter_file.hpp"
 #include "runtime/cli/common/commands.hpp"
 #include "runtime/cli/common/model_source.hpp"
@@ -57,15 +58,17 @@ int run_predict(const CommandLine& args) {
   if (!args.has("--data")) throw UsageError{"predict needs at least one --data file"};
   // Before the names are looked up: an estimate of another robot would otherwise fail on a
   // parameter name, or worse, match by chance.
-  check_estimate_model(params, model);
-  const Eigen::VectorXd beta = read_base_parameters(params, model);
+  // Read once: every check and value below comes from this document.
+  const JsonDocument estimate = read_json_document(params);
+  check_estimate_model(estimate, model);
+  const Eigen::VectorXd beta = read_base_parameters(estimate, model);
   // simulate refuses a standard set no body has (a negative mass): its forward dynamics and
   // data would be meaningless. predict evaluates tau = W beta, linear in the base parameters,
   // which physical standard sets may give as well, so its torques are well defined and it
   // says what is wrong but predicts. Base sets are left alone: an unconstrained fit's
   // estimate of a friction may well be negative.
   if (const RobotModel* description = source.any_description()) {
-    const PhysicalProblems physical = physical_problems(params, model, *description);
+    const PhysicalProblems physical = physical_problems(estimate, model, *description);
     if (physical.key == "standard" && !physical.problems.empty()) {
       std::cerr << physical.where.to_string() << ": warning: " << physical.text()
                 << "; predict gives the torques of their base parameters all the same "
@@ -76,7 +79,7 @@ int run_predict(const CommandLine& args) {
   // The data are prepared as the fit prepared them (EST.json's data options) unless this
   // command line gives data options of its own; stderr says which.
   const std::vector<std::string> given = data_option_words(args);
-  const std::optional<std::vector<std::string>> from_estimate = read_data_options(params);
+  const std::optional<std::vector<std::string>> from_estimate = read_data_options(estimate);
   const auto spelled = [](const std::vector<std::string>& words) {
     std::string text;
     for (const std::string& word : words) text += (text.empty() ? "" : " ") + word;

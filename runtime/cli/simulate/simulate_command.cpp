@@ -23,7 +23,9 @@
 #include "modelgen/io/estimate_file.hpp"
 #include "modelgen/io/experiment/controller_file.hpp"
 #include "modelgen/io/experiment/fourier_file.hpp"
+#include "modelgen/io/experiment/plausible_magnitude.hpp"
 #include "modelgen/io/experiment/trajectory_csv.hpp"
+#include "modelgen/io/json_file.hpp"
 #include "modelgen/io/parameter_file.hpp"
 #include "modelgen/ml/drive_model.hpp"
 #include "modelgen/model/number_text.hpp"
@@ -58,16 +60,33 @@ struct ValueSource {
   std::string largest;
 };
 
-// Every number simulate writes must be finite: a parameter of 1e308 gives torques beyond the
-// range of a double, which the CSV would hold as inf and fit would refuse on reading it.
-void check_finite_output(const Trajectory& x, const ValueSource& values) {
+// Every number simulate writes must be finite and one the data reader takes: a parameter of
+// 1e308 gives torques beyond the range of a double, which the CSV would hold as inf, and one
+// of 1e300 torques of 1e300, which no robot gives; fit would refuse either on reading it.
+void check_output_fit_reads(const Trajectory& x, const ValueSource& values) {
   for (const auto& [column, m] :
        {std::pair{"q", &x.q}, {"dq", &x.dq}, {"ddq", &x.ddq}, {"tau", &x.tau}, {"qr", &x.qr}}) {
     const std::string found = first_non_finite(*m, x.t, column);
-    if (found.empty()) continue;
-    throw InputError({values.file}, "the simulated " + found + ", beyond the range of a double" +
-                                        values.largest +
-                                        "; simulate writes finite numbers only, and wrote nothing");
+    if (!found.empty()) {
+      throw InputError({values.file},
+                       "the simulated " + found + ", beyond the range of a double" +
+                           values.largest +
+                           "; simulate writes finite numbers only, and wrote nothing");
+    }
+    const std::optional<PlausibleMagnitude> plausible =
+        plausible_magnitude(std::string(column) + "1");
+    for (Eigen::Index s = 0; plausible && s < m->rows(); ++s) {
+      for (Eigen::Index j = 0; j < m->cols(); ++j) {
+        if (std::abs((*m)(s, j)) <= plausible->bound) continue;
+        throw InputError({values.file},
+                         "the simulated " + std::string(column) + std::to_string(j + 1) + " is " +
+                             shortest_text((*m)(s, j)) + " at t = " + shortest_text(x.t[s]) +
+                             " s, beyond any robot (|" + plausible->kind + "| up to " +
+                             shortest_text(plausible->bound) + " " + plausible->unit + ")" +
+                             values.largest +
+                             "; simulate writes only what fit reads, and wrote nothing");
+      }
+    }
   }
 }
 
@@ -186,7 +205,7 @@ Trajectory simulate_under_controller(const CommandLine& args, const Identificati
   x.tau = run.tau_recorded;
   x.qr = run.qr;
   x.dq = x.ddq = Eigen::MatrixXd::Zero(x.t.size(), n);
-  check_finite_output(x, values);
+  check_output_fit_reads(x, values);
   const Eigen::VectorXd error = (run.q - run.qr).cwiseAbs().colwise().maxCoeff().transpose();
   std::cerr << "modelid simulate: " << x.t.size() << " samples of " << model.name()
             << " under the PID at " << 1.0 / ts << " Hz written to " << args.one("-o")
@@ -214,11 +233,12 @@ int run_simulate(const CommandLine& args) {
     values.file = source.any_description()->source_file;
   } else if (!drive_mode) {
     values.file = args.one("--params");
-    check_estimate_model(args.one("--params"), model);
-    beta = read_base_parameters(args.one("--params"), model);
+    const JsonDocument parameters = read_json_document(args.one("--params"));  // read once
+    check_estimate_model(parameters, model);
+    beta = read_base_parameters(parameters, model);
     // A simulation of a robot that cannot exist would make data no robot gives.
     if (const RobotModel* description = source.any_description()) {
-      check_physically_possible(args.one("--params"), model, *description);
+      check_physically_possible(parameters, model, *description);
     }
   }
   const FourierTrajectory fourier = read_fourier(args.one("--trajectory"), model.dof());
@@ -291,7 +311,7 @@ int run_simulate(const CommandLine& args) {
   if (drive_mode) x.tau = x.tau * model.drive_chain().motor_from_joint;
   progress.update(x.t.size());
   progress.finish();
-  check_finite_output(x, values);
+  check_output_fit_reads(x, values);
   write_trajectory_csv(output, x);
   std::cerr << "modelid simulate: " << x.t.size() << " samples of " << model.name()
             << " written to " << output << "\n";

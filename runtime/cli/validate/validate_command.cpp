@@ -16,6 +16,7 @@
 #include "modelgen/io/estimate_file.hpp"
 #include "modelgen/io/experiment/controller_file.hpp"
 #include "modelgen/io/experiment/trajectory_csv.hpp"
+#include "modelgen/io/json_file.hpp"
 #include "modelgen/io/parameter_file.hpp"
 #include "modelgen/model/number_text.hpp"
 #include "runtime/cli/common/commands.hpp"
@@ -38,8 +39,9 @@ int run_validate(const CommandLine& args) {
   const ModelSource source = load_model_source(args.one("--robot"), args);
   const IdentificationModel& model = *source.model;
   const int n = model.dof();
-  check_estimate_model(args.one("--params"), model);
-  const Eigen::VectorXd beta = read_base_parameters(args.one("--params"), model);
+  const JsonDocument estimate = read_json_document(args.one("--params"));  // read once
+  check_estimate_model(estimate, model);
+  const Eigen::VectorXd beta = read_base_parameters(estimate, model);
   std::vector<std::string> warnings;
   PidController controller(read_controller(args.one("--controller"), n, &warnings));
   for (const std::string& warning : warnings) std::cerr << warning << "\n";

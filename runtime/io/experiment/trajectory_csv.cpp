@@ -7,16 +7,18 @@
 #include <charconv>
 #include <cmath>
 #include <cstdint>
-#include <filesystem>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <map>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "modelgen/io/experiment/plausible_magnitude.hpp"
 #include "modelgen/model/number_text.hpp"
 
 namespace modelgen::io {
@@ -57,33 +59,6 @@ std::string brief(double value) {
 // a longer hole would be filled with invented samples (a 90 s hole at 10 ms gave 9 000), and
 // a time stamp far off (1e9 s) with a uniform grid too large for memory.
 constexpr double kMaxGapSteps = 100;
-
-// Magnitudes no robot reaches, per column kind: a value beyond them is a unit, column or
-// transmission slip (a dq of 1.2e29 made W rank-deficient with no word of where). Revolute or
-// prismatic alike: 1e4 rad is 1 600 turns, 1e4 rad/s 95 000 rpm at the joint.
-struct Plausible {
-  const char* prefix;
-  double bound;
-  const char* unit;
-};
-constexpr Plausible kPlausible[] = {{"ddq", 1e7, "rad/s^2 or m/s^2"},
-                                    {"dq", 1e4, "rad/s or m/s"},
-                                    {"qr", 1e4, "rad or m"},
-                                    {"q", 1e4, "rad or m"},
-                                    {"tau", 1e9, "N m or N"},
-                                    {"i", 1e6, "A"}};
-
-// The bound of a column named prefix + joint number (t and other columns have none).
-const Plausible* plausible_bound(const std::string& column) {
-  for (const Plausible& p : kPlausible) {
-    const std::string prefix = p.prefix;
-    if (column.size() > prefix.size() && column.compare(0, prefix.size(), prefix) == 0 &&
-        column.find_first_not_of("0123456789", prefix.size()) == std::string::npos) {
-      return &p;
-    }
-  }
-  return nullptr;
-}
 
 // Fails unless the file is within modelid's size limit (checked before reading it).
 void check_file_size(const std::string& path) {
@@ -232,10 +207,10 @@ class TrajectoryCsvReader {
         fail(path_, line_number_, header_[c], "'" + text + "' is not a number");
       }
       if (!std::isfinite(value)) fail(path_, line_number_, header_[c], "value is NaN or infinite");
-      if (const Plausible* p = plausible_bound(header_[c]); p && std::abs(value) > p->bound) {
+      if (const auto p = plausible_magnitude(header_[c]); p && std::abs(value) > p->bound) {
         fail(path_, line_number_, header_[c],
-             "value " + text + " is beyond any robot (|" + p->prefix + "| up to " +
-                 brief(p->bound) + " " + p->unit + "): a unit or column slip?");
+             "value " + text + " is beyond any robot (|" + p->kind + "| up to " + brief(p->bound) +
+                 " " + p->unit + "): a unit or column slip?");
       }
       values[c] = value;
     }
@@ -389,6 +364,22 @@ void write_trajectory_csv(const std::string& path, const Trajectory& x) {
     std::remove(temporary.c_str());
     throw failed(error);
   }
+}
+
+// Revolute or prismatic alike: 1e4 rad is 1 600 turns, 1e4 rad/s 95 000 rpm at the joint (a dq
+// of 1.2e29 once made W rank-deficient with no word of where).
+std::optional<PlausibleMagnitude> plausible_magnitude(const std::string& column) {
+  static constexpr PlausibleMagnitude kPlausible[] = {
+      {"ddq", 1e7, "rad/s^2 or m/s^2"}, {"dq", 1e4, "rad/s or m/s"}, {"qr", 1e4, "rad or m"},
+      {"q", 1e4, "rad or m"},           {"tau", 1e9, "N m or N"},    {"i", 1e6, "A"}};
+  for (const PlausibleMagnitude& p : kPlausible) {
+    const std::string prefix = p.kind;
+    if (column.size() > prefix.size() && column.compare(0, prefix.size(), prefix) == 0 &&
+        column.find_first_not_of("0123456789", prefix.size()) == std::string::npos) {
+      return p;
+    }
+  }
+  return std::nullopt;
 }
 
 }  // namespace modelgen::io

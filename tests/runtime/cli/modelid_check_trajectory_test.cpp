@@ -3,6 +3,7 @@
 // with r = hypot(a, b); position use is the distance from the middle of the range over half
 // the range.
 
+#include <chrono>
 #include <cmath>
 #include <numbers>
 #include <sstream>
@@ -80,6 +81,48 @@ TEST(ModelidCheckTrajectory, ExceededLimitsAreMarkedAndFail) {
   ASSERT_EQ(j2.size(), 11u) << run.out;
   EXPECT_EQ(j2[7], "125.7%!");  // 0.6 pi / 1.5
   EXPECT_NE(run.err.find("1 limit is exceeded"), std::string::npos) << run.err;
+}
+
+// The most harmonics a trajectory may have, every one of them used: q1 = c sum_{l=1..1000}
+// cos(l wf t) peaks at t = 0 with q = 1000 c and |ddq| = c wf^2 sum l^2 = c pi^2 1000 1001 2001 / 6
+// (wf = pi), as all its terms do. The limit grid once took 108 s here and 57 s in simulate
+// (points times harmonics); a few seconds are plenty even under the sanitizers.
+TEST(ModelidCheckTrajectory, AThousandHarmonicsAreCheckedInSeconds) {
+  const fs::path dir = test_folder();
+  std::string terms;
+  for (int l = 1; l <= 1000; ++l) {
+    terms += (l > 1 ? ", " : "") + std::string("{l: ") + std::to_string(l) + ", a: 0, b: 1e-4}";
+  }
+  write_text(dir / "thousand.yaml", "period: 2\nform: position\njoints:\n  - {q0: 0, terms: [" +
+                                        terms + "]}\n  - {q0: 0, terms: []}\n");
+  const auto seconds_of = [](const auto& run) {
+    const auto start = std::chrono::steady_clock::now();
+    const CliRun result = run();
+    return std::pair{
+        result, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()};
+  };
+  const auto [check, check_seconds] = seconds_of([&] {
+    return modelid("check-trajectory --robot " + quoted_source(kRobot) + " --trajectory " +
+                   quoted(dir / "thousand.yaml"));
+  });
+  EXPECT_EQ(check.exit_code, 1) << check.err;
+  EXPECT_LT(check_seconds, 15);
+  const std::vector<std::string> j1 = row_of(check.out, "1");
+  ASSERT_EQ(j1.size(), 11u) << check.out;
+  const double pi = std::numbers::pi;
+  EXPECT_NEAR(std::stod(j1[2]), 0.1, 1e-6);
+  // The table rounds a value this large to four significant digits.
+  const double ddq_peak = 1e-4 * pi * pi * 1000.0 * 1001 * 2001 / 6;
+  EXPECT_NEAR(std::stod(j1[8]), ddq_peak, 1e-4 * ddq_peak);
+  const auto [simulate, simulate_seconds] = seconds_of([&] {
+    return modelid("simulate --robot " + quoted_source(kRobot) + " --params " +
+                   quoted_source("tests/bad_inputs/robots/two_axes_params.json") +
+                   " --trajectory " + quoted(dir / "thousand.yaml") + " -o " +
+                   quoted(dir / "simulated.csv"));
+  });
+  EXPECT_EQ(simulate.exit_code, 1) << simulate.err;
+  EXPECT_NE(simulate.err.find("joint 1 ('J1') leaves its"), std::string::npos) << simulate.err;
+  EXPECT_LT(simulate_seconds, 15);
 }
 
 TEST(ModelidCheckTrajectory, NamesTheLimitsTheDescriptionLacks) {

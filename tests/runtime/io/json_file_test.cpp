@@ -65,6 +65,26 @@ TEST(JsonFile, KeysAndElementsHaveTheirLineAndColumn) {
   EXPECT_EQ(at(document, "/nothing"), std::make_pair(0, 0));
 }
 
+// Scalars in arrays are placed at their first character: the opening quote of a string (even
+// one holding escaped quotes, commas and brackets), the first letter of true, false and null,
+// the sign or first digit of a number. (Strings and literals were once placed at their last
+// character, numbers at their last digit.)
+TEST(JsonFile, ScalarsInArraysAreAtTheirFirstCharacter) {
+  const io::JsonDocument document = read(
+      "{\"kept\": [\"ZZ1R\", \"a,]\\\"b\",\n"
+      "  true, false,  null,\n"
+      "   -1.5e3, 0 , 12345]}\n");
+  EXPECT_EQ(at(document, "/kept/0"), std::make_pair(1, 11));
+  EXPECT_EQ(at(document, "/kept/1"), std::make_pair(1, 19));
+  EXPECT_EQ(at(document, "/kept/2"), std::make_pair(2, 3));
+  EXPECT_EQ(at(document, "/kept/3"), std::make_pair(2, 9));
+  EXPECT_EQ(at(document, "/kept/4"), std::make_pair(2, 17));
+  EXPECT_EQ(at(document, "/kept/5"), std::make_pair(3, 4));
+  EXPECT_EQ(at(document, "/kept/6"), std::make_pair(3, 12));
+  EXPECT_EQ(at(document, "/kept/7"), std::make_pair(3, 16));
+  EXPECT_EQ(document.value["kept"][1], "a,]\"b");
+}
+
 TEST(JsonFile, PositionsFarIntoALongFile) {
   std::string text = "[";
   for (int k = 0; k < 200000; ++k) text += k == 0 ? "\n0" : ",\n  0";

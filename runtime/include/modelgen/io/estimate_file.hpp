@@ -9,6 +9,7 @@
 #include <utility>
 #include <vector>
 
+#include "modelgen/io/json_file.hpp"
 #include "modelgen/model/identification_model.hpp"
 
 namespace modelgen::io {
@@ -87,10 +88,16 @@ std::string estimate_json(const EstimateFile& estimate);
 /// `what` names the file in the message ("estimate", "truth").
 void check_estimate_model(const std::string& path, const IdentificationModel& model,
                           const std::string& what = "estimate");
+/// The same for a document already read (read_json_document), so that a command reads its
+/// parameter file once.
+void check_estimate_model(const JsonDocument& document, const IdentificationModel& model,
+                          const std::string& what = "estimate");
 
 /// The "data_options" of the estimate file at `path` (words as fit wrote them), or nothing
 /// when the file has none (hand-written parameter files, estimates of older versions).
 /// Throws std::runtime_error "PATH: error: ..." when the field is not a list of strings.
 std::optional<std::vector<std::string>> read_data_options(const std::string& path);
+/// The same for a document already read.
+std::optional<std::vector<std::string>> read_data_options(const JsonDocument& document);
 
 }  // namespace modelgen::io

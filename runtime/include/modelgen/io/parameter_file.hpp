@@ -7,6 +7,7 @@
 
 #include <Eigen/Core>
 
+#include "modelgen/io/json_file.hpp"
 #include "modelgen/model/error.hpp"
 #include "modelgen/model/identification_model.hpp"
 #include "modelgen/model/robot_model.hpp"
@@ -24,6 +25,10 @@ namespace modelgen::io {
 /// an empty or unknown parameter name (with the closest name), a base parameter missing from
 /// "parameters" (each missing one named).
 Eigen::VectorXd read_base_parameters(const std::string& path, const IdentificationModel& model);
+/// The same from a document already read (read_json_document): a command that checks, reads and
+/// judges one parameter file parses it once and hands the document to each step.
+Eigen::VectorXd read_base_parameters(const JsonDocument& document,
+                                     const IdentificationModel& model);
 
 /// What check_physically_possible finds, without throwing.
 struct PhysicalProblems {
@@ -39,6 +44,9 @@ struct PhysicalProblems {
 /// parameters are not the model's.
 PhysicalProblems physical_problems(const std::string& path, const IdentificationModel& model,
                                    const RobotModel& description);
+/// The same for a document already read.
+PhysicalProblems physical_problems(const JsonDocument& document, const IdentificationModel& model,
+                                   const RobotModel& description);
 
 /// Throws InputError at the file's "standard" (or "base", "parameters") entry when its values
 /// cannot be those of a physical robot (modelgen/model/physical_consistency.hpp): a standard
@@ -48,6 +56,9 @@ PhysicalProblems physical_problems(const std::string& path, const Identification
 /// condition. `path` must have passed read_base_parameters; `description` is the one `model`
 /// was made from (nothing is judged when its parameters are not the model's).
 void check_physically_possible(const std::string& path, const IdentificationModel& model,
+                               const RobotModel& description);
+/// The same for a document already read.
+void check_physically_possible(const JsonDocument& document, const IdentificationModel& model,
                                const RobotModel& description);
 
 }  // namespace modelgen::io
