@@ -49,13 +49,12 @@ void warn_far_links(std::ostream& err, const std::vector<LinkSummary>& links) {
     for (std::size_t i = 0; i < link.far_from_a_priori.size(); ++i) {
       err << (i ? "; " : "") << link.far_from_a_priori[i];
     }
-    err << " (the data decided its " << (link.mass_by == DecidedBy::kData ? "mass" : "")
-        << (link.mass_by == DecidedBy::kData && link.com_by == DecidedBy::kData ? " and " : "")
-        << (link.com_by == DecidedBy::kData ? "centre of mass" : "")
-        << (link.mass_by != DecidedBy::kData && link.com_by != DecidedBy::kData
-                ? "mass and centre of mass only in part"
-                : "")
-        << "; check the description's inertials or the excitation)\n";
+    // Far by the data's decision points at the description; far by the prior's at the data.
+    const bool by_data = link.mass_by == DecidedBy::kData && link.com_by == DecidedBy::kData;
+    err << (by_data ? " (the data decided its mass and centre of mass: check the description's "
+                      "inertials)\n"
+                    : " (the data decided its mass and centre of mass only in part: check the "
+                      "excitation and the description's inertials)\n");
   }
 }
 

@@ -160,8 +160,11 @@ TEST(ModelidExport, SimulatedUr5RoundTripsThroughTheUrdf) {
       modelid("fit --robot " + quoted(fs::path(urdf)) + " --data " + quoted(dir / "run.csv") +
               " --method ols --physical -o " + quoted(dir / "est.json"));
   ASSERT_EQ(fit.exit_code, 0) << fit.err;
-  const CliRun exported = modelid("export --robot " + quoted(fs::path(urdf)) + " --params " +
-                                  quoted(dir / "est.json") + " -o " + quoted(dir / "id.urdf"));
+  // One period of a trajectory made for another robot leaves the wrists' first moments to the
+  // noise (fit's link table and warning say so); the round trip is what is checked here.
+  const CliRun exported =
+      modelid("export --robot " + quoted(fs::path(urdf)) + " --params " + quoted(dir / "est.json") +
+              " -o " + quoted(dir / "id.urdf") + " --force");
   ASSERT_EQ(exported.exit_code, 0) << exported.err;
 
   const std::string text = test::read_text(dir / "id.urdf");
