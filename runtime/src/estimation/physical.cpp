@@ -11,6 +11,10 @@
 // data leave many standard directions free and a free body drifts towards the boundary, where
 // the logarithms flatten the cost; ADMM with eigenvalue clipping needed over 50 000 iterations
 // for 1e-6 accuracy on an estimate far from consistency.
+//
+// The prior term and the rule for its default weight are in physical_prior.hpp; the rule
+// costs up to four solves (the reference weight, then 1, 1e-2, 1e-4 until one keeps the base
+// estimate).
 
 #include "modelgen/estimation/physical.hpp"
 
@@ -21,7 +25,6 @@
 #include <Eigen/QR>
 #include <algorithm>
 #include <cmath>
-#include <limits>
 
 #include "modelgen/estimation/estimation_error.hpp"
 #include "modelgen/model/identification_model.hpp"
@@ -235,13 +238,16 @@ Problem set_up(const RigidBodyTree& tree, const Eigen::MatrixXd& K, const Eigen:
     if (prior[static_cast<std::size_t>(k)]) pb.prior_value[k] = a_priori[k];
   }
   std::vector<char> has_a_priori(static_cast<std::size_t>(n), 0);
-  for (std::size_t k = 0; k < prior.size(); ++k) {
-    has_a_priori[k] = prior[k].has_value();
-    pb.any_a_priori = pb.any_a_priori || prior[k].has_value();
+  for (std::size_t k = 0; k < prior.size(); ++k) has_a_priori[k] = prior[k].has_value();
+  for (const auto& index : pb.layout.body_params) {
+    bool known = true;
+    for (int k : index) known = known && has_a_priori[static_cast<std::size_t>(k)];
+    pb.any_a_priori = pb.any_a_priori || known;
   }
   if (!pb.any_a_priori) {
-    // Without a-priori values the centre is only the start: a small pull on every direction,
-    // relative to group sizes floored at what the data resolve, keeps the problem well posed.
+    // Without a-priori inertials (drive values alone, or nothing) the bodies' centre is only
+    // the start: a small pull on every direction, relative to group sizes floored at what the
+    // data resolve, keeps the problem well posed, as before the a-priori model was the prior.
     const Eigen::VectorXd std_dev = information.inverse().diagonal().cwiseMax(0.0).cwiseSqrt();
     pb.scale = detail::prior_scales(tree, pb.layout, pb.prior_value, K, &std_dev);
     pb.G1 = pb.scale.cwiseInverse().asDiagonal() * pb.T * pb.d.cwiseInverse().asDiagonal();
@@ -308,8 +314,8 @@ PhysicalFitResult fit_physical(const RigidBodyTree& tree, const Eigen::MatrixXd&
   if (options.prior_weight) {
     return solve(tree, K, beta_hat, pb, *options.prior_weight, options.max_iterations);
   }
-  // Without a-priori values the prior's centre is only the start: the reference weight alone,
-  // on every direction (set_up).
+  // Without a-priori inertials the bodies' centre is only the start: the reference weight
+  // alone, on every direction (set_up).
   if (!pb.any_a_priori) {
     PhysicalFitResult result =
         solve(tree, K, beta_hat, pb, detail::kReferencePriorWeight, options.max_iterations);

@@ -202,6 +202,18 @@ TEST_F(PhysicalPrior, AGivenWeightIsUsedAndAnyWeightKeepsTheUnconstrainedOptimum
   }
 }
 
+TEST_F(PhysicalPrior, DriveValuesAloneAreNoAPrioriModel) {
+  // Without a link's ten a-priori values the default is the small pull of weight 1e-6.
+  std::vector<std::optional<double>> drives_only(a_priori_.size());
+  for (std::size_t k = 0; k < drives_only.size(); ++k) {
+    if (must_be_nonnegative(robot_.tree.params[k].kind))
+      drives_only[k] = truth_[static_cast<Eigen::Index>(k)];
+  }
+  const PhysicalFitResult fit = fit_physical(robot_.tree, K_, beta_hat_, information_, drives_only);
+  EXPECT_TRUE(fit.prior_weight_automatic);
+  EXPECT_EQ(fit.prior_weight, 1e-6);
+}
+
 TEST_F(PhysicalPrior, TheLinkSummarySaysWhatTheDataDecided) {
   const PhysicalFitResult fit = fit_physical(robot_.tree, K_, beta_hat_, information_, a_priori_);
   const std::vector<LinkSummary> links = summarise_links(robot_.tree, K_, fit, a_priori_);

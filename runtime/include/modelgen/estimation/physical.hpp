@@ -35,7 +35,9 @@ struct PhysicalFitOptions {
   /// units of the estimate's variance. Must be > 0. Unset: the default rule, the largest of
   /// 1, 1e-2, 1e-4 that moves the base estimate by at most 0.1 in the information metric from
   /// the estimate with weight 1e-6 (so no base parameter by more than 0.1 of its standard
-  /// deviation), else 1e-6.
+  /// deviation), else 1e-6. Without a body whose ten a-priori values are all given, the prior
+  /// acts on every direction instead, relative to group sizes floored at what the data resolve,
+  /// with weight 1e-6.
   std::optional<double> prior_weight;
   int max_iterations = 2000;  ///< Newton steps of the barrier method
 };
