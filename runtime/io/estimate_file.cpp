@@ -71,13 +71,30 @@ std::string estimate_json(const EstimateFile& estimate) {
     out["standard"] = std::move(standard);
     nlohmann::json links = nlohmann::json::array();
     for (const LinkInertial& link : p.links) {
-      links.push_back({{"body", link.body},
-                       {"mass", number(link.mass)},
-                       {"com", numbers({link.com.begin(), link.com.end()})},
-                       {"inertia_com", numbers({link.inertia_com.begin(), link.inertia_com.end()})}});
+      nlohmann::json entry = {
+          {"body", link.body},
+          {"mass", number(link.mass)},
+          {"com", numbers({link.com.begin(), link.com.end()})},
+          {"inertia_com", numbers({link.inertia_com.begin(), link.inertia_com.end()})},
+          {"principal_moments",
+           numbers({link.principal_moments.begin(), link.principal_moments.end()})},
+          {"decided_by",
+           {{"mass", link.mass_decided_by},
+            {"com", link.com_decided_by},
+            {"principal_moments", link.moments_decided_by}}}};
+      if (link.a_priori) {
+        const auto& a = *link.a_priori;
+        entry["a_priori"] = {{"mass", number(a.mass)},
+                             {"com", numbers({a.com.begin(), a.com.end()})},
+                             {"principal_moments",
+                              numbers({a.principal_moments.begin(), a.principal_moments.end()})}};
+      }
+      entry["far_from_a_priori"] = link.far_from_a_priori;
+      links.push_back(std::move(entry));
     }
     out["links"] = std::move(links);
     out["physical"] = {{"prior_weight", number(p.prior_weight)},
+                       {"prior_weight_rule", p.prior_weight_rule},
                        {"cost_increase", number(p.cost_increase)},
                        {"binding_constraints", p.binding_constraints},
                        {"unconstrained_rel_error_norm", number(p.unconstrained_rel_error_norm)},

@@ -14,9 +14,11 @@
 
 #include <Eigen/Core>
 
+#include "modelgen/estimation/link_summary.hpp"
 #include "modelgen/model/error.hpp"
 #include "modelgen/model/load_robot.hpp"
 #include "modelgen/model/number_text.hpp"
+#include "modelgen/model/physical_consistency.hpp"
 #include "modelgen/model/urdf_export.hpp"
 #include "modelgen/model/yaml_export.hpp"
 #include "runtime/cli/common/arguments.hpp"
@@ -77,6 +79,38 @@ void check_round_trip(const std::string& output, const std::string& text, bool u
   }
 }
 
+// Refuses, unless --force, an estimate with a link far from its a-priori values (mass off by more
+// than a factor 2, centre of mass over 10 cm away; modelgen/estimation/link_summary.hpp): such a
+// description breaks simulators, payload estimates and planners that read it, and is more often
+// a prior the data could not correct than the robot.
+void check_links_near_a_priori(const RobotModel& description, const Eigen::VectorXd& standard,
+                               const std::string& params) {
+  std::string far;
+  const auto indices = inertial_param_indices(description.tree);
+  for (std::size_t b = 0; b < indices.size(); ++b) {
+    const auto& index = indices[b];
+    if (std::find(index.begin(), index.end(), -1) != index.end()) continue;
+    double identified[10], known[10];
+    bool all_known = true;
+    for (int s = 0; s < 10; ++s) {
+      identified[s] = standard[index[s]];
+      const auto& value = description.known_values[static_cast<std::size_t>(index[s])];
+      all_known = all_known && value.has_value();
+      known[s] = value.value_or(0.0);
+    }
+    if (!all_known) continue;
+    const auto reasons = far_from_a_priori(link_quantities(identified), link_quantities(known));
+    if (reasons.empty()) continue;
+    far += "\n  link '" + description.tree.bodies[b].name + "': ";
+    for (std::size_t i = 0; i < reasons.size(); ++i) far += (i ? "; " : "") + reasons[i];
+  }
+  if (!far.empty()) {
+    throw InputError({params}, "links far from their a-priori values:" + far +
+                                   "\nnothing was written; check the description's inertials and "
+                                   "the excitation, or give --force to write them anyway");
+  }
+}
+
 }  // namespace
 
 int run_export(const CommandLine& args) {
@@ -99,6 +133,7 @@ int run_export(const CommandLine& args) {
   const RobotModel& description = *source.description;
   const IdentifiedStandard identified =
       read_identified_standard(params, description, *source.model);
+  if (!args.has("--force")) check_links_near_a_priori(description, identified.values, params);
 
   const std::string estimate = std::filesystem::path(params).filename().string();
   const std::string method = identified.method.empty() ? "" : " (" + identified.method + ")";

@@ -18,7 +18,11 @@ const CommandSpec& export_spec() {
          {.name = "-o",
           .value = "IDENTIFIED",
           .help = "the identified description, of the same kind as DESCRIPTION",
-          .required = true}});
+          .required = true},
+         {.name = "--force",
+          .type = ValueType::kFlag,
+          .help = "write links far from their a-priori values (mass off by over a factor 2, "
+                  "centre of mass over 10 cm away), which export otherwise refuses"}});
     spec.details =
         "URDF: each moving link's <inertial> gets its identified body less the a-priori inertials\n"
         "of the links fixed to it, which keep theirs (when that is no physical body, the moving\n"

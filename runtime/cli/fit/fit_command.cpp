@@ -13,6 +13,7 @@
 #include "modelgen/io/estimate_file.hpp"
 #include "modelgen/io/json_file.hpp"
 #include "modelgen/io/parameter_file.hpp"
+#include "modelgen/ml/physical_fit.hpp"
 #include "runtime/cli/common/commands.hpp"
 #include "runtime/cli/common/model_source.hpp"
 #include "runtime/cli/common/progress.hpp"
@@ -21,6 +22,7 @@
 #include "runtime/cli/fit/fit_methods.hpp"
 #include "runtime/cli/fit/fit_report.hpp"
 #include "runtime/cli/plots/torque_plots.hpp"
+#include "runtime/cli/reports/link_table.hpp"
 #include "runtime/cli/reports/physical_report.hpp"
 #include "runtime/cli/reports/prediction_output.hpp"
 
@@ -33,9 +35,6 @@ namespace {
 // Gautier & Briot, section on essential parameters: r_sigma "ideally chosen between 10 and 30",
 // fixed to 20 for all their identifications.
 constexpr double kDefaultRSigma = 20.0;
-// The prior weight of --physical (modelgen/estimation/physical.hpp): small, it only picks among
-// standard sets the data cannot tell apart.
-constexpr double kDefaultPriorWeight = 1e-6;
 
 // The description behind --robot: the file, or for a compiled-in model its description in the
 // source tree.
@@ -47,9 +46,10 @@ const RobotModel& description_of(const ModelSource& source, const std::string& r
       robot + "'");
 }
 
-// fit's table checked that it is positive and comes with --physical.
-double prior_weight(const CommandLine& args) {
-  if (!args.has("--prior-weight")) return kDefaultPriorWeight;
+// fit's table checked that it is positive and comes with --physical. Unset: the default rule
+// of modelgen/estimation/physical.hpp (for --method ml, MlPhysicalOptions' default).
+std::optional<double> prior_weight(const CommandLine& args) {
+  if (!args.has("--prior-weight")) return std::nullopt;
   return parse_number(args.one("--prior-weight"), "--prior-weight");
 }
 
@@ -127,8 +127,10 @@ int run_fit(const CommandLine& args) {
   // The request: fit's table (fit_options.cpp) checked the method, which options each method
   // takes, the values' types and what each option needs; the method checks the rest.
   const FitMethod& method = fit_method(args.one("--method"));
-  const double weight = prior_weight(args);
-  if (method.route == FitRoute::kDriveModel) return run_fit_ml(args, weight);
+  const std::optional<double> weight = prior_weight(args);
+  if (method.route == FitRoute::kDriveModel) {
+    return run_fit_ml(args, weight.value_or(MlPhysicalOptions{}.prior_weight));
+  }
   if (method.check != nullptr) method.check(args);
   const double r_sigma = essential_ratio(args);
   const ModelSource source = load_model_source(args.one("--robot"), args);
@@ -178,6 +180,7 @@ int run_fit(const CommandLine& args) {
     physical->rel_error_norm = physical_prediction.rel_error_norm;
     print_physical(std::cout, id.names, id.fit, id.torque_rel_error_norm, *physical,
                    id.fit.equations - static_cast<long long>(id.names.size()));
+    warn_far_links(std::cerr, physical->links);
   }
   std::optional<EssentialEstimate> essential;
   if (args.has("--essential")) {

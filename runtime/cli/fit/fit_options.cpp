@@ -68,8 +68,10 @@ CommandSpec make_fit_spec() {
           {.name = "--prior-weight",
            .type = ValueType::kPositive,
            .value = "W",
-           .help = "weight of the pull towards the description's a-priori values",
-           .default_value = "1e-6",
+           .help = "weight of the pull towards the description's a-priori values in the "
+                   "directions the data do not determine (default: the largest of 1, 1e-2, "
+                   "1e-4 that moves no base parameter by over 0.1 sd; 1e-6 with --method ml)",
+           .default_value = "auto",
            .needs = "--physical"},
           {.name = "--min-speed",
            .value = "V[,V2,...]",

@@ -7,13 +7,15 @@
 
 #include "modelgen/model/physical_consistency.hpp"
 #include "runtime/cli/common/text_format.hpp"
+#include "runtime/cli/reports/link_table.hpp"
 
 namespace modelgen::internal {
 
 using namespace modelgen::io;  // the file formats (modelgen/io/)
 
 PhysicalEstimate physical_estimate(const RobotModel& description, const IdentificationModel& model,
-                                   const LeastSquaresResult& unconstrained, double prior_weight) {
+                                   const LeastSquaresResult& unconstrained,
+                                   std::optional<double> prior_weight) {
   if (description.param_names() != model.standard_param_names()) {
     throw std::runtime_error("--physical: the description's standard parameters differ from "
                              "the model's; give the description file the model was made from");
@@ -21,39 +23,31 @@ PhysicalEstimate physical_estimate(const RobotModel& description, const Identifi
   PhysicalFitOptions options;
   options.prior_weight = prior_weight;
   PhysicalEstimate out;
-  out.prior_weight = prior_weight;
   out.standard_names = model.standard_param_names();
-  out.fit = fit_physical(description.tree, regrouping_matrix(model), unconstrained.value,
-                         unconstrained.information, description.known_values, options);
-  out.links = link_inertials(description.tree, out.fit.standard);
+  const Eigen::MatrixXd K = regrouping_matrix(model);
+  out.fit = fit_physical(description.tree, K, unconstrained.value, unconstrained.information,
+                         description.known_values, options);
+  out.prior_weight = out.fit.prior_weight;
+  out.links = summarise_links(description.tree, K, out.fit, description.known_values);
   return out;
 }
 
-std::vector<LinkInertial> link_inertials(const RigidBodyTree& tree, const Eigen::VectorXd& standard) {
-  std::vector<LinkInertial> out;
-  const auto indices = inertial_param_indices(tree);
-  for (std::size_t b = 0; b < tree.bodies.size(); ++b) {
-    const auto& index = indices[b];
-    if (std::find(index.begin(), index.end(), -1) != index.end()) continue;
-    LinkInertial link;
-    link.body = tree.bodies[b].name;
-    link.mass = standard[index[9]];
-    const Eigen::Vector3d h(standard[index[6]], standard[index[7]], standard[index[8]]);
-    Eigen::Matrix3d I;
-    I << standard[index[0]], standard[index[1]], standard[index[2]], standard[index[1]],
-        standard[index[3]], standard[index[4]], standard[index[2]], standard[index[4]],
-        standard[index[5]];
-    if (link.mass > 0) {
-      const Eigen::Vector3d c = h / link.mass;
-      // Parallel-axis theorem back to the centre of mass.
-      const Eigen::Matrix3d Ic =
-          I - link.mass * (c.squaredNorm() * Eigen::Matrix3d::Identity() - c * c.transpose());
-      link.com = {c.x(), c.y(), c.z()};
-      link.inertia_com = {Ic(0, 0), Ic(0, 1), Ic(0, 2), Ic(1, 1), Ic(1, 2), Ic(2, 2)};
-    }
-    out.push_back(link);
+LinkInertial link_inertial(const LinkSummary& summary) {
+  LinkInertial link;
+  link.body = summary.body;
+  link.mass = summary.identified.mass;
+  link.com = summary.identified.com;
+  link.inertia_com = summary.identified.inertia_com;
+  link.principal_moments = summary.identified.principal_moments;
+  if (summary.a_priori) {
+    link.a_priori = LinkInertial::APriori{summary.a_priori->mass, summary.a_priori->com,
+                                          summary.a_priori->principal_moments};
   }
-  return out;
+  link.mass_decided_by = decided_by_name(summary.mass_by);
+  link.com_decided_by = decided_by_name(summary.com_by);
+  link.moments_decided_by = decided_by_name(summary.moments_by);
+  link.far_from_a_priori = summary.far_from_a_priori;
+  return link;
 }
 
 PhysicalBlock physical_block(const PhysicalEstimate& physical,
@@ -61,6 +55,7 @@ PhysicalBlock physical_block(const PhysicalEstimate& physical,
                              double unconstrained_rel_error_norm) {
   PhysicalBlock block;
   block.prior_weight = physical.prior_weight;
+  block.prior_weight_rule = physical.fit.prior_weight_automatic ? "default" : "given";
   block.cost_increase = physical.fit.cost_increase;
   block.unconstrained_rel_error_norm = unconstrained_rel_error_norm;
   block.binding_constraints = physical.fit.active_constraints;
@@ -69,7 +64,7 @@ PhysicalBlock physical_block(const PhysicalEstimate& physical,
     block.standard.emplace_back(physical.standard_names[k],
                                 physical.fit.standard[static_cast<Eigen::Index>(k)]);
   }
-  block.links = physical.links;
+  for (const LinkSummary& link : physical.links) block.links.push_back(link_inertial(link));
   return block;
 }
 
@@ -78,7 +73,8 @@ void print_physical(std::ostream& out, const std::vector<std::string>& base_name
                     const PhysicalEstimate& physical, long long residual_dof) {
   const PhysicalFitResult& fit = physical.fit;
   out << "physically consistent estimate (--physical, prior weight "
-      << fixed(physical.prior_weight, 0, 3) << "):\n"
+      << shortest(physical.prior_weight)
+      << (fit.prior_weight_automatic ? " by the default rule" : "") << "):\n"
       << "  parameter   unconstrained          std    consistent          std\n";
   for (std::size_t b = 0; b < base_names.size(); ++b) {
     const auto i = static_cast<Eigen::Index>(b);
@@ -102,6 +98,7 @@ void print_physical(std::ostream& out, const std::vector<std::string>& base_name
     for (const std::string& c : fit.active_constraints) out << "\n    " << c;
     out << "\n";
   }
+  print_link_table(out, physical.links);
   if (!fit.converged) {
     out << "  note: the optimiser stopped after " << fit.iterations
         << " Newton steps without meeting its tolerance\n";

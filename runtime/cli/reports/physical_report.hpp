@@ -10,6 +10,7 @@
 #include <Eigen/Core>
 
 #include "modelgen/estimation/least_squares.hpp"
+#include "modelgen/estimation/link_summary.hpp"
 #include "modelgen/estimation/physical.hpp"
 #include "modelgen/io/estimate_file.hpp"
 #include "modelgen/model/identification_model.hpp"
@@ -23,7 +24,7 @@ struct PhysicalEstimate {
   PhysicalFitResult fit;
   double prior_weight = 0;
   std::vector<std::string> standard_names;
-  std::vector<LinkInertial> links;
+  std::vector<LinkSummary> links;
   double rel_error_norm = 0;  ///< of the torques with the consistent estimate, set by the caller
 };
 
@@ -31,10 +32,11 @@ struct PhysicalEstimate {
 /// description's a-priori values (URDF inertials, YAML `known`) as the prior. Throws
 /// std::runtime_error when the description does not match the model.
 PhysicalEstimate physical_estimate(const RobotModel& description, const IdentificationModel& model,
-                                   const LeastSquaresResult& unconstrained, double prior_weight);
+                                   const LeastSquaresResult& unconstrained,
+                                   std::optional<double> prior_weight);
 
-/// The mass, centre of mass and inertia about it of every complete body of `tree`.
-std::vector<LinkInertial> link_inertials(const RigidBodyTree& tree, const Eigen::VectorXd& standard);
+/// EST.json's form of a link summary.
+LinkInertial link_inertial(const LinkSummary& summary);
 
 /// EST.json's block of the consistent fit.
 PhysicalBlock physical_block(const PhysicalEstimate& physical,

@@ -11,6 +11,10 @@
 // data leave many standard directions free and a free body drifts towards the boundary, where
 // the logarithms flatten the cost; ADMM with eigenvalue clipping needed over 50 000 iterations
 // for 1e-6 accuracy on an estimate far from consistency.
+//
+// The prior term and the rule for its default weight are in physical_prior.hpp; the rule
+// costs up to four solves (the reference weight, then 1, 1e-2, 1e-4 until one keeps the base
+// estimate).
 
 #include "modelgen/estimation/physical.hpp"
 
@@ -21,70 +25,19 @@
 #include <Eigen/QR>
 #include <algorithm>
 #include <cmath>
-#include <limits>
 
 #include "modelgen/estimation/estimation_error.hpp"
 #include "modelgen/model/identification_model.hpp"
 #include "modelgen/model/physical_consistency.hpp"
 #include "modelgen/model/pseudo_inertia.hpp"
 #include "runtime/src/estimation/physical_barrier.hpp"
+#include "runtime/src/estimation/physical_prior.hpp"
 
 namespace modelgen {
 namespace {
 
 using detail::BarrierOutcome;
 using detail::Layout;
-
-// Scales for the prior term: the largest reference value of the parameter's group (a body's
-// inertia entries, its first moments, its mass; all drive parameters of one kind), so that a
-// deviation counts relative to the size of what it belongs to, zero-valued products of inertia
-// included; floored at 1e-3 of the largest group of its class (inertias, first moments,
-// masses), and at what the data resolve of the parameter (the smallest sigma_j / |K_jk| over
-// the base parameters j it enters), so that a parameter the data leave at nearly zero does not
-// get an enormous weight.
-Eigen::VectorXd prior_scales(const RigidBodyTree& tree, const Layout& layout,
-                             const Eigen::VectorXd& reference, const Eigen::MatrixXd& K,
-                             const Eigen::VectorXd& base_std_dev) {
-  std::vector<std::vector<int>> groups[3];  // inertias, first moments, masses
-  for (const auto& index : layout.body_params) {
-    groups[0].push_back({index[0], index[1], index[2], index[3], index[4], index[5]});
-    groups[1].push_back({index[6], index[7], index[8]});
-    groups[2].push_back({index[9]});
-  }
-  std::vector<std::vector<int>> by_kind(static_cast<std::size_t>(ParamKind::kFcm) + 1);
-  for (int k : layout.scalar_params) {
-    by_kind[static_cast<std::size_t>(tree.params[static_cast<std::size_t>(k)].kind)].push_back(k);
-  }
-  Eigen::VectorXd scale = Eigen::VectorXd::Ones(reference.size());
-  const auto largest_of = [&](const std::vector<int>& members) {
-    double largest = 0;
-    for (int k : members) largest = std::max(largest, std::abs(reference[k]));
-    return largest;
-  };
-  for (const auto& cls : groups) {
-    double class_largest = 0;
-    for (const auto& members : cls) class_largest = std::max(class_largest, largest_of(members));
-    for (const auto& members : cls) {
-      const double size = std::max(largest_of(members), 1e-3 * class_largest);
-      for (int k : members) scale[k] = size > 0 ? size : 1.0;
-    }
-  }
-  for (const auto& members : by_kind) {
-    const double size = largest_of(members);
-    for (int k : members) scale[k] = size > 0 ? size : 1.0;
-  }
-  for (Eigen::Index k = 0; k < K.cols(); ++k) {
-    double resolved = std::numeric_limits<double>::infinity();
-    const double column = K.col(k).cwiseAbs().maxCoeff();
-    for (Eigen::Index j = 0; j < K.rows(); ++j) {
-      if (std::abs(K(j, k)) > 1e-9 * column) {
-        resolved = std::min(resolved, base_std_dev[j] / std::abs(K(j, k)));
-      }
-    }
-    if (std::isfinite(resolved)) scale[k] = std::max(scale[k], resolved);
-  }
-  return scale;
-}
 
 void check_sizes(const RigidBodyTree& tree, const Eigen::MatrixXd& K,
                  const Eigen::VectorXd& beta_hat, const Eigen::MatrixXd& information,
@@ -211,27 +164,38 @@ Eigen::MatrixXd regrouping_matrix(const IdentificationModel& model) {
   return K;
 }
 
-PhysicalFitResult fit_physical(const RigidBodyTree& tree, const Eigen::MatrixXd& K,
-                               const Eigen::VectorXd& beta_hat, const Eigen::MatrixXd& information,
-                               const std::vector<std::optional<double>>& prior,
-                               const PhysicalFitOptions& options) {
-  check_sizes(tree, K, beta_hat, information, prior);
-  if (!(options.prior_weight > 0) || !std::isfinite(options.prior_weight)) {
-    throw EstimationError("physical fit: the prior weight must be a positive number");
-  }
+namespace {
+
+// Everything of the problem that does not depend on the prior weight.
+struct Problem {
+  Layout layout;
+  std::vector<char> bounded;
+  Eigen::MatrixXd U, T, A;  // information = U'U; standard = T variables / d; A = U K T / d
+  Eigen::VectorXd d, b;     // variable scales; b = U beta_hat
+  std::vector<double> body_floor;
+  Eigen::VectorXd y0;                  // the start, strictly consistent
+  Eigen::VectorXd prior_value, scale;  // the prior term's centre and scale per parameter
+  Eigen::MatrixXd G1;                  // the prior residual per unit weight, in variables
+  Eigen::VectorXd g1;                  // its target: G1 y - g1 = N' L (p - prior)
+  bool any_a_priori = false;           // the description gives some a-priori value
+};
+
+Problem set_up(const RigidBodyTree& tree, const Eigen::MatrixXd& K, const Eigen::VectorXd& beta_hat,
+               const Eigen::MatrixXd& information,
+               const std::vector<std::optional<double>>& prior) {
+  Problem pb;
   const Eigen::LLT<Eigen::MatrixXd> llt(information);
   if (llt.info() != Eigen::Success) {
     throw EstimationError("physical fit: the information matrix is not positive definite");
   }
-  const Eigen::MatrixXd U = llt.matrixU();  // information = U'U
-  const Layout layout = detail::make_layout(tree);
+  pb.U = llt.matrixU();
+  pb.layout = detail::make_layout(tree);
   const auto n = static_cast<Eigen::Index>(tree.params.size());
-  std::vector<char> bounded(static_cast<std::size_t>(n), 0);
+  pb.bounded.assign(static_cast<std::size_t>(n), 0);
   for (Eigen::Index k = 0; k < n; ++k) {
-    bounded[static_cast<std::size_t>(k)] =
+    pb.bounded[static_cast<std::size_t>(k)] =
         must_be_nonnegative(tree.params[static_cast<std::size_t>(k)].kind);
   }
-
   // The start: nearest the a-priori values among the standard sets that reproduce beta_hat,
   // then projected onto the consistent set, strictly inside (the barrier needs it).
   Eigen::VectorXd a_priori = Eigen::VectorXd::Zero(n);
@@ -240,70 +204,137 @@ PhysicalFitResult fit_physical(const RigidBodyTree& tree, const Eigen::MatrixXd&
   }
   const Eigen::VectorXd nearest =
       a_priori + K.completeOrthogonalDecomposition().solve(beta_hat - K * a_priori);
-  const Eigen::MatrixXd T = detail::standard_from_variables(layout, n);  // invertible, body by body
-  const Eigen::MatrixXd A_x = U * K * T;
-  const Eigen::VectorXd d = detail::variable_scales(layout, A_x);
-  const Eigen::MatrixXd A = A_x * d.cwiseInverse().asDiagonal();
+  pb.T = detail::standard_from_variables(pb.layout, n);  // invertible, body by body
+  const Eigen::MatrixXd A_x = pb.U * K * pb.T;
+  pb.d = detail::variable_scales(pb.layout, A_x);
+  pb.A = A_x * pb.d.cwiseInverse().asDiagonal();
+  pb.b = pb.U * beta_hat;
   // Each body's eigenvalue floor: 1e-8 of the largest eigenvalue of its pseudo-inertia at the
   // nearest set, a numerical device that keeps every mass positive; the data cannot tell it
   // from 0.
-  std::vector<double> body_floor;
-  for (const auto& index : layout.body_params) {
+  for (const auto& index : pb.layout.body_params) {
     double p[10];
     for (int s = 0; s < 10; ++s) p[s] = nearest[index[s]];
     const Eigen::Vector4d lambda =
         Eigen::SelfAdjointEigenSolver<Eigen::Matrix4d>(pseudo_inertia(p)).eigenvalues();
-    body_floor.push_back(1e-8 * std::max(lambda.cwiseAbs().maxCoeff(), 1e-300) * d[index[0]]);
+    pb.body_floor.push_back(1e-8 * std::max(lambda.cwiseAbs().maxCoeff(), 1e-300) * pb.d[index[0]]);
   }
-  Eigen::VectorXd y0 = T.fullPivLu().solve(nearest).cwiseProduct(d);
-  std::vector<double> start_floor = body_floor;
+  pb.y0 = pb.T.fullPivLu().solve(nearest).cwiseProduct(pb.d);
+  std::vector<double> start_floor = pb.body_floor;
   for (double& f : start_floor) f *= 2;
-  detail::project(layout, bounded, start_floor, y0);
-  for (int k : layout.scalar_params) {
-    if (bounded[static_cast<std::size_t>(k)]) y0[k] = std::max(y0[k], 1e-3);
+  detail::project(pb.layout, pb.bounded, start_floor, pb.y0);
+  for (int k : pb.layout.scalar_params) {
+    if (pb.bounded[static_cast<std::size_t>(k)]) pb.y0[k] = std::max(pb.y0[k], 1e-3);
   }
-  const Eigen::VectorXd start = T * y0.cwiseQuotient(d);
+  const Eigen::VectorXd start = pb.T * pb.y0.cwiseQuotient(pb.d);
 
-  // The prior term, on every parameter: sqrt(w) (p - prior) / scale, the prior being the
-  // a-priori value where there is one, else the start. Without it the problem can lack a
-  // minimiser (the image of the consistent set under K need not be closed: the cost can fall
-  // forever as some masses grow), and the data leave standard directions free.
-  Eigen::VectorXd prior_value = start;
+  // The prior term: the a-priori value where there is one, else the start. Without it the
+  // problem can lack a minimiser (the image of the consistent set under K need not be closed:
+  // the cost can fall forever as some masses grow), and the data leave standard directions
+  // free. With a-priori values it acts only in the directions the data do not determine:
+  // without constraints the base estimate stays beta_hat whatever the weight.
+  pb.prior_value = start;
   for (Eigen::Index k = 0; k < n; ++k) {
-    if (prior[static_cast<std::size_t>(k)]) prior_value[k] = a_priori[k];
+    if (prior[static_cast<std::size_t>(k)]) pb.prior_value[k] = a_priori[k];
   }
-  const Eigen::VectorXd unconstrained_std_dev =
-      information.inverse().diagonal().cwiseMax(0.0).cwiseSqrt();
-  const Eigen::VectorXd scale =
-      prior_scales(tree, layout, prior_value, K, unconstrained_std_dev);
-  const Eigen::VectorXd w = std::sqrt(options.prior_weight) * scale.cwiseInverse();
-  const Eigen::MatrixXd G = w.asDiagonal() * T * d.cwiseInverse().asDiagonal();
-  const Eigen::VectorXd g = w.cwiseProduct(prior_value);
+  std::vector<char> has_a_priori(static_cast<std::size_t>(n), 0);
+  for (std::size_t k = 0; k < prior.size(); ++k) has_a_priori[k] = prior[k].has_value();
+  for (const auto& index : pb.layout.body_params) {
+    bool known = true;
+    for (int k : index) known = known && has_a_priori[static_cast<std::size_t>(k)];
+    pb.any_a_priori = pb.any_a_priori || known;
+  }
+  if (!pb.any_a_priori) {
+    // Without a-priori inertials (drive values alone, or nothing) the bodies' centre is only
+    // the start: a small pull on every direction, relative to group sizes floored at what the
+    // data resolve, keeps the problem well posed, as before the a-priori model was the prior.
+    const Eigen::VectorXd std_dev = information.inverse().diagonal().cwiseMax(0.0).cwiseSqrt();
+    pb.scale = detail::prior_scales(tree, pb.layout, pb.prior_value, K, &std_dev);
+    pb.G1 = pb.scale.cwiseInverse().asDiagonal() * pb.T * pb.d.cwiseInverse().asDiagonal();
+    pb.g1 = pb.prior_value.cwiseQuotient(pb.scale);
+    return pb;
+  }
+  // With a-priori values: per body that has them the local form of the log-det divergence of
+  // pseudo-inertias, group scales elsewhere (physical_prior.hpp), on the null space N of K in
+  // the metric's coordinates z = L p only.
+  pb.scale = detail::prior_scales(tree, pb.layout, pb.prior_value, K, nullptr);
+  const Eigen::MatrixXd L =
+      detail::prior_metric_root(pb.layout, pb.prior_value, has_a_priori, pb.scale);
+  const Eigen::MatrixXd N = detail::null_space_of(K, L.inverse());
+  const Eigen::MatrixXd NtL = N.transpose() * L;
+  pb.G1 = NtL * pb.T * pb.d.cwiseInverse().asDiagonal();
+  pb.g1 = NtL * pb.prior_value;
+  return pb;
+}
 
-  const Eigen::VectorXd b = U * beta_hat;
+PhysicalFitResult solve(const RigidBodyTree& tree, const Eigen::MatrixXd& K,
+                        const Eigen::VectorXd& beta_hat, const Problem& pb, double weight,
+                        int max_iterations) {
+  const Eigen::MatrixXd G = std::sqrt(weight) * pb.G1;
+  const Eigen::VectorXd g = std::sqrt(weight) * pb.g1;
   const BarrierOutcome solved = detail::minimise_on_consistent_set(
-      A.transpose() * A + G.transpose() * G, A.transpose() * b + G.transpose() * g, layout, bounded,
-      body_floor, y0, options.max_iterations);
+      pb.A.transpose() * pb.A + G.transpose() * G, pb.A.transpose() * pb.b + G.transpose() * g,
+      pb.layout, pb.bounded, pb.body_floor, pb.y0, max_iterations);
 
   PhysicalFitResult result;
+  result.prior_weight = weight;
   result.converged = solved.converged;
   result.iterations = solved.iterations;
-  result.standard = T * solved.y.cwiseQuotient(d);
-  result.prior = prior_value;
-  result.prior_scale = scale;
+  result.standard = pb.T * solved.y.cwiseQuotient(pb.d);
+  result.prior = pb.prior_value;
+  result.prior_scale = pb.scale;
   result.base = K * result.standard;
-  result.cost_increase = (U * (result.base - beta_hat)).squaredNorm();
+  result.cost_increase = (pb.U * (result.base - beta_hat)).squaredNorm();
   // A constraint that only resists the prior (its push no larger than the prior term's own
   // gradient) does not bind the fit to the data.
-  const double tolerance = 1e-7 * std::max((A.transpose() * b).cwiseAbs().maxCoeff(), 1e-300);
+  const double tolerance = 1e-7 * std::max((pb.A.transpose() * pb.b).cwiseAbs().maxCoeff(), 1e-300);
   const Eigen::VectorXd prior_pull = (G.transpose() * (G * solved.y - g)).cwiseAbs();
   const Eigen::VectorXd curvature =
-      A.colwise().squaredNorm().transpose() + G.colwise().squaredNorm().transpose();
+      pb.A.colwise().squaredNorm().transpose() + G.colwise().squaredNorm().transpose();
   const std::vector<char> binding =
-      binding_constraints(layout, solved.push, prior_pull, curvature, tolerance);
-  result.active_constraints = describe(tree, layout, binding);
-  result.base_std_dev = base_standard_deviations(layout, binding, K, U, G, T, d, result.standard);
+      binding_constraints(pb.layout, solved.push, prior_pull, curvature, tolerance);
+  result.active_constraints = describe(tree, pb.layout, binding);
+  result.base_std_dev =
+      base_standard_deviations(pb.layout, binding, K, pb.U, G, pb.T, pb.d, result.standard);
   return result;
+}
+
+}  // namespace
+
+PhysicalFitResult fit_physical(const RigidBodyTree& tree, const Eigen::MatrixXd& K,
+                               const Eigen::VectorXd& beta_hat, const Eigen::MatrixXd& information,
+                               const std::vector<std::optional<double>>& prior,
+                               const PhysicalFitOptions& options) {
+  check_sizes(tree, K, beta_hat, information, prior);
+  if (options.prior_weight &&
+      (!(*options.prior_weight > 0) || !std::isfinite(*options.prior_weight))) {
+    throw EstimationError("physical fit: the prior weight must be a positive number");
+  }
+  const Problem pb = set_up(tree, K, beta_hat, information, prior);
+  if (options.prior_weight) {
+    return solve(tree, K, beta_hat, pb, *options.prior_weight, options.max_iterations);
+  }
+  // Without a-priori inertials the bodies' centre is only the start: the reference weight
+  // alone, on every direction (set_up).
+  if (!pb.any_a_priori) {
+    PhysicalFitResult result =
+        solve(tree, K, beta_hat, pb, detail::kReferencePriorWeight, options.max_iterations);
+    result.prior_weight_automatic = true;
+    return result;
+  }
+  // The default weight rule (physical_prior.hpp): the largest weight of the ladder that moves
+  // the base estimate by at most kBaseMoveLimit (F-norm) from the reference weight's.
+  PhysicalFitResult reference =
+      solve(tree, K, beta_hat, pb, detail::kReferencePriorWeight, options.max_iterations);
+  for (double weight : detail::kPriorWeightLadder) {
+    PhysicalFitResult candidate = solve(tree, K, beta_hat, pb, weight, options.max_iterations);
+    if ((pb.U * (candidate.base - reference.base)).norm() <= detail::kBaseMoveLimit) {
+      candidate.prior_weight_automatic = true;
+      return candidate;
+    }
+  }
+  reference.prior_weight_automatic = true;
+  return reference;
 }
 
 }  // namespace modelgen

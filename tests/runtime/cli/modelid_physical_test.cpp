@@ -138,6 +138,48 @@ TEST(ModelidPhysical, TheEstimateDrivesPredictAndSimulate) {
   EXPECT_NE(edited.err.find("the \"standard\" set gives"), std::string::npos) << edited.err;
 }
 
+TEST(ModelidPhysical, TheLinkTableStandsBesideTheAPrioriValues) {
+  // The UR5 simulated from its own URDF inertials: EST.json's links carry the URDF's masses and
+  // centres of mass (read here through the loader) as a-priori values, who decided each, the
+  // weight the default rule chose; a link far from its a-priori values is warned about on
+  // stderr exactly when EST.json says so.
+  const fs::path dir = test::test_folder("physical_links");
+  const std::string urdf = test::source_path("robots/urdf/ur5.urdf");
+  ASSERT_EQ(modelid("simulate --robot " + quoted(fs::path(urdf)) + " --trajectory " +
+                    quoted_source("robots/data/kr150/excitation.yaml") +
+                    " --noise 0.05 --seed 14 --sample-time 0.02 --periods 1 -o " +
+                    quoted(dir / "run.csv"))
+                .exit_code,
+            0);
+  const CliRun fit =
+      modelid("fit --robot " + quoted(fs::path(urdf)) + " --data " + quoted(dir / "run.csv") +
+              " --method ols --physical -o " + quoted(dir / "est.json"));
+  ASSERT_EQ(fit.exit_code, 0) << fit.err;
+  EXPECT_NE(fit.out.find("by the default rule"), std::string::npos) << fit.out;
+  EXPECT_NE(fit.out.find("principal moments"), std::string::npos) << fit.out;
+  const nlohmann::json est = nlohmann::json::parse(test::read_text(dir / "est.json"));
+  EXPECT_EQ(est["physical"]["prior_weight_rule"], "default");
+  const RobotModel robot = load_robot(urdf);
+  const nlohmann::json& links = est["links"];
+  ASSERT_EQ(links.size(), 6u);
+  for (std::size_t b = 0; b < links.size(); ++b) {
+    const nlohmann::json& link = links[b];
+    const std::string j = std::to_string(b + 1);
+    const double m = *robot.known_values[static_cast<std::size_t>(robot.param_index("M" + j))];
+    ASSERT_TRUE(link.contains("a_priori")) << link;
+    EXPECT_NEAR(link["a_priori"]["mass"].get<double>(), m, 1e-12 * m) << link["body"];
+    const double mz = *robot.known_values[static_cast<std::size_t>(robot.param_index("MZ" + j))];
+    EXPECT_NEAR(link["a_priori"]["com"][2].get<double>(), mz / m, 1e-9) << link["body"];
+    for (const char* what : {"mass", "com", "principal_moments"}) {
+      const std::string by = link["decided_by"][what];
+      EXPECT_TRUE(by == "data" || by == "prior") << by;
+    }
+    const std::string warning = "warning: link '" + link["body"].get<std::string>() + "' is far";
+    EXPECT_EQ(fit.err.find(warning) != std::string::npos, !link["far_from_a_priori"].empty())
+        << fit.err;
+  }
+}
+
 TEST(ModelidPhysical, OptionsAreChecked) {
   const std::string data = " --data " + quoted_source("robots/data/kr150/excitation.csv");
   const CliRun weight_alone = modelid("fit --robot kr150 --method wls --prior-weight 1" + data);

@@ -8,8 +8,11 @@
 // the log-Cholesky parametrisation (Rucker & Wensing 2022) at the optimum. For a linear
 // least-squares fit the cost is exact: with beta_hat the unconstrained estimate and F = W'W /
 // sigma^2 its information matrix, ||W beta - y||^2 / sigma^2 = ||W beta_hat - y||^2 / sigma^2 +
-// (beta - beta_hat)' F (beta - beta_hat). A small prior term towards a-priori standard values
-// picks one among the standard parameter sets that give the same base parameters.
+// (beta - beta_hat)' F (beta - beta_hat). A prior term towards the a-priori standard values
+// (the description's inertials) picks one among the standard parameter sets that give the same
+// base parameters: it acts only in the directions the data do not determine (the null space of
+// the regrouping map), with a weight chosen so that it moves the base estimate by at most a
+// tenth of a standard deviation (runtime/src/estimation/physical_prior.hpp, docs/methods.md).
 #pragma once
 
 #include <optional>
@@ -25,12 +28,17 @@ namespace modelgen {
 class IdentificationModel;
 
 struct PhysicalFitOptions {
-  /// Weight of the prior term: the sum over standard parameters of the squared deviation from
-  /// the a-priori value (or, without one, from the start), relative to the size of the
-  /// parameter's group (a body's inertia entries, first moments, mass; one drive kind), against
-  /// the base-parameter term in units of the estimate's variance. Small: it only chooses among
-  /// equally good fits, and makes the problem well posed. Must be > 0.
-  double prior_weight = 1e-6;
+  /// Weight of the prior term: the sum of squares of the scaled deviation from the a-priori
+  /// values (or, without one, from the start), each deviation relative to the size of the
+  /// parameter's group (a body's inertia entries, first moments, mass; one drive kind), projected
+  /// onto the directions that change no base parameter, against the base-parameter term in
+  /// units of the estimate's variance. Must be > 0. Unset: the default rule, the largest of
+  /// 1, 1e-2, 1e-4 that moves the base estimate by at most 0.1 in the information metric from
+  /// the estimate with weight 1e-6 (so no base parameter by more than 0.1 of its standard
+  /// deviation), else 1e-6. Without a body whose ten a-priori values are all given, the prior
+  /// acts on every direction instead, relative to group sizes floored at what the data resolve,
+  /// with weight 1e-6.
+  std::optional<double> prior_weight;
   int max_iterations = 2000;  ///< Newton steps of the barrier method
 };
 
@@ -47,8 +55,11 @@ struct PhysicalFitResult {
   std::vector<std::string> active_constraints;
   /// The prior term's centre and scale per standard parameter: the a-priori value (or the
   /// start) and the size its deviation is measured against; the prior term is
-  /// prior_weight * sum(((standard - prior) / prior_scale)^2).
+  /// prior_weight * ||N' ((standard - prior) / prior_scale)||^2, N an orthonormal basis of the
+  /// null space of K diag(prior_scale).
   Eigen::VectorXd prior, prior_scale;
+  double prior_weight = 0;              ///< the weight used
+  bool prior_weight_automatic = false;  ///< chosen by the default rule
   bool converged = false;
   int iterations = 0;  ///< Newton steps
 };

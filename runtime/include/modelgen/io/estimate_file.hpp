@@ -33,17 +33,29 @@ struct EssentialEstimate {
 };
 
 /// A body's mass distribution for people: mass, centre of mass and inertia about it, in the
-/// body frame (SI units).
+/// body frame (SI units), beside the description's a-priori values, and who decided each
+/// (modelgen/estimation/link_summary.hpp).
 struct LinkInertial {
   std::string body;
   double mass = 0;
   std::array<double, 3> com{};
-  std::array<double, 6> inertia_com{};  ///< xx, xy, xz, yy, yz, zz (tensor entries)
+  std::array<double, 6> inertia_com{};        ///< xx, xy, xz, yy, yz, zz (tensor entries)
+  std::array<double, 3> principal_moments{};  ///< of inertia_com, ascending
+  struct APriori {
+    double mass = 0;
+    std::array<double, 3> com{};
+    std::array<double, 3> principal_moments{};
+  };
+  std::optional<APriori> a_priori;
+  /// "data" or "prior" for the mass, the centre of mass and the principal moments.
+  std::string mass_decided_by, com_decided_by, moments_decided_by;
+  std::vector<std::string> far_from_a_priori;  ///< why the link is far from its a-priori values
 };
 
 /// What fit --physical adds; the consistent base estimate itself is EstimateFile::parameters.
 struct PhysicalBlock {
   double prior_weight = 0;
+  std::string prior_weight_rule;  ///< "default" (the rule of --physical) or "given"
   double cost_increase = 0;  ///< of the weighted sum of squares, in sigma^2
   double unconstrained_rel_error_norm = 0;
   std::vector<std::string> binding_constraints;
@@ -75,7 +87,9 @@ struct EstimateFile {
 /// "rms_torque_per_axis", "parameters": [{"name", "value", "std", "rel_std", "truth"?}],
 /// "essential"?: {"r_sigma", "kept", "eliminated", "parameters", "rel_error_norm",
 /// "condition_number"}, "standard"?: {"XX1": ..., ...}, "links"?: [{"body", "mass", "com",
-/// "inertia_com"}], "physical"?: {"prior_weight", "cost_increase", "binding_constraints",
+/// "inertia_com", "principal_moments", "decided_by": {"mass", "com", "principal_moments"},
+/// "a_priori"?: {"mass", "com", "principal_moments"}, "far_from_a_priori": [...]}],
+/// "physical"?: {"prior_weight", "prior_weight_rule", "cost_increase", "binding_constraints",
 /// "unconstrained_rel_error_norm", "unconstrained": [...]}}. Non-finite numbers are written as
 /// null.
 std::string estimate_json(const EstimateFile& estimate);

@@ -1,0 +1,61 @@
+// The per-link table of fit --physical (link_table.hpp).
+
+#include "runtime/cli/reports/link_table.hpp"
+
+#include <array>
+#include <ostream>
+#include <string>
+
+#include "runtime/cli/common/text_format.hpp"
+
+namespace modelgen::internal {
+namespace {
+
+std::string triple(const std::array<double, 3>& v) {
+  return fixed(v[0], 10, 3) + " " + fixed(v[1], 10, 3) + " " + fixed(v[2], 10, 3);
+}
+
+void row(std::ostream& out, const std::string& what, const std::string& identified,
+         const std::string& a_priori, DecidedBy by) {
+  out << "    " << pad(what, 17) << " " << pad(identified, 32) << " " << pad(a_priori, 32) << " "
+      << decided_by_name(by) << "\n";
+}
+
+}  // namespace
+
+void print_link_table(std::ostream& out, const std::vector<LinkSummary>& links) {
+  if (links.empty()) return;
+  out << "  links (body frame, SI units; 'by': data = the base parameters fix it, prior = the "
+         "a-priori model chose among equal fits):\n"
+      << "    " << pad("", 17) << " " << pad("identified", 32) << " " << pad("a-priori", 32)
+      << " by\n";
+  for (const LinkSummary& link : links) {
+    out << "  " << link.body << (link.far_from_a_priori.empty() ? "" : "  (far from a-priori)")
+        << "\n";
+    const bool known = link.a_priori.has_value();
+    row(out, "mass", fixed(link.identified.mass, 10, 4),
+        known ? fixed(link.a_priori->mass, 10, 4) : "-", link.mass_by);
+    row(out, "centre of mass", triple(link.identified.com),
+        known ? triple(link.a_priori->com) : "-", link.com_by);
+    row(out, "principal moments", triple(link.identified.principal_moments),
+        known ? triple(link.a_priori->principal_moments) : "-", link.moments_by);
+  }
+}
+
+void warn_far_links(std::ostream& err, const std::vector<LinkSummary>& links) {
+  for (const LinkSummary& link : links) {
+    if (link.far_from_a_priori.empty()) continue;
+    err << "modelid fit: warning: link '" << link.body << "' is far from its a-priori values: ";
+    for (std::size_t i = 0; i < link.far_from_a_priori.size(); ++i) {
+      err << (i ? "; " : "") << link.far_from_a_priori[i];
+    }
+    // Far by the data's decision points at the description; far by the prior's at the data.
+    const bool by_data = link.mass_by == DecidedBy::kData && link.com_by == DecidedBy::kData;
+    err << (by_data ? " (the data decided its mass and centre of mass: check the description's "
+                      "inertials)\n"
+                    : " (the data decided its mass and centre of mass only in part: check the "
+                      "excitation and the description's inertials)\n");
+  }
+}
+
+}  // namespace modelgen::internal

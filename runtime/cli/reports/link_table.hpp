@@ -1,0 +1,19 @@
+// fit --physical's per-link table: mass, centre of mass and principal moments, identified
+// beside a-priori, and who decided each (modelgen/estimation/link_summary.hpp); and the warning
+// for a link far from its a-priori values.
+#pragma once
+
+#include <iosfwd>
+#include <vector>
+
+#include "modelgen/estimation/link_summary.hpp"
+
+namespace modelgen::internal {
+
+/// The table, one block of three rows per link.
+void print_link_table(std::ostream& out, const std::vector<LinkSummary>& links);
+
+/// "modelid fit: warning: link 'NAME' is far from its a-priori values: ..." per such link.
+void warn_far_links(std::ostream& err, const std::vector<LinkSummary>& links);
+
+}  // namespace modelgen::internal

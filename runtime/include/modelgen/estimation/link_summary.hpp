@@ -1,0 +1,63 @@
+// Per link, what a physically consistent fit says of its mass distribution beside the a-priori
+// model: mass, centre of mass and principal moments of inertia about it, identified and
+// a-priori, whether the data or the prior decided each, and a warning when the link moved far
+// from its a-priori values.
+#pragma once
+
+#include <array>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "modelgen/estimation/physical.hpp"
+#include "modelgen/model/rigid_body_tree.hpp"
+
+namespace modelgen {
+
+/// A body's mass distribution for people (SI units, body frame).
+struct LinkQuantities {
+  double mass = 0;
+  std::array<double, 3> com{};                ///< centre of mass
+  std::array<double, 3> principal_moments{};  ///< of the inertia about the com, ascending
+  std::array<double, 6> inertia_com{};        ///< xx, xy, xz, yy, yz, zz (tensor entries)
+};
+
+/// Who set a quantity: the data (its direction in the standard parameters lies, within 1 % of
+/// its length in the prior's scaled metric, in the row space of the regrouping map, so every
+/// standard set with the same base parameters has the same value), or the prior (the data leave
+/// part of it free, and the prior term, bounded by consistency, chose).
+enum class DecidedBy { kData, kPrior };
+
+const char* decided_by_name(DecidedBy by);  ///< "data", "prior"
+
+struct LinkSummary {
+  std::string body;
+  LinkQuantities identified;
+  std::optional<LinkQuantities> a_priori;  ///< when the description gives all ten values
+  DecidedBy mass_by = DecidedBy::kPrior, com_by = DecidedBy::kPrior, moments_by = DecidedBy::kPrior;
+  /// Why the link is far from its a-priori values (mass off by more than a factor 2, centre of
+  /// mass more than 0.1 m away), e.g. "mass 2.60 x its a-priori value"; empty when it is not.
+  std::vector<std::string> far_from_a_priori;
+};
+
+inline constexpr double kFarMassFactor = 2.0;
+inline constexpr double kFarComDistance = 0.1;  // m
+
+/// The quantities of one body's ten standard parameters (XX XY XZ YY YZ ZZ MX MY MZ M, inertia
+/// about the body frame's origin); a body without positive mass keeps com and moments at 0.
+LinkQuantities link_quantities(const double* p);
+
+/// Why `identified` is far from `a_priori` (mass off by more than kFarMassFactor, centre of mass
+/// further than kFarComDistance), in words; empty when it is not, or without an a-priori mass.
+std::vector<std::string> far_from_a_priori(const LinkQuantities& identified,
+                                           const LinkQuantities& a_priori);
+
+/// One summary per complete body of `tree`. `K` the regrouping matrix, `fit` the consistent
+/// fit (its standard set and prior scales), `a_priori` the description's known values.
+std::vector<LinkSummary> summarise_links(const RigidBodyTree& tree, const Eigen::MatrixXd& K,
+                                         const PhysicalFitResult& fit,
+                                         const std::vector<std::optional<double>>& a_priori);
+
+}  // namespace modelgen
