@@ -130,10 +130,13 @@ void write_scenario(const std::filesystem::path& dir) {
   write_text(dir / "data.csv", csv.str());
 }
 
-std::string fit_arguments(const std::filesystem::path& dir, const std::string& approach) {
+// The fits of the test's description through the numeric reference (--no-compile): the
+// independent computation the generated drive models are compared with.
+std::string fit_arguments(const std::filesystem::path& dir, const std::string& approach,
+                          const std::string& output = "") {
   return "fit --method ml --approach " + approach + " --robot " + quoted(dir / "robot.yaml") +
-         " --data " + quoted(dir / "data.csv") + " --periodic --period 36.96 -o " +
-         quoted(dir / ("est" + approach + ".json"));
+         " --data " + quoted(dir / "data.csv") + " --periodic --period 36.96 --no-compile -o " +
+         quoted(dir / (output.empty() ? "est" + approach + ".json" : output));
 }
 
 // The load in EST.json as 10 values in LoadParameters::to_vector() order ("load" or its "std").
@@ -194,9 +197,21 @@ TEST(ModelidMl, Approach3RecoversTheLoadAndApproach1IsBiased) {
             std::string::npos)
       << generated.out;
   EXPECT_NE(run3.out.find("drive model: numeric reference"), std::string::npos) << run3.out;
+  // The test's description compiled on first use (docs/compiled-models.md): its generated
+  // drive model too.
+  std::string compiled_arguments = fit_arguments(dir, "3", "compiled.json");
+  compiled_arguments.replace(compiled_arguments.find(" --no-compile"), 13, "");
+  const CliRun compiled = modelid(compiled_arguments);
+  ASSERT_EQ(compiled.exit_code, 0) << compiled.out << compiled.err;
+  EXPECT_NE(compiled.out.find("compiled from its description (analytic Jacobians)"),
+            std::string::npos)
+      << compiled.out;
   const nlohmann::json est_generated = nlohmann::json::parse(read_text(dir / "generated.json"));
   const std::array<double, 10> load_generated = load_values(est_generated["load"]);
+  const std::array<double, 10> load_compiled =
+      load_values(nlohmann::json::parse(read_text(dir / "compiled.json"))["load"]);
   for (int k = 0; k < 10; ++k) {
+    EXPECT_NEAR(load_compiled[k], load3[k], 1e-6 * sd3[k]) << names[k];
     EXPECT_NEAR(load_generated[k], load3[k], 1e-6 * sd3[k]) << names[k];
   }
 
