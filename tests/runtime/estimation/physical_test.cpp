@@ -6,6 +6,8 @@
 
 #include <random>
 
+#include <Eigen/Dense>
+
 #include <gtest/gtest.h>
 
 #include "modelgen/estimation/estimation_error.hpp"
