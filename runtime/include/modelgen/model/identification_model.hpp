@@ -48,7 +48,7 @@ class IdentificationModel {
   virtual void mass_matrix(const double* q, const double* beta, double* M) const;
   /// What forward dynamics needs at one state: mass_matrix into M and inverse_dynamics at
   /// zero acceleration into h (dof() values). This default calls the two; generated models
-  /// compute the joints' sines and cosines once for both.
+  /// call their mass_matrix_and_bias (or share the joints' sines and cosines between the two).
   virtual void mass_matrix_and_bias(const double* q, const double* dq, const double* beta,
                                     double* M, double* h) const;
   /// d tau / d x at one state x = [q, dq, ddq], for errors in variables (Bona & Curatella
