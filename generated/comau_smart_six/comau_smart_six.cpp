@@ -12,10 +12,11 @@
 // base_from_standard                          14     74        0
 // idim_regressor                             399    339       10
 // inverse_dynamics                           305    274       10
-// mass_matrix                                380    291       10
+// mass_matrix                                161    138       10
+// mass_matrix_and_bias                       451    380       10
 // idim_regressor_sincos                      399    339        0
 // inverse_dynamics_sincos                    305    274        0
-// mass_matrix_sincos                         380    291        0
+// mass_matrix_sincos                         161    138        0
 // inverse_dynamics_state_jacobian           2082   1769       10
 // energy_regressor                           125     52       10
 // power_regressor                            327    163       10

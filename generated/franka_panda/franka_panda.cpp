@@ -12,10 +12,11 @@
 // base_from_standard                          33    103        0
 // idim_regressor                            1101    853       12
 // inverse_dynamics                           465    441       12
-// mass_matrix                               1323   1002       12
+// mass_matrix                                390    330       12
+// mass_matrix_and_bias                       840    743       12
 // idim_regressor_sincos                     1101    853        0
 // inverse_dynamics_sincos                    465    441        0
-// mass_matrix_sincos                        1323   1002        0
+// mass_matrix_sincos                         390    330        0
 // inverse_dynamics_state_jacobian           6251   5127       12
 // energy_regressor                           215    116       12
 // power_regressor                            485    294       12

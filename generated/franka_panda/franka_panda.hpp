@@ -12,10 +12,11 @@
 // base_from_standard                          33    103        0
 // idim_regressor                            1101    853       12
 // inverse_dynamics                           465    441       12
-// mass_matrix                               1323   1002       12
+// mass_matrix                                390    330       12
+// mass_matrix_and_bias                       840    743       12
 // idim_regressor_sincos                     1101    853        0
 // inverse_dynamics_sincos                    465    441        0
-// mass_matrix_sincos                        1323   1002        0
+// mass_matrix_sincos                         390    330        0
 // inverse_dynamics_state_jacobian           6251   5127       12
 // energy_regressor                           215    116       12
 // power_regressor                            485    294       12
@@ -151,6 +152,18 @@ void inverse_dynamics(const float* q, const float* dq, const float* ddq, const f
 // first call.
 void mass_matrix(const double* q, const double* beta, double* M);
 void mass_matrix(const float* q, const float* beta, float* M);
+
+// mass_matrix (M, kDof x kDof, row-major, symmetric) and the bias torques
+// h = inverse_dynamics(q, dq, 0, beta) (kDof: velocity, gravity, friction and offset terms) in
+// one pass for forward dynamics, ddq = M^-1 (tau - h). Inputs q, dq (kDof each) and beta
+// (kBaseParams, as for inverse_dynamics). Sines and cosines are computed once, for the joints
+// either output depends on.
+// M: 79 of its 81 entries are written; the others are zero for every input
+// and never written (the manifest lists them under "unwritten"): zero M once before the
+// first call.
+void mass_matrix_and_bias(const double* q, const double* dq, const double* beta, double* M,
+                          double* h);
+void mass_matrix_and_bias(const float* q, const float* dq, const float* beta, float* M, float* h);
 
 // idim_regressor with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
 // computing them; identical results.
@@ -374,6 +387,10 @@ struct Model {
   static void drive_torque_jacobian_given_regressor(const double* Y, const double* theta,
                                                     double* tau_M, double* J) {
     ::modelgen::panda::drive_torque_jacobian_given_regressor(Y, theta, tau_M, J);
+  }
+  static void mass_matrix_and_bias(const double* q, const double* dq, const double* beta, double* M,
+                                   double* h) {
+    ::modelgen::panda::mass_matrix_and_bias(q, dq, beta, M, h);
   }
   static void idim_regressor_sincos(const double* q, const double* sin_q, const double* cos_q,
                                     const double* dq, const double* ddq, double* W) {

@@ -12,10 +12,11 @@
 // base_from_standard                          19     81        0
 // idim_regressor                             402    327       10
 // inverse_dynamics                           296    283       10
-// mass_matrix                                387    299       10
+// mass_matrix                                168    147       10
+// mass_matrix_and_bias                       444    390       10
 // idim_regressor_sincos                      402    327        0
 // inverse_dynamics_sincos                    296    283        0
-// mass_matrix_sincos                         387    299        0
+// mass_matrix_sincos                         168    147        0
 // inverse_dynamics_state_jacobian           2078   1782       10
 // energy_regressor                           132     54       10
 // power_regressor                            315    163       10

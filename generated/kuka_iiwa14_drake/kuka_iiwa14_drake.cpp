@@ -12,10 +12,11 @@
 // base_from_standard                          19     59        0
 // idim_regressor                             692    525       12
 // inverse_dynamics                           333    324       12
-// mass_matrix                                732    508       12
+// mass_matrix                                216    184       12
+// mass_matrix_and_bias                       536    484       12
 // idim_regressor_sincos                      692    525        0
 // inverse_dynamics_sincos                    333    324        0
-// mass_matrix_sincos                         732    508        0
+// mass_matrix_sincos                         216    184        0
 // inverse_dynamics_state_jacobian           3682   2954       12
 // energy_regressor                           144     58       12
 // power_regressor                            352    188       12

@@ -12,10 +12,11 @@
 // base_from_standard                          19     59        0
 // idim_regressor                             692    525       12
 // inverse_dynamics                           333    324       12
-// mass_matrix                                732    508       12
+// mass_matrix                                216    184       12
+// mass_matrix_and_bias                       536    484       12
 // idim_regressor_sincos                      692    525        0
 // inverse_dynamics_sincos                    333    324        0
-// mass_matrix_sincos                         732    508        0
+// mass_matrix_sincos                         216    184        0
 // inverse_dynamics_state_jacobian           3682   2954       12
 // energy_regressor                           144     58       12
 // power_regressor                            352    188       12
@@ -148,6 +149,15 @@ void inverse_dynamics(const float* q, const float* dq, const float* ddq, const f
 // (drive inertias included; symmetric, and positive definite for physical parameters).
 void mass_matrix(const double* q, const double* beta, double* M);
 void mass_matrix(const float* q, const float* beta, float* M);
+
+// mass_matrix (M, kDof x kDof, row-major, symmetric) and the bias torques
+// h = inverse_dynamics(q, dq, 0, beta) (kDof: velocity, gravity, friction and offset terms) in
+// one pass for forward dynamics, ddq = M^-1 (tau - h). Inputs q, dq (kDof each) and beta
+// (kBaseParams, as for inverse_dynamics). Sines and cosines are computed once, for the joints
+// either output depends on.
+void mass_matrix_and_bias(const double* q, const double* dq, const double* beta, double* M,
+                          double* h);
+void mass_matrix_and_bias(const float* q, const float* dq, const float* beta, float* M, float* h);
 
 // idim_regressor with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
 // computing them; identical results.
@@ -368,6 +378,10 @@ struct Model {
   static void drive_torque_jacobian_given_regressor(const double* Y, const double* theta,
                                                     double* tau_M, double* J) {
     ::modelgen::iiwa14::drive_torque_jacobian_given_regressor(Y, theta, tau_M, J);
+  }
+  static void mass_matrix_and_bias(const double* q, const double* dq, const double* beta, double* M,
+                                   double* h) {
+    ::modelgen::iiwa14::mass_matrix_and_bias(q, dq, beta, M, h);
   }
   static void idim_regressor_sincos(const double* q, const double* sin_q, const double* cos_q,
                                     const double* dq, const double* ddq, double* W) {

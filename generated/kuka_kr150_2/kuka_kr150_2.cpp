@@ -12,10 +12,11 @@
 // base_from_standard                          23     72        0
 // idim_regressor                             402    329       10
 // inverse_dynamics                           286    274       10
-// mass_matrix                                398    314       10
+// mass_matrix                                164    143       10
+// mass_matrix_and_bias                       435    385       10
 // idim_regressor_sincos                      402    329        0
 // inverse_dynamics_sincos                    286    274        0
-// mass_matrix_sincos                         398    314        0
+// mass_matrix_sincos                         164    143        0
 // inverse_dynamics_state_jacobian           2147   1844       10
 // energy_regressor                           128     57       10
 // power_regressor                            310    164       10

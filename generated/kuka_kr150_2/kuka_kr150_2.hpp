@@ -12,10 +12,11 @@
 // base_from_standard                          23     72        0
 // idim_regressor                             402    329       10
 // inverse_dynamics                           286    274       10
-// mass_matrix                                398    314       10
+// mass_matrix                                164    143       10
+// mass_matrix_and_bias                       435    385       10
 // idim_regressor_sincos                      402    329        0
 // inverse_dynamics_sincos                    286    274        0
-// mass_matrix_sincos                         398    314        0
+// mass_matrix_sincos                         164    143        0
 // inverse_dynamics_state_jacobian           2147   1844       10
 // energy_regressor                           128     57       10
 // power_regressor                            310    164       10
@@ -148,6 +149,15 @@ void inverse_dynamics(const float* q, const float* dq, const float* ddq, const f
 // (drive inertias included; symmetric, and positive definite for physical parameters).
 void mass_matrix(const double* q, const double* beta, double* M);
 void mass_matrix(const float* q, const float* beta, float* M);
+
+// mass_matrix (M, kDof x kDof, row-major, symmetric) and the bias torques
+// h = inverse_dynamics(q, dq, 0, beta) (kDof: velocity, gravity, friction and offset terms) in
+// one pass for forward dynamics, ddq = M^-1 (tau - h). Inputs q, dq (kDof each) and beta
+// (kBaseParams, as for inverse_dynamics). Sines and cosines are computed once, for the joints
+// either output depends on.
+void mass_matrix_and_bias(const double* q, const double* dq, const double* beta, double* M,
+                          double* h);
+void mass_matrix_and_bias(const float* q, const float* dq, const float* beta, float* M, float* h);
 
 // idim_regressor with sin_q, cos_q (kDof each) from joint_sincos(q, ...) instead of
 // computing them; identical results.
@@ -368,6 +378,10 @@ struct Model {
   static void drive_torque_jacobian_given_regressor(const double* Y, const double* theta,
                                                     double* tau_M, double* J) {
     ::modelgen::kuka_kr150_2::drive_torque_jacobian_given_regressor(Y, theta, tau_M, J);
+  }
+  static void mass_matrix_and_bias(const double* q, const double* dq, const double* beta, double* M,
+                                   double* h) {
+    ::modelgen::kuka_kr150_2::mass_matrix_and_bias(q, dq, beta, M, h);
   }
   static void idim_regressor_sincos(const double* q, const double* sin_q, const double* cos_q,
                                     const double* dq, const double* ddq, double* W) {

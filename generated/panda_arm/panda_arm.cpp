@@ -12,10 +12,11 @@
 // base_from_standard                          35    106        0
 // idim_regressor                             694    532       12
 // inverse_dynamics                           330    318       12
-// mass_matrix                                733    519       12
+// mass_matrix                                222    183       12
+// mass_matrix_and_bias                       544    482       12
 // idim_regressor_sincos                      694    532        0
 // inverse_dynamics_sincos                    330    318        0
-// mass_matrix_sincos                         733    519        0
+// mass_matrix_sincos                         222    183        0
 // inverse_dynamics_state_jacobian           3714   2985       12
 // energy_regressor                           137     62       12
 // power_regressor                            357    195       12

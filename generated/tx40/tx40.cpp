@@ -12,10 +12,11 @@
 // base_from_standard                          13     70        0
 // idim_regressor                             392    314       10
 // inverse_dynamics                           274    270       10
-// mass_matrix                                399    300       10
+// mass_matrix                                157    142       10
+// mass_matrix_and_bias                       415    378       10
 // idim_regressor_sincos                      392    314        0
 // inverse_dynamics_sincos                    274    270        0
-// mass_matrix_sincos                         399    300        0
+// mass_matrix_sincos                         157    142        0
 // inverse_dynamics_state_jacobian           2064   1743       10
 // energy_regressor                           121     52       10
 // power_regressor                            296    156       10

@@ -12,10 +12,11 @@
 // base_from_standard                          24     60        0
 // idim_regressor                             360    295       10
 // inverse_dynamics                           295    286       10
-// mass_matrix                                387    307       10
+// mass_matrix                                190    159       10
+// mass_matrix_and_bias                       464    403       10
 // idim_regressor_sincos                      360    295        0
 // inverse_dynamics_sincos                    295    286        0
-// mass_matrix_sincos                         387    307        0
+// mass_matrix_sincos                         190    159        0
 // inverse_dynamics_state_jacobian           1928   1707       10
 // energy_regressor                           126     54       10
 // power_regressor                            313    173       10

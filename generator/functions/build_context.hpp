@@ -40,6 +40,10 @@ ExprId input_symbol(ExprGraph& graph, const std::string& array, int index);
 /// tau = W_std p = W_base beta (Gautier & Briot eq. 4).
 SymbolicInputs base_parameter_inputs(BuildContext& context);
 
+/// M(q) on the base parameters, dof x dof row-major and symmetric (mass_matrix.cpp): the
+/// rigid bodies by composite rigid bodies plus the drive inertias.
+std::vector<ExprId> base_mass_matrix(BuildContext& context);
+
 /// The state x = [q, dq, ddq] (3 dof symbols), and the name of its entry k: "dq[2]".
 std::vector<ExprId> state_symbols(const SymbolicInputs& symbols);
 std::string state_name(int k, int dof);

@@ -23,6 +23,7 @@ FunctionDefinition build_inverse_dynamics_identified(BuildContext& context);
 FunctionDefinition build_drive_regressor(BuildContext& context);
 FunctionDefinition build_drive_torque_given_regressor(BuildContext& context);
 FunctionDefinition build_drive_torque_jacobian_given_regressor(BuildContext& context);
+FunctionDefinition build_mass_matrix_and_bias(BuildContext& context);
 
 namespace {
 
@@ -84,6 +85,9 @@ const std::vector<FunctionEntry> kRegistry = {
      InModelStruct::kYes, {kY, {"theta", E::kDriveParams}},
      {{"tau_M", E::kDof}, {"J", E::kDof, E::kDriveParams}},
      build_drive_torque_jacobian_given_regressor},
+    {"mass_matrix_and_bias", S::kBase, Variants::kPlain, InModelStruct::kYes,
+     {kQ, kDq, {"beta", E::kBaseParams}}, {{"M", E::kDof, E::kDof}, {"h", E::kDof}},
+     build_mass_matrix_and_bias},
 };
 // clang-format on
 

@@ -1,5 +1,5 @@
 // Forward dynamics of the TX-40 (issue 13): ddq = M^-1 (tau - h) through the generated
-// mass_matrix and inverse_dynamics with a Cholesky solve (modelgen::ForwardDynamics), the same
+// mass_matrix_and_bias with an LDL^T solve (modelgen::ForwardDynamics), the same
 // through the numeric reference, and Orocos KDL's ChainFdSolver_RNE, on the same random states
 // and parameters. KDL's chain has the rigid bodies only (no drive inertia or friction), so it
 // does a little less work than the others. The summary prints the ratios; target: 10x KDL.

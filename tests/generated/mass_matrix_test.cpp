@@ -6,6 +6,7 @@
 // same executable as numeric_diff_test.cpp.
 
 #include <algorithm>
+#include <iostream>
 #include <vector>
 
 #include <Eigen/Cholesky>
@@ -84,6 +85,37 @@ TEST_F(GeneratedMassMatrix, EqualsTheReferenceOnRandomStates) {
   std::cout << "[ GENERATED] " << MODELGEN_ROBOT_DESCRIPTION << ": worst relative difference "
             << "of the mass matrix " << worst << " over " << kStates << " states\n";
   EXPECT_LT(worst, 1e-12);
+}
+
+// mass_matrix_and_bias, forward dynamics' one call: M as the reference's columns above, and h
+// the reference's inverse dynamics (with gravity, friction and offsets) at zero acceleration,
+// on states with velocities of both signs.
+TEST_F(GeneratedMassMatrix, AndBiasEqualTheReferenceOnRandomStates) {
+  const int n = model::kDof, nb = model::kBaseParams;
+  const ReferenceDynamics with_gravity(description_.tree);
+  test::Random random(2828);
+  std::vector<double> beta(nb);
+  RowMajor M = RowMajor::Zero(n, n);
+  Eigen::VectorXd h = Eigen::VectorXd::Zero(n);
+  double worst_M = 0, worst_h = 0;
+  for (int state = 0; state < kStates; ++state) {
+    const Eigen::VectorXd q = random.vector(n, -3.2, 3.2);
+    const Eigen::VectorXd dq = random.vector(n, -3, 3);
+    const Eigen::VectorXd p = test::random_physical_parameters(description_.tree, random);
+    model::base_from_standard(p.data(), beta.data());
+    model::mass_matrix_and_bias(q.data(), dq.data(), beta.data(), M.data(), h.data());
+    const Eigen::MatrixXd expected_M = reference_mass_matrix(q, p);
+    const Eigen::VectorXd expected_h =
+        with_gravity.inverse_dynamics(q, dq, Eigen::VectorXd::Zero(n), p);
+    worst_M = std::max(worst_M, (M - expected_M).lpNorm<Eigen::Infinity>() /
+                                    std::max(1.0, expected_M.lpNorm<Eigen::Infinity>()));
+    worst_h = std::max(worst_h, (h - expected_h).lpNorm<Eigen::Infinity>() /
+                                    std::max(1.0, expected_h.lpNorm<Eigen::Infinity>()));
+  }
+  std::cout << "[ GENERATED] " << MODELGEN_ROBOT_DESCRIPTION << ": mass_matrix_and_bias, worst "
+            << "relative difference of M " << worst_M << ", of h " << worst_h << "\n";
+  EXPECT_LT(worst_M, 1e-12);
+  EXPECT_LT(worst_h, 1e-12);
 }
 
 TEST_F(GeneratedMassMatrix, IsSymmetricPositiveDefiniteAndFloatAgrees) {

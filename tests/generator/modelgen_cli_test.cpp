@@ -112,7 +112,7 @@ TEST(ModelgenCli, AFullRunAfterASelectionAndBackRemovesNothingElse) {
   ASSERT_EQ(modelgen(base).exit_code, 0);
   const std::size_t all = files_in(dir).size();
   // One header, one table source, one manifest and a file per entry point.
-  EXPECT_EQ(all, 3u + 23u);
+  EXPECT_EQ(all, 3u + 24u);
   std::ofstream(dir / "controller.cpp") << "// the user's own file\n";
   const CliRun narrowed = modelgen(base + " --functions inverse_dynamics");
   ASSERT_EQ(narrowed.exit_code, 0) << narrowed.err;

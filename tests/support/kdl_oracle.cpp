@@ -15,6 +15,8 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <kdl/chain.hpp>
+#include <kdl/chaindynparam.hpp>
+#include <kdl/chainfdsolver_recursive_newton_euler.hpp>
 #include <kdl/chainidsolver_recursive_newton_euler.hpp>
 #include <kdl/frames.hpp>
 #include <kdl/jntarray.hpp>
@@ -222,6 +224,54 @@ Eigen::VectorXd kdl_inverse_dynamics(const RigidBodyTree& tree, const Eigen::Vec
   Eigen::VectorXd tau(tree.dof);
   for (unsigned k = 0; k < n; ++k) tau[model.dof_of_kdl_joint[k]] = ktau(k);
   return tau + drive_torques(tree, p, dq, ddq);
+}
+
+Eigen::MatrixXd kdl_rigid_body_mass_matrix(const RigidBodyTree& tree, const Eigen::VectorXd& q,
+                                           const Eigen::VectorXd& p) {
+  const KdlModel model = to_kdl_chain(tree, p);
+  const unsigned n = model.chain.getNrOfJoints();
+  if (static_cast<int>(n) != tree.dof || q.size() != tree.dof) {
+    throw std::invalid_argument("q needs " + std::to_string(tree.dof) + " entries");
+  }
+  KDL::JntArray kq(n);
+  for (unsigned k = 0; k < n; ++k) kq(k) = q[model.dof_of_kdl_joint[k]];
+  KDL::ChainDynParam dynamics(model.chain, KDL::Vector::Zero());
+  KDL::JntSpaceInertiaMatrix kM(n);
+  if (dynamics.JntToMass(kq, kM) < 0) throw std::runtime_error("KDL ChainDynParam failed");
+  Eigen::MatrixXd M(tree.dof, tree.dof);
+  for (unsigned r = 0; r < n; ++r) {
+    for (unsigned c = 0; c < n; ++c) {
+      M(model.dof_of_kdl_joint[r], model.dof_of_kdl_joint[c]) = kM(r, c);
+    }
+  }
+  return M;
+}
+
+Eigen::VectorXd kdl_rigid_body_forward_dynamics(const RigidBodyTree& tree, const Eigen::VectorXd& q,
+                                                const Eigen::VectorXd& dq,
+                                                const Eigen::VectorXd& tau,
+                                                const Eigen::VectorXd& p) {
+  const KdlModel model = to_kdl_chain(tree, p);
+  const unsigned n = model.chain.getNrOfJoints();
+  if (static_cast<int>(n) != tree.dof || q.size() != tree.dof || dq.size() != tree.dof ||
+      tau.size() != tree.dof) {
+    throw std::invalid_argument("q, dq and tau need " + std::to_string(tree.dof) + " entries");
+  }
+  KDL::JntArray kq(n), kdq(n), ktau(n), kddq(n);
+  for (unsigned k = 0; k < n; ++k) {
+    kq(k) = q[model.dof_of_kdl_joint[k]];
+    kdq(k) = dq[model.dof_of_kdl_joint[k]];
+    ktau(k) = tau[model.dof_of_kdl_joint[k]];
+  }
+  KDL::ChainFdSolver_RNE solver(model.chain,
+                                KDL::Vector(tree.gravity[0], tree.gravity[1], tree.gravity[2]));
+  const KDL::Wrenches no_external(model.chain.getNrOfSegments(), KDL::Wrench::Zero());
+  if (solver.CartToJnt(kq, kdq, ktau, no_external, kddq) < 0) {
+    throw std::runtime_error("KDL ChainFdSolver_RNE failed");
+  }
+  Eigen::VectorXd ddq(tree.dof);
+  for (unsigned k = 0; k < n; ++k) ddq[model.dof_of_kdl_joint[k]] = kddq(k);
+  return ddq;
 }
 
 // Shoemake's uniform random unit quaternion.

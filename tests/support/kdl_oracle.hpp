@@ -32,6 +32,18 @@ Eigen::VectorXd kdl_inverse_dynamics(const RigidBodyTree& tree, const Eigen::Vec
                                      const Eigen::VectorXd& dq, const Eigen::VectorXd& ddq,
                                      const Eigen::VectorXd& p);
 
+/// The joint-space inertia matrix of the rigid bodies alone (no drive inertias), dof x dof in
+/// modelgen's dof order, by KDL::ChainDynParam::JntToMass. Same chain and exceptions as above.
+Eigen::MatrixXd kdl_rigid_body_mass_matrix(const RigidBodyTree& tree, const Eigen::VectorXd& q,
+                                           const Eigen::VectorXd& p);
+
+/// Joint accelerations of the rigid bodies alone (no drive terms) under joint torques `tau`, by
+/// KDL::ChainFdSolver_RNE, in dof order. Same chain and exceptions as above.
+Eigen::VectorXd kdl_rigid_body_forward_dynamics(const RigidBodyTree& tree, const Eigen::VectorXd& q,
+                                                const Eigen::VectorXd& dq,
+                                                const Eigen::VectorXd& tau,
+                                                const Eigen::VectorXd& p);
+
 /// A uniformly distributed random rotation matrix (Shoemake's random unit quaternion).
 Eigen::Matrix3d random_rotation(Random& rng);
 

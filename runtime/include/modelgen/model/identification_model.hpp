@@ -48,7 +48,7 @@ class IdentificationModel {
   virtual void mass_matrix(const double* q, const double* beta, double* M) const;
   /// What forward dynamics needs at one state: mass_matrix into M and inverse_dynamics at
   /// zero acceleration into h (dof() values). This default calls the two; generated models
-  /// compute the joints' sines and cosines once for both.
+  /// call their mass_matrix_and_bias (or share the joints' sines and cosines between the two).
   virtual void mass_matrix_and_bias(const double* q, const double* dq, const double* beta,
                                     double* M, double* h) const;
   /// d tau / d x at one state x = [q, dq, ddq], for errors in variables (Bona & Curatella
@@ -153,7 +153,12 @@ class GeneratedModel final : public IdentificationModel {
   }
   void mass_matrix_and_bias(const double* q, const double* dq, const double* beta, double* M,
                             double* h) const override {
-    if constexpr (requires { Generated::mass_matrix_sincos(q, q, q, beta, M); }) {
+    if constexpr (requires { Generated::mass_matrix_and_bias(q, dq, beta, M, h); }) {
+      // One generated pass; models generated before it have the two functions below.
+      std::fill_n(M, Generated::kDof * Generated::kDof, 0.0);
+      std::fill_n(h, Generated::kDof, 0.0);
+      Generated::mass_matrix_and_bias(q, dq, beta, M, h);
+    } else if constexpr (requires { Generated::mass_matrix_sincos(q, q, q, beta, M); }) {
       double sin_q[Generated::kDof], cos_q[Generated::kDof], zero[Generated::kDof] = {};
       Generated::joint_sincos(q, sin_q, cos_q);
       std::fill_n(M, Generated::kDof * Generated::kDof, 0.0);
