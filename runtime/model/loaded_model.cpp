@@ -68,6 +68,7 @@ class LoadedModel final : public IdentificationModel {
     std::fill_n(J, 3 * t_.dof * t_.dof, 0.0);
     t_.inverse_dynamics_state_jacobian(q, dq, ddq, beta, J);
   }
+  bool exact_state_jacobian() const override { return true; }
   void base_from_standard(const double* p_standard, double* beta) const override {
     t_.base_from_standard(p_standard, beta);
   }

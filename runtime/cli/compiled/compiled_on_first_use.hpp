@@ -58,6 +58,7 @@ class CompiledOnFirstUse final : public IdentificationModel {
                                        const double* beta, double* J) const override {
     active().inverse_dynamics_state_jacobian(q, dq, ddq, beta, J);
   }
+  bool exact_state_jacobian() const override { return active().exact_state_jacobian(); }
   void base_from_standard(const double* p_standard, double* beta) const override {
     active().base_from_standard(p_standard, beta);
   }

@@ -44,20 +44,28 @@ CriterionValue evaluate_criterion(const Eigen::MatrixXd& W, const Eigen::VectorX
     return out;
   }
   out.cond_scaled = std::sqrt(lambda[p - 1] / lambda[0]);
-  // value = g(lambda); with Q = V diag(dg/dlambda) V^T, d value / d(W D) = 2 (W D) Q.
-  Eigen::MatrixXd Q;
+  // value = g(lambda); with Q = V diag(dg/dlambda) V^T, d value / d(W D) = 2 (W D) Q, so
+  // d value / d W = W F diag(w) F^T with F = D V' and w = 2 dg/dlambda over the eigenvectors
+  // V' that g depends on.
   const Eigen::MatrixXd& V = eig.eigenvectors();
+  Eigen::MatrixXd vectors;
   if (criterion == DesignCriterion::kCond) {
     out.value = std::log(out.cond_scaled);  // (log lambda_max - log lambda_min) / 2
-    if (with_gradient) {
-      Q = V.col(p - 1) * V.col(p - 1).transpose() / (2 * lambda[p - 1]) -
-          V.col(0) * V.col(0).transpose() / (2 * lambda[0]);
-    }
+    vectors.resize(p, 2);
+    vectors << V.col(p - 1), V.col(0);
+    out.gradient_weight = Eigen::Vector2d(1 / lambda[p - 1], -1 / lambda[0]);
   } else {
     out.value = -lambda.array().log().sum();
-    if (with_gradient) Q = -V * lambda.cwiseInverse().asDiagonal() * V.transpose();
+    vectors = V;
+    out.gradient_weight = -2 * lambda.cwiseInverse();
   }
-  if (with_gradient) out.gradient = 2 * scaled * Q * scale.cwiseInverse().asDiagonal();
+  if (with_gradient) {
+    out.gradient_factor = scale.cwiseInverse().asDiagonal() * vectors;
+    const Eigen::MatrixXd& F = out.gradient_factor;
+    out.gradient = W * F * out.gradient_weight.asDiagonal() * F.transpose();
+  } else {
+    out.gradient_weight.resize(0);
+  }
   return out;
 }
 

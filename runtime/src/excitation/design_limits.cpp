@@ -1,7 +1,7 @@
 // The limit and effort constraints of the excitation design (design_variables.hpp), all linear
-// in the variables but the torques: exact closed forms and gradients for the limits, d tau /
-// d state by differences for the efforts; the random feasible starts and the repairs on the
-// dense grid of limit_use.hpp.
+// in the variables but the torques: exact closed forms and gradients for the limits, the
+// model's state Jacobian d tau / d state for the efforts; the random feasible starts and the
+// repairs on the dense grid of limit_use.hpp.
 
 #include "runtime/src/excitation/design_variables.hpp"
 
@@ -121,8 +121,8 @@ void Design::limit_constraints(const double* x, double* c, double* grad) const {
 }
 
 // +-tau_i / (margin effort_i) - 1 <= 0 at every constraint point for every joint with an
-// effort limit. d tau / d state by differences as in criterion() (the model gives no state
-// Jacobian): central in q and dq, a unit step in ddq, in which tau is linear.
+// effort limit; d tau / d state is one state Jacobian at the a-priori values per point (exact
+// for generated models, differences of the inverse dynamics for the numeric reference).
 void Design::torque_constraints(const double* x, double* c, double* grad) const {
   const int points = static_cast<int>(constraint_basis_.times.size());
   const std::size_t torques = torque_joints_.size();
@@ -130,7 +130,7 @@ void Design::torque_constraints(const double* x, double* c, double* grad) const 
     std::fill(grad, grad + 2 * torques * points * static_cast<std::size_t>(n_), 0.0);
   Eigen::MatrixXd q, dq, ddq;
   states(x, constraint_basis_, q, dq, ddq);
-  constexpr double h = 1e-6;
+  RowMajor J(dof_, 3 * dof_);
   for (int k = 0; k < points; ++k) {
     const Eigen::VectorXd qk = q.row(k).transpose(), dqk = dq.row(k).transpose(),
                           ddqk = ddq.row(k).transpose();
@@ -141,28 +141,22 @@ void Design::torque_constraints(const double* x, double* c, double* grad) const 
       ck[2 * i] = scaled - 1, ck[2 * i + 1] = -scaled - 1;
     }
     if (grad == nullptr) continue;
+    model_.inverse_dynamics_state_jacobian(qk.data(), dqk.data(), ddqk.data(), p_.a_priori.data(),
+                                           J.data());
     for (std::size_t m = 0; m < p_.moving.size(); ++m) {
       const int j = p_.moving[m];
-      Eigen::VectorXd up = qk, down = qk;
-      up[j] += h, down[j] -= h;
-      const Eigen::VectorXd by_q = (torque(up, dqk, ddqk) - torque(down, dqk, ddqk)) / (2 * h);
-      up = dqk, down = dqk;
-      up[j] += h, down[j] -= h;
-      const Eigen::VectorXd by_dq = (torque(qk, up, ddqk) - torque(qk, down, ddqk)) / (2 * h);
-      up = ddqk;
-      up[j] += 1;
-      const Eigen::VectorXd by_ddq = torque(qk, dqk, up) - tau;
       for (std::size_t i = 0; i < torques; ++i) {
         const int t = torque_joints_[i];
+        const double by_q = J(t, j), by_dq = J(t, dof_ + j), by_ddq = J(t, 2 * dof_ + j);
         double* g = grad + (2 * torques * k + 2 * i) * static_cast<std::size_t>(n_) + m * per_axis_;
         double* g_neg = g + n_;
         const double limit = torque_limits_[i];
-        g[0] = by_q[t] / limit;
+        g[0] = by_q / limit;
         for (int l = 0; l < L_; ++l) {
           const double w = (l + 1) * wf_, s = constraint_basis_.sin(k, l),
                        cs = constraint_basis_.cos(k, l);
-          g[1 + l] = (by_q[t] * s + by_dq[t] * w * cs - by_ddq[t] * w * w * s) / limit;
-          g[1 + L_ + l] = (by_q[t] * cs - by_dq[t] * w * s - by_ddq[t] * w * w * cs) / limit;
+          g[1 + l] = (by_q * s + by_dq * w * cs - by_ddq * w * w * s) / limit;
+          g[1 + L_ + l] = (by_q * cs - by_dq * w * s - by_ddq * w * w * cs) / limit;
         }
         for (int e = 0; e < per_axis_; ++e) g_neg[e] = -g[e];
       }

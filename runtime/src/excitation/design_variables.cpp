@@ -1,8 +1,5 @@
-// The design's variables, states and criterion of design_variables.hpp. The criterion's gradient
-// is analytic through the Fourier series and the criterion (design_criterion.hpp); only the
-// regressor's derivative in the joint state comes from central differences, as the generated
-// code has no state Jacobian: 5 extra regressor evaluations per moving joint and sample (a
-// forward step for ddq, in which W is linear).
+// The design's variables, states and criterion of design_variables.hpp; the criterion's gradient
+// is in design_gradient.cpp.
 
 #include "runtime/src/excitation/design_variables.hpp"
 
@@ -176,45 +173,7 @@ CriterionValue Design::criterion(const std::vector<double>& x,
   CriterionValue value = evaluate_criterion(selected(W), scale_, p_.criterion, gradient != nullptr);
   if (gradient == nullptr) return value;
   gradient->assign(static_cast<std::size_t>(n_), 0.0);
-  if (!std::isfinite(value.value)) return value;
-  // d value / d x_i = sum over samples k of <G_k, dW_k/dstate_j> dstate_j/dx_i: the state
-  // derivatives of W by differences, contracted with G at once.
-  constexpr double h = 1e-6;
-  for (int k = 0; k < samples_; ++k) {
-    const Eigen::MatrixXd G = value.gradient.middleRows(k * dof_, dof_);
-    const auto contract = [&](const RowMajor& dW) {
-      double sum = 0;
-      for (std::size_t c = 0; c < columns_.size(); ++c) {
-        sum += G.col(static_cast<Eigen::Index>(c)).dot(dW.col(columns_[c]));
-      }
-      return sum;
-    };
-    const Eigen::VectorXd qk = q.row(k).transpose(), dqk = dq.row(k).transpose(),
-                          ddqk = ddq.row(k).transpose();
-    const RowMajor Wk = W.middleRows(k * dof_, dof_);
-    for (std::size_t m = 0; m < p_.moving.size(); ++m) {
-      const int j = p_.moving[m];
-      Eigen::VectorXd up = qk, down = qk;
-      up[j] += h, down[j] -= h;
-      const double by_q =
-          contract(regressor_at(up, dqk, ddqk) - regressor_at(down, dqk, ddqk)) / (2 * h);
-      up = dqk, down = dqk;
-      up[j] += h, down[j] -= h;
-      const double by_dq =
-          contract(regressor_at(qk, up, ddqk) - regressor_at(qk, down, ddqk)) / (2 * h);
-      up = ddqk;
-      up[j] += 1;  // W is linear in ddq: the unit step is exact
-      const double by_ddq = contract(regressor_at(qk, dqk, up) - Wk);
-      double* g = gradient->data() + m * per_axis_;
-      g[0] += by_q;
-      for (int l = 0; l < L_; ++l) {
-        const double w = (l + 1) * wf_, s = criterion_basis_.sin(k, l),
-                     c = criterion_basis_.cos(k, l);
-        g[1 + l] += by_q * s + by_dq * w * c - by_ddq * w * w * s;
-        g[1 + L_ + l] += by_q * c - by_dq * w * s - by_ddq * w * w * c;
-      }
-    }
-  }
+  if (std::isfinite(value.value)) criterion_gradient(q, dq, ddq, W, value, *gradient);
   return value;
 }
 

@@ -1,8 +1,8 @@
 // The variables of the excitation design (excitation_design.cpp) and what they give: per moving
 // joint q0, a_1..a_L, b_1..b_L of the position form q = q0 + sum a_l sin(l wf t) + b_l cos(l wf t)
-// (Swevers 2002 eq. 15); the states, the criterion with its gradient (design_variables.cpp), and
-// the limit and effort constraints, random starts and repairs on the dense grid
-// (design_limits.cpp).
+// (Swevers 2002 eq. 15); the states and the criterion (design_variables.cpp), its gradient
+// (design_gradient.cpp), and the limit and effort constraints, random starts and repairs on the
+// dense grid (design_limits.cpp).
 #pragma once
 
 #include <cstdint>
@@ -94,6 +94,12 @@ class Design {
   // The criterion of the variables x, with its gradient in x when `gradient` is not null.
   CriterionValue criterion(const std::vector<double>& x, std::vector<double>* gradient) const;
 
+  // d value / d x (design_gradient.cpp) from the states, the stacked regressor W and the
+  // criterion `value` of its selected columns, evaluated with its gradient.
+  void criterion_gradient(const Eigen::MatrixXd& q, const Eigen::MatrixXd& dq,
+                          const Eigen::MatrixXd& ddq, const Eigen::MatrixXd& W,
+                          const CriterionValue& value, std::vector<double>& gradient) const;
+
   // The number of inequality constraints: limits, then effort limits.
   int constraints() const {
     const int points = static_cast<int>(constraint_basis_.times.size());
@@ -126,8 +132,7 @@ class Design {
   void limit_constraints(const double* x, double* c, double* grad) const;
 
   // +-tau_i / (margin effort_i) - 1 <= 0 at every constraint point for every joint with an
-  // effort limit. d tau / d state by differences as in criterion() (the model gives no state
-  // Jacobian): central in q and dq, a unit step in ddq, in which tau is linear.
+  // effort limit; d tau / d state is the model's state Jacobian at the a-priori values.
   void torque_constraints(const double* x, double* c, double* grad) const;
 
   // Variable bounds: q0 in [low, high]; a coefficient of harmonic l at most twice what the
@@ -164,6 +169,16 @@ class Design {
   int evaluations = 0;
 
  private:
+  // d value / d (q, dq, ddq) at every sample (samples x 3 dof; the columns of moving joints
+  // filled) from the model's state Jacobian, or by differences of the regressor
+  // (design_gradient.cpp).
+  Eigen::MatrixXd exact_state_gradient(const Eigen::MatrixXd& q, const Eigen::MatrixXd& dq,
+                                       const Eigen::MatrixXd& ddq, const Eigen::MatrixXd& W,
+                                       const CriterionValue& value) const;
+  Eigen::MatrixXd differenced_state_gradient(const Eigen::MatrixXd& q, const Eigen::MatrixXd& dq,
+                                             const Eigen::MatrixXd& ddq, const Eigen::MatrixXd& W,
+                                             const CriterionValue& value) const;
+
   const ExcitationDesignProblem& p_;
   const IdentificationModel& model_;
   int dof_, L_, per_axis_, n_;

@@ -4,10 +4,9 @@
 // q = q0 + sum a_l sin(l wf t) + b_l cos(l wf t) (Swevers 2002 eq. 15), so that
 //   dq = sum l wf (a_l cos - b_l sin),  ddq = -sum (l wf)^2 (a_l sin + b_l cos),
 // all linear in the variables: the limit constraints and their gradients are exact closed
-// forms. The criterion's gradient is analytic through the Fourier series and the criterion
-// (design_criterion.hpp); only the regressor's derivative in the joint state comes from
-// central differences, as the generated code has no state Jacobian: 5 extra regressor
-// evaluations per moving joint and sample (a forward step for ddq, in which W is linear).
+// forms. The criterion's gradient is analytic through the Fourier series, the criterion
+// (design_criterion.hpp) and the model's state Jacobian (design_gradient.cpp): exact for a
+// generated model, 2 Jacobians per sample for cond.
 
 #include "modelgen/excitation/excitation_design.hpp"
 

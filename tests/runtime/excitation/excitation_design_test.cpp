@@ -1,6 +1,7 @@
-// The gradient SLSQP is given (excitation_design.cpp: analytic through the Fourier series and
-// the eigen-decomposition, the regressor's state derivative by differences) against central
-// differences of the objective itself, for both criteria, on the two-axis robot.
+// The gradient SLSQP is given (design_gradient.cpp: analytic through the Fourier series and
+// the eigen-decomposition, the regressor's state derivative by differences for this numeric
+// reference) against central differences of the objective itself, for both criteria, on the
+// two-axis robot; design_gradient_test.cpp does the same on generated models.
 
 #include "modelgen/excitation/excitation_design.hpp"
 

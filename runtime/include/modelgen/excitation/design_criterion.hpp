@@ -23,6 +23,12 @@ struct CriterionValue {
   double sigma_min_scaled = 0, sigma_min_unscaled = 0;
   /// d value / d W (same shape as W); filled when asked.
   Eigen::MatrixXd gradient;
+  /// The same gradient in factors, filled with it: d value / d W = W F diag(w) F^T with
+  /// F = `gradient_factor` (columns x r) and w = `gradient_weight` (r). r = 2 for cond (the
+  /// extreme eigenvectors), the number of columns for logdet: a caller differentiating W in
+  /// something else may contract with r directions of W instead of with every row.
+  Eigen::MatrixXd gradient_factor;
+  Eigen::VectorXd gradient_weight;
 };
 
 /// The criterion of `W` with columns divided by `scale` (positive, one per column). The cond

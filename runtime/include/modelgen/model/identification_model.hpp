@@ -64,6 +64,11 @@ class IdentificationModel {
   virtual void inverse_dynamics_state_jacobian(const double* q, const double* dq,
                                                const double* ddq, const double* beta,
                                                double* J) const;
+  /// Whether inverse_dynamics_state_jacobian is generated (exact) rather than this interface's
+  /// differences. A caller that needs it for several beta at one state can then pick the
+  /// cheaper route: the excitation design takes differences of one regressor instead when it
+  /// is not (the reference's inverse dynamics builds the whole regressor each call).
+  virtual bool exact_state_jacobian() const { return false; }
   /// The regrouping relations: beta (num_base_params()) from standard parameters
   /// (num_standard_params()).
   virtual void base_from_standard(const double* p_standard, double* beta) const = 0;
@@ -176,6 +181,11 @@ class GeneratedModel final : public IdentificationModel {
     } else {
       IdentificationModel::inverse_dynamics_state_jacobian(q, dq, ddq, beta, J);
     }
+  }
+  bool exact_state_jacobian() const override {
+    return requires(const double* x, double* J) {
+      Generated::inverse_dynamics_state_jacobian(x, x, x, x, J);
+    };
   }
   void base_from_standard(const double* p_standard, double* beta) const override {
     Generated::base_from_standard(p_standard, beta);
