@@ -55,18 +55,19 @@ Inertia to_antecedent(ExprGraph& g, const Inertia& child, const M3& R, const V3&
   M3 RJ;
   for (int r = 0; r < 3; ++r) {
     for (int c = 0; c < 3; ++c) {
-      RJ[3 * r + c] = g.share(g.add({g.mul(R[3 * r], child.J[c]), g.mul(R[3 * r + 1], child.J[3 + c]),
-                                     g.mul(R[3 * r + 2], child.J[6 + c])}));
+      RJ[3 * r + c] =
+          g.share(g.add({g.mul(R[3 * r], child.J[c]), g.mul(R[3 * r + 1], child.J[3 + c]),
+                         g.mul(R[3 * r + 2], child.J[6 + c])}));
     }
   }
   const ExprId p_ms = g.mul(g.constant(2.0), va.dot(p, ms));
   const ExprId pp = va.dot(p, p);
   for (int r = 0; r < 3; ++r) {
     for (int c = r; c < 3; ++c) {
-      std::vector<ExprId> terms = {g.mul(RJ[3 * r], R[3 * c]), g.mul(RJ[3 * r + 1], R[3 * c + 1]),
-                                   g.mul(RJ[3 * r + 2], R[3 * c + 2]),
-                                   g.neg(g.mul(child.M, g.mul(p[r], p[c]))),
-                                   g.neg(g.mul(p[r], ms[c])), g.neg(g.mul(ms[r], p[c]))};
+      std::vector<ExprId> terms = {
+          g.mul(RJ[3 * r], R[3 * c]),         g.mul(RJ[3 * r + 1], R[3 * c + 1]),
+          g.mul(RJ[3 * r + 2], R[3 * c + 2]), g.neg(g.mul(child.M, g.mul(p[r], p[c]))),
+          g.neg(g.mul(p[r], ms[c])),          g.neg(g.mul(ms[r], p[c]))};
       if (r == c) {
         terms.push_back(g.mul(child.M, pp));
         terms.push_back(p_ms);
@@ -131,8 +132,7 @@ std::vector<ExprId> derive_rigid_body_mass_matrix(ExprGraph& g, const RigidBodyT
       const Body& at = tree.bodies[b];
       if (at.type != JointType::kFixed) {
         const int i = at.dof_index;
-        const ExprId value =
-            va.dot(va.vector(at.axis), at.type == JointType::kRevolute ? nm : f);
+        const ExprId value = va.dot(va.vector(at.axis), at.type == JointType::kRevolute ? nm : f);
         M[i * dof + k] = value;
         M[k * dof + i] = value;
       }

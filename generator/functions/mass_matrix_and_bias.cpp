@@ -1,8 +1,8 @@
 // What forward dynamics needs at one state, in one function: the joint-space inertia matrix M(q)
-// (base_mass_matrix, as mass_matrix builds it) and the bias h = tau(q, dq, ddq = 0), both on the base parameters.
-// One body shares what both read (the joints' sines and cosines, only of the joints either
-// uses, and the products of the rotations), and ddq = 0 folds the acceleration terms out of h
-// while it is built instead of multiplying them by zero at run time.
+// (base_mass_matrix, as mass_matrix builds it) and the bias h = tau(q, dq, ddq = 0), both on the
+// base parameters. One body shares what both read (the joints' sines and cosines, only of the
+// joints either uses, and the products of the rotations), and ddq = 0 folds the acceleration terms
+// out of h while it is built instead of multiplying them by zero at run time.
 
 #include <algorithm>
 

@@ -66,7 +66,9 @@ class Robot {
     no_external_.assign(kdl_->num_segments(), KDL::Wrench::Zero());
   }
 
-  void generated(int k) { plant_->accelerations(q_[k].data(), dq_[k].data(), tau_[k].data(), ddq_.data()); }
+  void generated(int k) {
+    plant_->accelerations(q_[k].data(), dq_[k].data(), tau_[k].data(), ddq_.data());
+  }
   void kdl(int k) { kdl_fd_->CartToJnt(kq_[k], kdq_[k], ktau_[k], no_external_, kddq_); }
   void loop(int k) { ddq_[0] += q_[k][0]; }
 

@@ -13,12 +13,7 @@
 namespace modelgen {
 
 ForwardDynamics::ForwardDynamics(const IdentificationModel& model, std::vector<double> beta)
-    : model_(model),
-      beta_(std::move(beta)),
-      n_(model.dof()),
-      M_(n_, n_),
-      h_(n_),
-      rhs_(2 * n_) {
+    : model_(model), beta_(std::move(beta)), n_(model.dof()), M_(n_, n_), h_(n_), rhs_(2 * n_) {
   if (static_cast<int>(beta_.size()) != model.num_base_params()) {
     throw std::invalid_argument("ForwardDynamics: " + std::to_string(beta_.size()) +
                                 " base parameters given, the model " + model.name() + " has " +

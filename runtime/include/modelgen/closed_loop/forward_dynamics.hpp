@@ -13,8 +13,8 @@ namespace modelgen {
 /// ddq = M(q)^-1 (tau - h(q, dq)): M the joint-space inertia matrix (drive inertias on its
 /// diagonal), h the torques at zero acceleration (Coriolis, centrifugal and gravity torques,
 /// friction and torque offsets), both from the base parameters beta; M by a Cholesky
-/// factorisation (LDL^T). Coulomb friction is sign(dq) here, discontinuous at rest: an integrator that
-/// needs smoothness smooths it itself.
+/// factorisation (LDL^T). Coulomb friction is sign(dq) here, discontinuous at rest: an integrator
+/// that needs smoothness smooths it itself.
 class ForwardDynamics {
  public:
   /// `beta` has model.num_base_params() values. The model must outlive this object.
@@ -32,7 +32,7 @@ class ForwardDynamics {
   const IdentificationModel& model_;
   std::vector<double> beta_;
   int n_;
-  Eigen::MatrixXd M_;  // the model's values, then L and D in place (LDL^T)
+  Eigen::MatrixXd M_;        // the model's values, then L and D in place (LDL^T)
   Eigen::VectorXd h_, rhs_;  // rhs_: the solve's z, then 1/D for a size not unrolled
 };
 
