@@ -3,7 +3,6 @@
 // called through the table's pointers, keeping its contract (every output entry written).
 
 #include <algorithm>
-#include <array>
 #include <memory>
 #include <string>
 #include <vector>
@@ -13,10 +12,6 @@
 namespace modelgen {
 
 namespace {
-
-// ModelLibrary::open checks dof <= kMaxMovingJoints (32): room for one state's sines and
-// cosines on the stack.
-constexpr int kMaxDof = 32;
 
 class LoadedModel final : public IdentificationModel {
  public:
@@ -57,11 +52,9 @@ class LoadedModel final : public IdentificationModel {
   }
   void mass_matrix_and_bias(const double* q, const double* dq, const double* beta, double* M,
                             double* h) const override {
-    std::array<double, kMaxDof> sin_q, cos_q, zero{};
-    t_.joint_sincos(q, sin_q.data(), cos_q.data());
     std::fill_n(M, t_.dof * t_.dof, 0.0);
-    t_.mass_matrix_sincos(q, sin_q.data(), cos_q.data(), beta, M);
-    t_.inverse_dynamics_sincos(q, sin_q.data(), cos_q.data(), dq, zero.data(), beta, h);
+    std::fill_n(h, t_.dof, 0.0);
+    t_.mass_matrix_and_bias(q, dq, beta, M, h);
   }
   void inverse_dynamics_state_jacobian(const double* q, const double* dq, const double* ddq,
                                        const double* beta, double* J) const override {

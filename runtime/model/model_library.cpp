@@ -55,8 +55,7 @@ std::string pointer_problem(const modelgen_loadable_table& t) {
     if (p == nullptr) return "a name or constant array is missing (null)";
   }
   const bool functions = t.idim_regressor && t.power_regressor && t.inverse_dynamics &&
-                         t.mass_matrix && t.joint_sincos && t.mass_matrix_sincos &&
-                         t.inverse_dynamics_sincos && t.inverse_dynamics_state_jacobian &&
+                         t.mass_matrix && t.mass_matrix_and_bias && t.inverse_dynamics_state_jacobian &&
                          t.base_from_standard && t.drive_regressor &&
                          t.drive_torque_given_regressor && t.drive_torque_jacobian_given_regressor;
   if (!functions) return "a function is missing (null)";

@@ -47,7 +47,7 @@ TEST(ModelgenLoadable, WritesTheEntryPointAndListsWhatALibraryCompiles) {
   const std::size_t sources = manifest.find("\"loadable_sources\": [\n    \"tx40.cpp\",\n");
   ASSERT_NE(sources, std::string::npos) << manifest;
   const std::string list = manifest.substr(sources, manifest.find(']', sources) - sources);
-  for (const char* file : {"tx40_idim_regressor_standard.cpp", "tx40_mass_matrix_sincos.cpp",
+  for (const char* file : {"tx40_idim_regressor_standard.cpp", "tx40_mass_matrix_and_bias.cpp",
                            "tx40_inverse_dynamics_state_jacobian.cpp",
                            "tx40_drive_torque_jacobian_given_regressor.cpp", "tx40_loadable.cpp"}) {
     EXPECT_NE(list.find(file), std::string::npos) << file;

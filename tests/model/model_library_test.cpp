@@ -98,8 +98,8 @@ TEST(ModelLibrary, RefusesATableOfAnotherVersionSizeOrDescription) {
     std::string definitions;
     std::string message;
   } cases[] = {
-      {"abi.so", "-DFAKE_ABI_VERSION=2",
-       "error: model table version 2, this runtime reads 1: generate it again"},
+      {"abi.so", "-DFAKE_ABI_VERSION=1",
+       "error: model table version 1, this runtime reads 2: generate it again"},
       {"size.so", "-DFAKE_STRUCT_SIZE=8", "error: model table of 8 bytes, this runtime's has "},
       {"format.so", "-UFAKE_FORMAT_VERSION -DFAKE_FORMAT_VERSION=" + std::to_string(format - 1),
        "error: generated format " + std::to_string(format - 1) + ", this runtime reads " +

@@ -1,6 +1,6 @@
 // A hand-made model library for the loader's refusals (model_library_test.cpp): a one-joint table
 // in the runtime's own layout, valid as it stands, with one thing changed by a definition at
-// compile time (-DFAKE_ABI_VERSION=2, -DFAKE_FORMAT_VERSION=4, -DFAKE_STRUCT_SIZE=8,
+// compile time (-DFAKE_ABI_VERSION=1, -DFAKE_FORMAT_VERSION=4, -DFAKE_STRUCT_SIZE=8,
 // -DFAKE_DOF=0, -DFAKE_NULL_FUNCTION). Its functions are never called.
 
 #include "modelgen/model/loadable_model.h"
@@ -20,10 +20,7 @@ namespace {
 void state_function(const double*, const double*, const double*, double*) {}
 void torques(const double*, const double*, const double*, const double*, double*) {}
 void mass_matrix(const double*, const double*, double*) {}
-void sincos(const double*, double*, double*) {}
-void mass_matrix_sincos(const double*, const double*, const double*, const double*, double*) {}
-void torques_sincos(const double*, const double*, const double*, const double*, const double*,
-                    const double*, double*) {}
+void mass_matrix_and_bias(const double*, const double*, const double*, double*, double*) {}
 void base_from_standard(const double*, double*) {}
 void drive_torque(const double*, const double*, double*) {}
 void drive_jacobian(const double*, const double*, double*, double*) {}
@@ -60,9 +57,7 @@ const modelgen_loadable_table kTable = {FAKE_ABI_VERSION,
                                         state_function,
                                         torques,
                                         mass_matrix,
-                                        sincos,
-                                        mass_matrix_sincos,
-                                        torques_sincos,
+                                        mass_matrix_and_bias,
                                         torques,
                                         base_from_standard,
                                         state_function,

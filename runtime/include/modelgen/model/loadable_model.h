@@ -14,7 +14,7 @@ extern "C" {
 #endif
 
 /* The layout below; a library whose abi_version differs is refused. */
-#define MODELGEN_LOADABLE_ABI_VERSION 1
+#define MODELGEN_LOADABLE_ABI_VERSION 2
 /* The name of the entry point, of type modelgen_loadable_entry. */
 #define MODELGEN_LOADABLE_SYMBOL "modelgen_loadable_model_v1"
 
@@ -44,12 +44,8 @@ typedef struct modelgen_loadable_table {
   void (*inverse_dynamics)(const double* q, const double* dq, const double* ddq, const double* beta,
                            double* tau);
   void (*mass_matrix)(const double* q, const double* beta, double* M);
-  void (*joint_sincos)(const double* q, double* sin_q, double* cos_q);
-  void (*mass_matrix_sincos)(const double* q, const double* sin_q, const double* cos_q,
-                             const double* beta, double* M);
-  void (*inverse_dynamics_sincos)(const double* q, const double* sin_q, const double* cos_q,
-                                  const double* dq, const double* ddq, const double* beta,
-                                  double* tau);
+  void (*mass_matrix_and_bias)(const double* q, const double* dq, const double* beta, double* M,
+                               double* h);
   void (*inverse_dynamics_state_jacobian)(const double* q, const double* dq, const double* ddq,
                                           const double* beta, double* J);
   void (*base_from_standard)(const double* p_standard, double* beta);
