@@ -3,22 +3,29 @@
 // term turns into torque and torque measurement noise, prepared as the closed-loop test does
 // (positions filtered at 100 Hz, decimation by 10, held torques), then IDIM-WLS, IDIM-IV and
 // DIDIM. Over independent noise (one simulation per run), each method's reported standard
-// deviations must match the spread of its estimates (tests/support/monte_carlo_spread.hpp).
+// deviations must not be smaller than the spread of its estimates
+// (tests/support/monte_carlo_spread.hpp). They are larger (conservative): the residual of each
+// run holds errors that are the same in every run (the preparation's filter and decimation
+// against the controller's response, see issue 31's preparation part), which one record cannot
+// tell from noise; the test prints the reported sd over the spread and over the rms error from
+// the truth. 60 runs (the spread's error 9 %): each run simulates the loop several times.
 
 #include <cmath>
 #include <cstdint>
+#include <cstdlib>
+#include <iostream>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
+#include <yaml-cpp/yaml.h>
 #include <Eigen/Dense>
 
 #include "modelgen/closed_loop/closed_loop_identification.hpp"
 #include "modelgen/closed_loop/closed_loop_simulation.hpp"
 #include "modelgen/closed_loop/pid_controller.hpp"
 #include "modelgen/estimation/identify.hpp"
-#include "modelgen/excitation/fourier_trajectory.hpp"
 #include "modelgen/signal/prepare.hpp"
 #include "runtime/cli/common/shipped_models.hpp"
 #include "tests/support/monte_carlo_spread.hpp"
@@ -28,7 +35,30 @@
 namespace modelgen {
 namespace {
 
-constexpr int kRuns = 100;
+const int kRuns = std::getenv("MC_RUNS") ? std::atoi(std::getenv("MC_RUNS")) : 60;
+
+// The reference, sampled at the controller's rate: Swevers 2002 eq. 15, read from the bundled
+// design (robots/data/tx40/design.yaml, form: position).
+Eigen::MatrixXd design_reference(double ts, double seconds) {
+  const YAML::Node root = YAML::LoadFile(test::source_path("robots/data/tx40/design.yaml"));
+  const double period = root["period"].as<double>(), w = 2 * M_PI / period;
+  const auto samples = static_cast<Eigen::Index>(std::lround(seconds / ts));
+  Eigen::MatrixXd qr(samples, 6);
+  for (int j = 0; j < 6; ++j) {
+    const YAML::Node joint = root["joints"][j];
+    for (Eigen::Index k = 0; k < samples; ++k) {
+      const double t = static_cast<double>(k) * ts;
+      double q = joint["q0"].as<double>();
+      for (std::size_t l = 0; l < joint["a"].size(); ++l) {
+        const double lwt = static_cast<double>(l + 1) * w * t;
+        q +=
+            joint["a"][l].as<double>() * std::sin(lwt) + joint["b"][l].as<double>() * std::cos(lwt);
+      }
+      qr(k, j) = q;
+    }
+  }
+  return qr;
+}
 
 // Gains for about 15 Hz of position bandwidth on the TX-40's inertias.
 PidGains tx40_gains() {
@@ -46,19 +76,7 @@ class ClosedLoopCovarianceMonteCarlo : public testing::Test {
     model_ = internal::make_shipped_model("tx40");
     truth_ = test::tx40_true_base(model_->base_param_names());
     gains_ = tx40_gains();
-    FourierTrajectory fourier;
-    fourier.period = 5.0;
-    test::Random random(7);
-    fourier.q0 = random.vector(6, -0.3, 0.3);
-    fourier.a.resize(6, 5);
-    fourier.b.resize(6, 5);
-    for (Eigen::Index j = 0; j < 6; ++j) {
-      for (Eigen::Index l = 0; l < 5; ++l) {
-        fourier.a(j, l) = random.uniform(-0.4, 0.4);
-        fourier.b(j, l) = random.uniform(-0.4, 0.4);
-      }
-    }
-    qr_ = sample(fourier, gains_.sample_time, 2 * fourier.period).q;
+    qr_ = design_reference(gains_.sample_time, 10.0);
   }
 
   // One noisy closed-loop record, prepared.
@@ -94,25 +112,37 @@ class ClosedLoopCovarianceMonteCarlo : public testing::Test {
     return r;
   }
 
-  // `runs` records, each fitted by `method`: IDIM-WLS on the prepared, decimated record (as fit
-  // --method wls does), IDIM-IV or DIDIM.
-  void check(const std::string& method, int runs) {
-    test::SpreadCheck spread(truth_.size());
+  // `runs` records, each fitted by IDIM-WLS on the prepared, decimated record (as fit --method
+  // wls does), IDIM-IV and DIDIM.
+  void check(int runs) {
+    std::vector<test::SpreadCheck> spread(3, test::SpreadCheck(truth_.size()));
     for (int run = 0; run < runs; ++run) {
       const ClosedLoopRecord r = record(100 + static_cast<std::uint64_t>(run));
-      LeastSquaresResult fit;
-      if (method == "IDIM-WLS") {
-        IdentifyOptions options;
-        options.decimation = {r.decimation};
-        fit = identify(*model_, {r.prepared}, Method::kWls, options).fit;
-      } else {
-        const ClosedLoopMethod m =
-            method == "IDIM-IV" ? ClosedLoopMethod::kIv : ClosedLoopMethod::kDidim;
-        fit = identify_closed_loop(*model_, m, gains_, {r}).id.fit;
-      }
-      spread.add(fit.value, fit.std_dev);
+      // Rows where a joint is slower than 0.1 rad/s left out: there the simulation's smoothed
+      // Coulomb friction and the model's sign(dq) differ by the same torque in every run.
+      IdentifyOptions options;
+      options.decimation = {r.decimation};
+      options.min_speed.assign(6, 0.1);
+      ClosedLoopFitOptions closed;
+      closed.min_speed = Eigen::VectorXd::Constant(6, 0.1);
+      const LeastSquaresResult wls = identify(*model_, {r.prepared}, Method::kWls, options).fit;
+      spread[0].add(wls.value, wls.std_dev);
+      const LeastSquaresResult iv =
+          identify_closed_loop(*model_, ClosedLoopMethod::kIv, gains_, {r}, closed).id.fit;
+      spread[1].add(iv.value, iv.std_dev);
+      const LeastSquaresResult didim =
+          identify_closed_loop(*model_, ClosedLoopMethod::kDidim, gains_, {r}, closed).id.fit;
+      spread[2].add(didim.value, didim.std_dev);
     }
-    spread.expect_covered(method + ", closed loop");
+    const char* names[3] = {"IDIM-WLS", "IDIM-IV", "DIDIM"};
+    for (int m = 0; m < 3; ++m) {
+      std::cout << "[ monte carlo ] " << names[m]
+                << ": reported sd / rms error from the truth: median "
+                << test::SpreadCheck::median(spread[m].error_ratios(truth_)) << "\n";
+    }
+    spread[0].expect_covered("IDIM-WLS, closed loop", 0.65, 1.5, false);
+    spread[1].expect_covered("IDIM-IV, closed loop", 0.65, 1.5, false);
+    spread[2].expect_covered("DIDIM, closed loop", 0.65, 1.5, false);
   }
 
   std::unique_ptr<IdentificationModel> model_;
@@ -121,11 +151,7 @@ class ClosedLoopCovarianceMonteCarlo : public testing::Test {
   Eigen::MatrixXd qr_;
 };
 
-TEST_F(ClosedLoopCovarianceMonteCarlo, WeightedLeastSquares) { check("IDIM-WLS", kRuns); }
-
-TEST_F(ClosedLoopCovarianceMonteCarlo, InstrumentalVariables) { check("IDIM-IV", kRuns); }
-
-TEST_F(ClosedLoopCovarianceMonteCarlo, Didim) { check("DIDIM", kRuns); }
+TEST_F(ClosedLoopCovarianceMonteCarlo, EveryMethod) { check(kRuns); }
 
 }  // namespace
 }  // namespace modelgen
