@@ -93,7 +93,10 @@ SandwichCovariance score_covariance(const std::vector<ResidualGroup>& groups) {
     rows += n;
   }
   const double rho = zero > 0 ? std::clamp(lag / zero, -0.97, 0.97) : 0.0;
-  const bool correlated = rows > 0 && std::abs(rho) * std::sqrt(static_cast<double>(rows)) > 3;
+  // Significant (3 sd of a white sequence's) and material: below |rho| = 0.05 an AR(1) changes
+  // the sd by under 5 % (sqrt((1 + rho) / (1 - rho))), less than Newey-West's own spread.
+  const bool correlated =
+      rows > 0 && std::abs(rho) > 0.05 && std::abs(rho) * std::sqrt(static_cast<double>(rows)) > 3;
   if (periodic == 0 && !correlated) return out;
   int L = 0;
   if (correlated) {

@@ -26,7 +26,8 @@ struct SandwichCovariance {
 };
 
 /// S from the groups' residuals, or an empty description when no group needs it (no periodic
-/// group, and the residuals' pooled lag-1 autocorrelation is within 3 / sqrt(rows) of 0).
+/// group, and the residuals' pooled lag-1 autocorrelation rho is within 3 / sqrt(rows) of 0
+/// or |rho| <= 0.05).
 /// Periodic groups: by the lines of the DFT (circular noise, one variance per line estimated
 /// by |R_l|^2 / N). Other groups: Newey-West with the Bartlett kernel, its bandwidth from the
 /// residuals' lag-1 autocorrelation by Andrews' AR(1) rule. Scaled by M / (M - b), M the
