@@ -4,11 +4,12 @@
 // (positions filtered at 100 Hz, decimation by 10, held torques), then IDIM-WLS, IDIM-IV and
 // DIDIM. Over independent noise (one simulation per run), each method's reported standard
 // deviations must not be smaller than the spread of its estimates
-// (tests/support/monte_carlo_spread.hpp). They are larger (conservative): the residual of each
-// run holds errors that are the same in every run (the preparation's filter and decimation
-// against the controller's response, see issue 31's preparation part), which one record cannot
-// tell from noise; the test prints the reported sd over the spread and over the rms error from
-// the truth. 60 runs (the spread's error 9 %): each run simulates the loop several times.
+// (tests/support/monte_carlo_spread.hpp); the test prints the reported sd over the spread and
+// over the rms error from the truth. Measured (30 runs, 2026-12-05): median over the spread
+// 1.39 (WLS), 1.03 (IV), 1.05 (DIDIM); over the rms error from the truth 1.04, 1.00, 1.07: WLS
+// is biased under the loop (its error is more than its spread) and its sd covers the error.
+// Only the lower bounds are checked: 30 runs (each simulates the loop several times) leave the
+// spread 13 % uncertain, the smallest of 61 ratios then near 1 - 2.5 x 0.13 = 0.67, hence 0.5.
 
 #include <cmath>
 #include <cstdint>
@@ -35,7 +36,7 @@
 namespace modelgen {
 namespace {
 
-const int kRuns = std::getenv("MC_RUNS") ? std::atoi(std::getenv("MC_RUNS")) : 60;
+const int kRuns = std::getenv("MC_RUNS") ? std::atoi(std::getenv("MC_RUNS")) : 30;
 
 // The reference, sampled at the controller's rate: Swevers 2002 eq. 15, read from the bundled
 // design (robots/data/tx40/design.yaml, form: position).
@@ -140,9 +141,9 @@ class ClosedLoopCovarianceMonteCarlo : public testing::Test {
                 << ": reported sd / rms error from the truth: median "
                 << test::SpreadCheck::median(spread[m].error_ratios(truth_)) << "\n";
     }
-    spread[0].expect_covered("IDIM-WLS, closed loop", 0.65, 1.5, false);
-    spread[1].expect_covered("IDIM-IV, closed loop", 0.65, 1.5, false);
-    spread[2].expect_covered("DIDIM, closed loop", 0.65, 1.5, false);
+    spread[0].expect_covered("IDIM-WLS, closed loop", 0.5, 1.5, false);
+    spread[1].expect_covered("IDIM-IV, closed loop", 0.5, 1.5, false);
+    spread[2].expect_covered("DIDIM, closed loop", 0.5, 1.5, false);
   }
 
   std::unique_ptr<IdentificationModel> model_;
