@@ -35,7 +35,7 @@ struct SandwichCovariance {
 /// the b of them the fit takes.
 SandwichCovariance score_covariance(const std::vector<ResidualGroup>& groups);
 
-/// (AtA)^-1 S (AtA)^-1 with AtA = sum X^T X of the groups (or given), its diagonal's square roots.
+/// The sandwich (A^T A)^-1 S (A^T A)^-1 from (A^T A)^-1 and S.
 Eigen::MatrixXd sandwich(const Eigen::MatrixXd& AtA_inverse, const Eigen::MatrixXd& meat);
 
 }  // namespace modelgen::detail
