@@ -156,6 +156,8 @@ void print_fit(const FitSummary& fit, const std::vector<EstimatedParameter>& par
     std::cout << "  * %std above " << kPoorlyIdentifiedPercent
               << ": poorly identified by these data\n";
   }
+  // Not eq. 18's s^2 (W^T W)^-1: say which covariance the std column is.
+  if (!id.fit.covariance.empty()) std::cout << "  std: " << id.fit.covariance << "\n";
   if (!parameters.empty() && parameters.front().truth) {
     print_truth_comparison(compare_with_truth(parameters, kPoorlyIdentifiedPercent),
                            kPoorlyIdentifiedPercent);

@@ -13,6 +13,7 @@
 #include "modelgen/estimation/estimation_error.hpp"
 #include "modelgen/estimation/least_squares.hpp"
 #include "modelgen/signal/decimation.hpp"
+#include "runtime/src/closed_loop/closed_loop_covariance.hpp"
 #include "runtime/src/closed_loop/closed_loop_equations.hpp"
 
 namespace modelgen {
@@ -298,6 +299,7 @@ class ClosedLoopFit {
   void statistics() {
     const int n = n_;
     LeastSquaresResult& fit = fit_;
+    correlated_statistics();
     for (int k = 0; k < b_; ++k) {
       fit.rel_std_dev[k] =
           fit.value[k] != 0 ? 100 * fit.std_dev[k] / std::abs(fit.value[k]) : INFINITY;
@@ -330,6 +332,23 @@ class ClosedLoopFit {
       out_.id.slow_samples += decimated_interior(r.prepared.t.size(), r.decimation).count -
                               static_cast<Eigen::Index>(equations_[e].kept.size());
     }
+  }
+
+  // The sandwich covariance when the decimated residuals are correlated (closed_loop_covariance
+  // .hpp): X the last instruments (IV: current_ simulated the estimate before the last step)
+  // or the simulated regressor of the estimate (DIDIM).
+  void correlated_statistics() {
+    const bool didim = method_ == ClosedLoopMethod::kDidim;
+    std::vector<std::vector<Eigen::VectorXd>> residual(records_.size());
+    for (std::size_t e = 0; e < records_.size(); ++e) {
+      for (int j = 0; j < n_; ++j) {
+        const Eigen::VectorXd tau = torques_[e][j].col(0);
+        residual[e].push_back(didim ? Eigen::VectorXd(tau - current_.tau[e][j].col(0))
+                                    : Eigen::VectorXd(tau - measured_[e][j] * beta_));
+      }
+    }
+    if (current_.W.size() != records_.size()) return;
+    closed_loop_sandwich(equations_, current_.W, didim ? current_.W : measured_, residual, fit_);
   }
 
   const IdentificationModel& model_;

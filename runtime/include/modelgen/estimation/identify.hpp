@@ -52,6 +52,9 @@ struct IdentifyOptions {
   /// grows with that experiment's samples times the base parameters for the duration of its
   /// reduction.
   std::vector<int> decimation;
+  /// Per experiment (empty: none): -1, or H >= 0 when the experiment is one averaged period whose
+  /// torques keep only the harmonics 0..H (the periodic route of modelgen/signal/prepare.hpp).
+  std::vector<int> torque_harmonics;
   /// Per joint, a speed (rad/s, m/s for prismatic joints; >= 0) below which a sample is left
   /// out: where a joint reverses, sign(dq) of the Coulomb model flips at a dq the preparation
   /// only estimates, and the measured torque goes through the friction's true, smooth

@@ -29,6 +29,9 @@ struct LeastSquaresResult {
   /// WLS: the standard deviation of each group's equation error from its OLS solution (eq. 20),
   /// the inverse of the group's weight. OLS: empty.
   std::vector<double> group_std_dev;
+  /// Empty: std_dev is eq. 18's. Else which covariance replaced it and why (the equation errors
+  /// are correlated: a sandwich, runtime/src/estimation/correlated_covariance.hpp).
+  std::string covariance;
 };
 
 /// Ordinary least squares (Gautier & Briot eq. 15-19). `W` is r x b (r stacked equations,
