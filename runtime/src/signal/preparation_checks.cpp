@@ -12,6 +12,7 @@
 
 #include <unsupported/Eigen/FFT>
 
+#include "modelgen/signal/band_power.hpp"
 #include "modelgen/signal/filter_plan.hpp"
 #include "modelgen/signal/lowpass.hpp"
 #include "runtime/src/signal/dft.hpp"
@@ -23,8 +24,11 @@ namespace {
 
 constexpr double kPi = std::numbers::pi;
 
-// Beyond this many times the excitation band, the decimation keeps mostly noise.
+// A kept band beyond kWideKeptBand times the excitation's is called too wide when over
+// kNoisyShare of the torques' power lies in it above twice the excitation band (noise then
+// fills the equations; on clean data it does no harm).
 constexpr double kWideKeptBand = 10.0;
+constexpr double kNoisyShare = 0.1;
 
 // The variance of `x` after a zero-phase Butterworth low-pass at `band_hz` (all of it when the
 // band reaches Nyquist).
@@ -158,8 +162,17 @@ std::vector<std::string> check_preparation(const PreparationFacts& f) {
                        " (the plan for these data: --decimate " +
                        std::to_string(f.planned_decimation) + ")"));
   }
+  // The share of the measured torques' power in the kept band that lies above twice the
+  // excitation band: noise and what the model leaves out, kept in the equations.
+  double noisy_share = 0;
+  if (f.tau.rows() > 4) {
+    const double dt = 1 / f.sample_rate_hz, beyond = power_above(f.tau, dt, kept_hz);
+    const double kept = power_above(f.tau, dt, 0) - beyond;
+    if (kept > 0) noisy_share = (power_above(f.tau, dt, 2 * f.bandwidth_hz) - beyond) / kept;
+  }
+  const bool wide = kept_hz > kWideKeptBand * f.bandwidth_hz && noisy_share > kNoisyShare;
   if ((f.decimation_given || f.cutoff_given) && f.bandwidth_hz > 0 &&
-      (kept_hz > f.cutoff_hz || kept_hz > kWideKeptBand * f.bandwidth_hz)) {
+      (kept_hz > f.cutoff_hz || wide)) {
     out.push_back(warning(
         f, "the decimation by " + std::to_string(f.decimation) + " keeps up to " + format(kept_hz) +
                " Hz, " + format(kept_hz / f.bandwidth_hz) + " times the excitation's " +
@@ -167,8 +180,10 @@ std::vector<std::string> check_preparation(const PreparationFacts& f) {
                (kept_hz > f.cutoff_hz ? " and above the position filter's " + format(f.cutoff_hz) +
                                             " Hz (the torques keep there what the regressor lost)"
                                       : std::string()) +
-               ": the equations there hold mostly noise (under a controller, its answer to the "
-               "encoder noise, coloured, while the standard deviations assume white residuals); "
+               "; " + format(100 * noisy_share) +
+               " % of the torques' power lies there, above "
+               "the motion (under a controller, its answer to the encoder noise, coloured, while "
+               "the standard deviations assume white residuals); "
                "raise --decimate (the plan for these data: --decimate " +
                std::to_string(f.planned_decimation) + ")"));
   }

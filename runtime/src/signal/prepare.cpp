@@ -296,7 +296,8 @@ void filter_and_differentiate(Trajectory& raw, const PreparationOptions& options
                            static_cast<long long>(kept),
                            options.unknowns,
                            q_noise,
-                           raw.ddq.middleRows(edge, kept)};
+                           raw.ddq.middleRows(edge, kept),
+                           raw.tau.middleRows(edge, kept)};
     for (const std::string& line : check_preparation(facts)) {
       out.warning += (out.warning.empty() ? "" : "\n") + line;
     }

@@ -45,6 +45,7 @@ struct PreparationFacts {
   int unknowns = 0;             ///< base parameters (0: unknown, no row check)
   Eigen::VectorXd q_noise_std;  ///< position_noise_std of the raw positions
   Eigen::MatrixXd ddq;          ///< the prepared accelerations (samples x axes)
+  Eigen::MatrixXd tau;          ///< the measured torques on the same samples
 };
 
 /// Above this ratio of the acceleration noise's variance in the kept band to the accelerations'
@@ -57,7 +58,8 @@ inline constexpr double kAttenuationRatio = 0.01;
 /// decimation cut-off), against their motion, above kAttenuationRatio on some axis); fewer
 /// than kRowsPerParameter rows per unknown; a decimation that keeps a band above the position
 /// filter's cut-off (the torques keep there what the regressor lost) or over 10 times the
-/// excitation's (closed-loop torques there are the controller's answer to encoder noise,
+/// excitation's while more than 10 % of the torques' power in it lies above twice the
+/// excitation band (closed-loop torques there are the controller's answer to encoder noise,
 /// coloured, and the least-squares standard deviations assume white residuals). Empty when
 /// every check passes.
 std::vector<std::string> check_preparation(const PreparationFacts& facts);
