@@ -151,15 +151,16 @@ std::vector<std::string> check_preparation(const PreparationFacts& f) {
   }
   const double rows = static_cast<double>(f.samples / std::max(f.decimation, 1)) *
                       static_cast<double>(f.ddq.cols());
-  if (f.unknowns > 0 && rows < kRowsPerParameter * f.unknowns) {
+  // The plan keeps the rows itself when it can; a record too short for that is not the
+  // decimation's fault (and a short record is often refused for other reasons).
+  if (f.decimation_given && f.unknowns > 0 && rows < kRowsPerParameter * f.unknowns) {
     out.push_back(
         warning(f, "the decimation by " + std::to_string(f.decimation) + " leaves about " +
                        format(rows) + " rows for " + std::to_string(f.unknowns) +
                        " parameters, fewer than " + format(kRowsPerParameter) +
                        " per parameter: few parameters will be well "
                        "determined and their standard deviations rest on few degrees of freedom; " +
-                       (f.decimation_given ? "lower --decimate" : "record longer") +
-                       " (the plan for these data: --decimate " +
+                       "lower --decimate" + " (the plan for these data: --decimate " +
                        std::to_string(f.planned_decimation) + ")"));
   }
   // The share of the measured torques' power in the kept band that lies above twice the

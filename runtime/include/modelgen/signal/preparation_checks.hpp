@@ -56,9 +56,9 @@ inline constexpr double kAttenuationRatio = 0.01;
 /// The warnings ("SOURCE: warning: ...", one per failed check) for a preparation: errors in
 /// the variables (the accelerations' noise in the band the decimation keeps, min(cutoff,
 /// decimation cut-off), against their motion, above kAttenuationRatio on some axis); fewer
-/// than kRowsPerParameter rows per unknown; a decimation that keeps a band above the position
-/// filter's cut-off (the torques keep there what the regressor lost) or over 10 times the
-/// excitation's while more than 10 % of the torques' power in it lies above twice the
+/// than kRowsPerParameter rows per unknown with a decimation given; a decimation that keeps a band
+/// above the position filter's cut-off (the torques keep there what the regressor lost) or over 10
+/// times the excitation's while more than 10 % of the torques' power in it lies above twice the
 /// excitation band (closed-loop torques there are the controller's answer to encoder noise,
 /// coloured, and the least-squares standard deviations assume white residuals). Empty when
 /// every check passes.
