@@ -15,12 +15,16 @@ Experiments read_experiments(const std::vector<std::string>& paths,
                              const IdentificationModel& model, const PreparationOptions& options,
                              EffortColumns effort, std::ostream& report, bool keep_raw) {
   Experiments out;
+  // The plan leaves enough rows per base parameter (plan_filtering's RowBudget).
+  PreparationOptions with_unknowns = options;
+  if (with_unknowns.unknowns == 0) with_unknowns.unknowns = model.num_base_params();
   Progress progress("reading data", static_cast<long long>(paths.size()));
   for (const std::string& path : paths) {
     progress.update(static_cast<long long>(out.data.size()), path);
     Trajectory raw = read_trajectory_csv(path, model.dof(), effort);
     if (keep_raw) out.raw.push_back(raw);
-    PreparedExperiment prepared = prepare_experiment(std::move(raw), model.drive_chain(), options);
+    PreparedExperiment prepared =
+        prepare_experiment(std::move(raw), model.drive_chain(), with_unknowns);
     report << "  " << path << ": " << prepared.summary << "\n";
     if (!prepared.warning.empty()) std::cerr << prepared.warning << "\n";
     out.data.push_back(std::move(prepared.data));

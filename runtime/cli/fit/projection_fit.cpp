@@ -11,6 +11,7 @@
 #include "modelgen/closed_loop/projection_method.hpp"
 #include "modelgen/estimation/estimation_error.hpp"
 #include "runtime/cli/common/text_format.hpp"
+#include "runtime/cli/fit/friction_compensation.hpp"
 
 namespace modelgen::internal {
 
@@ -73,12 +74,23 @@ Identification fit_projection(const CommandLine& args, const IdentificationModel
     }
     records.push_back(std::move(record));
   }
+  // Bona & Curatella 3.4: friction compensated before projecting (no FIR from the references
+  // makes sign(dq)), with the friction of a first IDIM-WLS; added back to u^ for stage 2.
+  const std::vector<Eigen::MatrixXd> friction = friction_torques(model, records, min_speed);
+  for (std::size_t e = 0; e < records.size(); ++e) records[e].prepared.tau -= friction[e];
   const auto start = std::chrono::steady_clock::now();
-  const ProjectedRecords result = project_records(model.dof(), records, options.fir_lags);
+  ProjectedRecords result = project_records(model.dof(), records, options.fir_lags);
+  for (std::size_t e = 0; e < records.size(); ++e) {
+    records[e].prepared.tau += friction[e];
+    result.projected[e] += friction[e];
+  }
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   std::ostringstream stage1;
   const DecorrelationTest& test = result.test;
+  stage1 << "  friction compensated first (Bona & Curatella 3.4): the viscous and Coulomb "
+            "friction of a first IDIM-WLS taken out of the torque before the projection and "
+            "added back to u^\n";
   stage1 << "  projection (Bona & Curatella eq. 10-12): non-causal FIR of lags -" << result.lags
          << ".." << result.lags << " (decimated samples) from the references, "
          << (result.forced ? "M given by --fir-lags"
@@ -98,7 +110,8 @@ Identification fit_projection(const CommandLine& args, const IdentificationModel
       stage1 << " " << lags << " (" << fixed(worst, 0, 4) << ")";
     stage1 << "\n";
   }
-  stage1 << "  torque discarded by the projection, ||u - u^|| / ||u|| per joint:";
+  stage1 << "  torque discarded by the projection, ||u - u^|| / ||u|| per joint (u friction-"
+            "compensated):";
   for (Eigen::Index j = 0; j < result.discarded.size(); ++j) {
     stage1 << " " << fixed(100 * result.discarded[j], 0, 3) << "%";
   }
@@ -115,9 +128,9 @@ Identification fit_projection(const CommandLine& args, const IdentificationModel
         << "% of the torque norm (more than " << fixed(100 * kDiscardedWarning, 0, 3)
         << "%): a linear FIR from the references keeps only the torque at the references' "
            "harmonics; on a multi-joint nonlinear robot the rest of the torque is lost and the "
-           "estimate is biased (so is the Coulomb friction's sign(dq), even of one joint). "
-           "Move one joint at a time, with the Coulomb friction compensated, as Bona & "
-           "Curatella did (section 3.4), or use --method iv or didim\n";
+           "estimate is biased, even with the friction compensated first as here. Move one "
+           "joint at a time, as Bona & Curatella did (section 3.2), or use --method iv or "
+           "didim\n";
   }
   // Stage 2; when it fails, what stage 1 found is still worth seeing.
   try {

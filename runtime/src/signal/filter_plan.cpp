@@ -138,7 +138,7 @@ ExcitationBands estimate_bands(const Trajectory& x, double energy_fraction) {
   return out;
 }
 
-FilterPlan plan_filtering(double sample_rate_hz, double bandwidth_hz) {
+FilterPlan plan_filtering(double sample_rate_hz, double bandwidth_hz, const RowBudget& rows) {
   if (!(sample_rate_hz > 0) || !std::isfinite(sample_rate_hz)) {
     throw std::invalid_argument("sample rate must be positive, got " + format(sample_rate_hz) +
                                 " Hz");
@@ -154,18 +154,31 @@ FilterPlan plan_filtering(double sample_rate_hz, double bandwidth_hz) {
   plan.bandwidth_hz = bandwidth_hz;
   const bool capped = 10.0 * bandwidth_hz > 0.8 * nyquist;
   plan.position_cutoff_hz = capped ? 0.8 * nyquist : 10.0 * bandwidth_hz;
+  // Two bounds on n_d: the band it keeps and the rows it leaves; the smaller one decides.
+  const int by_band =
+      std::max(1, static_cast<int>(std::floor(0.8 * nyquist / (kKeptBandMultiple * bandwidth_hz))));
+  int by_rows = by_band;
+  if (rows.unknowns > 0 && rows.axes > 0 && rows.samples > 0) {
+    by_rows =
+        std::max(1, static_cast<int>(std::floor(static_cast<double>(rows.samples) * rows.axes /
+                                                (kRowsPerParameter * rows.unknowns))));
+  }
+  const bool row_bound = by_rows < by_band;
   // The largest factor the rule allows that runs in stages of at most 10 (decimation_stages).
-  plan.decimation_factor = decimation_factor_below(
-      std::max(1, static_cast<int>(std::floor(0.8 * nyquist / (2.0 * bandwidth_hz)))));
+  plan.decimation_factor = decimation_factor_below(std::min(by_band, by_rows));
   plan.decimation_cutoff_hz = 0.8 * nyquist / plan.decimation_factor;
   std::string text =
       "positions: zero-phase Butterworth order " + std::to_string(plan.position_order) + " at " +
       format(plan.position_cutoff_hz) + " Hz (" + (capped ? "0.8 x Nyquist, below 10 x" : "10 x") +
       " the " + format(bandwidth_hz) + " Hz bandwidth); ";
+  const std::string why =
+      row_bound
+          ? "the largest that leaves " + format(kRowsPerParameter) + " rows per parameter (" +
+                std::to_string(rows.samples) + " samples x " + std::to_string(rows.axes) +
+                " axes for " + std::to_string(rows.unknowns) + " parameters)"
+          : "the largest whose filter keeps " + format(kKeptBandMultiple) + " x the bandwidth";
   if (plan.decimation_factor == 1) {
-    text +=
-        "torques and regressor not decimated (a decimation filter at 2 x the bandwidth "
-        "would need a higher sample rate)";
+    text += "torques and regressor not decimated (" + why + ")";
   } else {
     std::string stages;
     for (int stage : decimation_stages(plan.decimation_factor)) {
@@ -174,7 +187,7 @@ FilterPlan plan_filtering(double sample_rate_hz, double bandwidth_hz) {
     text += "torques and regressor decimated by " + std::to_string(plan.decimation_factor) + " (" +
             format(sample_rate_hz) + " Hz to " + format(sample_rate_hz / plan.decimation_factor) +
             " Hz in stages " + stages + ", Chebyshev I order 8 zero-phase, last cut-off " +
-            format(plan.decimation_cutoff_hz) + " Hz, at least 2 x the bandwidth)";
+            format(plan.decimation_cutoff_hz) + " Hz; " + why + ")";
   }
   plan.explanation = text;
   return plan;

@@ -12,6 +12,7 @@
 #include "modelgen/signal/filter_plan.hpp"
 #include "modelgen/signal/fourier_fit.hpp"
 #include "modelgen/signal/period.hpp"
+#include "modelgen/signal/preparation_checks.hpp"
 #include "modelgen/signal/sampling.hpp"
 
 namespace modelgen {
@@ -222,43 +223,84 @@ PreparedExperiment prepare_periodic(Trajectory& raw, const PreparationOptions& o
   return out;
 }
 
-// Gautier & Briot, section IV.A: position filter well above the dynamics, central
-// differences, then the parallel decimation of Y and W (eq. 13-14) in identify().
-void filter_and_differentiate(Trajectory& raw, const PreparationOptions& options, bool keep_edges,
-                              const std::string& resampled, PreparedExperiment& out) {
-  const double dt = uniform_sample_time(raw);
-  // The bandwidth is only needed for what the user did not set.
-  const bool need_bandwidth = !options.cutoff_hz || !options.decimation;
+// The excitation bands: given, or estimated from the data. The estimate is made even when
+// --cutoff and --decimate set the plan, for the checks; then a record it fails on is still
+// prepared (bandwidth 0: no checks).
+ExcitationBands excitation_bands(const Trajectory& raw, const PreparationOptions& options) {
   ExcitationBands bands;
   if (options.bandwidth_hz) {
     bands.bandwidth_hz = *options.bandwidth_hz;
-  } else if (need_bandwidth) {
-    bands = estimate_bands(raw);
+    return bands;
   }
+  try {
+    return estimate_bands(raw);
+  } catch (const DataError&) {
+    if (!options.cutoff_hz || !options.decimation) throw;
+  }
+  return bands;
+}
+
+// Samples dropped at each end after a position filter at `cutoff_hz` (kEdgePeriods periods).
+Eigen::Index edge_samples(double cutoff_hz, double dt) {
+  return static_cast<Eigen::Index>(std::ceil(kEdgePeriods / (cutoff_hz * dt)));
+}
+
+// Gautier & Briot, section IV.A: position filter well above the dynamics, central
+// differences, then the parallel decimation of Y and W (eq. 13-14) in identify(); the plan
+// from the band and the rows it must leave (plan_filtering), checked against the data.
+void filter_and_differentiate(Trajectory& raw, const PreparationOptions& options, bool keep_edges,
+                              const std::string& resampled, PreparedExperiment& out) {
+  const double dt = uniform_sample_time(raw);
+  const ExcitationBands bands = excitation_bands(raw, options);
   const double bandwidth = bands.bandwidth_hz;
   out.bandwidth_hz = bandwidth;
   FilterPlan plan;
-  if (need_bandwidth) {
+  if (bandwidth > 0) {
     try {
       plan = plan_filtering(1.0 / dt, bandwidth);
+      const Eigen::Index edge =
+          edge_samples(options.cutoff_hz.value_or(plan.position_cutoff_hz), dt);
+      const RowBudget rows{static_cast<long long>(raw.t.size() - 2 * edge),
+                           static_cast<int>(raw.q.cols()), options.unknowns};
+      plan = plan_filtering(1.0 / dt, bandwidth, rows);
     } catch (const std::invalid_argument& e) {
       throw DataError(raw.source + ": error: " + e.what());
     }
   }
+  const FilterPlan planned = plan;
   if (options.cutoff_hz) plan.position_cutoff_hz = *options.cutoff_hz;
   if (options.decimation) plan.decimation_factor = *options.decimation;
+  const Eigen::VectorXd q_noise = bandwidth > 0 ? position_noise_std(raw) : Eigen::VectorXd();
   filter_positions(raw, plan.position_cutoff_hz, plan.position_order);
   // The zero-phase filter's start and end are only approximately right (its edges assume
   // the signal continues as its reflection), and differentiating twice amplifies that: the
   // samples within kEdgePeriods cut-off periods of either end are dropped.
-  const Eigen::Index edge =
-      static_cast<Eigen::Index>(std::ceil(kEdgePeriods / (plan.position_cutoff_hz * dt)));
+  const Eigen::Index edge = edge_samples(plan.position_cutoff_hz, dt);
   const Eigen::Index kept = raw.t.size() - 2 * edge;
   if (kept < 3) {
     throw DataError(raw.source + ": error: too short for a position filter at " +
                     number(plan.position_cutoff_hz, 3) + " Hz: its edges (" + std::to_string(edge) +
                     " samples at each end) leave " +
                     std::to_string(std::max<Eigen::Index>(kept, 0)) + " samples");
+  }
+  if (bandwidth > 0) {
+    PreparationFacts facts{raw.source,
+                           1.0 / dt,
+                           bandwidth,
+                           plan.position_cutoff_hz,
+                           plan.decimation_factor,
+                           options.cutoff_hz.has_value(),
+                           options.decimation.has_value(),
+                           planned.decimation_factor,
+                           planned.position_cutoff_hz,
+                           static_cast<long long>(kept),
+                           options.unknowns,
+                           q_noise,
+                           raw.ddq.middleRows(edge, kept),
+                           raw.tau.middleRows(edge, kept)};
+    for (const std::string& line : check_preparation(facts)) {
+      out.warning += (out.warning.empty() ? "" : "\n") + line;
+    }
   }
   if (!keep_edges) {
     raw.t = raw.t.segment(edge, kept).eval();
@@ -270,7 +312,7 @@ void filter_and_differentiate(Trajectory& raw, const PreparationOptions& options
   std::string band;
   if (options.bandwidth_hz) {
     band = ", excitation bandwidth " + number(bandwidth, 3) + " Hz (given)";
-  } else if (need_bandwidth) {
+  } else if (bandwidth > 0) {
     band = ", excitation bandwidth " + number(bandwidth, 3) +
            " Hz (estimated: 99% of the "
            "velocities' energy below " +

@@ -191,16 +191,18 @@ TEST(ModelidData, NonPeriodicRouteFiltersAndDecimates) {
   const CliRun run = modelid("fit --robot tx40 --method ols --bandwidth 1 --data " +
                              quoted(dir / "log.csv") + " -o " + quoted(dir / "est.json"));
   ASSERT_EQ(run.exit_code, 0) << run.err;
-  // plan_filtering: cut-off 10 x 1 Hz; largest n_d with 0.8 (500 Hz) / n_d >= 2 Hz is 200.
+  // plan_filtering: cut-off 10 x 1 Hz; the largest n_d with 0.8 (500 Hz) / n_d >= 4 Hz is 100,
+  // but 20 rows per parameter over the 11400 samples the filter's edges leave, 6 axes and the
+  // TX-40's 61 base parameters allow at most 11400 x 6 / 1220 = 56.07: 56 = 8 x 7.
   EXPECT_NE(run.out.find("positions low-passed at 10 Hz"), std::string::npos) << run.out;
   EXPECT_NE(run.out.find("0.3 s dropped at each end"), std::string::npos) << run.out;
-  EXPECT_NE(run.out.find("parallel decimation by 200"), std::string::npos) << run.out;
+  EXPECT_NE(run.out.find("parallel decimation by 56"), std::string::npos) << run.out;
   const nlohmann::json estimate = nlohmann::json::parse(test::read_text(dir / "est.json"));
   // Central differences drop 2 samples, the filter edges 3 cut-off periods (300 samples) at
-  // each end; decimation keeps rows 0, 200, 400, ... but those the end samples dominate.
+  // each end; decimation keeps rows 0, 56, 112, ... but those the end samples dominate.
   const Eigen::Index filtered = x.t.size() - 2 - 600;
-  EXPECT_EQ(estimate["samples"].get<long long>(), decimated_interior(filtered, 200).count);
-  EXPECT_LT(decimated_interior(filtered, 200).count, (filtered + 199) / 200);
+  EXPECT_EQ(estimate["samples"].get<long long>(), decimated_interior(filtered, 56).count);
+  EXPECT_LT(decimated_interior(filtered, 56).count, (filtered + 55) / 56);
   // Noise-free torques stay explained after filtering and decimation: what is left is the
   // filter's smoothing of the sampled positions and of the Coulomb terms' sign steps.
   EXPECT_LT(estimate["rel_error_norm"].get<double>(), 1e-4);

@@ -51,6 +51,8 @@ TEST_F(ModelidProjection, ReportsTheProjectionAndWarnsOnAMultiJointRun) {
   CliRun run = modelid(fit);
   ASSERT_EQ(run.exit_code, 0) << run.err;
   EXPECT_NE(run.out.find("non-causal FIR of lags -"), std::string::npos) << run.out;
+  EXPECT_NE(run.out.find("friction compensated first (Bona & Curatella 3.4)"), std::string::npos)
+      << run.out;
   EXPECT_NE(run.out.find("M chosen by the decorrelation and residual tests"), std::string::npos)
       << run.out;
   EXPECT_NE(run.out.find("decorrelation test: largest |correlation|"), std::string::npos);

@@ -51,12 +51,31 @@ struct FilterPlan {
   std::string explanation;  ///< one line saying what was chosen and why
 };
 
+/// The decimation keeps kKeptBandMultiple x the bandwidth: 2.5 times below the position filter's
+/// cut-off (10 x), where the filter run twice passes 99.9 % (|H|^2 = 1 / (1 + 0.4^8)), so that W
+/// and Y share the kept band; and the torques, nonlinear in the motion, reach above its band.
+inline constexpr double kKeptBandMultiple = 4.0;
+/// Rows of the decimated equations per unknown the plan keeps at least (RowBudget): with fewer,
+/// the standard deviations rest on a residual of few degrees of freedom per parameter and the
+/// well-determined parameters are few (issue 31: 73 rows per axis for 58 parameters).
+inline constexpr double kRowsPerParameter = 20.0;
+
+/// What the decimation must leave: `samples` per axis after filtering, `axes` equations per
+/// sample, `unknowns` parameters. A budget with unknowns = 0 imposes nothing.
+struct RowBudget {
+  long long samples = 0;
+  int axes = 0;
+  int unknowns = 0;
+};
+
 /// Gautier's practice, as a rule: the position filter must not touch the dynamics, so its
 /// cut-off is 10 x the bandwidth (at most 0.8 x Nyquist); the decimation keeps the identified
 /// frequency range, so n_d is the largest factor whose decimation filter cut-off,
-/// 0.8 (fs / 2) / n_d, is still at least 2 x the bandwidth (n_d = 1 when none is) and that
-/// runs in stages of at most 10 (decimation_factor_below: 71 becomes 70 = 10 x 7).
+/// 0.8 (fs / 2) / n_d, is still at least kKeptBandMultiple x the bandwidth (n_d = 1 when none
+/// is), that leaves at least kRowsPerParameter rows per unknown of `rows` (samples x axes /
+/// n_d >= 20 unknowns) and that runs in stages of at most 10 (decimation_factor_below: 71
+/// becomes 70 = 10 x 7). The explanation says which bound chose n_d.
 /// Throws std::invalid_argument for a sample rate <= 0 or a bandwidth not in (0, fs / 2).
-FilterPlan plan_filtering(double sample_rate_hz, double bandwidth_hz);
+FilterPlan plan_filtering(double sample_rate_hz, double bandwidth_hz, const RowBudget& rows = {});
 
 }  // namespace modelgen

@@ -36,6 +36,9 @@ struct PreparationOptions {
   std::optional<double> bandwidth_hz;  ///< excitation bandwidth; estimated when unset
   std::optional<double> cutoff_hz;     ///< position filter cut-off; from plan_filtering
   std::optional<int> decimation;       ///< n_d; from plan_filtering (1 for data with dq/ddq)
+  /// The unknowns the prepared rows will estimate (base parameters): plan_filtering leaves at
+  /// least kRowsPerParameter rows per unknown; 0 sets no such bound.
+  int unknowns = 0;
   /// For prediction: one row per input sample, at the file's own time stamps, with its
   /// measured torques. The motion is made as the route says (zero-phase filtered positions
   /// and their central differences, the Fourier series of the averaged period, or dq and ddq
