@@ -42,6 +42,25 @@ void print_link_table(std::ostream& out, const std::vector<LinkSummary>& links) 
   }
 }
 
+void print_drive_table(std::ostream& out, const std::vector<DriveSummary>& drives) {
+  if (drives.empty()) return;
+  out << "  drive parameters (by: data = identified alone, prior = regrouped with others: the "
+         "value is the prior's, not the data's):\n"
+      << "    " << pad("", 9) << " " << pad("identified", 14) << " " << pad("a-priori", 14)
+      << " by\n";
+  for (const DriveSummary& drive : drives) {
+    out << "    " << pad(drive.name, 9) << " " << fixed(drive.identified, 14, 5) << " "
+        << (drive.a_priori ? fixed(*drive.a_priori, 14, 5) : pad("-", 14)) << " "
+        << decided_by_name(drive.by);
+    if (drive.by == DecidedBy::kPrior && !drive.regrouped_with.empty()) {
+      out << " (regrouped with";
+      for (const std::string& name : drive.regrouped_with) out << " " << name;
+      out << ")";
+    }
+    out << "\n";
+  }
+}
+
 void warn_far_links(std::ostream& err, const std::vector<LinkSummary>& links) {
   for (const LinkSummary& link : links) {
     if (link.far_from_a_priori.empty()) continue;

@@ -29,6 +29,7 @@ PhysicalEstimate physical_estimate(const RobotModel& description, const Identifi
                          description.known_values, options);
   out.prior_weight = out.fit.prior_weight;
   out.links = summarise_links(description.tree, K, out.fit, description.known_values);
+  out.drives = summarise_drives(description.tree, K, out.fit, description.known_values);
   return out;
 }
 
@@ -65,6 +66,10 @@ PhysicalBlock physical_block(const PhysicalEstimate& physical,
                                 physical.fit.standard[static_cast<Eigen::Index>(k)]);
   }
   for (const LinkSummary& link : physical.links) block.links.push_back(link_inertial(link));
+  for (const DriveSummary& drive : physical.drives) {
+    block.drives.push_back(DriveParameter{drive.name, drive.identified, drive.a_priori,
+                                          decided_by_name(drive.by), drive.regrouped_with});
+  }
   return block;
 }
 
@@ -99,6 +104,7 @@ void print_physical(std::ostream& out, const std::vector<std::string>& base_name
     out << "\n";
   }
   print_link_table(out, physical.links);
+  print_drive_table(out, physical.drives);
   if (!fit.converged) {
     out << "  note: the optimiser stopped after " << fit.iterations
         << " Newton steps without meeting its tolerance\n";

@@ -145,4 +145,34 @@ std::vector<LinkSummary> summarise_links(const RigidBodyTree& tree, const Eigen:
   return out;
 }
 
+std::vector<DriveSummary> summarise_drives(const RigidBodyTree& tree, const Eigen::MatrixXd& K,
+                                           const PhysicalFitResult& fit,
+                                           const std::vector<std::optional<double>>& a_priori) {
+  const Eigen::MatrixXd N = detail::scaled_null_space(K, fit.prior_scale);
+  const auto n = fit.standard.size();
+  // Rounding-level coefficients of the regrouping are no regrouping (as in null_space_of).
+  const double small = 1e-10 * std::max(K.cwiseAbs().maxCoeff(), 1e-300);
+  std::vector<DriveSummary> out;
+  for (Eigen::Index k = 0; k < n; ++k) {
+    const StandardParam& param = tree.params[static_cast<std::size_t>(k)];
+    if (is_inertial(param.kind)) continue;
+    DriveSummary drive;
+    drive.name = param.name;
+    drive.identified = fit.standard[k];
+    drive.a_priori = a_priori[static_cast<std::size_t>(k)];
+    drive.by = decided_by(N, fit.prior_scale, {Eigen::VectorXd::Unit(n, k)});
+    for (Eigen::Index other = 0; other < n; ++other) {
+      if (other == k) continue;
+      for (Eigen::Index j = 0; j < K.rows(); ++j) {
+        if (std::abs(K(j, k)) > small && std::abs(K(j, other)) > small) {
+          drive.regrouped_with.push_back(tree.params[static_cast<std::size_t>(other)].name);
+          break;
+        }
+      }
+    }
+    out.push_back(std::move(drive));
+  }
+  return out;
+}
+
 }  // namespace modelgen

@@ -45,6 +45,25 @@ struct LinkSummary {
 inline constexpr double kFarMassFactor = 2.0;
 inline constexpr double kFarComDistance = 0.1;  // m
 
+/// A drive parameter (rotor inertia, friction, offset: every standard parameter outside the
+/// bodies) of the consistent fit: identified only when the data decided it alone. One the
+/// regrouping adds to others (Ia1 into ZZ1R about a vertical first axis) has its value from the
+/// prior (or the start) and consistency, not from the data.
+struct DriveSummary {
+  std::string name;
+  double identified = 0;
+  std::optional<double> a_priori;
+  DecidedBy by = DecidedBy::kPrior;
+  /// The standard parameters it is regrouped with (sharing a base parameter), e.g. {"ZZ1"}.
+  std::vector<std::string> regrouped_with;
+};
+
+/// One summary per drive parameter of `tree`, in tree.params order (arguments as for
+/// summarise_links).
+std::vector<DriveSummary> summarise_drives(const RigidBodyTree& tree, const Eigen::MatrixXd& K,
+                                           const PhysicalFitResult& fit,
+                                           const std::vector<std::optional<double>>& a_priori);
+
 /// The quantities of one body's ten standard parameters (XX XY XZ YY YZ ZZ MX MY MZ M, inertia
 /// about the body frame's origin); a body without positive mass keeps com and moments at 0.
 LinkQuantities link_quantities(const double* p);
