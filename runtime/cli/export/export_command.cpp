@@ -137,6 +137,10 @@ int run_export(const CommandLine& args) {
 
   const std::string estimate = std::filesystem::path(params).filename().string();
   const std::string method = identified.method.empty() ? "" : " (" + identified.method + ")";
+  // Which values the data decided, a line per link (fit --physical's "links" and "drives").
+  std::string decided;
+  for (const std::string& line : identified.decided) decided += "\n" + line;
+  if (!decided.empty()) decided = "\nWhat the data decided:" + decided;
   const std::string text = read_source_file(robot);
   std::string written;
   if (urdf) {
@@ -144,13 +148,14 @@ int run_export(const CommandLine& args) {
         robot, text, description, identified.values, options,
         "the <inertial> of each moving link is identified, from " + estimate + method +
             "; the links fixed to a moving link keep their a-priori inertials, unless export "
-            "warned that it moved them onto the moving link.");
+            "warned that it moved them onto the moving link." +
+            decided);
     for (const std::string& warning : exported.warnings) std::cerr << warning << "\n";
     written = exported.text;
   } else {
     written = identified_yaml(robot, text, description, identified.values,
                               "Identified by modelid export from " + estimate + method +
-                                  ":\nevery standard parameter, physically consistent.");
+                                  ":\nevery standard parameter, physically consistent." + decided);
   }
   check_round_trip(output, written, urdf, description, *source.model, identified.values, options,
                    params);

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <filesystem>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -139,6 +140,8 @@ double mass_of(const tinyxml2::XMLDocument& doc, const std::string& link) {
 // The UR5 of robots/urdf as a user identifies it: simulate from perturbed URDF values, fit
 // with --physical, export. urdfdom and modelgen load the result; its base parameters are the
 // estimate's.
+void expect_decided_lines(const std::string& text, const nlohmann::json& est);
+
 TEST(ModelidExport, SimulatedUr5RoundTripsThroughTheUrdf) {
   const fs::path dir = test::test_folder("export");
   const std::string urdf = test::source_path("robots/urdf/ur5.urdf");
@@ -194,6 +197,52 @@ TEST(ModelidExport, SimulatedUr5RoundTripsThroughTheUrdf) {
   }
   EXPECT_NE(text.find("Fv1"), std::string::npos);
   EXPECT_NE(text.find("<!--"), std::string::npos);
+  expect_decided_lines(text, est);
+}
+
+// Issue 30: the written file says, a line per link, what the data decided, as EST.json's
+// "links" do, and names the drive parameters its "drives" say the data did not decide.
+void expect_decided_lines(const std::string& text, const nlohmann::json& est) {
+  ASSERT_TRUE(est.contains("links"));
+  for (const nlohmann::json& link : est["links"]) {
+    const std::string start = "link '" + link["body"].get<std::string>() + "': ";
+    const std::size_t at = text.find(start);
+    ASSERT_NE(at, std::string::npos) << start << "\n" << text;
+    const std::string line = text.substr(at, text.find('\n', at) - at);
+    const std::size_t prior_part = std::min(line.find("; the prior"), line.size());
+    const std::string data_part = line.substr(0, prior_part);
+    for (const auto& [key, words] :
+         {std::pair<std::string, std::string>{"mass", "mass"}, {"com", "centre of mass"}}) {
+      EXPECT_EQ(data_part.find(words) != std::string::npos, link["decided_by"][key] == "data")
+          << line;
+    }
+  }
+  for (const nlohmann::json& drive : est["drives"]) {
+    if (drive["decided_by"] != "prior") continue;
+    const std::size_t at = text.find("the data did not decide (regrouped):");
+    ASSERT_NE(at, std::string::npos) << text;
+    EXPECT_NE(text.find(drive["name"].get<std::string>(), at), std::string::npos) << drive;
+  }
+}
+
+TEST(ModelidExport, TheYamlSaysWhatTheDataDecided) {
+  // The bundled KR 150 run: Ia1 enters only with ZZ1 (fit's drive table says "prior").
+  const fs::path dir = test::test_folder("export_decided");
+  const std::string yaml = test::source_path("robots/kr150.yaml");
+  const CliRun fit = modelid("fit --robot " + quoted(fs::path(yaml)) + " --data " +
+                             test::quoted_source("robots/data/kr150/excitation.csv") +
+                             " --method wls --physical -o " + quoted(dir / "est.json"));
+  ASSERT_EQ(fit.exit_code, 0) << fit.err;
+  const CliRun exported =
+      modelid("export --robot " + quoted(fs::path(yaml)) + " --params " + quoted(dir / "est.json") +
+              " -o " + quoted(dir / "id.yaml") + " --force");
+  ASSERT_EQ(exported.exit_code, 0) << exported.err;
+  const std::string text = test::read_text(dir / "id.yaml");
+  const nlohmann::json est = nlohmann::json::parse(test::read_text(dir / "est.json"));
+  expect_decided_lines(text, est);
+  EXPECT_NE(text.find("# drive parameters the data did not decide (regrouped): Ia1"),
+            std::string::npos)
+      << text;
 }
 
 // A two-axis arm with a 0.8 kg tool on a fixed joint, turned and offset: modelgen merges the
