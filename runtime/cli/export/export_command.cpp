@@ -79,8 +79,9 @@ void check_round_trip(const std::string& output, const std::string& text, bool u
   }
 }
 
-// Refuses, unless --force, an estimate with a link far from its a-priori values (mass off by more
-// than a factor 2, centre of mass over 10 cm away; modelgen/estimation/link_summary.hpp): such a
+// Refuses, unless --force, an estimate with a link outside the region of its geometry or far from
+// its a-priori values (mass off by more than a factor 2, centre of mass over 10 cm away;
+// modelgen/estimation/link_summary.hpp): such a
 // description breaks simulators, payload estimates and planners that read it, and is more often
 // a prior the data could not correct than the robot.
 void check_links_near_a_priori(const RobotModel& description, const Eigen::VectorXd& standard,
@@ -98,6 +99,16 @@ void check_links_near_a_priori(const RobotModel& description, const Eigen::Vecto
       all_known = all_known && value.has_value();
       known[s] = value.value_or(0.0);
     }
+    // Outside the region of its geometry (the ellipsoid around its URDF shapes): no body that
+    // shape can be.
+    if (b < description.body_regions.size() && description.body_regions[b]) {
+      const double extent = region_extent(identified, *description.body_regions[b]);
+      if (extent > 1 + 1e-6) {
+        far += "\n  link '" + description.tree.bodies[b].name +
+               "': its mass reaches outside the region its geometry gives (extent " +
+               shortest_text(extent) + ")";
+      }
+    }
     if (!all_known) continue;
     const auto reasons = far_from_a_priori(link_quantities(identified), link_quantities(known));
     if (reasons.empty()) continue;
@@ -105,7 +116,7 @@ void check_links_near_a_priori(const RobotModel& description, const Eigen::Vecto
     for (std::size_t i = 0; i < reasons.size(); ++i) far += (i ? "; " : "") + reasons[i];
   }
   if (!far.empty()) {
-    throw InputError({params}, "links far from their a-priori values:" + far +
+    throw InputError({params}, "links far from their a-priori values or their geometry:" + far +
                                    "\nnothing was written; check the description's inertials and "
                                    "the excitation, or give --force to write them anyway");
   }

@@ -10,6 +10,11 @@
 
 namespace modelgen::internal {
 
+/// A link whose mass reaches outside its geometric region: extent above kRegionExtentLimit
+/// (1 plus rounding).
+inline constexpr double kRegionExtentLimit = 1 + 1e-6;
+bool outside_region(const LinkSummary& link);
+
 /// The table, one block of three rows per link.
 void print_link_table(std::ostream& out, const std::vector<LinkSummary>& links);
 

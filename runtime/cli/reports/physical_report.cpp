@@ -28,7 +28,8 @@ PhysicalEstimate physical_estimate(const RobotModel& description, const Identifi
   out.fit = fit_physical(description.tree, K, unconstrained.value, unconstrained.information,
                          description.known_values, options);
   out.prior_weight = out.fit.prior_weight;
-  out.links = summarise_links(description.tree, K, out.fit, description.known_values);
+  out.links = summarise_links(description.tree, K, out.fit, description.known_values,
+                              description.body_regions);
   out.drives = summarise_drives(description.tree, K, out.fit, description.known_values);
   return out;
 }
@@ -48,6 +49,7 @@ LinkInertial link_inertial(const LinkSummary& summary) {
   link.com_decided_by = decided_by_name(summary.com_by);
   link.moments_decided_by = decided_by_name(summary.moments_by);
   link.far_from_a_priori = summary.far_from_a_priori;
+  link.region_extent = summary.region_extent;
   return link;
 }
 

@@ -427,6 +427,47 @@ TEST(ModelidExport, ALinkFarFromItsAPrioriValuesIsRefusedUnlessForced) {
   EXPECT_TRUE(fs::exists(dir / "id.urdf"));
 }
 
+// One link: a 0.1 x 0.1 x 0.4 box from the joint up, its a-priori mass 1 kg at its centre.
+constexpr const char* kBoxArm = R"(<?xml version="1.0"?>
+<robot name="box_arm">
+  <link name="base"/>
+  <link name="a">
+    <inertial><origin xyz="0 0 0.2"/><mass value="1"/>
+      <inertia ixx="1e-4" ixy="0" ixz="0" iyy="1e-4" iyz="0" izz="1e-4"/></inertial>
+    <collision><origin xyz="0 0 0.2"/><geometry><box size="0.1 0.1 0.4"/></geometry></collision>
+  </link>
+  <joint name="j1" type="revolute"><parent link="base"/><child link="a"/>
+    <axis xyz="0 1 0"/><limit lower="-3" upper="3" effort="10" velocity="2"/></joint>
+</robot>
+)";
+
+TEST(ModelidExport, ALinkOutsideItsGeometryIsRefusedUnlessForced) {
+  // The link's mass 9 cm off the box's axis (not far from its a-priori centre, 10 cm): beyond
+  // the ellipsoid around the box, whose semi-axis there is sqrt(3) x 5 cm = 8.7 cm.
+  const fs::path dir = test::test_folder("export_region");
+  test::write_text(dir / "arm.urdf", kBoxArm);
+  const RobotModel robot = load_robot((dir / "arm.urdf").string());
+  Eigen::VectorXd standard = consistent_standard(robot);
+  const double values[] = {
+      1e-4, 0, -0.09 * 0.2, 1e-4 + 0.09 * 0.09 + 0.04, 0, 1e-4 + 0.09 * 0.09, 0.09, 0, 0.2, 1};
+  const char* stems[] = {"XX", "XY", "XZ", "YY", "YZ", "ZZ", "MX", "MY", "MZ", "M"};
+  for (int s = 0; s < 10; ++s) standard[robot.param_index(std::string(stems[s]) + "1")] = values[s];
+  standard[robot.param_index("XX1")] += 0.04;  // the parallel-axis terms about the origin
+  test::write_text(dir / "est.json", estimate_of((dir / "arm.urdf").string(), standard).dump(2));
+  const std::string command = "export --robot " + quoted(dir / "arm.urdf") + " --params " +
+                              quoted(dir / "est.json") + " -o " + quoted(dir / "id.urdf");
+  const CliRun refused = modelid(command);
+  EXPECT_NE(refused.exit_code, 0);
+  EXPECT_NE(refused.err.find("link 'a': its mass reaches outside the region its geometry gives"),
+            std::string::npos)
+      << refused.err;
+  EXPECT_EQ(refused.err.find("x its a-priori value"), std::string::npos) << refused.err;
+  EXPECT_EQ(refused.err.find("from its a-priori position"), std::string::npos) << refused.err;
+  EXPECT_FALSE(fs::exists(dir / "id.urdf"));
+  const CliRun forced = modelid(command + " --force");
+  ASSERT_EQ(forced.exit_code, 0) << forced.err;
+}
+
 TEST(ModelidExport, Tx40KnownSectionIsReplaced) { yaml_round_trip("robots/tx40.yaml", "known:"); }
 
 TEST(ModelidExport, Kr150GetsAKnownSection) { yaml_round_trip("robots/kr150.yaml", ""); }

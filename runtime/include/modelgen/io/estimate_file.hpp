@@ -50,6 +50,7 @@ struct LinkInertial {
   /// "data" or "prior" for the mass, the centre of mass and the principal moments.
   std::string mass_decided_by, com_decided_by, moments_decided_by;
   std::vector<std::string> far_from_a_priori;  ///< why the link is far from its a-priori values
+  std::optional<double> region_extent;         ///< in its geometric region; above 1: outside
 };
 
 /// A drive parameter of the consistent fit and whether the data decided it alone ("data") or
@@ -99,7 +100,8 @@ struct EstimateFile {
 /// "essential"?: {"r_sigma", "kept", "eliminated", "parameters", "rel_error_norm",
 /// "condition_number"}, "standard"?: {"XX1": ..., ...}, "links"?: [{"body", "mass", "com",
 /// "inertia_com", "principal_moments", "decided_by": {"mass", "com", "principal_moments"},
-/// "a_priori"?: {"mass", "com", "principal_moments"}, "far_from_a_priori": [...]}],
+/// "a_priori"?: {"mass", "com", "principal_moments"}, "far_from_a_priori": [...],
+/// "region_extent"?}],
 /// "drives"?: [{"name", "value", "a_priori"?, "decided_by", "regrouped_with"}],
 /// "physical"?: {"prior_weight", "prior_weight_rule", "cost_increase", "binding_constraints",
 /// "unconstrained_rel_error_norm", "unconstrained": [...]}}. Non-finite numbers are written as
