@@ -90,9 +90,20 @@ std::string estimate_json(const EstimateFile& estimate) {
                               numbers({a.principal_moments.begin(), a.principal_moments.end()})}};
       }
       entry["far_from_a_priori"] = link.far_from_a_priori;
+      if (link.region_extent) entry["region_extent"] = number(*link.region_extent);
       links.push_back(std::move(entry));
     }
     out["links"] = std::move(links);
+    nlohmann::json drives = nlohmann::json::array();
+    for (const DriveParameter& drive : p.drives) {
+      nlohmann::json entry = {{"name", drive.name},
+                              {"value", number(drive.value)},
+                              {"decided_by", drive.decided_by},
+                              {"regrouped_with", drive.regrouped_with}};
+      if (drive.a_priori) entry["a_priori"] = number(*drive.a_priori);
+      drives.push_back(std::move(entry));
+    }
+    out["drives"] = std::move(drives);
     out["physical"] = {{"prior_weight", number(p.prior_weight)},
                        {"prior_weight_rule", p.prior_weight_rule},
                        {"cost_increase", number(p.cost_increase)},

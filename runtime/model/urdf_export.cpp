@@ -175,8 +175,11 @@ std::vector<std::string> wrapped(const std::string& text, std::size_t width) {
 std::string comment_text(const RobotModel& description, const Eigen::VectorXd& standard,
                          const std::string& note) {
   std::string text = kCommentStart;
-  for (const std::string& line : wrapped(note, 84))
-    text += (text == kCommentStart ? " " : "     ") + line + "\n";
+  std::istringstream paragraphs(note);  // each line of the note wrapped on its own
+  for (std::string paragraph; std::getline(paragraphs, paragraph);) {
+    for (const std::string& line : wrapped(paragraph, 84))
+      text += (text == kCommentStart ? " " : "     ") + line + "\n";
+  }
   std::string drives;
   for (std::size_t b = 0; b < description.tree.bodies.size(); ++b) {
     std::string line;

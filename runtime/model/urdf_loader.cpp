@@ -207,6 +207,19 @@ RobotModel load_urdf(const std::string& path, const std::string& text, const Loa
                                  "; nothing to identify");
   }
   set_parameters(builder.inertials(), model);
+  // The ellipsoid through the corners of the box of each body's shapes holds the box: its
+  // semi-axes are sqrt(3) times the box's half sides (the smallest such ellipsoid).
+  for (const auto& box : builder.shape_boxes()) {
+    auto& region = model.body_regions.emplace_back();
+    if (!box) continue;
+    region.emplace();
+    for (int i = 0; i < 3; ++i) {
+      region->centre[static_cast<std::size_t>(i)] = 0.5 * (box->first[i] + box->second[i]);
+      // A flat shape (a plate of no thickness) still gets a region of 1 mm.
+      region->semi_axes[static_cast<std::size_t>(i)] =
+          std::max(std::sqrt(3.0) * 0.5 * (box->second[i] - box->first[i]), 1e-3);
+    }
+  }
   validate(model.tree);
   return model;
 }

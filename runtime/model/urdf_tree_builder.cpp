@@ -154,6 +154,48 @@ void TreeBuilder::add_inertial(const std::string& link_name, int body,
   for (std::size_t k = 0; k < values.size(); ++k) (*sum)[k] += values[k];
 }
 
+// Widens the body's box by the link's collision shapes (its visual ones when it has none):
+// each shape's own bounding box, its eight corners taken to the body frame.
+void TreeBuilder::add_shapes(const std::string& link_name, int body,
+                             const Eigen::Isometry3d& body_from_link) {
+  const urdf::LinkConstSharedPtr link = urdf_.getLink(link_name);
+  if (!link) throw std::logic_error("urdfdom lost link '" + link_name + "'");
+  std::vector<std::pair<urdf::GeometrySharedPtr, urdf::Pose>> shapes;
+  for (const auto& c : link->collision_array)
+    if (c && c->geometry) shapes.emplace_back(c->geometry, c->origin);
+  if (shapes.empty()) {
+    for (const auto& v : link->visual_array)
+      if (v && v->geometry) shapes.emplace_back(v->geometry, v->origin);
+  }
+  for (const auto& [geometry, pose] : shapes) {
+    Eigen::Vector3d half;
+    if (const auto box = std::dynamic_pointer_cast<urdf::Box>(geometry)) {
+      half = 0.5 * Eigen::Vector3d(box->dim.x, box->dim.y, box->dim.z);
+    } else if (const auto cylinder = std::dynamic_pointer_cast<urdf::Cylinder>(geometry)) {
+      half = Eigen::Vector3d(cylinder->radius, cylinder->radius, 0.5 * cylinder->length);
+    } else if (const auto sphere = std::dynamic_pointer_cast<urdf::Sphere>(geometry)) {
+      half = Eigen::Vector3d::Constant(sphere->radius);
+    } else {
+      continue;  // a mesh: no size without its file
+    }
+    Eigen::Quaterniond q(pose.rotation.w, pose.rotation.x, pose.rotation.y, pose.rotation.z);
+    Eigen::Isometry3d link_from_shape = Eigen::Isometry3d::Identity();
+    link_from_shape.linear() = q.normalized().toRotationMatrix();
+    link_from_shape.translation() =
+        Eigen::Vector3d(pose.position.x, pose.position.y, pose.position.z);
+    auto& box = boxes_[static_cast<std::size_t>(body)];
+    for (int corner = 0; corner < 8; ++corner) {
+      const Eigen::Vector3d local((corner & 1 ? 1 : -1) * half.x(),
+                                  (corner & 2 ? 1 : -1) * half.y(),
+                                  (corner & 4 ? 1 : -1) * half.z());
+      const Eigen::Vector3d x = body_from_link * (link_from_shape * local);
+      if (!box) box.emplace(x, x);
+      box->first = box->first.cwiseMin(x);
+      box->second = box->second.cwiseMax(x);
+    }
+  }
+}
+
 // Queues the joints below `link`, so that they are visited in file order.
 void TreeBuilder::push_children(int link, int body, const Eigen::Isometry3d& body_from_link) {
   const std::vector<int>& children = structure_.child_joints[link];
@@ -218,7 +260,10 @@ void TreeBuilder::visit(int j, int body, const Eigen::Isometry3d& body_from_link
                                         "joint '" + entry.name + "': origin");
   if (!is_moving(entry.type)) {
     // Mass fixed to the base never moves, so it has no effect on the dynamics.
-    if (body >= 0) add_inertial(entry.child, body, body_from_child);
+    if (body >= 0) {
+      add_inertial(entry.child, body, body_from_child);
+      add_shapes(entry.child, body, body_from_child);
+    }
     push_children(child, body, body_from_child);
     return;
   }
@@ -243,7 +288,9 @@ void TreeBuilder::visit(int j, int body, const Eigen::Isometry3d& body_from_link
   model_.tree.bodies.push_back(std::move(made));
   model_.joints.push_back(joint_description(urdf_joint, entry));
   inertials_.emplace_back();
+  boxes_.emplace_back();
   add_inertial(entry.child, index, Eigen::Isometry3d::Identity());
+  add_shapes(entry.child, index, Eigen::Isometry3d::Identity());
   push_children(child, index, Eigen::Isometry3d::Identity());
 }
 

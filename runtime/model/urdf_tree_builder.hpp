@@ -7,6 +7,7 @@
 #include <optional>
 #include <set>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <urdf_model/model.h>
@@ -32,6 +33,10 @@ class TreeBuilder {
   // <inertial>, so an absent inertial stays unknown rather than becoming zero.
   const std::vector<std::optional<std::array<double, 10>>>& inertials() const { return inertials_; }
 
+  // Per body, the box (lowest and highest corner, body frame) holding its links' shapes.
+  using Box = std::pair<Eigen::Vector3d, Eigen::Vector3d>;
+  const std::vector<std::optional<Box>>& shape_boxes() const { return boxes_; }
+
  private:
   const urdf::Joint& joint(const JointEntry& entry) const;
   Eigen::Isometry3d origin_transform(const urdf::Pose& pose, const OriginEntry& origin,
@@ -39,6 +44,7 @@ class TreeBuilder {
   std::array<double, 3> joint_axis(const urdf::Joint& joint, const JointEntry& entry);
   void add_inertial(const std::string& link_name, int body,
                     const Eigen::Isometry3d& body_from_link);
+  void add_shapes(const std::string& link_name, int body, const Eigen::Isometry3d& body_from_link);
   void push_children(int link, int body, const Eigen::Isometry3d& body_from_link);
   JointDescription joint_description(const urdf::Joint& urdf_joint, const JointEntry& entry) const;
   void visit(int j, int body, const Eigen::Isometry3d& body_from_link);
@@ -57,6 +63,7 @@ class TreeBuilder {
   const std::set<int>* kept_joints_;
   RobotModel& model_;
   std::vector<std::optional<std::array<double, 10>>> inertials_;
+  std::vector<std::optional<Box>> boxes_;
   std::vector<Pending> pending_;
   double tolerance_ = 0;
   bool mimic_as_joint_ = false;

@@ -79,8 +79,9 @@ void check_round_trip(const std::string& output, const std::string& text, bool u
   }
 }
 
-// Refuses, unless --force, an estimate with a link far from its a-priori values (mass off by more
-// than a factor 2, centre of mass over 10 cm away; modelgen/estimation/link_summary.hpp): such a
+// Refuses, unless --force, an estimate with a link outside the region of its geometry or far from
+// its a-priori values (mass off by more than a factor 2, centre of mass over 10 cm away;
+// modelgen/estimation/link_summary.hpp): such a
 // description breaks simulators, payload estimates and planners that read it, and is more often
 // a prior the data could not correct than the robot.
 void check_links_near_a_priori(const RobotModel& description, const Eigen::VectorXd& standard,
@@ -98,6 +99,16 @@ void check_links_near_a_priori(const RobotModel& description, const Eigen::Vecto
       all_known = all_known && value.has_value();
       known[s] = value.value_or(0.0);
     }
+    // Outside the region of its geometry (the ellipsoid around its URDF shapes): no body that
+    // shape can be.
+    if (b < description.body_regions.size() && description.body_regions[b]) {
+      const double extent = region_extent(identified, *description.body_regions[b]);
+      if (extent > 1 + 1e-6) {
+        far += "\n  link '" + description.tree.bodies[b].name +
+               "': its mass reaches outside the region its geometry gives (extent " +
+               shortest_text(extent) + ")";
+      }
+    }
     if (!all_known) continue;
     const auto reasons = far_from_a_priori(link_quantities(identified), link_quantities(known));
     if (reasons.empty()) continue;
@@ -105,7 +116,7 @@ void check_links_near_a_priori(const RobotModel& description, const Eigen::Vecto
     for (std::size_t i = 0; i < reasons.size(); ++i) far += (i ? "; " : "") + reasons[i];
   }
   if (!far.empty()) {
-    throw InputError({params}, "links far from their a-priori values:" + far +
+    throw InputError({params}, "links far from their a-priori values or their geometry:" + far +
                                    "\nnothing was written; check the description's inertials and "
                                    "the excitation, or give --force to write them anyway");
   }
@@ -137,6 +148,10 @@ int run_export(const CommandLine& args) {
 
   const std::string estimate = std::filesystem::path(params).filename().string();
   const std::string method = identified.method.empty() ? "" : " (" + identified.method + ")";
+  // Which values the data decided, a line per link (fit --physical's "links" and "drives").
+  std::string decided;
+  for (const std::string& line : identified.decided) decided += "\n" + line;
+  if (!decided.empty()) decided = "\nWhat the data decided:" + decided;
   const std::string text = read_source_file(robot);
   std::string written;
   if (urdf) {
@@ -144,13 +159,14 @@ int run_export(const CommandLine& args) {
         robot, text, description, identified.values, options,
         "the <inertial> of each moving link is identified, from " + estimate + method +
             "; the links fixed to a moving link keep their a-priori inertials, unless export "
-            "warned that it moved them onto the moving link.");
+            "warned that it moved them onto the moving link." +
+            decided);
     for (const std::string& warning : exported.warnings) std::cerr << warning << "\n";
     written = exported.text;
   } else {
     written = identified_yaml(robot, text, description, identified.values,
                               "Identified by modelid export from " + estimate + method +
-                                  ":\nevery standard parameter, physically consistent.");
+                                  ":\nevery standard parameter, physically consistent." + decided);
   }
   check_round_trip(output, written, urdf, description, *source.model, identified.values, options,
                    params);

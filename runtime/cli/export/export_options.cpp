@@ -22,7 +22,8 @@ const CommandSpec& export_spec() {
          {.name = "--force",
           .type = ValueType::kFlag,
           .help = "write links far from their a-priori values (mass off by over a factor 2, "
-                  "centre of mass over 10 cm away), which export otherwise refuses"}});
+                  "centre of mass over 10 cm away) or reaching outside the region of their URDF "
+                  "shapes, which export otherwise refuses"}});
     spec.details =
         "URDF: each moving link's <inertial> gets its identified body less the a-priori inertials\n"
         "of the links fixed to it, which keep theirs (when that is no physical body, the moving\n"

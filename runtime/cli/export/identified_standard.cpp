@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstddef>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -37,6 +38,43 @@ void check_within_limits(const SourceLocation& where, const std::string& name, d
                               ", beyond the limit of " + shortest_text(limit) + unit +
                               " a description may hold (README, Limits); export writes only "
                               "what loads again");
+}
+
+// The lines of IdentifiedStandard::decided from EST.json's "links" and "drives" (fit
+// --physical); entries of another form are left out, as the file's values were checked above.
+std::vector<std::string> decided_lines(const nlohmann::json& json) {
+  std::vector<std::string> out;
+  const auto text = [](const nlohmann::json& v) {
+    return v.is_string() ? v.get<std::string>() : "";
+  };
+  if (json.contains("links") && json["links"].is_array()) {
+    for (const nlohmann::json& link : json["links"]) {
+      if (!link.is_object() || !link.contains("decided_by") || !link["decided_by"].is_object())
+        continue;
+      std::string data, prior;
+      for (const auto& [key, words] :
+           {std::pair{"mass", "mass"}, std::pair{"com", "centre of mass"},
+            std::pair{"principal_moments", "principal moments"}}) {
+        const std::string by = text(link["decided_by"].value(key, nlohmann::json()));
+        std::string& list = by == "data" ? data : prior;
+        list += (list.empty() ? "" : ", ") + std::string(words);
+      }
+      out.push_back(
+          "link '" + text(link.value("body", nlohmann::json())) + "': " +
+          (data.empty() ? "the data decided nothing of it alone" : "the data decided its " + data) +
+          (prior.empty() ? "" : "; the prior (a-priori model) its " + prior));
+    }
+  }
+  if (json.contains("drives") && json["drives"].is_array()) {
+    std::string prior;
+    for (const nlohmann::json& drive : json["drives"]) {
+      if (drive.is_object() && text(drive.value("decided_by", nlohmann::json())) == "prior")
+        prior += (prior.empty() ? "" : ", ") + text(drive.value("name", nlohmann::json()));
+    }
+    if (!prior.empty())
+      out.push_back("drive parameters the data did not decide (regrouped): " + prior);
+  }
+  return out;
 }
 
 }  // namespace
@@ -87,6 +125,7 @@ IdentifiedStandard read_identified_standard(const std::string& path, const Robot
   // write something else than was identified); read_base_parameters checks it.
   if (json.contains("parameters")) read_base_parameters(document, model);
   if (json.contains("method") && json["method"].is_string()) out.method = json["method"];
+  out.decided = decided_lines(json);
 
   // What export writes must load again: the loaders refuse impossible inertials.
   for (const PhysicalViolation& violation : physical_violations(description.tree, out.values)) {

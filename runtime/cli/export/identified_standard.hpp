@@ -5,6 +5,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include <Eigen/Core>
 
@@ -16,6 +17,11 @@ namespace modelgen::internal {
 struct IdentifiedStandard {
   Eigen::VectorXd values;  ///< one per standard parameter, in the model's order
   std::string method;      ///< the estimate's "method", empty for hand-written files
+  /// What the data decided, one line per link of the estimate's "links" and one for the
+  /// drive parameters of its "drives" the data did not decide, e.g. "link 'J2': the data
+  /// decided its mass, centre of mass; the a-priori model its principal moments"; empty for
+  /// files without them.
+  std::vector<std::string> decided;
 };
 
 /// Reads the "standard" block of the estimate at `path` for `description` (the model made

@@ -23,6 +23,10 @@ void row(std::ostream& out, const std::string& what, const std::string& identifi
 
 }  // namespace
 
+bool outside_region(const LinkSummary& link) {
+  return link.region_extent && *link.region_extent > kRegionExtentLimit;
+}
+
 void print_link_table(std::ostream& out, const std::vector<LinkSummary>& links) {
   if (links.empty()) return;
   out << "  links (body frame, SI units; 'by': data = the base parameters fix it, prior = the "
@@ -31,7 +35,7 @@ void print_link_table(std::ostream& out, const std::vector<LinkSummary>& links) 
       << " by\n";
   for (const LinkSummary& link : links) {
     out << "  " << link.body << (link.far_from_a_priori.empty() ? "" : "  (far from a-priori)")
-        << "\n";
+        << (outside_region(link) ? "  (outside its geometric region)" : "") << "\n";
     const bool known = link.a_priori.has_value();
     row(out, "mass", fixed(link.identified.mass, 10, 4),
         known ? fixed(link.a_priori->mass, 10, 4) : "-", link.mass_by);
@@ -39,10 +43,42 @@ void print_link_table(std::ostream& out, const std::vector<LinkSummary>& links) 
         known ? triple(link.a_priori->com) : "-", link.com_by);
     row(out, "principal moments", triple(link.identified.principal_moments),
         known ? triple(link.a_priori->principal_moments) : "-", link.moments_by);
+    if (link.region_extent) {
+      out << "    " << pad("region extent", 17) << " " << fixed(*link.region_extent, 10, 3)
+          << "  (root mean square over the mass, in units of the ellipsoid from the geometry; "
+             "above 1: outside)\n";
+    }
+  }
+}
+
+void print_drive_table(std::ostream& out, const std::vector<DriveSummary>& drives) {
+  if (drives.empty()) return;
+  out << "  drive parameters (by: data = identified alone, prior = regrouped with others: the "
+         "value is the prior's, not the data's):\n"
+      << "    " << pad("", 9) << " " << pad("identified", 14) << " " << pad("a-priori", 14)
+      << " by\n";
+  for (const DriveSummary& drive : drives) {
+    out << "    " << pad(drive.name, 9) << " " << fixed(drive.identified, 14, 5) << " "
+        << (drive.a_priori ? fixed(*drive.a_priori, 14, 5) : pad("-", 14)) << " "
+        << decided_by_name(drive.by);
+    if (drive.by == DecidedBy::kPrior && !drive.regrouped_with.empty()) {
+      out << " (regrouped with";
+      for (const std::string& name : drive.regrouped_with) out << " " << name;
+      out << ")";
+    }
+    out << "\n";
   }
 }
 
 void warn_far_links(std::ostream& err, const std::vector<LinkSummary>& links) {
+  for (const LinkSummary& link : links) {
+    if (outside_region(link)) {
+      err << "modelid fit: warning: link '" << link.body
+          << "' reaches outside the region its geometry gives (extent "
+          << fixed(*link.region_extent, 0, 3)
+          << " of the ellipsoid around its shapes; --physical does not enforce the region)\n";
+    }
+  }
   for (const LinkSummary& link : links) {
     if (link.far_from_a_priori.empty()) continue;
     err << "modelid fit: warning: link '" << link.body << "' is far from its a-priori values: ";

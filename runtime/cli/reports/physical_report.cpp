@@ -28,7 +28,9 @@ PhysicalEstimate physical_estimate(const RobotModel& description, const Identifi
   out.fit = fit_physical(description.tree, K, unconstrained.value, unconstrained.information,
                          description.known_values, options);
   out.prior_weight = out.fit.prior_weight;
-  out.links = summarise_links(description.tree, K, out.fit, description.known_values);
+  out.links = summarise_links(description.tree, K, out.fit, description.known_values,
+                              description.body_regions);
+  out.drives = summarise_drives(description.tree, K, out.fit, description.known_values);
   return out;
 }
 
@@ -47,6 +49,7 @@ LinkInertial link_inertial(const LinkSummary& summary) {
   link.com_decided_by = decided_by_name(summary.com_by);
   link.moments_decided_by = decided_by_name(summary.moments_by);
   link.far_from_a_priori = summary.far_from_a_priori;
+  link.region_extent = summary.region_extent;
   return link;
 }
 
@@ -65,6 +68,10 @@ PhysicalBlock physical_block(const PhysicalEstimate& physical,
                                 physical.fit.standard[static_cast<Eigen::Index>(k)]);
   }
   for (const LinkSummary& link : physical.links) block.links.push_back(link_inertial(link));
+  for (const DriveSummary& drive : physical.drives) {
+    block.drives.push_back(DriveParameter{drive.name, drive.identified, drive.a_priori,
+                                          decided_by_name(drive.by), drive.regrouped_with});
+  }
   return block;
 }
 
@@ -99,6 +106,7 @@ void print_physical(std::ostream& out, const std::vector<std::string>& base_name
     out << "\n";
   }
   print_link_table(out, physical.links);
+  print_drive_table(out, physical.drives);
   if (!fit.converged) {
     out << "  note: the optimiser stopped after " << fit.iterations
         << " Newton steps without meeting its tolerance\n";

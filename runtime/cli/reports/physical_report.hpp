@@ -25,6 +25,7 @@ struct PhysicalEstimate {
   double prior_weight = 0;
   std::vector<std::string> standard_names;
   std::vector<LinkSummary> links;
+  std::vector<DriveSummary> drives;
   double rel_error_norm = 0;  ///< of the torques with the consistent estimate, set by the caller
 };
 

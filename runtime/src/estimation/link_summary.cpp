@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 
 #include "modelgen/model/physical_consistency.hpp"
 #include "runtime/src/estimation/physical_prior.hpp"
@@ -105,9 +106,28 @@ LinkQuantities link_quantities(const double* p) {
   return q;
 }
 
+double region_extent(const double* p, const BodyRegion& region) {
+  const double m = p[9];
+  if (!(m > 0)) return std::numeric_limits<double>::infinity();
+  Eigen::Matrix3d I;
+  I << p[0], p[1], p[2], p[1], p[3], p[4], p[2], p[4], p[5];
+  const Eigen::Matrix3d second = 0.5 * I.trace() * Eigen::Matrix3d::Identity() - I;  // int x x' dm
+  const Eigen::Vector3d h(p[6], p[7], p[8]),
+      c(region.centre[0], region.centre[1], region.centre[2]);
+  const Eigen::Vector3d a =
+      Eigen::Vector3d(region.semi_axes[0], region.semi_axes[1], region.semi_axes[2])
+          .cwiseAbs2()
+          .cwiseInverse();
+  // int (x - c)' A (x - c) dm, A = diag(a)
+  const double spread = (a.asDiagonal() * second).trace() - 2 * c.dot(a.asDiagonal() * h) +
+                        m * c.dot(a.asDiagonal() * c);
+  return std::sqrt(std::max(spread, 0.0) / m);
+}
+
 std::vector<LinkSummary> summarise_links(const RigidBodyTree& tree, const Eigen::MatrixXd& K,
                                          const PhysicalFitResult& fit,
-                                         const std::vector<std::optional<double>>& a_priori) {
+                                         const std::vector<std::optional<double>>& a_priori,
+                                         const std::vector<std::optional<BodyRegion>>& regions) {
   const Eigen::MatrixXd N = detail::scaled_null_space(K, fit.prior_scale);
   const auto n = fit.standard.size();
   std::vector<LinkSummary> out;
@@ -140,7 +160,38 @@ std::vector<LinkSummary> summarise_links(const RigidBodyTree& tree, const Eigen:
           decided_by(N, fit.prior_scale, moment_gradients(index, fit.standard, fit.prior_scale));
     }
     if (link.a_priori) link.far_from_a_priori = far_from_a_priori(link.identified, *link.a_priori);
+    if (b < regions.size() && regions[b]) link.region_extent = region_extent(p, *regions[b]);
     out.push_back(std::move(link));
+  }
+  return out;
+}
+
+std::vector<DriveSummary> summarise_drives(const RigidBodyTree& tree, const Eigen::MatrixXd& K,
+                                           const PhysicalFitResult& fit,
+                                           const std::vector<std::optional<double>>& a_priori) {
+  const Eigen::MatrixXd N = detail::scaled_null_space(K, fit.prior_scale);
+  const auto n = fit.standard.size();
+  // Rounding-level coefficients of the regrouping are no regrouping (as in null_space_of).
+  const double small = 1e-10 * std::max(K.cwiseAbs().maxCoeff(), 1e-300);
+  std::vector<DriveSummary> out;
+  for (Eigen::Index k = 0; k < n; ++k) {
+    const StandardParam& param = tree.params[static_cast<std::size_t>(k)];
+    if (is_inertial(param.kind)) continue;
+    DriveSummary drive;
+    drive.name = param.name;
+    drive.identified = fit.standard[k];
+    drive.a_priori = a_priori[static_cast<std::size_t>(k)];
+    drive.by = decided_by(N, fit.prior_scale, {Eigen::VectorXd::Unit(n, k)});
+    for (Eigen::Index other = 0; other < n; ++other) {
+      if (other == k) continue;
+      for (Eigen::Index j = 0; j < K.rows(); ++j) {
+        if (std::abs(K(j, k)) > small && std::abs(K(j, other)) > small) {
+          drive.regrouped_with.push_back(tree.params[static_cast<std::size_t>(other)].name);
+          break;
+        }
+      }
+    }
+    out.push_back(std::move(drive));
   }
   return out;
 }

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <filesystem>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -139,6 +140,8 @@ double mass_of(const tinyxml2::XMLDocument& doc, const std::string& link) {
 // The UR5 of robots/urdf as a user identifies it: simulate from perturbed URDF values, fit
 // with --physical, export. urdfdom and modelgen load the result; its base parameters are the
 // estimate's.
+void expect_decided_lines(const std::string& text, const nlohmann::json& est);
+
 TEST(ModelidExport, SimulatedUr5RoundTripsThroughTheUrdf) {
   const fs::path dir = test::test_folder("export");
   const std::string urdf = test::source_path("robots/urdf/ur5.urdf");
@@ -194,6 +197,52 @@ TEST(ModelidExport, SimulatedUr5RoundTripsThroughTheUrdf) {
   }
   EXPECT_NE(text.find("Fv1"), std::string::npos);
   EXPECT_NE(text.find("<!--"), std::string::npos);
+  expect_decided_lines(text, est);
+}
+
+// Issue 30: the written file says, a line per link, what the data decided, as EST.json's
+// "links" do, and names the drive parameters its "drives" say the data did not decide.
+void expect_decided_lines(const std::string& text, const nlohmann::json& est) {
+  ASSERT_TRUE(est.contains("links"));
+  for (const nlohmann::json& link : est["links"]) {
+    const std::string start = "link '" + link["body"].get<std::string>() + "': ";
+    const std::size_t at = text.find(start);
+    ASSERT_NE(at, std::string::npos) << start << "\n" << text;
+    const std::string line = text.substr(at, text.find('\n', at) - at);
+    const std::size_t prior_part = std::min(line.find("; the prior"), line.size());
+    const std::string data_part = line.substr(0, prior_part);
+    for (const auto& [key, words] :
+         {std::pair<std::string, std::string>{"mass", "mass"}, {"com", "centre of mass"}}) {
+      EXPECT_EQ(data_part.find(words) != std::string::npos, link["decided_by"][key] == "data")
+          << line;
+    }
+  }
+  for (const nlohmann::json& drive : est["drives"]) {
+    if (drive["decided_by"] != "prior") continue;
+    const std::size_t at = text.find("the data did not decide (regrouped):");
+    ASSERT_NE(at, std::string::npos) << text;
+    EXPECT_NE(text.find(drive["name"].get<std::string>(), at), std::string::npos) << drive;
+  }
+}
+
+TEST(ModelidExport, TheYamlSaysWhatTheDataDecided) {
+  // The bundled KR 150 run: Ia1 enters only with ZZ1 (fit's drive table says "prior").
+  const fs::path dir = test::test_folder("export_decided");
+  const std::string yaml = test::source_path("robots/kr150.yaml");
+  const CliRun fit = modelid("fit --robot " + quoted(fs::path(yaml)) + " --data " +
+                             test::quoted_source("robots/data/kr150/excitation.csv") +
+                             " --method wls --physical -o " + quoted(dir / "est.json"));
+  ASSERT_EQ(fit.exit_code, 0) << fit.err;
+  const CliRun exported =
+      modelid("export --robot " + quoted(fs::path(yaml)) + " --params " + quoted(dir / "est.json") +
+              " -o " + quoted(dir / "id.yaml") + " --force");
+  ASSERT_EQ(exported.exit_code, 0) << exported.err;
+  const std::string text = test::read_text(dir / "id.yaml");
+  const nlohmann::json est = nlohmann::json::parse(test::read_text(dir / "est.json"));
+  expect_decided_lines(text, est);
+  EXPECT_NE(text.find("# drive parameters the data did not decide (regrouped): Ia1"),
+            std::string::npos)
+      << text;
 }
 
 // A two-axis arm with a 0.8 kg tool on a fixed joint, turned and offset: modelgen merges the
@@ -376,6 +425,47 @@ TEST(ModelidExport, ALinkFarFromItsAPrioriValuesIsRefusedUnlessForced) {
   const CliRun forced = modelid(command + " --force");
   ASSERT_EQ(forced.exit_code, 0) << forced.err;
   EXPECT_TRUE(fs::exists(dir / "id.urdf"));
+}
+
+// One link: a 0.1 x 0.1 x 0.4 box from the joint up, its a-priori mass 1 kg at its centre.
+constexpr const char* kBoxArm = R"(<?xml version="1.0"?>
+<robot name="box_arm">
+  <link name="base"/>
+  <link name="a">
+    <inertial><origin xyz="0 0 0.2"/><mass value="1"/>
+      <inertia ixx="1e-4" ixy="0" ixz="0" iyy="1e-4" iyz="0" izz="1e-4"/></inertial>
+    <collision><origin xyz="0 0 0.2"/><geometry><box size="0.1 0.1 0.4"/></geometry></collision>
+  </link>
+  <joint name="j1" type="revolute"><parent link="base"/><child link="a"/>
+    <axis xyz="0 1 0"/><limit lower="-3" upper="3" effort="10" velocity="2"/></joint>
+</robot>
+)";
+
+TEST(ModelidExport, ALinkOutsideItsGeometryIsRefusedUnlessForced) {
+  // The link's mass 9 cm off the box's axis (not far from its a-priori centre, 10 cm): beyond
+  // the ellipsoid around the box, whose semi-axis there is sqrt(3) x 5 cm = 8.7 cm.
+  const fs::path dir = test::test_folder("export_region");
+  test::write_text(dir / "arm.urdf", kBoxArm);
+  const RobotModel robot = load_robot((dir / "arm.urdf").string());
+  Eigen::VectorXd standard = consistent_standard(robot);
+  const double values[] = {
+      1e-4, 0, -0.09 * 0.2, 1e-4 + 0.09 * 0.09 + 0.04, 0, 1e-4 + 0.09 * 0.09, 0.09, 0, 0.2, 1};
+  const char* stems[] = {"XX", "XY", "XZ", "YY", "YZ", "ZZ", "MX", "MY", "MZ", "M"};
+  for (int s = 0; s < 10; ++s) standard[robot.param_index(std::string(stems[s]) + "1")] = values[s];
+  standard[robot.param_index("XX1")] += 0.04;  // the parallel-axis terms about the origin
+  test::write_text(dir / "est.json", estimate_of((dir / "arm.urdf").string(), standard).dump(2));
+  const std::string command = "export --robot " + quoted(dir / "arm.urdf") + " --params " +
+                              quoted(dir / "est.json") + " -o " + quoted(dir / "id.urdf");
+  const CliRun refused = modelid(command);
+  EXPECT_NE(refused.exit_code, 0);
+  EXPECT_NE(refused.err.find("link 'a': its mass reaches outside the region its geometry gives"),
+            std::string::npos)
+      << refused.err;
+  EXPECT_EQ(refused.err.find("x its a-priori value"), std::string::npos) << refused.err;
+  EXPECT_EQ(refused.err.find("from its a-priori position"), std::string::npos) << refused.err;
+  EXPECT_FALSE(fs::exists(dir / "id.urdf"));
+  const CliRun forced = modelid(command + " --force");
+  ASSERT_EQ(forced.exit_code, 0) << forced.err;
 }
 
 TEST(ModelidExport, Tx40KnownSectionIsReplaced) { yaml_round_trip("robots/tx40.yaml", "known:"); }

@@ -5,6 +5,7 @@
 // torques are predicted nearly as well as by the unconstrained fit; the unconstrained
 // estimate was impossible to begin with.
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <set>
@@ -98,6 +99,37 @@ TEST(ModelidPhysical, TheBundledKr150RunGivesAConsistentRobot) {
     EXPECT_NEAR(entry["value"].get<double>(), beta[b], 1e-8 * (1 + std::abs(beta[b])))
         << entry["name"];
   }
+
+  // Binding bounds (the negative drive values above) leave every base parameter a spread.
+  for (const nlohmann::json& entry : est["parameters"]) {
+    EXPECT_GT(entry["std"].get<double>(), 0.0) << entry["name"];
+  }
+  // A drive parameter reported as decided by the data is a base parameter of its own (the base
+  // parameter of that name has its value); Ia1, about the vertical first axis, enters only
+  // with ZZ1 and is reported as the prior's.
+  ASSERT_TRUE(est.contains("drives"));
+  bool saw_ia1 = false;
+  for (const nlohmann::json& drive : est["drives"]) {
+    const std::string name = drive["name"];
+    if (name == "Ia1") {
+      saw_ia1 = true;
+      EXPECT_EQ(drive["decided_by"], "prior");
+      const auto& with = drive["regrouped_with"];
+      EXPECT_NE(std::find(with.begin(), with.end(), "ZZ1"), with.end()) << drive;
+    }
+    if (drive["decided_by"] != "data") continue;
+    bool found = false;
+    for (const nlohmann::json& entry : est["parameters"]) {
+      if (entry["name"] != name) continue;
+      found = true;
+      EXPECT_NEAR(entry["value"].get<double>(), drive["value"].get<double>(),
+                  1e-8 * (1 + std::abs(drive["value"].get<double>())))
+          << name;
+    }
+    EXPECT_TRUE(found) << name << " is said to be decided by the data but is no base parameter";
+  }
+  EXPECT_TRUE(saw_ia1);
+  EXPECT_NE(fit.out.find("drive parameters"), std::string::npos) << fit.out;
 
   // Consistency costs little here: the torques are predicted within 5 % of the unconstrained
   // fit's error. The bounds that bind are on parameters the unconstrained fit had negative (a

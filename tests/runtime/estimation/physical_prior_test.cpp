@@ -7,6 +7,7 @@
 // torques are predicted as well. The per-link summary's "decided by data" is checked against
 // the null space of the regrouping map computed here.
 
+#include <algorithm>
 #include <cmath>
 #include <optional>
 #include <random>
@@ -271,6 +272,45 @@ TEST(LinkSummary, WarnsWhenALinkIsFarFromItsAPrioriValues) {
   ASSERT_EQ(links[2].far_from_a_priori.size(), 1u);
   EXPECT_NE(links[2].far_from_a_priori[0].find("centre of mass 0.15 m"), std::string::npos)
       << links[2].far_from_a_priori[0];
+}
+
+TEST(DriveSummary, ARegroupedDriveParameterIsNotReportedAsIdentified) {
+  // The TX-40 with rotor inertias: a drive parameter is decided by the data exactly when its
+  // unit direction is a combination of the rows of K (computed here by QR); Ia1, about the
+  // vertical first axis, only enters with ZZ1 (Gautier & Briot's ZZ1R).
+  const RobotModel robot = load_robot(test::source_path("robots/tx40.yaml"));
+  const ReferenceModel model("tx40", robot.tree);
+  const Eigen::MatrixXd K = regrouping_matrix(model);
+  PhysicalFitResult fit;
+  const auto n = static_cast<Eigen::Index>(robot.tree.params.size());
+  fit.standard = Eigen::VectorXd::Constant(n, 0.5);
+  fit.prior_scale = Eigen::VectorXd::LinSpaced(n, 0.5, 2.0);  // any scales: the test says so
+  const auto drives = summarise_drives(robot.tree, K, fit, robot.known_values);
+  const Eigen::MatrixXd Kt = K.transpose();
+  const auto qr = Kt.colPivHouseholderQr();
+  std::size_t next = 0, data = 0, prior = 0;
+  for (Eigen::Index k = 0; k < n; ++k) {
+    const StandardParam& param = robot.tree.params[static_cast<std::size_t>(k)];
+    if (is_inertial(param.kind)) continue;
+    ASSERT_LT(next, drives.size());
+    const DriveSummary& drive = drives[next++];
+    EXPECT_EQ(drive.name, param.name);
+    const Eigen::VectorXd e = Eigen::VectorXd::Unit(n, k);
+    const bool in_row_space = (Kt * qr.solve(e) - e).norm() < 1e-6;
+    EXPECT_EQ(drive.by == DecidedBy::kData, in_row_space) << drive.name;
+    (in_row_space ? data : prior) += 1;
+    if (drive.name == "Ia1") {
+      EXPECT_EQ(drive.by, DecidedBy::kPrior);
+      EXPECT_NE(std::find(drive.regrouped_with.begin(), drive.regrouped_with.end(), "ZZ1"),
+                drive.regrouped_with.end());
+      ASSERT_TRUE(drive.a_priori.has_value());
+      EXPECT_EQ(*drive.a_priori, 0.362);  // robots/tx40.yaml's known: value
+    }
+    if (drive.name == "Fv2") EXPECT_TRUE(drive.regrouped_with.empty());
+  }
+  EXPECT_EQ(next, drives.size());
+  EXPECT_GT(data, 0u);
+  EXPECT_GT(prior, 0u);
 }
 
 }  // namespace

@@ -4,6 +4,8 @@
 // thousands of feasible perturbations (consistent bodies by construction of the log-Cholesky
 // map, bounded parameters kept >= 0), with the cost written again here.
 
+#include <algorithm>
+#include <cmath>
 #include <random>
 
 #include <Eigen/Dense>
@@ -92,12 +94,51 @@ TEST_F(PhysicalFit, PutsANegativeFrictionOnItsBoundAtItsDistanceCost) {
   EXPECT_NEAR(fit.base[fv], 0.0, 1e-12);
   EXPECT_NEAR(fit.cost_increase, 0.09 / variance[fv], 1e-6 * 0.09 / variance[fv]);
   ASSERT_EQ(fit.active_constraints, std::vector<std::string>{"Fv2 >= 0"});
-  // Held on its bound, Fv2 has no spread; a base parameter the bound does not touch keeps the
-  // unconstrained one (F is diagonal).
-  EXPECT_EQ(fit.base_std_dev[fv], 0.0);
+  // On its bound, Fv2 reports the unconstrained spread (the upper bound; not 0); a base
+  // parameter the bound does not touch keeps the unconstrained one (F is diagonal).
+  EXPECT_NEAR(fit.base_std_dev[fv], std::sqrt(variance[fv]), 1e-6);
   const int fv3 = base_index("Fv3");
   EXPECT_NEAR(fit.base_std_dev[fv3], std::sqrt(variance[fv3]), 1e-3 * std::sqrt(variance[fv3]));
   for (const auto& v : physical_violations(robot_.tree, fit.standard)) ADD_FAILURE() << v.parameter << ": " << v.condition;
+}
+
+TEST_F(PhysicalFit, BoundaryStandardDeviationBoundsTheSpreadOfRepeatedFits) {
+  // The truth has Fv2 = 0, on its bound; unconstrained estimates drawn around it (sd 1 for Fv2,
+  // 0.01 elsewhere, so nothing else leaves the consistent set). The consistent Fv2 is then
+  // max(Fv2_hat, 0): its sd is sqrt(1/2 - 1/(2 pi)) = 0.584 in closed form. The reported sd
+  // must be an honest bound on that spread: not 0, not below it, at most the unconstrained 1.
+  const int fv = base_index("Fv2");
+  Eigen::VectorXd truth = truth_;
+  for (std::size_t k = 0; k < robot_.tree.params.size(); ++k) {
+    if (robot_.tree.params[k].name == "Fv2") truth[static_cast<Eigen::Index>(k)] = 0;
+  }
+  const Eigen::VectorXd beta_true = K_ * truth;
+  ASSERT_EQ(beta_true[fv], 0.0);
+  Eigen::VectorXd sd = Eigen::VectorXd::Constant(beta_true.size(), 0.01);
+  sd[fv] = 1;
+  const Eigen::MatrixXd F = sd.cwiseAbs2().cwiseInverse().asDiagonal();
+  PhysicalFitOptions options;
+  options.prior_weight = 1e-6;
+  std::normal_distribution<double> normal(0, 1);
+  std::mt19937 rng(30);
+  const int draws = 30;  // 0.1-0.3 s a fit
+  double sum = 0, sum_squares = 0, smallest_reported = 1e300, largest_reported = 0;
+  for (int draw = 0; draw < draws; ++draw) {
+    Eigen::VectorXd beta = beta_true;
+    for (Eigen::Index j = 0; j < beta.size(); ++j) beta[j] += sd[j] * normal(rng);
+    const PhysicalFitResult fit = fit_physical(robot_.tree, K_, beta, F, no_prior_, options);
+    EXPECT_NEAR(fit.base[fv], std::max(beta[fv], 0.0), 1e-6);
+    sum += fit.base[fv];
+    sum_squares += fit.base[fv] * fit.base[fv];
+    smallest_reported = std::min(smallest_reported, fit.base_std_dev[fv]);
+    largest_reported = std::max(largest_reported, fit.base_std_dev[fv]);
+  }
+  const double mean = sum / draws;
+  const double spread = std::sqrt(sum_squares / draws - mean * mean);
+  const double closed_form = std::sqrt(0.5 - 0.5 / M_PI);
+  EXPECT_NEAR(spread, closed_form, 0.3);  // 30 draws agree with the closed form
+  EXPECT_GE(smallest_reported, closed_form);
+  EXPECT_LE(largest_reported, 1 + 1e-6);
 }
 
 TEST_F(PhysicalFit, NoFeasiblePerturbationLowersTheCostOfAnInconsistentEstimate) {
@@ -160,6 +201,14 @@ TEST_F(PhysicalFit, NoFeasiblePerturbationLowersTheCostOfAnInconsistentEstimate)
   EXPECT_LT(fit.cost_increase, best);
   EXPECT_GT(fit.cost_increase, 0.95 * best);  // the prior term, 1 % here, only picks among fits
   EXPECT_GT(best, 1.0);  // the estimate was not consistent: the constraints cost something
+  // Bodies on the boundary: every base parameter still has a spread, at most the
+  // unconstrained one (the prior adds information, the constraints only take it away).
+  ASSERT_FALSE(fit.active_constraints.empty());
+  const Eigen::VectorXd unconstrained_sd = F.inverse().diagonal().cwiseSqrt();
+  for (Eigen::Index j = 0; j < beta.size(); ++j) {
+    EXPECT_GT(fit.base_std_dev[j], 1e-3 * unconstrained_sd[j]) << j;
+    EXPECT_LE(fit.base_std_dev[j], unconstrained_sd[j] * (1 + 1e-6)) << j;
+  }
   // Feasible perturbations: each body through its log-Cholesky parameters, bounded drive
   // parameters kept >= 0, the rest free.
   const auto bodies = inertial_param_indices(robot_.tree);

@@ -13,6 +13,7 @@
 
 #include "modelgen/estimation/physical.hpp"
 #include "modelgen/model/rigid_body_tree.hpp"
+#include "modelgen/model/robot_model.hpp"
 
 namespace modelgen {
 
@@ -40,10 +41,40 @@ struct LinkSummary {
   /// Why the link is far from its a-priori values (mass off by more than a factor 2, centre of
   /// mass more than 0.1 m away), e.g. "mass 2.60 x its a-priori value"; empty when it is not.
   std::vector<std::string> far_from_a_priori;
+  /// With a region from the description's geometry (modelgen/model/robot_model.hpp), the
+  /// link's extent in it (region_extent); above 1 the mass reaches outside the region.
+  std::optional<double> region_extent;
 };
 
 inline constexpr double kFarMassFactor = 2.0;
 inline constexpr double kFarComDistance = 0.1;  // m
+
+/// A drive parameter (rotor inertia, friction, offset: every standard parameter outside the
+/// bodies) of the consistent fit: identified only when the data decided it alone. One the
+/// regrouping adds to others (Ia1 into ZZ1R about a vertical first axis) has its value from the
+/// prior (or the start) and consistency, not from the data.
+struct DriveSummary {
+  std::string name;
+  double identified = 0;
+  std::optional<double> a_priori;
+  DecidedBy by = DecidedBy::kPrior;
+  /// The standard parameters it is regrouped with (sharing a base parameter), e.g. {"ZZ1"}.
+  std::vector<std::string> regrouped_with;
+};
+
+/// One summary per drive parameter of `tree`, in tree.params order (arguments as for
+/// summarise_links).
+std::vector<DriveSummary> summarise_drives(const RigidBodyTree& tree, const Eigen::MatrixXd& K,
+                                           const PhysicalFitResult& fit,
+                                           const std::vector<std::optional<double>>& a_priori);
+
+/// How far a body's mass distribution reaches in `region`, in units of the region: the root
+/// mean square over the mass of sum_i ((x_i - centre_i) / semi_axes_i)^2. A distribution held
+/// by the ellipsoid has at most 1; above 1, some of its mass lies outside. That is the
+/// density-realizability condition on an ellipsoid (Wensing, Kim & Slotine, RA-L 2017):
+/// tr(P Q) >= 0 with P the pseudo-inertia and Q the ellipsoid's matrix, here as
+/// sqrt(1 - tr(P Q) / m). Infinite for a body without positive mass.
+double region_extent(const double* p, const BodyRegion& region);
 
 /// The quantities of one body's ten standard parameters (XX XY XZ YY YZ ZZ MX MY MZ M, inertia
 /// about the body frame's origin); a body without positive mass keeps com and moments at 0.
@@ -56,8 +87,10 @@ std::vector<std::string> far_from_a_priori(const LinkQuantities& identified,
 
 /// One summary per complete body of `tree`. `K` the regrouping matrix, `fit` the consistent
 /// fit (its standard set and prior scales), `a_priori` the description's known values.
-std::vector<LinkSummary> summarise_links(const RigidBodyTree& tree, const Eigen::MatrixXd& K,
-                                         const PhysicalFitResult& fit,
-                                         const std::vector<std::optional<double>>& a_priori);
+/// `regions` per tree.bodies entry (RobotModel::body_regions; may be shorter or empty).
+std::vector<LinkSummary> summarise_links(
+    const RigidBodyTree& tree, const Eigen::MatrixXd& K, const PhysicalFitResult& fit,
+    const std::vector<std::optional<double>>& a_priori,
+    const std::vector<std::optional<BodyRegion>>& regions = {});
 
 }  // namespace modelgen

@@ -45,7 +45,9 @@ struct PhysicalFitOptions {
 struct PhysicalFitResult {
   Eigen::VectorXd standard;      ///< consistent standard parameters, tree.params order
   Eigen::VectorXd base;          ///< K standard: the constrained base estimate
-  Eigen::VectorXd base_std_dev;  ///< from the Jacobian at the optimum (active bounds held)
+  /// From the Jacobian at the optimum in the free directions; in the directions binding
+  /// constraints hold, the unconstrained spread (an upper bound: never 0 on the boundary).
+  Eigen::VectorXd base_std_dev;
   /// (base - beta_hat)' F (base - beta_hat): what the constraints cost, in the unconstrained
   /// fit's variance units (for least squares: the increase of the weighted sum of squares
   /// divided by sigma^2; 0 when the unconstrained estimate is already consistent).

@@ -50,6 +50,17 @@ struct LinkInertial {
   /// "data" or "prior" for the mass, the centre of mass and the principal moments.
   std::string mass_decided_by, com_decided_by, moments_decided_by;
   std::vector<std::string> far_from_a_priori;  ///< why the link is far from its a-priori values
+  std::optional<double> region_extent;         ///< in its geometric region; above 1: outside
+};
+
+/// A drive parameter of the consistent fit and whether the data decided it alone ("data") or
+/// the regrouping left it to the prior ("prior"; modelgen/estimation/link_summary.hpp).
+struct DriveParameter {
+  std::string name;
+  double value = 0;
+  std::optional<double> a_priori;
+  std::string decided_by;
+  std::vector<std::string> regrouped_with;
 };
 
 /// What fit --physical adds; the consistent base estimate itself is EstimateFile::parameters.
@@ -62,6 +73,7 @@ struct PhysicalBlock {
   std::vector<EstimatedParameter> unconstrained;               ///< the fit without constraints
   std::vector<std::pair<std::string, double>> standard;        ///< consistent, by standard name
   std::vector<LinkInertial> links;
+  std::vector<DriveParameter> drives;
 };
 
 struct EstimateFile {
@@ -88,7 +100,9 @@ struct EstimateFile {
 /// "essential"?: {"r_sigma", "kept", "eliminated", "parameters", "rel_error_norm",
 /// "condition_number"}, "standard"?: {"XX1": ..., ...}, "links"?: [{"body", "mass", "com",
 /// "inertia_com", "principal_moments", "decided_by": {"mass", "com", "principal_moments"},
-/// "a_priori"?: {"mass", "com", "principal_moments"}, "far_from_a_priori": [...]}],
+/// "a_priori"?: {"mass", "com", "principal_moments"}, "far_from_a_priori": [...],
+/// "region_extent"?}],
+/// "drives"?: [{"name", "value", "a_priori"?, "decided_by", "regrouped_with"}],
 /// "physical"?: {"prior_weight", "prior_weight_rule", "cost_increase", "binding_constraints",
 /// "unconstrained_rel_error_norm", "unconstrained": [...]}}. Non-finite numbers are written as
 /// null.

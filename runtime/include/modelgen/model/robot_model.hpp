@@ -87,6 +87,15 @@ struct DescriptionNote {
   std::string to_string() const;
 };
 
+/// Where a body's mass can be, from the description's geometry: the ellipsoid
+/// sum_i ((x_i - centre_i) / semi_axes_i)^2 <= 1 in the body frame (axes along the frame's),
+/// the one through the corners of the box that holds every collision shape (else visual shape)
+/// of the body's links: boxes, cylinders, spheres; meshes have no size without their file.
+struct BodyRegion {
+  std::array<double, 3> centre{};
+  std::array<double, 3> semi_axes{};
+};
+
 struct RobotModel {
   std::string name;         ///< C++ identifier: namespace of generated code
   std::string source_file;  ///< as given on the command line
@@ -100,6 +109,9 @@ struct RobotModel {
   /// A-priori values of standard parameters (YAML `known`, or URDF inertials), by
   /// tree.params index.
   std::vector<std::optional<double>> known_values;
+  /// Per tree.bodies entry, its region from the geometry (URDF only; nullopt without
+  /// box, cylinder or sphere shapes).
+  std::vector<std::optional<BodyRegion>> body_regions;
   /// What the loader snapped or assumed, in file order (see DescriptionNote).
   std::vector<DescriptionNote> notes;
 
