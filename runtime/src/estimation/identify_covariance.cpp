@@ -85,7 +85,10 @@ void correct_for_correlation(const IdentificationModel& model, const std::vector
     fit.rel_std_dev[k] = fit.value[k] != 0.0 ? 100.0 * fit.std_dev[k] / std::abs(fit.value[k])
                                              : std::numeric_limits<double>::infinity();
   }
-  fit.information = covariance.ldlt().solve(Eigen::MatrixXd::Identity(b, b));
+  // fit.information stays eq. 18's: --physical projects the estimate in the metric of the
+  // weighted least-squares cost it moves along (its "cost increase"); the sandwich corrects
+  // the uncertainty reported, and from the sandwich's inverse the consistent fit of the real
+  // Panda run no longer converged.
   fit.covariance = score.description;
 }
 
