@@ -216,7 +216,7 @@ void BM_kr150_bundled_pipeline(benchmark::State& state) {
   const GeneratedModel<kr150::Model> model;
   const std::string path = test::source_path("robots/data/kr150/excitation.csv");
   for (auto _ : state) {
-    PreparedExperiment prepared = prepare_experiment(read_trajectory_csv(path, model.dof()),
+    PreparedExperiment prepared = prepare_experiment(io::read_trajectory_csv(path, model.dof()),
                                                      model.drive_chain(), PreparationOptions());
     Identification id = identify(model, {prepared.data}, Method::kWls);
     benchmark::DoNotOptimize(id.fit.value.data());
