@@ -66,7 +66,9 @@ class SpreadCheck {
               << "median " << median << ", min " << sorted.front() << ", max " << sorted.back()
               << "\n";
     EXPECT_GE(median, 0.8) << what;
-    if (upper) EXPECT_LE(median, 1.25) << what;
+    if (upper) {
+      EXPECT_LE(median, 1.25) << what;
+    }
     for (Eigen::Index k = 0; k < r.size(); ++k) {
       EXPECT_TRUE(r[k] >= lo && r[k] <= hi)
           << what << ": parameter " << k << " reported sd / spread " << r[k];

@@ -13,7 +13,9 @@
 // - a filtered, decimated or closed-loop record: a stationary correlated sequence, for which
 //   Newey & West (1987) sum the lagged score products with Bartlett weights 1 - l / (L + 1),
 //   the bandwidth L from Andrews (1991, eq. 6.4 with the AR(1) plug-in):
-//   L = 1.1447 (alpha n)^(1/3), alpha = 4 rho^2 / ((1 - rho)^2 (1 + rho)^2).
+//   L = 1.1447 (alpha n)^(1/3), alpha = 4 rho^2 / ((1 - rho)^2 (1 + rho)^2); the sum is taken
+//   by overlapping batch means, which weigh the lags the same and cost nothing per lag (an
+//   undecimated record has L in the hundreds).
 
 #include "runtime/src/estimation/correlated_covariance.hpp"
 
@@ -63,21 +65,67 @@ Eigen::MatrixXd periodic_meat(const ResidualGroup& g) {
 // Newey-West with Bartlett weights and bandwidth L on one group's score rows x_t r_t.
 Eigen::MatrixXd newey_west_meat(const ResidualGroup& g, int L) {
   const Eigen::MatrixXd G = g.X.array().colwise() * g.r.array();
-  Eigen::MatrixXd meat = G.transpose() * G;
-  const Eigen::Index n = G.rows();
-  for (int l = 1; l <= L && l < n; ++l) {
-    const Eigen::MatrixXd lagged = G.bottomRows(n - l).transpose() * G.topRows(n - l);
-    meat += (1.0 - l / (L + 1.0)) * (lagged + lagged.transpose());
-  }
-  return meat;
+  BartlettScoreSum sum(G.cols(), static_cast<int>(std::min<Eigen::Index>(L, G.rows() - 1)));
+  for (Eigen::Index t = 0; t < G.rows(); ++t) sum.add(G.row(t).transpose());
+  return sum.meat();
 }
+
+// Rows of window sums collected before one product into the meat.
+constexpr Eigen::Index kBlockRows = 256;
 
 }  // namespace
 
-SandwichCovariance score_covariance(const std::vector<ResidualGroup>& groups) {
+Correlation residual_correlation(double lag_products, double squares, Eigen::Index rows,
+                                 Eigen::Index sequences) {
+  Correlation out;
+  out.rho = squares > 0 ? std::clamp(lag_products / squares, -0.97, 0.97) : 0.0;
+  // Significant (3 sd of a white sequence's) and material: below |rho| = 0.05 an AR(1) changes
+  // the sd by under 5 % (sqrt((1 + rho) / (1 - rho))), less than Newey-West's own spread.
+  out.significant = rows > 0 && std::abs(out.rho) > 0.05 &&
+                    std::abs(out.rho) * std::sqrt(static_cast<double>(rows)) > 3;
+  if (out.significant) {
+    const double rho = out.rho;
+    const double alpha = 4 * rho * rho / std::pow((1 - rho) * (1 + rho), 2);
+    const double per_sequence = static_cast<double>(rows) / static_cast<double>(sequences);
+    out.bandwidth = static_cast<int>(std::ceil(1.1447 * std::cbrt(alpha * per_sequence)));
+  }
+  return out;
+}
+
+BartlettScoreSum::BartlettScoreSum(Eigen::Index b, int bandwidth)
+    : window_(std::max(bandwidth, 0) + 1),
+      recent_(Eigen::MatrixXd::Zero(window_, b)),
+      sum_(Eigen::VectorXd::Zero(b)),
+      block_(kBlockRows, b),
+      meat_(Eigen::MatrixXd::Zero(b, b)) {}
+
+void BartlettScoreSum::add(const Eigen::Ref<const Eigen::VectorXd>& score) {
+  const Eigen::Index slot = rows_ % window_;
+  sum_ += score - recent_.row(slot).transpose();
+  recent_.row(slot) = score.transpose();
+  if (++rows_ < window_) return;
+  block_.row(filled_++) = sum_.transpose();
+  if (filled_ == kBlockRows) {
+    meat_.selfadjointView<Eigen::Lower>().rankUpdate(block_.transpose());
+    filled_ = 0;
+  }
+}
+
+Eigen::MatrixXd BartlettScoreSum::meat() const {
+  Eigen::MatrixXd meat = meat_;
+  meat.selfadjointView<Eigen::Lower>().rankUpdate(block_.topRows(filled_).transpose());
+  meat = meat.selfadjointView<Eigen::Lower>();
+  // rows - L windows cover the rows; each whole window stands for one row's share of the lags.
+  const Eigen::Index windows = std::max<Eigen::Index>(rows_ - window_ + 1, 1);
+  return meat *
+         (static_cast<double>(rows_) / static_cast<double>(windows) / static_cast<double>(window_));
+}
+
+SandwichCovariance score_covariance(const std::vector<ResidualGroup>& groups,
+                                    const std::vector<StreamedMeat>& streamed) {
   SandwichCovariance out;
-  if (groups.empty()) return out;
-  const Eigen::Index b = groups.front().X.cols();
+  if (groups.empty() && streamed.empty()) return out;
+  const Eigen::Index b = groups.empty() ? streamed.front().meat.rows() : groups.front().X.cols();
   // Pooled lag-1 autocorrelation of the non-periodic groups' residuals.
   double lag = 0, zero = 0;
   Eigen::Index rows = 0, periodic = 0;
@@ -92,19 +140,13 @@ SandwichCovariance score_covariance(const std::vector<ResidualGroup>& groups) {
     zero += g.r.squaredNorm();
     rows += n;
   }
-  const double rho = zero > 0 ? std::clamp(lag / zero, -0.97, 0.97) : 0.0;
-  // Significant (3 sd of a white sequence's) and material: below |rho| = 0.05 an AR(1) changes
-  // the sd by under 5 % (sqrt((1 + rho) / (1 - rho))), less than Newey-West's own spread.
-  const bool correlated =
-      rows > 0 && std::abs(rho) > 0.05 && std::abs(rho) * std::sqrt(static_cast<double>(rows)) > 3;
-  if (periodic == 0 && !correlated) return out;
-  int L = 0;
-  if (correlated) {
-    const double alpha = 4 * rho * rho / std::pow((1 - rho) * (1 + rho), 2);
-    const double per_group =
-        static_cast<double>(rows) / static_cast<double>(groups.size() - periodic);
-    L = static_cast<int>(std::ceil(1.1447 * std::cbrt(alpha * per_group)));
-  }
+  const auto sequences = static_cast<Eigen::Index>(groups.size()) - periodic;
+  const Correlation correlation =
+      residual_correlation(lag, zero, rows, std::max<Eigen::Index>(sequences, 1));
+  const bool streamed_correlated =
+      std::any_of(streamed.begin(), streamed.end(),
+                  [](const StreamedMeat& s) { return s.correlation.significant; });
+  if (periodic == 0 && !correlation.significant && !streamed_correlated) return out;
   out.meat = Eigen::MatrixXd::Zero(b, b);
   double freedom = 0;
   for (const ResidualGroup& g : groups) {
@@ -112,20 +154,35 @@ SandwichCovariance score_covariance(const std::vector<ResidualGroup>& groups) {
       out.meat += periodic_meat(g);
       freedom += static_cast<double>(std::min<Eigen::Index>(2 * g.harmonics + 1, g.r.size()));
     } else {
-      out.meat += newey_west_meat(g, L);
+      out.meat += newey_west_meat(g, correlation.bandwidth);
       freedom += static_cast<double>(g.r.size());
     }
+  }
+  for (const StreamedMeat& s : streamed) {
+    out.meat += s.meat;
+    freedom += static_cast<double>(s.rows);
   }
   if (freedom > static_cast<double>(b)) out.meat *= freedom / (freedom - static_cast<double>(b));
   std::ostringstream text;
   text << "sandwich covariance (the equation errors are correlated):";
+  const char* separator = " ";
   if (periodic > 0) {
-    text << " " << periodic << " periodic group(s) by the residual's DFT lines up to the kept "
-         << "harmonic";
+    text << separator << periodic
+         << " periodic group(s) by the residual's DFT lines up to the kept harmonic";
+    separator = "; ";
   }
-  if (correlated) {
-    text << (periodic > 0 ? ";" : "") << " Newey-West, Bartlett bandwidth " << L
-         << " rows (residual lag-1 autocorrelation " << std::round(rho * 100) / 100 << ")";
+  if (correlation.significant) {
+    text << separator << "Newey-West, Bartlett bandwidth " << correlation.bandwidth
+         << " rows (residual lag-1 autocorrelation " << std::round(correlation.rho * 100) / 100
+         << ")";
+    separator = "; ";
+  }
+  for (const StreamedMeat& s : streamed) {
+    if (!s.correlation.significant) continue;
+    text << separator << "Newey-West over " << s.rows << " undecimated rows, bandwidth "
+         << s.correlation.bandwidth << " (lag-1 autocorrelation "
+         << std::round(s.correlation.rho * 100) / 100 << ")";
+    separator = "; ";
   }
   out.description = text.str();
   return out;

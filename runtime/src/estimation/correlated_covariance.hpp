@@ -25,15 +25,57 @@ struct SandwichCovariance {
   std::string description;  ///< which estimator and why, for the user; empty: none was needed
 };
 
-/// S from the groups' residuals, or an empty description when no group needs it (no periodic
-/// group, and the residuals' pooled lag-1 autocorrelation rho is within 3 / sqrt(rows) of 0
-/// or |rho| <= 0.05).
+/// Whether a stationary residual sequence is correlated enough to need the sandwich, from its
+/// lag-1 autocorrelation rho, and the Bartlett bandwidth for it (Andrews' AR(1) rule).
+struct Correlation {
+  double rho = 0;
+  bool significant = false;  ///< |rho| > 3 / sqrt(rows) and |rho| > 0.05
+  int bandwidth = 0;         ///< L, lags 1..L weighted 1 - l / (L + 1); 0 when not significant
+};
+
+/// From sum r_t r_{t-1} and sum r_t^2 over `rows` rows in `sequences` separate sequences.
+Correlation residual_correlation(double lag_products, double squares, Eigen::Index rows,
+                                 Eigen::Index sequences);
+
+/// The Bartlett-weighted sum of a score sequence's lagged products, sum_|l|<=L (1 - |l| / (L + 1))
+/// sum_t g_t g_(t-l)^T, by overlapping batch means: the outer products of the sums of every L + 1
+/// consecutive scores, divided by L + 1, weigh lag l by exactly L + 1 - |l| (Welch 1987). The rows
+/// are fed one at a time, so a record too long to hold as a matrix costs a ring of L + 1 scores,
+/// and the lags cost nothing: O(rows b^2) for any L.
+class BartlettScoreSum {
+ public:
+  BartlettScoreSum(Eigen::Index b, int bandwidth);
+  void add(const Eigen::Ref<const Eigen::VectorXd>& score);
+  /// The sum over the rows fed so far (at least L + 1), the windows cut by the ends made up for.
+  [[nodiscard]] Eigen::MatrixXd meat() const;
+  [[nodiscard]] Eigen::Index rows() const { return rows_; }
+
+ private:
+  Eigen::Index window_;
+  Eigen::MatrixXd recent_;  ///< ring of the last window_ scores
+  Eigen::VectorXd sum_;     ///< their sum
+  Eigen::MatrixXd block_;   ///< window sums waiting for one matrix product
+  Eigen::Index filled_ = 0, rows_ = 0;
+  Eigen::MatrixXd meat_;
+};
+
+/// The meat of a sequence summed while streaming (identify_covariance.cpp's undecimated rows).
+struct StreamedMeat {
+  Eigen::MatrixXd meat;
+  Eigen::Index rows = 0;
+  Correlation correlation;
+};
+
+/// S from the groups' residuals (and any sequences summed while streaming), or an empty
+/// description when none needs it (no periodic group, no streamed meat, and the in-memory
+/// groups' pooled lag-1 autocorrelation is not significant, see Correlation).
 /// Periodic groups: by the lines of the DFT (circular noise, one variance per line estimated
 /// by |R_l|^2 / N). Other groups: Newey-West with the Bartlett kernel, its bandwidth from the
 /// residuals' lag-1 autocorrelation by Andrews' AR(1) rule. Scaled by M / (M - b), M the
 /// degrees of freedom of the noise (2 H + 1 per periodic group, the rows of the others), for
 /// the b of them the fit takes.
-SandwichCovariance score_covariance(const std::vector<ResidualGroup>& groups);
+SandwichCovariance score_covariance(const std::vector<ResidualGroup>& groups,
+                                    const std::vector<StreamedMeat>& streamed = {});
 
 /// The sandwich (A^T A)^-1 S (A^T A)^-1 from (A^T A)^-1 and S.
 Eigen::MatrixXd sandwich(const Eigen::MatrixXd& AtA_inverse, const Eigen::MatrixXd& meat);

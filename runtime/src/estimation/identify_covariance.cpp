@@ -1,11 +1,13 @@
 // identify()'s standard deviations when its equation errors are correlated (issue 31): periodic
-// experiments whose torques were cut at a harmonic, and decimated experiments (filtered,
-// often closed-loop records) whose residuals stay correlated from row to row. The weighted
-// rows of every joint and experiment are rebuilt (W is not kept by the fit) and the sandwich
-// of correlated_covariance.hpp replaces eq. 18.
+// experiments whose torques were cut at a harmonic, and filtered, decimated or closed-loop
+// records whose residuals stay correlated from row to row. The weighted rows of every joint and
+// experiment are rebuilt (W is not kept by the fit) and the sandwich of
+// correlated_covariance.hpp replaces eq. 18. Undecimated records of any length are streamed:
+// their residuals first, and their scores only when some group needs the sandwich.
 
 #include "runtime/src/estimation/identify_covariance.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <vector>
@@ -33,23 +35,89 @@ std::vector<Eigen::MatrixXd> sample_rows(const IdentificationModel& model, const
   return W;
 }
 
+// Each joint's weighted residual of experiment x, one row per sample.
+Eigen::MatrixXd sample_residuals(const IdentificationModel& model, const Trajectory& x,
+                                 const Eigen::VectorXd& beta, const Eigen::VectorXd& sigma) {
+  const int n = model.dof(), nb = model.num_base_params();
+  Eigen::MatrixXd residual(x.t.size(), n);
+  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> rows(n, nb);
+  for (Eigen::Index s = 0; s < x.t.size(); ++s) {
+    const Eigen::VectorXd q = x.q.row(s), dq = x.dq.row(s), ddq = x.ddq.row(s);
+    model.regressor(q.data(), dq.data(), ddq.data(), rows.data());
+    residual.row(s) =
+        ((x.tau.row(s).transpose() - rows * beta).array() / sigma.array()).transpose();
+  }
+  return residual;
+}
+
+// An undecimated, non-periodic experiment's residuals and their correlation.
+struct StreamedResiduals {
+  std::size_t experiment = 0;
+  Eigen::VectorXd sigma;
+  Eigen::MatrixXd residual;
+  Correlation correlation;
+};
+
+StreamedResiduals streamed_residuals(const IdentificationModel& model, const Trajectory& x,
+                                     std::size_t e, const LeastSquaresResult& fit) {
+  const int n = model.dof();
+  StreamedResiduals out;
+  out.experiment = e;
+  out.sigma = Eigen::VectorXd::Ones(n);
+  for (int j = 0; j < n; ++j) {
+    const std::size_t g = e * static_cast<std::size_t>(n) + static_cast<std::size_t>(j);
+    if (g < fit.group_std_dev.size()) out.sigma[j] = fit.group_std_dev[g];
+  }
+  out.residual = sample_residuals(model, x, fit.value, out.sigma);
+  const Eigen::Index m = out.residual.rows();
+  const double lag =
+      m < 2 ? 0.0
+            : (out.residual.topRows(m - 1).array() * out.residual.bottomRows(m - 1).array()).sum();
+  out.correlation = residual_correlation(lag, out.residual.squaredNorm(), m * n, n);
+  return out;
+}
+
+// Its scores x_t r_t summed with its own bandwidth (0 when its residuals are white), by a second
+// regressor pass: the rows are never held.
+StreamedMeat streamed_meat(const IdentificationModel& model, const Trajectory& x,
+                           const StreamedResiduals& r) {
+  const int n = model.dof(), nb = model.num_base_params();
+  const Eigen::Index m = r.residual.rows();
+  const int L = static_cast<int>(std::min<Eigen::Index>(r.correlation.bandwidth, m - 1));
+  std::vector<BartlettScoreSum> sums(static_cast<std::size_t>(n), BartlettScoreSum(nb, L));
+  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> rows(n, nb);
+  for (Eigen::Index s = 0; s < m; ++s) {
+    const Eigen::VectorXd q = x.q.row(s), dq = x.dq.row(s), ddq = x.ddq.row(s);
+    model.regressor(q.data(), dq.data(), ddq.data(), rows.data());
+    for (int j = 0; j < n; ++j) {
+      sums[static_cast<std::size_t>(j)].add(rows.row(j).transpose() *
+                                            (r.residual(s, j) / r.sigma[j]));
+    }
+  }
+  StreamedMeat out;
+  out.rows = m * n;
+  out.correlation = r.correlation;
+  out.meat = Eigen::MatrixXd::Zero(nb, nb);
+  for (const BartlettScoreSum& sum : sums) out.meat += sum.meat();
+  return out;
+}
+
 }  // namespace
 
 void correct_for_correlation(const IdentificationModel& model, const std::vector<Trajectory>& data,
                              const std::vector<int>& decimation,
                              const std::vector<DecimatedExperiment>& decimated,
                              const std::vector<int>& harmonics, LeastSquaresResult& fit) {
-  bool needed = false;
-  for (std::size_t e = 0; e < data.size(); ++e) {
-    needed = needed || decimation[e] > 1 || (e < harmonics.size() && harmonics[e] >= 0);
-  }
-  if (!needed) return;
   const int n = model.dof();
   const Eigen::Index b = fit.value.size();
   std::vector<ResidualGroup> groups;
-  Eigen::MatrixXd AtA = Eigen::MatrixXd::Zero(b, b);
+  std::vector<StreamedResiduals> streamed;
   std::size_t next_decimated = 0;
   for (std::size_t e = 0; e < data.size(); ++e) {
+    if (decimation[e] == 1 && !(e < harmonics.size() && harmonics[e] >= 0)) {
+      streamed.push_back(streamed_residuals(model, data[e], e, fit));
+      continue;
+    }
     std::vector<Eigen::MatrixXd> W;
     std::vector<Eigen::VectorXd> y;
     if (decimation[e] > 1) {
@@ -72,12 +140,22 @@ void correct_for_correlation(const IdentificationModel& model, const std::vector
           (y[static_cast<std::size_t>(j)] - W[static_cast<std::size_t>(j)] * fit.value) / sigma;
       // The lines of a period only for a whole, undecimated period.
       group.harmonics = e < harmonics.size() && decimation[e] == 1 ? harmonics[e] : -1;
-      AtA += group.X.transpose() * group.X;
       groups.push_back(std::move(group));
     }
   }
-  const SandwichCovariance score = score_covariance(groups);
+  // The streamed records' scores are summed (a second pass) only if the sandwich is needed.
+  const bool streamed_correlated =
+      std::any_of(streamed.begin(), streamed.end(),
+                  [](const StreamedResiduals& r) { return r.correlation.significant; });
+  if (groups.empty() && !streamed_correlated) return;
+  std::vector<StreamedMeat> meats;
+  for (const StreamedResiduals& r : streamed) {
+    meats.push_back(streamed_meat(model, data[r.experiment], r));
+  }
+  const SandwichCovariance score = score_covariance(groups, meats);
   if (score.description.empty()) return;
+  // The weighted normal matrix of every group (eq. 18's information is it over sigma^2).
+  const Eigen::MatrixXd AtA = fit.information * (fit.residual_std_dev * fit.residual_std_dev);
   const Eigen::MatrixXd AtA_inverse = AtA.ldlt().solve(Eigen::MatrixXd::Identity(b, b));
   const Eigen::MatrixXd covariance = sandwich(AtA_inverse, score.meat);
   fit.std_dev = covariance.diagonal().cwiseMax(0.0).cwiseSqrt();

@@ -7,8 +7,10 @@
 //   - averaged over periods and cut at a harmonic (the periodic route): the noise left lives on
 //     2 H + 1 lines per joint, not on N samples, so eq. 17 underestimates it;
 //   - an AR(1) process filtered and decimated by identify() (eq. 13-14): the decimated rows
-//     keep a correlation from row to row.
-// 200 runs (100 for the decimated case, 10 000 samples each): the spread's relative error is
+//     keep a correlation from row to row;
+//   - the same AR(1) process on undecimated rows (a record already at a low rate, or
+//     --decimate 1): eq. 18 would report sqrt((1 - rho) / (1 + rho)) = 0.16 of the spread.
+// 200 runs (100 for the AR(1) cases, 10 000 samples each): the spread's relative error is
 // then 1 / sqrt(398) = 5 % (7 %).
 
 #include <cmath>
@@ -161,6 +163,30 @@ TEST_F(CovarianceMonteCarlo, CorrelatedNoiseDecimated) {
     check.add(id.fit.value, id.fit.std_dev);
   }
   check.expect_covered("IDIM-WLS, AR(1) noise, decimated by 10");
+}
+
+// The undecimated rows of the same AR(1) noise: the residuals are streamed, their scores summed by
+// batch means (a bandwidth near 180 rows).
+TEST_F(CovarianceMonteCarlo, CorrelatedNoiseUndecimated) {
+  constexpr double kRho = 0.95;
+  const Trajectory clean = exact(10000, 1);
+  test::Random random(4);
+  test::SpreadCheck check(beta_.size());
+  for (int run = 0; run < kRuns / 2; ++run) {
+    Trajectory x = clean;
+    Eigen::VectorXd e(6);
+    for (int j = 0; j < 6; ++j) e[j] = kNoise[j] * random.normal();
+    for (Eigen::Index s = 0; s < x.t.size(); ++s) {
+      for (int j = 0; j < 6; ++j) {
+        e[j] = kRho * e[j] + std::sqrt(1 - kRho * kRho) * kNoise[j] * random.normal();
+        x.tau(s, j) += e[j];
+      }
+    }
+    const Identification id = identify(model_, {x}, Method::kWls);
+    EXPECT_NE(id.fit.covariance.find("undecimated"), std::string::npos) << id.fit.covariance;
+    check.add(id.fit.value, id.fit.std_dev);
+  }
+  check.expect_covered("IDIM-WLS, AR(1) noise, undecimated");
 }
 
 }  // namespace

@@ -5,7 +5,9 @@
 // stack. Experiments with and without decimation are mixed.
 
 #include <cmath>
+#include <iostream>
 #include <random>
+#include <string>
 
 #include <gtest/gtest.h>
 
@@ -104,6 +106,15 @@ void append(Stack& stack, const Trajectory& x, int e, int factor, bool power,
   }
 }
 
+// Eq. 18's sd on the stacked equations, to round-off; but the decimation filter leaves the
+// decimated white noise a small correlation from row to row (its lag-1 autocorrelation
+// significant over 6 000 rows), which identify's sandwich covariance takes into account and
+// names: then the sd may differ from eq. 18's by a few percent.
+double sd_tolerance(const std::string& covariance) {
+  std::cout << "covariance: " << (covariance.empty() ? "eq. 18" : covariance) << "\n";
+  return covariance.empty() ? 1e-7 : 3e-2;
+}
+
 class IdentifyDecimation : public testing::TestWithParam<Method> {};
 
 TEST_P(IdentifyDecimation, EqualsTheEquationsStackedByHand) {
@@ -140,7 +151,8 @@ TEST_P(IdentifyDecimation, EqualsTheEquationsStackedByHand) {
               (power ? 5e-2 : tolerance) * expected.residual_std_dev);
   if (!power) {
     EXPECT_LT(test::relative_error(id.fit.value, expected.value, 1.0), 1e-9);
-    EXPECT_LT(test::relative_error(id.fit.std_dev, expected.std_dev, 1.0), 1e-7);
+    EXPECT_LT(test::relative_error(id.fit.std_dev, expected.std_dev, 1.0),
+              sd_tolerance(id.fit.covariance));
   }
   // Rows used: 5000 / 5, 5000 and 1000 / 3 samples (per joint for the IDIM), less the
   // decimated rows at the edges.
@@ -172,7 +184,8 @@ TEST(IdentifyDecimation, MinSpeedLeavesOutTheSlowRowsAfterTheDecimation) {
   const LeastSquaresResult expected =
       fit_wls(stack.W, stack.y, stack.group, kModel.base_param_names());
   EXPECT_LT(test::relative_error(id.fit.value, expected.value, 1.0), 1e-9);
-  EXPECT_LT(test::relative_error(id.fit.std_dev, expected.std_dev, 1.0), 1e-7);
+  EXPECT_LT(test::relative_error(id.fit.std_dev, expected.std_dev, 1.0),
+            sd_tolerance(id.fit.covariance));
   const Eigen::Index all = decimated_interior(5000, 5).count + 5000;
   EXPECT_EQ(id.samples, stack.W.rows() / 6);
   EXPECT_EQ(id.samples + id.slow_samples, all);
