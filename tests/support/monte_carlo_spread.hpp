@@ -55,8 +55,9 @@ class SpreadCheck {
   // with 200 runs each observed spread is off by 5 % (1 sd), and the largest of 61 such errors
   // is about 2.5 sd, 13 %; [0.65, 1.5] leaves room for the estimator's own bias on the few
   // weakest parameters. `upper` false: only the lower bounds (a conservative sd passes).
-  void expect_covered(const std::string& what, double lo = 0.65, double hi = 1.5,
-                      bool upper = true) const {
+  // `median_lo` below 0.8 only where a known shortfall is stated.
+  void expect_covered(const std::string& what, double lo = 0.65, double hi = 1.5, bool upper = true,
+                      double median_lo = 0.8) const {
     if (!upper) hi = INFINITY;
     Eigen::VectorXd r = ratios();
     std::vector<double> sorted(r.data(), r.data() + r.size());
@@ -65,7 +66,7 @@ class SpreadCheck {
     std::cout << "[ monte carlo ] " << what << ": " << runs_ << " runs, reported sd / spread: "
               << "median " << median << ", min " << sorted.front() << ", max " << sorted.back()
               << "\n";
-    EXPECT_GE(median, 0.8) << what;
+    EXPECT_GE(median, median_lo) << what;
     if (upper) {
       EXPECT_LE(median, 1.25) << what;
     }

@@ -72,7 +72,8 @@ struct StreamedMeat {
 /// Periodic groups: by the lines of the DFT (circular noise, one variance per line estimated
 /// by |R_l|^2 / N). Other groups: Newey-West with the Bartlett kernel, its bandwidth from the
 /// residuals' lag-1 autocorrelation by Andrews' AR(1) rule. Scaled by M / (M - b), M the
-/// degrees of freedom of the noise (2 H + 1 per periodic group, the rows of the others), for
+/// degrees of freedom of the noise (2 H + 1 per periodic group, the rows of the others, as
+/// many independent rows as they are worth when correlated: rows (1 - rho) / (1 + rho)), for
 /// the b of them the fit takes.
 SandwichCovariance score_covariance(const std::vector<ResidualGroup>& groups,
                                     const std::vector<StreamedMeat>& streamed = {});

@@ -344,15 +344,13 @@ Identification identify(const IdentificationModel& model, const std::vector<Traj
   out.fit = fit_equations(equations[0], method, out.names, data, decimation);
   torque_statistics(model, data, parts, decimated, equations[0], groups, power, parallel,
                     used_samples, progress, out);
-  // Periodic cut torques and decimated rows make correlated equation errors (issue 31).
-  if (!power) {
-    std::vector<int> harmonics = options.torque_harmonics;
-    // Samples left out by min_speed break a period: its rows are then no longer circular.
-    for (std::size_t e = 0; e < harmonics.size() && e < data.size(); ++e) {
-      if (data[e].t.size() != all[e].t.size()) harmonics[e] = -1;
-    }
-    detail::correct_for_correlation(model, data, decimation, decimated, harmonics, out.fit);
+  // Periodic cut torques, filters and decimation make correlated equation errors (issue 31).
+  std::vector<int> harmonics = options.torque_harmonics;
+  // Samples left out by min_speed break a period: its rows are then no longer circular.
+  for (std::size_t e = 0; e < harmonics.size() && e < data.size(); ++e) {
+    if (data[e].t.size() != all[e].t.size()) harmonics[e] = -1;
   }
+  detail::correct_for_correlation(model, data, decimation, decimated, harmonics, power, out.fit);
   if (options.essential_r_sigma) {
     out.essential = essential_parameters(equations[0], method != Method::kOls, out.names,
                                          *options.essential_r_sigma);

@@ -1,9 +1,10 @@
 // identify()'s standard deviations when its equation errors are correlated (issue 31): periodic
 // experiments whose torques were cut at a harmonic, and filtered, decimated or closed-loop
-// records whose residuals stay correlated from row to row. The weighted rows of every joint and
-// experiment are rebuilt (W is not kept by the fit) and the sandwich of
-// correlated_covariance.hpp replaces eq. 18. Undecimated records of any length are streamed:
-// their residuals first, and their scores only when some group needs the sandwich.
+// records whose residuals stay correlated from row to row. The weighted rows of every group
+// (a joint of an experiment for the IDIM, an experiment's power equations for the PIM) are
+// rebuilt (W is not kept by the fit) and the sandwich of correlated_covariance.hpp replaces
+// eq. 18. Undecimated records of any length are streamed: their residuals first, and their
+// scores only when some group needs the sandwich.
 
 #include "runtime/src/estimation/identify_covariance.hpp"
 
@@ -20,84 +21,132 @@ namespace modelgen::detail {
 
 namespace {
 
-// Experiment e's IDIM rows of joint j, one per sample, from the model's regressor.
-std::vector<Eigen::MatrixXd> sample_rows(const IdentificationModel& model, const Trajectory& x) {
-  const int n = model.dof(), nb = model.num_base_params();
+using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+
+// The equations of one sample: a row per joint (IDIM, eq. 6), or the power row (PIM, eq. 9-10:
+// dq . tau = dq^T W beta).
+class SampleEquations {
+ public:
+  SampleEquations(const IdentificationModel& model, bool power)
+      : model_(model),
+        power_(power),
+        rows_(RowMajor::Zero(power ? 1 : model.dof(), model.num_base_params())),
+        y_(rows_.rows()) {}
+
+  [[nodiscard]] int groups() const { return static_cast<int>(rows_.rows()); }
+
+  void evaluate(const Trajectory& x, Eigen::Index s) {
+    const Eigen::VectorXd q = x.q.row(s), dq = x.dq.row(s), ddq = x.ddq.row(s);
+    if (power_) {
+      model_.power_regressor(q.data(), dq.data(), ddq.data(), rows_.data());
+      y_[0] = dq.dot(x.tau.row(s).transpose());
+    } else {
+      model_.regressor(q.data(), dq.data(), ddq.data(), rows_.data());
+      y_ = x.tau.row(s).transpose();
+    }
+  }
+  [[nodiscard]] const RowMajor& rows() const { return rows_; }
+  [[nodiscard]] const Eigen::VectorXd& y() const { return y_; }
+
+ private:
+  const IdentificationModel& model_;
+  bool power_;
+  RowMajor rows_;
+  Eigen::VectorXd y_;
+};
+
+// The standard deviation of experiment e's groups' equation errors: their WLS weights.
+Eigen::VectorXd group_sigma(const LeastSquaresResult& fit, std::size_t e, int groups) {
+  Eigen::VectorXd sigma = Eigen::VectorXd::Ones(groups);
+  for (int j = 0; j < groups; ++j) {
+    const std::size_t g = e * static_cast<std::size_t>(groups) + static_cast<std::size_t>(j);
+    if (g < fit.group_std_dev.size()) sigma[j] = fit.group_std_dev[g];
+  }
+  return sigma;
+}
+
+// Experiment x's weighted rows and residuals, group by group, one row per sample (a period of
+// the periodic route).
+std::vector<ResidualGroup> sample_groups(SampleEquations& equations, const Trajectory& x,
+                                         const Eigen::VectorXd& beta,
+                                         const Eigen::VectorXd& sigma) {
+  const int k = equations.groups();
   const Eigen::Index m = x.t.size();
-  std::vector<Eigen::MatrixXd> W(static_cast<std::size_t>(n), Eigen::MatrixXd(m, nb));
-  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> rows =
-      Eigen::MatrixXd::Zero(n, nb);
+  std::vector<ResidualGroup> groups(static_cast<std::size_t>(k));
+  for (ResidualGroup& g : groups) {
+    g.X.resize(m, beta.size());
+    g.r.resize(m);
+  }
   for (Eigen::Index s = 0; s < m; ++s) {
-    const Eigen::VectorXd q = x.q.row(s), dq = x.dq.row(s), ddq = x.ddq.row(s);
-    model.regressor(q.data(), dq.data(), ddq.data(), rows.data());
-    for (int j = 0; j < n; ++j) W[static_cast<std::size_t>(j)].row(s) = rows.row(j);
+    equations.evaluate(x, s);
+    for (int j = 0; j < k; ++j) {
+      ResidualGroup& g = groups[static_cast<std::size_t>(j)];
+      g.X.row(s) = equations.rows().row(j) / sigma[j];
+      g.r[s] = (equations.y()[j] - equations.rows().row(j).dot(beta)) / sigma[j];
+    }
   }
-  return W;
+  return groups;
 }
 
-// Each joint's weighted residual of experiment x, one row per sample.
-Eigen::MatrixXd sample_residuals(const IdentificationModel& model, const Trajectory& x,
-                                 const Eigen::VectorXd& beta, const Eigen::VectorXd& sigma) {
-  const int n = model.dof(), nb = model.num_base_params();
-  Eigen::MatrixXd residual(x.t.size(), n);
-  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> rows(n, nb);
-  for (Eigen::Index s = 0; s < x.t.size(); ++s) {
-    const Eigen::VectorXd q = x.q.row(s), dq = x.dq.row(s), ddq = x.ddq.row(s);
-    model.regressor(q.data(), dq.data(), ddq.data(), rows.data());
-    residual.row(s) =
-        ((x.tau.row(s).transpose() - rows * beta).array() / sigma.array()).transpose();
+// A decimated experiment's kept rows (identify_equations.hpp), group by group.
+std::vector<ResidualGroup> decimated_groups(const DecimatedExperiment& d, bool power, int n,
+                                            const Eigen::VectorXd& beta,
+                                            const Eigen::VectorXd& sigma) {
+  std::vector<ResidualGroup> groups;
+  if (power) {
+    groups.push_back({d.P / sigma[0], (d.p - d.P * beta) / sigma[0], -1});
+    return groups;
   }
-  return residual;
+  const Eigen::Index rows = d.W.rows() / n;
+  for (int j = 0; j < n; ++j) {
+    const Eigen::MatrixXd W = d.W(Eigen::seqN(j, rows, n), Eigen::all);
+    const Eigen::VectorXd y = d.tau(Eigen::seqN(j, rows, n));
+    groups.push_back({W / sigma[j], (y - W * beta) / sigma[j], -1});
+  }
+  return groups;
 }
 
-// An undecimated, non-periodic experiment's residuals and their correlation.
+// An undecimated, non-periodic experiment's weighted residuals and their correlation.
 struct StreamedResiduals {
   std::size_t experiment = 0;
   Eigen::VectorXd sigma;
-  Eigen::MatrixXd residual;
+  Eigen::MatrixXd residual;  ///< samples x groups
   Correlation correlation;
 };
 
-StreamedResiduals streamed_residuals(const IdentificationModel& model, const Trajectory& x,
-                                     std::size_t e, const LeastSquaresResult& fit) {
-  const int n = model.dof();
-  StreamedResiduals out;
-  out.experiment = e;
-  out.sigma = Eigen::VectorXd::Ones(n);
-  for (int j = 0; j < n; ++j) {
-    const std::size_t g = e * static_cast<std::size_t>(n) + static_cast<std::size_t>(j);
-    if (g < fit.group_std_dev.size()) out.sigma[j] = fit.group_std_dev[g];
+StreamedResiduals streamed_residuals(SampleEquations& equations, const Trajectory& x, std::size_t e,
+                                     const LeastSquaresResult& fit) {
+  const int k = equations.groups();
+  StreamedResiduals out{e, group_sigma(fit, e, k), Eigen::MatrixXd(x.t.size(), k), {}};
+  for (Eigen::Index s = 0; s < x.t.size(); ++s) {
+    equations.evaluate(x, s);
+    out.residual.row(s) =
+        ((equations.y() - equations.rows() * fit.value).array() / out.sigma.array()).transpose();
   }
-  out.residual = sample_residuals(model, x, fit.value, out.sigma);
   const Eigen::Index m = out.residual.rows();
   const double lag =
       m < 2 ? 0.0
             : (out.residual.topRows(m - 1).array() * out.residual.bottomRows(m - 1).array()).sum();
-  out.correlation = residual_correlation(lag, out.residual.squaredNorm(), m * n, n);
+  out.correlation = residual_correlation(lag, out.residual.squaredNorm(), m * k, k);
   return out;
 }
 
 // Its scores x_t r_t summed with its own bandwidth (0 when its residuals are white), by a second
-// regressor pass: the rows are never held.
-StreamedMeat streamed_meat(const IdentificationModel& model, const Trajectory& x,
-                           const StreamedResiduals& r) {
-  const int n = model.dof(), nb = model.num_base_params();
+// pass over the equations: the rows are never held.
+StreamedMeat streamed_meat(SampleEquations& equations, const Trajectory& x,
+                           const StreamedResiduals& r, Eigen::Index b) {
+  const int k = equations.groups();
   const Eigen::Index m = r.residual.rows();
   const int L = static_cast<int>(std::min<Eigen::Index>(r.correlation.bandwidth, m - 1));
-  std::vector<BartlettScoreSum> sums(static_cast<std::size_t>(n), BartlettScoreSum(nb, L));
-  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> rows(n, nb);
+  std::vector<BartlettScoreSum> sums(static_cast<std::size_t>(k), BartlettScoreSum(b, L));
   for (Eigen::Index s = 0; s < m; ++s) {
-    const Eigen::VectorXd q = x.q.row(s), dq = x.dq.row(s), ddq = x.ddq.row(s);
-    model.regressor(q.data(), dq.data(), ddq.data(), rows.data());
-    for (int j = 0; j < n; ++j) {
-      sums[static_cast<std::size_t>(j)].add(rows.row(j).transpose() *
+    equations.evaluate(x, s);
+    for (int j = 0; j < k; ++j) {
+      sums[static_cast<std::size_t>(j)].add(equations.rows().row(j).transpose() *
                                             (r.residual(s, j) / r.sigma[j]));
     }
   }
-  StreamedMeat out;
-  out.rows = m * n;
-  out.correlation = r.correlation;
-  out.meat = Eigen::MatrixXd::Zero(nb, nb);
+  StreamedMeat out{Eigen::MatrixXd::Zero(b, b), m * k, r.correlation};
   for (const BartlettScoreSum& sum : sums) out.meat += sum.meat();
   return out;
 }
@@ -107,54 +156,41 @@ StreamedMeat streamed_meat(const IdentificationModel& model, const Trajectory& x
 void correct_for_correlation(const IdentificationModel& model, const std::vector<Trajectory>& data,
                              const std::vector<int>& decimation,
                              const std::vector<DecimatedExperiment>& decimated,
-                             const std::vector<int>& harmonics, LeastSquaresResult& fit) {
+                             const std::vector<int>& harmonics, bool power,
+                             LeastSquaresResult& fit) {
   const int n = model.dof();
   const Eigen::Index b = fit.value.size();
+  SampleEquations equations(model, power);
   std::vector<ResidualGroup> groups;
   std::vector<StreamedResiduals> streamed;
   std::size_t next_decimated = 0;
   for (std::size_t e = 0; e < data.size(); ++e) {
-    if (decimation[e] == 1 && !(e < harmonics.size() && harmonics[e] >= 0)) {
-      streamed.push_back(streamed_residuals(model, data[e], e, fit));
-      continue;
-    }
-    std::vector<Eigen::MatrixXd> W;
-    std::vector<Eigen::VectorXd> y;
+    const Eigen::VectorXd sigma = group_sigma(fit, e, equations.groups());
+    // The power of noise cut at harmonic H is not on the harmonics 0..H: dq spreads it.
+    const int H = !power && e < harmonics.size() && decimation[e] == 1 ? harmonics[e] : -1;
+    std::vector<ResidualGroup> more;
     if (decimation[e] > 1) {
-      const DecimatedExperiment& d = decimated[next_decimated++];
-      for (int j = 0; j < n; ++j) {
-        const Eigen::Index rows = d.W.rows() / n;
-        W.push_back(d.W(Eigen::seqN(j, rows, n), Eigen::all));
-        y.push_back(d.tau(Eigen::seqN(j, rows, n)));
-      }
+      more = decimated_groups(decimated[next_decimated++], power, n, fit.value, sigma);
+    } else if (H >= 0) {
+      more = sample_groups(equations, data[e], fit.value, sigma);
+      for (ResidualGroup& g : more) g.harmonics = H;
     } else {
-      W = sample_rows(model, data[e]);
-      for (int j = 0; j < n; ++j) y.push_back(data[e].tau.col(j));
+      streamed.push_back(streamed_residuals(equations, data[e], e, fit));
     }
-    for (int j = 0; j < n; ++j) {
-      const std::size_t g = e * static_cast<std::size_t>(n) + static_cast<std::size_t>(j);
-      const double sigma = g < fit.group_std_dev.size() ? fit.group_std_dev[g] : 1.0;
-      ResidualGroup group;
-      group.X = W[static_cast<std::size_t>(j)] / sigma;
-      group.r =
-          (y[static_cast<std::size_t>(j)] - W[static_cast<std::size_t>(j)] * fit.value) / sigma;
-      // The lines of a period only for a whole, undecimated period.
-      group.harmonics = e < harmonics.size() && decimation[e] == 1 ? harmonics[e] : -1;
-      groups.push_back(std::move(group));
-    }
+    for (ResidualGroup& g : more) groups.push_back(std::move(g));
   }
-  // The streamed records' scores are summed (a second pass) only if the sandwich is needed.
+  // The streamed records' scores are summed (a second pass) only if the sandwich may be needed.
   const bool streamed_correlated =
       std::any_of(streamed.begin(), streamed.end(),
                   [](const StreamedResiduals& r) { return r.correlation.significant; });
   if (groups.empty() && !streamed_correlated) return;
   std::vector<StreamedMeat> meats;
   for (const StreamedResiduals& r : streamed) {
-    meats.push_back(streamed_meat(model, data[r.experiment], r));
+    meats.push_back(streamed_meat(equations, data[r.experiment], r, b));
   }
   const SandwichCovariance score = score_covariance(groups, meats);
   if (score.description.empty()) return;
-  // The weighted normal matrix of every group (eq. 18's information is it over sigma^2).
+  // The weighted normal matrix of every group: eq. 18's information is it over sigma^2.
   const Eigen::MatrixXd AtA = fit.information * (fit.residual_std_dev * fit.residual_std_dev);
   const Eigen::MatrixXd AtA_inverse = AtA.ldlt().solve(Eigen::MatrixXd::Identity(b, b));
   const Eigen::MatrixXd covariance = sandwich(AtA_inverse, score.meat);

@@ -10,14 +10,16 @@
 
 namespace modelgen::detail {
 
-/// When some experiment is decimated or periodic with cut torques (`harmonics`, per
-/// experiment, -1 or H), rebuilds the weighted IDIM rows of every joint and experiment and
-/// replaces fit's standard deviations (and information) by the sandwich covariance of
-/// correlated_covariance.hpp, naming it in fit.covariance, if the residuals call for it.
-/// `decimated` in experiment order, one per experiment with a factor > 1.
+/// Rebuilds the weighted rows of every group (IDIM: a joint of an experiment; PIM, `power`: an
+/// experiment) and replaces fit's standard deviations by the sandwich covariance of
+/// correlated_covariance.hpp, naming it in fit.covariance, if the residuals call for it:
+/// periodic experiments with cut torques (`harmonics`, per experiment, -1 or H), or residuals
+/// correlated from row to row (decimated or not). `decimated` in experiment order, one per
+/// experiment with a factor > 1.
 void correct_for_correlation(const IdentificationModel& model, const std::vector<Trajectory>& data,
                              const std::vector<int>& decimation,
                              const std::vector<DecimatedExperiment>& decimated,
-                             const std::vector<int>& harmonics, LeastSquaresResult& fit);
+                             const std::vector<int>& harmonics, bool power,
+                             LeastSquaresResult& fit);
 
 }  // namespace modelgen::detail

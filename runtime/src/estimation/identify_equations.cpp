@@ -176,6 +176,8 @@ DecimatedExperiment build_decimated(const IdentificationModel& model, const Traj
       pd[r] = p_all(rows_kept[r], 0);
     }
     equations.add(experiment, md, Pd.data(), 1, Pd.rows(), pd.data(), 1);
+    out.P = std::move(Pd);
+    out.p = std::move(pd);
   } else {
     for (int j = 0; j < n; ++j) {
       equations.add(experiment * n + j, md, out.W.data() + j, n, out.W.rows(), out.tau.data() + j,

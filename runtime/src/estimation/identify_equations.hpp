@@ -74,6 +74,8 @@ struct DecimatedExperiment {
   std::size_t experiment = 0;
   Eigen::MatrixXd W;
   Eigen::VectorXd tau;
+  Eigen::MatrixXd P;  ///< PIM: the decimated power rows kept (eq. 9-10), else empty
+  Eigen::VectorXd p;
   Eigen::Index slow_rows = 0;
 };
 

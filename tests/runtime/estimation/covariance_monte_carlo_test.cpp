@@ -9,7 +9,8 @@
 //   - an AR(1) process filtered and decimated by identify() (eq. 13-14): the decimated rows
 //     keep a correlation from row to row;
 //   - the same AR(1) process on undecimated rows (a record already at a low rate, or
-//     --decimate 1): eq. 18 would report sqrt((1 - rho) / (1 + rho)) = 0.16 of the spread.
+//     --decimate 1): eq. 18 would report sqrt((1 - rho) / (1 + rho)) = 0.16 of the spread;
+//     and the power equations (PIM, eq. 9-10) of that record.
 // 200 runs (100 for the AR(1) cases, 10 000 samples each): the spread's relative error is
 // then 1 / sqrt(398) = 5 % (7 %).
 
@@ -70,6 +71,9 @@ class CovarianceMonteCarlo : public testing::Test {
     }
     return x;
   }
+
+  // AR(1) torque noise on undecimated rows, fitted by `method`, against its spread.
+  static void undecimated_ar1(Method method, unsigned seed);
 
   static const GeneratedModel<tx40::Model> model_;
   static Eigen::VectorXd beta_;
@@ -167,10 +171,10 @@ TEST_F(CovarianceMonteCarlo, CorrelatedNoiseDecimated) {
 
 // The undecimated rows of the same AR(1) noise: the residuals are streamed, their scores summed by
 // batch means (a bandwidth near 180 rows).
-TEST_F(CovarianceMonteCarlo, CorrelatedNoiseUndecimated) {
+void CovarianceMonteCarlo::undecimated_ar1(Method method, unsigned seed) {
   constexpr double kRho = 0.95;
   const Trajectory clean = exact(10000, 1);
-  test::Random random(4);
+  test::Random random(seed);
   test::SpreadCheck check(beta_.size());
   for (int run = 0; run < kRuns / 2; ++run) {
     Trajectory x = clean;
@@ -182,11 +186,26 @@ TEST_F(CovarianceMonteCarlo, CorrelatedNoiseUndecimated) {
         x.tau(s, j) += e[j];
       }
     }
-    const Identification id = identify(model_, {x}, Method::kWls);
+    const Identification id = identify(model_, {x}, method);
     EXPECT_NE(id.fit.covariance.find("undecimated"), std::string::npos) << id.fit.covariance;
     check.add(id.fit.value, id.fit.std_dev);
   }
-  check.expect_covered("IDIM-WLS, AR(1) noise, undecimated");
+  if (method == Method::kWls) {
+    check.expect_covered("IDIM-WLS, AR(1) noise, undecimated");
+  } else {
+    // Known shortfall: the regressor's columns are slow, where this noise has its power, and
+    // the fit takes much of it from the residual the meat is estimated from; the degrees of
+    // freedom the noise is worth make up part (256 independent rows for 61 parameters). Measured
+    // 0.74 of the spread (min 0.64), where eq. 18 reported 0.15.
+    check.expect_covered("PIM-WLS, AR(1) noise, undecimated", 0.6, 1.5, true, 0.7);
+  }
+}
+
+TEST_F(CovarianceMonteCarlo, CorrelatedNoiseUndecimated) { undecimated_ar1(Method::kWls, 4); }
+
+// The power equations (eq. 9-10) of the same record: the noise dq . e keeps e's correlation.
+TEST_F(CovarianceMonteCarlo, PowerEquationsCorrelatedNoiseUndecimated) {
+  undecimated_ar1(Method::kPimWls, 5);
 }
 
 }  // namespace
