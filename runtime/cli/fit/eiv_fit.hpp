@@ -18,7 +18,20 @@ void check_eiv_arguments(const CommandLine& args);
 /// Fits `model` to the prepared periods of `experiments` (each with its PeriodicNoise) and
 /// prints to `report` the noise standard deviations used per axis, the IDIM-WLS start, the
 /// Ceres summary, iterations and cost. Returns the estimate in the form fit prints.
+/// Refuses (UsageError) a closed-loop record, one that carries the reference columns
+/// qr1..qrn (experiments.raw): its averaged period is not the errors-in-variables setting of
+/// eq. 13-16 (closed_loop_refusal). Warns on `log` when the residual standard deviation is
+/// above kEivResidualStdLimit: the averaged period then carries errors its noise model does
+/// not describe (a closed loop without reference columns does this) and the standard
+/// deviations are too small by about that factor.
 Identification fit_eiv(const IdentificationModel& model, const Experiments& experiments,
-                       std::ostream& report);
+                       std::ostream& report, std::ostream& log);
+
+/// s = 1 when eq. 16's noise model is right; an open-loop averaged period stays within
+/// 1 +- a few percent (errors_in_variables_test), the COMAU closed loop gives 2.9.
+constexpr double kEivResidualStdLimit = 1.5;
+
+/// The reason ML-EIV refuses the closed-loop record `source` (what fit_eiv throws).
+std::string closed_loop_refusal(const std::string& source);
 
 }  // namespace modelgen::internal

@@ -31,7 +31,7 @@ Identification projection(const FitContext& fit) {
 }
 
 Identification errors_in_variables(const FitContext& fit) {
-  return fit_eiv(fit.model, fit.experiments, fit.report);
+  return fit_eiv(fit.model, fit.experiments, fit.report, fit.log);
 }
 
 // The closed-loop methods work on the controller's clock, on joint-side records.
@@ -100,6 +100,7 @@ std::vector<FitMethod> make_fit_methods() {
        .label = "ML-EIV",
        .summary = "errors-in-variables maximum likelihood on averaged periods (Bona & Curatella "
                   "eq. 13-16)",
+       .keeps_records = true,  // a record's reference columns mark a closed loop
        .check = check_eiv_arguments,
        .estimate = errors_in_variables},
   };
