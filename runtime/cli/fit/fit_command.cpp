@@ -23,8 +23,10 @@
 #include "runtime/cli/fit/fit_report.hpp"
 #include "runtime/cli/plots/torque_plots.hpp"
 #include "runtime/cli/reports/link_table.hpp"
+#include "runtime/cli/reports/method_agreement.hpp"
 #include "runtime/cli/reports/physical_report.hpp"
 #include "runtime/cli/reports/prediction_output.hpp"
+#include "runtime/cli/reports/residual_check.hpp"
 
 namespace modelgen::internal {
 
@@ -121,6 +123,35 @@ EstimateFile estimate_file(const CommandLine& args, const IdentificationModel& m
   return estimate;
 }
 
+// A closed-loop estimate beside IDIM-WLS on the same prepared rows (issue 31): one linear fit
+// more, whose changes beyond the standard deviations are warned about. The IDIM-WLS estimate,
+// none for the other methods (or when it cannot be made).
+std::optional<Identification> compare_with_wls(const FitMethod& method, const FitContext& context,
+                                               const Identification& id) {
+  if (method.name != "iv" && method.name != "didim") return std::nullopt;
+  IdentifyOptions plain = context.options;
+  plain.progress = nullptr;
+  plain.essential_r_sigma.reset();
+  try {
+    Identification wls = identify(context.model, context.experiments.data, Method::kWls, plain);
+    warn_method_changes(context.log, method.label, id, wls);
+    return wls;
+  } catch (const EstimationError&) {
+    return std::nullopt;  // the closed-loop fit started from this one: rarely reached
+  }
+}
+
+// Does the model explain each joint's torque in the band down to the record's noise? Judged
+// with the estimate whose equation error is least (IDIM-WLS beside a closed-loop method,
+// whose estimate minimises another criterion and differs by its own check): the question is
+// the model's, the methods' differences are warn_method_changes'.
+void check_residual(const FitContext& context, const Identification& id,
+                    const std::optional<Identification>& wls) {
+  warn_residual_against_noise(context.log, context.model, context.experiments,
+                              wls ? wls->fit.value : id.fit.value,
+                              wls ? " (of the IDIM-WLS estimate)" : "");
+}
+
 }  // namespace
 
 int run_fit(const CommandLine& args) {
@@ -168,8 +199,8 @@ int run_fit(const CommandLine& args) {
     fitting.update(static_cast<long long>(1000 * fraction));
   };
   std::ostringstream method_report;
-  const Identification id = estimate_from_files(
-      method, {args, model, experiments, options, method_report, std::cerr}, args.all("--data"));
+  const FitContext context{args, model, experiments, options, method_report, std::cerr};
+  const Identification id = estimate_from_files(method, context, args.all("--data"));
   fitting.finish();
 
   // The report.
@@ -177,6 +208,7 @@ int run_fit(const CommandLine& args) {
   print_fit({model, method.label, experiments, id, data_report.str(), method_report.str(),
              args.has("--min-speed")},
             parameters);
+  check_residual(context, id, compare_with_wls(method, context, id));
   std::optional<PhysicalEstimate> physical;
   TorquePrediction physical_prediction;
   if (args.has("--physical")) {

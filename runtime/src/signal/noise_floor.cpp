@@ -182,6 +182,7 @@ BandEnergies band_energies(const Eigen::MatrixXd& tau, const Eigen::MatrixXd& er
         per_period > 0 ? band_edge(band.band_hz, n - per_period, dt) : 0;
     if (periods >= 2 && aligned && difference_lines >= kMinNoiseLines) {
       out.noise_in_band = noise_from_periods(error, dt, band.band_hz, per_period);
+      out.noise_periods = periods;
       out.noise_origin =
           "the error's change from period to period, over " + std::to_string(periods) + " periods";
       return out;

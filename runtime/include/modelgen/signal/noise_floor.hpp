@@ -53,6 +53,8 @@ struct BandEnergies {
   /// The noise energy of the error inside the band; NaN when it could not be estimated.
   double noise_in_band = std::numeric_limits<double>::quiet_NaN();
   std::string noise_origin;  ///< how noise_in_band was estimated, or why not
+  /// The periods whose changes gave noise_in_band; 0 when it came from the quartile (or none).
+  long long noise_periods = 0;
 };
 
 /// Splits the energies of `tau` and `error` (samples x axes, uniformly sampled every `dt` s)

@@ -1,0 +1,28 @@
+// After a fit: is each joint's residual in the excitation band what the record's noise leaves
+// there? Far above: the model misses something on that joint; far below: the fit explains
+// noise (issue 31).
+#pragma once
+
+#include <ostream>
+#include <string>
+
+#include <Eigen/Core>
+
+#include "modelgen/model/identification_model.hpp"
+#include "runtime/cli/data/data_files.hpp"
+
+namespace modelgen::internal {
+
+/// The torques predicted with `beta` on every experiment as prepared (at its rate, before the
+/// parallel decimation, whose filter keeps the band), each record's band from its positions
+/// (band_of_positions; a record without one skips the check), and per joint the residual's energy
+/// in the band against the noise floor there (residual_against_noise, its bounds at 0.05 % per
+/// side). Writes one "modelid fit: warning:" line per joint outside the bounds (above them only
+/// when the excess over the noise is also more than 1 % of the joint's torque in the band, rms),
+/// naming the joint, the ratio, the likely causes and the options, and returns their number.
+/// `whose` follows "the residual" in the message (e.g. " (of the IDIM-WLS estimate)").
+int warn_residual_against_noise(std::ostream& err, const IdentificationModel& model,
+                                const Experiments& experiments, const Eigen::VectorXd& beta,
+                                const std::string& whose = "");
+
+}  // namespace modelgen::internal

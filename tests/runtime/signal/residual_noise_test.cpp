@@ -1,0 +1,104 @@
+// The residual-against-noise check (modelgen/signal/residual_noise.hpp) on errors made here:
+// white noise alone (what a right model leaves) stays within the bounds on every joint, a
+// sinusoid in the band on one joint (what a model that misses something leaves) goes above on
+// that joint only. The chi-square points are compared with tabulated values.
+
+#include <cmath>
+#include <numbers>
+#include <random>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <Eigen/Core>
+
+#include "modelgen/signal/residual_noise.hpp"
+
+namespace modelgen {
+namespace {
+
+constexpr double kDt = 0.01, kPeriod = 10.0;
+constexpr int kPeriods = 3, kJoints = 3;
+
+// One record of kPeriods periods: a periodic torque in the band, white noise of `sigma` as the
+// error, plus `extra` times a 0.3 Hz sinusoid (in the 1 Hz band, repeating every period) on
+// joint `joint`.
+ResidualRecord record(unsigned seed, double sigma, int joint, double extra) {
+  const int n = static_cast<int>(kPeriods * kPeriod / kDt);
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> noise(0.0, sigma);
+  ResidualRecord r;
+  r.dt = kDt;
+  r.band.band_hz = 1.0;
+  r.band.period = kPeriod;
+  r.tau.resize(n, kJoints);
+  r.error.resize(n, kJoints);
+  for (int k = 0; k < n; ++k) {
+    const double t = k * kDt;
+    for (int j = 0; j < kJoints; ++j) {
+      r.tau(k, j) = 10 * std::sin(2 * std::numbers::pi * 0.1 * t + j);
+      r.error(k, j) = noise(rng);
+      if (j == joint) r.error(k, j) += extra * std::sin(2 * std::numbers::pi * 0.3 * t);
+    }
+  }
+  return r;
+}
+
+TEST(ChiSquarePoint, MatchesTables) {
+  // chi-square 0.9995 and 0.0005 points: 10 dof 31.42 and 1.26 (0.0005: 1.2650), 100 dof 153.2
+  // and 59.9 (from the regularised incomplete gamma function; Wilson-Hilferty is within 10 %
+  // at 10 dof).
+  EXPECT_NEAR(chi_square_point(kResidualCheckZ, 10), 31.42, 0.5);
+  EXPECT_NEAR(chi_square_point(-kResidualCheckZ, 10), 1.265, 0.15);
+  EXPECT_NEAR(chi_square_point(kResidualCheckZ, 100), 153.2, 0.5);
+  EXPECT_NEAR(chi_square_point(-kResidualCheckZ, 100), 59.9, 0.5);
+  EXPECT_EQ(chi_square_point(-kResidualCheckZ, 0.5), 0);
+}
+
+TEST(ResidualAgainstNoise, WhiteNoiseStaysWithinTheBounds) {
+  // 60 joints of white noise: the ratios' mean near 1, their spread what the degrees of
+  // freedom claim (sqrt(2 / nu_r + 2 / nu_n) for a ratio of two chi-squares over their dof,
+  // to first order), and none outside the bounds (0.1 % false alarms each).
+  int outside = 0;
+  double sum = 0, sum_squares = 0, claimed = 0;
+  const int count = 60;
+  for (unsigned seed = 1; seed <= count / kJoints; ++seed) {
+    const std::vector<JointResidual> joints = residual_against_noise({record(seed, 0.1, -1, 0.0)});
+    ASSERT_EQ(joints.size(), 3u);
+    for (const JointResidual& r : joints) {
+      ASSERT_FALSE(std::isnan(r.ratio));
+      EXPECT_LT(r.lower, 1.0);
+      EXPECT_GT(r.upper, 1.0);
+      if (r.ratio > r.upper || r.ratio < r.lower) ++outside;
+      sum += r.ratio;
+      sum_squares += r.ratio * r.ratio;
+      claimed = std::sqrt(2 / r.residual_dof + 2 / r.noise_dof);
+    }
+  }
+  EXPECT_EQ(outside, 0);
+  const double mean = sum / count, spread = std::sqrt(sum_squares / count - mean * mean);
+  // The mean of 60 ratios of spread ~0.4 is within 0.15 of 1 at 3 sd (the ratio of two
+  // chi-squares is biased up by about 2 / nu_n, 0.1).
+  EXPECT_NEAR(mean, 1.0, 0.25) << spread;
+  // The dof may not claim a spread much smaller than the real one (that would give false
+  // alarms) nor much larger (a check that never fires); 60 values give the spread to 10 %.
+  EXPECT_GT(spread, 0.6 * claimed) << mean;
+  EXPECT_LT(spread, 1.4 * claimed) << mean;
+}
+
+TEST(ResidualAgainstNoise, AMissedSinusoidIsAboveOnItsJointOnly) {
+  // 0.5 amplitude: 0.125 of energy per sample against the noise's 0.01 in the whole band,
+  // of which the band keeps 2 x 1 Hz / 100 Hz: 0.0002 per sample; the ratio is some 600.
+  const std::vector<JointResidual> joints = residual_against_noise({record(7, 0.1, 1, 0.5)});
+  EXPECT_LE(joints[0].ratio, joints[0].upper);
+  EXPECT_GT(joints[1].ratio, joints[1].upper);
+  EXPECT_GT(joints[1].ratio, 100);
+  EXPECT_LE(joints[2].ratio, joints[2].upper);
+  EXPECT_EQ(joints[1].noise_origin.find("period to period") != std::string::npos, true);
+}
+
+TEST(ResidualAgainstNoise, NoRecordIsAnError) {
+  EXPECT_THROW(residual_against_noise({}), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace modelgen
