@@ -93,7 +93,7 @@ TEST_F(ModelidComauScenario, WlsIvAndDidimWithinThreeSdAndAtTheNoiseFloor) {
   // count, so the wide band the 100 Hz filter and the decimation by 10 keep carries the loop's
   // own motion and little noise. The planned preparation (decimation by 180, rows bound) left 3
   // (WLS) and 4 (IV) of 64 beyond 3 sd (ZZ2R 5.0 sd), median error 0.16 % against 0.02 % here;
-  // keeping 4x the band (90) 4 and 4 (issue 31).
+  // keeping 4x the band (160) 7 and 2 (issue 31).
   for (const std::string method : {"wls", "iv", "didim"}) {
     const fs::path estimate = *folder_ / (method + ".json");
     const std::string controller =
