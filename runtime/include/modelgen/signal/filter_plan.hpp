@@ -59,8 +59,8 @@ struct FilterPlan {
 /// standard deviations take for white) and the accelerations' noise, whose power grows as the
 /// fifth power of the kept band (errors in the variables). Measured (issue 31): the kept band at
 /// 4x against 2x, the rows bound as it is, on the TX-40 test record of
-/// closed_loop_preparation_test left the truth 0.050 against 0.028 of relative error, and on the
-/// real Panda run the consistent fit 1.097x against 0.99x the unconstrained one's error; on the
+/// closed_loop_preparation_test left the truth 0.050 against 0.034 of relative error, and on the
+/// real Panda run the consistent fit 1.097x against 0.992x the unconstrained one's error; on the
 /// 30 s PUMA 560 and TX-40 closed-loop records the rows bound decides either way (n_d = 140).
 inline constexpr double kKeptBandMultiple = 2.0;
 /// Rows of the decimated equations per unknown the plan keeps at least (RowBudget): with fewer,
