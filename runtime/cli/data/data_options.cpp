@@ -66,7 +66,7 @@ CommandSpec make_data_options_spec() {
        .value = "N",
        .help = "the parallel decimation factor (Gautier & Briot eq. 13-14); it must split into "
                "stages of at most 10",
-       .default_value = "the largest that keeps 4 x the bandwidth and 20 rows per parameter",
+       .default_value = "the largest that keeps 2 x the bandwidth and 20 rows per parameter",
        .group = kGroup},
       {.name = "--torque-hold",
        .type = ValueType::kChoice,

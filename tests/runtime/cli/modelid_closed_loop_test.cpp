@@ -86,10 +86,10 @@ TEST_F(ModelidClosedLoop, SimulateWritesMeasuredTorqueAndReference) {
 TEST_F(ModelidClosedLoop, IvAndDidimConvergeNearTheTruth) {
   for (const std::string method : {"iv", "didim"}) {
     const fs::path estimate = folder_ / (method + ".json");
-    const CliRun fit = modelid("fit --robot tx40 --data " + quoted(data_) + " --method " + method +
-                               " --controller " + quoted(controller_) +
-                               " --cutoff 100 --decimate 10 --min-speed 0.1 --torque-hold zoh" +
-                               " --truth " + quoted(truth_) + " -o " + quoted(estimate));
+    const CliRun fit =
+        modelid("fit --robot tx40 --data " + quoted(data_) + " --method " + method +
+                " --controller " + quoted(controller_) + " --min-speed 0.1 --torque-hold zoh" +
+                " --truth " + quoted(truth_) + " -o " + quoted(estimate));
     ASSERT_EQ(fit.exit_code, 0) << fit.err;
     EXPECT_NE(fit.out.find(method == "iv" ? "IDIM-IV from IDIM-WLS" : "DIDIM from IDIM-WLS"),
               std::string::npos)
@@ -98,7 +98,10 @@ TEST_F(ModelidClosedLoop, IvAndDidimConvergeNearTheTruth) {
     EXPECT_NE(fit.out.find("--min-speed: "), std::string::npos) << fit.out;
     const nlohmann::json json = nlohmann::json::parse(read_text(estimate));
     EXPECT_EQ(json["method"], method == "iv" ? "IDIM-IV" : "DIDIM");
-    // As the library test: every parameter under 10 %std within 4 sd of the truth.
+    // As the library test: every parameter under 10 %std within 4 sd of the truth. The planned
+    // preparation (6.1 Hz, decimation by 42: 20 rows per parameter of this 10 s record) leaves
+    // 37 (IV) and 46 (DIDIM) under 10 %std; --cutoff 100 --decimate 10, tuned on this record,
+    // left more, but breaks on records with more encoder noise (issue 31).
     int checked = 0;
     for (const nlohmann::json& p : json["parameters"]) {
       if (p["rel_std"].is_null() || p["rel_std"].get<double>() > 10) continue;
@@ -106,7 +109,7 @@ TEST_F(ModelidClosedLoop, IvAndDidimConvergeNearTheTruth) {
       EXPECT_LT(std::abs(value - truth), 4 * sd) << method << " " << p["name"];
       ++checked;
     }
-    EXPECT_GE(checked, 40) << method;
+    EXPECT_GE(checked, method == "iv" ? 34 : 42) << method;
   }
 }
 

@@ -191,7 +191,7 @@ TEST(ModelidData, NonPeriodicRouteFiltersAndDecimates) {
   const CliRun run = modelid("fit --robot tx40 --method ols --bandwidth 1 --data " +
                              quoted(dir / "log.csv") + " -o " + quoted(dir / "est.json"));
   ASSERT_EQ(run.exit_code, 0) << run.err;
-  // plan_filtering: cut-off 10 x 1 Hz; the largest n_d with 0.8 (500 Hz) / n_d >= 4 Hz is 100,
+  // plan_filtering: cut-off 10 x 1 Hz; the largest n_d with 0.8 (500 Hz) / n_d >= 2 Hz is 200,
   // but 20 rows per parameter over the 11400 samples the filter's edges leave, 6 axes and the
   // TX-40's 61 base parameters allow at most 11400 x 6 / 1220 = 56.07: 56 = 8 x 7.
   EXPECT_NE(run.out.find("positions low-passed at 10 Hz"), std::string::npos) << run.out;

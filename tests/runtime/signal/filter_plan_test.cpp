@@ -32,22 +32,24 @@ using namespace signal_test;  // tests/runtime/signal/signal_test_support.hpp
 TEST(PlanFiltering, FollowsTheDocumentedRule) {
   const FilterPlan plan = plan_filtering(5000, 5);
   EXPECT_DOUBLE_EQ(plan.position_cutoff_hz, 50);
-  EXPECT_EQ(plan.decimation_factor, 100);  // 0.8 * 2500 / 100 = 20 Hz = 4 x 5 Hz
-  EXPECT_DOUBLE_EQ(plan.decimation_cutoff_hz, 20);
-  EXPECT_NE(plan.explanation.find("decimated by 100"), std::string::npos) << plan.explanation;
-  // The kept band lies 2.5 times below the position filter's cut-off, where the filter run
-  // twice (|H|^2 of a 4th-order Butterworth) passes 99.9 %: W and Y share the band.
-  EXPECT_GT(std::norm(butterworth_lowpass(4, 50, 5000).response(20)), 0.999);
+  EXPECT_EQ(plan.decimation_factor, 200);  // 0.8 * 2500 / 200 = 10 Hz = 2 x 5 Hz
+  EXPECT_DOUBLE_EQ(plan.decimation_cutoff_hz, 10);
+  EXPECT_NE(plan.explanation.find("decimated by 200"), std::string::npos) << plan.explanation;
+  EXPECT_NE(plan.explanation.find("keeps 2 x the bandwidth"), std::string::npos)
+      << plan.explanation;
+  // The kept band lies 5 times below the position filter's cut-off, where the filter run
+  // twice (|H|^2 of a 4th-order Butterworth) passes 99.99 %: W and Y share the band.
+  EXPECT_GT(std::norm(butterworth_lowpass(4, 50, 5000).response(10)), 0.9999);
 
   const FilterPlan fast = plan_filtering(5000, 300);  // 10 x 300 > 0.8 x 2500
   EXPECT_DOUBLE_EQ(fast.position_cutoff_hz, 2000);
-  EXPECT_EQ(fast.decimation_factor, 1);  // 2000 / 2 = 1000 Hz < 4 x 300 Hz
+  EXPECT_EQ(fast.decimation_factor, 3);  // 2000 / 3 = 667 Hz >= 2 x 300 Hz > 2000 / 4
   EXPECT_NE(fast.explanation.find("0.8 x Nyquist"), std::string::npos) << fast.explanation;
 
   EXPECT_EQ(plan_filtering(1000, 300).decimation_factor, 1);
-  // The rule's 71 (400 / 71 = 5.63 Hz >= 4 x 1.4 Hz) has a prime above 10: 70 = 10 x 7 runs in
+  // The rule's 71 (400 / 71 = 5.63 Hz >= 2 x 2.8 Hz) has a prime above 10: 70 = 10 x 7 runs in
   // stages, and the explanation shows them.
-  const FilterPlan staged = plan_filtering(1000, 1.4);
+  const FilterPlan staged = plan_filtering(1000, 2.8);
   EXPECT_EQ(staged.decimation_factor, 70);
   EXPECT_NE(staged.explanation.find("stages 10 x 7"), std::string::npos) << staged.explanation;
   EXPECT_THROW(plan_filtering(1000, 600), std::invalid_argument);
@@ -55,8 +57,8 @@ TEST(PlanFiltering, FollowsTheDocumentedRule) {
 }
 
 TEST(PlanFiltering, LeavesTwentyRowsPerParameter) {
-  // 30 s at 1 kHz of a 0.1 Hz excitation: the band alone would allow 400 / 0.4 = 1000, which
-  // leaves 30 rows x 6 axes for 61 parameters. At most 30000 x 6 / (20 x 61) = 147.5: 147
+  // 30 s at 1 kHz of a 0.1 Hz excitation: the band alone would allow 400 / 0.2 = 2000, which
+  // leaves 15 rows x 6 axes for 61 parameters. At most 30000 x 6 / (20 x 61) = 147.5: 147
   // (3 x 7 x 7) leaves 204 rows per axis, 20.07 per parameter.
   const FilterPlan plan = plan_filtering(1000, 0.1, {30000, 6, 61});
   EXPECT_EQ(plan.decimation_factor, 147);
@@ -64,7 +66,7 @@ TEST(PlanFiltering, LeavesTwentyRowsPerParameter) {
   EXPECT_LT(30000.0 / 150 * 6 / 61, 20.0);  // the next stageable factor would not
   EXPECT_NE(plan.explanation.find("rows per parameter"), std::string::npos) << plan.explanation;
   // A budget the band's bound already meets changes nothing.
-  EXPECT_EQ(plan_filtering(1000, 1.4, {30000, 6, 61}).decimation_factor, 70);
+  EXPECT_EQ(plan_filtering(1000, 2.8, {30000, 6, 61}).decimation_factor, 70);
   EXPECT_EQ(plan_filtering(1000, 0.1, {30000, 6, 0}).decimation_factor,
             plan_filtering(1000, 0.1).decimation_factor);
 }

@@ -71,7 +71,7 @@ TEST(Prepare, JitteredStampsAreResampledBeforeFiltering) {
   const PreparedExperiment prepared = prepare_experiment(x, DriveChain::identity(1), options);
   EXPECT_NE(prepared.summary.find("resampled on a uniform grid of 1 ms"), std::string::npos)
       << prepared.summary;
-  EXPECT_NE(prepared.summary.find("parallel decimation by 100"), std::string::npos)
+  EXPECT_NE(prepared.summary.find("parallel decimation by 200"), std::string::npos)
       << prepared.summary;
   // Uniform afterwards: every step 1 ms.
   for (Eigen::Index s = 1; s < prepared.data.t.size(); ++s) {
