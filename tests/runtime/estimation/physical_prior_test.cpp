@@ -17,6 +17,7 @@
 #include <gtest/gtest.h>
 #include <Eigen/Dense>
 
+#include "modelgen/estimation/estimation_error.hpp"
 #include "modelgen/estimation/link_summary.hpp"
 #include "modelgen/estimation/physical.hpp"
 #include "modelgen/model/identification_model.hpp"
@@ -210,6 +211,16 @@ TEST_F(PhysicalPrior, WithoutTheResidualTheRuleAllowsOneSigmaSquared) {
   for (Eigen::Index j = 0; j < beta_hat_.size(); ++j) {
     EXPECT_LE(std::abs(fit.base[j] - reference.base[j]), std_dev_[j])
         << model_->base_param_names()[static_cast<std::size_t>(j)];
+  }
+}
+
+TEST_F(PhysicalPrior, ASumOfSquaresThatIsNotPositiveIsRefused) {
+  for (double bad : {0.0, -1.0, std::nan("")}) {
+    PhysicalFitOptions options;
+    options.residual_sum_of_squares = bad;
+    EXPECT_THROW(fit_physical(robot_.tree, K_, beta_hat_, information_, a_priori_, options),
+                 EstimationError)
+        << bad;
   }
 }
 
