@@ -22,6 +22,10 @@ PhysicalEstimate physical_estimate(const RobotModel& description, const Identifi
   }
   PhysicalFitOptions options;
   options.prior_weight = prior_weight;
+  // The default weight rule's scale: the weighted sum of squares is (equations - b) sigma^2.
+  const long long residual_dof =
+      unconstrained.equations - static_cast<long long>(unconstrained.value.size());
+  if (residual_dof > 0) options.residual_sum_of_squares = static_cast<double>(residual_dof);
   PhysicalEstimate out;
   out.standard_names = model.standard_param_names();
   const Eigen::MatrixXd K = regrouping_matrix(model);

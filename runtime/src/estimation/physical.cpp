@@ -13,8 +13,8 @@
 // for 1e-6 accuracy on an estimate far from consistency.
 //
 // The prior term and the rule for its default weight are in physical_prior.hpp; the rule
-// costs up to four solves (the reference weight, then 1, 1e-2, 1e-4 until one keeps the base
-// estimate).
+// costs up to six solves (the reference weight, then 1, 0.1, ..., 1e-4 until one keeps the
+// fit's cost).
 
 #include "modelgen/estimation/physical.hpp"
 
@@ -325,6 +325,10 @@ PhysicalFitResult fit_physical(const RigidBodyTree& tree, const Eigen::MatrixXd&
       (!(*options.prior_weight > 0) || !std::isfinite(*options.prior_weight))) {
     throw EstimationError("physical fit: the prior weight must be a positive number");
   }
+  if (options.residual_sum_of_squares && (!(*options.residual_sum_of_squares > 0) ||
+                                          !std::isfinite(*options.residual_sum_of_squares))) {
+    throw EstimationError("physical fit: the residual sum of squares must be a positive number");
+  }
   const Problem pb = set_up(tree, K, beta_hat, information, prior);
   if (options.prior_weight) {
     return solve(tree, K, beta_hat, pb, *options.prior_weight, options.max_iterations);
@@ -337,13 +341,16 @@ PhysicalFitResult fit_physical(const RigidBodyTree& tree, const Eigen::MatrixXd&
     result.prior_weight_automatic = true;
     return result;
   }
-  // The default weight rule (physical_prior.hpp): the largest weight of the ladder that moves
-  // the base estimate by at most kBaseMoveLimit (F-norm) from the reference weight's.
+  // The default weight rule (physical_prior.hpp): the largest weight of the ladder whose cost
+  // exceeds the reference weight's by at most kCostRiseLimit of the unconstrained fit's.
+  const double allowed_rise = options.residual_sum_of_squares
+                                  ? detail::kCostRiseLimit * *options.residual_sum_of_squares
+                                  : detail::kCostRiseWithoutResidual;
   PhysicalFitResult reference =
       solve(tree, K, beta_hat, pb, detail::kReferencePriorWeight, options.max_iterations);
   for (double weight : detail::kPriorWeightLadder) {
     PhysicalFitResult candidate = solve(tree, K, beta_hat, pb, weight, options.max_iterations);
-    if ((pb.U * (candidate.base - reference.base)).norm() <= detail::kBaseMoveLimit) {
+    if (candidate.cost_increase - reference.cost_increase <= allowed_rise) {
       candidate.prior_weight_automatic = true;
       return candidate;
     }

@@ -14,16 +14,23 @@
 namespace modelgen::detail {
 
 // The default weight rule of --physical (docs/methods.md, "The a-priori model as the prior"):
-// the largest weight of kPriorWeightLadder whose estimate keeps the base parameters within
-// kBaseMoveLimit of the estimate with kReferencePriorWeight, in the metric of the
-// unconstrained fit's information matrix F: ||beta_w - beta_ref||_F <= kBaseMoveLimit. The
-// F-norm bounds every single base parameter's move in its own standard deviation
-// (|d beta_j| <= sigma_j ||d beta||_F, Cauchy-Schwarz), so the prior never moves what the data
-// determine by more than a tenth of its standard deviation beyond what consistency alone
-// asks; the reference weight is the smallest that keeps the problem well posed.
-inline constexpr double kPriorWeightLadder[] = {1.0, 1e-2, 1e-4};
+// the largest weight of kPriorWeightLadder whose estimate raises the fit's weighted sum of
+// squares by at most kCostRiseLimit of the unconstrained fit's beyond what consistency alone
+// costs (the estimate with kReferencePriorWeight): in sigma^2 units, with F the unconstrained
+// fit's information matrix and S0 its weighted sum of squares (the residual degrees of freedom),
+// ||beta_w - beta_hat||_F^2 - ||beta_ref - beta_hat||_F^2 <= kCostRiseLimit S0: the rms of the
+// weighted residual grows by at most 2 % (1.02^2 = 1 + 0.0404) for the prior. Relative, not in
+// standard deviations, because F grows with the record's length while the part of the residual
+// that model error makes does not shrink: on the real Panda run (1231 residual degrees of
+// freedom, consistency alone +9 % of S0) a tenth of a standard deviation left only weight 1e-6,
+// and links at 12 times their a-priori mass; weight 1 costs 3.4 % of S0 there. Where S0 is not
+// given the rise may be 1 sigma^2 (no base parameter moves by more than its standard deviation,
+// |d beta_j| <= sigma_j ||d beta||_F), the statistical bound when the residual is noise alone.
+// The reference weight is the smallest that keeps the problem well posed.
+inline constexpr double kPriorWeightLadder[] = {1.0, 1e-1, 1e-2, 1e-3, 1e-4};
 inline constexpr double kReferencePriorWeight = 1e-6;
-inline constexpr double kBaseMoveLimit = 0.1;
+inline constexpr double kCostRiseLimit = 1.02 * 1.02 - 1;
+inline constexpr double kCostRiseWithoutResidual = 1.0;
 
 // Scales for the prior term: the largest reference value of the parameter's group (a body's
 // inertia entries, its first moments, its mass; all drive parameters of one kind), so that a

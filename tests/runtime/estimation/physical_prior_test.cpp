@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iostream>
 #include <optional>
 #include <random>
 #include <vector>
@@ -16,6 +17,7 @@
 #include <gtest/gtest.h>
 #include <Eigen/Dense>
 
+#include "modelgen/estimation/estimation_error.hpp"
 #include "modelgen/estimation/link_summary.hpp"
 #include "modelgen/estimation/physical.hpp"
 #include "modelgen/model/identification_model.hpp"
@@ -75,7 +77,8 @@ class PhysicalPrior : public testing::Test {
 
   // The a-priori values given to the fit: the truth's bodies with masses alternately 30 % up
   // and down and centres of mass moved by 2 cm, inertia about the centre of mass kept.
-  std::vector<std::optional<double>> perturbed_inertials() const {
+  std::vector<std::optional<double>> perturbed_inertials(double mass_change = 0.3,
+                                                         double com_shift = 0.02) const {
     std::vector<std::optional<double>> out(static_cast<std::size_t>(truth_.size()));
     int moved = 0;
     for (const auto& index : inertial_param_indices(robot_.tree)) {
@@ -87,8 +90,8 @@ class PhysicalPrior : public testing::Test {
       const auto& i = q.inertia_com;
       Ic << i[0], i[1], i[2], i[1], i[3], i[4], i[2], i[4], i[5];
       const double sign = (moved++ % 2 == 0) ? 1.0 : -1.0;
-      const Eigen::Vector3d shift = 0.02 * Eigen::Vector3d(sign, -sign, 1).normalized();
-      const auto values = body_params(q.mass * (1 + 0.3 * sign),
+      const Eigen::Vector3d shift = com_shift * Eigen::Vector3d(sign, -sign, 1).normalized();
+      const auto values = body_params(q.mass * (1 + mass_change * sign),
                                       Eigen::Vector3d(q.com[0], q.com[1], q.com[2]) + shift, Ic);
       for (int s = 0; s < 10; ++s)
         out[static_cast<std::size_t>(index[s])] = values[static_cast<std::size_t>(s)];
@@ -114,9 +117,8 @@ class PhysicalPrior : public testing::Test {
     tau_ = W_ * beta_true;
     for (Eigen::Index i = 0; i < tau_.size(); ++i) tau_[i] += noise(rng);
     beta_hat_ = W_.colPivHouseholderQr().solve(tau_);
-    const double sigma2 =
-        (tau_ - W_ * beta_hat_).squaredNorm() / static_cast<double>(tau_.size() - b);
-    information_ = W_.transpose() * W_ / sigma2;
+    sigma2_ = (tau_ - W_ * beta_hat_).squaredNorm() / static_cast<double>(tau_.size() - b);
+    information_ = W_.transpose() * W_ / sigma2_;
     std_dev_ = information_.inverse().diagonal().cwiseSqrt();
   }
 
@@ -124,10 +126,28 @@ class PhysicalPrior : public testing::Test {
     return (tau_ - W_ * beta).norm() / tau_.norm();
   }
 
+  // The least-squares cost of `beta` in sigma^2 units, from the simulated torques.
+  double weighted_squares(const Eigen::VectorXd& beta) const {
+    return (tau_ - W_ * beta).squaredNorm() / sigma2_;
+  }
+
+  PhysicalFitOptions with_residual() const {
+    PhysicalFitOptions options;
+    options.residual_sum_of_squares = weighted_squares(beta_hat_);
+    return options;
+  }
+
+  PhysicalFitResult fit_with_weight(double weight) const {
+    PhysicalFitOptions options = with_residual();
+    options.prior_weight = weight;
+    return fit_physical(robot_.tree, K_, beta_hat_, information_, a_priori_, options);
+  }
+
   RobotModel robot_;
   std::unique_ptr<ReferenceModel> model_;
   Eigen::MatrixXd K_, W_, information_;
   Eigen::VectorXd truth_, tau_, beta_hat_, std_dev_;
+  double sigma2_ = 1;
   std::vector<std::optional<double>> a_priori_;
 };
 
@@ -152,32 +172,90 @@ void expect_links_near(const RigidBodyTree& tree, const Eigen::VectorXd& standar
   }
 }
 
-TEST_F(PhysicalPrior, TheDefaultWeightKeepsLinksNearTheTruthAndTheBaseFit) {
-  // The shipped UR5: its flat wrists make the noisy unconstrained estimate inconsistent, so
-  // consistency itself moves the base parameters (the reference weight's estimate); the default
-  // weight moves none of them by more than 0.1 sd beyond that.
-  PhysicalFitOptions reference_options;
-  reference_options.prior_weight = 1e-6;
-  const PhysicalFitResult reference =
-      fit_physical(robot_.tree, K_, beta_hat_, information_, a_priori_, reference_options);
-  const PhysicalFitResult fit = fit_physical(robot_.tree, K_, beta_hat_, information_, a_priori_);
+// The default rule's bound, computed here from the simulated torques: with weight w the
+// weighted sum of squares ||tau - W beta_w||^2 / sigma^2 exceeds that of the estimate with
+// weight 1e-6 (consistency alone) by at most 0.0404 times the unconstrained fit's (the rms
+// residual grows by at most 2 % of the unconstrained fit's), and the next larger weight of the
+// ladder 1, 0.1, ..., 1e-4 exceeds it (the rule takes the largest that keeps the bound).
+TEST_F(PhysicalPrior, TheDefaultWeightKeepsLinksNearTheTruthAndTheFitsCost) {
+  const PhysicalFitResult reference = fit_with_weight(1e-6);
+  const PhysicalFitOptions options = with_residual();
+  const PhysicalFitResult fit =
+      fit_physical(robot_.tree, K_, beta_hat_, information_, a_priori_, options);
   ASSERT_TRUE(fit.converged);
   EXPECT_TRUE(fit.prior_weight_automatic);
   EXPECT_GT(fit.prior_weight, 1e-6);  // the a-priori model pulls harder than the reference
-  for (Eigen::Index j = 0; j < beta_hat_.size(); ++j) {
-    EXPECT_LE(std::abs(fit.base[j] - reference.base[j]), 0.1 * std_dev_[j])
-        << model_->base_param_names()[static_cast<std::size_t>(j)] << " weight "
-        << fit.prior_weight;
+  const double allowed = (1.02 * 1.02 - 1) * weighted_squares(beta_hat_);
+  EXPECT_LE(weighted_squares(fit.base) - weighted_squares(reference.base), allowed * (1 + 1e-6))
+      << "weight " << fit.prior_weight;
+  if (fit.prior_weight < 1) {
+    const PhysicalFitResult larger = fit_with_weight(10 * fit.prior_weight);
+    EXPECT_GT(weighted_squares(larger.base) - weighted_squares(reference.base), allowed)
+        << "weight " << fit.prior_weight;
   }
+  std::cout << "default weight " << fit.prior_weight << ", relative error norm "
+            << rel_error_norm(fit.base) << " (unconstrained " << rel_error_norm(beta_hat_)
+            << ", consistency alone " << rel_error_norm(reference.base) << ")\n";
   EXPECT_LE(rel_error_norm(fit.base), 1.02 * rel_error_norm(beta_hat_));
   expect_links_near(robot_.tree, fit.standard, truth_);
+}
+
+TEST_F(PhysicalPrior, WithoutTheResidualTheRuleAllowsOneSigmaSquared) {
+  // Without the unconstrained fit's sum of squares the rise may be 1 sigma^2, so no base
+  // parameter moves by more than its standard deviation beyond consistency alone.
+  const PhysicalFitResult reference = fit_with_weight(1e-6);
+  const PhysicalFitResult fit = fit_physical(robot_.tree, K_, beta_hat_, information_, a_priori_);
+  ASSERT_TRUE(fit.converged);
+  const double rise = weighted_squares(fit.base) - weighted_squares(reference.base);
+  EXPECT_LE(rise, 1 + 1e-6) << "weight " << fit.prior_weight;
+  for (Eigen::Index j = 0; j < beta_hat_.size(); ++j) {
+    EXPECT_LE(std::abs(fit.base[j] - reference.base[j]), std_dev_[j])
+        << model_->base_param_names()[static_cast<std::size_t>(j)];
+  }
+}
+
+TEST_F(PhysicalPrior, ASumOfSquaresThatIsNotPositiveIsRefused) {
+  for (double bad : {0.0, -1.0, std::nan("")}) {
+    PhysicalFitOptions options;
+    options.residual_sum_of_squares = bad;
+    EXPECT_THROW(fit_physical(robot_.tree, K_, beta_hat_, information_, a_priori_, options),
+                 EstimationError)
+        << bad;
+  }
+}
+
+TEST_F(PhysicalPrior, TheRuleTakesTheLargestWeightWithinItsBound) {
+  // Smaller sums of squares given, so that the bound 0.0404 S0 bites on the ladder 1, 0.1, ...,
+  // 1e-4: the rise (computed here from the torques) is within it, and the next larger weight's
+  // is not; below the ladder the reference weight 1e-6 remains. A-priori values far off (masses
+  // by +-60 %, centres of mass by 15 cm), so that the prior costs something.
+  a_priori_ = perturbed_inertials(0.6, 0.15);
+  const PhysicalFitResult reference = fit_with_weight(1e-6);
+  const auto rise = [&](const PhysicalFitResult& f) {
+    return weighted_squares(f.base) - weighted_squares(reference.base);
+  };
+  for (double allowed : {0.1, 1e-2, 1e-4}) {
+    PhysicalFitOptions options;
+    options.residual_sum_of_squares = allowed / (1.02 * 1.02 - 1);
+    const PhysicalFitResult fit =
+        fit_physical(robot_.tree, K_, beta_hat_, information_, a_priori_, options);
+    ASSERT_TRUE(fit.converged);
+    std::cout << "allowed rise " << allowed << ": weight " << fit.prior_weight << ", rise "
+              << rise(fit) << "\n";
+    EXPECT_LE(rise(fit), allowed * (1 + 1e-6)) << allowed;
+    if (fit.prior_weight < 1) {
+      const double next = fit.prior_weight == 1e-6 ? 1e-4 : 10 * fit.prior_weight;
+      EXPECT_GT(rise(fit_with_weight(next)), allowed) << allowed;
+    }
+  }
 }
 
 TEST_F(PhysicalPrior, OnATruthInsideTheConsistentSetTheBaseFitStays) {
   // Bodies with 5 cm of radius of gyration added on every axis: the base parameters of the
   // default fit are the unconstrained ones to a tenth of their standard deviation.
   make(0.05 * 0.05, kNoise);
-  const PhysicalFitResult fit = fit_physical(robot_.tree, K_, beta_hat_, information_, a_priori_);
+  const PhysicalFitResult fit =
+      fit_physical(robot_.tree, K_, beta_hat_, information_, a_priori_, with_residual());
   ASSERT_TRUE(fit.converged);
   for (Eigen::Index j = 0; j < beta_hat_.size(); ++j) {
     EXPECT_LE(std::abs(fit.base[j] - beta_hat_[j]), 0.1 * std_dev_[j])
@@ -216,7 +294,8 @@ TEST_F(PhysicalPrior, DriveValuesAloneAreNoAPrioriModel) {
 }
 
 TEST_F(PhysicalPrior, TheLinkSummarySaysWhatTheDataDecided) {
-  const PhysicalFitResult fit = fit_physical(robot_.tree, K_, beta_hat_, information_, a_priori_);
+  const PhysicalFitResult fit =
+      fit_physical(robot_.tree, K_, beta_hat_, information_, a_priori_, with_residual());
   const std::vector<LinkSummary> links = summarise_links(robot_.tree, K_, fit, a_priori_);
   // The row space of K, computed here: a mass is decided by the data exactly when its unit
   // direction is a combination of K's rows (scaling each parameter does not change that).
@@ -306,7 +385,9 @@ TEST(DriveSummary, ARegroupedDriveParameterIsNotReportedAsIdentified) {
       ASSERT_TRUE(drive.a_priori.has_value());
       EXPECT_EQ(*drive.a_priori, 0.362);  // robots/tx40.yaml's known: value
     }
-    if (drive.name == "Fv2") EXPECT_TRUE(drive.regrouped_with.empty());
+    if (drive.name == "Fv2") {
+      EXPECT_TRUE(drive.regrouped_with.empty());
+    }
   }
   EXPECT_EQ(next, drives.size());
   EXPECT_GT(data, 0u);

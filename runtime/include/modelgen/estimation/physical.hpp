@@ -11,8 +11,9 @@
 // (beta - beta_hat)' F (beta - beta_hat). A prior term towards the a-priori standard values
 // (the description's inertials) picks one among the standard parameter sets that give the same
 // base parameters: it acts only in the directions the data do not determine (the null space of
-// the regrouping map), with a weight chosen so that it moves the base estimate by at most a
-// tenth of a standard deviation (runtime/src/estimation/physical_prior.hpp, docs/methods.md).
+// the regrouping map), with a weight chosen so that it raises the fit's weighted sum of squares
+// by at most 4 % of the unconstrained fit's beyond what consistency costs
+// (runtime/src/estimation/physical_prior.hpp, docs/methods.md).
 #pragma once
 
 #include <optional>
@@ -33,12 +34,16 @@ struct PhysicalFitOptions {
   /// parameter's group (a body's inertia entries, first moments, mass; one drive kind), projected
   /// onto the directions that change no base parameter, against the base-parameter term in
   /// units of the estimate's variance. Must be > 0. Unset: the default rule, the largest of
-  /// 1, 1e-2, 1e-4 that moves the base estimate by at most 0.1 in the information metric from
-  /// the estimate with weight 1e-6 (so no base parameter by more than 0.1 of its standard
-  /// deviation), else 1e-6. Without a body whose ten a-priori values are all given, the prior
-  /// acts on every direction instead, relative to group sizes floored at what the data resolve,
-  /// with weight 1e-6.
+  /// 1, 0.1, ..., 1e-4 whose cost exceeds that of the estimate with weight 1e-6 (consistency
+  /// alone) by at most 0.0404 residual_sum_of_squares (the weighted residual's rms grows by at
+  /// most 2 % of the unconstrained fit's), else 1e-6. Without a body whose ten a-priori values
+  /// are all given, the prior acts on every direction instead, relative to group sizes floored
+  /// at what the data resolve, with weight 1e-6.
   std::optional<double> prior_weight;
+  /// The unconstrained fit's weighted sum of squares in the information's units (for least
+  /// squares with F = W'W / sigma^2: the residual degrees of freedom, rows - b), the scale of
+  /// the default weight rule. Must be > 0. Unset: the rule allows a rise of 1 sigma^2.
+  std::optional<double> residual_sum_of_squares;
   int max_iterations = 2000;  ///< Newton steps of the barrier method
 };
 
