@@ -22,6 +22,7 @@ PhysicalEstimate physical_estimate(const RobotModel& description, const Identifi
   }
   PhysicalFitOptions options;
   options.prior_weight = prior_weight;
+  options.regions = description.body_regions;
   PhysicalEstimate out;
   out.standard_names = model.standard_param_names();
   const Eigen::MatrixXd K = regrouping_matrix(model);

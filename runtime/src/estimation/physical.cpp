@@ -86,6 +86,22 @@ std::vector<char> binding_constraints(const Layout& layout, const Eigen::VectorX
   return binding;
 }
 
+// The bodies whose region holds at the optimum: a push on some variable of the body that moves
+// it by a hundredth of its spread (as in binding_constraints). A region that holds only
+// against the prior counts too: it, not the prior, then decides what the data leave free.
+std::vector<char> regions_holding(const Layout& layout, const std::vector<double>& region_push,
+                                  const Eigen::VectorXd& curvature, double tolerance) {
+  std::vector<char> holding(layout.body_params.size(), 0);
+  for (std::size_t b = 0; b < layout.body_params.size(); ++b) {
+    bool moved = false;
+    for (int k : layout.body_params[b]) {
+      moved = moved || region_push[b] > 1e-2 * std::sqrt(curvature[k]);
+    }
+    holding[b] = region_push[b] > tolerance && moved;
+  }
+  return holding;
+}
+
 std::vector<std::string> describe(const RigidBodyTree& tree, const Layout& layout,
                                   const std::vector<char>& binding) {
   std::vector<std::string> out;
@@ -196,8 +212,8 @@ struct Problem {
 };
 
 Problem set_up(const RigidBodyTree& tree, const Eigen::MatrixXd& K, const Eigen::VectorXd& beta_hat,
-               const Eigen::MatrixXd& information,
-               const std::vector<std::optional<double>>& prior) {
+               const Eigen::MatrixXd& information, const std::vector<std::optional<double>>& prior,
+               const std::vector<std::optional<BodyRegion>>& regions) {
   Problem pb;
   const Eigen::LLT<Eigen::MatrixXd> llt(information);
   if (llt.info() != Eigen::Success) {
@@ -205,6 +221,7 @@ Problem set_up(const RigidBodyTree& tree, const Eigen::MatrixXd& K, const Eigen:
   }
   pb.U = llt.matrixU();
   pb.layout = detail::make_layout(tree);
+  detail::add_regions(tree, regions, pb.layout);
   const auto n = static_cast<Eigen::Index>(tree.params.size());
   pb.bounded.assign(static_cast<std::size_t>(n), 0);
   for (Eigen::Index k = 0; k < n; ++k) {
@@ -242,6 +259,9 @@ Problem set_up(const RigidBodyTree& tree, const Eigen::MatrixXd& K, const Eigen:
     if (pb.bounded[static_cast<std::size_t>(k)]) pb.y0[k] = std::max(pb.y0[k], 1e-3);
   }
   const Eigen::VectorXd start = pb.T * pb.y0.cwiseQuotient(pb.d);
+  // The barrier starts inside every region; the prior's centre stays `start`, so that without
+  // a-priori values the region, not a start moved into it, holds what the data leave free.
+  detail::shrink_into_regions(pb.layout, pb.body_floor, pb.y0);
 
   // The prior term: the a-priori value where there is one, else the start. Without it the
   // problem can lack a minimiser (the image of the consistent set under K need not be closed:
@@ -308,9 +328,24 @@ PhysicalFitResult solve(const RigidBodyTree& tree, const Eigen::MatrixXd& K,
       pb.A.colwise().squaredNorm().transpose() + G.colwise().squaredNorm().transpose();
   const std::vector<char> binding =
       binding_constraints(pb.layout, solved.push, prior_pull, curvature, tolerance);
-  result.active_constraints = describe(tree, pb.layout, binding);
+  std::vector<char> held = binding;
+  const std::vector<char> holding =
+      regions_holding(pb.layout, solved.region_push, curvature, tolerance);
+  for (std::size_t b = 0; b < holding.size(); ++b) {
+    if (!holding[b]) continue;
+    const auto& index = pb.layout.body_params[b];
+    for (int k : index) held[static_cast<std::size_t>(k)] = 1;  // sd: held like a bound body
+    const int body = tree.params[static_cast<std::size_t>(index[9])].body;
+    result.region_bound_bodies.push_back(body);
+    result.active_constraints.push_back("body '" +
+                                        tree.bodies[static_cast<std::size_t>(body)].name +
+                                        "': mass distribution at the edge of its region (rms "
+                                        "extent 1 of the ellipsoid from the geometry)");
+  }
+  const std::vector<std::string> cones = describe(tree, pb.layout, binding);
+  result.active_constraints.insert(result.active_constraints.begin(), cones.begin(), cones.end());
   result.base_std_dev =
-      base_standard_deviations(pb.layout, binding, K, pb.U, G, pb.T, pb.d, result.standard);
+      base_standard_deviations(pb.layout, held, K, pb.U, G, pb.T, pb.d, result.standard);
   return result;
 }
 
@@ -325,7 +360,7 @@ PhysicalFitResult fit_physical(const RigidBodyTree& tree, const Eigen::MatrixXd&
       (!(*options.prior_weight > 0) || !std::isfinite(*options.prior_weight))) {
     throw EstimationError("physical fit: the prior weight must be a positive number");
   }
-  const Problem pb = set_up(tree, K, beta_hat, information, prior);
+  const Problem pb = set_up(tree, K, beta_hat, information, prior, options.regions);
   if (options.prior_weight) {
     return solve(tree, K, beta_hat, pb, *options.prior_weight, options.max_iterations);
   }
