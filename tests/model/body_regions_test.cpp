@@ -14,6 +14,7 @@
 
 #include "modelgen/model/load_robot.hpp"
 #include "runtime/model/body_regions.hpp"
+#include "tests/support/cli_runner.hpp"
 #include "tests/support/test_support.hpp"
 
 namespace modelgen {

@@ -86,18 +86,20 @@ std::vector<char> binding_constraints(const Layout& layout, const Eigen::VectorX
   return binding;
 }
 
-// The bodies whose region holds at the optimum: a push on some variable of the body that moves
-// it by a hundredth of its spread (as in binding_constraints). A region that holds only
-// against the prior counts too: it, not the prior, then decides what the data leave free.
+// The bodies whose region holds at the optimum: its push on the body's variables (the
+// barrier's dual) at least half the largest pull of the prior term on them. Against a prior
+// of weight 1e-6 the barrier stops before the mass reaches the ellipsoid's edge (the duality
+// gap is relative to the data term), so the region holds the body against the prior's pull
+// without touching: it, not the prior, then decides what the data leave free. An inactive
+// region's push is 1 / (t s) with s far from 0, below the pull; one that holds the data also
+// pushes by more than the tolerance.
 std::vector<char> regions_holding(const Layout& layout, const std::vector<double>& region_push,
-                                  const Eigen::VectorXd& curvature, double tolerance) {
+                                  const Eigen::VectorXd& prior_pull, double tolerance) {
   std::vector<char> holding(layout.body_params.size(), 0);
   for (std::size_t b = 0; b < layout.body_params.size(); ++b) {
-    bool moved = false;
-    for (int k : layout.body_params[b]) {
-      moved = moved || region_push[b] > 1e-2 * std::sqrt(curvature[k]);
-    }
-    holding[b] = region_push[b] > tolerance && moved;
+    double pull = 0;
+    for (int k : layout.body_params[b]) pull = std::max(pull, prior_pull[k]);
+    holding[b] = region_push[b] > 0 && (region_push[b] >= 0.5 * pull || region_push[b] > tolerance);
   }
   return holding;
 }
@@ -330,17 +332,17 @@ PhysicalFitResult solve(const RigidBodyTree& tree, const Eigen::MatrixXd& K,
       binding_constraints(pb.layout, solved.push, prior_pull, curvature, tolerance);
   std::vector<char> held = binding;
   const std::vector<char> holding =
-      regions_holding(pb.layout, solved.region_push, curvature, tolerance);
+      regions_holding(pb.layout, solved.region_push, prior_pull, tolerance);
   for (std::size_t b = 0; b < holding.size(); ++b) {
     if (!holding[b]) continue;
     const auto& index = pb.layout.body_params[b];
     for (int k : index) held[static_cast<std::size_t>(k)] = 1;  // sd: held like a bound body
     const int body = tree.params[static_cast<std::size_t>(index[9])].body;
     result.region_bound_bodies.push_back(body);
-    result.active_constraints.push_back("body '" +
-                                        tree.bodies[static_cast<std::size_t>(body)].name +
-                                        "': mass distribution at the edge of its region (rms "
-                                        "extent 1 of the ellipsoid from the geometry)");
+    result.active_constraints.push_back(
+        "body '" + tree.bodies[static_cast<std::size_t>(body)].name +
+        "': mass distribution held by its region (the ellipsoid from "
+        "the geometry)");
   }
   const std::vector<std::string> cones = describe(tree, pb.layout, binding);
   result.active_constraints.insert(result.active_constraints.begin(), cones.begin(), cones.end());
