@@ -17,6 +17,7 @@
 #include "runtime/model/magnitude_checks.hpp"
 #include "runtime/model/mdh_drive_chain.hpp"
 #include "runtime/model/mdh_known_values.hpp"
+#include "runtime/model/mdh_region.hpp"
 #include "runtime/model/yaml_reader.hpp"
 
 namespace modelgen {
@@ -110,7 +111,8 @@ class MdhYamlLoader {
       const YAML::Node row = list[i];
       const int j = static_cast<int>(i) + 1;
       const std::string context = "joint " + std::to_string(j);
-      in_.check_keys(row, {"name", "type", "ant", "alpha", "d", "theta", "r", "limits"}, context);
+      in_.check_keys(row, {"name", "type", "ant", "alpha", "d", "theta", "r", "limits", "region"},
+                     context);
       RawJoint joint;
       joint.description.where = in_.at(row);
       joint.description.name = row["name"] ? in_.text(row["name"], "name") : "L" + std::to_string(j);
@@ -142,6 +144,8 @@ class MdhYamlLoader {
         joint.ant_node = row["ant"];
       }
       if (row["limits"]) joint.description.limits = read_limits(row["limits"], joint.type, context);
+      model_.body_regions.emplace_back();
+      if (row["region"]) model_.body_regions.back() = read_region(in_, row["region"], context);
       raw.push_back(std::move(joint));
     }
     resolve_antecedents(raw);

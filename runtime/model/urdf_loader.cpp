@@ -28,6 +28,7 @@
 #include "modelgen/model/number_text.hpp"
 #include "modelgen/model/rigid_body_tree.hpp"
 #include "modelgen/model/robot_model.hpp"
+#include "runtime/model/body_regions.hpp"
 #include "runtime/model/urdf_structure.hpp"
 #include "runtime/model/urdf_tree_builder.hpp"
 
@@ -207,18 +208,12 @@ RobotModel load_urdf(const std::string& path, const std::string& text, const Loa
                                  "; nothing to identify");
   }
   set_parameters(builder.inertials(), model);
-  // The ellipsoid through the corners of the box of each body's shapes holds the box: its
-  // semi-axes are sqrt(3) times the box's half sides (the smallest such ellipsoid).
-  for (const auto& box : builder.shape_boxes()) {
-    auto& region = model.body_regions.emplace_back();
-    if (!box) continue;
-    region.emplace();
-    for (int i = 0; i < 3; ++i) {
-      region->centre[static_cast<std::size_t>(i)] = 0.5 * (box->first[i] + box->second[i]);
-      // A flat shape (a plate of no thickness) still gets a region of 1 mm.
-      region->semi_axes[static_cast<std::size_t>(i)] =
-          std::max(std::sqrt(3.0) * 0.5 * (box->second[i] - box->first[i]), 1e-3);
-    }
+  // Each body's region: the ellipsoid around its shapes' box; without shapes (meshes only,
+  // or none) the guess from the segments to its child joints (body_regions.hpp).
+  const auto& boxes = builder.shape_boxes();
+  for (std::size_t b = 0; b < boxes.size(); ++b) {
+    model.body_regions.push_back(boxes[b] ? region_around_box(boxes[b]->first, boxes[b]->second)
+                                          : region_around_segments(builder.segment_ends()[b]));
   }
   validate(model.tree);
   return model;

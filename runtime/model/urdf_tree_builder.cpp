@@ -258,6 +258,7 @@ void TreeBuilder::visit(int j, int body, const Eigen::Isometry3d& body_from_link
   const Eigen::Isometry3d body_from_child =
       body_from_link * origin_transform(urdf_joint.parent_to_joint_origin_transform, entry.origin,
                                         "joint '" + entry.name + "': origin");
+  if (body >= 0) ends_[static_cast<std::size_t>(body)].push_back(body_from_child.translation());
   if (!is_moving(entry.type)) {
     // Mass fixed to the base never moves, so it has no effect on the dynamics.
     if (body >= 0) {
@@ -289,6 +290,7 @@ void TreeBuilder::visit(int j, int body, const Eigen::Isometry3d& body_from_link
   model_.joints.push_back(joint_description(urdf_joint, entry));
   inertials_.emplace_back();
   boxes_.emplace_back();
+  ends_.emplace_back();
   add_inertial(entry.child, index, Eigen::Isometry3d::Identity());
   add_shapes(entry.child, index, Eigen::Isometry3d::Identity());
   push_children(child, index, Eigen::Isometry3d::Identity());

@@ -37,6 +37,10 @@ class TreeBuilder {
   using Box = std::pair<Eigen::Vector3d, Eigen::Vector3d>;
   const std::vector<std::optional<Box>>& shape_boxes() const { return boxes_; }
 
+  // Per body, the origins (body frame) of its child joints and of the links fixed to it: the
+  // ends of the segments a body without shapes is guessed to span (body_regions.hpp).
+  const std::vector<std::vector<Eigen::Vector3d>>& segment_ends() const { return ends_; }
+
  private:
   const urdf::Joint& joint(const JointEntry& entry) const;
   Eigen::Isometry3d origin_transform(const urdf::Pose& pose, const OriginEntry& origin,
@@ -64,6 +68,7 @@ class TreeBuilder {
   RobotModel& model_;
   std::vector<std::optional<std::array<double, 10>>> inertials_;
   std::vector<std::optional<Box>> boxes_;
+  std::vector<std::vector<Eigen::Vector3d>> ends_;
   std::vector<Pending> pending_;
   double tolerance_ = 0;
   bool mimic_as_joint_ = false;

@@ -51,18 +51,19 @@ std::vector<std::string> decided_lines(const nlohmann::json& json) {
     for (const nlohmann::json& link : json["links"]) {
       if (!link.is_object() || !link.contains("decided_by") || !link["decided_by"].is_object())
         continue;
-      std::string data, prior;
+      std::string data, prior, bound;
       for (const auto& [key, words] :
            {std::pair{"mass", "mass"}, std::pair{"com", "centre of mass"},
             std::pair{"principal_moments", "principal moments"}}) {
         const std::string by = text(link["decided_by"].value(key, nlohmann::json()));
-        std::string& list = by == "data" ? data : prior;
+        std::string& list = by == "data" ? data : by == "bound" ? bound : prior;
         list += (list.empty() ? "" : ", ") + std::string(words);
       }
       out.push_back(
           "link '" + text(link.value("body", nlohmann::json())) + "': " +
           (data.empty() ? "the data decided nothing of it alone" : "the data decided its " + data) +
-          (prior.empty() ? "" : "; the prior (a-priori model) its " + prior));
+          (prior.empty() ? "" : "; the prior (a-priori model) its " + prior) +
+          (bound.empty() ? "" : "; the bound (its region from the geometry) its " + bound));
     }
   }
   if (json.contains("drives") && json["drives"].is_array()) {

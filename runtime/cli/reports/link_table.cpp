@@ -30,7 +30,7 @@ bool outside_region(const LinkSummary& link) {
 void print_link_table(std::ostream& out, const std::vector<LinkSummary>& links) {
   if (links.empty()) return;
   out << "  links (body frame, SI units; 'by': data = the base parameters fix it, prior = the "
-         "a-priori model chose among equal fits):\n"
+         "a-priori model chose among equal fits, bound = the link's region held it):\n"
       << "    " << pad("", 17) << " " << pad("identified", 32) << " " << pad("a-priori", 32)
       << " by\n";
   for (const LinkSummary& link : links) {
@@ -45,8 +45,10 @@ void print_link_table(std::ostream& out, const std::vector<LinkSummary>& links) 
         known ? triple(link.a_priori->principal_moments) : "-", link.moments_by);
     if (link.region_extent) {
       out << "    " << pad("region extent", 17) << " " << fixed(*link.region_extent, 10, 3)
-          << "  (root mean square over the mass, in units of the ellipsoid from the geometry; "
-             "above 1: outside)\n";
+          << "  (root mean square over the mass, in units of the ellipsoid "
+          << (link.region_guessed ? "guessed from the segment to the next joint (no shapes)"
+                                  : "from the geometry")
+          << "; at most 1, kept by the fit)\n";
     }
   }
 }
@@ -76,7 +78,7 @@ void warn_far_links(std::ostream& err, const std::vector<LinkSummary>& links) {
       err << "modelid fit: warning: link '" << link.body
           << "' reaches outside the region its geometry gives (extent "
           << fixed(*link.region_extent, 0, 3)
-          << " of the ellipsoid around its shapes; --physical does not enforce the region)\n";
+          << " of its ellipsoid; the fit did not meet its tolerance)\n";
     }
   }
   for (const LinkSummary& link : links) {

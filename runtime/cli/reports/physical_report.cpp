@@ -26,6 +26,7 @@ PhysicalEstimate physical_estimate(const RobotModel& description, const Identifi
   const long long residual_dof =
       unconstrained.equations - static_cast<long long>(unconstrained.value.size());
   if (residual_dof > 0) options.residual_sum_of_squares = static_cast<double>(residual_dof);
+  options.regions = description.body_regions;
   PhysicalEstimate out;
   out.standard_names = model.standard_param_names();
   const Eigen::MatrixXd K = regrouping_matrix(model);

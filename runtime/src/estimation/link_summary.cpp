@@ -60,7 +60,17 @@ std::vector<Eigen::VectorXd> moment_gradients(const std::array<int, 10>& index,
 
 }  // namespace
 
-const char* decided_by_name(DecidedBy by) { return by == DecidedBy::kData ? "data" : "prior"; }
+const char* decided_by_name(DecidedBy by) {
+  switch (by) {
+    case DecidedBy::kData:
+      return "data";
+    case DecidedBy::kBound:
+      return "bound";
+    case DecidedBy::kPrior:
+      break;
+  }
+  return "prior";
+}
 
 std::vector<std::string> far_from_a_priori(const LinkQuantities& identified,
                                            const LinkQuantities& a_priori) {
@@ -159,8 +169,18 @@ std::vector<LinkSummary> summarise_links(const RigidBodyTree& tree, const Eigen:
       link.moments_by =
           decided_by(N, fit.prior_scale, moment_gradients(index, fit.standard, fit.prior_scale));
     }
+    // What the data leave free of a body its region holds, the region decided.
+    if (std::find(fit.region_bound_bodies.begin(), fit.region_bound_bodies.end(),
+                  static_cast<int>(b)) != fit.region_bound_bodies.end()) {
+      for (DecidedBy* by : {&link.mass_by, &link.com_by, &link.moments_by}) {
+        if (*by == DecidedBy::kPrior) *by = DecidedBy::kBound;
+      }
+    }
     if (link.a_priori) link.far_from_a_priori = far_from_a_priori(link.identified, *link.a_priori);
-    if (b < regions.size() && regions[b]) link.region_extent = region_extent(p, *regions[b]);
+    if (b < regions.size() && regions[b]) {
+      link.region_extent = region_extent(p, *regions[b]);
+      link.region_guessed = regions[b]->guessed;
+    }
     out.push_back(std::move(link));
   }
   return out;

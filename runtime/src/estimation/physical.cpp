@@ -86,6 +86,24 @@ std::vector<char> binding_constraints(const Layout& layout, const Eigen::VectorX
   return binding;
 }
 
+// The bodies whose region holds at the optimum: its push on the body's variables (the
+// barrier's dual) at least half the largest pull of the prior term on them. Against a prior
+// of weight 1e-6 the barrier stops before the mass reaches the ellipsoid's edge (the duality
+// gap is relative to the data term), so the region holds the body against the prior's pull
+// without touching: it, not the prior, then decides what the data leave free. An inactive
+// region's push is 1 / (t s) with s far from 0, below the pull; one that holds the data also
+// pushes by more than the tolerance.
+std::vector<char> regions_holding(const Layout& layout, const std::vector<double>& region_push,
+                                  const Eigen::VectorXd& prior_pull, double tolerance) {
+  std::vector<char> holding(layout.body_params.size(), 0);
+  for (std::size_t b = 0; b < layout.body_params.size(); ++b) {
+    double pull = 0;
+    for (int k : layout.body_params[b]) pull = std::max(pull, prior_pull[k]);
+    holding[b] = region_push[b] > 0 && (region_push[b] >= 0.5 * pull || region_push[b] > tolerance);
+  }
+  return holding;
+}
+
 std::vector<std::string> describe(const RigidBodyTree& tree, const Layout& layout,
                                   const std::vector<char>& binding) {
   std::vector<std::string> out;
@@ -196,8 +214,8 @@ struct Problem {
 };
 
 Problem set_up(const RigidBodyTree& tree, const Eigen::MatrixXd& K, const Eigen::VectorXd& beta_hat,
-               const Eigen::MatrixXd& information,
-               const std::vector<std::optional<double>>& prior) {
+               const Eigen::MatrixXd& information, const std::vector<std::optional<double>>& prior,
+               const std::vector<std::optional<BodyRegion>>& regions) {
   Problem pb;
   const Eigen::LLT<Eigen::MatrixXd> llt(information);
   if (llt.info() != Eigen::Success) {
@@ -205,6 +223,7 @@ Problem set_up(const RigidBodyTree& tree, const Eigen::MatrixXd& K, const Eigen:
   }
   pb.U = llt.matrixU();
   pb.layout = detail::make_layout(tree);
+  detail::add_regions(tree, regions, pb.layout);
   const auto n = static_cast<Eigen::Index>(tree.params.size());
   pb.bounded.assign(static_cast<std::size_t>(n), 0);
   for (Eigen::Index k = 0; k < n; ++k) {
@@ -242,6 +261,9 @@ Problem set_up(const RigidBodyTree& tree, const Eigen::MatrixXd& K, const Eigen:
     if (pb.bounded[static_cast<std::size_t>(k)]) pb.y0[k] = std::max(pb.y0[k], 1e-3);
   }
   const Eigen::VectorXd start = pb.T * pb.y0.cwiseQuotient(pb.d);
+  // The barrier starts inside every region; the prior's centre stays `start`, so that without
+  // a-priori values the region, not a start moved into it, holds what the data leave free.
+  detail::shrink_into_regions(pb.layout, pb.body_floor, pb.y0);
 
   // The prior term: the a-priori value where there is one, else the start. Without it the
   // problem can lack a minimiser (the image of the consistent set under K need not be closed:
@@ -308,9 +330,24 @@ PhysicalFitResult solve(const RigidBodyTree& tree, const Eigen::MatrixXd& K,
       pb.A.colwise().squaredNorm().transpose() + G.colwise().squaredNorm().transpose();
   const std::vector<char> binding =
       binding_constraints(pb.layout, solved.push, prior_pull, curvature, tolerance);
-  result.active_constraints = describe(tree, pb.layout, binding);
+  std::vector<char> held = binding;
+  const std::vector<char> holding =
+      regions_holding(pb.layout, solved.region_push, prior_pull, tolerance);
+  for (std::size_t b = 0; b < holding.size(); ++b) {
+    if (!holding[b]) continue;
+    const auto& index = pb.layout.body_params[b];
+    for (int k : index) held[static_cast<std::size_t>(k)] = 1;  // sd: held like a bound body
+    const int body = tree.params[static_cast<std::size_t>(index[9])].body;
+    result.region_bound_bodies.push_back(body);
+    result.active_constraints.push_back(
+        "body '" + tree.bodies[static_cast<std::size_t>(body)].name +
+        "': mass distribution held by its region (the ellipsoid from "
+        "the geometry)");
+  }
+  const std::vector<std::string> cones = describe(tree, pb.layout, binding);
+  result.active_constraints.insert(result.active_constraints.begin(), cones.begin(), cones.end());
   result.base_std_dev =
-      base_standard_deviations(pb.layout, binding, K, pb.U, G, pb.T, pb.d, result.standard);
+      base_standard_deviations(pb.layout, held, K, pb.U, G, pb.T, pb.d, result.standard);
   return result;
 }
 
@@ -329,7 +366,7 @@ PhysicalFitResult fit_physical(const RigidBodyTree& tree, const Eigen::MatrixXd&
                                           !std::isfinite(*options.residual_sum_of_squares))) {
     throw EstimationError("physical fit: the residual sum of squares must be a positive number");
   }
-  const Problem pb = set_up(tree, K, beta_hat, information, prior);
+  const Problem pb = set_up(tree, K, beta_hat, information, prior, options.regions);
   if (options.prior_weight) {
     return solve(tree, K, beta_hat, pb, *options.prior_weight, options.max_iterations);
   }

@@ -1,7 +1,8 @@
 // The barrier method of physical_barrier.hpp: the log det barrier of each body's pseudo-inertia
 // cone and the log barrier of the bounded parameters, with gradient and Hessian in closed form
 // (d2(-log det S) = tr(S^-1 E_e S^-1 E_f)), and Newton's method with backtracking on
-// t f + barrier (Boyd & Vandenberghe, algorithm 11.1).
+// t f + barrier (Boyd & Vandenberghe, algorithm 11.1). A region adds -log r'x, r'x = tr(P Q):
+// gradient -r / r'x, Hessian r r' / (r'x)^2.
 
 #include "runtime/src/estimation/physical_barrier.hpp"
 
@@ -50,11 +51,35 @@ std::array<Eigen::Matrix4d, 10> entry_basis() {
   return E;
 }
 
+// The log barrier of the regions, -sum log tr(P_b Q_b) over the bodies that have one, added to
+// value, gradient and Hessian; false when a body is not strictly inside its region.
+bool region_barrier(const Layout& layout, const Eigen::VectorXd& y, double& value,
+                    Eigen::VectorXd* gradient, Eigen::MatrixXd* hessian) {
+  for (std::size_t b = 0; b < layout.body_params.size(); ++b) {
+    if (b >= layout.region_row.size() || !layout.region_row[b]) continue;
+    const auto& index = layout.body_params[b];
+    const auto& r = *layout.region_row[b];
+    double inside = 0;
+    for (int e = 0; e < 10; ++e) inside += r[static_cast<std::size_t>(e)] * y[index[e]];
+    if (!(inside > 0)) return false;
+    value -= std::log(inside);
+    if (gradient == nullptr) continue;
+    for (int e = 0; e < 10; ++e) {
+      const double re = r[static_cast<std::size_t>(e)];
+      (*gradient)[index[e]] -= re / inside;
+      for (int f = 0; f < 10; ++f) {
+        (*hessian)(index[e], index[f]) += re * r[static_cast<std::size_t>(f)] / (inside * inside);
+      }
+    }
+  }
+  return true;
+}
+
 // The log barrier of the consistent set, -sum log det(P_b - floor_b 1) - sum log y_k over the
 // bounded parameters, with its gradient and Hessian; false when y is not strictly inside.
-bool barrier(const Layout& layout, const std::vector<char>& bounded,
-             const std::vector<double>& body_floor, const Eigen::VectorXd& y, double& value,
-             Eigen::VectorXd* gradient, Eigen::MatrixXd* hessian) {
+bool cone_barrier(const Layout& layout, const std::vector<char>& bounded,
+                  const std::vector<double>& body_floor, const Eigen::VectorXd& y, double& value,
+                  Eigen::VectorXd* gradient, Eigen::MatrixXd* hessian) {
   static const std::array<Eigen::Matrix4d, 10> E = entry_basis();
   value = 0;
   for (std::size_t b = 0; b < layout.body_params.size(); ++b) {
@@ -90,6 +115,13 @@ bool barrier(const Layout& layout, const std::vector<char>& bounded,
   return true;
 }
 
+bool barrier(const Layout& layout, const std::vector<char>& bounded,
+             const std::vector<double>& body_floor, const Eigen::VectorXd& y, double& value,
+             Eigen::VectorXd* gradient, Eigen::MatrixXd* hessian) {
+  return cone_barrier(layout, bounded, body_floor, y, value, gradient, hessian) &&
+         region_barrier(layout, y, value, gradient, hessian);
+}
+
 }  // namespace
 
 Layout make_layout(const RigidBodyTree& tree) {
@@ -104,6 +136,73 @@ Layout make_layout(const RigidBodyTree& tree) {
     if (!in_body[k]) layout.scalar_params.push_back(static_cast<int>(k));
   }
   return layout;
+}
+
+Eigen::Matrix4d region_matrix(const BodyRegion& region) {
+  const Eigen::Vector3d c(region.centre[0], region.centre[1], region.centre[2]);
+  const Eigen::Vector3d a =
+      Eigen::Vector3d(region.semi_axes[0], region.semi_axes[1], region.semi_axes[2])
+          .cwiseAbs2()
+          .cwiseInverse();
+  Eigen::Matrix4d Q;
+  Q.topLeftCorner<3, 3>() = -Eigen::Matrix3d(a.asDiagonal());
+  Q.topRightCorner<3, 1>() = a.cwiseProduct(c);
+  Q.bottomLeftCorner<1, 3>() = a.cwiseProduct(c).transpose();
+  Q(3, 3) = 1 - c.dot(a.cwiseProduct(c));
+  return Q;
+}
+
+void add_regions(const RigidBodyTree& tree, const std::vector<std::optional<BodyRegion>>& regions,
+                 Layout& layout) {
+  static const std::array<Eigen::Matrix4d, 10> E = entry_basis();
+  layout.region.assign(layout.body_params.size(), std::nullopt);
+  layout.region_row.assign(layout.body_params.size(), std::nullopt);
+  for (std::size_t b = 0; b < layout.body_params.size(); ++b) {
+    const auto body = static_cast<std::size_t>(
+        tree.params[static_cast<std::size_t>(layout.body_params[b][9])].body);
+    if (body >= regions.size() || !regions[body]) continue;
+    layout.region[b] = regions[body];
+    const Eigen::Matrix4d Q = region_matrix(*regions[body]);
+    std::array<double, 10> row;
+    for (int e = 0; e < 10; ++e) row[static_cast<std::size_t>(e)] = (E[e] * Q).trace();
+    layout.region_row[b] = row;
+  }
+}
+
+void shrink_into_regions(const Layout& layout, const std::vector<double>& body_floor,
+                         Eigen::VectorXd& x) {
+  for (std::size_t b = 0; b < layout.body_params.size(); ++b) {
+    if (b >= layout.region.size() || !layout.region[b]) continue;
+    const auto& index = layout.body_params[b];
+    double entries[10];
+    for (int e = 0; e < 10; ++e) entries[e] = x[index[e]];
+    const Eigen::Matrix4d P = pseudo_inertia_of_entries(entries);
+    const Eigen::Matrix4d Q = region_matrix(*layout.region[b]);
+    if ((P * Q).trace() > 0.19 * P(3, 3)) continue;  // rms extent below 0.9: inside
+    // Above twice the floor P is positive semidefinite (project); its distribution M shrunk
+    // by alpha about the centre c, S = [alpha 1, (1 - alpha) c; 0, 1], has alpha times its
+    // rms extent.
+    const double floor = 2 * body_floor[b];
+    const Eigen::Matrix4d M = P - floor * Eigen::Matrix4d::Identity();
+    const double extent = M(3, 3) > 0 ? std::sqrt(std::max(1 - (M * Q).trace() / M(3, 3), 0.0)) : 0;
+    const Eigen::Vector3d c(layout.region[b]->centre[0], layout.region[b]->centre[1],
+                            layout.region[b]->centre[2]);
+    Eigen::Matrix4d shrunk = P;
+    for (double alpha = extent > 0.5 ? 0.5 / extent : 1; alpha > 1e-6; alpha *= 0.5) {
+      Eigen::Matrix4d S = Eigen::Matrix4d::Identity();
+      S.topLeftCorner<3, 3>() *= alpha;
+      S.topRightCorner<3, 1>() = (1 - alpha) * c;
+      shrunk = S * M * S.transpose() + floor * Eigen::Matrix4d::Identity();
+      if ((shrunk * Q).trace() > 0) break;
+    }
+    if (!((shrunk * Q).trace() > 0)) {  // no mass above the floor: a point mass at the centre
+      const Eigen::Vector4d centre(c.x(), c.y(), c.z(), 1);
+      shrunk = std::max(P(3, 3), 1.0) * centre * centre.transpose() +
+               floor * Eigen::Matrix4d::Identity();
+    }
+    entries_of_pseudo_inertia(shrunk, entries);
+    for (int e = 0; e < 10; ++e) x[index[e]] = entries[e];
+  }
 }
 
 Eigen::MatrixXd standard_from_variables(const Layout& layout, Eigen::Index n) {
@@ -158,6 +257,7 @@ BarrierOutcome minimise_on_consistent_set(const Eigen::MatrixXd& H, const Eigen:
   const Eigen::Index n = y.size();
   double m = 4.0 * static_cast<double>(layout.body_params.size());
   for (int k : layout.scalar_params) m += bounded[static_cast<std::size_t>(k)] ? 1 : 0;
+  for (const auto& row : layout.region_row) m += row ? 1 : 0;
   const auto objective = [&](const Eigen::VectorXd& v) { return 0.5 * v.dot(H * v) - h.dot(v); };
   const double size = std::max({1.0, std::abs(objective(y)), h.cwiseAbs().maxCoeff()});
   BarrierOutcome out;
@@ -191,16 +291,25 @@ BarrierOutcome minimise_on_consistent_set(const Eigen::MatrixXd& H, const Eigen:
     }
     t *= 10;
   }
-  // The duals: the barrier's gradient over t (for a body the largest entry of its block).
+  // The duals: the barrier's gradient over t (for a body the largest entry of its block), the
+  // cones' and the regions' apart.
   double value = 0;
   Eigen::VectorXd gradient = Eigen::VectorXd::Zero(n);
   Eigen::MatrixXd hessian = Eigen::MatrixXd::Zero(n, n);
-  barrier(layout, bounded, body_floor, y, value, &gradient, &hessian);
+  cone_barrier(layout, bounded, body_floor, y, value, &gradient, &hessian);
   out.push = gradient.cwiseAbs() / t;
-  for (const auto& index : layout.body_params) {
-    double largest = 0;
-    for (int k : index) largest = std::max(largest, out.push[k]);
+  gradient.setZero();
+  region_barrier(layout, y, value, &gradient, &hessian);
+  out.region_push.assign(layout.body_params.size(), 0.0);
+  for (std::size_t b = 0; b < layout.body_params.size(); ++b) {
+    const auto& index = layout.body_params[b];
+    double largest = 0, largest_region = 0;
+    for (int k : index) {
+      largest = std::max(largest, out.push[k]);
+      largest_region = std::max(largest_region, std::abs(gradient[k]) / t);
+    }
     for (int k : index) out.push[k] = largest;
+    out.region_push[b] = largest_region;
   }
   out.y = y;
   return out;

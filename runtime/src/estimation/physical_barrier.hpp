@@ -2,15 +2,19 @@
 // (per complete body the ten distinct entries of its pseudo-inertia, every other standard
 // parameter as itself), the projection onto the consistent set, and min 1/2 y'Hy - h'y over that
 // set by Newton steps on the log det barrier (Boyd & Vandenberghe, Convex Optimization, section
-// 11.3).
+// 11.3). A body with a region from the description's geometry also keeps tr(P Q) > 0, Q the
+// region's ellipsoid matrix (Wensing, Kim & Slotine, RA-L 2017): its mass inside the
+// ellipsoid in the root mean square, a log barrier on a linear function of the variables.
 #pragma once
 
 #include <array>
+#include <optional>
 #include <vector>
 
 #include <Eigen/Core>
 
 #include "modelgen/model/rigid_body_tree.hpp"
+#include "modelgen/model/robot_model.hpp"
 
 namespace modelgen::detail {
 
@@ -18,9 +22,28 @@ namespace modelgen::detail {
 struct Layout {
   std::vector<std::array<int, 10>> body_params;  // complete bodies: their ten standard indices
   std::vector<int> scalar_params;                // every other standard parameter
+  /// Per complete body, its region if it has one, and the row r of tr(P Q) = r' x over the
+  /// body's ten variables x (entries of P, off-diagonal ones times sqrt 2).
+  std::vector<std::optional<BodyRegion>> region;
+  std::vector<std::optional<std::array<double, 10>>> region_row;
 };
 
 Layout make_layout(const RigidBodyTree& tree);
+
+/// Q of an ellipsoid (x - c)' A (x - c) <= 1, A = diag(semi_axes^-2): [x; 1]' Q [x; 1] =
+/// 1 - (x - c)' A (x - c), so tr(P Q) = int 1 - (x - c)' A (x - c) dm.
+Eigen::Matrix4d region_matrix(const BodyRegion& region);
+
+/// Fills layout.region and region_row from `regions` (per tree.bodies entry; may be shorter or
+/// empty).
+void add_regions(const RigidBodyTree& tree, const std::vector<std::optional<BodyRegion>>& regions,
+                 Layout& layout);
+
+/// Moves each body of `x` whose tr(P Q) is not positive into its region: its mass distribution
+/// (above the floor) shrunk towards the region's centre until its rms extent is at most 1/2, a
+/// congruence P -> S P S' that keeps P positive definite.
+void shrink_into_regions(const Layout& layout, const std::vector<double>& body_floor,
+                         Eigen::VectorXd& x);
 
 // The optimisation variables: per complete body the ten distinct entries of its pseudo-inertia
 // (off-diagonal ones times sqrt 2, so that the Euclidean norm is the Frobenius norm and the
@@ -44,7 +67,10 @@ Eigen::VectorXd variable_scales(const Layout& layout, const Eigen::MatrixXd& A);
 // t f + barrier, t growing tenfold, until the duality gap m / t is negligible).
 struct BarrierOutcome {
   Eigen::VectorXd y;
-  Eigen::VectorXd push;  // per variable, how hard its constraint pushes at the end (duals)
+  Eigen::VectorXd push;  // per variable, how hard its cone or bound pushes at the end (duals)
+  // Per complete body, how hard its region pushes each of its variables at the end (the
+  // largest entry of the dual times r; 0 without a region).
+  std::vector<double> region_push;
   int iterations = 0;
   bool converged = false;
 };

@@ -1,7 +1,7 @@
 // Issue 30, bounding regions from geometry: the loader's region per body against the shapes'
 // boxes worked out by hand (a turned box, a cylinder along x, a sphere on a fixed child link, a
-// mesh without size), and region_extent against closed forms (a point mass at the centre and on
-// the surface, the solid ellipsoid that fills the region: sqrt(3/5)).
+// mesh without size: a guessed region), and region_extent against closed forms (a point mass at the
+// centre and on the surface, the solid ellipsoid that fills the region: sqrt(3/5)).
 
 #include <array>
 #include <cmath>
@@ -73,7 +73,12 @@ TEST(LinkRegion, TheLoaderBoundsEachBodyByItsShapes) {
   ASSERT_EQ(robot.body_regions.size(), 3u);
   expect_region(robot.body_regions[0], {0, 0, 0.2}, {0.1, 0.05, 0.2});
   expect_region(robot.body_regions[1], {0.225, 0, 0}, {0.225, 0.05, 0.05});
-  EXPECT_FALSE(robot.body_regions[2].has_value());  // a mesh has no size without its file
+  // A mesh has no size without its file: the last link, with nothing below it, gets the
+  // guessed sphere of the minimum radius about its joint.
+  ASSERT_TRUE(robot.body_regions[2].has_value());
+  EXPECT_TRUE(robot.body_regions[2]->guessed);
+  EXPECT_FALSE(robot.body_regions[0]->guessed);
+  expect_region(robot.body_regions[2], {0, 0, 0}, {0.1, 0.1, 0.1});
 }
 
 // Standard parameters (inertia about the frame origin) of mass m at com c with inertia Ic

@@ -28,10 +28,12 @@ struct LinkQuantities {
 /// Who set a quantity: the data (its direction in the standard parameters lies, within 1 % of
 /// its length in the prior's scaled metric, in the row space of the regrouping map, so every
 /// standard set with the same base parameters has the same value), or the prior (the data leave
-/// part of it free, and the prior term, bounded by consistency, chose).
-enum class DecidedBy { kData, kPrior };
+/// part of it free, and the prior term, bounded by consistency, chose), or the bound (the data
+/// leave part of it free and the body's region from the geometry holds at the optimum: the
+/// region, not the data or the prior, set it).
+enum class DecidedBy { kData, kPrior, kBound };
 
-const char* decided_by_name(DecidedBy by);  ///< "data", "prior"
+const char* decided_by_name(DecidedBy by);  ///< "data", "prior", "bound"
 
 struct LinkSummary {
   std::string body;
@@ -44,6 +46,7 @@ struct LinkSummary {
   /// With a region from the description's geometry (modelgen/model/robot_model.hpp), the
   /// link's extent in it (region_extent); above 1 the mass reaches outside the region.
   std::optional<double> region_extent;
+  bool region_guessed = false;  ///< the region is the guess from the segment to the next joint
 };
 
 inline constexpr double kFarMassFactor = 2.0;
@@ -86,7 +89,8 @@ std::vector<std::string> far_from_a_priori(const LinkQuantities& identified,
                                            const LinkQuantities& a_priori);
 
 /// One summary per complete body of `tree`. `K` the regrouping matrix, `fit` the consistent
-/// fit (its standard set and prior scales), `a_priori` the description's known values.
+/// fit (its standard set, prior scales and the bodies its regions hold: their quantities the
+/// data leave free are decided by the bound), `a_priori` the description's known values.
 /// `regions` per tree.bodies entry (RobotModel::body_regions; may be shorter or empty).
 std::vector<LinkSummary> summarise_links(
     const RigidBodyTree& tree, const Eigen::MatrixXd& K, const PhysicalFitResult& fit,

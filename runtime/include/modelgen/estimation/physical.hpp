@@ -23,6 +23,7 @@
 #include <Eigen/Core>
 
 #include "modelgen/model/rigid_body_tree.hpp"
+#include "modelgen/model/robot_model.hpp"
 
 namespace modelgen {
 
@@ -45,6 +46,10 @@ struct PhysicalFitOptions {
   /// the default weight rule. Must be > 0. Unset: the rule allows a rise of 1 sigma^2.
   std::optional<double> residual_sum_of_squares;
   int max_iterations = 2000;  ///< Newton steps of the barrier method
+  /// Per tree.bodies entry, the region its mass must stay in (RobotModel::body_regions; may be
+  /// shorter or empty): tr(P Q) >= 0 of Wensing, Kim & Slotine (RA-L 2017), the body's rms
+  /// extent in the ellipsoid at most 1, kept by a log barrier like the pseudo-inertia's.
+  std::vector<std::optional<BodyRegion>> regions;
 };
 
 struct PhysicalFitResult {
@@ -60,6 +65,9 @@ struct PhysicalFitResult {
   /// The constraints that hold with equality at the optimum, in words, e.g. "Fv3 >= 0" or
   /// "body 'link4': mass distribution at the boundary (pseudo-inertia nearly singular)".
   std::vector<std::string> active_constraints;
+  /// The tree.bodies indices of the bodies whose region holds at the optimum (its constraint
+  /// pushes: the mass reaches the ellipsoid's rms edge), against the data or the prior.
+  std::vector<int> region_bound_bodies;
   /// The prior term's centre and scale per standard parameter: the a-priori value (or the
   /// start) and the size its deviation is measured against; the prior term is
   /// prior_weight * ||N' ((standard - prior) / prior_scale)||^2, N an orthonormal basis of the

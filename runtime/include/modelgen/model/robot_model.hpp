@@ -91,9 +91,12 @@ struct DescriptionNote {
 /// sum_i ((x_i - centre_i) / semi_axes_i)^2 <= 1 in the body frame (axes along the frame's),
 /// the one through the corners of the box that holds every collision shape (else visual shape)
 /// of the body's links: boxes, cylinders, spheres; meshes have no size without their file.
+/// Without shapes (meshes only), the URDF loader guesses the region from the segment to the
+/// next joint (`guessed`); a YAML description may give one per link (`region:`).
 struct BodyRegion {
   std::array<double, 3> centre{};
   std::array<double, 3> semi_axes{};
+  bool guessed = false;  ///< from the joints' positions, not from a shape or the description
 };
 
 struct RobotModel {

@@ -1,0 +1,106 @@
+// Issue 30, the guessed region of a link without shapes: the segments from its joint to its
+// child joints (and links fixed to it) thickened by a quarter of the longest, at least 10 cm,
+// against the closed form of the box around that capsule and against points of the capsule's
+// surface, which must all lie inside; and through the URDF loader, a mesh-only middle link
+// (its segment to the next joint) and a mesh-only last link with a fixed flange.
+
+#include <cmath>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <Eigen/Dense>
+
+#include "modelgen/model/load_robot.hpp"
+#include "runtime/model/body_regions.hpp"
+#include "tests/support/cli_runner.hpp"
+#include "tests/support/test_support.hpp"
+
+namespace modelgen {
+namespace {
+
+void expect_region(const BodyRegion& region, const Eigen::Vector3d& centre,
+                   const Eigen::Vector3d& half_sides) {
+  for (int i = 0; i < 3; ++i) {
+    EXPECT_NEAR(region.centre[static_cast<std::size_t>(i)], centre[i], 1e-12) << i;
+    EXPECT_NEAR(region.semi_axes[static_cast<std::size_t>(i)], std::sqrt(3.0) * half_sides[i],
+                1e-12)
+        << i;
+  }
+}
+
+double level(const BodyRegion& region, const Eigen::Vector3d& x) {
+  double sum = 0;
+  for (int i = 0; i < 3; ++i) {
+    const auto k = static_cast<std::size_t>(i);
+    sum += std::pow((x[i] - region.centre[k]) / region.semi_axes[k], 2);
+  }
+  return sum;
+}
+
+TEST(SegmentRegion, ALongSegmentGetsAQuarterOfItsLength) {
+  // From the joint to (0, 0, 0.8): radius 0.2, box x, y in [-0.2, 0.2], z in [-0.2, 1.0].
+  const BodyRegion region = region_around_segments({Eigen::Vector3d(0, 0, 0.8)});
+  EXPECT_TRUE(region.guessed);
+  expect_region(region, {0, 0, 0.4}, {0.2, 0.2, 0.6});
+  // Every point of the capsule (radius 0.2 about the segment) is inside.
+  for (int a = 0; a < 24; ++a) {
+    const double phi = 2 * M_PI * a / 24;
+    for (int k = 0; k <= 10; ++k) {
+      const double z = 0.8 * k / 10;
+      EXPECT_LE(level(region, {0.2 * std::cos(phi), 0.2 * std::sin(phi), z}), 1.0);
+    }
+    for (int k = 0; k <= 6; ++k) {  // the end caps
+      const double theta = M_PI / 2 * k / 6;
+      const double rho = 0.2 * std::cos(theta), h = 0.2 * std::sin(theta);
+      EXPECT_LE(level(region, {rho * std::cos(phi), rho * std::sin(phi), 0.8 + h}), 1.0);
+      EXPECT_LE(level(region, {rho * std::cos(phi), rho * std::sin(phi), -h}), 1.0);
+    }
+  }
+}
+
+TEST(SegmentRegion, ShortOrNoSegmentsGetTheMinimumRadius) {
+  // 0.2 m: a quarter is 5 cm, below the 10 cm minimum.
+  expect_region(region_around_segments({Eigen::Vector3d(0.2, 0, 0)}), {0.1, 0, 0}, {0.2, 0.1, 0.1});
+  // No child: the sphere of 10 cm about the joint.
+  expect_region(region_around_segments({}), {0, 0, 0}, {0.1, 0.1, 0.1});
+  // Two ends, a child joint at (0.4, 0, 0.3) (0.5 m: radius 0.125) and a tool at (0, 0.1, 0).
+  expect_region(region_around_segments({Eigen::Vector3d(0.4, 0, 0.3), Eigen::Vector3d(0, 0.1, 0)}),
+                {0.2, 0.05, 0.15}, {0.325, 0.175, 0.275});
+}
+
+// Link a: mesh only, its child joint 0.6 m up. Link b: mesh only, last, a flange fixed 0.2 m
+// along x.
+constexpr const char* kMeshArm = R"(<?xml version="1.0"?>
+<robot name="mesh_arm">
+  <link name="base"/>
+  <link name="a"><visual><geometry><mesh filename="package://x/a.stl"/></geometry></visual></link>
+  <link name="b"><visual><geometry><mesh filename="package://x/b.stl"/></geometry></visual></link>
+  <link name="flange"/>
+  <joint name="j1" type="revolute"><parent link="base"/><child link="a"/>
+    <axis xyz="0 0 1"/><limit lower="-3" upper="3" effort="10" velocity="2"/></joint>
+  <joint name="j2" type="revolute"><parent link="a"/><child link="b"/>
+    <origin xyz="0 0 0.6"/><axis xyz="0 1 0"/><limit lower="-3" upper="3" effort="10" velocity="2"/></joint>
+  <joint name="tool" type="fixed"><parent link="b"/><child link="flange"/>
+    <origin xyz="0.2 0 0"/></joint>
+</robot>
+)";
+
+TEST(SegmentRegion, TheUrdfLoaderGuessesForMeshOnlyLinks) {
+  const std::string path = (test::test_folder("segment_region") / "arm.urdf").string();
+  test::write_text(path, kMeshArm);
+  const RobotModel robot = load_robot(path);
+  ASSERT_EQ(robot.body_regions.size(), 2u);
+  ASSERT_TRUE(robot.body_regions[0].has_value());
+  ASSERT_TRUE(robot.body_regions[1].has_value());
+  EXPECT_TRUE(robot.body_regions[0]->guessed);
+  EXPECT_TRUE(robot.body_regions[1]->guessed);
+  // a: 0.6 m up, radius 0.15: z in [-0.15, 0.75].
+  expect_region(*robot.body_regions[0], {0, 0, 0.3}, {0.15, 0.15, 0.45});
+  // b: to the flange, 0.2 m, radius 0.1: x in [-0.1, 0.3].
+  expect_region(*robot.body_regions[1], {0.1, 0, 0}, {0.2, 0.1, 0.1});
+}
+
+}  // namespace
+}  // namespace modelgen
