@@ -48,7 +48,8 @@ void print_link_table(std::ostream& out, const std::vector<LinkSummary>& links) 
           << "  (root mean square over the mass, in units of the ellipsoid "
           << (link.region_guessed ? "guessed from the segment to the next joint (no shapes)"
                                   : "from the geometry")
-          << "; at most 1, kept by the fit)\n";
+          << (known ? "; not enforced: the a-priori values hold this link)\n"
+                    : "; at most 1, kept by the fit)\n");
     }
   }
 }
@@ -77,8 +78,11 @@ void warn_far_links(std::ostream& err, const std::vector<LinkSummary>& links) {
     if (outside_region(link)) {
       err << "modelid fit: warning: link '" << link.body
           << "' reaches outside the region its geometry gives (extent "
-          << fixed(*link.region_extent, 0, 3)
-          << " of its ellipsoid; the fit did not meet its tolerance)\n";
+          << fixed(*link.region_extent, 0, 3) << " of its ellipsoid; "
+          << (link.a_priori ? "the region is not enforced where a-priori values are given: "
+                              "check them against the geometry"
+                            : "the fit did not meet its tolerance")
+          << ")\n";
     }
   }
   for (const LinkSummary& link : links) {

@@ -213,6 +213,21 @@ struct Problem {
   bool any_a_priori = false;           // the description gives some a-priori value
 };
 
+// The regions the fit enforces: those of bodies without a-priori inertial values. A body with
+// them is held by its prior in what the data leave free; its region (a hull of collision
+// shapes, which vendors' inertials do not always fit inside) is reported, extent and warning,
+// but does not pull against the vendor's values.
+std::vector<std::optional<BodyRegion>> enforced_regions(
+    const RigidBodyTree& tree, const std::vector<std::optional<double>>& prior,
+    std::vector<std::optional<BodyRegion>> regions) {
+  for (std::size_t k = 0; k < tree.params.size(); ++k) {
+    const auto body = static_cast<std::size_t>(tree.params[k].body);
+    const bool inertial = tree.params[k].kind <= ParamKind::kM;
+    if (inertial && prior[k] && body < regions.size()) regions[body].reset();
+  }
+  return regions;
+}
+
 Problem set_up(const RigidBodyTree& tree, const Eigen::MatrixXd& K, const Eigen::VectorXd& beta_hat,
                const Eigen::MatrixXd& information, const std::vector<std::optional<double>>& prior,
                const std::vector<std::optional<BodyRegion>>& regions) {
@@ -223,7 +238,7 @@ Problem set_up(const RigidBodyTree& tree, const Eigen::MatrixXd& K, const Eigen:
   }
   pb.U = llt.matrixU();
   pb.layout = detail::make_layout(tree);
-  detail::add_regions(tree, regions, pb.layout);
+  detail::add_regions(tree, enforced_regions(tree, prior, regions), pb.layout);
   const auto n = static_cast<Eigen::Index>(tree.params.size());
   pb.bounded.assign(static_cast<std::size_t>(n), 0);
   for (Eigen::Index k = 0; k < n; ++k) {

@@ -81,6 +81,24 @@ TEST(LinkRegion, TheLoaderBoundsEachBodyByItsShapes) {
   expect_region(robot.body_regions[2], {0, 0, 0}, {0.1, 0.1, 0.1});
 }
 
+// A mesh-only link with an <inertial> keeps that as its a-priori model: no region is guessed
+// (the shipped UR5's links are all so, and its vendor's wrist inertias reach 0.3 m from the
+// joint, far outside any guess from the segments).
+TEST(LinkRegion, AMeshOnlyLinkWithAnInertialGetsNoGuess) {
+  std::string urdf = kShapesArm;
+  const std::string mesh = R"(<visual><geometry><mesh filename="package://nowhere/c.stl"/>)";
+  const std::size_t at = urdf.find(mesh);
+  ASSERT_NE(at, std::string::npos);
+  urdf.insert(at, R"(<inertial><mass value="1"/><inertia ixx="0.01" iyy="0.01" izz="0.01" )"
+                  R"(ixy="0" ixz="0" iyz="0"/></inertial>)");
+  const std::string path = (test::test_folder("link_region") / "arm_inertial.urdf").string();
+  test::write_text(path, urdf);
+  const RobotModel robot = load_robot(path);
+  ASSERT_EQ(robot.body_regions.size(), 3u);
+  EXPECT_FALSE(robot.body_regions[2].has_value());
+  EXPECT_TRUE(robot.body_regions[0].has_value());  // shapes still give theirs
+}
+
 // Standard parameters (inertia about the frame origin) of mass m at com c with inertia Ic
 // about it.
 std::array<double, 10> body(double m, const Eigen::Vector3d& c, const Eigen::Matrix3d& Ic) {
