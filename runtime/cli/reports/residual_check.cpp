@@ -17,15 +17,40 @@ namespace modelgen::internal {
 
 namespace {
 
+bool averaged(const Experiments& experiments, std::size_t e) {
+  return e < experiments.noise.size() && !experiments.noise[e].empty();
+}
+
+// The averaged periods the fit compared (--periodic) with their errors, each with the noise
+// its periods' spread left on its torque lines; empty when one is not an averaged period.
+std::vector<PeriodRecord> compared_periods(const Experiments& experiments,
+                                           const std::vector<Eigen::MatrixXd>& errors) {
+  std::vector<PeriodRecord> records;
+  for (std::size_t e = 0; e < experiments.data.size(); ++e) {
+    if (!averaged(experiments, e) || e >= errors.size()) return {};
+    const PeriodicNoise& noise = experiments.noise[e];
+    PeriodRecord record;
+    record.tau = experiments.data[e].tau;
+    record.error = errors[e];
+    record.lines = noise.tau_lines;
+    record.white = noise.tau;
+    record.periods = noise.periods;
+    // The motion's harmonics are the positions' re-estimated ones.
+    const auto motion = static_cast<double>(std::max<Eigen::Index>(noise.q_lines.rows() - 1, 0));
+    record.band = static_cast<int>(std::floor(kTorqueBandFactor * motion));
+    records.push_back(std::move(record));
+  }
+  return records;
+}
+
 // The records the fit compared, with their bands; empty when one has no band (too
-// short, positions that do not move) or is an averaged period: no check then.
+// short, positions that do not move) or is an averaged period (compared_periods then).
 std::vector<ResidualRecord> compared_records(const IdentificationModel& model,
                                              const Experiments& experiments,
                                              const Eigen::VectorXd& beta) {
   std::vector<ResidualRecord> records;
   for (std::size_t e = 0; e < experiments.data.size(); ++e) {
-    // An averaged period (--periodic) has its noise from the average, and no band to split.
-    if (e < experiments.noise.size() && !experiments.noise[e].empty()) return {};
+    if (averaged(experiments, e)) return {};
     // At the prepared rate, before the parallel decimation: the band is the same, and whole
     // periods keep whole numbers of samples (the noise from period to period needs them); a
     // decimated record's edges also carry its filter's transients.
@@ -58,16 +83,10 @@ std::string rms(double energy, double values) {
   return fixed(std::sqrt(energy / values), 0, 3) + " N m";
 }
 
-}  // namespace
-
-int warn_residual_against_noise(std::ostream& err, const IdentificationModel& model,
-                                const Experiments& experiments, const Eigen::VectorXd& beta,
-                                const std::string& whose) {
-  const std::vector<ResidualRecord> records = compared_records(model, experiments, beta);
-  if (records.empty()) return 0;
-  double samples = 0;
-  for (const ResidualRecord& r : records) samples += static_cast<double>(r.tau.rows());
-  const std::vector<JointResidual> joints = residual_against_noise(records);
+// One warning per joint outside its bounds (see the header), `samples` the values per joint
+// the energies were summed over.
+int warn_joints(std::ostream& err, const std::vector<JointResidual>& joints, double samples,
+                Eigen::Index base_parameters, const std::string& whose) {
   int warnings = 0;
   for (std::size_t j = 0; j < joints.size(); ++j) {
     const JointResidual& r = joints[j];
@@ -94,15 +113,47 @@ int warn_residual_against_noise(std::ostream& err, const IdentificationModel& mo
              "--cutoff, --decimate); the torque plots (--plot) show where\n";
     } else {
       err << "the fit explains noise: "
-          << fixed(
-                 2 * r.in_band_lines * static_cast<double>(joints.size()) / model.num_base_params(),
-                 0, 3)
+          << fixed(2 * r.in_band_lines * static_cast<double>(joints.size()) /
+                       static_cast<double>(base_parameters),
+                   0, 3)
           << " in-band values per base parameter; longer or more records, or fewer parameters "
              "(--essential), or the noise estimate is too high (periods that differ: drift, a "
              "start transient)\n";
     }
   }
   return warnings;
+}
+
+}  // namespace
+
+int warn_period_residual_against_noise(std::ostream& err, const IdentificationModel& model,
+                                       const Experiments& experiments,
+                                       const std::vector<Eigen::MatrixXd>& errors,
+                                       const std::string& whose) {
+  const std::vector<PeriodRecord> periods = compared_periods(experiments, errors);
+  if (periods.empty()) return 0;
+  double samples = 0;
+  for (const PeriodRecord& r : periods) samples += static_cast<double>(r.tau.rows());
+  return warn_joints(err, period_residual_against_noise(periods), samples, model.num_base_params(),
+                     whose);
+}
+
+int warn_residual_against_noise(std::ostream& err, const IdentificationModel& model,
+                                const Experiments& experiments, const Eigen::VectorXd& beta,
+                                const std::string& whose) {
+  if (averaged(experiments, 0)) {
+    std::vector<Eigen::MatrixXd> errors;
+    for (const Trajectory& period : experiments.data) {
+      std::vector<Trajectory> one = {period};
+      errors.push_back(predict_decimated(model, one, beta, {1}).error.front());
+    }
+    return warn_period_residual_against_noise(err, model, experiments, errors, whose);
+  }
+  const std::vector<ResidualRecord> records = compared_records(model, experiments, beta);
+  if (records.empty()) return 0;
+  double samples = 0;
+  for (const ResidualRecord& r : records) samples += static_cast<double>(r.tau.rows());
+  return warn_joints(err, residual_against_noise(records), samples, model.num_base_params(), whose);
 }
 
 }  // namespace modelgen::internal

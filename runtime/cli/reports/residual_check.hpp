@@ -5,6 +5,7 @@
 
 #include <ostream>
 #include <string>
+#include <vector>
 
 #include <Eigen/Core>
 
@@ -17,12 +18,24 @@ namespace modelgen::internal {
 /// parallel decimation, whose filter keeps the band), each record's band from its positions
 /// (band_of_positions; a record without one skips the check), and per joint the residual's energy
 /// in the band against the noise floor there (residual_against_noise, its bounds at 0.05 % per
-/// side). Writes one "modelid fit: warning:" line per joint outside the bounds (above them only
-/// when the excess over the noise is also more than 1 % of the joint's torque in the band, rms),
-/// naming the joint, the ratio, the likely causes and the options, and returns their number.
-/// `whose` follows "the residual" in the message (e.g. " (of the IDIM-WLS estimate)").
+/// side). Averaged periods (--periodic: IDIM-WLS, ML-EIV and the other linear methods on them)
+/// are judged on their harmonics in the band against the noise the periods' spread left there
+/// (period_residual_against_noise). Writes one "modelid fit: warning:" line per joint outside the
+/// bounds (above them only when the excess over the noise is also more than 1 % of the joint's
+/// torque in the band, rms), naming the joint, the ratio, the likely causes and the options, and
+/// returns their number. `whose` follows "the residual" in the message (e.g. " (of the IDIM-WLS
+/// estimate)").
 int warn_residual_against_noise(std::ostream& err, const IdentificationModel& model,
                                 const Experiments& experiments, const Eigen::VectorXd& beta,
                                 const std::string& whose = "");
+
+/// The same for averaged periods (--periodic) whose errors (measured minus modelled torque,
+/// joint side, one N x dof matrix per experiment of `experiments`) a fit computed itself: the
+/// ML route's torque errors, mapped to the joints by K^T. Nothing when an experiment is not an
+/// averaged period.
+int warn_period_residual_against_noise(std::ostream& err, const IdentificationModel& model,
+                                       const Experiments& experiments,
+                                       const std::vector<Eigen::MatrixXd>& errors,
+                                       const std::string& whose = "");
 
 }  // namespace modelgen::internal

@@ -17,6 +17,7 @@ PeriodicNoise periodic_noise(const PeriodicAverage& average, int harmonics, int 
   PeriodicNoise out;
   out.samples = average.samples_per_period;
   out.period = average.period;
+  out.periods = average.periods;
   out.q_lines = v.topRows(H + 1);
   out.q = v.row(0).transpose();
   out.dq = out.ddq = out.q_ddq = Eigen::VectorXd::Zero(dof);

@@ -2,7 +2,8 @@
 // (3 periods, 0.05 N m of torque noise, exact dq and ddq in the file): the clean record gets
 // no warning; the same record with an error the model cannot explain, written into one joint's
 // torque column here (a cubic friction, a delay of the torque), gets one warning naming that
-// joint and no other.
+// joint and no other. The same on the averaged period (--periodic: IDIM-WLS and ML-EIV), whose
+// noise comes from the spread of the three periods.
 
 #include <algorithm>
 #include <cmath>
@@ -58,8 +59,26 @@ class ModelidResidualCheck : public testing::Test {
     return path;
   }
 
-  static CliRun fit(const fs::path& data) {
-    return modelid("fit --robot tx40 --data " + quoted(data) + " --method wls");
+  static CliRun fit(const fs::path& data, const std::string& options = "--method wls") {
+    return modelid("fit --robot tx40 --data " + quoted(data) + " " + options);
+  }
+
+  // A cubic friction on joint 3 (see AFrictionTheModelLacksIsNamedOnItsJoint).
+  static fs::path cubic() {
+    return changed("cubic.csv", [](CsvTable& table) {
+      const int dq = table.column("dq3"), tau = table.column("tau3");
+      double largest = 0;
+      for (const auto& row : table.rows) largest = std::max(largest, std::abs(row[dq]));
+      for (auto& row : table.rows) row[tau] += 3.0 * std::pow(row[dq] / largest, 3);
+    });
+  }
+
+  // Joint 2's torque recorded 3 samples (30 ms) late.
+  static fs::path delayed() {
+    return changed("delay.csv", [](CsvTable& table) {
+      const int tau = table.column("tau2");
+      for (std::size_t k = table.rows.size(); k-- > 3;) table.rows[k][tau] = table.rows[k - 3][tau];
+    });
   }
 
   // The joints the residual warnings name.
@@ -87,13 +106,7 @@ TEST_F(ModelidResidualCheck, CleanDataGiveNoWarning) {
 TEST_F(ModelidResidualCheck, AFrictionTheModelLacksIsNamedOnItsJoint) {
   // 3 N m times (dq3 / max |dq3|)^3: viscous and Coulomb friction absorb its linear and
   // sign-like parts, not the rest.
-  const fs::path data = changed("cubic.csv", [](CsvTable& table) {
-    const int dq = table.column("dq3"), tau = table.column("tau3");
-    double largest = 0;
-    for (const auto& row : table.rows) largest = std::max(largest, std::abs(row[dq]));
-    for (auto& row : table.rows) row[tau] += 3.0 * std::pow(row[dq] / largest, 3);
-  });
-  const CliRun run = fit(data);
+  const CliRun run = fit(cubic());
   ASSERT_EQ(run.exit_code, 0) << run.err;
   EXPECT_EQ(named_joints(run.err), std::vector<int>{3}) << run.err;
   EXPECT_NE(run.err.find("misses something on this joint"), std::string::npos) << run.err;
@@ -101,14 +114,26 @@ TEST_F(ModelidResidualCheck, AFrictionTheModelLacksIsNamedOnItsJoint) {
 }
 
 TEST_F(ModelidResidualCheck, ATorqueDelayIsNamedOnItsJoint) {
-  // Joint 2's torque recorded 3 samples (30 ms) late.
-  const fs::path data = changed("delay.csv", [](CsvTable& table) {
-    const int tau = table.column("tau2");
-    for (std::size_t k = table.rows.size(); k-- > 3;) table.rows[k][tau] = table.rows[k - 3][tau];
-  });
-  const CliRun run = fit(data);
+  const CliRun run = fit(delayed());
   ASSERT_EQ(run.exit_code, 0) << run.err;
   EXPECT_EQ(named_joints(run.err), std::vector<int>{2}) << run.err;
+}
+
+// The averaged period: the three periods' spread is the noise.
+TEST_F(ModelidResidualCheck, AveragedPeriodsAreCheckedToo) {
+  for (const std::string method : {"wls", "ml-eiv"}) {
+    const std::string options = "--method " + method + " --periodic";
+    const CliRun clean_run = fit(clean(), options);
+    ASSERT_EQ(clean_run.exit_code, 0) << clean_run.err;
+    EXPECT_EQ(clean_run.err.find(kWarning), std::string::npos) << method << clean_run.err;
+    const CliRun cubic_run = fit(cubic(), options);
+    ASSERT_EQ(cubic_run.exit_code, 0) << cubic_run.err;
+    EXPECT_EQ(named_joints(cubic_run.err), std::vector<int>{3}) << method << cubic_run.err;
+    EXPECT_NE(cubic_run.err.find("spread of 3 periods"), std::string::npos) << cubic_run.err;
+  }
+  const CliRun delay_run = fit(delayed(), "--method wls --periodic");
+  ASSERT_EQ(delay_run.exit_code, 0) << delay_run.err;
+  EXPECT_EQ(named_joints(delay_run.err), std::vector<int>{2}) << delay_run.err;
 }
 
 }  // namespace

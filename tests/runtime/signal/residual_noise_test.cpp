@@ -98,6 +98,75 @@ TEST(ResidualAgainstNoise, AMissedSinusoidIsAboveOnItsJointOnly) {
 
 TEST(ResidualAgainstNoise, NoRecordIsAnError) {
   EXPECT_THROW(residual_against_noise({}), std::invalid_argument);
+  EXPECT_THROW(period_residual_against_noise({}), std::invalid_argument);
+}
+
+// Averaged periods (the periodic route): P periods of N samples of white noise `sigma` averaged
+// here, the error the average plus `extra` times a sinusoid at `harmonic` on joint `joint`; the
+// noise of the average from the periods' spread, computed here (per-sample variance over the
+// periods, divided by P), or with `exact_lines` the lines' true variance N sigma^2 / P.
+PeriodRecord period(unsigned seed, int joint, double extra, int harmonic, bool exact_lines) {
+  constexpr int kN = 200, kP = 4, kBand = 10;
+  constexpr double kSigma = 0.1;
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> noise(0.0, kSigma);
+  Eigen::MatrixXd sum = Eigen::MatrixXd::Zero(kN, kJoints), squares = sum;
+  for (int p = 0; p < kP; ++p) {
+    for (int k = 0; k < kN; ++k) {
+      for (int j = 0; j < kJoints; ++j) {
+        const double x = noise(rng);
+        sum(k, j) += x;
+        squares(k, j) += x * x;
+      }
+    }
+  }
+  PeriodRecord r;
+  r.error = sum / kP;
+  r.tau = Eigen::MatrixXd::Constant(kN, kJoints, 5.0);
+  const Eigen::MatrixXd deviations = squares - kP * r.error.cwiseAbs2();
+  r.white = deviations.colwise().sum().transpose() / (kN * (kP - 1.0)) / kP;
+  if (exact_lines)
+    r.lines = Eigen::MatrixXd::Constant(kBand + 1, kJoints, kN * kSigma * kSigma / kP);
+  for (int k = 0; k < kN; ++k) {
+    r.error(k, joint) += extra * std::sin(2 * std::numbers::pi * harmonic * k / kN);
+  }
+  r.periods = kP;
+  r.band = kBand;
+  return r;
+}
+
+TEST(PeriodResidualAgainstNoise, NoiseStaysWithinTheBounds) {
+  int outside = 0;
+  double sum = 0;
+  for (unsigned seed = 1; seed <= 20; ++seed) {
+    for (const bool exact : {false, true}) {
+      for (const JointResidual& r :
+           period_residual_against_noise({period(seed, 0, 0.0, 3, exact)})) {
+        ASSERT_FALSE(std::isnan(r.ratio));
+        EXPECT_EQ(r.residual_dof, 21);
+        EXPECT_EQ(r.noise_dof, 63);
+        if (r.ratio > r.upper || r.ratio < r.lower) ++outside;
+        sum += r.ratio;
+      }
+    }
+  }
+  EXPECT_EQ(outside, 0);
+  // 60 residuals (each judged twice) of ratio spread ~0.36 (sqrt(2/21 + 2/63)): 0.05 a mean.
+  EXPECT_NEAR(sum / 120, 1.0, 0.15);
+}
+
+TEST(PeriodResidualAgainstNoise, AMissedHarmonicInTheBandIsAboveOnItsJointOnly) {
+  // Amplitude 0.1 at harmonic 3: energy 1 (0.01 / 2 per sample x 200) against the noise's 21
+  // lines of 0.0025: 0.0525; a ratio near 20, the bound about 4.5.
+  const std::vector<JointResidual> in_band =
+      period_residual_against_noise({period(3, 2, 0.1, 3, false)});
+  EXPECT_LE(in_band[0].ratio, in_band[0].upper);
+  EXPECT_LE(in_band[1].ratio, in_band[1].upper);
+  EXPECT_GT(in_band[2].ratio, in_band[2].upper);
+  // The same above the band (harmonic 30 of a band of 10) is not the band's.
+  const std::vector<JointResidual> above =
+      period_residual_against_noise({period(3, 2, 0.1, 30, false)});
+  EXPECT_LE(above[2].ratio, above[2].upper);
 }
 
 }  // namespace

@@ -22,6 +22,7 @@ struct PeriodicNoise {
   Eigen::MatrixXd q_lines, tau_lines;
   Eigen::Index samples = 0;  ///< N, samples of the period
   double period = 0;         ///< s
+  int periods = 0;           ///< P, the periods averaged (the variances' P - 1 degrees of freedom)
   bool empty() const { return q.size() == 0; }
 };
 

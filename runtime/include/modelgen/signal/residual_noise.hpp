@@ -60,4 +60,29 @@ struct JointResidual {
 /// lines) keeps a NaN ratio.
 std::vector<JointResidual> residual_against_noise(const std::vector<ResidualRecord>& records);
 
+/// One averaged period as a fit compared it (the periodic route, --periodic): measured torques
+/// and their error (N samples x axes, one whole period), and the noise of the averaged torque
+/// from the spread of the P periods about their average (PeriodicAverage): per axis the
+/// variances E|E_l|^2 of its DFT lines l = 0.. (`lines`, rows: lines, columns: axes; the
+/// torques cut at the last of them), or, when `lines` is empty, white noise of per-sample
+/// variance `white` per axis.
+struct PeriodRecord {
+  Eigen::MatrixXd tau, error;
+  Eigen::MatrixXd lines;
+  Eigen::VectorXd white;
+  int periods = 0;  ///< P
+  int band = 0;     ///< the band's last harmonic (kTorqueBandFactor times the motion's)
+};
+
+/// Per joint, the averaged periods' residual in harmonics 0..band (and below the torques' cut)
+/// against the noise the period-to-period spread leaves there, pooled over `records` (at
+/// least one, the same axes). Over one period the DFT has no leakage: the residual's energy in
+/// L + 1 lines is (|R_0|^2 + 2 sum_{l=1..L} |R_l|^2) / N, its noise's the same of E|E_l|^2
+/// (or (2 L + 1) `white` for white noise), with 2 L + 1 and (2 L + 1) (P - 1) degrees of freedom
+/// (each line's variance comes from P - 1 independent deviations); the bounds as in
+/// residual_against_noise. The noise of the averaged positions that the regressor carries into
+/// the residual is not counted (a fraction of the torque's where the positions' noise is small
+/// against their motion). A record with P < 2 or no line in the band keeps a NaN ratio.
+std::vector<JointResidual> period_residual_against_noise(const std::vector<PeriodRecord>& records);
+
 }  // namespace modelgen
