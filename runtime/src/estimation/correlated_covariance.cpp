@@ -102,6 +102,18 @@ Correlation residual_correlation(double lag_products, double squares, Eigen::Ind
   return out;
 }
 
+double prewhitening_coefficient(double g0, double g1, double gk, double gk1) {
+  const double span = g0 - gk;
+  if (!(span > 0)) return 0;
+  return std::clamp((g1 - gk1) / span, 0.0, 0.97);
+}
+
+Eigen::Index prewhitening_lag(double rho, Eigen::Index rows) {
+  if (!(rho > 0)) return 1;
+  const auto lag = static_cast<Eigen::Index>(std::ceil(1 / (1 - std::min(rho, 0.99))));
+  return std::clamp<Eigen::Index>(lag, 1, std::max<Eigen::Index>(rows / 20, 1));
+}
+
 BartlettScoreSum::BartlettScoreSum(Eigen::Index b, int bandwidth)
     : window_(std::max(bandwidth, 0) + 1),
       recent_(Eigen::MatrixXd::Zero(window_, b)),
@@ -170,7 +182,7 @@ SandwichCovariance score_covariance(const std::vector<ResidualGroup>& groups,
   }
   for (const StreamedMeat& s : streamed) {
     out.meat += s.meat;
-    freedom += effective_rows(s.rows, s.correlation);
+    freedom += effective_rows(s.rows, s.whiten != 0 ? s.whitened : s.correlation);
   }
   if (freedom > static_cast<double>(b)) out.meat *= freedom / (freedom - static_cast<double>(b));
   std::ostringstream text;
@@ -189,9 +201,14 @@ SandwichCovariance score_covariance(const std::vector<ResidualGroup>& groups,
   }
   for (const StreamedMeat& s : streamed) {
     if (!s.correlation.significant) continue;
-    text << separator << "Newey-West over " << s.rows << " undecimated rows, bandwidth "
-         << s.correlation.bandwidth << " (lag-1 autocorrelation "
-         << std::round(s.correlation.rho * 100) / 100 << ")";
+    text << separator << "Newey-West over " << s.rows << " undecimated rows";
+    if (s.whiten != 0) {
+      text << " prewhitened by AR(1) " << std::round(s.whiten * 1000) / 1000 << ", bandwidth "
+           << s.whitened.bandwidth;
+    } else {
+      text << ", bandwidth " << s.correlation.bandwidth;
+    }
+    text << " (lag-1 autocorrelation " << std::round(s.correlation.rho * 100) / 100 << ")";
     separator = "; ";
   }
   out.description = text.str();
