@@ -108,8 +108,10 @@ void expect_decided_lines(const std::string& text, const nlohmann::json& est) {
     const std::size_t at = text.find(start);
     ASSERT_NE(at, std::string::npos) << start << "\n" << text;
     const std::string line = text.substr(at, text.find('\n', at) - at);
-    const std::size_t prior_part = std::min(line.find("; the prior"), line.size());
-    const std::string data_part = line.substr(0, prior_part);
+    // The data's part ends where the prior's or the bound's begins.
+    const std::size_t others =
+        std::min({line.find("; the prior"), line.find("; the bound"), line.size()});
+    const std::string data_part = line.substr(0, others);
     for (const auto& [key, words] :
          {std::pair<std::string, std::string>{"mass", "mass"}, {"com", "centre of mass"}}) {
       EXPECT_EQ(data_part.find(words) != std::string::npos, link["decided_by"][key] == "data")
