@@ -30,7 +30,33 @@ BodyRegion region_around_segments(const std::vector<Eigen::Vector3d>& ends) {
   const double r = std::max(kSegmentRadiusFraction * longest, kSegmentRadiusMin);
   BodyRegion region = region_around_box(low.array() - r, high.array() + r);
   region.guessed = true;
+  region.at_joint = ends.empty();
   return region;
+}
+
+std::vector<std::vector<Eigen::Vector3d>> child_origins(const RigidBodyTree& tree) {
+  std::vector<std::vector<Eigen::Vector3d>> ends(tree.bodies.size());
+  for (const Body& body : tree.bodies) {
+    if (body.parent < 0) continue;
+    const auto& t = body.fixed.translation;
+    ends[static_cast<std::size_t>(body.parent)].emplace_back(t[0], t[1], t[2]);
+  }
+  return ends;
+}
+
+void guess_missing_regions(RobotModel& model,
+                           const std::vector<std::vector<Eigen::Vector3d>>& ends) {
+  std::vector<bool> a_priori(model.tree.bodies.size(), false);
+  for (std::size_t k = 0; k < model.tree.params.size() && k < model.known_values.size(); ++k) {
+    const StandardParam& param = model.tree.params[k];
+    if (param.kind <= ParamKind::kM && model.known_values[k]) {
+      a_priori[static_cast<std::size_t>(param.body)] = true;
+    }
+  }
+  for (std::size_t b = 0; b < model.body_regions.size() && b < ends.size(); ++b) {
+    if (model.body_regions[b] || a_priori[b] || static_cast<int>(b) == model.payload_body) continue;
+    model.body_regions[b] = region_around_segments(ends[b]);
+  }
 }
 
 }  // namespace modelgen

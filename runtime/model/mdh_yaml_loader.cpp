@@ -14,6 +14,7 @@
 
 #include "modelgen/model/number_text.hpp"
 #include "runtime/model/angle_snapping.hpp"
+#include "runtime/model/body_regions.hpp"
 #include "runtime/model/magnitude_checks.hpp"
 #include "runtime/model/mdh_drive_chain.hpp"
 #include "runtime/model/mdh_known_values.hpp"
@@ -92,6 +93,9 @@ class MdhYamlLoader {
     build_standard_parameters(model_);
     if (root["payload"]) read_payload(root["payload"]);
     if (root["known"]) read_known_values(in_, root["known"], model_);
+    // A link without `region:` and without a-priori inertials: guessed around the segments its
+    // DH rows give to the next joints and tool frames (body_regions.hpp), as for a URDF body.
+    guess_missing_regions(model_, child_origins(model_.tree));
     validate(model_.tree);
     return std::move(model_);
   }

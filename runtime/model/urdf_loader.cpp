@@ -212,16 +212,11 @@ RobotModel load_urdf(const std::string& path, const std::string& text, const Loa
   // or none) and without an <inertial> the guess from the segments to its child joints
   // (body_regions.hpp). A body with an <inertial> keeps that as its a-priori model: a guess
   // would only contradict the vendor (the UR5's wrist inertias reach 0.3 m from the joint).
-  const auto& boxes = builder.shape_boxes();
-  for (std::size_t b = 0; b < boxes.size(); ++b) {
-    if (boxes[b]) {
-      model.body_regions.push_back(region_around_box(boxes[b]->first, boxes[b]->second));
-    } else if (!builder.inertials()[b]) {
-      model.body_regions.push_back(region_around_segments(builder.segment_ends()[b]));
-    } else {
-      model.body_regions.emplace_back();
-    }
+  for (const auto& box : builder.shape_boxes()) {
+    model.body_regions.push_back(box ? std::optional(region_around_box(box->first, box->second))
+                                     : std::nullopt);
   }
+  guess_missing_regions(model, builder.segment_ends());
   validate(model.tree);
   return model;
 }

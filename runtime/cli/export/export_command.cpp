@@ -99,8 +99,8 @@ void check_links_near_a_priori(const RobotModel& description, const Eigen::Vecto
       all_known = all_known && value.has_value();
       known[s] = value.value_or(0.0);
     }
-    // Outside the region of its geometry (the ellipsoid around its URDF shapes): no body that
-    // shape can be.
+    // Outside the region of its geometry (the ellipsoid around its URDF shapes, its YAML
+    // `region`, or the guess from its segments): no body that shape can be.
     if (b < description.body_regions.size() && description.body_regions[b]) {
       const double extent = region_extent(identified, *description.body_regions[b]);
       if (extent > 1 + 1e-6) {

@@ -21,9 +21,10 @@ const CommandSpec& export_spec() {
           .required = true},
          {.name = "--force",
           .type = ValueType::kFlag,
-          .help = "write links far from their a-priori values (mass off by over a factor 2, "
-                  "centre of mass over 10 cm away) or reaching outside the region of their URDF "
-                  "shapes, which export otherwise refuses"}});
+          .help =
+              "write links far from their a-priori values (mass off by over a factor 2, "
+              "centre of mass over 10 cm away) or reaching outside their region (URDF shapes, "
+              "YAML region, or guessed from the next joints), which export otherwise refuses"}});
     spec.details =
         "URDF: each moving link's <inertial> gets its identified body less the a-priori inertials\n"
         "of the links fixed to it, which keep theirs (when that is no physical body, the moving\n"

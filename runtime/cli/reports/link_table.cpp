@@ -46,8 +46,10 @@ void print_link_table(std::ostream& out, const std::vector<LinkSummary>& links) 
     if (link.region_extent) {
       out << "    " << pad("region extent", 17) << " " << fixed(*link.region_extent, 10, 3)
           << "  (root mean square over the mass, in units of the ellipsoid "
-          << (link.region_guessed ? "guessed from the segment to the next joint (no shapes)"
-                                  : "from the geometry")
+          << (!link.region_guessed ? "from the geometry"
+              : link.region_at_joint
+                  ? "guessed: a sphere about the joint, which has no next joint or tool frame"
+                  : "guessed from the segments to the next joints (no shapes or region given)")
           << (known ? "; not enforced: the a-priori values hold this link)\n"
                     : "; at most 1, kept by the fit)\n");
     }

@@ -180,6 +180,7 @@ std::vector<LinkSummary> summarise_links(const RigidBodyTree& tree, const Eigen:
     if (b < regions.size() && regions[b]) {
       link.region_extent = region_extent(p, *regions[b]);
       link.region_guessed = regions[b]->guessed;
+      link.region_at_joint = regions[b]->at_joint;
     }
     out.push_back(std::move(link));
   }

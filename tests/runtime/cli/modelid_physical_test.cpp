@@ -133,15 +133,30 @@ TEST(ModelidPhysical, TheBundledKr150RunGivesAConsistentRobot) {
 
   // Consistency costs little here: the torques are predicted within 5 % of the unconstrained
   // fit's error. The bounds that bind are on parameters the unconstrained fit had negative (a
-  // negative one the data can trade for another, such as Fv5 for Fvm5, need not bind).
+  // negative one the data can trade for another, such as Fv5 for Fvm5, need not bind) or on
+  // drive parameters regrouped with links (the data do not split them: Ia2 with ZZ2 and the
+  // masses of links 3-7); the bodies that bind have the regions guessed from the DH rows (the
+  // KR 150 description gives no a-priori link values), which hold what the data leave free.
   const double constrained = est["rel_error_norm"];
   const double unconstrained = est["physical"]["unconstrained_rel_error_norm"];
   EXPECT_LE(constrained, 1.05 * unconstrained);
+  std::set<std::string> regrouped, with_region;
+  for (const nlohmann::json& drive : est["drives"]) {
+    if (drive["decided_by"] == "prior") regrouped.insert(drive["name"].get<std::string>());
+  }
+  for (const nlohmann::json& link : est["links"]) {
+    if (link.contains("region_extent")) with_region.insert(link["body"].get<std::string>());
+  }
   ASSERT_FALSE(est["physical"]["binding_constraints"].empty());
   for (const nlohmann::json& c : est["physical"]["binding_constraints"]) {
     const std::string text = c;
+    if (text.rfind("body '", 0) == 0) {
+      const std::string body = text.substr(6, text.find('\'', 6) - 6);
+      EXPECT_TRUE(with_region.count(body)) << text;
+      continue;
+    }
     const std::string name = text.substr(0, text.find(' '));
-    EXPECT_TRUE(negative.count(name)) << text;
+    EXPECT_TRUE(negative.count(name) || regrouped.count(name)) << text;
   }
 }
 

@@ -26,6 +26,7 @@
 #include "modelgen/model/physical_consistency.hpp"
 #include "modelgen/model/pseudo_inertia.hpp"
 #include "tests/support/cli_runner.hpp"
+#include "tests/support/region_fit.hpp"
 #include "tests/support/test_support.hpp"
 
 namespace modelgen {
@@ -59,41 +60,10 @@ constexpr const char* kArm = R"(<?xml version="1.0"?>
 </robot>
 )";
 
-// Ten standard parameters (inertia about the frame origin) of mass m at c, inertia Ic about c.
-std::array<double, 10> body_params(double m, const Eigen::Vector3d& c, const Eigen::Matrix3d& Ic) {
-  const Eigen::Matrix3d I =
-      Ic + m * (c.squaredNorm() * Eigen::Matrix3d::Identity() - c * c.transpose());
-  return {I(0, 0), I(0, 1), I(0, 2), I(1, 1), I(1, 2), I(2, 2), m * c.x(), m * c.y(), m * c.z(), m};
-}
-
-// A solid box of sides s (about its centre).
-Eigen::Matrix3d solid_box(double m, const Eigen::Vector3d& s) {
-  return Eigen::Vector3d(s.y() * s.y() + s.z() * s.z(), s.x() * s.x() + s.z() * s.z(),
-                         s.x() * s.x() + s.y() * s.y())
-             .asDiagonal() *
-         (m / 12);
-}
-
-// A solid cylinder of radius r and length l along `axis` (0 x, 2 z).
-Eigen::Matrix3d solid_cylinder(double m, double r, double l, int axis) {
-  Eigen::Vector3d d = Eigen::Vector3d::Constant(m * (3 * r * r + l * l) / 12);
-  d[axis] = m * r * r / 2;
-  return d.asDiagonal();
-}
-
-// The rms extent of p in region, written here from its definition: the mean over the mass of
-// (x - c)' A (x - c) = tr(A (S - c h' - h c' + m c c')) / m, S the second moment.
-double extent(const double* p, const BodyRegion& region) {
-  const Eigen::Matrix4d P = pseudo_inertia(p);
-  const Eigen::Vector3d c(region.centre[0], region.centre[1], region.centre[2]);
-  const Eigen::Vector3d s(region.semi_axes[0], region.semi_axes[1], region.semi_axes[2]);
-  const Eigen::Matrix3d A = s.cwiseAbs2().cwiseInverse().asDiagonal();
-  const Eigen::Vector3d h = P.topRightCorner<3, 1>();
-  const double m = P(3, 3);
-  const Eigen::Matrix3d spread =
-      P.topLeftCorner<3, 3>() - c * h.transpose() - h * c.transpose() + m * c * c.transpose();
-  return std::sqrt((A * spread).trace() / m);
-}
+using test::body_params;
+using test::extent;
+using test::solid_box;
+using test::solid_cylinder;
 
 class PhysicalRegion : public testing::Test {
  protected:
@@ -126,24 +96,11 @@ class PhysicalRegion : public testing::Test {
 
   // Torques of the truth at random states plus noise, and their least-squares fit.
   void simulate(std::mt19937& rng, double noise_std) {
-    const int dof = model_->dof(), b = model_->num_base_params(), states = 400;
-    std::uniform_real_distribution<double> angle(-3, 3), speed(-2, 2), acceleration(-6, 6);
-    std::normal_distribution<double> noise(0, noise_std);
-    W_.resize(dof * states, b);
-    Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> rows(dof, b);
-    for (int s = 0; s < states; ++s) {
-      Eigen::VectorXd q(dof), dq(dof), ddq(dof);
-      for (int j = 0; j < dof; ++j)
-        q[j] = angle(rng), dq[j] = speed(rng), ddq[j] = acceleration(rng);
-      model_->regressor(q.data(), dq.data(), ddq.data(), rows.data());
-      W_.middleRows(s * dof, dof) = rows;
-    }
-    tau_ = W_ * (K_ * truth_);
-    for (Eigen::Index i = 0; i < tau_.size(); ++i) tau_[i] += noise(rng);
-    beta_hat_ = W_.colPivHouseholderQr().solve(tau_);
-    const double sigma2 =
-        (tau_ - W_ * beta_hat_).squaredNorm() / static_cast<double>(tau_.size() - b);
-    information_ = W_.transpose() * W_ / sigma2;
+    const test::SimulatedFit fit = test::simulate_and_fit(*model_, K_, truth_, rng, noise_std);
+    W_ = fit.W;
+    information_ = fit.information;
+    tau_ = fit.tau;
+    beta_hat_ = fit.beta_hat;
   }
 
   double rel_error_norm(const Eigen::VectorXd& beta) const {

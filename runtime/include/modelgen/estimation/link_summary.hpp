@@ -46,7 +46,8 @@ struct LinkSummary {
   /// With a region from the description's geometry (modelgen/model/robot_model.hpp), the
   /// link's extent in it (region_extent); above 1 the mass reaches outside the region.
   std::optional<double> region_extent;
-  bool region_guessed = false;  ///< the region is the guess from the segment to the next joint
+  bool region_guessed = false;   ///< the region is a guess from the segments to the next joints
+  bool region_at_joint = false;  ///< guessed as a sphere about the joint (no next joint or tool)
 };
 
 inline constexpr double kFarMassFactor = 2.0;

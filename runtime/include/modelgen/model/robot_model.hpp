@@ -91,12 +91,14 @@ struct DescriptionNote {
 /// sum_i ((x_i - centre_i) / semi_axes_i)^2 <= 1 in the body frame (axes along the frame's),
 /// the one through the corners of the box that holds every collision shape (else visual shape)
 /// of the body's links: boxes, cylinders, spheres; meshes have no size without their file.
-/// Without shapes (meshes only), the URDF loader guesses the region from the segment to the
-/// next joint (`guessed`); a YAML description may give one per link (`region:`).
+/// A body without shapes (URDF meshes only; an MDH YAML link without `region:`) and without
+/// a-priori inertial values gets a region guessed from the segments to its next joints and
+/// tool frames (`guessed`); a YAML description may give one per link (`region:`).
 struct BodyRegion {
   std::array<double, 3> centre{};
   std::array<double, 3> semi_axes{};
   bool guessed = false;  ///< from the joints' positions, not from a shape or the description
+  bool at_joint = false;  ///< guessed without a segment (no child joint or tool frame): a sphere
 };
 
 struct RobotModel {
@@ -112,8 +114,8 @@ struct RobotModel {
   /// A-priori values of standard parameters (YAML `known`, or URDF inertials), by
   /// tree.params index.
   std::vector<std::optional<double>> known_values;
-  /// Per tree.bodies entry, its region from the geometry (URDF only; nullopt without
-  /// box, cylinder or sphere shapes).
+  /// Per tree.bodies entry, its region from the geometry (URDF shapes, YAML `region:`, or
+  /// guessed; nullopt for a body with a-priori inertial values and no shapes or `region:`).
   std::vector<std::optional<BodyRegion>> body_regions;
   /// What the loader snapped or assumed, in file order (see DescriptionNote).
   std::vector<DescriptionNote> notes;
