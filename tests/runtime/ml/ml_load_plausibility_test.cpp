@@ -134,6 +134,15 @@ TEST(MlLoadPlausibility, AWristOnlyExperimentLeavesTheLoadUndetermined) {
   EXPECT_TRUE(std::isnan(load.mass));
   EXPECT_TRUE(std::isnan(load.com[0]));
   EXPECT_TRUE(load.warnings.empty());  // nothing reported, nothing judged
+  // The consistent fit reports no number for them either, whatever its prior term chose.
+  const MlPhysicalResult physical = fit_ml_physical(problem, fit);
+  const MlLoadSummary consistent =
+      summarise_ml_load(physical.fit, physical.load_on_boundary, 3.0, std::nullopt, 7);
+  EXPECT_EQ(consistent.mass_by, MlDecidedBy::kUndetermined);
+  EXPECT_TRUE(std::isnan(consistent.mass));
+  for (const MlDriveSummary& drive : summarise_ml_drives(physical.fit, physical.at_bound)) {
+    EXPECT_EQ(std::isnan(drive.value), drive.by == MlDecidedBy::kUndetermined) << drive.name;
+  }
 }
 
 TEST(MlLoadPlausibility, AFrictionOnItsBoundHasTheUnconstrainedSpreadNotZero) {
