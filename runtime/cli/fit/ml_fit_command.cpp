@@ -27,6 +27,7 @@
 #include "modelgen/ml/fit.hpp"
 #include "modelgen/ml/linear_route.hpp"
 #include "modelgen/ml/load_parameters.hpp"
+#include "modelgen/ml/load_plausibility.hpp"
 #include "modelgen/ml/physical_fit.hpp"
 #include "modelgen/ml/problem.hpp"
 #include "modelgen/signal/prepare.hpp"
@@ -37,6 +38,7 @@
 #include "runtime/cli/data/data_files.hpp"
 #include "runtime/cli/data/drive_parameter_checks.hpp"
 #include "runtime/cli/fit/ml_plan.hpp"
+#include "runtime/cli/reports/ml_decided_report.hpp"
 #include "runtime/cli/reports/ml_report.hpp"
 
 namespace modelgen::internal {
@@ -226,6 +228,21 @@ MlRun run_approach(int approach, DriveModel& drive_model, const std::vector<MlEx
   return run;
 }
 
+// Who decided the run's load and drive unknowns, and whether the load is plausible: within the
+// arm's reach of the payload link and inside its region when the description gives one.
+void summarise_run(const RobotModel& description, MlRun& run) {
+  const std::vector<bool> none;
+  const MlPhysicalResult* physical = run.physical ? &run.physical->result : nullptr;
+  run.drives = summarise_ml_drives(run.fit, physical ? physical->at_bound : none);
+  if (!run.fit.has_load || description.payload_body < 0) return;
+  const auto body = static_cast<std::size_t>(description.payload_body);
+  const std::optional<BodyRegion> region =
+      body < description.body_regions.size() ? description.body_regions[body] : std::nullopt;
+  run.load_summary = summarise_ml_load(run.fit, physical && physical->load_on_boundary,
+                                       arm_reach(description.tree, description.payload_body),
+                                       region, description.payload_body + 1);
+}
+
 void print_ml(const IdentificationModel& model, const std::vector<MlRun>& runs, const MlPlan& plan,
               std::size_t experiments, Eigen::Index samples, const std::string& data_report,
               const std::string& generated_name, const MlTruth& truth) {
@@ -245,7 +262,9 @@ void print_ml(const IdentificationModel& model, const std::vector<MlRun>& runs, 
     print_ml_comparison(std::cout, runs, plan.payload_link, truth);
   }
   print_ml_physical(std::cout, runs);
+  print_ml_decided(std::cout, runs, plan.payload_link);
   for (const MlRun& run : runs) warn_implausible_ml_estimates(std::cerr, run, runs.size() > 1);
+  warn_implausible_ml_load(std::cerr, runs);
 }
 
 std::string ml_estimate_json(const CommandLine& args, const IdentificationModel& model,
@@ -301,6 +320,7 @@ int run_fit_ml(const CommandLine& args, double prior_weight) {
   for (const int approach : request.approaches) {
     runs.push_back(run_approach(approach, *drive_model, data, plan, args.has("--physical"),
                                 prior_weight, samples));
+    summarise_run(description, runs.back());
   }
   print_ml(model, runs, plan, data.size(), samples, data_report.str(), generated_name, truth);
   if (args.has("-o")) write_file(args.one("-o"), ml_estimate_json(args, model, runs));

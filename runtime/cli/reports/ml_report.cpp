@@ -11,6 +11,7 @@
 #include "modelgen/ml/load_parameters.hpp"
 #include "runtime/cli/common/text_format.hpp"
 #include "runtime/cli/reports/estimate_warnings.hpp"
+#include "runtime/cli/reports/ml_decided_report.hpp"
 
 namespace modelgen::internal {
 
@@ -315,11 +316,14 @@ nlohmann::json ml_run_json(const MlRun& run) {
   out["iterations"] = fit.iterations;
   out["seconds"] = run.seconds;
   if (!run.summary.empty()) out["summary"] = run.summary;
+  if (run.load_summary || !run.drives.empty()) out["decided"] = ml_decided_json(run);
   if (run.physical) {
     const MlPhysicalRun& p = *run.physical;
     MlRun unconstrained = run;
     unconstrained.fit = p.unconstrained;
     unconstrained.physical.reset();
+    unconstrained.load_summary.reset();
+    unconstrained.drives.clear();
     out["physical"] = {{"prior_weight", p.prior_weight},
                        {"cost_increase", p.result.cost_increase},
                        {"binding_constraints", p.result.binding},

@@ -12,6 +12,7 @@
 
 #include "modelgen/ml/fit.hpp"
 #include "modelgen/ml/linear_route.hpp"
+#include "modelgen/ml/load_plausibility.hpp"
 #include "modelgen/ml/physical_fit.hpp"
 
 namespace modelgen::internal {
@@ -33,6 +34,10 @@ struct MlRun {
   double seconds = 0;   ///< wall time of the fit
   std::string summary;  ///< one line on how it was obtained
   std::optional<MlPhysicalRun> physical;  ///< with --physical
+  /// Who decided the load (when it is unknown) and the drive unknowns, and whether the load is
+  /// plausible (modelgen/ml/load_plausibility.hpp).
+  std::optional<MlLoadSummary> load_summary;
+  std::vector<MlDriveSummary> drives;
 };
 
 /// Exact values by ml_param_names() name (load_m, Rv3, ...) from --truth; empty without it.

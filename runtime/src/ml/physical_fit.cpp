@@ -101,7 +101,7 @@ void check_constrained(const std::vector<std::string>& names) {
 // which unknowns are held at a bound.
 std::vector<bool> binding_constraints(const MlProblem& problem, const SearchState& state,
                                       const std::vector<char>& held,
-                                      std::vector<std::string>& binding) {
+                                      std::vector<std::string>& binding, bool& load_on_boundary) {
   const std::vector<std::string>& names = problem.unknown_names();
   const Eigen::VectorXd& theta1 = state.theta1;
   const int U = static_cast<int>(theta1.size());
@@ -122,6 +122,7 @@ std::vector<bool> binding_constraints(const MlProblem& problem, const SearchStat
                                        detail::load_pseudo_inertia(load), Eigen::EigenvaluesOnly)
                                        .eigenvalues();
     if (lambda[0] < kBoundaryRatio * lambda[3]) {
+      load_on_boundary = true;
       binding.push_back("load pseudo-inertia > 0");
     }
   }
@@ -129,7 +130,11 @@ std::vector<bool> binding_constraints(const MlProblem& problem, const SearchStat
 }
 
 // Standard deviations from the Jacobian at the optimum with the binding bounds held (a
-// local, first-order figure: a load on the boundary gets the unconstrained local one), the
+// local, first-order figure: a load on the boundary gets the unconstrained local one); an
+// unknown held at its bound the marginal one with the bounds released, [F^-1]_hh: the
+// unconstrained covariance's part F-orthogonal to the free directions, (I - P) F^-1 (I - P)'
+// on the held coordinates (the least-squares fit's rule). The local figure would be 0, and a
+// clipped estimate whose truth lies on the bound spreads by 0.58 of the unconstrained sd. The
 // values, rms errors and the load in its own terms.
 void estimates_at_optimum(MlProblem& problem, const MlFitResult& unconstrained,
                           const SearchState& state, const std::vector<bool>& at_bound,
@@ -149,9 +154,12 @@ void estimates_at_optimum(MlProblem& problem, const MlFitResult& unconstrained,
                     static_cast<double>(std::max<Eigen::Index>(1, problem.num_residuals() - kept));
   fit.residual_std_dev = std::sqrt(s2);
   fit.std_dev = detail::standard_deviations(J, keep, s2);
+  std::vector<bool> released(static_cast<std::size_t>(U));
+  for (int u = 0; u < U; ++u) released[u] = unconstrained.identifiability.identifiable[u];
+  const Eigen::VectorXd marginal = detail::standard_deviations(J, released, s2);
   fit.value = theta1;
   for (int u = 0; u < U; ++u) {
-    if (at_bound[static_cast<std::size_t>(u)]) fit.std_dev[u] = 0;
+    if (at_bound[static_cast<std::size_t>(u)]) fit.std_dev[u] = marginal[u];
     if (!unconstrained.identifiability.identifiable[u]) fit.value[u] = kNaN;
   }
   fit.all_values = problem.with_unknowns(theta1);
@@ -248,7 +256,8 @@ MlPhysicalResult fit_ml_physical(MlProblem& problem, const MlFitResult& unconstr
   result.cost_increase = 2 * fit.final_cost - result.unconstrained_sum_of_squares;
 
   const std::vector<bool> at_bound =
-      binding_constraints(problem, state, search.held, result.binding);
+      binding_constraints(problem, state, search.held, result.binding, result.load_on_boundary);
+  result.at_bound = at_bound;
   estimates_at_optimum(problem, unconstrained, state, at_bound, residuals, J, fit);
   return result;
 }

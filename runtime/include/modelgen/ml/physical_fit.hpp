@@ -25,9 +25,16 @@ struct MlPhysicalOptions {
 };
 
 struct MlPhysicalResult {
-  /// The consistent estimate, reported as fit_ml reports one; std_dev is 0 for an unknown held
-  /// at its bound and NaN where the unconstrained fit found the unknown not identifiable.
+  /// The consistent estimate, reported as fit_ml reports one; std_dev is NaN where the
+  /// unconstrained fit found the unknown not identifiable. An unknown held at its bound gets
+  /// the marginal standard deviation with it free, at the consistent optimum (the unconstrained
+  /// covariance's part in the held direction, as the least-squares fit reports: an upper bound;
+  /// the local covariance of the active set would give it 0).
   MlFitResult fit;
+  /// Per unknown of fit.names: held on its bound by the consistent fit.
+  std::vector<bool> at_bound;
+  /// The load's pseudo-inertia ended on the boundary of the consistent set.
+  bool load_on_boundary = false;
   /// Eq. 18's weighted sum of squares (noise variances as units) of the unconstrained
   /// estimate, and the increase the consistent one adds to it (0 when the unconstrained one
   /// was consistent already).
