@@ -37,6 +37,7 @@ Identification fit_closed_loop(const CommandLine& args, const IdentificationMode
     ClosedLoopRecord record;
     record.prepared = experiments.data[e];
     record.decimation = experiments.decimation[e];
+    record.reversal_guard = experiments.reversal_guard[e];
     record.torque_hold = args.has("--torque-hold") && args.one("--torque-hold") == "zoh";
     record.qr = raw.qr;
     record.t0 = raw.t[0];

@@ -181,6 +181,7 @@ int run_fit(const CommandLine& args) {
   // The estimate.
   IdentifyOptions options;
   options.decimation = experiments.decimation;
+  options.reversal_guard = experiments.reversal_guard;
   // A periodic experiment whose torques keep harmonics 0..H: its equation errors live on
   // those lines (identify() then uses a sandwich covariance, issue 31).
   for (std::size_t e = 0; e < experiments.noise.size(); ++e) {

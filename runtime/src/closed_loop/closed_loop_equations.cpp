@@ -47,6 +47,11 @@ Eigen::MatrixXd joint_rows(const IdentificationModel& model, const Eigen::Matrix
   return rows;
 }
 
+Eigen::MatrixXd masked(Eigen::MatrixXd rows, const Eigen::ArrayXXd& mask, int j) {
+  if (mask.size() != 0) rows = mask.col(j).matrix().asDiagonal() * rows;
+  return rows;
+}
+
 std::vector<Eigen::Index> kept_rows(const Eigen::MatrixXd& dq, const Eigen::MatrixXd& K,
                                     const Eigen::VectorXd& min_speed) {
   std::vector<Eigen::Index> kept;
@@ -103,10 +108,12 @@ bool simulate_equations(const IdentificationModel& model, const PidGains& gains,
     const auto& kept = equations[e].kept;
     const Eigen::MatrixXd command = prepared_command(r, run, used);
     for (int j = 0; j < n; ++j) {
-      sim.W[e].push_back(
-          decimate_interior(joint_rows(model, run.q, run.dq, run.ddq, r.first_row, used, j),
-                            r.decimation)(kept, Eigen::all));
-      sim.tau[e].push_back(decimate_interior(command.col(j), r.decimation)(kept, 0));
+      const Eigen::ArrayXXd& mask = equations[e].mask;
+      sim.W[e].push_back(decimate_interior(
+          masked(joint_rows(model, run.q, run.dq, run.ddq, r.first_row, used, j), mask, j),
+          r.decimation)(kept, Eigen::all));
+      sim.tau[e].push_back(
+          decimate_interior(masked(command.col(j), mask, j), r.decimation)(kept, 0));
     }
   }
   return true;

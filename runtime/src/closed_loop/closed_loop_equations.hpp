@@ -25,11 +25,17 @@ struct RecordEquations {
   std::vector<Eigen::VectorXd> y;  // measured torques
   std::vector<double> weight;      // 1 / sd of the joint's IDIM-WLS residual (eq. 20)
   std::vector<Eigen::Index> kept;  // decimated samples used
+  // Samples x dof before the decimation: 0 where a joint's equation is left out near a
+  // reversal (reversal_mask), on measured and simulated sides alike; empty: none.
+  Eigen::ArrayXXd mask;
 };
 
 // Decimated samples where every joint, and every motor (K dq scaled to its joint by K_jj: a
 // coupled motor has friction of its own), moves at least at the minimum speed; all of them
 // when `min_speed` is empty.
+// Equation j of every sample times mask(s, j) (mask empty: unchanged).
+Eigen::MatrixXd masked(Eigen::MatrixXd rows, const Eigen::ArrayXXd& mask, int j);
+
 std::vector<Eigen::Index> kept_rows(const Eigen::MatrixXd& dq, const Eigen::MatrixXd& K,
                                     const Eigen::VectorXd& min_speed);
 

@@ -13,6 +13,7 @@
 #include "modelgen/estimation/estimation_error.hpp"
 #include "modelgen/estimation/least_squares.hpp"
 #include "modelgen/signal/decimation.hpp"
+#include "modelgen/signal/reversal_mask.hpp"
 #include "runtime/src/closed_loop/closed_loop_covariance.hpp"
 #include "runtime/src/closed_loop/closed_loop_equations.hpp"
 
@@ -22,6 +23,7 @@ namespace {
 
 using detail::joint_rows;
 using detail::kept_rows;
+using detail::masked;
 using detail::RecordEquations;
 using detail::simulate_equations;
 using detail::Simulated;
@@ -124,11 +126,17 @@ class ClosedLoopFit {
                               std::to_string(b) + " parameters");
       }
       const auto& kept = equations.kept;
+      if (options_.min_speed.size() != 0) {
+        equations.mask = reversal_mask(x.dq, model_.drive_chain().motor_from_joint,
+                                       options_.min_speed, r.reversal_guard);
+      }
+      const Eigen::ArrayXXd& mask = equations.mask;
       for (int j = 0; j < n; ++j) {
-        equations.W.push_back(
-            decimate_interior(joint_rows(model_, x.q, x.dq, x.ddq, 0, x.t.size(), j), r.decimation)(
-                kept, Eigen::all));
-        equations.y.push_back(decimate_interior(x.tau.col(j), r.decimation)(kept, 0));
+        equations.W.push_back(decimate_interior(
+            masked(joint_rows(model_, x.q, x.dq, x.ddq, 0, x.t.size(), j), mask, j), r.decimation)(
+            kept, Eigen::all));
+        equations.y.push_back(
+            decimate_interior(masked(x.tau.col(j), mask, j), r.decimation)(kept, 0));
         measured_[e].push_back(equations.W.back());
         torques_[e].push_back(equations.y.back());
         rows_ += equations.y.back().size();

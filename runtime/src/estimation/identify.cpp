@@ -214,8 +214,10 @@ std::vector<std::string> group_labels(const std::vector<Trajectory>& data, bool 
 // samples used (decimated rows count per sample), adds the slow rows to `slow_samples`.
 Eigen::Index add_decimated(const IdentificationModel& model, const std::vector<Trajectory>& data,
                            const std::vector<int>& decimation, bool power,
-                           const std::vector<double>& min_speed, LeastSquaresAccumulator& equations,
-                           Progress& progress, std::vector<DecimatedExperiment>& decimated,
+                           const std::vector<double>& min_speed,
+                           const std::vector<Eigen::Index>& reversal_guard,
+                           LeastSquaresAccumulator& equations, Progress& progress,
+                           std::vector<DecimatedExperiment>& decimated,
                            Eigen::Index& slow_samples) {
   const int n = model.dof();
   Eigen::Index used_samples = 0;
@@ -224,8 +226,9 @@ Eigen::Index add_decimated(const IdentificationModel& model, const std::vector<T
       used_samples += data[e].t.size();
       continue;
     }
-    decimated.push_back(
-        build_decimated(model, data[e], e, decimation[e], power, min_speed, equations, progress));
+    decimated.push_back(build_decimated(model, data[e], e, decimation[e], power, min_speed,
+                                        e < reversal_guard.size() ? reversal_guard[e] : 0,
+                                        equations, progress));
     if (decimated.back().W.rows() == 0) {
       throw EstimationError(slow_error(data[e], min_speed, "decimated row"));
     }
@@ -334,8 +337,9 @@ Identification identify(const IdentificationModel& model, const std::vector<Traj
   equations[0].merge(std::move(equations[1]));
   equations[0].name_groups(group_labels(data, power, n));
   std::vector<DecimatedExperiment> decimated;
-  const Eigen::Index used_samples = add_decimated(model, data, decimation, power, min_speed,
-                                                  equations[0], progress, decimated, slow_samples);
+  const Eigen::Index used_samples =
+      add_decimated(model, data, decimation, power, min_speed, options.reversal_guard, equations[0],
+                    progress, decimated, slow_samples);
 
   Identification out;
   out.names = model.base_param_names();

@@ -4,6 +4,7 @@
 #include "runtime/src/estimation/identify_equations.hpp"
 
 #include "modelgen/signal/decimation.hpp"
+#include "modelgen/signal/reversal_mask.hpp"
 
 namespace modelgen::detail {
 
@@ -111,7 +112,8 @@ void build_equations(const IdentificationModel& model, const std::vector<Traject
 DecimatedExperiment build_decimated(const IdentificationModel& model, const Trajectory& x,
                                     std::size_t e, int factor, bool power,
                                     const std::vector<double>& min_speed,
-                                    LeastSquaresAccumulator& equations, Progress& progress) {
+                                    Eigen::Index reversal_guard, LeastSquaresAccumulator& equations,
+                                    Progress& progress) {
   const int n = model.dof(), nb = model.num_base_params();
   const Eigen::Index m = x.t.size();
   Eigen::Index md = decimated_rows(m, factor);
@@ -136,6 +138,25 @@ DecimatedExperiment build_decimated(const IdentificationModel& model, const Traj
     if ((s + 1) % kChunkSamples == 0) progress.advance(kChunkSamples, 0.0, kBuilt, true);
   }
   progress.advance(m % kChunkSamples, 0.0, kBuilt, true);
+  if (!min_speed.empty()) {
+    // Zeroing both sides of an equation keeps it exact through the linear decimation filter;
+    // dropping decimated rows alone would keep the samples near rest inside each row's window.
+    const Eigen::ArrayXXd mask =
+        reversal_mask(x.dq, model.drive_chain().motor_from_joint,
+                      Eigen::Map<const Eigen::VectorXd>(min_speed.data(), n), reversal_guard);
+    for (Eigen::Index s = 0; s < m; ++s) {
+      for (int j = 0; j < n; ++j) {
+        const double w = mask(s, j);
+        if (w == 1) continue;
+        if (power) {  // the power equation keeps w of joint j's share, dq_j (W_j beta = tau_j)
+          P.row(s) -= (1 - w) * x.dq(s, j) * W.row(s * n + j);
+          p[s] -= (1 - w) * x.dq(s, j) * tau[s * n + j];
+        }
+        W.row(s * n + j) *= w;
+        tau[s * n + j] *= w;
+      }
+    }
+  }
   DecimatedExperiment out{e, Eigen::MatrixXd(md * n, nb), Eigen::VectorXd(md * n)};
   for (int j = 0; j < n; ++j) {
     decimate(joint_rows(W.data(), W.rows(), nb, n, j), factor,

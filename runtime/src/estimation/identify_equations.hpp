@@ -93,11 +93,14 @@ inline bool fast_enough(const Eigen::Ref<const Eigen::RowVectorXd>& dq,
 // the power rows dq^T W with the powers dq . tau, decimated the same way: both are linear in
 // the rows they combine, so the decimated equations still hold, eq. 14).
 // With `min_speed` (one per joint, or empty), the decimated rows where a joint's decimated
-// |dq| is below its value are left out too (DecimatedExperiment::slow_rows counts them).
+// |dq| is below its value are left out too (DecimatedExperiment::slow_rows counts them), and
+// before the decimation each joint's equations near a reversal are zeroed on both sides
+// (reversal_mask with `reversal_guard`, modelgen/signal/reversal_mask.hpp).
 DecimatedExperiment build_decimated(const IdentificationModel& model, const Trajectory& x,
                                     std::size_t e, int factor, bool power,
                                     const std::vector<double>& min_speed,
-                                    LeastSquaresAccumulator& equations, Progress& progress);
+                                    Eigen::Index reversal_guard, LeastSquaresAccumulator& equations,
+                                    Progress& progress);
 
 // Per joint, sums of squares of measured minus predicted torque and of measured torque over
 // `pieces`, the prediction from model.inverse_dynamics (the PIM's equations are not torques).

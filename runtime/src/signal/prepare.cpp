@@ -13,6 +13,7 @@
 #include "modelgen/signal/fourier_fit.hpp"
 #include "modelgen/signal/period.hpp"
 #include "modelgen/signal/preparation_checks.hpp"
+#include "modelgen/signal/reversal_mask.hpp"
 #include "modelgen/signal/sampling.hpp"
 
 namespace modelgen {
@@ -309,6 +310,7 @@ void filter_and_differentiate(Trajectory& raw, const PreparationOptions& options
     }
   }
   out.decimation = plan.decimation_factor;
+  out.reversal_guard = reversal_guard_samples(plan.position_cutoff_hz, 1.0 / dt);
   std::string band;
   if (options.bandwidth_hz) {
     band = ", excitation bandwidth " + number(bandwidth, 3) + " Hz (given)";

@@ -92,19 +92,18 @@ TEST_F(ModelidComauScenario, WlsIvAndDidimWithinThreeSdAndAtTheNoiseFloor) {
   ASSERT_EQ(truth_run.exit_code, 0) << truth_run.err;
   const std::vector<double> floor = validation_torque_rms(truth_run.out);
   ASSERT_EQ(floor.size(), 6u) << truth_run.out;
-  // Still the options tuned on the bundled records: this record's encoder noise is a 5e-7 rad
-  // count, so the wide band the 100 Hz filter and the decimation by 10 keep carries the loop's
-  // own motion and little noise. The planned preparation (decimation by 180, rows bound) left 3
-  // (WLS) and 4 (IV) of 64 beyond 3 sd (ZZ2R 5.0 sd), median error 0.16 % against 0.02 % here;
-  // keeping 4x the band (160) 7 and 2 (issue 31).
+  // The default preparation (6.1 Hz, decimation by 180) with the README's --min-speed, whose
+  // equations near each reversal are weighted down before the decimation
+  // (modelgen/signal/reversal_mask.hpp). Before that weighting the defaults left 3 (WLS) and
+  // 4 (IV) of 64 beyond 3 sd (ZZ2R 5.0 sd), and the test ran --cutoff 100 --decimate 10, tuned
+  // on this record (issue 31).
   for (const std::string method : {"wls", "iv", "didim"}) {
     const fs::path estimate = *folder_ / (method + ".json");
     const std::string controller =
         method == "wls" ? "" : " --controller " + quoted_source(kData + "controller.yaml");
-    const CliRun fit = modelid("fit --robot comau_smart_six --data " + quoted(*folder_ / "id.csv") +
-                               " --method " + method + controller +
-                               " --cutoff 100 --decimate 10 --min-speed 0.1 --torque-hold zoh -o " +
-                               quoted(estimate));
+    const CliRun fit =
+        modelid("fit --robot comau_smart_six --data " + quoted(*folder_ / "id.csv") + " --method " +
+                method + controller + " --min-speed 0.1 --torque-hold zoh -o " + quoted(estimate));
     ASSERT_EQ(fit.exit_code, 0) << fit.err;
     const nlohmann::json json = nlohmann::json::parse(read_text(estimate));
     int checked = 0;

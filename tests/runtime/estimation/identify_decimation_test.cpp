@@ -80,6 +80,26 @@ void append(Stack& stack, const Trajectory& x, int e, int factor, bool power,
       }
     }
   }
+  if (factor > 1 && !power && !min_speed.empty()) {
+    // Before the decimation, equation j of a sample where joint j, or a motor driving it
+    // (K(k, j) != 0, its speed K.row(k) dq / K(k, k)), is slow weighs 0 on both sides
+    // (no guard: the test's positions are exact).
+    const Eigen::MatrixXd& K = kModel.drive_chain().motor_from_joint;
+    for (Eigen::Index s = 0; s < m; ++s) {
+      const Eigen::VectorXd dq = x.dq.row(s).transpose();
+      for (int j = 0; j < n; ++j) {
+        bool slow = std::abs(dq[j]) < min_speed[static_cast<std::size_t>(j)];
+        for (int k = 0; k < n; ++k) {
+          if (K(k, j) == 0) continue;
+          slow =
+              slow || std::abs(K.row(k).dot(dq) / K(k, k)) < min_speed[static_cast<std::size_t>(k)];
+        }
+        if (!slow) continue;
+        rows.row(j * m + s).setZero();
+        y[j * m + s] = 0;
+      }
+    }
+  }
   const int blocks = power ? 1 : n;
   for (int j = 0; j < blocks; ++j) {
     // Decimated, only the rows clear of the filter's edges are equations.

@@ -34,6 +34,10 @@ struct ClosedLoopRecord {
   /// Parallel decimation factor of Y, W and the instruments (eq. 13-14); the rows the end
   /// samples dominate are left out (decimated_interior, modelgen/signal/decimation.hpp).
   int decimation = 1;
+  /// With ClosedLoopFitOptions::min_speed: each joint's equations within this many samples of
+  /// its reversals are zeroed before the decimation, measured and simulated alike
+  /// (reversal_mask, modelgen/signal/reversal_mask.hpp; PreparedExperiment::reversal_guard).
+  Eigen::Index reversal_guard = 0;
   /// The prepared torques pair held commands half a sample later
   /// (PreparationOptions::torque_hold); DIDIM's simulated commands are paired the same way.
   bool torque_hold = false;

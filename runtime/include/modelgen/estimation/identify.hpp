@@ -63,6 +63,12 @@ struct IdentifyOptions {
   /// with the same filter as W and Y (after eq. 13-14: leaving out samples before the filter
   /// would break the filter, not the equations).
   std::vector<double> min_speed;
+  /// Per experiment (empty: 0 for all), with min_speed, for a decimated experiment: before the
+  /// decimation each joint's equations within this many samples of a sample where it (or a
+  /// motor coupled to it) is slower than its speed are zeroed on both sides (reversal_mask,
+  /// modelgen/signal/reversal_mask.hpp): the position filter's impulse length
+  /// (PreparedExperiment::reversal_guard).
+  std::vector<Eigen::Index> reversal_guard;
   ProgressCallback progress;
   /// When set, also the essential parameters for this r_sigma (Identification::essential).
   std::optional<double> essential_r_sigma;

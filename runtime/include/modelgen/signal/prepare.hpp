@@ -60,6 +60,10 @@ struct PreparedExperiment {
   /// Non-periodic route with a position filter: the excitation bandwidth used (given or
   /// estimated), Hz; 0 otherwise.
   double bandwidth_hz = 0;
+  /// Non-periodic route with a position filter: its impulse length in samples
+  /// (reversal_guard_samples), how far the prepared velocity's error at a reversal reaches
+  /// (IdentifyOptions::reversal_guard); 0 otherwise.
+  Eigen::Index reversal_guard = 0;
   /// Periodic route: noise variance of the averaged torque per axis ((N m)^2), else empty.
   Eigen::VectorXd tau_noise_variance;
   /// Periodic route: the noise of the prepared q, dq, ddq and tau (periodic_noise()), else empty.
