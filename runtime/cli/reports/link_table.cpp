@@ -50,8 +50,9 @@ void print_link_table(std::ostream& out, const std::vector<LinkSummary>& links) 
               : link.region_at_joint
                   ? "guessed: a sphere about the joint, which has no next joint or tool frame"
                   : "guessed from the segments to the next joints (no shapes or region given)")
-          << (known ? "; not enforced: the a-priori values hold this link)\n"
-                    : "; at most 1, kept by the fit)\n");
+          << (known                  ? "; not enforced: the a-priori values hold this link)\n"
+              : link.region_rejected ? "; not enforced: the data reject the guess)\n"
+                                     : "; at most 1, kept by the fit)\n");
     }
   }
 }

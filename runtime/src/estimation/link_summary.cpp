@@ -181,6 +181,9 @@ std::vector<LinkSummary> summarise_links(const RigidBodyTree& tree, const Eigen:
       link.region_extent = region_extent(p, *regions[b]);
       link.region_guessed = regions[b]->guessed;
       link.region_at_joint = regions[b]->at_joint;
+      link.region_rejected =
+          std::find(fit.rejected_region_bodies.begin(), fit.rejected_region_bodies.end(),
+                    static_cast<int>(b)) != fit.rejected_region_bodies.end();
     }
     out.push_back(std::move(link));
   }

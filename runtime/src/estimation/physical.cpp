@@ -30,6 +30,7 @@
 #include "modelgen/model/identification_model.hpp"
 #include "modelgen/model/physical_consistency.hpp"
 #include "modelgen/model/pseudo_inertia.hpp"
+#include "runtime/src/estimation/guessed_regions.hpp"
 #include "runtime/src/estimation/physical_barrier.hpp"
 #include "runtime/src/estimation/physical_prior.hpp"
 
@@ -368,10 +369,11 @@ PhysicalFitResult solve(const RigidBodyTree& tree, const Eigen::MatrixXd& K,
 
 }  // namespace
 
-PhysicalFitResult fit_physical(const RigidBodyTree& tree, const Eigen::MatrixXd& K,
-                               const Eigen::VectorXd& beta_hat, const Eigen::MatrixXd& information,
-                               const std::vector<std::optional<double>>& prior,
-                               const PhysicalFitOptions& options) {
+PhysicalFitResult detail::fit_physical_within(const RigidBodyTree& tree, const Eigen::MatrixXd& K,
+                                              const Eigen::VectorXd& beta_hat,
+                                              const Eigen::MatrixXd& information,
+                                              const std::vector<std::optional<double>>& prior,
+                                              const PhysicalFitOptions& options) {
   check_sizes(tree, K, beta_hat, information, prior);
   if (options.prior_weight &&
       (!(*options.prior_weight > 0) || !std::isfinite(*options.prior_weight))) {

@@ -123,6 +123,7 @@ TEST(MdhGuessedRegionFit, GuessedRegionsKeepEveryLinkNearTheTruth) {
     }
   }
   EXPECT_GT(worst_without, 1.0);
+  EXPECT_TRUE(with.rejected_region_bodies.empty());  // the truth is inside: the data agree
   const double unconstrained = data.rel_error_norm(data.beta_hat);
   const double constrained = data.rel_error_norm(with.base);
   std::printf("relative error norm: unconstrained %.6f, consistent in the guessed regions %.6f\n",

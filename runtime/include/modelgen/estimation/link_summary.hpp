@@ -48,6 +48,7 @@ struct LinkSummary {
   std::optional<double> region_extent;
   bool region_guessed = false;   ///< the region is a guess from the segments to the next joints
   bool region_at_joint = false;  ///< guessed as a sphere about the joint (no next joint or tool)
+  bool region_rejected = false;  ///< guessed, and the data rejected it: not enforced
 };
 
 inline constexpr double kFarMassFactor = 2.0;

@@ -68,6 +68,11 @@ struct PhysicalFitResult {
   /// The tree.bodies indices of the bodies whose region holds at the optimum (its constraint
   /// pushes: the mass reaches the ellipsoid's rms edge), against the data or the prior.
   std::vector<int> region_bound_bodies;
+  /// The bodies whose guessed regions (BodyRegion::guessed) were dropped: those holding the
+  /// fit raised the weighted sum of squares by rejected_region_cost (sigma^2), beyond chance
+  /// for so many constraints, so the result is the fit without any guess.
+  std::vector<int> rejected_region_bodies;
+  double rejected_region_cost = 0;
   /// The prior term's centre and scale per standard parameter: the a-priori value (or the
   /// start) and the size its deviation is measured against; the prior term is
   /// prior_weight * ||N' ((standard - prior) / prior_scale)||^2, N an orthonormal basis of the
