@@ -69,13 +69,15 @@ CommandSpec make_fit_spec() {
            .type = ValueType::kPositive,
            .value = "W",
            .help = "weight of the pull towards the description's a-priori values in the "
-                   "directions the data do not determine (default: the largest of 1, 1e-2, "
-                   "1e-4 that moves no base parameter by over 0.1 sd; 1e-6 with --method ml)",
+                   "directions the data do not determine (default: the largest of 1, 0.1, ..., "
+                   "1e-4 that raises the rms weighted residual by at most 2 % beyond consistency "
+                   "alone; 1e-6 with --method ml)",
            .default_value = "auto",
            .needs = "--physical"},
           {.name = "--min-speed",
            .value = "V[,V2,...]",
-           .help = "leave out samples where a joint is slower than V (one speed or one per joint)",
+           .help = "weight out samples where a joint is slower than V, with a ramp of two filter "
+                   "periods before the decimation (one speed or one per joint)",
            .unit = "rad/s or m/s",
            .methods = {"ols", "wls", "pim-wls", "iv", "didim", "pm"}},
           {.name = "--controller",
