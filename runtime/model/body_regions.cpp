@@ -17,12 +17,30 @@ double longest(const std::vector<Eigen::Vector3d>& ends) {
   return length;
 }
 
-// ends[b] and body b's axis foot: every segment its guess spans.
+Eigen::Matrix3d rotation(const Frame& frame) {
+  return Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(frame.rotation.data());
+}
+
+Eigen::Vector3d axis_of(const Body& body) {
+  return Eigen::Vector3d(body.axis[0], body.axis[1], body.axis[2]).normalized();
+}
+
+// The parent's frame origin in body's frame (x_parent = R x + t).
+Eigen::Vector3d parents_origin(const Body& body) {
+  const auto& t = body.fixed.translation;
+  return -rotation(body.fixed).transpose() * Eigen::Vector3d(t[0], t[1], t[2]);
+}
+
+// ends[b], body b's axis foot and where its axis meets its parent's: every segment its guess
+// spans.
 std::vector<Eigen::Vector3d> segments_of(const RigidBodyTree& tree,
                                          const std::vector<std::vector<Eigen::Vector3d>>& ends,
                                          std::size_t b) {
   std::vector<Eigen::Vector3d> all = b < ends.size() ? ends[b] : std::vector<Eigen::Vector3d>{};
   if (const auto foot = axis_foot(tree.bodies[b])) all.push_back(*foot);
+  if (const auto meet = axes_meet(tree, b); meet && meet->norm() > kCoincident) {
+    all.push_back(*meet);
+  }
   return all;
 }
 
@@ -71,16 +89,30 @@ std::optional<Eigen::Vector3d> axis_foot(const Body& body) {
   // A prismatic body slides along its axis (where it reaches depends on q); a fixed one is
   // carried by its parent, whose segments already reach it.
   if (body.type != JointType::kRevolute) return std::nullopt;
-  const Eigen::Matrix3d R =
-      Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(body.fixed.rotation.data());
-  const Eigen::Vector3d t(body.fixed.translation[0], body.fixed.translation[1],
-                          body.fixed.translation[2]);
-  const Eigen::Vector3d axis =
-      Eigen::Vector3d(body.axis[0], body.axis[1], body.axis[2]).normalized();
-  // x_parent = R x + t: the parent's origin is -R' t here; its projection on the axis.
-  const Eigen::Vector3d foot = (-R.transpose() * t).dot(axis) * axis;
+  const Eigen::Vector3d axis = axis_of(body);
+  const Eigen::Vector3d foot = parents_origin(body).dot(axis) * axis;
   if (foot.norm() <= kCoincident) return std::nullopt;
   return foot;
+}
+
+std::optional<Eigen::Vector3d> axes_meet(const RigidBodyTree& tree, std::size_t b) {
+  const Body& body = tree.bodies[b];
+  if (body.parent < 0 || body.type != JointType::kRevolute) return std::nullopt;
+  const Body& parent = tree.bodies[static_cast<std::size_t>(body.parent)];
+  if (parent.type != JointType::kRevolute) return std::nullopt;
+  // Lines x = s u (this axis) and x = o + w v (the parent's, in this frame): the closest points
+  // solve the 2x2 normal equations; parallel axes never meet.
+  const Eigen::Vector3d u = axis_of(body), o = parents_origin(body);
+  const Eigen::Vector3d v = rotation(body.fixed).transpose() * axis_of(parent);
+  const double c = u.dot(v);
+  if (1 - c * c < 1e-9) return std::nullopt;
+  const double s = (u.dot(o) - c * v.dot(o)) / (1 - c * c);
+  const double w = s * c - v.dot(o);
+  const Eigen::Vector3d point = s * u;
+  if ((point - (o + w * v)).norm() > kMeetTolerance) return std::nullopt;
+  // Beyond the parent's origin the meeting point is no part of either body.
+  if (point.norm() > o.norm() + kMeetTolerance) return std::nullopt;
+  return point;
 }
 
 std::vector<double> segment_radii(const RigidBodyTree& tree,
@@ -90,9 +122,7 @@ std::vector<double> segment_radii(const RigidBodyTree& tree,
     const Body& body = tree.bodies[b];
     const double own = longest(segments_of(tree, ends, b));
     radii[b] = std::max(kSegmentRadiusFraction * own, kSegmentRadiusMin);
-    const auto& t = body.fixed.translation;
-    const bool at_parents_origin = std::hypot(t[0], t[1], t[2]) <= kCoincident;
-    if (body.parent >= 0 && (own <= kCoincident || at_parents_origin)) {
+    if (body.parent >= 0 && (own <= kCoincident || axes_meet(tree, b))) {
       radii[b] = std::max(radii[b], radii[static_cast<std::size_t>(body.parent)]);
     }
   }

@@ -39,18 +39,24 @@ std::vector<std::vector<Eigen::Vector3d>> child_origins(const RigidBodyTree& tre
 /// (0, 0, -r); for a URDF joint it is the part of <origin>'s offset along the joint's axis.
 std::optional<Eigen::Vector3d> axis_foot(const Body& body);
 
+/// Where body b's joint axis meets its parent's (both revolute), in b's frame: the point of a
+/// spherical wrist, or of a shoulder whose axes intersect; nullopt for parallel or skew axes
+/// (off by more than kMeetTolerance), or a meeting point beyond the parent's origin.
+std::optional<Eigen::Vector3d> axes_meet(const RigidBodyTree& tree, std::size_t b);
+
 /// Per body, the capsule radius of its guess: kSegmentRadiusFraction times its longest segment
-/// (to `ends[b]` and its axis_foot), at least kSegmentRadiusMin; and at least its parent's
-/// radius when it has no segment of its own or its frame origin is its parent's (the joints of
-/// a spherical wrist meet in one point: the wrist links share the ball the forearm's capsule
-/// ends in, rather than each a minimum sphere).
+/// (to `ends[b]`, its axis_foot and axes_meet), at least kSegmentRadiusMin; and at least its
+/// parent's radius when it has no segment of its own or its axis meets its parent's (the joints
+/// of a spherical wrist meet in one point: the wrist links share the ball the forearm's capsule
+/// ends in there, rather than each a minimum sphere; with URDF origins placed at the flange, as
+/// in KUKA's, the same ball about the point the axes meet).
 std::vector<double> segment_radii(const RigidBodyTree& tree,
                                   const std::vector<std::vector<Eigen::Vector3d>>& ends);
 
 /// Gives every body b of `model` without a region, without a-priori inertial values
 /// (model.known_values: a body with them keeps them as its a-priori model, a guess would only
 /// contradict it) and other than the payload body (whatever is attached) the guessed region
-/// around the segments to ends[b] and its axis_foot, of radius segment_radii.
+/// around the segments to ends[b], its axis_foot and axes_meet, of radius segment_radii.
 /// model.body_regions must have a slot per body.
 void guess_missing_regions(RobotModel& model,
                            const std::vector<std::vector<Eigen::Vector3d>>& ends);
@@ -58,5 +64,6 @@ void guess_missing_regions(RobotModel& model,
 inline constexpr double kSegmentRadiusFraction = 0.25;
 inline constexpr double kSegmentRadiusMin = 0.1;  // m: the smallest link of an industrial arm
 inline constexpr double kCoincident = 1e-9;       // m: frame origins this close are one point
+inline constexpr double kMeetTolerance = 1e-6;    // m: axes this close meet (rounded URDF numbers)
 
 }  // namespace modelgen

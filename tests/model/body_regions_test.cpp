@@ -99,8 +99,9 @@ TEST(SegmentRegion, TheUrdfLoaderGuessesForMeshOnlyLinks) {
   EXPECT_TRUE(robot.body_regions[1]->guessed);
   // a: 0.6 m up, radius 0.15: z in [-0.15, 0.75].
   expect_region(*robot.body_regions[0], {0, 0, 0.3}, {0.15, 0.15, 0.45});
-  // b: to the flange, 0.2 m, radius 0.1: x in [-0.1, 0.3].
-  expect_region(*robot.body_regions[1], {0.1, 0, 0}, {0.2, 0.1, 0.1});
+  // b: to the flange, 0.2 m; j2's axis meets j1's at b's origin (a shoulder), so b's radius is
+  // at least a's, 0.15: x in [-0.15, 0.35].
+  expect_region(*robot.body_regions[1], {0.1, 0, 0}, {0.25, 0.15, 0.15});
 }
 
 // As kMeshArm, but j2 is offset 0.3 m along y and turned a quarter about x, so its axis z_b is
@@ -127,12 +128,13 @@ TEST(SegmentRegion, AUrdfLinkReachesBackAlongItsAxisToItsParentsJoint) {
   const RobotModel robot = load_robot(path);
   ASSERT_EQ(robot.body_regions.size(), 2u);
   ASSERT_TRUE(robot.body_regions[1].has_value());
-  // b: to the flange (0.2, 0, 0) and back to (0, 0, 0.3); radius 0.1 (0.3 / 4 < 0.1):
-  // x in [-0.1, 0.3], y in [-0.1, 0.1], z in [-0.1, 0.4].
-  expect_region(*robot.body_regions[1], {0.1, 0, 0.15}, {0.2, 0.1, 0.25});
   // a: to j2's origin (0, 0.3, 0.6), radius sqrt(0.45) / 4.
   const double r = std::sqrt(0.45) / 4;
   expect_region(*robot.body_regions[0], {0, 0.15, 0.3}, {r, 0.15 + r, 0.3 + r});
+  // b: to the flange (0.2, 0, 0) and back to (0, 0, 0.3), where its axis meets j1's (a's z at
+  // height 0.6), so at least a's radius r: x in [-r, 0.2 + r], y in [-r, r], z in
+  // [-r, 0.3 + r].
+  expect_region(*robot.body_regions[1], {0.1, 0, 0.15}, {0.1 + r, r, 0.15 + r});
 }
 
 }  // namespace

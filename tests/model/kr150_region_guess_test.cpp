@@ -5,7 +5,9 @@
 // Frame j from a(j): Rot_x(alpha) Trans_x(d) Rot_z(theta) Trans_z(r); a revolute link also
 // reaches back along its own axis by r_j (to (0, 0, -r_j)); radius a quarter of the longest
 // segment, at least 10 cm, a wrist link whose frame origin is its parent's at least its parent's;
-// the ellipsoid through the box's corners has semi-axes sqrt(3) times the half sides.
+// the ellipsoid through the box's corners has semi-axes sqrt(3) times the half sides. The URDF
+// of the same arm (robots/urdf/kuka_kr150_2.urdf), whose link frames sit at the joints' URDF
+// origins (A6's at the flange), gives its wrist links the same forearm ball.
 
 #include <cmath>
 #include <optional>
@@ -75,6 +77,19 @@ TEST(Kr150GuessedRegion, EachLinkSpansItsRowsAndTheWristSharesTheForearmsBall) {
     }
     EXPECT_LT(level, 1.0) << "A" << j << " centre of mass " << com.transpose();
   }
+}
+
+TEST(Kr150GuessedRegion, TheUrdfWristSharesTheForearmsBallToo) {
+  const RobotModel robot = load_robot(test::source_path("robots/urdf/kuka_kr150_2.urdf"));
+  ASSERT_EQ(robot.body_regions.size(), 6u);
+  // link_4 (frame at A4, axis x): joint_a5 1.1 m along x, radius 0.275.
+  expect_region(robot.body_regions[3], {0.55, 0, 0}, {0.825, 0.275, 0.275}, "link_4");
+  // link_5 (at the wrist centre, where A4's axis meets its own): joint_a6 0.23 m along x,
+  // A4's radius 0.275: x [-0.275, 0.505].
+  expect_region(robot.body_regions[4], {0.115, 0, 0}, {0.39, 0.275, 0.275}, "link_5");
+  // link_6 (at the flange, axis x): back along x to the wrist centre, where A5's axis meets
+  // its own: x [-0.505, 0.275].
+  expect_region(robot.body_regions[5], {-0.115, 0, 0}, {0.39, 0.275, 0.275}, "link_6");
 }
 
 }  // namespace
