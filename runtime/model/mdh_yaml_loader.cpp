@@ -94,7 +94,8 @@ class MdhYamlLoader {
     if (root["payload"]) read_payload(root["payload"]);
     if (root["known"]) read_known_values(in_, root["known"], model_);
     // A link without `region:` and without a-priori inertials: guessed around the segments its
-    // DH rows give to the next joints and tool frames (body_regions.hpp), as for a URDF body.
+    // DH rows give to the next joints and tool frames and back along its axis by its r
+    // (body_regions.hpp), as for a URDF body.
     guess_missing_regions(model_, child_origins(model_.tree));
     validate(model_.tree);
     return std::move(model_);

@@ -2,7 +2,8 @@
 // child joints (and links fixed to it) thickened by a quarter of the longest, at least 10 cm,
 // against the closed form of the box around that capsule and against points of the capsule's
 // surface, which must all lie inside; and through the URDF loader, a mesh-only middle link
-// (its segment to the next joint) and a mesh-only last link with a fixed flange.
+// (its segment to the next joint), a mesh-only last link with a fixed flange, and a joint whose
+// <origin> is offset along its (rotated) axis, whose link reaches back along the axis.
 
 #include <cmath>
 #include <optional>
@@ -98,8 +99,42 @@ TEST(SegmentRegion, TheUrdfLoaderGuessesForMeshOnlyLinks) {
   EXPECT_TRUE(robot.body_regions[1]->guessed);
   // a: 0.6 m up, radius 0.15: z in [-0.15, 0.75].
   expect_region(*robot.body_regions[0], {0, 0, 0.3}, {0.15, 0.15, 0.45});
-  // b: to the flange, 0.2 m, radius 0.1: x in [-0.1, 0.3].
-  expect_region(*robot.body_regions[1], {0.1, 0, 0}, {0.2, 0.1, 0.1});
+  // b: to the flange, 0.2 m; j2's axis meets j1's at b's origin (a shoulder), so b's radius is
+  // at least a's, 0.15: x in [-0.15, 0.35].
+  expect_region(*robot.body_regions[1], {0.1, 0, 0}, {0.25, 0.15, 0.15});
+}
+
+// As kMeshArm, but j2 is offset 0.3 m along y and turned a quarter about x, so its axis z_b is
+// the parent's -y: the parent's origin is 0.3 m along z_b from b's, b's shaft reaches there.
+constexpr const char* kOffsetArm = R"(<?xml version="1.0"?>
+<robot name="offset_arm">
+  <link name="base"/>
+  <link name="a"><visual><geometry><mesh filename="package://x/a.stl"/></geometry></visual></link>
+  <link name="b"><visual><geometry><mesh filename="package://x/b.stl"/></geometry></visual></link>
+  <link name="flange"/>
+  <joint name="j1" type="revolute"><parent link="base"/><child link="a"/>
+    <axis xyz="0 0 1"/><limit lower="-3" upper="3" effort="10" velocity="2"/></joint>
+  <joint name="j2" type="revolute"><parent link="a"/><child link="b"/>
+    <origin xyz="0 0.3 0.6" rpy="1.5707963267948966 0 0"/><axis xyz="0 0 1"/>
+    <limit lower="-3" upper="3" effort="10" velocity="2"/></joint>
+  <joint name="tool" type="fixed"><parent link="b"/><child link="flange"/>
+    <origin xyz="0.2 0 0"/></joint>
+</robot>
+)";
+
+TEST(SegmentRegion, AUrdfLinkReachesBackAlongItsAxisToItsParentsJoint) {
+  const std::string path = (test::test_folder("segment_region") / "offset.urdf").string();
+  test::write_text(path, kOffsetArm);
+  const RobotModel robot = load_robot(path);
+  ASSERT_EQ(robot.body_regions.size(), 2u);
+  ASSERT_TRUE(robot.body_regions[1].has_value());
+  // a: to j2's origin (0, 0.3, 0.6), radius sqrt(0.45) / 4.
+  const double r = std::sqrt(0.45) / 4;
+  expect_region(*robot.body_regions[0], {0, 0.15, 0.3}, {r, 0.15 + r, 0.3 + r});
+  // b: to the flange (0.2, 0, 0) and back to (0, 0, 0.3), where its axis meets j1's (a's z at
+  // height 0.6), so at least a's radius r: x in [-r, 0.2 + r], y in [-r, r], z in
+  // [-r, 0.3 + r].
+  expect_region(*robot.body_regions[1], {0.1, 0, 0.15}, {0.1 + r, r, 0.15 + r});
 }
 
 }  // namespace

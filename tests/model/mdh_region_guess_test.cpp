@@ -1,11 +1,14 @@
 // Issue 30, guessed regions of MDH YAML links: a link without `region:` and without a-priori
 // inertial values gets the region around the segments from its joint to the next joints and
-// tool frames its DH rows give. The expected centres and semi-axes are worked out by hand
-// below from the rows (frame j from a(j): Rot_x(alpha) Trans_x(d) Rot_z(theta) Trans_z(r)), the
-// segment thickened by a quarter of the longest, at least 10 cm, and the ellipsoid through the
-// corners of that box (sqrt(3) times its half sides). A link given `region:` keeps it; a link
-// with `known:` inertials or the payload link gets none; a last link without a tool frame gets
-// the sphere about its joint, marked as such.
+// tool frames its DH rows give, and back along its own axis by its row's r to the foot of the
+// previous link's common normal (the shaft that turns with it). The expected centres and
+// semi-axes are worked out by hand below from the rows (frame j from a(j): Rot_x(alpha)
+// Trans_x(d) Rot_z(theta) Trans_z(r)), the segments thickened by a quarter of the longest, at
+// least 10 cm (a link without a segment of its own, or whose frame origin is its parent's, at
+// least its parent's radius), and the ellipsoid through the corners of that box (sqrt(3) times
+// its half sides). A link given `region:` keeps it; a link with `known:` inertials or the
+// payload link gets none; a last link without a tool frame gets the sphere about its joint,
+// marked as such.
 
 #include <cmath>
 #include <optional>
@@ -49,18 +52,21 @@ joints:
   - {name: tool, type: fixed, alpha: pi/2, d: 0.4, theta: 0, r: 0.2}
 )");
   ASSERT_EQ(robot.body_regions.size(), 4u);
-  // Link 1 to J2 at (0.1, 0, 0): radius max(0.025, 0.1) = 0.1; box x [-0.1, 0.2], y, z +-0.1.
-  expect_region(robot.body_regions[0], {0.05, 0, 0}, {0.15, 0.1, 0.1}, "link 1");
-  // Link 2 to J3 at (0.6, 0, 0.05): radius sqrt(0.3625) / 4.
+  // Link 1 to J2 at (0.1, 0, 0) and back along z1 by r1 = 0.3 to (0, 0, -0.3): radius
+  // max(0.075, 0.1) = 0.1; box x [-0.1, 0.2], y +-0.1, z [-0.4, 0.1].
+  expect_region(robot.body_regions[0], {0.05, 0, -0.15}, {0.15, 0.1, 0.25}, "link 1");
+  // Link 2 (r2 = 0) to J3 at (0.6, 0, 0.05): radius sqrt(0.3625) / 4.
   const double r2 = std::sqrt(0.6 * 0.6 + 0.05 * 0.05) / 4;
   expect_region(robot.body_regions[1], {0.3, 0, 0.025}, {0.3 + r2, r2, 0.025 + r2}, "link 2");
   // Link 3 to the tool frame: Trans_x(0.4), then Rot_x(pi/2) turns the tool's z (r = 0.2) to
-  // -y: (0.4, -0.2, 0); radius sqrt(0.2) / 4.
+  // -y: (0.4, -0.2, 0); and back to (0, 0, -0.05) (r3); radius sqrt(0.2) / 4.
   const double r3 = std::sqrt(0.4 * 0.4 + 0.2 * 0.2) / 4;
-  expect_region(robot.body_regions[2], {0.2, -0.1, 0}, {0.2 + r3, 0.1 + r3, r3}, "link 3");
+  expect_region(robot.body_regions[2], {0.2, -0.1, -0.025}, {0.2 + r3, 0.1 + r3, 0.025 + r3},
+                "link 3");
   EXPECT_FALSE(robot.body_regions[2]->at_joint);
-  // The tool frame's own body: nothing beyond it, the 10 cm sphere about its origin.
-  expect_region(robot.body_regions[3], {0, 0, 0}, {0.1, 0.1, 0.1}, "tool");
+  // The tool frame's own body: nothing beyond it (a fixed frame has no shaft of its own), so
+  // the sphere of its parent's radius about its origin.
+  expect_region(robot.body_regions[3], {0, 0, 0}, {r3, r3, r3}, "tool");
   EXPECT_TRUE(robot.body_regions[3]->at_joint);
 }
 
@@ -74,12 +80,13 @@ joints:
 )");
   // Longest 0.5: radius 0.125; box x [-0.125, 0.325], y +-0.125, z [-0.125, 0.625].
   expect_region(robot.body_regions[0], {0.1, 0, 0.25}, {0.225, 0.125, 0.375}, "link 1");
-  // Links 2 and 3 end the chains without a tool: the sphere about their joints.
-  for (std::size_t b : {1u, 2u}) {
-    expect_region(robot.body_regions[b], {0, 0, 0}, {0.1, 0.1, 0.1},
-                  "link " + std::to_string(b + 1));
-    EXPECT_TRUE(robot.body_regions[b]->at_joint);
-  }
+  // Link 2 reaches back along z2 by r2 = 0.5 to link 1's origin: box x, y +-0.125,
+  // z [-0.625, 0.125].
+  expect_region(robot.body_regions[1], {0, 0, -0.25}, {0.125, 0.125, 0.375}, "link 2");
+  EXPECT_FALSE(robot.body_regions[1]->at_joint);
+  // Link 3 (r3 = 0) ends its chain without a segment: the sphere of link 1's radius about J3.
+  expect_region(robot.body_regions[2], {0, 0, 0}, {0.125, 0.125, 0.125}, "link 3");
+  EXPECT_TRUE(robot.body_regions[2]->at_joint);
 }
 
 TEST(MdhGuessedRegion, GivenRegionsAPrioriInertialsAndThePayloadGetNoGuess) {
@@ -104,13 +111,17 @@ known:
   EXPECT_FALSE(robot.body_regions[3].has_value());  // the payload: whatever is attached
 }
 
-TEST(MdhGuessedRegion, TheShippedTx40WristIsTheMinimumSphere) {
-  // Joints 4-6 meet at the wrist centre (d = r = 0 from link 4 on): each wrist link is the
-  // 10 cm sphere about its joint; link 3 reaches J4 at (0, -0.225, 0) (alpha pi/2, r 0.225),
-  // so its radius is the minimum, 0.1 > 0.225 / 4.
+TEST(MdhGuessedRegion, TheShippedTx40WristReachesBackToTheElbow) {
+  // Link 3 (r3 = 0.035) reaches J4 at (0, -0.225, 0) (alpha pi/2, r4 0.225) and back to
+  // (0, 0, -0.035): radius the minimum 0.1 > 0.225 / 4; box x +-0.1, y [-0.325, 0.1],
+  // z [-0.135, 0.1].
   const RobotModel robot = load_robot(test::source_path("robots/tx40.yaml"));
   ASSERT_EQ(robot.body_regions.size(), 7u);
-  expect_region(robot.body_regions[2], {0, -0.1125, 0}, {0.1, 0.1125 + 0.1, 0.1}, "link 3");
+  expect_region(robot.body_regions[2], {0, -0.1125, -0.0175}, {0.1, 0.2125, 0.1175}, "link 3");
+  // Link 4's frame is at the wrist centre, r4 = 0.225 along z4 from link 3's x axis: its
+  // forearm reaches back to (0, 0, -0.225); J5 sits at its origin. Box z [-0.325, 0.1].
+  expect_region(robot.body_regions[3], {0, 0, -0.1125}, {0.1, 0.1, 0.2125}, "link 4");
+  // Joints 5 and 6 at link 4's origin: link 4's radius (0.1), a sphere about the wrist centre.
   for (std::size_t b : {4u, 5u}) {
     expect_region(robot.body_regions[b], {0, 0, 0}, {0.1, 0.1, 0.1},
                   "link " + std::to_string(b + 1));

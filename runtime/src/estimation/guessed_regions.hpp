@@ -1,8 +1,9 @@
 // Regions guessed from the joints' positions (no shapes, no `region:` given) are assumptions,
-// not facts about the robot: a wrist link whose next joint sits at its own origin gets a 10 cm
-// sphere however far its mass reaches along its axis. The fit therefore tests them against the
-// data: enforced, they must not raise the weighted sum of squares beyond what chance allows
-// for the constraints they add, else the data reject them and the fit runs without them.
+// not facts about the robot: a capsule a quarter as thick as the segments between the joints
+// misses a counterweight behind the elbow or a link offset from its axes. The fit therefore
+// tests them against the data: enforced, they must not raise the weighted sum of squares beyond
+// what chance allows for the constraints they add, else the data reject them and the fit runs
+// without them.
 
 #pragma once
 

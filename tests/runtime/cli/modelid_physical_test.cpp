@@ -187,26 +187,63 @@ TEST(ModelidPhysical, TheEstimateDrivesPredictAndSimulate) {
 }
 
 // The KR 150 description gives no region and no a-priori link values, so its regions are
-// guessed from the DH rows: A4's segment to A5 has zero length (a 10 cm sphere), while the true
-// A4 (true.json) reaches half a metre along its axis. The data reject the guesses; the fit
-// says so and holds no link by them.
-TEST(ModelidPhysical, GuessedRegionsTheDataRejectAreDropped) {
+// guessed from the DH rows; they hold its example data's truth (kr150_region_guess_test), and
+// the data do not reject them: the fit keeps them, and every guessed link ends within its
+// region (its extent, the rms over its mass in units of the ellipsoid, at most 1).
+TEST(ModelidPhysical, GuessedRegionsThatHoldTheTruthAreKept) {
   const fs::path dir = test::test_folder("physical_guess");
   const CliRun fit =
       modelid("fit --robot kr150 --data " + quoted_source("robots/data/kr150/excitation.csv") +
               " --method wls --physical -o " + quoted(dir / "est.json"));
   ASSERT_EQ(fit.exit_code, 0) << fit.err;
+  EXPECT_EQ(fit.out.find("not enforced"), std::string::npos) << fit.out;
   const nlohmann::json est = nlohmann::json::parse(test::read_text(dir / "est.json"));
   const RobotModel robot = load_robot(test::source_path("robots/kr150.yaml"));
-  const nlohmann::json truth =
+  const nlohmann::json& links = est["links"];
+  ASSERT_EQ(links.size(), robot.body_regions.size());
+  int held = 0;
+  for (std::size_t b = 0; b < links.size(); ++b) {
+    if (!robot.body_regions[b]) continue;
+    double p[10];
+    const char* stems[10] = {"XX", "XY", "XZ", "YY", "YZ", "ZZ", "MX", "MY", "MZ", "M"};
+    for (int s = 0; s < 10; ++s) p[s] = value_of(est["standard"], stems[s] + std::to_string(b + 1));
+    EXPECT_LE(test::extent(p, *robot.body_regions[b]), 1 + 1e-6) << links[b]["body"];
+    held += links[b]["decided_by"]["mass"] == "bound";
+  }
+  EXPECT_GT(held, 0);  // the guesses do hold links the data leave free
+}
+
+// The rejection path: the same arm with an A3 that carries a counterweight a metre behind
+// the elbow (its centre of mass 1 m along -x3, outside the guess, which reaches 0.3 m), data
+// simulated from it: the guesses would raise the weighted sum of squares far beyond chance, so
+// the fit says so and holds no link by them.
+TEST(ModelidPhysical, GuessedRegionsTheDataRejectAreDropped) {
+  const fs::path dir = test::test_folder("physical_guess_rejected");
+  nlohmann::json truth =
       nlohmann::json::parse(test::read_text(test::source_path("robots/data/kr150/true.json")));
-  double a4[10];
-  const char* stems[10] = {"XX", "XY", "XZ", "YY", "YZ", "ZZ", "MX", "MY", "MZ", "M"};
-  for (int s = 0; s < 10; ++s) a4[s] = value_of(truth["standard"], std::string(stems[s]) + "4");
-  ASSERT_TRUE(robot.body_regions.size() > 3 && robot.body_regions[3] &&
-              robot.body_regions[3]->guessed);
-  ASSERT_GT(test::extent(a4, *robot.body_regions[3]), 1.5);  // the truth breaks A4's guess
+  nlohmann::json& standard = truth["standard"];
+  // 150 kg at (-1, 0, 0) with central inertia diag(10, 20, 20), about the frame origin.
+  for (const char* zero : {"XY3", "XZ3", "YZ3", "MY3", "MZ3"}) standard[zero] = 0.0;
+  standard["XX3"] = 10.0;
+  standard["YY3"] = 20.0 + 150.0;
+  standard["ZZ3"] = 20.0 + 150.0;
+  standard["MX3"] = -150.0;
+  standard["M3"] = 150.0;
+  test::write_text(dir / "true.json", truth.dump(2));
+  const RobotModel robot = load_robot(test::source_path("robots/kr150.yaml"));
+  ASSERT_TRUE(robot.body_regions[2] && robot.body_regions[2]->guessed);
+  const BodyRegion& a3 = *robot.body_regions[2];
+  EXPECT_GT(std::pow((-1.0 - a3.centre[0]) / a3.semi_axes[0], 2), 1.0);  // outside the guess
+  ASSERT_EQ(modelid("simulate --robot kr150 --params " + quoted(dir / "true.json") +
+                    " --trajectory " + quoted_source("robots/data/kr150/excitation.yaml") +
+                    " --noise 2 --seed 1 --sample-time 0.01 -o " + quoted(dir / "run.csv"))
+                .exit_code,
+            0);
+  const CliRun fit = modelid("fit --robot kr150 --data " + quoted(dir / "run.csv") +
+                             " --method wls --physical -o " + quoted(dir / "est.json"));
+  ASSERT_EQ(fit.exit_code, 0) << fit.err;
   EXPECT_NE(fit.out.find("not enforced: the data reject them"), std::string::npos) << fit.out;
+  const nlohmann::json est = nlohmann::json::parse(test::read_text(dir / "est.json"));
   for (const nlohmann::json& link : est["links"]) {
     EXPECT_NE(link["decided_by"]["mass"], "bound") << link.dump();  // no guess holds a link
   }

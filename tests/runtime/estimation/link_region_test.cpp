@@ -73,12 +73,13 @@ TEST(LinkRegion, TheLoaderBoundsEachBodyByItsShapes) {
   ASSERT_EQ(robot.body_regions.size(), 3u);
   expect_region(robot.body_regions[0], {0, 0, 0.2}, {0.1, 0.05, 0.2});
   expect_region(robot.body_regions[1], {0.225, 0, 0}, {0.225, 0.05, 0.05});
-  // A mesh has no size without its file: the last link, with nothing below it, gets the
-  // guessed sphere of the minimum radius about its joint.
+  // A mesh has no size without its file: the last link, with nothing below it, gets the guess
+  // along its axis x back to b's origin 0.4 m behind (where b's axis meets its own), radius
+  // the minimum (b's, from its segments, is the minimum too): x in [-0.5, 0.1].
   ASSERT_TRUE(robot.body_regions[2].has_value());
   EXPECT_TRUE(robot.body_regions[2]->guessed);
   EXPECT_FALSE(robot.body_regions[0]->guessed);
-  expect_region(robot.body_regions[2], {0, 0, 0}, {0.1, 0.1, 0.1});
+  expect_region(robot.body_regions[2], {-0.2, 0, 0}, {0.3, 0.1, 0.1});
 }
 
 // A mesh-only link with an <inertial> keeps that as its a-priori model: no region is guessed
