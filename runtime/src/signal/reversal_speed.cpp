@@ -67,10 +67,14 @@ ReversalSpeed reversal_min_speed(const Trajectory& raw, double cutoff_hz, int or
         kSignSigmas * velocity_noise_gain(reference_hz, order, rate) * q_noise_std;
     for (Eigen::Index j = 0; j < n; ++j) {
       for (Eigen::Index s = edge; s < m - edge; ++s) {
+        // The filtered velocity's error, v - r within r's noise, against its magnitude: where
+        // it exceeds half of it the sign is not to be trusted (a sign r contradicts, or a joint
+        // at rest by r that the filter has moving).
         const double v = dq(s, j), r = reference(s, j);
-        if (std::abs(r) <= reference_known[j]) continue;
         ++out.compared;
-        if (v * r < 0) out.lag[j] = std::max(out.lag[j], std::abs(v));
+        if (std::abs(v - r) - reference_known[j] > 0.5 * std::abs(v)) {
+          out.lag[j] = std::max(out.lag[j], std::abs(v));
+        }
       }
     }
   }
