@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <vector>
 
 #include "modelgen/signal/differentiation.hpp"
 #include "modelgen/signal/lowpass.hpp"
@@ -29,6 +31,28 @@ Eigen::MatrixXd prepared_velocity(const Trajectory& raw, double cutoff_hz, int o
   x.tau = Eigen::MatrixXd::Zero(raw.q.rows(), raw.q.cols());
   filter_positions(x, cutoff_hz, order);
   return x.dq;
+}
+
+// Per joint, the median of |dq_s+1 - dq_s| over the sign changes of dq (the velocity's step
+// per sample at a reversal, |ddq| dt), away from the edges; infinite for a joint that never
+// reverses (no reversal for noise to blur).
+Eigen::VectorXd reversal_steps(const Eigen::MatrixXd& dq, Eigen::Index edge) {
+  Eigen::VectorXd out(dq.cols());
+  std::vector<double> steps;
+  for (Eigen::Index j = 0; j < dq.cols(); ++j) {
+    steps.clear();
+    for (Eigen::Index s = edge; s + 1 < dq.rows() - edge; ++s) {
+      if (dq(s, j) * dq(s + 1, j) < 0) steps.push_back(std::abs(dq(s + 1, j) - dq(s, j)));
+    }
+    if (steps.empty()) {
+      out[j] = std::numeric_limits<double>::infinity();
+      continue;
+    }
+    auto middle = steps.begin() + static_cast<std::ptrdiff_t>(steps.size() / 2);
+    std::nth_element(steps.begin(), middle, steps.end());
+    out[j] = *middle;
+  }
+  return out;
 }
 
 }  // namespace
@@ -60,8 +84,9 @@ ReversalSpeed reversal_min_speed(const Trajectory& raw, double cutoff_hz, int or
   out.lag = Eigen::VectorXd::Zero(n);
   // The reference needs a band clearly wider than the filter's, below Nyquist.
   const double reference_hz = std::min(kReferenceBand * cutoff_hz, 0.4 * rate);
+  const Eigen::MatrixXd dq = prepared_velocity(raw, cutoff_hz, order);
+  out.step = reversal_steps(dq, edge);
   if (reference_hz > 1.5 * cutoff_hz) {
-    const Eigen::MatrixXd dq = prepared_velocity(raw, cutoff_hz, order);
     const Eigen::MatrixXd reference = prepared_velocity(raw, reference_hz, order);
     const Eigen::VectorXd reference_known =
         kSignSigmas * velocity_noise_gain(reference_hz, order, rate) * q_noise_std;
@@ -78,7 +103,12 @@ ReversalSpeed reversal_min_speed(const Trajectory& raw, double cutoff_hz, int or
       }
     }
   }
-  out.speed = out.noise.cwiseMax(out.lag);
+  // Noise that flips the sign for less than a sample per reversal leaves isolated samples,
+  // whose ramps would weight out two cut-off periods each for nothing: then the lag alone.
+  out.speed = out.lag;
+  for (Eigen::Index j = 0; j < n; ++j) {
+    if (out.noise[j] > out.step[j]) out.speed[j] = std::max(out.speed[j], out.noise[j]);
+  }
   return out;
 }
 

@@ -103,7 +103,7 @@ TEST_F(ModelidComauScenario, WlsIvAndDidimWithinThreeSdAndAtTheNoiseFloor) {
         method == "wls" ? "" : " --controller " + quoted_source(kData + "controller.yaml");
     const CliRun fit =
         modelid("fit --robot comau_smart_six --data " + quoted(*folder_ / "id.csv") + " --method " +
-                method + controller + " --min-speed 0.1 --torque-hold zoh -o " + quoted(estimate));
+                method + controller + " --torque-hold zoh -o " + quoted(estimate));
     ASSERT_EQ(fit.exit_code, 0) << fit.err;
     const nlohmann::json json = nlohmann::json::parse(read_text(estimate));
     int checked = 0;

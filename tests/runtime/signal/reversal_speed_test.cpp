@@ -112,6 +112,7 @@ TEST(ReversalSpeed, NoisyEncoderSignUnreliableBelowTheChosenSpeedOnly) {
   ASSERT_EQ(chosen.speed.size(), 1);
   EXPECT_NEAR(chosen.noise[0], 3 * sigma * closed_form_gain(kCutoff, kOrder, kRate),
               1e-3 * chosen.noise[0]);
+  EXPECT_GT(chosen.noise[0], chosen.step[0]);  // the noise blurs each reversal over samples
   EXPECT_EQ(chosen.speed[0], std::max(chosen.noise[0], chosen.lag[0]));
   const SignCount c = count_signs(raw, true_dq, chosen.speed[0]);
   std::printf("noise %g lag %g: above %d (%d wrong), below %d (%d wrong), resting %d (%d above)\n",
@@ -133,8 +134,12 @@ TEST(ReversalSpeed, CleanReversalsAndAQuietEncoderLeaveNothingBelow) {
   const ReversalSpeed chosen =
       reversal_min_speed(raw, kCutoff, kOrder, Eigen::VectorXd::Constant(1, sigma), 500);
   EXPECT_EQ(chosen.lag[0], 0.0);
-  const double step = 2 * kPi * 0.5 * 2 * kPi * 0.5 / kRate;  // max |ddq| dt
-  EXPECT_LT(chosen.speed[0], 0.1 * step);
+  // The noise flips no sample at a reversal (3 sigma_v far below |ddq| dt there): nothing is
+  // weighted, rather than two cut-off periods around a sample that happens to land near 0.
+  const double step = 2 * kPi * 0.5 * 2 * kPi * 0.5 / kRate;  // |ddq| dt at the turning points
+  EXPECT_NEAR(chosen.step[0], step, 0.01 * step);
+  EXPECT_LT(chosen.noise[0], 0.01 * step);
+  EXPECT_EQ(chosen.speed[0], 0.0);
   const SignCount c = count_signs(raw, true_dq, chosen.speed[0]);
   std::printf("noise %g lag %g: above %d (%d wrong), below %d (%d wrong), resting %d (%d above)\n",
               chosen.noise[0], chosen.lag[0], c.above, c.above_wrong, c.below, c.below_wrong,

@@ -10,8 +10,12 @@ namespace modelgen {
 
 /// Per joint, the speeds that make up reversal_min_speed's choice (rad/s or m/s).
 struct ReversalSpeed {
-  /// max(noise, lag): below it the sign of the prepared velocity is unreliable.
+  /// Below it the sign of the prepared velocity is unreliable: max(noise, lag) where the noise
+  /// flips it over more than a sample per reversal (noise > step), else lag.
   Eigen::VectorXd speed;
+  /// The median step |dq_s+1 - dq_s| of the prepared velocity across its sign changes (|ddq|
+  /// dt at a reversal); infinite for a joint that does not reverse.
+  Eigen::VectorXd step;
   /// 3 sigma_v: sigma_v = sigma_q sqrt(sum_k g_k^2), g the impulse response of the position
   /// filter followed by the central difference (per second), sigma_q position_noise_std.
   Eigen::VectorXd noise;
