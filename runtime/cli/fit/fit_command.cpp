@@ -187,8 +187,9 @@ std::string chosen_speed_line(const std::vector<double>& speed) {
     std::snprintf(value, sizeof value, " %.3g", v);
     line += value;
   }
-  return line + " rad/s (or m/s; the speed below which the filtered velocity's sign is "
-                "unreliable); --min-speed 0 turns it off\n";
+  return line +
+         " rad/s (or m/s; the speed below which the filtered velocity's sign is "
+         "unreliable); --min-speed 0 turns it off\n";
 }
 
 }  // namespace
