@@ -6,6 +6,7 @@
 // steps: the request, the data, the estimate, the report, the outputs.
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <iostream>
 #include <optional>
@@ -177,7 +178,27 @@ std::vector<double> data_min_speed(const Experiments& experiments, int dof) {
       any = any || v[j] > 0;
     }
   }
-  return any ? speed : std::vector<double>();
+  if (!any) return {};
+  // A speed near the joint's own rms speed would weight out most of the record (the filter's
+  // velocity noise-dominated): no weighting then, said out loud, rather than a fit on scraps.
+  for (int j = 0; j < dof; ++j) {
+    double squares = 0;
+    Eigen::Index samples = 0;
+    for (const Trajectory& x : experiments.data) {
+      if (x.dq.cols() != dof) continue;
+      squares += x.dq.col(j).squaredNorm();
+      samples += x.dq.rows();
+    }
+    const double rms = samples > 0 ? std::sqrt(squares / static_cast<double>(samples)) : 0.0;
+    if (speed[static_cast<std::size_t>(j)] > 0.5 * rms) {
+      std::cerr << "modelid fit: warning: joint " << j + 1 << "'s filtered velocity has an "
+                << "unreliable sign below " << speed[static_cast<std::size_t>(j)]
+                << " rad/s, more than half its rms speed " << rms
+                << ": no reversal weighting (lower --cutoff, or give --min-speed)\n";
+      return {};
+    }
+  }
+  return speed;
 }
 
 std::string chosen_speed_line(const std::vector<double>& speed) {
