@@ -30,6 +30,7 @@ Experiments read_experiments(const std::vector<std::string>& paths,
     out.data.push_back(std::move(prepared.data));
     out.decimation.push_back(prepared.decimation);
     out.reversal_guard.push_back(prepared.reversal_guard);
+    out.reversal_speed.push_back(std::move(prepared.reversal_speed));
     out.bandwidth_hz.push_back(prepared.bandwidth_hz);
     out.tau_noise_variance.push_back(std::move(prepared.tau_noise_variance));
     out.noise.push_back(std::move(prepared.noise));

@@ -40,6 +40,7 @@ struct Experiments {
   std::vector<Trajectory> data;  ///< joint side, with dq and ddq
   std::vector<int> decimation;   ///< parallel decimation factor per experiment
   std::vector<Eigen::Index> reversal_guard;  ///< PreparedExperiment::reversal_guard
+  std::vector<Eigen::VectorXd> reversal_speed;  ///< PreparedExperiment::reversal_speed
   /// Per experiment: the excitation bandwidth its position filter was planned for (Hz), 0
   /// when it had none (dq and ddq given, --raw, --periodic, --cutoff with --decimate).
   std::vector<double> bandwidth_hz;

@@ -5,6 +5,9 @@
 // elimination with ratio r_sigma), torque plots and the EST.json file. run_fit reads as its
 // steps: the request, the data, the estimate, the report, the outputs.
 
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
 #include <iostream>
 #include <optional>
 #include <sstream>
@@ -152,6 +155,64 @@ void check_residual(const FitContext& context, const Identification& id,
                               wls ? " (of the IDIM-WLS estimate)" : "");
 }
 
+// Whether --method takes --min-speed (fit's option table).
+bool takes_min_speed(const std::string& method) {
+  for (const OptionSpec& option : fit_spec().options) {
+    if (option.name == "--min-speed") {
+      return std::find(option.methods.begin(), option.methods.end(), method) !=
+             option.methods.end();
+    }
+  }
+  return false;
+}
+
+// Without --min-speed: per joint the largest of the experiments' reversal_min_speed (the
+// speed below which any record's prepared velocity has an unreliable sign); none when every
+// one is 0 (clean reversals: nothing is weighted) or no experiment was filtered.
+std::vector<double> data_min_speed(const Experiments& experiments, int dof) {
+  std::vector<double> speed(static_cast<std::size_t>(dof), 0.0);
+  bool any = false;
+  for (const Eigen::VectorXd& v : experiments.reversal_speed) {
+    for (Eigen::Index j = 0; j < v.size() && j < dof; ++j) {
+      speed[static_cast<std::size_t>(j)] = std::max(speed[static_cast<std::size_t>(j)], v[j]);
+      any = any || v[j] > 0;
+    }
+  }
+  if (!any) return {};
+  // A speed near the joint's own rms speed would weight out most of the record (the filter's
+  // velocity noise-dominated): no weighting then, said out loud, rather than a fit on scraps.
+  for (int j = 0; j < dof; ++j) {
+    double squares = 0;
+    Eigen::Index samples = 0;
+    for (const Trajectory& x : experiments.data) {
+      if (x.dq.cols() != dof) continue;
+      squares += x.dq.col(j).squaredNorm();
+      samples += x.dq.rows();
+    }
+    const double rms = samples > 0 ? std::sqrt(squares / static_cast<double>(samples)) : 0.0;
+    if (speed[static_cast<std::size_t>(j)] > 0.5 * rms) {
+      std::cerr << "modelid fit: warning: joint " << j + 1 << "'s filtered velocity has an "
+                << "unreliable sign below " << speed[static_cast<std::size_t>(j)]
+                << " rad/s, more than half its rms speed " << rms
+                << ": no reversal weighting (lower --cutoff, or give --min-speed)\n";
+      return {};
+    }
+  }
+  return speed;
+}
+
+std::string chosen_speed_line(const std::vector<double>& speed) {
+  std::string line = "  minimum speed chosen from the data:";
+  for (const double v : speed) {
+    char value[32];
+    std::snprintf(value, sizeof value, " %.3g", v);
+    line += value;
+  }
+  return line +
+         " rad/s (or m/s; the speed below which the filtered velocity's sign is "
+         "unreliable); --min-speed 0 turns it off\n";
+}
+
 }  // namespace
 
 int run_fit(const CommandLine& args) {
@@ -190,9 +251,13 @@ int run_fit(const CommandLine& args) {
                      noise.samples == experiments.data[e].t.size();
     options.torque_harmonics.push_back(cut ? static_cast<int>(noise.tau_lines.rows()) - 1 : -1);
   }
+  std::string chosen_speed;
   if (args.has("--min-speed")) {
     options.min_speed = per_axis_values(args.one("--min-speed"), "--min-speed", model.dof(),
                                         "speed", "joint", AxisValue::kNonNegative);
+  } else if (takes_min_speed(method.name)) {
+    options.min_speed = data_min_speed(experiments, model.dof());
+    if (!options.min_speed.empty()) chosen_speed = chosen_speed_line(options.min_speed);
   }
   if (args.has("--essential")) options.essential_r_sigma = r_sigma;
   Progress fitting("fitting", 1000);
@@ -207,7 +272,7 @@ int run_fit(const CommandLine& args) {
   // The report.
   const std::vector<EstimatedParameter> parameters = estimated(id.fit, id.names, truth);
   print_fit({model, method.label, experiments, id, data_report.str(), method_report.str(),
-             args.has("--min-speed")},
+             args.has("--min-speed") || !chosen_speed.empty(), chosen_speed},
             parameters);
   check_residual(context, id, compare_with_wls(method, context, id));
   std::optional<PhysicalEstimate> physical;

@@ -77,7 +77,9 @@ CommandSpec make_fit_spec() {
           {.name = "--min-speed",
            .value = "V[,V2,...]",
            .help = "weight out samples where a joint is slower than V, with a ramp of two filter "
-                   "periods before the decimation (one speed or one per joint)",
+                   "periods before the decimation (one speed or one per joint; default: per joint "
+                   "the speed below which the filtered velocity's sign is unreliable, chosen from "
+                   "the data; 0: no weighting)",
            .unit = "rad/s or m/s",
            .methods = {"ols", "wls", "pim-wls", "iv", "didim", "pm"}},
           {.name = "--controller",

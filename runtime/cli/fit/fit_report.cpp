@@ -147,6 +147,7 @@ void print_fit(const FitSummary& fit, const std::vector<EstimatedParameter>& par
   std::cout << "modelid fit: " << fit.model.name() << ", " << fit.label << " on "
             << fit.experiments.data.size() << " experiment(s), " << id.samples << " samples\n"
             << fit.data_report << fit.method_report;
+  std::cout << fit.min_speed_chosen;
   if (fit.min_speed_given) {
     std::cout << "  --min-speed: " << id.slow_samples << " of " << id.samples + id.slow_samples
               << " samples left out (a joint slower than its minimum speed, after the "

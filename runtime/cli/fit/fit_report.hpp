@@ -49,7 +49,8 @@ struct FitSummary {
   const Identification& id;
   std::string data_report;    ///< a line per file (read_experiments)
   std::string method_report;  ///< what the estimator said
-  bool min_speed_given = false;
+  bool min_speed_given = false;  ///< given, or chosen from the data
+  std::string min_speed_chosen;  ///< the line saying the speeds chosen from the data, or empty
 };
 
 /// The fit on standard output (heading, parameter table, relative error norm, condition number,

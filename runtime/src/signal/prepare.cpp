@@ -14,6 +14,7 @@
 #include "modelgen/signal/period.hpp"
 #include "modelgen/signal/preparation_checks.hpp"
 #include "modelgen/signal/reversal_mask.hpp"
+#include "modelgen/signal/reversal_speed.hpp"
 #include "modelgen/signal/sampling.hpp"
 
 namespace modelgen {
@@ -271,7 +272,11 @@ void filter_and_differentiate(Trajectory& raw, const PreparationOptions& options
   const FilterPlan planned = plan;
   if (options.cutoff_hz) plan.position_cutoff_hz = *options.cutoff_hz;
   if (options.decimation) plan.decimation_factor = *options.decimation;
-  const Eigen::VectorXd q_noise = bandwidth > 0 ? position_noise_std(raw) : Eigen::VectorXd();
+  const Eigen::VectorXd q_noise = position_noise_std(raw);
+  // Before the filter: the speed below which its velocity's sign is unreliable (issue 31).
+  out.reversal_speed = reversal_min_speed(raw, plan.position_cutoff_hz, plan.position_order,
+                                          q_noise, edge_samples(plan.position_cutoff_hz, dt))
+                           .speed;
   filter_positions(raw, plan.position_cutoff_hz, plan.position_order);
   // The zero-phase filter's start and end are only approximately right (its edges assume
   // the signal continues as its reflection), and differentiating twice amplifies that: the
@@ -296,7 +301,7 @@ void filter_and_differentiate(Trajectory& raw, const PreparationOptions& options
                            planned.position_cutoff_hz,
                            static_cast<long long>(kept),
                            options.unknowns,
-                           q_noise,
+                           bandwidth > 0 ? q_noise : Eigen::VectorXd(),
                            raw.ddq.middleRows(edge, kept),
                            raw.tau.middleRows(edge, kept)};
     for (const std::string& line : check_preparation(facts)) {

@@ -74,9 +74,8 @@ TEST(ModelidTx40ClosedLoopTruth, DefaultWlsIvDidimMeetTheTarget) {
     const fs::path estimate = folder / (method + ".json");
     const std::string controller =
         method == "wls" ? "" : " --controller " + quoted_source(kData + "controller.yaml");
-    const CliRun fit =
-        modelid("fit --robot tx40 --data " + quoted(data) + " --method " + method + controller +
-                " --min-speed 0.1 --torque-hold zoh -o " + quoted(estimate));
+    const CliRun fit = modelid("fit --robot tx40 --data " + quoted(data) + " --method " + method +
+                               controller + " --torque-hold zoh -o " + quoted(estimate));
     ASSERT_EQ(fit.exit_code, 0) << fit.err;
     const TruthSummary s = against_truth(nlohmann::json::parse(read_text(estimate)), truth);
     EXPECT_LE(s.beyond, 2) << method << ":" << s.names;

@@ -64,6 +64,9 @@ struct PreparedExperiment {
   /// (reversal_guard_samples), how far the prepared velocity's error at a reversal reaches
   /// (IdentifyOptions::reversal_guard); 0 otherwise.
   Eigen::Index reversal_guard = 0;
+  /// With a position filter: per joint, the speed below which the prepared velocity's sign is
+  /// unreliable (reversal_min_speed's choice, rad/s or m/s); empty otherwise.
+  Eigen::VectorXd reversal_speed;
   /// Periodic route: noise variance of the averaged torque per axis ((N m)^2), else empty.
   Eigen::VectorXd tau_noise_variance;
   /// Periodic route: the noise of the prepared q, dq, ddq and tau (periodic_noise()), else empty.
