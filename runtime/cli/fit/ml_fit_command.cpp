@@ -40,6 +40,7 @@
 #include "runtime/cli/fit/ml_plan.hpp"
 #include "runtime/cli/reports/ml_decided_report.hpp"
 #include "runtime/cli/reports/ml_report.hpp"
+#include "runtime/cli/reports/ml_residual_check.hpp"
 
 namespace modelgen::internal {
 
@@ -225,6 +226,7 @@ MlRun run_approach(int approach, DriveModel& drive_model, const std::vector<MlEx
     run.physical = physical_run(drive_model, data, plan, problem, run, route_values, prior_weight);
     run.fit = run.physical->result.fit;
   }
+  run.torque_errors = problem.torque_errors(run.fit.all_values);
   return run;
 }
 
@@ -323,6 +325,12 @@ int run_fit_ml(const CommandLine& args, double prior_weight) {
     summarise_run(description, runs.back());
   }
   print_ml(model, runs, plan, data.size(), samples, data_report.str(), generated_name, truth);
+  // Each approach's residual against the periods' noise, on the joints its motors reach.
+  for (const MlRun& run : runs) {
+    warn_ml_residual_against_noise(std::cerr, model, experiments, run.torque_errors, plan.axes,
+                                   static_cast<Eigen::Index>(run.fit.names.size()),
+                                   " (of approach " + std::to_string(run.approach) + ")");
+  }
   if (args.has("-o")) write_file(args.one("-o"), ml_estimate_json(args, model, runs));
   return 0;
 }

@@ -10,6 +10,8 @@
 #include <ostream>
 #include <string>
 
+#include <Eigen/Core>
+
 #include "modelgen/ml/fit.hpp"
 #include "modelgen/ml/linear_route.hpp"
 #include "modelgen/ml/load_plausibility.hpp"
@@ -38,6 +40,9 @@ struct MlRun {
   /// plausible (modelgen/ml/load_plausibility.hpp).
   std::optional<MlLoadSummary> load_summary;
   std::vector<MlDriveSummary> drives;
+  /// Measured minus modelled motor torques at `fit`'s values (MlProblem::torque_errors: samples
+  /// of all experiments x dof, 0 on the motors not fitted), for the residual check.
+  Eigen::MatrixXd torque_errors;
 };
 
 /// Exact values by ml_param_names() name (load_m, Rv3, ...) from --truth; empty without it.

@@ -83,13 +83,55 @@ std::string rms(double energy, double values) {
   return fixed(std::sqrt(energy / values), 0, 3) + " N m";
 }
 
-// One warning per joint outside its bounds (see the header), `samples` the values per joint
-// the energies were summed over.
+// The linear methods' wording: every joint judged, `whose` after "the residual".
+ResidualWording plain(const std::string& whose) {
+  ResidualWording wording;
+  wording.whose = whose;
+  return wording;
+}
+
+// Why a joint's residual lies above its noise, and what to change.
+void explain_excess(std::ostream& err, const ResidualWording& wording) {
+  err << "the model misses something on this joint: a friction it lacks (Stribeck, "
+         "load-dependent), ";
+  if (wording.drive_model) {
+    // Swevers eq. 12: efficiencies R_z are fitted only by approach 3; the rest of the drive
+    // model and the links are the a-priori values theta2.
+    err << "efficiencies below 1 (approaches 1 and 2 fix R_z to 1; --approach 3 fits them), "
+           "a wrong a-priori value (the description's known: or --known) or a load elsewhere "
+           "than on the payload link, a wrong drive description (gear ratio, coupling, "
+           "--motor-side) or a delay between torques and positions (--torque-hold zoh for a "
+           "digital controller's held commands); the rms torque errors per motor show how "
+           "much\n";
+    return;
+  }
+  err << "coupling or a load not in the description, a wrong drive description (gear ratio, "
+         "--motor-side) or a delay between torques and positions (--torque-hold zoh for a "
+         "digital controller's held commands), or noise in the regressor's dq and ddq that "
+         "biases the estimate (errors in the variables: --cutoff, --decimate); the torque plots "
+         "(--plot) show where\n";
+}
+
+// Why a joint's residual lies below its noise: `per_parameter` in-band values per unknown.
+void explain_shortfall(std::ostream& err, const ResidualWording& wording, double per_parameter) {
+  err << "the fit explains noise: " << fixed(per_parameter, 0, 3);
+  if (wording.drive_model) {
+    err << " in-band values per unknown; longer or more records, or fewer unknowns (--unknown)";
+  } else {
+    err << " in-band values per base parameter; longer or more records, or fewer parameters "
+           "(--essential)";
+  }
+  err << ", or the noise estimate is too high (periods that differ: drift, a start transient)\n";
+}
+
+// One warning per judged joint outside its bounds (see the header), `samples` the values per
+// joint the energies were summed over, `parameters` the fit's unknowns.
 int warn_joints(std::ostream& err, const std::vector<JointResidual>& joints, double samples,
-                Eigen::Index base_parameters, const std::string& whose) {
+                Eigen::Index parameters, const ResidualWording& wording) {
   int warnings = 0;
   for (std::size_t j = 0; j < joints.size(); ++j) {
     const JointResidual& r = joints[j];
+    if (j < wording.judged.size() && !wording.judged[j]) continue;
     if (std::isnan(r.ratio) || (r.ratio <= r.upper && r.ratio >= r.lower)) continue;
     const bool above = r.ratio > r.upper;
     // Significant is not yet material: what lies above the noise must also matter.
@@ -97,7 +139,7 @@ int warn_joints(std::ostream& err, const std::vector<JointResidual>& joints, dou
     if (above && !(excess > kMaterialExcess)) continue;
     ++warnings;
     err << "modelid fit: warning: joint " << j + 1 << ": in the excitation band the residual"
-        << whose << " has " << fixed(r.ratio, 0, 3)
+        << wording.whose << " has " << fixed(r.ratio, 0, 3)
         << " times the energy of the record's noise there (rms " << rms(r.residual, samples)
         << " against " << rms(r.noise, samples) << ", " << r.noise_origin
         << "; a right model stays " << (above ? "below " : "above ")
@@ -105,20 +147,11 @@ int warn_joints(std::ostream& err, const std::vector<JointResidual>& joints, dou
     if (above) err << "; the excess is " << fixed(100 * excess, 0, 2) << " % of the torque there";
     err << "): ";
     if (above) {
-      err << "the model misses something on this joint: a friction it lacks (Stribeck, "
-             "load-dependent), coupling or a load not in the description, a wrong drive "
-             "description (gear ratio, --motor-side) or a delay between torques and positions "
-             "(--torque-hold zoh for a digital controller's held commands), or noise in the "
-             "regressor's dq and ddq that biases the estimate (errors in the variables: "
-             "--cutoff, --decimate); the torque plots (--plot) show where\n";
+      explain_excess(err, wording);
     } else {
-      err << "the fit explains noise: "
-          << fixed(2 * r.in_band_lines * static_cast<double>(joints.size()) /
-                       static_cast<double>(base_parameters),
-                   0, 3)
-          << " in-band values per base parameter; longer or more records, or fewer parameters "
-             "(--essential), or the noise estimate is too high (periods that differ: drift, a "
-             "start transient)\n";
+      explain_shortfall(err, wording,
+                        2 * r.in_band_lines * static_cast<double>(joints.size()) /
+                            static_cast<double>(std::max<Eigen::Index>(parameters, 1)));
     }
   }
   return warnings;
@@ -129,13 +162,13 @@ int warn_joints(std::ostream& err, const std::vector<JointResidual>& joints, dou
 int warn_period_residual_against_noise(std::ostream& err, const IdentificationModel& model,
                                        const Experiments& experiments,
                                        const std::vector<Eigen::MatrixXd>& errors,
-                                       const std::string& whose) {
+                                       const ResidualWording& wording) {
   const std::vector<PeriodRecord> periods = compared_periods(experiments, errors);
   if (periods.empty()) return 0;
   double samples = 0;
   for (const PeriodRecord& r : periods) samples += static_cast<double>(r.tau.rows());
-  return warn_joints(err, period_residual_against_noise(periods), samples, model.num_base_params(),
-                     whose);
+  return warn_joints(err, period_residual_against_noise(periods), samples,
+                     wording.drive_model ? wording.unknowns : model.num_base_params(), wording);
 }
 
 int warn_residual_against_noise(std::ostream& err, const IdentificationModel& model,
@@ -147,13 +180,14 @@ int warn_residual_against_noise(std::ostream& err, const IdentificationModel& mo
       std::vector<Trajectory> one = {period};
       errors.push_back(predict_decimated(model, one, beta, {1}).error.front());
     }
-    return warn_period_residual_against_noise(err, model, experiments, errors, whose);
+    return warn_period_residual_against_noise(err, model, experiments, errors, plain(whose));
   }
   const std::vector<ResidualRecord> records = compared_records(model, experiments, beta);
   if (records.empty()) return 0;
   double samples = 0;
   for (const ResidualRecord& r : records) samples += static_cast<double>(r.tau.rows());
-  return warn_joints(err, residual_against_noise(records), samples, model.num_base_params(), whose);
+  return warn_joints(err, residual_against_noise(records), samples, model.num_base_params(),
+                     plain(whose));
 }
 
 }  // namespace modelgen::internal

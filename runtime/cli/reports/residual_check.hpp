@@ -29,13 +29,25 @@ int warn_residual_against_noise(std::ostream& err, const IdentificationModel& mo
                                 const Experiments& experiments, const Eigen::VectorXd& beta,
                                 const std::string& whose = "");
 
+/// What a residual warning judges and says beyond the numbers.
+struct ResidualWording {
+  std::string whose;  ///< follows "the residual", e.g. " (of the IDIM-WLS estimate)"
+  /// Per joint, whether it is judged (empty: every joint): an ML fit leaves out the motors that
+  /// do not move, and with them the joints they drive.
+  std::vector<bool> judged;
+  /// The ML route (--method ml): its own causes and options, and "values per unknown" counted
+  /// with `unknowns` instead of the model's base parameters.
+  bool drive_model = false;
+  Eigen::Index unknowns = 0;
+};
+
 /// The same for averaged periods (--periodic) whose errors (measured minus modelled torque,
 /// joint side, one N x dof matrix per experiment of `experiments`) a fit computed itself: the
-/// ML route's torque errors, mapped to the joints by K^T. Nothing when an experiment is not an
-/// averaged period.
+/// ML route's torque errors, mapped to the joints by K^T (ml_residual_check.hpp). Nothing when
+/// an experiment is not an averaged period.
 int warn_period_residual_against_noise(std::ostream& err, const IdentificationModel& model,
                                        const Experiments& experiments,
                                        const std::vector<Eigen::MatrixXd>& errors,
-                                       const std::string& whose = "");
+                                       const ResidualWording& wording);
 
 }  // namespace modelgen::internal
