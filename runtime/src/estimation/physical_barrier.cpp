@@ -21,6 +21,10 @@ namespace {
 constexpr double kSqrt2 = 1.4142135623730951;
 constexpr int kEntryRow[10] = {0, 0, 0, 1, 1, 2, 0, 1, 2, 3};
 constexpr int kEntryCol[10] = {0, 1, 2, 1, 2, 2, 3, 3, 3, 3};
+// With a convex term of weight w (the divergence prior) the barrier starts at t = 1e-6 / w at
+// the least and stops at a duality gap of 1e-6 w (minimise_on_consistent_set).
+constexpr double kStartPerWeight = 1e-6;
+constexpr double kGapPerWeight = 1e-6;
 
 void entries_of_pseudo_inertia(const Eigen::Matrix4d& P, double* x) {
   for (int e = 0; e < 10; ++e) {
@@ -257,7 +261,7 @@ BarrierOutcome minimise_on_consistent_set(const Eigen::MatrixXd& H, const Eigen:
                                           const Layout& layout, const std::vector<char>& bounded,
                                           const std::vector<double>& body_floor, Eigen::VectorXd y,
                                           int max_iterations, const ConvexTerm& extra,
-                                          double gap_tolerance) {
+                                          double extra_weight) {
   const Eigen::Index n = y.size();
   double m = 4.0 * static_cast<double>(layout.body_params.size());
   for (int k : layout.scalar_params) m += bounded[static_cast<std::size_t>(k)] ? 1 : 0;
@@ -270,7 +274,19 @@ BarrierOutcome minimise_on_consistent_set(const Eigen::MatrixXd& H, const Eigen:
   };
   const double size = std::max({1.0, std::abs(objective(y)), h.cwiseAbs().maxCoeff()});
   BarrierOutcome out;
+  // With a convex term of weight w, from t = 1e-6 / w on: at a smaller t the central path's
+  // bodies swell as 1/(t w) in the directions only the term decides (its tr(P0^-1 P) against
+  // the barrier's -log det). From the usual start that was 1e10 times their mass on the Panda
+  // at w = 1e-6: the Hessian of t f, computed, was then indefinite there (Newton decrements
+  // below 0), the centring stopped at once at every t, and the solve reported convergence
+  // 2.25e4 sigma^2 above its optimum. 1e6 is the swelling weight 1 always had here (t from
+  // m / size, about 1e-6 on the Panda and the UR5 tests) and met no rounding trouble.
   double t = m / size;
+  if (extra_weight > 0) t = std::max(t, kStartPerWeight / extra_weight);
+  // The gap below 1e-6 w: the barrier's pull, 1/t, is then below 1e-6 of the term's in the
+  // directions only it decides, and the solve no longer needs t near 1e17 at w = 1e-6 (1e-9
+  // w asked that, where the rounding of t f's gradient exceeds the term's pull).
+  const double gap_tolerance = extra_weight > 0 ? kGapPerWeight * extra_weight : HUGE_VAL;
   for (int outer = 0; outer < 60 && out.iterations < max_iterations; ++outer) {
     for (int inner = 0; inner < 200 && out.iterations < max_iterations; ++inner) {
       double value = 0, extra_value = 0;

@@ -58,8 +58,8 @@ Eigen::VectorXd prior_scales(const RigidBodyTree& tree, const Layout& layout,
 // Hessian tr(P^-1 E_e P^-1 E_f). nullopt where P is not positive definite.
 struct BodyDivergence {
   double value = 0;
-  Eigen::Matrix<double, 10, 1> gradient;
-  Eigen::Matrix<double, 10, 10> hessian;
+  Eigen::Matrix<double, 10, 1> gradient = Eigen::Matrix<double, 10, 1>::Zero();
+  Eigen::Matrix<double, 10, 10> hessian = Eigen::Matrix<double, 10, 10>::Zero();
 };
 std::optional<BodyDivergence> log_det_divergence(const Eigen::Matrix4d& P0, const double* x,
                                                  bool derivatives = true);
