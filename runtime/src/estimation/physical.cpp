@@ -316,7 +316,7 @@ PhysicalFitResult solve(const RigidBodyTree& tree, const Eigen::MatrixXd& K,
   const BarrierOutcome solved = detail::minimise_on_consistent_set(
       pb.A.transpose() * pb.A + G.transpose() * G, pb.A.transpose() * pb.b + G.transpose() * g,
       pb.layout, pb.bounded, pb.body_floor, pb.y0, max_iterations, divergence,
-      any_divergence ? weight : 0);  // the divergence resolved to 1e-6 of itself
+      any_divergence ? weight : 0);  // the divergence resolved to 1e-9 of itself
 
   PhysicalFitResult result;
   result.prior_weight = weight;

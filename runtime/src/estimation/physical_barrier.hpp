@@ -90,7 +90,7 @@ using ConvexTerm = std::function<bool(const Eigen::VectorXd& y, double& value,
 
 /// min 1/2 y'Hy - h'y + extra(y) over the consistent set (`extra` may be empty), until the
 /// duality gap is below 1e-13 of the problem's size and, given the convex term's weight w
-/// (`extra_weight` > 0), below 1e-6 w: a weak convex term is resolved only when the barrier's
+/// (`extra_weight` > 0), below 1e-9 w: a weak convex term is resolved only when the barrier's
 /// own pull, 1/t, is far below it (else the central path's point lies off in the directions
 /// only that term decides). With w, t starts at 1e-6 / w at the least (physical_barrier.cpp).
 BarrierOutcome minimise_on_consistent_set(const Eigen::MatrixXd& H, const Eigen::VectorXd& h,
