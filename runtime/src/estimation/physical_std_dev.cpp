@@ -52,17 +52,18 @@ Eigen::VectorXd base_standard_deviations(const Layout& layout, const std::vector
   const Eigen::MatrixXd G_standard = G * d.asDiagonal() * T.inverse();
   Eigen::MatrixXd J(U.rows() + G.rows(), dp.cols());
   J << U * K * dp, G_standard * dp;
-  const Eigen::MatrixXd covariance =
-      (J.transpose() * J).completeOrthogonalDecomposition().pseudoInverse();
+  // (J'J)^+ = J^+ J^+': from J itself, not the normal matrix, whose condition number is the
+  // square of J's (a divergence body near the boundary has a steep Hessian): formed from J'J,
+  // rounding raised base sds 1e-5 above the unconstrained ones.
   const Eigen::MatrixXd db = K * dp;
+  const Eigen::MatrixXd root = db * J.completeOrthogonalDecomposition().pseudoInverse();
   const Eigen::MatrixXd F = U.transpose() * U;
   const Eigen::MatrixXd F_inverse = F.inverse();
-  const Eigen::MatrixXd held =
-      Eigen::MatrixXd::Identity(F.rows(), F.cols()) -
-      db * (db.transpose() * F * db).completeOrthogonalDecomposition().pseudoInverse() *
-          db.transpose() * F;
-  const Eigen::MatrixXd total =
-      db * covariance * db.transpose() + held * F_inverse * held.transpose();
+  // The F-orthogonal projector onto the free base directions, db (U db)^+ U, from U db
+  // itself: through db' F db a direction lost to rounding was counted in both parts.
+  const Eigen::MatrixXd held = Eigen::MatrixXd::Identity(F.rows(), F.cols()) -
+                               db * (U * db).completeOrthogonalDecomposition().pseudoInverse() * U;
+  const Eigen::MatrixXd total = root * root.transpose() + held * F_inverse * held.transpose();
   return total.diagonal().cwiseMax(0.0).cwiseSqrt();
 }
 
