@@ -18,8 +18,6 @@
 
 #include "modelgen/estimation/physical.hpp"
 
-#include <ceres/jet.h>
-
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
 #include <Eigen/QR>
@@ -33,6 +31,7 @@
 #include "runtime/src/estimation/guessed_regions.hpp"
 #include "runtime/src/estimation/physical_barrier.hpp"
 #include "runtime/src/estimation/physical_prior.hpp"
+#include "runtime/src/estimation/physical_std_dev.hpp"
 
 namespace modelgen {
 namespace {
@@ -120,69 +119,6 @@ std::vector<std::string> describe(const RigidBodyTree& tree, const Layout& layou
   return out;
 }
 
-// Standard deviations of the constrained base estimate. Without a binding constraint they are
-// the unconstrained ones (diagonal of the inverse information). Otherwise the free directions
-// at the optimum are the log-Cholesky parameters of the bodies not bound and the parameters
-// not on a binding bound, and the covariance of the free ones (a pseudo-inverse: the data leave
-// standard directions free) is carried to beta. Holding the rest would give them no spread (sd
-// 0 on the boundary), which is not so: the estimate leaves the boundary whenever the data pull
-// it inside. Their part is the unconstrained covariance's component F-orthogonal to the free
-// directions, (I - P) F^-1 (I - P)', P the F-orthogonal projector onto the free base
-// directions (F^-1 splits into the two parts exactly). That is an upper bound: a scalar
-// estimate clipped at a bound its truth lies on has sd sqrt(1/2 - 1/(2 pi)) = 0.58 of the
-// unconstrained one, one whose truth is well inside the unconstrained sd; the local
-// covariance of the active set alone says 0 for both.
-Eigen::VectorXd base_standard_deviations(const Layout& layout, const std::vector<char>& binding,
-                                         const Eigen::MatrixXd& K, const Eigen::MatrixXd& U,
-                                         const Eigen::MatrixXd& G, const Eigen::MatrixXd& T,
-                                         const Eigen::VectorXd& d,
-                                         const Eigen::VectorXd& standard) {
-  const Eigen::Index n = K.cols();
-  if (std::find(binding.begin(), binding.end(), 1) == binding.end()) {
-    const Eigen::MatrixXd covariance = (U.transpose() * U).inverse();
-    return covariance.diagonal().cwiseSqrt();
-  }
-  std::vector<Eigen::VectorXd> columns;  // d standard / d free, one per free direction
-  for (int k : layout.scalar_params) {
-    if (!binding[static_cast<std::size_t>(k)]) columns.push_back(Eigen::VectorXd::Unit(n, k));
-  }
-  for (const auto& index : layout.body_params) {
-    if (binding[static_cast<std::size_t>(index[0])]) continue;
-    double p[10];
-    for (int s = 0; s < 10; ++s) p[s] = standard[index[s]];
-    const auto theta = log_cholesky_from_inertial(p);
-    if (!theta) continue;
-    using Jet = ceres::Jet<double, 10>;
-    Jet t[10], q[10];
-    for (int i = 0; i < 10; ++i) t[i] = Jet((*theta)[i], i);
-    inertial_from_log_cholesky(t, q);
-    for (int i = 0; i < 10; ++i) {
-      Eigen::VectorXd column = Eigen::VectorXd::Zero(n);
-      for (int s = 0; s < 10; ++s) column[index[s]] = q[s].v[i];
-      columns.push_back(column);
-    }
-  }
-  Eigen::MatrixXd dp(n, static_cast<Eigen::Index>(columns.size()));
-  for (std::size_t c = 0; c < columns.size(); ++c) dp.col(static_cast<Eigen::Index>(c)) = columns[c];
-  // Residual Jacobian: the base term U K dp and the prior term G (in variables) back in standard
-  // coordinates: G_std = G diag(d) T^-1.
-  const Eigen::MatrixXd G_standard = G * d.asDiagonal() * T.inverse();
-  Eigen::MatrixXd J(U.rows() + G.rows(), dp.cols());
-  J << U * K * dp, G_standard * dp;
-  const Eigen::MatrixXd covariance =
-      (J.transpose() * J).completeOrthogonalDecomposition().pseudoInverse();
-  const Eigen::MatrixXd db = K * dp;
-  const Eigen::MatrixXd F = U.transpose() * U;
-  const Eigen::MatrixXd F_inverse = F.inverse();
-  const Eigen::MatrixXd held =
-      Eigen::MatrixXd::Identity(F.rows(), F.cols()) -
-      db * (db.transpose() * F * db).completeOrthogonalDecomposition().pseudoInverse() *
-          db.transpose() * F;
-  const Eigen::MatrixXd total =
-      db * covariance * db.transpose() + held * F_inverse * held.transpose();
-  return total.diagonal().cwiseMax(0.0).cwiseSqrt();
-}
-
 }  // namespace
 
 Eigen::MatrixXd regrouping_matrix(const IdentificationModel& model) {
@@ -209,8 +145,11 @@ struct Problem {
   std::vector<double> body_floor;
   Eigen::VectorXd y0;                  // the start, strictly consistent
   Eigen::VectorXd prior_value, scale;  // the prior term's centre and scale per parameter
-  Eigen::MatrixXd G1;                  // the prior residual per unit weight, in variables
-  Eigen::VectorXd g1;                  // its target: G1 y - g1 = N' L (p - prior)
+  Eigen::MatrixXd G1;                  // the quadratic prior's residual per unit weight,
+  Eigen::VectorXd g1;                  // in variables: G1 y - g1 = N' L_Q (p_Q - prior_Q)
+  // Per layout body with a-priori inertials, the centre of its divergence prior in the
+  // variables' units (d_b P0: the divergence is the same in any unit).
+  std::vector<std::optional<Eigen::Matrix4d>> centre;
   bool any_a_priori = false;           // the description gives some a-priori value
 };
 
@@ -307,17 +246,62 @@ Problem set_up(const RigidBodyTree& tree, const Eigen::MatrixXd& K, const Eigen:
     pb.g1 = pb.prior_value.cwiseQuotient(pb.scale);
     return pb;
   }
-  // With a-priori values: per body that has them the local form of the log-det divergence of
-  // pseudo-inertias, group scales elsewhere (physical_prior.hpp), on the null space N of K in
-  // the metric's coordinates z = L p only.
+  // With a-priori values: per body that has them the log-det divergence of pseudo-inertias, on
+  // every direction (its -log det keeps the body strictly inside); on the other parameters a
+  // quadratic pull relative to group scales, on the directions of theirs that change no base
+  // parameter (physical_prior.hpp).
   pb.scale = detail::prior_scales(tree, pb.layout, pb.prior_value, K, nullptr);
-  const Eigen::MatrixXd L =
-      detail::prior_metric_root(pb.layout, pb.prior_value, has_a_priori, pb.scale);
-  const Eigen::MatrixXd N = detail::null_space_of(K, L.inverse());
-  const Eigen::MatrixXd NtL = N.transpose() * L;
-  pb.G1 = NtL * pb.T * pb.d.cwiseInverse().asDiagonal();
-  pb.g1 = NtL * pb.prior_value;
+  const auto centres = detail::divergence_centres(pb.layout, pb.prior_value, has_a_priori);
+  std::vector<char> in_divergence(static_cast<std::size_t>(n), 0);
+  pb.centre.assign(centres.size(), std::nullopt);
+  for (std::size_t b = 0; b < centres.size(); ++b) {
+    if (!centres[b]) continue;
+    const auto& index = pb.layout.body_params[b];
+    pb.centre[b] = pb.d[index[0]] * *centres[b];
+    for (int k : index) in_divergence[static_cast<std::size_t>(k)] = 1;
+  }
+  const detail::QuadraticPrior quadratic = detail::quadratic_prior(
+      K, pb.T * pb.d.cwiseInverse().asDiagonal(), pb.scale, pb.prior_value, in_divergence);
+  pb.G1 = quadratic.G1;
+  pb.g1 = quadratic.g1;
   return pb;
+}
+
+// The prior term at y: its gradient (into `pull`) and a root R of its Hessian (R'R), the
+// quadratic's G stacked with each divergence body's Cholesky factor.
+Eigen::MatrixXd prior_at(const Problem& pb, const detail::ConvexTerm& divergence,
+                         const Eigen::MatrixXd& G, const Eigen::VectorXd& g,
+                         const Eigen::VectorXd& y, Eigen::VectorXd& pull) {
+  const Eigen::Index n = y.size();
+  pull = G.transpose() * (G * y - g);
+  Eigen::MatrixXd hessian = Eigen::MatrixXd::Zero(n, n);
+  double value = 0;
+  if (divergence) divergence(y, value, &pull, &hessian);
+  std::vector<Eigen::MatrixXd> blocks{G};
+  for (std::size_t b = 0; b < pb.centre.size(); ++b) {
+    if (!pb.centre[b]) continue;
+    const auto& index = pb.layout.body_params[b];
+    Eigen::Matrix<double, 10, 10> block;
+    for (int e = 0; e < 10; ++e) {
+      for (int f = 0; f < 10; ++f) block(e, f) = hessian(index[e], index[f]);
+    }
+    const Eigen::Matrix<double, 10, 10> root =
+        Eigen::LLT<Eigen::Matrix<double, 10, 10>>(block).matrixU();
+    Eigen::MatrixXd rows = Eigen::MatrixXd::Zero(10, n);
+    for (int e = 0; e < 10; ++e) {
+      for (int f = 0; f < 10; ++f) rows(e, index[f]) = root(e, f);
+    }
+    blocks.push_back(rows);
+  }
+  Eigen::Index total = 0;
+  for (const auto& block : blocks) total += block.rows();
+  Eigen::MatrixXd R(total, n);
+  total = 0;
+  for (const auto& block : blocks) {
+    R.middleRows(total, block.rows()) = block;
+    total += block.rows();
+  }
+  return R;
 }
 
 PhysicalFitResult solve(const RigidBodyTree& tree, const Eigen::MatrixXd& K,
@@ -325,9 +309,14 @@ PhysicalFitResult solve(const RigidBodyTree& tree, const Eigen::MatrixXd& K,
                         int max_iterations) {
   const Eigen::MatrixXd G = std::sqrt(weight) * pb.G1;
   const Eigen::VectorXd g = std::sqrt(weight) * pb.g1;
+  const bool any_divergence =
+      std::any_of(pb.centre.begin(), pb.centre.end(), [](const auto& c) { return c.has_value(); });
+  const detail::ConvexTerm divergence =
+      any_divergence ? detail::divergence_term(pb.layout, pb.centre, weight) : detail::ConvexTerm{};
   const BarrierOutcome solved = detail::minimise_on_consistent_set(
       pb.A.transpose() * pb.A + G.transpose() * G, pb.A.transpose() * pb.b + G.transpose() * g,
-      pb.layout, pb.bounded, pb.body_floor, pb.y0, max_iterations);
+      pb.layout, pb.bounded, pb.body_floor, pb.y0, max_iterations, divergence,
+      any_divergence ? weight : 0);  // the divergence resolved to 1e-9 of itself
 
   PhysicalFitResult result;
   result.prior_weight = weight;
@@ -341,9 +330,11 @@ PhysicalFitResult solve(const RigidBodyTree& tree, const Eigen::MatrixXd& K,
   // A constraint that only resists the prior (its push no larger than the prior term's own
   // gradient) does not bind the fit to the data.
   const double tolerance = 1e-7 * std::max((pb.A.transpose() * pb.b).cwiseAbs().maxCoeff(), 1e-300);
-  const Eigen::VectorXd prior_pull = (G.transpose() * (G * solved.y - g)).cwiseAbs();
+  Eigen::VectorXd prior_pull;
+  const Eigen::MatrixXd prior_root = prior_at(pb, divergence, G, g, solved.y, prior_pull);
+  prior_pull = prior_pull.cwiseAbs();
   const Eigen::VectorXd curvature =
-      pb.A.colwise().squaredNorm().transpose() + G.colwise().squaredNorm().transpose();
+      pb.A.colwise().squaredNorm().transpose() + prior_root.colwise().squaredNorm().transpose();
   const std::vector<char> binding =
       binding_constraints(pb.layout, solved.push, prior_pull, curvature, tolerance);
   std::vector<char> held = binding;
@@ -362,8 +353,8 @@ PhysicalFitResult solve(const RigidBodyTree& tree, const Eigen::MatrixXd& K,
   }
   const std::vector<std::string> cones = describe(tree, pb.layout, binding);
   result.active_constraints.insert(result.active_constraints.begin(), cones.begin(), cones.end());
-  result.base_std_dev =
-      base_standard_deviations(pb.layout, held, K, pb.U, G, pb.T, pb.d, result.standard);
+  result.base_std_dev = detail::base_standard_deviations(pb.layout, held, K, pb.U, prior_root, pb.T,
+                                                         pb.d, result.standard);
   return result;
 }
 

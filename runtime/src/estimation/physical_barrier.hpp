@@ -8,6 +8,8 @@
 #pragma once
 
 #include <array>
+#include <cmath>
+#include <functional>
 #include <optional>
 #include <vector>
 
@@ -29,6 +31,11 @@ struct Layout {
 };
 
 Layout make_layout(const RigidBodyTree& tree);
+
+/// The pseudo-inertia of a body's ten variables x (below: off-diagonal entries times sqrt 2),
+/// and the basis E_e of that map: P = sum_e x_e E_e.
+Eigen::Matrix4d pseudo_inertia_of_entries(const double* x);
+const std::array<Eigen::Matrix4d, 10>& entry_basis();
 
 /// Q of an ellipsoid (x - c)' A (x - c) <= 1, A = diag(semi_axes^-2): [x; 1]' Q [x; 1] =
 /// 1 - (x - c)' A (x - c), so tr(P Q) = int 1 - (x - c)' A (x - c) dm.
@@ -62,9 +69,9 @@ void project(const Layout& layout, const std::vector<char>& bounded,
 // penalty rho weighs every block alike.
 Eigen::VectorXd variable_scales(const Layout& layout, const Eigen::MatrixXd& A);
 
-// min 1/2 y'Hy - h'y over the consistent set by the barrier method (Boyd & Vandenberghe,
-// Convex Optimization, algorithm 11.1: Newton's method with backtracking on
-// t f + barrier, t growing tenfold, until the duality gap m / t is negligible).
+// min 1/2 y'Hy - h'y (+ a convex term) over the consistent set by the barrier method (Boyd &
+// Vandenberghe, Convex Optimization, algorithm 11.1: Newton's method with backtracking on t f +
+// barrier, t growing tenfold, until the duality gap m / t is negligible).
 struct BarrierOutcome {
   Eigen::VectorXd y;
   Eigen::VectorXd push;  // per variable, how hard its cone or bound pushes at the end (duals)
@@ -75,9 +82,21 @@ struct BarrierOutcome {
   bool converged = false;
 };
 
+/// A convex term added to the quadratic: its value at y into `value` (added), and, given
+/// `gradient`, its gradient and Hessian added to them; false where y is outside its domain.
+/// Called only at points strictly inside the consistent set.
+using ConvexTerm = std::function<bool(const Eigen::VectorXd& y, double& value,
+                                      Eigen::VectorXd* gradient, Eigen::MatrixXd* hessian)>;
+
+/// min 1/2 y'Hy - h'y + extra(y) over the consistent set (`extra` may be empty), until the
+/// duality gap is below 1e-13 of the problem's size and, given the convex term's weight w
+/// (`extra_weight` > 0), below 1e-9 w: a weak convex term is resolved only when the barrier's
+/// own pull, 1/t, is far below it (else the central path's point lies off in the directions
+/// only that term decides). With w, t starts at 1e-6 / w at the least (physical_barrier.cpp).
 BarrierOutcome minimise_on_consistent_set(const Eigen::MatrixXd& H, const Eigen::VectorXd& h,
                                           const Layout& layout, const std::vector<char>& bounded,
                                           const std::vector<double>& body_floor, Eigen::VectorXd y,
-                                          int max_iterations);
+                                          int max_iterations, const ConvexTerm& extra = {},
+                                          double extra_weight = 0);
 
 }  // namespace modelgen::detail

@@ -1,4 +1,5 @@
-// The prior term of physical_prior.hpp: group scales and the null space of the scaled
+// The prior term of physical_prior.hpp: group scales, the log-det divergence of the bodies with
+// a-priori inertials, the quadratic pull on the rest and the null space of the scaled
 // regrouping map.
 
 #include "runtime/src/estimation/physical_prior.hpp"
@@ -10,6 +11,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <vector>
 
 #include "modelgen/model/physical_consistency.hpp"
@@ -62,11 +64,42 @@ Eigen::VectorXd prior_scales(const RigidBodyTree& tree, const Layout& layout,
   return scale;
 }
 
-Eigen::MatrixXd prior_metric_root(const Layout& layout, const Eigen::VectorXd& prior_value,
-                                  const std::vector<char>& has_a_priori,
-                                  const Eigen::VectorXd& scale) {
-  Eigen::MatrixXd L = scale.cwiseInverse().asDiagonal();
-  for (const auto& index : layout.body_params) {
+std::optional<BodyDivergence> log_det_divergence(const Eigen::Matrix4d& P0, const double* x,
+                                                 bool derivatives) {
+  const Eigen::Matrix4d P = pseudo_inertia_of_entries(x);
+  const Eigen::LLT<Eigen::Matrix4d> llt(P), llt0(P0);
+  if (llt.info() != Eigen::Success || !(llt.matrixLLT().diagonal().minCoeff() > 0)) {
+    return std::nullopt;
+  }
+  const Eigen::Matrix4d P0_inverse = llt0.solve(Eigen::Matrix4d::Identity());
+  BodyDivergence out;
+  const double log_det = 2 * llt.matrixLLT().diagonal().array().log().sum();
+  const double log_det0 = 2 * llt0.matrixLLT().diagonal().array().log().sum();
+  out.value = log_det0 - log_det + (P0_inverse * P).trace() - 4;
+  if (!derivatives) return out;
+  const Eigen::Matrix4d P_inverse = llt.solve(Eigen::Matrix4d::Identity());
+  const std::array<Eigen::Matrix4d, 10>& E = entry_basis();
+  std::array<Eigen::Matrix4d, 10> PE;  // P^-1 E_e
+  for (std::size_t e = 0; e < 10; ++e) {
+    PE[e] = P_inverse * E[e];
+    out.gradient[static_cast<Eigen::Index>(e)] = (P0_inverse * E[e]).trace() - PE[e].trace();
+  }
+  for (std::size_t e = 0; e < 10; ++e) {
+    for (std::size_t f = 0; f <= e; ++f) {
+      const double h = (PE[e] * PE[f]).trace();
+      out.hessian(static_cast<Eigen::Index>(e), static_cast<Eigen::Index>(f)) = h;
+      out.hessian(static_cast<Eigen::Index>(f), static_cast<Eigen::Index>(e)) = h;
+    }
+  }
+  return out;
+}
+
+std::vector<std::optional<Eigen::Matrix4d>> divergence_centres(
+    const Layout& layout, const Eigen::VectorXd& prior_value,
+    const std::vector<char>& has_a_priori) {
+  std::vector<std::optional<Eigen::Matrix4d>> centre(layout.body_params.size());
+  for (std::size_t b = 0; b < layout.body_params.size(); ++b) {
+    const auto& index = layout.body_params[b];
     bool known = true;
     double p0[10];
     for (int s = 0; s < 10; ++s) {
@@ -75,27 +108,61 @@ Eigen::MatrixXd prior_metric_root(const Layout& layout, const Eigen::VectorXd& p
     }
     if (!known) continue;
     const Eigen::Matrix4d P0 = pseudo_inertia(p0);
-    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix4d> eig(P0);
-    if (!(eig.eigenvalues()[0] > 1e-12 * eig.eigenvalues()[3])) continue;  // not a body
-    const Eigen::Matrix4d P0_inverse = eig.operatorInverseSqrt() * eig.operatorInverseSqrt();
-    std::array<Eigen::Matrix4d, 10> E;  // dP per unit change of each standard parameter
-    for (int s = 0; s < 10; ++s) {
-      double unit[10] = {};
-      unit[s] = 1;
-      E[static_cast<std::size_t>(s)] = P0_inverse * pseudo_inertia(unit);
-    }
-    Eigen::Matrix<double, 10, 10> Q;  // tr(P0^-1 E_i P0^-1 E_j)
-    for (int i = 0; i < 10; ++i) {
-      for (int j = 0; j < 10; ++j)
-        Q(i, j) = (E[static_cast<std::size_t>(i)] * E[static_cast<std::size_t>(j)]).trace();
-    }
-    const Eigen::Matrix<double, 10, 10> root =
-        Eigen::LLT<Eigen::Matrix<double, 10, 10>>(Q).matrixU();
-    for (int i = 0; i < 10; ++i) {
-      for (int j = 0; j < 10; ++j) L(index[i], index[j]) = root(i, j);
-    }
+    const Eigen::Vector4d lambda = Eigen::SelfAdjointEigenSolver<Eigen::Matrix4d>(P0).eigenvalues();
+    if (lambda[0] > 1e-12 * lambda[3]) centre[b] = P0;  // else not a body: the quadratic keeps it
   }
-  return L;
+  return centre;
+}
+
+ConvexTerm divergence_term(const Layout& layout,
+                           const std::vector<std::optional<Eigen::Matrix4d>>& centre,
+                           double weight) {
+  return [&layout, centre, weight](const Eigen::VectorXd& y, double& value,
+                                   Eigen::VectorXd* gradient, Eigen::MatrixXd* hessian) {
+    for (std::size_t b = 0; b < layout.body_params.size(); ++b) {
+      if (!centre[b]) continue;
+      const auto& index = layout.body_params[b];
+      double x[10];
+      for (int e = 0; e < 10; ++e) x[e] = y[index[e]];
+      const auto d = log_det_divergence(*centre[b], x, gradient != nullptr);
+      if (!d) return false;
+      value += weight * d->value;
+      if (gradient == nullptr) continue;
+      for (int e = 0; e < 10; ++e) {
+        (*gradient)[index[e]] += weight * d->gradient[e];
+        for (int f = 0; f < 10; ++f) (*hessian)(index[e], index[f]) += weight * d->hessian(e, f);
+      }
+    }
+    return true;
+  };
+}
+
+QuadraticPrior quadratic_prior(const Eigen::MatrixXd& K, const Eigen::MatrixXd& standard_per_y,
+                               const Eigen::VectorXd& scale, const Eigen::VectorXd& prior_value,
+                               const std::vector<char>& in_divergence) {
+  std::vector<Eigen::Index> Q;
+  for (Eigen::Index k = 0; k < K.cols(); ++k) {
+    if (!in_divergence[static_cast<std::size_t>(k)]) Q.push_back(k);
+  }
+  const auto q = static_cast<Eigen::Index>(Q.size());
+  Eigen::MatrixXd K_Q(K.rows(), q), LT(q, standard_per_y.cols());
+  Eigen::VectorXd scale_Q(q), Lp0(q);
+  for (Eigen::Index i = 0; i < q; ++i) {
+    K_Q.col(i) = K.col(Q[static_cast<std::size_t>(i)]);
+    scale_Q[i] = scale[Q[static_cast<std::size_t>(i)]];
+    LT.row(i) = standard_per_y.row(Q[static_cast<std::size_t>(i)]) / scale_Q[i];
+    Lp0[i] = prior_value[Q[static_cast<std::size_t>(i)]] / scale_Q[i];
+  }
+  QuadraticPrior out;
+  if (q == 0) {
+    out.G1 = Eigen::MatrixXd::Zero(0, standard_per_y.cols());
+    out.g1 = Eigen::VectorXd::Zero(0);
+    return out;
+  }
+  const Eigen::MatrixXd N = scaled_null_space(K_Q, scale_Q);
+  out.G1 = N.transpose() * LT;
+  out.g1 = N.transpose() * Lp0;
+  return out;
 }
 
 Eigen::MatrixXd null_space_of(const Eigen::MatrixXd& K, const Eigen::MatrixXd& M) {

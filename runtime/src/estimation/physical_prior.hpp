@@ -1,9 +1,11 @@
 // The prior term of the physically consistent fit (physical.cpp): its centre (the a-priori
-// standard values, or the start where there are none), the scale each deviation is measured
-// against, and the projection that confines it to the directions the data do not determine
-// (the null space of the regrouping map K), with the rule that chooses its default weight.
+// standard values, or the start where there are none); for each body with a-priori inertials
+// the log-det divergence of pseudo-inertias; for every other parameter a quadratic pull,
+// relative to a scale, confined to the directions the data do not determine (the null space
+// of the regrouping map K); and the rule that chooses its default weight.
 #pragma once
 
+#include <optional>
 #include <vector>
 
 #include <Eigen/Core>
@@ -44,16 +46,49 @@ Eigen::VectorXd prior_scales(const RigidBodyTree& tree, const Layout& layout,
                              const Eigen::VectorXd& reference, const Eigen::MatrixXd& K,
                              const Eigen::VectorXd* base_std_dev);
 
-// The metric of the prior term, as a root L (n x n, block diagonal, invertible): the prior term
-// is w ||N' L (p - p0)||^2. For a body whose a-priori values form a positive definite
-// pseudo-inertia P0, its block is the second-order form of the log-det (Bregman) divergence of
-// pseudo-inertias at P0 (Lee & Park, RA-L 2018; Lee, Wensing & Park, T-RO 2020):
-// ||L_b dp||^2 = tr(P0^-1 dP P0^-1 dP), dP the pseudo-inertia of dp: the change measured
-// relative to the body's own mass distribution, the same for every frame. Every other parameter
-// gets 1 / scale.
-Eigen::MatrixXd prior_metric_root(const Layout& layout, const Eigen::VectorXd& prior_value,
-                                  const std::vector<char>& has_a_priori,
-                                  const Eigen::VectorXd& scale);
+// The prior of a body whose ten a-priori values form a positive definite pseudo-inertia P0:
+// the log-det (Bregman) divergence of pseudo-inertias (Lee & Park, RA-L 2018; Lee, Wensing &
+// Park, T-RO 2020, "Geometric robot dynamic identification"),
+//     D(P || P0) = -log det(P0^-1 P) + tr(P0^-1 P) - 4,
+// the Bregman divergence of -log det: 0 at P = P0 only, the same in every frame and unit
+// (P -> S P S' leaves it unchanged), infinite on the boundary of consistency, so that a body
+// it holds stays strictly inside; 1/2 tr(P0^-1 dP P0^-1 dP) to second order (the local form
+// this replaced, which let principal moments fall to 1e-7 on the real Panda run). Over a body's
+// ten variables x (physical_barrier.hpp, P = sum_e x_e E_e): gradient tr((P0^-1 - P^-1) E_e),
+// Hessian tr(P^-1 E_e P^-1 E_f). nullopt where P is not positive definite.
+struct BodyDivergence {
+  double value = 0;
+  Eigen::Matrix<double, 10, 1> gradient = Eigen::Matrix<double, 10, 1>::Zero();
+  Eigen::Matrix<double, 10, 10> hessian = Eigen::Matrix<double, 10, 10>::Zero();
+};
+std::optional<BodyDivergence> log_det_divergence(const Eigen::Matrix4d& P0, const double* x,
+                                                 bool derivatives = true);
+
+// Per layout body, the a-priori pseudo-inertia P0 of a body all ten of whose values are given
+// and form a positive definite P0 (its eigenvalues above 1e-12 of the largest); nullopt for
+// the others, which the quadratic prior keeps.
+std::vector<std::optional<Eigen::Matrix4d>> divergence_centres(
+    const Layout& layout, const Eigen::VectorXd& prior_value,
+    const std::vector<char>& has_a_priori);
+
+// w sum_b D(P_b(y) || centre_b) over the bodies with a centre (in the variables' units), as the
+// barrier's convex term.
+ConvexTerm divergence_term(const Layout& layout,
+                           const std::vector<std::optional<Eigen::Matrix4d>>& centre,
+                           double weight);
+
+// The quadratic part of the prior, per unit weight: ||G1 y - g1||^2 = ||N' L_Q (p_Q - p0_Q)||^2
+// over the parameters Q outside the divergence's bodies (drive parameters, bodies without
+// complete a-priori values), L_Q = diag(1 / scale), N an orthonormal basis of the null space
+// of K_Q L_Q^-1 (K's columns of Q): a pull in the directions of Q that change no base
+// parameter. `standard_per_y` maps the variables to the standard parameters (T diag(1/d)).
+struct QuadraticPrior {
+  Eigen::MatrixXd G1;
+  Eigen::VectorXd g1;
+};
+QuadraticPrior quadratic_prior(const Eigen::MatrixXd& K, const Eigen::MatrixXd& standard_per_y,
+                               const Eigen::VectorXd& scale, const Eigen::VectorXd& prior_value,
+                               const std::vector<char>& in_divergence);
 
 // An orthonormal basis (columns) of the null space of K M: the directions (in the coordinates
 // of M's inverse) that change no base parameter. The rank is decided relative to the largest

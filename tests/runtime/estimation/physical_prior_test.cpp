@@ -252,13 +252,16 @@ TEST_F(PhysicalPrior, TheRuleTakesTheLargestWeightWithinItsBound) {
 
 TEST_F(PhysicalPrior, OnATruthInsideTheConsistentSetTheBaseFitStays) {
   // Bodies with 5 cm of radius of gyration added on every axis: the base parameters of the
-  // default fit are the unconstrained ones to a tenth of their standard deviation.
+  // default fit are the unconstrained ones to a fifth of their standard deviation. (The
+  // log-det divergence acts on every direction of a body, not only on those the data leave
+  // free as the local quadratic form did: at weight 1 it moves YY4R, XX6R and YY6 by 0.11 to
+  // 0.17 of theirs here, against the a-priori masses 30 % off.)
   make(0.05 * 0.05, kNoise);
   const PhysicalFitResult fit =
       fit_physical(robot_.tree, K_, beta_hat_, information_, a_priori_, with_residual());
   ASSERT_TRUE(fit.converged);
   for (Eigen::Index j = 0; j < beta_hat_.size(); ++j) {
-    EXPECT_LE(std::abs(fit.base[j] - beta_hat_[j]), 0.1 * std_dev_[j])
+    EXPECT_LE(std::abs(fit.base[j] - beta_hat_[j]), 0.2 * std_dev_[j])
         << model_->base_param_names()[static_cast<std::size_t>(j)] << " weight "
         << fit.prior_weight;
   }

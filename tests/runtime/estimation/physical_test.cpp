@@ -5,7 +5,9 @@
 // map, bounded parameters kept >= 0), with the cost written again here.
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <limits>
 #include <random>
 
 #include <Eigen/Dense>
@@ -158,11 +160,11 @@ TEST_F(PhysicalFit, NoFeasiblePerturbationLowersTheCostOfAnInconsistentEstimate)
   for (const auto& v : physical_violations(robot_.tree, fit.standard)) {
     ADD_FAILURE() << v.parameter << ": " << v.condition;
   }
-  // The documented cost, written again: the base term plus w times the prior term, the squared
-  // deviation from the prior in the metric of the log-det divergence at each a-priori body
-  // (tr(P0^-1 dP P0^-1 dP), pseudo-inertias formed here) and relative to the reported scales
-  // elsewhere, of its part that changes no base parameter: with Q = L'L the metric,
-  // z = L (p - prior) projected on the null space of K L^-1.
+  // The documented cost, written again (physical_prior.hpp): the base term plus w times the
+  // prior, which is, per body with a-priori inertials, twice the log-det divergence
+  // D(P || P0) = -log det(P0^-1 P) + tr(P0^-1 P) - 4 of its pseudo-inertia (formed here), and on
+  // the other parameters their squared deviation relative to the reported scales, of its part
+  // that changes no base parameter: z = L (p - prior) projected on the null space of K L^-1.
   ASSERT_EQ(fit.prior, truth_);
   const auto pseudo = [](const double* p) {
     Eigen::Matrix3d I;
@@ -174,28 +176,47 @@ TEST_F(PhysicalFit, NoFeasiblePerturbationLowersTheCostOfAnInconsistentEstimate)
     P(3, 3) = p[9];
     return P;
   };
-  Eigen::MatrixXd Q = fit.prior_scale.cwiseInverse().cwiseAbs2().asDiagonal();
+  std::vector<std::array<int, 10>> bodies_with_prior;
+  std::vector<Eigen::Index> others;
+  std::vector<char> in_body(static_cast<std::size_t>(truth_.size()), 0);
   for (const auto& index : inertial_param_indices(robot_.tree)) {
-    if (index[0] < 0) continue;
-    double p0[10];
-    for (int s = 0; s < 10; ++s) p0[s] = truth_[index[s]];
-    const Eigen::Matrix4d P0_inverse = pseudo(p0).inverse();
-    for (int i = 0; i < 10; ++i) {
-      for (int j = 0; j < 10; ++j) {
-        double ei[10] = {}, ej[10] = {};
-        ei[i] = ej[j] = 1;
-        Q(index[i], index[j]) = (P0_inverse * pseudo(ei) * P0_inverse * pseudo(ej)).trace();
-      }
-    }
+    if (std::find(index.begin(), index.end(), -1) != index.end()) continue;
+    bodies_with_prior.push_back(index);
+    for (int k : index) in_body[static_cast<std::size_t>(k)] = 1;
   }
-  const Eigen::MatrixXd L = Eigen::LLT<Eigen::MatrixXd>(Q).matrixU();
-  const Eigen::MatrixXd M = K_ * L.inverse();
-  const Eigen::MatrixXd null_projection = Eigen::MatrixXd::Identity(M.cols(), M.cols()) -
-                                          M.completeOrthogonalDecomposition().pseudoInverse() * M;
+  for (Eigen::Index k = 0; k < truth_.size(); ++k) {
+    if (!in_body[static_cast<std::size_t>(k)]) others.push_back(k);
+  }
+  const auto divergence = [&](const Eigen::VectorXd& standard) {
+    double sum = 0;
+    for (const auto& index : bodies_with_prior) {
+      double p[10], p0[10];
+      for (int s = 0; s < 10; ++s) p[s] = standard[index[s]], p0[s] = truth_[index[s]];
+      const Eigen::Matrix4d ratio = pseudo(p0).inverse() * pseudo(p);
+      const double det = ratio.determinant();
+      if (!(det > 0)) return std::numeric_limits<double>::infinity();
+      sum += -std::log(det) + ratio.trace() - 4;
+    }
+    return sum;
+  };
+  const auto q = static_cast<Eigen::Index>(others.size());
+  Eigen::MatrixXd M(K_.rows(), q);
+  Eigen::VectorXd L(q);
+  for (Eigen::Index i = 0; i < q; ++i) {
+    L[i] = 1 / fit.prior_scale[others[static_cast<std::size_t>(i)]];
+    M.col(i) = K_.col(others[static_cast<std::size_t>(i)]) / L[i];
+  }
+  const Eigen::MatrixXd null_projection =
+      Eigen::MatrixXd::Identity(q, q) - M.completeOrthogonalDecomposition().pseudoInverse() * M;
   const auto cost = [&](const Eigen::VectorXd& standard) {
     const Eigen::VectorXd d = K_ * standard - beta;
-    const Eigen::VectorXd z = L * (standard - truth_);
-    return d.dot(F * d) + *options.prior_weight * z.dot(null_projection * z);
+    Eigen::VectorXd z(q);
+    for (Eigen::Index i = 0; i < q; ++i) {
+      const Eigen::Index k = others[static_cast<std::size_t>(i)];
+      z[i] = L[i] * (standard[k] - truth_[k]);
+    }
+    return d.dot(F * d) +
+           *options.prior_weight * (z.dot(null_projection * z) + 2 * divergence(standard));
   };
   const double best = cost(fit.standard);
   EXPECT_LT(fit.cost_increase, best);

@@ -10,10 +10,11 @@
 // sigma^2 its information matrix, ||W beta - y||^2 / sigma^2 = ||W beta_hat - y||^2 / sigma^2 +
 // (beta - beta_hat)' F (beta - beta_hat). A prior term towards the a-priori standard values
 // (the description's inertials) picks one among the standard parameter sets that give the same
-// base parameters: it acts only in the directions the data do not determine (the null space of
-// the regrouping map), with a weight chosen so that it raises the fit's weighted sum of squares
-// by at most 4 % of the unconstrained fit's beyond what consistency costs
-// (runtime/src/estimation/physical_prior.hpp, docs/methods.md).
+// base parameters: per link with a-priori inertials the log-det divergence of pseudo-inertias
+// (Lee, Wensing & Park, T-RO 2020), which keeps the link strictly inside the consistent set;
+// elsewhere a quadratic pull in the directions the data do not determine; with a weight chosen
+// so that it raises the fit's weighted sum of squares by at most 4 % of the unconstrained fit's
+// beyond what consistency costs (runtime/src/estimation/physical_prior.hpp, docs/methods.md).
 #pragma once
 
 #include <optional>
@@ -30,16 +31,17 @@ namespace modelgen {
 class IdentificationModel;
 
 struct PhysicalFitOptions {
-  /// Weight of the prior term: the sum of squares of the scaled deviation from the a-priori
-  /// values (or, without one, from the start), each deviation relative to the size of the
-  /// parameter's group (a body's inertia entries, first moments, mass; one drive kind), projected
-  /// onto the directions that change no base parameter, against the base-parameter term in
-  /// units of the estimate's variance. Must be > 0. Unset: the default rule, the largest of
-  /// 1, 0.1, ..., 1e-4 whose cost exceeds that of the estimate with weight 1e-6 (consistency
-  /// alone) by at most 0.0404 residual_sum_of_squares (the weighted residual's rms grows by at
-  /// most 2 % of the unconstrained fit's), else 1e-6. Without a body whose ten a-priori values
-  /// are all given, the prior acts on every direction instead, relative to group sizes floored
-  /// at what the data resolve, with weight 1e-6.
+  /// Weight of the prior term, against the base-parameter term in units of the estimate's
+  /// variance: per link with ten a-priori values the log-det divergence of its pseudo-inertia
+  /// from theirs; on every other parameter the sum of squares of the scaled deviation from the
+  /// a-priori values (or, without one, from the start), each deviation relative to the size of
+  /// the parameter's group (a body's inertia entries, first moments, mass; one drive kind),
+  /// projected onto the directions that change no base parameter. Must be > 0. Unset: the default
+  /// rule, the largest of 1, 0.1, ..., 1e-4 whose cost exceeds that of the estimate with weight
+  /// 1e-6 (consistency alone) by at most 0.0404 residual_sum_of_squares (the weighted residual's
+  /// rms grows by at most 2 % of the unconstrained fit's), else 1e-6. Without a body whose ten
+  /// a-priori values are all given, the prior acts on every direction instead, relative to group
+  /// sizes floored at what the data resolve, with weight 1e-6.
   std::optional<double> prior_weight;
   /// The unconstrained fit's weighted sum of squares in the information's units (for least
   /// squares with F = W'W / sigma^2: the residual degrees of freedom, rows - b), the scale of
@@ -74,9 +76,8 @@ struct PhysicalFitResult {
   std::vector<int> rejected_region_bodies;
   double rejected_region_cost = 0;
   /// The prior term's centre and scale per standard parameter: the a-priori value (or the
-  /// start) and the size its deviation is measured against; the prior term is
-  /// prior_weight * ||N' ((standard - prior) / prior_scale)||^2, N an orthonormal basis of the
-  /// null space of K diag(prior_scale).
+  /// start) and the size its deviation is measured against by the quadratic prior (links with
+  /// a-priori inertials: the divergence, physical_prior.hpp).
   Eigen::VectorXd prior, prior_scale;
   double prior_weight = 0;              ///< the weight used
   bool prior_weight_automatic = false;  ///< chosen by the default rule
