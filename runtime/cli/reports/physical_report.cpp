@@ -5,6 +5,7 @@
 #include <ostream>
 #include <stdexcept>
 
+#include "modelgen/estimation/a_priori_disagreement.hpp"
 #include "modelgen/model/physical_consistency.hpp"
 #include "runtime/cli/common/text_format.hpp"
 #include "runtime/cli/reports/link_table.hpp"
@@ -12,6 +13,29 @@
 namespace modelgen::internal {
 
 using namespace modelgen::io;  // the file formats (modelgen/io/)
+
+namespace {
+
+// Each link with a-priori values: the base parameters it enters where the data reject them.
+void attach_a_priori_disagreement(const RigidBodyTree& tree, const Eigen::MatrixXd& K,
+                                  const std::vector<std::optional<double>>& a_priori,
+                                  const LeastSquaresResult& unconstrained,
+                                  const std::vector<std::string>& base_names,
+                                  std::vector<LinkSummary>& links) {
+  const auto per_body =
+      a_priori_disagreement(inertial_param_indices(tree), K, a_priori, unconstrained.value,
+                            unconstrained.std_dev, base_names, kRejectingSd);
+  for (LinkSummary& link : links) {
+    if (!link.a_priori) continue;
+    for (std::size_t b = 0; b < tree.bodies.size(); ++b) {
+      if (tree.bodies[b].name == link.body) {
+        link.a_priori_rejected_in = disagreement_words(per_body[b], 3);
+      }
+    }
+  }
+}
+
+}  // namespace
 
 PhysicalEstimate physical_estimate(const RobotModel& description, const IdentificationModel& model,
                                    const LeastSquaresResult& unconstrained,
@@ -35,6 +59,8 @@ PhysicalEstimate physical_estimate(const RobotModel& description, const Identifi
   out.prior_weight = out.fit.prior_weight;
   out.links = summarise_links(description.tree, K, out.fit, description.known_values,
                               description.body_regions);
+  attach_a_priori_disagreement(description.tree, K, description.known_values, unconstrained,
+                               model.base_param_names(), out.links);
   out.drives = summarise_drives(description.tree, K, out.fit, description.known_values);
   return out;
 }
@@ -54,6 +80,7 @@ LinkInertial link_inertial(const LinkSummary& summary) {
   link.com_decided_by = decided_by_name(summary.com_by);
   link.moments_decided_by = decided_by_name(summary.moments_by);
   link.far_from_a_priori = summary.far_from_a_priori;
+  link.a_priori_rejected_in = summary.a_priori_rejected_in;
   link.region_extent = summary.region_extent;
   return link;
 }
