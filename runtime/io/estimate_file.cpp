@@ -108,6 +108,7 @@ std::string estimate_json(const EstimateFile& estimate) {
     out["physical"] = {{"prior_weight", number(p.prior_weight)},
                        {"prior_weight_rule", p.prior_weight_rule},
                        {"cost_increase", number(p.cost_increase)},
+                       {"converged", p.converged},
                        {"binding_constraints", p.binding_constraints},
                        {"unconstrained_rel_error_norm", number(p.unconstrained_rel_error_norm)},
                        {"unconstrained", parameters_json(p.unconstrained)}};

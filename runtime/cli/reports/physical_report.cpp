@@ -9,6 +9,7 @@
 #include "modelgen/model/physical_consistency.hpp"
 #include "runtime/cli/common/text_format.hpp"
 #include "runtime/cli/reports/link_table.hpp"
+#include "runtime/src/estimation/physical_prior.hpp"
 
 namespace modelgen::internal {
 
@@ -92,6 +93,7 @@ PhysicalBlock physical_block(const PhysicalEstimate& physical,
   block.prior_weight = physical.prior_weight;
   block.prior_weight_rule = physical.fit.prior_weight_automatic ? "default" : "given";
   block.cost_increase = physical.fit.cost_increase;
+  block.converged = physical.fit.converged;
   block.unconstrained_rel_error_norm = unconstrained_rel_error_norm;
   block.binding_constraints = physical.fit.active_constraints;
   block.unconstrained = unconstrained;
@@ -143,6 +145,21 @@ void print_physical(std::ostream& out, const std::vector<std::string>& base_name
     out << "  note: the optimiser stopped after " << fit.iterations
         << " Newton steps without meeting its tolerance\n";
   }
+}
+
+void warn_unconverged(std::ostream& err, const PhysicalEstimate& physical) {
+  if (physical.fit.converged) return;
+  err << "modelid fit: warning: the physically consistent fit stopped after "
+      << physical.fit.iterations
+      << " Newton steps without meeting its tolerance: its estimate is not the optimum and may be "
+         "far from it";
+  // Below the reference weight the prior's pull falls under the rounding of the data term
+  // (physical_barrier.cpp): on the UR5 and Panda runs 1e-8 and 1e-10 stopped so.
+  if (physical.prior_weight < detail::kReferencePriorWeight) {
+    err << " (prior weight " << physical.prior_weight << ", below " << detail::kReferencePriorWeight
+        << ": too weak for the solver to resolve)";
+  }
+  err << "\n";
 }
 
 }  // namespace modelgen::internal

@@ -70,6 +70,7 @@ struct PhysicalBlock {
   double prior_weight = 0;
   std::string prior_weight_rule;  ///< "default" (the rule of --physical) or "given"
   double cost_increase = 0;  ///< of the weighted sum of squares, in sigma^2
+  bool converged = true;     ///< the optimiser met its tolerance (else not the optimum)
   double unconstrained_rel_error_norm = 0;
   std::vector<std::string> binding_constraints;
   std::vector<EstimatedParameter> unconstrained;               ///< the fit without constraints
