@@ -90,6 +90,7 @@ std::string estimate_json(const EstimateFile& estimate) {
                               numbers({a.principal_moments.begin(), a.principal_moments.end()})}};
       }
       entry["far_from_a_priori"] = link.far_from_a_priori;
+      if (link.a_priori) entry["a_priori_rejected_in"] = link.a_priori_rejected_in;
       if (link.region_extent) entry["region_extent"] = number(*link.region_extent);
       links.push_back(std::move(entry));
     }
@@ -107,6 +108,7 @@ std::string estimate_json(const EstimateFile& estimate) {
     out["physical"] = {{"prior_weight", number(p.prior_weight)},
                        {"prior_weight_rule", p.prior_weight_rule},
                        {"cost_increase", number(p.cost_increase)},
+                       {"converged", p.converged},
                        {"binding_constraints", p.binding_constraints},
                        {"unconstrained_rel_error_norm", number(p.unconstrained_rel_error_norm)},
                        {"unconstrained", parameters_json(p.unconstrained)}};

@@ -144,6 +144,12 @@ int run_export(const CommandLine& args) {
   const RobotModel& description = *source.description;
   const IdentifiedStandard identified =
       read_identified_standard(params, description, *source.model);
+  if (!args.has("--force") && !identified.converged) {
+    throw InputError({params},
+                     "the consistent fit that wrote it stopped short of its optimum "
+                     "(\"converged\": false): nothing was written; refit (at the "
+                     "default prior weight), or give --force to write it anyway");
+  }
   if (!args.has("--force")) check_links_near_a_priori(description, identified.values, params);
 
   const std::string estimate = std::filesystem::path(params).filename().string();

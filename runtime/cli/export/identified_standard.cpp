@@ -127,6 +127,10 @@ IdentifiedStandard read_identified_standard(const std::string& path, const Robot
   if (json.contains("parameters")) read_base_parameters(document, model);
   if (json.contains("method") && json["method"].is_string()) out.method = json["method"];
   out.decided = decided_lines(json);
+  if (json.contains("physical") && json["physical"].is_object()) {
+    const nlohmann::json converged = json["physical"].value("converged", nlohmann::json(true));
+    out.converged = !converged.is_boolean() || converged.get<bool>();
+  }
 
   // What export writes must load again: the loaders refuse impossible inertials.
   for (const PhysicalViolation& violation : physical_violations(description.tree, out.values)) {

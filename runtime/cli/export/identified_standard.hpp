@@ -22,6 +22,9 @@ struct IdentifiedStandard {
   /// decided its mass, centre of mass; the a-priori model its principal moments"; empty for
   /// files without them.
   std::vector<std::string> decided;
+  /// false when the estimate's "physical" block says its optimiser stopped short
+  /// ("converged": false): its values are then not the fit's optimum.
+  bool converged = true;
 };
 
 /// Reads the "standard" block of the estimate at `path` for `description` (the model made

@@ -287,6 +287,7 @@ int run_fit(const CommandLine& args) {
     print_physical(std::cout, id.names, id.fit, id.torque_rel_error_norm, *physical,
                    id.fit.equations - static_cast<long long>(id.names.size()));
     warn_far_links(std::cerr, physical->links);
+    warn_unconverged(std::cerr, *physical);
   }
   std::optional<EssentialEstimate> essential;
   if (args.has("--essential")) {

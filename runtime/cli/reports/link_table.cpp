@@ -76,6 +76,37 @@ void print_drive_table(std::ostream& out, const std::vector<DriveSummary>& drive
   }
 }
 
+namespace {
+
+// Why a far link is where it is. Far by the data's decision points at the description; far in
+// what the regrouping leaves to the prior (no excitation decides it alone) points at the base
+// parameters in which the data reject the a-priori values: the prior spread their
+// disagreement over the directions the data leave free.
+std::string far_link_reason(const LinkSummary& link) {
+  const bool mass_data = link.mass_by == DecidedBy::kData;
+  const bool com_data = link.com_by == DecidedBy::kData;
+  std::string out;
+  if (mass_data && com_data) {
+    out = "the data decided its mass and centre of mass";
+  } else {
+    out = std::string("its ") +
+          (!mass_data && !com_data ? "mass and centre of mass are"
+           : !mass_data            ? "mass is"
+                                   : "centre of mass is") +
+          " regrouped with other parameters, which no excitation separates: the prior chose " +
+          (!mass_data && !com_data ? "them" : "it");
+  }
+  if (!link.a_priori_rejected_in.empty()) {
+    out += "; the data reject the a-priori values in ";
+    for (std::size_t i = 0; i < link.a_priori_rejected_in.size(); ++i) {
+      out += (i ? ", " : "") + link.a_priori_rejected_in[i];
+    }
+  }
+  return out + ": check the description's inertials";
+}
+
+}  // namespace
+
 void warn_far_links(std::ostream& err, const std::vector<LinkSummary>& links) {
   for (const LinkSummary& link : links) {
     if (outside_region(link)) {
@@ -94,12 +125,7 @@ void warn_far_links(std::ostream& err, const std::vector<LinkSummary>& links) {
     for (std::size_t i = 0; i < link.far_from_a_priori.size(); ++i) {
       err << (i ? "; " : "") << link.far_from_a_priori[i];
     }
-    // Far by the data's decision points at the description; far by the prior's at the data.
-    const bool by_data = link.mass_by == DecidedBy::kData && link.com_by == DecidedBy::kData;
-    err << (by_data ? " (the data decided its mass and centre of mass: check the description's "
-                      "inertials)\n"
-                    : " (the data decided its mass and centre of mass only in part: check the "
-                      "excitation and the description's inertials)\n");
+    err << " (" << far_link_reason(link) << ")\n";
   }
 }
 

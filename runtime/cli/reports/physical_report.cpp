@@ -5,13 +5,38 @@
 #include <ostream>
 #include <stdexcept>
 
+#include "modelgen/estimation/a_priori_disagreement.hpp"
 #include "modelgen/model/physical_consistency.hpp"
 #include "runtime/cli/common/text_format.hpp"
 #include "runtime/cli/reports/link_table.hpp"
+#include "runtime/src/estimation/physical_prior.hpp"
 
 namespace modelgen::internal {
 
 using namespace modelgen::io;  // the file formats (modelgen/io/)
+
+namespace {
+
+// Each link with a-priori values: the base parameters it enters where the data reject them.
+void attach_a_priori_disagreement(const RigidBodyTree& tree, const Eigen::MatrixXd& K,
+                                  const std::vector<std::optional<double>>& a_priori,
+                                  const LeastSquaresResult& unconstrained,
+                                  const std::vector<std::string>& base_names,
+                                  std::vector<LinkSummary>& links) {
+  const auto per_body =
+      a_priori_disagreement(inertial_param_indices(tree), K, a_priori, unconstrained.value,
+                            unconstrained.std_dev, base_names, kRejectingSd);
+  for (LinkSummary& link : links) {
+    if (!link.a_priori) continue;
+    for (std::size_t b = 0; b < tree.bodies.size(); ++b) {
+      if (tree.bodies[b].name == link.body) {
+        link.a_priori_rejected_in = disagreement_words(per_body[b], 3);
+      }
+    }
+  }
+}
+
+}  // namespace
 
 PhysicalEstimate physical_estimate(const RobotModel& description, const IdentificationModel& model,
                                    const LeastSquaresResult& unconstrained,
@@ -35,6 +60,8 @@ PhysicalEstimate physical_estimate(const RobotModel& description, const Identifi
   out.prior_weight = out.fit.prior_weight;
   out.links = summarise_links(description.tree, K, out.fit, description.known_values,
                               description.body_regions);
+  attach_a_priori_disagreement(description.tree, K, description.known_values, unconstrained,
+                               model.base_param_names(), out.links);
   out.drives = summarise_drives(description.tree, K, out.fit, description.known_values);
   return out;
 }
@@ -54,6 +81,7 @@ LinkInertial link_inertial(const LinkSummary& summary) {
   link.com_decided_by = decided_by_name(summary.com_by);
   link.moments_decided_by = decided_by_name(summary.moments_by);
   link.far_from_a_priori = summary.far_from_a_priori;
+  link.a_priori_rejected_in = summary.a_priori_rejected_in;
   link.region_extent = summary.region_extent;
   return link;
 }
@@ -65,6 +93,7 @@ PhysicalBlock physical_block(const PhysicalEstimate& physical,
   block.prior_weight = physical.prior_weight;
   block.prior_weight_rule = physical.fit.prior_weight_automatic ? "default" : "given";
   block.cost_increase = physical.fit.cost_increase;
+  block.converged = physical.fit.converged;
   block.unconstrained_rel_error_norm = unconstrained_rel_error_norm;
   block.binding_constraints = physical.fit.active_constraints;
   block.unconstrained = unconstrained;
@@ -116,6 +145,21 @@ void print_physical(std::ostream& out, const std::vector<std::string>& base_name
     out << "  note: the optimiser stopped after " << fit.iterations
         << " Newton steps without meeting its tolerance\n";
   }
+}
+
+void warn_unconverged(std::ostream& err, const PhysicalEstimate& physical) {
+  if (physical.fit.converged) return;
+  err << "modelid fit: warning: the physically consistent fit stopped after "
+      << physical.fit.iterations
+      << " Newton steps without meeting its tolerance: its estimate is not the optimum and may be "
+         "far from it";
+  // Below the reference weight the prior's pull falls under the rounding of the data term
+  // (physical_barrier.cpp): on the UR5 and Panda runs 1e-8 and 1e-10 stopped so.
+  if (physical.prior_weight < detail::kReferencePriorWeight) {
+    err << " (prior weight " << physical.prior_weight << ", below " << detail::kReferencePriorWeight
+        << ": too weak for the solver to resolve)";
+  }
+  err << "\n";
 }
 
 }  // namespace modelgen::internal

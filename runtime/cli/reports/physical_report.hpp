@@ -51,4 +51,9 @@ void print_physical(std::ostream& out, const std::vector<std::string>& base_name
                     const LeastSquaresResult& unconstrained, double unconstrained_rel_error_norm,
                     const PhysicalEstimate& physical, long long residual_dof);
 
+/// A warning on `err` when the consistent fit's optimiser stopped without meeting its
+/// tolerance: its numbers are then not the optimum (the note under the table said so only on
+/// stdout, beside a relative error norm of 1e4 at prior weight 1e-10 on the UR5).
+void warn_unconverged(std::ostream& err, const PhysicalEstimate& physical);
+
 }  // namespace modelgen::internal

@@ -52,6 +52,32 @@ TEST(ModelidExport, ALinkFarFromItsAPrioriValuesIsRefusedUnlessForced) {
   EXPECT_TRUE(fs::exists(dir / "id.urdf"));
 }
 
+TEST(ModelidExport, AFitThatStoppedShortIsRefusedUnlessForced) {
+  // The tool arm at its a-priori values (no link far), from a consistent fit whose optimiser
+  // stopped short ("converged": false, as fit --physical writes it then): refused, nothing
+  // written; with --force written; the same estimate marked converged is written.
+  const fs::path dir = test::test_folder("export_stopped");
+  test::write_text(dir / "arm.urdf", kToolArm);
+  nlohmann::json est = tool_arm_estimate(dir / "arm.urdf", 1.0);
+  est["physical"]["converged"] = false;
+  test::write_text(dir / "est.json", est.dump(2));
+  const std::string command = "export --robot " + quoted(dir / "arm.urdf") + " --params " +
+                              quoted(dir / "est.json") + " -o " + quoted(dir / "id.urdf");
+  const CliRun refused = modelid(command);
+  EXPECT_NE(refused.exit_code, 0);
+  EXPECT_NE(refused.err.find("stopped short of its optimum"), std::string::npos) << refused.err;
+  EXPECT_FALSE(fs::exists(dir / "id.urdf"));
+  const CliRun forced = modelid(command + " --force");
+  ASSERT_EQ(forced.exit_code, 0) << forced.err;
+  EXPECT_TRUE(fs::exists(dir / "id.urdf"));
+  fs::remove(dir / "id.urdf");
+  est["physical"]["converged"] = true;
+  test::write_text(dir / "est.json", est.dump(2));
+  const CliRun accepted = modelid(command);
+  ASSERT_EQ(accepted.exit_code, 0) << accepted.err;
+  EXPECT_TRUE(fs::exists(dir / "id.urdf"));
+}
+
 // One link: a 0.1 x 0.1 x 0.4 box from the joint up, its a-priori mass 1 kg at its centre.
 constexpr const char* kBoxArm = R"(<?xml version="1.0"?>
 <robot name="box_arm">

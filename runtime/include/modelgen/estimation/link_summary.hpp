@@ -43,6 +43,10 @@ struct LinkSummary {
   /// Why the link is far from its a-priori values (mass off by more than a factor 2, centre of
   /// mass more than 0.1 m away), e.g. "mass 2.60 x its a-priori value"; empty when it is not.
   std::vector<std::string> far_from_a_priori;
+  /// The base parameters this link enters in which the data reject its a-priori values (more
+  /// than kRejectingSd standard deviations), largest first, at most three, e.g. "MY5R -14.6 sd"
+  /// (a_priori_disagreement.hpp); filled by the caller that has the unconstrained estimate.
+  std::vector<std::string> a_priori_rejected_in;
   /// With a region from the description's geometry (modelgen/model/robot_model.hpp), the
   /// link's extent in it (region_extent); above 1 the mass reaches outside the region.
   std::optional<double> region_extent;
@@ -53,6 +57,7 @@ struct LinkSummary {
 
 inline constexpr double kFarMassFactor = 2.0;
 inline constexpr double kFarComDistance = 0.1;  // m
+inline constexpr double kRejectingSd = 3.0;
 
 /// A drive parameter (rotor inertia, friction, offset: every standard parameter outside the
 /// bodies) of the consistent fit: identified only when the data decided it alone. One the

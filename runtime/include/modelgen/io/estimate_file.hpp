@@ -50,6 +50,8 @@ struct LinkInertial {
   /// "data" or "prior" for the mass, the centre of mass and the principal moments.
   std::string mass_decided_by, com_decided_by, moments_decided_by;
   std::vector<std::string> far_from_a_priori;  ///< why the link is far from its a-priori values
+  /// base parameters it enters where the data reject its a-priori values, e.g. "MY5R -14.6 sd"
+  std::vector<std::string> a_priori_rejected_in;
   std::optional<double> region_extent;         ///< in its geometric region; above 1: outside
 };
 
@@ -68,6 +70,7 @@ struct PhysicalBlock {
   double prior_weight = 0;
   std::string prior_weight_rule;  ///< "default" (the rule of --physical) or "given"
   double cost_increase = 0;  ///< of the weighted sum of squares, in sigma^2
+  bool converged = true;     ///< the optimiser met its tolerance (else not the optimum)
   double unconstrained_rel_error_norm = 0;
   std::vector<std::string> binding_constraints;
   std::vector<EstimatedParameter> unconstrained;               ///< the fit without constraints
@@ -101,6 +104,7 @@ struct EstimateFile {
 /// "condition_number"}, "standard"?: {"XX1": ..., ...}, "links"?: [{"body", "mass", "com",
 /// "inertia_com", "principal_moments", "decided_by": {"mass", "com", "principal_moments"},
 /// "a_priori"?: {"mass", "com", "principal_moments"}, "far_from_a_priori": [...],
+/// "a_priori_rejected_in"?: [...],
 /// "region_extent"?}],
 /// "drives"?: [{"name", "value", "a_priori"?, "decided_by", "regrouped_with"}],
 /// "physical"?: {"prior_weight", "prior_weight_rule", "cost_increase", "binding_constraints",
