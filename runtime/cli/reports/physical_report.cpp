@@ -9,7 +9,6 @@
 #include "modelgen/model/physical_consistency.hpp"
 #include "runtime/cli/common/text_format.hpp"
 #include "runtime/cli/reports/link_table.hpp"
-#include "runtime/src/estimation/physical_prior.hpp"
 
 namespace modelgen::internal {
 
@@ -155,8 +154,8 @@ void warn_unconverged(std::ostream& err, const PhysicalEstimate& physical) {
          "far from it";
   // Below the reference weight the prior's pull falls under the rounding of the data term
   // (physical_barrier.cpp): on the UR5 and Panda runs 1e-8 and 1e-10 stopped so.
-  if (physical.prior_weight < detail::kReferencePriorWeight) {
-    err << " (prior weight " << physical.prior_weight << ", below " << detail::kReferencePriorWeight
+  if (physical.prior_weight < kReferencePriorWeight) {
+    err << " (prior weight " << physical.prior_weight << ", below " << kReferencePriorWeight
         << ": too weak for the solver to resolve)";
   }
   err << "\n";

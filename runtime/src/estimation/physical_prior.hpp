@@ -10,6 +10,7 @@
 
 #include <Eigen/Core>
 
+#include "modelgen/estimation/physical.hpp"
 #include "modelgen/model/rigid_body_tree.hpp"
 #include "runtime/src/estimation/physical_barrier.hpp"
 
@@ -30,7 +31,7 @@ namespace modelgen::detail {
 // |d beta_j| <= sigma_j ||d beta||_F), the statistical bound when the residual is noise alone.
 // The reference weight is the smallest that keeps the problem well posed.
 inline constexpr double kPriorWeightLadder[] = {1.0, 1e-1, 1e-2, 1e-3, 1e-4};
-inline constexpr double kReferencePriorWeight = 1e-6;
+inline constexpr double kReferencePriorWeight = modelgen::kReferencePriorWeight;
 inline constexpr double kCostRiseLimit = 1.02 * 1.02 - 1;
 inline constexpr double kCostRiseWithoutResidual = 1.0;
 

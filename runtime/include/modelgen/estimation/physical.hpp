@@ -30,6 +30,11 @@ namespace modelgen {
 
 class IdentificationModel;
 
+/// The smallest prior weight that keeps the consistent solve well posed: its estimate is
+/// "consistency alone", the default rule's reference. Below it the barrier's steps run into the
+/// rounding of the data term and the solve may stop short (PhysicalFitResult::converged).
+inline constexpr double kReferencePriorWeight = 1e-6;
+
 struct PhysicalFitOptions {
   /// Weight of the prior term, against the base-parameter term in units of the estimate's
   /// variance: per link with ten a-priori values the log-det divergence of its pseudo-inertia
