@@ -8,13 +8,17 @@
 // - Franka Panda (Gaz et al. 2019): joint positions and link-side torques at ~1 kHz with
 //   jittered time stamps, robots/panda_arm.yaml; per-joint rms torque error next to the rms of
 //   the measured torque.
+// - The TX-40 with a-priori link values (issue 30): those of the figaroh TX40 URDF
+//   (robots/data/tx40/a_priori_links.yaml) as the prior of the consistent fit.
 
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <map>
+#include <regex>
 #include <sstream>
 
 #include <gtest/gtest.h>
@@ -106,6 +110,76 @@ double value_of(const Identification& id, const std::string& name) {
   return std::nan("");
 }
 
+std::string file_text(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+// tx40.yaml with the figaroh URDF's link values appended to its `known:` section, as
+// docs/real-data.md builds it (tests/robots/tx40_a_priori_test.cpp checks the values).
+RobotModel tx40_with_a_priori_links() {
+  const std::string links = file_text(test::source_path("robots/data/tx40/a_priori_links.yaml"));
+  return load_robot_text(
+      "tx40_a_priori.yaml",
+      file_text(test::source_path("robots/tx40.yaml")) +
+          std::regex_replace(links, std::regex("^([A-Z])", std::regex::multiline), "  $1"));
+}
+
+// Issue 30 on the real TX-40: with the URDF's link values as the prior (default weight rule),
+// links 1-5 keep their mass within [0.6, 1.67] times the a-priori mass (measured 0.73-1.27),
+// every link its centre of mass within 8 cm of the a-priori one (at most 6.1 cm), and the
+// relative error norm stays within `allowed` times the unconstrained fit's (measured 1.014).
+// Compared with the source's values, read from the file, not with an earlier output.
+void check_tx40_a_priori_fit(const IdentificationModel& model, const Identification& id,
+                             const Trajectory& data, int decimation, double allowed) {
+  const RobotModel robot = tx40_with_a_priori_links();
+  PhysicalFitOptions options;  // as modelid fit --physical sets them
+  options.residual_sum_of_squares = static_cast<double>(id.fit.equations - id.fit.value.size());
+  options.regions = robot.body_regions;
+  const auto start = std::chrono::steady_clock::now();
+  const PhysicalFitResult fit = fit_physical(robot.tree, regrouping_matrix(model), id.fit.value,
+                                             id.fit.information, robot.known_values, options);
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  EXPECT_TRUE(fit.converged);
+  std::vector<Trajectory> compared = {data};
+  const double ratio = predict_decimated(model, compared, fit.base, {decimation}).rel_error_norm /
+                       id.torque_rel_error_norm;
+  std::printf(
+      "  a-priori links: weight %g, cost increase %.3f sigma^2, relative error norm "
+      "%.4f of the unconstrained, %.2f s\n",
+      fit.prior_weight, fit.cost_increase, ratio, seconds);
+  EXPECT_LT(ratio, allowed);
+  auto value = [&](const Eigen::VectorXd& p, const std::string& name) {
+    return p(robot.param_index(name));
+  };
+  Eigen::VectorXd a_priori(robot.tree.params.size());
+  for (std::size_t k = 0; k < robot.known_values.size(); ++k)
+    a_priori(static_cast<Eigen::Index>(k)) = robot.known_values[k].value_or(0.0);
+  auto com = [&](const Eigen::VectorXd& p, int j) {
+    const std::string n = std::to_string(j);
+    return Eigen::Vector3d(value(p, "MX" + n), value(p, "MY" + n), value(p, "MZ" + n)) /
+           value(p, "M" + n);
+  };
+  std::printf("  link  mass  a-priori  ratio  com distance (m)\n");
+  for (int j = 1; j <= 6; ++j) {
+    const double mass = value(fit.standard, "M" + std::to_string(j));
+    const double mass0 = value(a_priori, "M" + std::to_string(j));
+    const double distance = (com(fit.standard, j) - com(a_priori, j)).norm();
+    std::printf("  %4d %6.3f %8.3f %6.3f %8.4f\n", j, mass, mass0, mass / mass0, distance);
+    EXPECT_LT(distance, 0.08) << "link " << j;
+    // Link 6's mass is not held (measured 3.35 x): the URDF makes link 6 a 0.2 kg point mass on
+    // its axis (no rotational inertia, so no divergence term), and the data put its first
+    // moments MX6R, MY6R about 1.1 sd off that axis; a consistent body with first moment h and
+    // the a-priori's nearly zero ZZ6 needs mass |h|^2 / ZZ6 (docs/real-data.md).
+    if (j == 6) continue;
+    EXPECT_GE(mass / mass0, 0.6) << "link " << j;
+    EXPECT_LE(mass / mass0, 1.67) << "link " << j;
+  }
+}
+
 TEST(RealData, Tx40IdimWlsMatchesGautierBriotTables) {
   const std::string dir = test::shared_path("datasets/tx40-figaroh/");
   if (!std::filesystem::exists(dir + "pos_read_data.csv")) {
@@ -159,6 +233,7 @@ TEST(RealData, Tx40IdimWlsMatchesGautierBriotTables) {
   }
   // Physically consistent, within 10 % of the unconstrained fit's relative error norm.
   check_physical_fit(*model, "robots/tx40.yaml", id, prepared.data, prepared.decimation, 1.10);
+  check_tx40_a_priori_fit(*model, id, prepared.data, prepared.decimation, 1.02);
 }
 
 TEST(RealData, PandaTorquesArePredictedPerJoint) {
