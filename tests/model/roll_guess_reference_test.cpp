@@ -135,7 +135,8 @@ struct LinkCheck {
 // The guesses of `file` (scaled) against its own inertials, printed as a table.
 std::vector<LinkCheck> check_against_inertials(const std::string& file, double scale = 1) {
   const std::string text = scaled(test::read_text(file), scale);
-  const std::string stem = fs::path(file).stem().string() + "_x" + std::to_string(int(scale));
+  const std::string stem =
+      fs::path(file).stem().string() + "_x" + std::to_string(static_cast<int>(scale));
   const fs::path dir = test::test_folder("roll_guess_reference");
   test::write_text(dir / (stem + ".urdf"), text);
   test::write_text(dir / (stem + "_bare.urdf"), without_inertials_and_shapes(text));
