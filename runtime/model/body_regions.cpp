@@ -31,15 +31,21 @@ Eigen::Vector3d parents_origin(const Body& body) {
   return -rotation(body.fixed).transpose() * Eigen::Vector3d(t[0], t[1], t[2]);
 }
 
-// ends[b], body b's axis foot and where its axis meets its parent's: every segment its guess
-// spans.
+// ends[b], and body b's axis foot and where its axis meets its parent's unless it starts at
+// its joint: every segment its guess spans.
 std::vector<Eigen::Vector3d> segments_of(const RigidBodyTree& tree,
                                          const std::vector<std::vector<Eigen::Vector3d>>& ends,
                                          std::size_t b) {
-  std::vector<Eigen::Vector3d> all = b < ends.size() ? ends[b] : std::vector<Eigen::Vector3d>{};
-  if (const auto foot = axis_foot(tree.bodies[b])) all.push_back(*foot);
+  const std::vector<Eigen::Vector3d> own =
+      b < ends.size() ? ends[b] : std::vector<Eigen::Vector3d>{};
+  std::vector<Eigen::Vector3d> all = own;
+  std::vector<Eigen::Vector3d> behind;
+  if (const auto foot = axis_foot(tree.bodies[b])) behind.push_back(*foot);
   if (const auto meet = axes_meet(tree, b); meet && meet->norm() > kCoincident) {
-    all.push_back(*meet);
+    behind.push_back(*meet);
+  }
+  for (const Eigen::Vector3d& point : behind) {
+    if (!starts_at_its_joint(own, point)) all.push_back(point);
   }
   return all;
 }
@@ -93,6 +99,12 @@ std::optional<Eigen::Vector3d> axis_foot(const Body& body) {
   const Eigen::Vector3d foot = parents_origin(body).dot(axis) * axis;
   if (foot.norm() <= kCoincident) return std::nullopt;
   return foot;
+}
+
+bool starts_at_its_joint(const std::vector<Eigen::Vector3d>& ends, const Eigen::Vector3d& behind) {
+  const Eigen::Vector3d away = -behind.normalized();
+  return std::any_of(ends.begin(), ends.end(),
+                     [&](const Eigen::Vector3d& end) { return end.dot(away) > kMeetTolerance; });
 }
 
 std::optional<Eigen::Vector3d> axes_meet(const RigidBodyTree& tree, std::size_t b) {

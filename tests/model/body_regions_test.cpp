@@ -3,7 +3,9 @@
 // against the closed form of the box around that capsule and against points of the capsule's
 // surface, which must all lie inside; and through the URDF loader, a mesh-only middle link
 // (its segment to the next joint), a mesh-only last link with a fixed flange, and a joint whose
-// <origin> is offset along its (rotated) axis, whose link reaches back along the axis.
+// <origin> is offset along its (rotated) axis, whose link reaches back along the axis unless its
+// own next joint lies further along that axis (a roll at the far end of its parent's body: the
+// shaft is the parent's, and the roll starts at its joint).
 
 #include <cmath>
 #include <optional>
@@ -135,6 +137,66 @@ TEST(SegmentRegion, AUrdfLinkReachesBackAlongItsAxisToItsParentsJoint) {
   // height 0.6), so at least a's radius r: x in [-r, 0.2 + r], y in [-r, r], z in
   // [-r, 0.3 + r].
   expect_region(*robot.body_regions[1], {0.1, 0, 0.15}, {0.1 + r, r, 0.15 + r});
+}
+
+TEST(SegmentRegion, ARollStartsAtItsJointWhenItsBodyGoesOnAlongItsAxis) {
+  const Eigen::Vector3d behind(0, 0, -0.8);  // its parent's origin, 0.8 m back along its axis
+  // The next joint 0.6 m further along the axis: the frame is at the roll's bearing.
+  EXPECT_TRUE(starts_at_its_joint({Eigen::Vector3d(0, 0.1, 0.6)}, behind));
+  // The next joint across the axis (a DH frame at the far end of the body), back towards the
+  // parent, or none at all (a flange link): the shaft is the roll's own.
+  EXPECT_FALSE(starts_at_its_joint({Eigen::Vector3d(0.3, 0, 0)}, behind));
+  EXPECT_FALSE(starts_at_its_joint({Eigen::Vector3d(0.3, 0, -0.2)}, behind));
+  EXPECT_FALSE(starts_at_its_joint({}, behind));
+  EXPECT_FALSE(starts_at_its_joint({Eigen::Vector3d::Zero()}, behind));
+}
+
+// A shoulder a (pitch about y) whose roll joint j2 sits 0.8 m up its z, at the far end of its
+// body, with the roll's axis along that offset; the roll b goes on 0.6 m along its axis to the
+// elbow c (pitch about y), which carries a flange 0.2 m further. `elbow` replaces the elbow's
+// origin to place b's frame at the far end of its body instead (the Panda's upper arm).
+std::string roll_arm(const std::string& elbow) {
+  return R"(<?xml version="1.0"?>
+<robot name="roll_arm">
+  <link name="base"/>
+  <link name="a"/><link name="b"/><link name="c"/><link name="flange"/>
+  <joint name="j1" type="revolute"><parent link="base"/><child link="a"/>
+    <axis xyz="0 1 0"/><limit lower="-3" upper="3" effort="10" velocity="2"/></joint>
+  <joint name="j2" type="revolute"><parent link="a"/><child link="b"/>
+    <origin xyz="0 0 0.8"/><axis xyz="0 0 1"/><limit lower="-3" upper="3" effort="10" velocity="2"/></joint>
+  <joint name="j3" type="revolute"><parent link="b"/><child link="c"/>
+    <origin xyz=")" +
+         elbow +
+         R"("/><axis xyz="0 1 0"/><limit lower="-3" upper="3" effort="10" velocity="2"/></joint>
+  <joint name="tool" type="fixed"><parent link="c"/><child link="flange"/>
+    <origin xyz="0 0 0.2"/></joint>
+</robot>
+)";
+}
+
+TEST(SegmentRegion, ARollAtTheFarEndOfItsParentStartsAtItsJoint) {
+  const std::string path = (test::test_folder("segment_region") / "roll.urdf").string();
+  test::write_text(path, roll_arm("0 0 0.6"));
+  const RobotModel robot = load_robot(path);
+  ASSERT_EQ(robot.body_regions.size(), 3u);
+  // a: to j2 (0, 0, 0.8), radius 0.2: z in [-0.2, 1.0].
+  expect_region(*robot.body_regions[0], {0, 0, 0.4}, {0.2, 0.2, 0.6});
+  // b: only to the elbow (0, 0, 0.6), not back to a's origin (0, 0, -0.8) where its axis meets
+  // a's; a quarter of 0.6 is 0.15, but at least a's 0.2 (the axes meet): z in [-0.2, 0.8].
+  // Reaching back it would span z in [-1.0, 0.8], all of a's body.
+  expect_region(*robot.body_regions[1], {0, 0, 0.3}, {0.2, 0.2, 0.5});
+  // c: to the flange (0, 0, 0.2); its axis meets b's at its origin: b's radius 0.2.
+  expect_region(*robot.body_regions[2], {0, 0, 0.1}, {0.2, 0.2, 0.3});
+}
+
+TEST(SegmentRegion, ARollWhoseFrameEndsItsBodyStillReachesBack) {
+  const std::string path = (test::test_folder("segment_region") / "elbow_frame.urdf").string();
+  test::write_text(path, roll_arm("0.3 0 0"));
+  const RobotModel robot = load_robot(path);
+  ASSERT_EQ(robot.body_regions.size(), 3u);
+  // b: to the elbow (0.3, 0, 0), across its axis, and back to (0, 0, -0.8): radius 0.2; box
+  // x [-0.2, 0.5], y +-0.2, z [-1.0, 0.2].
+  expect_region(*robot.body_regions[1], {0.15, 0, -0.4}, {0.35, 0.2, 0.6});
 }
 
 }  // namespace
