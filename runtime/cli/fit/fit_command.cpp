@@ -99,7 +99,8 @@ EstimateFile estimate_file(const CommandLine& args, const IdentificationModel& m
                            const std::vector<EstimatedParameter>& parameters,
                            const Eigen::VectorXd& truth,
                            const std::optional<PhysicalEstimate>& physical,
-                           const TorquePrediction& physical_prediction) {
+                           const TorquePrediction& physical_prediction,
+                           double unconstrained_norm) {
   EstimateFile estimate;
   estimate.model = model.name();
   estimate.description_sha256 = model.description_sha256();
@@ -115,7 +116,7 @@ EstimateFile estimate_file(const CommandLine& args, const IdentificationModel& m
   estimate.data = args.all("--data");
   estimate.data_options = data_option_words(args);
   if (physical) {
-    estimate.physical = physical_block(*physical, parameters, id.torque_rel_error_norm);
+    estimate.physical = physical_block(*physical, parameters, unconstrained_norm);
     estimate.method += " (physically consistent)";
     estimate.parameters =
         estimated(physical->fit.base, physical->fit.base_std_dev, id.names, truth);
@@ -213,6 +214,20 @@ std::string chosen_speed_line(const std::vector<double>& speed) {
          "unreliable); --min-speed 0 turns it off\n";
 }
 
+// With equations weighed down near reversals (--min-speed, given or chosen) the fit's relative
+// error norm covers only what it weighs; the consistent estimate, predict and other fits are
+// compared over every sample, so that figure is the unconstrained fit's to stand beside them.
+std::optional<double> every_sample_rel_error_norm(const IdentificationModel& model,
+                                                  const Experiments& experiments,
+                                                  const std::vector<double>& min_speed,
+                                                  const Eigen::VectorXd& value) {
+  if (std::none_of(min_speed.begin(), min_speed.end(), [](double v) { return v > 0; })) {
+    return std::nullopt;
+  }
+  std::vector<Trajectory> compared = experiments.data;
+  return predict_with_progress(model, compared, value, experiments.decimation).rel_error_norm;
+}
+
 }  // namespace
 
 int run_fit(const CommandLine& args) {
@@ -271,8 +286,11 @@ int run_fit(const CommandLine& args) {
 
   // The report.
   const std::vector<EstimatedParameter> parameters = estimated(id.fit, id.names, truth);
+  const std::optional<double> every_sample_norm =
+      every_sample_rel_error_norm(model, experiments, options.min_speed, id.fit.value);
+  const double comparable_norm = every_sample_norm.value_or(id.torque_rel_error_norm);
   print_fit({model, method.label, experiments, id, data_report.str(), method_report.str(),
-             args.has("--min-speed") || !chosen_speed.empty(), chosen_speed},
+             args.has("--min-speed") || !chosen_speed.empty(), chosen_speed, every_sample_norm},
             parameters);
   check_residual(context, id, compare_with_wls(method, context, id));
   std::optional<PhysicalEstimate> physical;
@@ -284,7 +302,7 @@ int run_fit(const CommandLine& args) {
     physical_prediction =
         predict_with_progress(model, compared, physical->fit.base, experiments.decimation);
     physical->rel_error_norm = physical_prediction.rel_error_norm;
-    print_physical(std::cout, id.names, id.fit, id.torque_rel_error_norm, *physical,
+    print_physical(std::cout, id.names, id.fit, comparable_norm, *physical,
                    id.fit.equations - static_cast<long long>(id.names.size()));
     warn_far_links(std::cerr, physical->links);
     warn_unconverged(std::cerr, *physical);
@@ -307,7 +325,7 @@ int run_fit(const CommandLine& args) {
   }
   if (args.has("-o")) {
     EstimateFile estimate = estimate_file(args, model, method.label, id, parameters, truth,
-                                          physical, physical_prediction);
+                                          physical, physical_prediction, comparable_norm);
     estimate.essential = essential;
     write_file(args.one("-o"), estimate_json(estimate));
   }

@@ -163,8 +163,14 @@ void print_fit(const FitSummary& fit, const std::vector<EstimatedParameter>& par
     print_truth_comparison(compare_with_truth(parameters, kPoorlyIdentifiedPercent),
                            kPoorlyIdentifiedPercent);
   }
-  std::cout << "  relative error norm of the torques " << fixed(id.torque_rel_error_norm, 0, 4)
-            << ", condition number " << fixed(id.fit.condition_number, 0, 4) << "\n";
+  std::cout << "  relative error norm of the torques " << fixed(id.torque_rel_error_norm, 0, 4);
+  if (fit.every_sample_rel_error_norm) {
+    // The weighted-down reversals are where the friction model is least right: without them
+    // the figure flatters the model, so the one predict would give stands beside it.
+    std::cout << " over the equations the fit weighs (" << fixed(*fit.every_sample_rel_error_norm, 0, 4)
+              << " over every sample, reversals included)";
+  }
+  std::cout << ", condition number " << fixed(id.fit.condition_number, 0, 4) << "\n";
   // A fit can be full rank and still useless: say so rather than exit quietly.
   if (id.fit.condition_number > kIllConditioned || !(id.torque_rel_error_norm < 1)) {
     std::cerr << "modelid: warning: this fit explains the torques poorly (relative error norm "

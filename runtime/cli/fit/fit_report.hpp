@@ -1,6 +1,7 @@
 // What modelid fit prints and writes of a base-parameter estimate (fit_report.cpp).
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -51,6 +52,8 @@ struct FitSummary {
   std::string method_report;  ///< what the estimator said
   bool min_speed_given = false;  ///< given, or chosen from the data
   std::string min_speed_chosen;  ///< the line saying the speeds chosen from the data, or empty
+  /// With equations weighed down near reversals: the relative error norm over every sample.
+  std::optional<double> every_sample_rel_error_norm;
 };
 
 /// The fit on standard output (heading, parameter table, relative error norm, condition number,

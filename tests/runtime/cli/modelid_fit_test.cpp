@@ -331,6 +331,47 @@ TEST(ModelidFit, MinSpeedLeavesOutTheSamplesWhereAJointIsSlow) {
 namespace modelgen {
 namespace {
 
+// With --min-speed the fit weighs the equations near reversals down, so its relative error
+// norm covers only what it weighs; beside it stands the norm over every sample, recomputed here
+// from the estimate with the numeric reference's regressor (this run is not decimated).
+TEST(ModelidFit, MinSpeedPrintsTheErrorOverEverySampleBesideTheWeighedOne) {
+  const fs::path dir = test::test_folder();
+  const ReferenceModel reference = kr150_reference();
+  const Trajectory data = read_trajectory_csv(test::source_path(kData), reference.dof());
+  Eigen::MatrixXd W;
+  Eigen::VectorXd y;
+  reference_equations(reference, data, W, y);
+  const fs::path estimate = dir / "est.json";
+  const CliRun run = modelid("fit --robot kr150 --data " + quoted_source(kData) +
+                             " --method wls --min-speed 0.1 -o " + quoted(estimate));
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const std::string marker = " over the equations the fit weighs (";
+  const std::size_t at = run.out.find(marker);
+  ASSERT_NE(at, std::string::npos) << run.out;
+  const double printed = std::stod(run.out.substr(at + marker.size()));
+  EXPECT_NE(run.out.find(" over every sample, reversals included)"), std::string::npos);
+
+  const nlohmann::json file = nlohmann::json::parse(test::read_text(estimate));
+  const std::vector<std::string>& names = reference.base_param_names();
+  Eigen::VectorXd beta(static_cast<Eigen::Index>(names.size()));
+  for (const nlohmann::json& p : file["parameters"]) {
+    beta[index_of(names, p["name"].get<std::string>())] = p["value"].get<double>();
+  }
+  const double every_sample = (y - W * beta).norm() / y.norm();
+  EXPECT_NEAR(printed, every_sample, 1e-4 * every_sample + 1e-4) << run.out;
+  // The weighed figure leaves the slow samples out, so it differs from the one over all.
+  const std::size_t norm_at = run.out.find("relative error norm of the torques ");
+  ASSERT_NE(norm_at, std::string::npos);
+  const double weighed = std::stod(run.out.substr(norm_at + 35));
+  EXPECT_GT(std::abs(weighed - every_sample), 1e-3 * every_sample) << run.out;
+
+  // Without weighting there is one figure.
+  const CliRun plain = modelid("fit --robot kr150 --data " + quoted_source(kData) +
+                               " --method wls --min-speed 0");
+  ASSERT_EQ(plain.exit_code, 0) << plain.err;
+  EXPECT_EQ(plain.out.find(marker), std::string::npos) << plain.out;
+}
+
 TEST(ModelidFit, ADecimationFactorThatCannotBeStagedIsRefused) {
   const CliRun run = test::modelid("fit --robot kr150 --data " + quoted_source(kData) +
                                    " --method wls --decimate 22");
