@@ -19,9 +19,10 @@ struct ReversalSpeed {
   /// 3 sigma_v: sigma_v = sigma_q sqrt(sum_k g_k^2), g the impulse response of the position
   /// filter followed by the central difference (per second), sigma_q position_noise_std.
   Eigen::VectorXd noise;
-  /// The largest |dq| where the prepared velocity's sign is reliably wrong: opposite to a
-  /// reference velocity from the same positions filtered at kReferenceBand times the cut-off,
-  /// whose magnitude there exceeds 3 of its own noise sigma. 0 on clean reversals.
+  /// The largest |dq| where the prepared velocity is off by more than half of itself beyond 3
+  /// noise sigma of a reference velocity from the same positions filtered at kReferenceBand
+  /// times the cut-off: a sign the reference contradicts, a joint at rest by it, or (on a real
+  /// record with motion above the cut-off) the same sign half off. 0 on clean reversals.
   Eigen::VectorXd lag;
   /// Samples whose sign was compared (the reference reliable there).
   Eigen::Index compared = 0;
