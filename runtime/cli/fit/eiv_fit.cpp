@@ -30,6 +30,20 @@ void print_std(std::ostream& out, const char* what, const Eigen::VectorXd& varia
   out << "\n";
 }
 
+void print_coupling(std::ostream& out, const std::string& source, const NoiseCoupling& coupling) {
+  if (coupling.empty()) return;
+  // "-": no band with noise on both sides (exact positions), nothing to test.
+  auto value = [&](const Eigen::VectorXd& v, Eigen::Index j) {
+    return coupling.bands[j] == 0 ? std::string("-") : fixed(v[j], 0, 3);
+  };
+  out << "  q-tau error coupling per axis, " << source << " (" << coupling.degrees
+      << " degrees per band of " << coupling.lines_per_band << " lines):\n    correlation:";
+  for (Eigen::Index j = 0; j < coupling.z.size(); ++j) out << " " << value(coupling.correlation, j);
+  out << "\n    independence z:";
+  for (Eigen::Index j = 0; j < coupling.z.size(); ++j) out << " " << value(coupling.z, j);
+  out << "\n";
+}
+
 }  // namespace
 
 // Measured on the COMAU scenario (docs/real-data.md, modelid_comau_scenario_test): the
@@ -48,6 +62,27 @@ std::string closed_loop_refusal(const std::string& source) {
          "(the non-periodic route), or wls";
 }
 
+std::string coupling_refusal(const std::string& source, const NoiseCoupling& coupling) {
+  std::string joints, correlations, scores;
+  for (Eigen::Index j = 0; j < coupling.z.size(); ++j) {
+    if (!noise_coupled(coupling, j)) continue;
+    const std::string separator = joints.empty() ? "" : ", ";
+    joints += separator + std::to_string(j + 1);
+    correlations += separator + fixed(coupling.correlation[j], 0, 2);
+    scores += separator + fixed(coupling.z[j], 0, 3);
+  }
+  return source +
+         ": error: --method ml-eiv refuses this record: the torque's deviations from period to "
+         "period follow the position's on joint(s) " +
+         joints + " (correlation " + correlations + "; independence test z = " + scores +
+         ", refused beyond " + fixed(kCouplingZ, 0, 0) + " with a correlation of at least " +
+         fixed(kCouplingCorrelation, 0, 2) +
+         "), as under a controller that feeds the encoder's error into the torque command; "
+         "eq. 16 takes the errors of q and tau as independent, so its estimate would be biased "
+         "and its standard deviations too small. Use --method iv or didim with --controller "
+         "(the non-periodic route), or wls";
+}
+
 Identification fit_eiv(const IdentificationModel& model, const Experiments& experiments,
                        std::ostream& report, std::ostream& log) {
   const std::vector<Trajectory>& data = experiments.data;
@@ -58,6 +93,16 @@ Identification fit_eiv(const IdentificationModel& model, const Experiments& expe
   }
   for (const Trajectory& raw : experiments.raw) {
     if (raw.qr.size() != 0) throw std::runtime_error(closed_loop_refusal(raw.source));
+  }
+  for (std::size_t e = 0; e < data.size(); ++e) {
+    const NoiseCoupling& coupling = experiments.noise[e].coupling;
+    print_coupling(report, data[e].source, coupling);
+    for (Eigen::Index j = 0; j < coupling.z.size(); ++j) {
+      if (noise_coupled(coupling, j)) {
+        print_coupling(log, data[e].source, coupling);  // every axis, before the refusal
+        throw std::runtime_error(coupling_refusal(data[e].source, coupling));
+      }
+    }
   }
   const ErrorsInVariablesResult result =
       fit_errors_in_variables(model, data, experiments.noise);

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "modelgen/estimation/identify.hpp"
+#include "modelgen/signal/noise_coupling.hpp"
 #include "runtime/cli/common/arguments.hpp"
 #include "runtime/cli/data/data_files.hpp"
 
@@ -18,9 +19,11 @@ void check_eiv_arguments(const CommandLine& args);
 /// Fits `model` to the prepared periods of `experiments` (each with its PeriodicNoise) and
 /// prints to `report` the noise standard deviations used per axis, the IDIM-WLS start, the
 /// Ceres summary, iterations and cost. Returns the estimate in the form fit prints.
-/// Refuses (UsageError) a closed-loop record, one that carries the reference columns
-/// qr1..qrn (experiments.raw): its averaged period is not the errors-in-variables setting of
-/// eq. 13-16 (closed_loop_refusal). Warns on `log` when the residual standard deviation is
+/// Prints the q-tau error coupling of each record (noise_coupling) and refuses a closed-loop
+/// record: one that carries the reference columns qr1..qrn (experiments.raw,
+/// closed_loop_refusal), or one whose errors of q and tau are coupled on a joint
+/// (noise_coupled, coupling_refusal): its averaged period is not the errors-in-variables
+/// setting of eq. 13-16. Warns on `log` when the residual standard deviation is
 /// above kEivResidualStdLimit: the averaged period then carries errors its noise model does
 /// not describe (a closed loop without reference columns does this) and the standard
 /// deviations are too small by about that factor.
@@ -33,5 +36,21 @@ constexpr double kEivResidualStdLimit = 1.5;
 
 /// The reason ML-EIV refuses the closed-loop record `source` (what fit_eiv throws).
 std::string closed_loop_refusal(const std::string& source);
+
+/// The coupling test's bounds (modelgen/signal/noise_coupling.hpp): a joint whose errors of q
+/// and tau are dependent beyond z = kCouplingZ (one-sided p of 3e-7 per joint) with a
+/// correlation of at least kCouplingCorrelation makes fit_eiv refuse the record.
+constexpr double kCouplingZ = 5.0;
+constexpr double kCouplingCorrelation = 0.1;
+
+/// Whether `joint`'s errors of q and tau are coupled beyond both bounds (inline: the tests
+/// check the rule on library-prepared records without the command's objects).
+inline bool noise_coupled(const NoiseCoupling& coupling, Eigen::Index joint) {
+  return coupling.z[joint] > kCouplingZ && coupling.correlation[joint] >= kCouplingCorrelation;
+}
+
+/// The reason ML-EIV refuses the record `source` whose errors of q and tau are coupled (what
+/// fit_eiv throws): the joints, their correlations and z, eq. 16's assumption, what to use.
+std::string coupling_refusal(const std::string& source, const NoiseCoupling& coupling);
 
 }  // namespace modelgen::internal

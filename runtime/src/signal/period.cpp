@@ -269,8 +269,7 @@ PeriodicAverage average_periods(const Trajectory& x, double period) {
   avg.has_velocity = x.has_velocity;
   const double p = static_cast<double>(periods);
   // Mean over the periods of each sample of the period, and the sum of squared deviations.
-  auto average = [&](const Eigen::MatrixXd& in, Eigen::MatrixXd& mean, Eigen::VectorXd* var,
-                     Eigen::MatrixXd* lines) {
+  auto average = [&](const Eigen::MatrixXd& in, Eigen::MatrixXd& mean, Eigen::VectorXd* var) {
     mean = Eigen::MatrixXd::Zero(samples, dof);
     for (Eigen::Index i = 0; i < periods; ++i) mean += in.middleRows(i * samples, samples);
     mean /= p;
@@ -285,23 +284,35 @@ PeriodicAverage average_periods(const Trajectory& x, double period) {
       // N (P - 1) degrees of freedom make it unbiased.
       (*var)[j] = squares / (static_cast<double>(samples) * (p - 1.0)) / p;
     }
-    // The same spread line by line: the DFT of each period's deviation from the mean.
-    const Eigen::Index half = samples / 2;
-    lines->setZero(half + 1, dof);
-    for (Eigen::Index j = 0; j < dof; ++j) {
-      for (Eigen::Index i = 0; i < periods; ++i) {
-        const Eigen::VectorXd deviation = in.col(j).segment(i * samples, samples) - mean.col(j);
-        const std::vector<std::complex<double>> d = detail::dft(deviation);
-        for (Eigen::Index l = 0; l <= half; ++l) (*lines)(l, j) += std::norm(d[l]);
+  };
+  average(x.q, avg.q, &out.q_noise_variance);
+  average(x.tau, avg.tau, &out.tau_noise_variance);
+  // The same spread line by line: the DFT of each period's deviation from the mean, and the
+  // products of the torque's and the position's lines for their cross-covariance.
+  const Eigen::Index half = samples / 2;
+  out.q_line_variance.setZero(half + 1, dof);
+  out.tau_line_variance.setZero(half + 1, dof);
+  out.tau_q_line_covariance.setZero(half + 1, dof);
+  for (Eigen::Index j = 0; j < dof; ++j) {
+    for (Eigen::Index i = 0; i < periods; ++i) {
+      const std::vector<std::complex<double>> dq =
+          detail::dft(x.q.col(j).segment(i * samples, samples) - avg.q.col(j));
+      const std::vector<std::complex<double>> dtau =
+          detail::dft(x.tau.col(j).segment(i * samples, samples) - avg.tau.col(j));
+      for (Eigen::Index l = 0; l <= half; ++l) {
+        out.q_line_variance(l, j) += std::norm(dq[l]);
+        out.tau_line_variance(l, j) += std::norm(dtau[l]);
+        out.tau_q_line_covariance(l, j) += dtau[l] * std::conj(dq[l]);
       }
     }
-    *lines /= p * (p - 1.0);
-  };
-  average(x.q, avg.q, &out.q_noise_variance, &out.q_line_variance);
-  average(x.tau, avg.tau, &out.tau_noise_variance, &out.tau_line_variance);
+  }
+  const double pairs = p * (p - 1.0);
+  out.q_line_variance /= pairs;
+  out.tau_line_variance /= pairs;
+  out.tau_q_line_covariance /= pairs;
   if (x.has_velocity) {
-    average(x.dq, avg.dq, nullptr, nullptr);
-    average(x.ddq, avg.ddq, nullptr, nullptr);
+    average(x.dq, avg.dq, nullptr);
+    average(x.ddq, avg.ddq, nullptr);
   } else {
     avg.dq = Eigen::MatrixXd::Zero(samples, dof);
     avg.ddq = Eigen::MatrixXd::Zero(samples, dof);

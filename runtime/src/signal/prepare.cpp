@@ -11,6 +11,7 @@
 #include "modelgen/signal/differentiation.hpp"
 #include "modelgen/signal/filter_plan.hpp"
 #include "modelgen/signal/fourier_fit.hpp"
+#include "modelgen/signal/noise_coupling.hpp"
 #include "modelgen/signal/period.hpp"
 #include "modelgen/signal/preparation_checks.hpp"
 #include "modelgen/signal/reversal_mask.hpp"
@@ -202,9 +203,11 @@ PreparedExperiment prepare_periodic(Trajectory& raw, const PreparationOptions& o
   const int torque_harmonics = select_torque_harmonics(average, harmonics);
   const bool whole = torque_harmonics >= (average.samples_per_period - 1) / 2;
   if (!whole) keep_harmonics(average.averaged, average.averaged.tau, torque_harmonics);
+  const NoiseCoupling coupling = noise_coupling(average);  // before the average moves out
   out.data = std::move(average.averaged);
   out.tau_noise_variance = average.tau_noise_variance;
   out.noise = periodic_noise(average, harmonics, whole ? -1 : torque_harmonics);
+  out.noise.coupling = coupling;
   out.decimation = options.decimation.value_or(1);
   out.summary = resampled + skipped + "periodic: " + std::to_string(average.periods) +
                 " periods of " + std::to_string(average.samples_per_period) + " samples (period " +

@@ -28,6 +28,7 @@
 #include "modelgen/signal/gaussian_noise.hpp"
 #include "modelgen/signal/prepare.hpp"
 #include "runtime/cli/common/shipped_models.hpp"
+#include "runtime/cli/fit/eiv_fit.hpp"
 #include "tests/support/cli_runner.hpp"
 #include "tests/support/test_support.hpp"
 #include "tests/support/tx40_truth.hpp"
@@ -282,6 +283,32 @@ TEST(ErrorsInVariables, EstimateCoversTheTruth) {
             << std::sqrt(eiv_squares / well) << ", WLS " << std::sqrt(wls_squares / well) << "\n";
   EXPECT_GE(well, 20);
   EXPECT_TRUE(f.result.correlated_noise);
+}
+
+// Independent noise on q and tau (open loop): the coupling test of fit --method ml-eiv
+// (modelgen/signal/noise_coupling.hpp) must not take it for a closed loop, over a few seeds;
+// and the command line fits such a record and prints the test.
+TEST(ErrorsInVariables, AnOpenLoopRecordIsNotTakenForAClosedLoop) {
+  const Tx40 tx40;
+  for (std::uint64_t seed = 11; seed <= 16; ++seed) {
+    const PreparedExperiment prepared =
+        periodic(measured(*tx40.model, tx40.truth, 200, 8, kSigmaQ, kSigmaTau, seed), *tx40.model);
+    const NoiseCoupling& c = prepared.noise.coupling;
+    ASSERT_EQ(c.z.size(), kDof);
+    std::cout << "seed " << seed << ": z " << c.z.transpose() << ", correlation "
+              << c.correlation.transpose() << "\n";
+    for (int j = 0; j < kDof; ++j) {
+      EXPECT_GT(c.bands[j], 0) << j + 1;
+      EXPECT_FALSE(internal::noise_coupled(c, j)) << "seed " << seed << " joint " << j + 1;
+    }
+  }
+  const std::filesystem::path csv = test::test_folder("eiv_open_loop") / "open.csv";
+  write_trajectory_csv(csv.string(),
+                       measured(*tx40.model, tx40.truth, 200, 8, kSigmaQ, kSigmaTau, 11));
+  const test::CliRun run = test::modelid("fit --robot tx40 --data " + test::quoted(csv) +
+                                         " --method ml-eiv --periodic --period 10");
+  EXPECT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_NE(run.out.find("q-tau error coupling per axis"), std::string::npos) << run.out;
 }
 
 TEST(ErrorsInVariables, CliNeedsPeriodic) {

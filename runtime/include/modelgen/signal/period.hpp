@@ -44,6 +44,11 @@ struct PeriodicAverage {
   /// Noise that is not white (a controller's response to the encoder noise, non-periodic
   /// motion) has a colour the per-axis variances above do not show.
   Eigen::MatrixXd tau_line_variance, q_line_variance;
+  /// Per DFT line l = 0..N/2 (rows) and axis: the cross-covariance of the noise of line l of
+  /// the averaged torque and position, sum_p D_tau,pl conj(D_q,pl) / (P (P - 1)) with the same
+  /// deviations as above. Zero in expectation when the errors of q and tau are independent;
+  /// a controller that feeds the encoder's error into the torque makes it not (noise_coupling).
+  Eigen::MatrixXcd tau_q_line_covariance;
   int periods = 0;                      ///< P, the whole periods averaged
   Eigen::Index samples_per_period = 0;  ///< N = round(period / dt)
   double period = 0;                    ///< N dt, s

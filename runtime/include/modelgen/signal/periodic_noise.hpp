@@ -5,6 +5,7 @@
 
 #include <Eigen/Core>
 
+#include "modelgen/signal/noise_coupling.hpp"
 #include "modelgen/signal/period.hpp"
 
 namespace modelgen {
@@ -23,6 +24,9 @@ struct PeriodicNoise {
   Eigen::Index samples = 0;  ///< N, samples of the period
   double period = 0;         ///< s
   int periods = 0;           ///< P, the periods averaged (the variances' P - 1 degrees of freedom)
+  /// Whether the errors of q and tau are independent, as the variances above take them
+  /// (noise_coupling of the same average; filled by prepare_experiment's periodic route).
+  NoiseCoupling coupling;
   bool empty() const { return q.size() == 0; }
 };
 
