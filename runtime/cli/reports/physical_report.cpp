@@ -139,6 +139,7 @@ void print_physical(std::ostream& out, const std::vector<std::string>& base_name
     out << "\n";
   }
   print_link_table(out, physical.links);
+  for (const std::string& note : fit.prior_notes) out << "  note: " << note << "\n";
   print_drive_table(out, physical.drives);
   if (!fit.converged) {
     out << "  note: the optimiser stopped after " << fit.iterations
