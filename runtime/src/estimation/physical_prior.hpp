@@ -87,7 +87,7 @@ std::optional<DivergenceCentre> divergence_centre(const double* p0, double radiu
 // The sphere's radius for a body's spread (above): half the smallest semi-axis of its region
 // (the body's geometry, or the guess from its joints) where it has one, so that the sphere lies
 // well inside it; else a twentieth of the robot's scale, the summed lengths of the bodies'
-// fixed translations (its reach along the chain; TX-40: 0.49 m, r = 2.5 cm, about the
+// fixed translations (its reach along the chain; TX-40: 0.45 m, r = 2.3 cm, about the
 // flange's radius).
 double spread_radius(const RigidBodyTree& tree, const std::optional<BodyRegion>& region);
 
