@@ -95,6 +95,7 @@ PhysicalBlock physical_block(const PhysicalEstimate& physical,
   block.converged = physical.fit.converged;
   block.unconstrained_rel_error_norm = unconstrained_rel_error_norm;
   block.binding_constraints = physical.fit.active_constraints;
+  block.prior_notes = physical.fit.prior_notes;
   block.unconstrained = unconstrained;
   for (std::size_t k = 0; k < physical.standard_names.size(); ++k) {
     block.standard.emplace_back(physical.standard_names[k],
