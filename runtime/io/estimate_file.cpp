@@ -110,6 +110,7 @@ std::string estimate_json(const EstimateFile& estimate) {
                        {"cost_increase", number(p.cost_increase)},
                        {"converged", p.converged},
                        {"binding_constraints", p.binding_constraints},
+                       {"prior_notes", p.prior_notes},
                        {"unconstrained_rel_error_norm", number(p.unconstrained_rel_error_norm)},
                        {"unconstrained", parameters_json(p.unconstrained)}};
   }

@@ -95,6 +95,7 @@ PhysicalBlock physical_block(const PhysicalEstimate& physical,
   block.converged = physical.fit.converged;
   block.unconstrained_rel_error_norm = unconstrained_rel_error_norm;
   block.binding_constraints = physical.fit.active_constraints;
+  block.prior_notes = physical.fit.prior_notes;
   block.unconstrained = unconstrained;
   for (std::size_t k = 0; k < physical.standard_names.size(); ++k) {
     block.standard.emplace_back(physical.standard_names[k],
@@ -139,6 +140,7 @@ void print_physical(std::ostream& out, const std::vector<std::string>& base_name
     out << "\n";
   }
   print_link_table(out, physical.links);
+  for (const std::string& note : fit.prior_notes) out << "  note: " << note << "\n";
   print_drive_table(out, physical.drives);
   if (!fit.converged) {
     out << "  note: the optimiser stopped after " << fit.iterations

@@ -151,6 +151,7 @@ struct Problem {
   // variables' units (d_b P0: the divergence is the same in any unit).
   std::vector<std::optional<Eigen::Matrix4d>> centre;
   bool any_a_priori = false;           // the description gives some a-priori value
+  std::vector<std::string> prior_notes;  // a-priori bodies spread for the divergence
 };
 
 // The regions the fit enforces: those of bodies without a-priori inertial values. A body with
@@ -251,13 +252,25 @@ Problem set_up(const RigidBodyTree& tree, const Eigen::MatrixXd& K, const Eigen:
   // quadratic pull relative to group scales, on the directions of theirs that change no base
   // parameter (physical_prior.hpp).
   pb.scale = detail::prior_scales(tree, pb.layout, pb.prior_value, K, nullptr);
-  const auto centres = detail::divergence_centres(pb.layout, pb.prior_value, has_a_priori);
+  std::vector<double> radius;
+  for (const auto& index : pb.layout.body_params) {
+    const auto body =
+        static_cast<std::size_t>(tree.params[static_cast<std::size_t>(index[9])].body);
+    radius.push_back(detail::spread_radius(
+        tree, body < regions.size() ? regions[body] : std::optional<BodyRegion>{}));
+  }
+  const auto centres = detail::divergence_centres(pb.layout, pb.prior_value, has_a_priori, radius);
   std::vector<char> in_divergence(static_cast<std::size_t>(n), 0);
   pb.centre.assign(centres.size(), std::nullopt);
   for (std::size_t b = 0; b < centres.size(); ++b) {
     if (!centres[b]) continue;
     const auto& index = pb.layout.body_params[b];
-    pb.centre[b] = pb.d[index[0]] * *centres[b];
+    pb.centre[b] = pb.d[index[0]] * centres[b]->P0;
+    const int body = tree.params[static_cast<std::size_t>(index[9])].body;
+    if (centres[b]->thin_axes > 0) {
+      const std::string& name = tree.bodies[static_cast<std::size_t>(body)].name;
+      pb.prior_notes.push_back(detail::spread_note(name, *centres[b]));
+    }
     for (int k : index) in_divergence[static_cast<std::size_t>(k)] = 1;
   }
   const detail::QuadraticPrior quadratic = detail::quadratic_prior(
@@ -325,6 +338,7 @@ PhysicalFitResult solve(const RigidBodyTree& tree, const Eigen::MatrixXd& K,
   result.standard = pb.T * solved.y.cwiseQuotient(pb.d);
   result.prior = pb.prior_value;
   result.prior_scale = pb.scale;
+  result.prior_notes = pb.prior_notes;
   result.base = K * result.standard;
   result.cost_increase = (pb.U * (result.base - beta_hat)).squaredNorm();
   // A constraint that only resists the prior (its push no larger than the prior term's own

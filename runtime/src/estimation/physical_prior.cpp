@@ -12,6 +12,8 @@
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <sstream>
+#include <string>
 #include <vector>
 
 #include "modelgen/model/physical_consistency.hpp"
@@ -94,10 +96,63 @@ std::optional<BodyDivergence> log_det_divergence(const Eigen::Matrix4d& P0, cons
   return out;
 }
 
-std::vector<std::optional<Eigen::Matrix4d>> divergence_centres(
-    const Layout& layout, const Eigen::VectorXd& prior_value,
-    const std::vector<char>& has_a_priori) {
-  std::vector<std::optional<Eigen::Matrix4d>> centre(layout.body_params.size());
+std::optional<DivergenceCentre> divergence_centre(const double* p0, double radius) {
+  const Eigen::Matrix4d P0 = pseudo_inertia(p0);
+  const Eigen::Vector4d lambda = Eigen::SelfAdjointEigenSolver<Eigen::Matrix4d>(P0).eigenvalues();
+  const double m = P0(3, 3);
+  if (!(m > 0) || lambda[0] < -1e-12 * lambda[3]) return std::nullopt;
+  DivergenceCentre out{P0, 0, radius};
+  if (radius > 0) {
+    // Sigma_c = Sigma - h h' / m: the second moments about the centre of mass.
+    const Eigen::Vector3d h = P0.block<3, 1>(0, 3);
+    const Eigen::Matrix3d about_com = P0.topLeftCorner<3, 3>() - h * h.transpose() / m;
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> axes(about_com);
+    Eigen::Vector3d moment = axes.eigenvalues();
+    const double sphere = m * radius * radius / 5;
+    for (int i = 0; i < 3; ++i) {
+      if (moment[i] < kThinAxisFraction * sphere) {
+        moment[i] = sphere;
+        ++out.thin_axes;
+      }
+    }
+    if (out.thin_axes > 0) {
+      out.P0.topLeftCorner<3, 3>() =
+          axes.eigenvectors() * moment.asDiagonal() * axes.eigenvectors().transpose() +
+          h * h.transpose() / m;
+      return out;
+    }
+  }
+  if (!(lambda[0] > 1e-12 * lambda[3])) return std::nullopt;  // singular, nothing to spread by
+  return out;
+}
+
+double spread_radius(const RigidBodyTree& tree, const std::optional<BodyRegion>& region) {
+  if (region) {
+    return 0.5 * std::min({region->semi_axes[0], region->semi_axes[1], region->semi_axes[2]});
+  }
+  double reach = 0;
+  for (const Body& body : tree.bodies) {
+    const auto& t = body.fixed.translation;
+    reach += std::sqrt(t[0] * t[0] + t[1] * t[1] + t[2] * t[2]);
+  }
+  return reach / 20;
+}
+
+std::string spread_note(const std::string& body_name, const DivergenceCentre& centre) {
+  static const char* const kShape[] = {"", "mass in a plane", "mass on a line", "point mass"};
+  std::ostringstream says;
+  says.precision(2);
+  says << "body '" << body_name << "': a-priori inertia singular (" << kShape[centre.thin_axes]
+       << "): for the prior, spread along its " << centre.thin_axes
+       << " thin axes as a solid sphere of radius " << centre.radius
+       << " m about the a-priori centre of mass (same mass and centre of mass)";
+  return says.str();
+}
+
+std::vector<std::optional<DivergenceCentre>> divergence_centres(
+    const Layout& layout, const Eigen::VectorXd& prior_value, const std::vector<char>& has_a_priori,
+    const std::vector<double>& radius) {
+  std::vector<std::optional<DivergenceCentre>> centre(layout.body_params.size());
   for (std::size_t b = 0; b < layout.body_params.size(); ++b) {
     const auto& index = layout.body_params[b];
     bool known = true;
@@ -106,10 +161,7 @@ std::vector<std::optional<Eigen::Matrix4d>> divergence_centres(
       known = known && has_a_priori[static_cast<std::size_t>(index[s])];
       p0[s] = prior_value[index[s]];
     }
-    if (!known) continue;
-    const Eigen::Matrix4d P0 = pseudo_inertia(p0);
-    const Eigen::Vector4d lambda = Eigen::SelfAdjointEigenSolver<Eigen::Matrix4d>(P0).eigenvalues();
-    if (lambda[0] > 1e-12 * lambda[3]) centre[b] = P0;  // else not a body: the quadratic keeps it
+    if (known) centre[b] = divergence_centre(p0, radius[b]);
   }
   return centre;
 }

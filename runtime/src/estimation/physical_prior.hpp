@@ -6,6 +6,7 @@
 #pragma once
 
 #include <optional>
+#include <string>
 #include <vector>
 
 #include <Eigen/Core>
@@ -65,12 +66,39 @@ struct BodyDivergence {
 std::optional<BodyDivergence> log_det_divergence(const Eigen::Matrix4d& P0, const double* x,
                                                  bool derivatives = true);
 
-// Per layout body, the a-priori pseudo-inertia P0 of a body all ten of whose values are given
-// and form a positive definite P0 (its eigenvalues above 1e-12 of the largest); nullopt for
-// the others, which the quadratic prior keeps.
-std::vector<std::optional<Eigen::Matrix4d>> divergence_centres(
-    const Layout& layout, const Eigen::VectorXd& prior_value,
-    const std::vector<char>& has_a_priori);
+// The centre of a body's divergence prior: its a-priori pseudo-inertia P0, or, where that is
+// singular or nearly so (a point mass, a rod, a plate: idealisations, not bodies; the
+// divergence needs P0 positive definite), P0 with the same mass and first moments and the mass
+// spread along each thin principal axis to the rms extent of a uniform solid sphere of radius
+// `radius` about the centre of mass (second moment m r^2 / 5 per axis). An axis is thin when
+// its second moment about the centre of mass is below kThinAxisFraction of the sphere's (rms
+// extent below a tenth of r / sqrt 5: about 1 mm for r = 2.5 cm): thinner than any part that
+// is made, so the spread changes no body a vendor could have measured or modelled in CAD.
+inline constexpr double kThinAxisFraction = 1e-2;
+struct DivergenceCentre {
+  Eigen::Matrix4d P0;
+  int thin_axes = 0;  // spread: 3 a point mass, 2 mass on a line, 1 mass in a plane; 0 as given
+  double radius = 0;  // of the sphere whose spread the thin axes were given
+};
+// nullopt where the a-priori values are no body (mass not positive, P0 not positive
+// semidefinite to 1e-12 of its largest eigenvalue): the quadratic prior keeps them.
+std::optional<DivergenceCentre> divergence_centre(const double* p0, double radius);
+
+// The sphere's radius for a body's spread (above): half the smallest semi-axis of its region
+// (the body's geometry, or the guess from its joints) where it has one, so that the sphere lies
+// well inside it; else a twentieth of the robot's scale, the summed lengths of the bodies'
+// fixed translations (its reach along the chain; TX-40: 0.45 m, r = 2.3 cm, about the
+// flange's radius).
+double spread_radius(const RigidBodyTree& tree, const std::optional<BodyRegion>& region);
+
+// The output's note on a body spread by divergence_centre (thin_axes > 0).
+std::string spread_note(const std::string& body_name, const DivergenceCentre& centre);
+
+// Per layout body, the centre (divergence_centre, radius per layout body) of a body all ten of
+// whose values are given; nullopt for the others, which the quadratic prior keeps.
+std::vector<std::optional<DivergenceCentre>> divergence_centres(
+    const Layout& layout, const Eigen::VectorXd& prior_value, const std::vector<char>& has_a_priori,
+    const std::vector<double>& radius);
 
 // w sum_b D(P_b(y) || centre_b) over the bodies with a centre (in the variables' units), as the
 // barrier's convex term.

@@ -84,6 +84,9 @@ struct PhysicalFitResult {
   /// start) and the size its deviation is measured against by the quadratic prior (links with
   /// a-priori inertials: the divergence, physical_prior.hpp).
   Eigen::VectorXd prior, prior_scale;
+  /// In words, the bodies whose a-priori inertia is singular (a point mass, a rod, a plate),
+  /// whose divergence prior uses it spread over a small sphere (physical_prior.hpp).
+  std::vector<std::string> prior_notes;
   double prior_weight = 0;              ///< the weight used
   bool prior_weight_automatic = false;  ///< chosen by the default rule
   bool converged = false;

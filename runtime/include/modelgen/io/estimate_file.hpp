@@ -73,6 +73,7 @@ struct PhysicalBlock {
   bool converged = true;     ///< the optimiser met its tolerance (else not the optimum)
   double unconstrained_rel_error_norm = 0;
   std::vector<std::string> binding_constraints;
+  std::vector<std::string> prior_notes;  ///< singular a-priori bodies spread for the prior
   std::vector<EstimatedParameter> unconstrained;               ///< the fit without constraints
   std::vector<std::pair<std::string, double>> standard;        ///< consistent, by standard name
   std::vector<LinkInertial> links;
@@ -108,8 +109,8 @@ struct EstimateFile {
 /// "region_extent"?}],
 /// "drives"?: [{"name", "value", "a_priori"?, "decided_by", "regrouped_with"}],
 /// "physical"?: {"prior_weight", "prior_weight_rule", "cost_increase", "binding_constraints",
-/// "unconstrained_rel_error_norm", "unconstrained": [...]}}. Non-finite numbers are written as
-/// null.
+/// "prior_notes", "unconstrained_rel_error_norm", "unconstrained": [...]}}. Non-finite numbers are
+/// written as null.
 std::string estimate_json(const EstimateFile& estimate);
 
 /// Refuses a parameter file made for another model: when the JSON file at `path` has a
