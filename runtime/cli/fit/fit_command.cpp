@@ -99,8 +99,7 @@ EstimateFile estimate_file(const CommandLine& args, const IdentificationModel& m
                            const std::vector<EstimatedParameter>& parameters,
                            const Eigen::VectorXd& truth,
                            const std::optional<PhysicalEstimate>& physical,
-                           const TorquePrediction& physical_prediction,
-                           double unconstrained_norm) {
+                           const TorquePrediction& physical_prediction, double unconstrained_norm) {
   EstimateFile estimate;
   estimate.model = model.name();
   estimate.description_sha256 = model.description_sha256();

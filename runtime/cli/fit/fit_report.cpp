@@ -167,7 +167,8 @@ void print_fit(const FitSummary& fit, const std::vector<EstimatedParameter>& par
   if (fit.every_sample_rel_error_norm) {
     // The weighted-down reversals are where the friction model is least right: without them
     // the figure flatters the model, so the one predict would give stands beside it.
-    std::cout << " over the equations the fit weighs (" << fixed(*fit.every_sample_rel_error_norm, 0, 4)
+    std::cout << " over the equations the fit weighs ("
+              << fixed(*fit.every_sample_rel_error_norm, 0, 4)
               << " over every sample, reversals included)";
   }
   std::cout << ", condition number " << fixed(id.fit.condition_number, 0, 4) << "\n";

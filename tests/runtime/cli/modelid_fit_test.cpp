@@ -366,8 +366,8 @@ TEST(ModelidFit, MinSpeedPrintsTheErrorOverEverySampleBesideTheWeighedOne) {
   EXPECT_GT(std::abs(weighed - every_sample), 1e-3 * every_sample) << run.out;
 
   // Without weighting there is one figure.
-  const CliRun plain = modelid("fit --robot kr150 --data " + quoted_source(kData) +
-                               " --method wls --min-speed 0");
+  const CliRun plain =
+      modelid("fit --robot kr150 --data " + quoted_source(kData) + " --method wls --min-speed 0");
   ASSERT_EQ(plain.exit_code, 0) << plain.err;
   EXPECT_EQ(plain.out.find(marker), std::string::npos) << plain.out;
 }
